@@ -1,0 +1,56 @@
+/*
+ * Build-time configuration of the control core: the scalar type and every size limit.
+ *
+ * Everything in the core is sized from the constants below; nothing is allocated at run time.
+ * Build with -DTVO_USE_DOUBLE=1 (CMake option TVO_DOUBLE) for double precision; the default is
+ * float32, which a Cortex-M4F executes in hardware.
+ */
+#ifndef TVO_CONFIG_H
+#define TVO_CONFIG_H
+
+#include <math.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#ifndef TVO_USE_DOUBLE
+#define TVO_USE_DOUBLE 0
+#endif
+
+#if TVO_USE_DOUBLE
+typedef double tvo_real_t;
+#define TVO_R(x) (x)
+#define TVO_SQRT sqrt
+#define TVO_SIN sin
+#define TVO_COS cos
+#define TVO_ATAN2 atan2
+#define TVO_FABS fabs
+#define TVO_EXP exp
+#define TVO_LOG log
+#define TVO_EPSILON 2.220446049250313e-16
+#else
+typedef float tvo_real_t;
+#define TVO_R(x) (x##f)
+#define TVO_SQRT sqrtf
+#define TVO_SIN sinf
+#define TVO_COS cosf
+#define TVO_ATAN2 atan2f
+#define TVO_FABS fabsf
+#define TVO_EXP expf
+#define TVO_LOG logf
+#define TVO_EPSILON 1.1920929e-07f
+#endif
+
+/** Highest relative degree k the law supports (jets carry k+1 Taylor coefficients). */
+#define TVO_MAX_RELATIVE_DEGREE 3
+/** Highest jet order: Taylor coefficients c[0..TVO_JET_MAX_ORDER]. */
+#define TVO_JET_MAX_ORDER TVO_MAX_RELATIVE_DEGREE
+/** Largest flat-output dimension (2 per unicycle). */
+#define TVO_MAX_OUTPUT_DIM 8
+/** Most objective terms one objective may sum. */
+#define TVO_MAX_TERMS 8
+/** Highest polynomial degree of an on-board polynomial target. */
+#define TVO_POLY_MAX_DEGREE 7
+/** Highest target derivative order a streamed target carries (position .. jerk). */
+#define TVO_STREAM_MAX_DERIV 3
+
+#endif /* TVO_CONFIG_H */

@@ -1,0 +1,131 @@
+/*
+ * Sampled-data TV-O controller for N unicycles (k = 2), one instance per control loop.
+ *
+ * Timing (all times are integer ticks of a free-running, wrapping uint32 clock at tick_hz):
+ *   - the command for the interval [t_{n+1}, t_{n+2}) is applied at apply_tick = t_{n+1} and held
+ *     (zero-order hold) until the next one;
+ *   - it is computed from a measurement sampled at stamp_tick, nominally t_{n+1} - delay (the
+ *     computation delay, 0 <= delay <= period); tvo_controller_sample_tick() says when to sample;
+ *   - with delay compensation on, the measured pose is first predicted to apply_tick by the exact
+ *     arc of the command held over [stamp_tick, apply_tick] (the previous command), so the law sees
+ *     the state at the instant its command takes effect. The actual age apply_tick - stamp_tick is
+ *     used, so jitter in the sampling instant is compensated too.
+ *
+ * Measurements are rejected (the status says why, the previous command is held) when they carry
+ * NaN/Inf, are stamped after apply_tick, are older than one period, or do not advance. After
+ * watchdog_periods periods without a valid measurement the controller stops the robots
+ * (v = 0, omega = 0, speed state reset) and reports TVO_ERR_WATCHDOG until measurements resume.
+ */
+#ifndef TVO_CONTROLLER_H
+#define TVO_CONTROLLER_H
+
+#include "tvo/dirty_derivative.h"
+#include "tvo/law.h"
+#include "tvo/objective.h"
+#include "tvo/unicycle.h"
+
+#define TVO_MAX_ROBOTS (TVO_MAX_OUTPUT_DIM / 2)
+
+typedef enum {
+    /** y' = v e_theta with the measured heading; a valid measured speed re-syncs the speed state. */
+    TVO_VELOCITY_FROM_POSE = 0,
+    /** y' from a dirty-derivative filter on measured positions; heading and speed are not used
+        (but for an initial heading, if the first sample has one). */
+    TVO_VELOCITY_FROM_POSITION = 1
+} tvo_velocity_source_t;
+
+typedef struct {
+    uint32_t tick_hz;            /* ticks per second of every timestamp, > 0 */
+    uint32_t period_ticks;       /* h, > 0 and < 2^30 */
+    uint32_t delay_ticks;        /* tau: nominal sampling instant is apply - tau; 0 <= tau <= h */
+    uint8_t robot_count;         /* N, 1 .. TVO_MAX_ROBOTS; the objective's dim must be 2N */
+    uint8_t delay_compensation;  /* 1: predict over the measurement's age before the law */
+    tvo_velocity_source_t velocity_source;
+    tvo_real_t filter_tf_s;      /* dirty-derivative time constant T_f > 0 */
+    tvo_real_t gain_kp;          /* a_0; with gain_kd must make s^2 + kd s + kp Hurwitz */
+    tvo_real_t gain_kd;          /* a_1 */
+    tvo_real_t omega_max_radps;  /* |omega| limit, > 0 */
+    tvo_real_t accel_max_mps2;   /* |dv/dt| limit, > 0 */
+    tvo_real_t speed_max_mps;    /* |v| limit, > 0 */
+    tvo_real_t min_speed_mps;    /* 1/v regularisation floor, 0 < min_speed < speed_max */
+    uint32_t watchdog_periods;   /* safe stop after this many periods without a valid measurement, >= 1 */
+    tvo_real_t initial_speed_mps[TVO_MAX_ROBOTS]; /* dynamic-extension speed at start, |v0| <= speed_max */
+} tvo_controller_config_t;
+
+typedef struct {
+    uint32_t stamp_tick;                         /* when the pose was sampled */
+    tvo_real_t position_m[TVO_MAX_ROBOTS][2];
+    tvo_real_t heading_rad[TVO_MAX_ROBOTS];
+    tvo_real_t speed_mps[TVO_MAX_ROBOTS];
+    uint8_t heading_valid;
+    uint8_t speed_valid;
+} tvo_measurement_t;
+
+typedef struct {
+    tvo_real_t speed_mps[TVO_MAX_ROBOTS];
+    tvo_real_t turn_rate_radps[TVO_MAX_ROBOTS];
+    uint32_t flags;                              /* TVO_FLAG_* */
+} tvo_command_t;
+
+/** What the last step computed (valid when the step's status is TVO_OK). */
+typedef struct {
+    tvo_real_t objective_time_s;
+    tvo_real_t output_m[TVO_MAX_OUTPUT_DIM];          /* y the law used */
+    tvo_real_t output_rate_mps[TVO_MAX_OUTPUT_DIM];   /* y' the law used */
+    tvo_real_t output_accel_mps2[TVO_MAX_OUTPUT_DIM]; /* y'' the law demanded */
+    tvo_real_t gradient[TVO_MAX_OUTPUT_DIM];
+    tvo_real_t gradient_rate[TVO_MAX_OUTPUT_DIM];
+    tvo_real_t accel_mps2[TVO_MAX_ROBOTS];            /* v' after limits */
+} tvo_controller_telemetry_t;
+
+typedef struct {
+    tvo_controller_config_t cfg;
+    tvo_law_t law;
+    const tvo_objective_t *objective;
+    tvo_dirty_derivative_t velocity_filter;
+    tvo_real_t period_s;
+    uint32_t epoch_tick;             /* tick at which the objective's t = 0 */
+    uint64_t elapsed_ticks;          /* ticks from epoch to the last apply_tick (never wraps) */
+    uint32_t last_apply_tick;
+    uint32_t last_stamp_tick;
+    uint32_t periods_without_measurement;
+    uint8_t started;                 /* a step has run */
+    uint8_t has_stamp;               /* last_stamp_tick is valid */
+    uint8_t stopped;                 /* watchdog safe stop in force */
+    tvo_real_t speed_state_mps[TVO_MAX_ROBOTS];   /* dynamic extension v */
+    tvo_real_t heading_estimate_rad[TVO_MAX_ROBOTS]; /* position-only mode: dead-reckoned heading */
+    tvo_command_t held;              /* command applied over the current interval */
+    tvo_controller_telemetry_t telemetry;
+    uint8_t initialized;
+} tvo_controller_t;
+
+/** The paper's defaults: k_p = 40, k_d = 13, omega_max = 2 pi, accel_max = 15, h = 10 ms, tau = h/2. */
+tvo_status_t tvo_controller_config_default(tvo_controller_config_t *cfg);
+
+/**
+ * Validates every parameter (on TVO_ERR_PARAM *bad_param names the first wrong one; bad_param may
+ * be NULL) and binds the objective (dim must be 2 * robot_count; it must outlive the controller).
+ * epoch_tick is the tick at which the objective's time is 0.
+ */
+tvo_status_t tvo_controller_init(tvo_controller_t *ctl, const tvo_controller_config_t *cfg,
+                                 const tvo_objective_t *objective, uint32_t epoch_tick,
+                                 tvo_param_t *bad_param);
+
+/**
+ * One period: computes the command applied at apply_tick from the measurement (NULL when none
+ * arrived). cmd always receives a safe command: the new one on TVO_OK; otherwise the held one
+ * (TVO_FLAG_HOLDING) or a stop (TVO_FLAG_SAFE_STOP), with the reason as the status.
+ * apply_tick must advance on every call (TVO_ERR_OUT_OF_ORDER otherwise, previous command held).
+ */
+tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t *meas,
+                                 uint32_t apply_tick, tvo_command_t *cmd);
+
+/** Tick at which to sample for the command applied at apply_tick: apply_tick - delay. */
+tvo_status_t tvo_controller_sample_tick(const tvo_controller_t *ctl, uint32_t apply_tick,
+                                        uint32_t *sample_tick);
+
+/** Converts an objective-time tick count to the streamed-target stamp for a plant tick. */
+tvo_status_t tvo_controller_objective_ticks(const tvo_controller_t *ctl, uint32_t tick,
+                                            uint64_t *objective_ticks);
+
+#endif /* TVO_CONTROLLER_H */

@@ -1,0 +1,45 @@
+/*
+ * Dirty-derivative filter D(s) = s / (T_f s + 1), per channel, discretized exactly for inputs that
+ * are linear between samples (ramp-invariant, i.e. first-order-hold equivalent):
+ *
+ *   y[n+1] = a y[n] + (1 - a) (u[n+1] - u[n]) / dt,   a = exp(-dt / T_f).
+ *
+ * This reproduces the continuous filter's output at the samples whenever u is piecewise linear
+ * between them, so a ramp's velocity is recovered without bias (a zero-order-hold discretization
+ * would over-estimate it by about dt / (2 T_f)). dt may vary from sample to sample (a dropped
+ * sample doubles it); the nominal period's decay is cached so the usual step needs no exp().
+ */
+#ifndef TVO_DIRTY_DERIVATIVE_H
+#define TVO_DIRTY_DERIVATIVE_H
+
+#include "tvo/config.h"
+#include "tvo/status.h"
+
+typedef struct {
+    tvo_real_t tf_s;
+    tvo_real_t period_s;
+    tvo_real_t period_decay;                    /* exp(-period_s / tf_s) */
+    tvo_real_t last_input[TVO_MAX_OUTPUT_DIM];
+    tvo_real_t output[TVO_MAX_OUTPUT_DIM];
+    uint8_t dim;
+    uint8_t primed;                             /* a first sample has been seen */
+} tvo_dirty_derivative_t;
+
+/** tf_s > 0, period_s > 0, 1 <= dim <= TVO_MAX_OUTPUT_DIM. */
+tvo_status_t tvo_dirty_derivative_init(tvo_dirty_derivative_t *filter, uint8_t dim, tvo_real_t tf_s,
+                                       tvo_real_t period_s);
+
+/**
+ * Starts from input u with output y0 (NULL: zero), as if the input had been moving at y0 forever.
+ */
+tvo_status_t tvo_dirty_derivative_reset(tvo_dirty_derivative_t *filter, const tvo_real_t *input,
+                                        const tvo_real_t *initial_output);
+
+/**
+ * One sample taken dt_s after the previous one (dt_s > 0). output[0..dim-1] receives the filtered
+ * derivative. An unprimed filter primes with zero output.
+ */
+tvo_status_t tvo_dirty_derivative_step(tvo_dirty_derivative_t *filter, const tvo_real_t *input,
+                                       tvo_real_t dt_s, tvo_real_t *output);
+
+#endif /* TVO_DIRTY_DERIVATIVE_H */

@@ -1,0 +1,49 @@
+/*
+ * The TV-O feedback law (paper, Theorem "TVO-based control"), for relative degree k = 1..3:
+ *
+ *   y^(k) = -H^{-1} [ sum_{i<k} a_i grad^(i) + r ],   H = grad_yy Phi(y, t),
+ *
+ * where grad^(i) is the i-th total time derivative of grad_y Phi along the trajectory and r is the
+ * part of grad^(k) that does not depend on y^(k). Both come from one jet evaluation of the
+ * objective's gradient along y(tau) = sum_{j<k} y^(j) tau^j / j!, t(tau) = t + tau: coefficient i
+ * times i! is grad^(i) for i < k, and coefficient k times k! is r (y^(k) = 0 on that curve).
+ * For k = 2 this is y'' = -H^{-1}(r + k_p g + k_d g').
+ */
+#ifndef TVO_LAW_H
+#define TVO_LAW_H
+
+#include "tvo/objective.h"
+
+typedef struct {
+    uint8_t relative_degree;                       /* k */
+    uint8_t dim;                                   /* m */
+    tvo_real_t gain[TVO_MAX_RELATIVE_DEGREE];      /* a_0 .. a_{k-1}: s^k + a_{k-1} s^{k-1} + .. + a_0 */
+} tvo_law_t;
+
+/** y^(0..k-1) at the evaluation instant, each in R^dim. */
+typedef struct {
+    tvo_real_t d[TVO_MAX_RELATIVE_DEGREE][TVO_MAX_OUTPUT_DIM];
+} tvo_output_derivs_t;
+
+/** What the law computed, for telemetry and tests. */
+typedef struct {
+    tvo_real_t grad[TVO_MAX_RELATIVE_DEGREE + 1][TVO_MAX_OUTPUT_DIM]; /* grad^(0..k-1), then r */
+    tvo_real_t hessian[TVO_MAX_OUTPUT_DIM][TVO_MAX_OUTPUT_DIM];
+} tvo_law_eval_t;
+
+/**
+ * Validates k in 1..TVO_MAX_RELATIVE_DEGREE, 1 <= dim <= TVO_MAX_OUTPUT_DIM and that the gains make
+ * s^k + a_{k-1}s^{k-1} + ... + a_0 Hurwitz (Routh-Hurwitz); TVO_ERR_PARAM otherwise.
+ */
+tvo_status_t tvo_law_init(tvo_law_t *law, uint8_t relative_degree, uint8_t dim, const tvo_real_t *gain);
+
+/**
+ * y_k[0..dim-1] = y^(k) demanded by the law at (y^[k-1], t). eval may be NULL.
+ * TVO_ERR_NOT_POSITIVE_DEFINITE if the Hessian is not positive definite; TVO_ERR_NUMERIC if a
+ * result is not finite. On error y_k is zeroed.
+ */
+tvo_status_t tvo_law_evaluate(const tvo_law_t *law, const tvo_objective_t *objective,
+                              const tvo_output_derivs_t *y, const tvo_time_jet_t *t,
+                              tvo_real_t *y_k, tvo_law_eval_t *eval);
+
+#endif /* TVO_LAW_H */

@@ -1,0 +1,75 @@
+/*
+ * Moving targets y_d(t) in the plane and their time derivatives.
+ *
+ * Analytic targets live on board (polynomial sum A_j t^j, circle, ellipse); a streamed target holds
+ * the latest sample (position .. jerk at a tick stamp) sent by the host and extrapolates it
+ * causally by its Taylor polynomial to the time asked for.
+ */
+#ifndef TVO_TARGET_H
+#define TVO_TARGET_H
+
+#include "tvo/config.h"
+#include "tvo/objective.h"
+#include "tvo/status.h"
+
+typedef enum {
+    TVO_TARGET_POLYNOMIAL = 0,
+    TVO_TARGET_CIRCLE = 1,
+    TVO_TARGET_ELLIPSE = 2,
+    TVO_TARGET_STREAMED = 3
+} tvo_target_kind_t;
+
+typedef struct {
+    tvo_real_t coeff[2][TVO_POLY_MAX_DEGREE + 1]; /* per axis: A_0 .. A_D (m, m/s, m/s^2, ...) */
+} tvo_target_polynomial_t;
+
+typedef struct {
+    tvo_real_t center_m[2];
+    tvo_real_t semi_axis_m[2];  /* a along the rotated x axis, b along the rotated y axis; a = b: circle */
+    tvo_real_t omega_radps;     /* angular rate of the parameter, may be negative */
+    tvo_real_t phase_rad;
+    tvo_real_t rotation_rad;    /* rotation of the ellipse's axes */
+} tvo_target_ellipse_t;
+
+typedef struct {
+    uint64_t stamp_ticks;       /* ticks since the objective's epoch at which deriv[] holds */
+    tvo_real_t deriv[TVO_STREAM_MAX_DERIV + 1][2]; /* position, velocity, acceleration, jerk */
+    uint8_t has_sample;
+} tvo_target_streamed_t;
+
+typedef struct {
+    tvo_target_kind_t kind;
+    union {
+        tvo_target_polynomial_t polynomial;
+        tvo_target_ellipse_t ellipse;   /* circles are ellipses with equal semi-axes */
+        tvo_target_streamed_t streamed;
+    } u;
+} tvo_target_t;
+
+/** Polynomial target; coeff[axis][j] multiplies t^j, degree <= TVO_POLY_MAX_DEGREE. */
+tvo_status_t tvo_target_init_polynomial(tvo_target_t *target,
+                                        const tvo_real_t coeff[2][TVO_POLY_MAX_DEGREE + 1]);
+/** Circle centre + radius (cos, sin) of (omega t + phase). radius > 0. */
+tvo_status_t tvo_target_init_circle(tvo_target_t *target, const tvo_real_t center_m[2],
+                                    tvo_real_t radius_m, tvo_real_t omega_radps, tvo_real_t phase_rad);
+/** Ellipse: centre + R(rotation) (a cos, b sin) of (omega t + phase). a, b > 0. */
+tvo_status_t tvo_target_init_ellipse(tvo_target_t *target, const tvo_target_ellipse_t *ellipse);
+/** Streamed target with no sample yet (evaluation reports TVO_ERR_TARGET_NOT_READY). */
+tvo_status_t tvo_target_init_streamed(tvo_target_t *target);
+
+/**
+ * New streamed sample valid at stamp_ticks (since the objective's epoch); deriv[j] is the j-th time
+ * derivative, j = 0..TVO_STREAM_MAX_DERIV. Rejects non-finite values and stamps that do not advance.
+ */
+tvo_status_t tvo_target_stream_update(tvo_target_t *target, uint64_t stamp_ticks,
+                                      const tvo_real_t deriv[TVO_STREAM_MAX_DERIV + 1][2]);
+
+/**
+ * deriv[j][axis] = j-th time derivative of y_d at time t, j = 0..order (order <= TVO_JET_MAX_ORDER).
+ * A streamed target evaluated before its stamp reports TVO_ERR_FUTURE_STAMP (extrapolation is
+ * causal only).
+ */
+tvo_status_t tvo_target_derivatives(const tvo_target_t *target, const tvo_time_jet_t *t, uint8_t order,
+                                    tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2]);
+
+#endif /* TVO_TARGET_H */

@@ -1,0 +1,25 @@
+/*
+ * Weighted tracking term f0 = 1/2 (y_r - y_d(t))^T W (y_r - y_d(t)) for one robot r, W diagonal > 0.
+ *
+ * y_r is the robot's pair of coordinates inside the stacked flat output (offset 2r).
+ */
+#ifndef TVO_TRACKING_H
+#define TVO_TRACKING_H
+
+#include "tvo/objective.h"
+#include "tvo/target.h"
+
+typedef struct {
+    const tvo_target_t *target;
+    tvo_real_t weight[2];   /* diagonal of W, both > 0 (strong convexity) */
+    uint8_t offset;         /* index of the robot's x coordinate in y */
+} tvo_tracking_term_t;
+
+tvo_status_t tvo_tracking_init(tvo_tracking_term_t *term, const tvo_target_t *target,
+                               const tvo_real_t weight[2], uint8_t offset);
+
+/** tvo_gradient_jet_fn of the tracking term (term points to a tvo_tracking_term_t). */
+tvo_status_t tvo_tracking_gradient_jet(const void *term, const tvo_jet_t *y, uint8_t dim,
+                                       const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad);
+
+#endif /* TVO_TRACKING_H */

@@ -1,0 +1,40 @@
+/*
+ * The unicycle (wheeled mobile robot) x1' = v cos(theta), x2' = v sin(theta), theta' = omega,
+ * with flat output y = (x1, x2): its flat map with dynamic extension and its exact motion under a
+ * held command.
+ *
+ * Dynamic extension: the speed v is a controller state with v' = a. Given the law's y'' and
+ * y' = v e_theta:  a = y'' . e_theta,  omega = (y' x y'') / v^2 = (e_theta x y'') / v.
+ * Near v = 0 the division is regularised: v is replaced by sign(v) max(|v|, min_speed) (sign(0) = +1),
+ * so omega stays finite and a robot at rest turns toward y'' while a builds speed along it.
+ */
+#ifndef TVO_UNICYCLE_H
+#define TVO_UNICYCLE_H
+
+#include "tvo/config.h"
+#include "tvo/status.h"
+
+typedef struct {
+    tvo_real_t position_m[2];
+    tvo_real_t heading_rad;
+} tvo_pose_t;
+
+/**
+ * Flat map: accel_mps2 = y''.e_theta, turn_rate_radps = (e_theta x y'')/v_reg. min_speed_mps > 0.
+ * *low_speed is set to 1 when |speed| < min_speed_mps (the regularisation was active), else 0.
+ */
+tvo_status_t tvo_unicycle_flat_map(tvo_real_t heading_rad, tvo_real_t speed_mps,
+                                   const tvo_real_t output_accel_mps2[2], tvo_real_t min_speed_mps,
+                                   tvo_real_t *accel_mps2, tvo_real_t *turn_rate_radps, uint8_t *low_speed);
+
+/**
+ * Exact pose after dt_s under a held (speed, turn rate): a circular arc, or a straight line when
+ * the turn is negligible (series form avoids 0/0). dt_s >= 0. out may alias start.
+ */
+tvo_status_t tvo_unicycle_predict(const tvo_pose_t *start, tvo_real_t speed_mps, tvo_real_t turn_rate_radps,
+                                  tvo_real_t dt_s, tvo_pose_t *out);
+
+/** Wraps an angle to (-pi, pi]. */
+tvo_real_t tvo_wrap_angle(tvo_real_t angle_rad);
+
+#endif /* TVO_UNICYCLE_H */

@@ -1,0 +1,475 @@
+/*
+ * Sampled-data TV-O controller for N unicycles; see tvo/controller.h for the timing contract.
+ *
+ * One step: validate the measurement -> predict each pose over its age with the held command
+ * -> estimate y' -> the law (y'') -> the flat map (v', omega) -> limits -> integrate the speed
+ * state over the period -> hold the new command.
+ */
+#include "tvo/controller.h"
+
+#include <string.h>
+
+#define TVO_PI TVO_R(3.14159265358979323846)
+/* Largest tick difference treated as "forward" in wrap-around arithmetic. */
+#define TVO_MAX_TICK_SPAN 0x3FFFFFFFu
+/* Position-only heading: the velocity direction corrects dead reckoning with this many T_f. */
+#define TVO_HEADING_CORRECTION_TF_MULTIPLE TVO_R(10.0)
+
+tvo_status_t tvo_controller_config_default(tvo_controller_config_t *cfg)
+{
+    if (cfg == NULL) {
+        return TVO_ERR_NULL;
+    }
+    memset(cfg, 0, sizeof(*cfg));
+    cfg->tick_hz = 1000000u;
+    cfg->period_ticks = 10000u;
+    cfg->delay_ticks = 5000u;
+    cfg->robot_count = 1u;
+    cfg->delay_compensation = 1u;
+    cfg->velocity_source = TVO_VELOCITY_FROM_POSE;
+    cfg->filter_tf_s = TVO_R(0.05);
+    cfg->gain_kp = TVO_R(40.0);
+    cfg->gain_kd = TVO_R(13.0);
+    cfg->omega_max_radps = TVO_R(2.0) * TVO_PI;
+    cfg->accel_max_mps2 = TVO_R(15.0);
+    cfg->speed_max_mps = TVO_R(5.0);
+    cfg->min_speed_mps = TVO_R(0.05);
+    cfg->watchdog_periods = 10u;
+    return TVO_OK;
+}
+
+static int positive_finite(tvo_real_t v)
+{
+    return isfinite(v) && v > TVO_R(0.0);
+}
+
+static tvo_param_t first_bad_param(const tvo_controller_config_t *cfg, const tvo_objective_t *objective)
+{
+    if (cfg->tick_hz == 0u) {
+        return TVO_PARAM_TICK_HZ;
+    }
+    if (cfg->period_ticks == 0u || cfg->period_ticks > TVO_MAX_TICK_SPAN) {
+        return TVO_PARAM_PERIOD;
+    }
+    if (cfg->delay_ticks > cfg->period_ticks) {
+        return TVO_PARAM_DELAY;
+    }
+    if (cfg->robot_count == 0u || cfg->robot_count > TVO_MAX_ROBOTS) {
+        return TVO_PARAM_ROBOT_COUNT;
+    }
+    if (cfg->velocity_source != TVO_VELOCITY_FROM_POSE && cfg->velocity_source != TVO_VELOCITY_FROM_POSITION) {
+        return TVO_PARAM_VELOCITY_SOURCE;
+    }
+    if (!positive_finite(cfg->filter_tf_s)) {
+        return TVO_PARAM_FILTER_TF;
+    }
+    if (!positive_finite(cfg->gain_kp) || !positive_finite(cfg->gain_kd)) {
+        return TVO_PARAM_GAINS; /* s^2 + kd s + kp is Hurwitz iff both are positive */
+    }
+    if (!positive_finite(cfg->omega_max_radps)) {
+        return TVO_PARAM_OMEGA_MAX;
+    }
+    if (!positive_finite(cfg->accel_max_mps2)) {
+        return TVO_PARAM_ACCEL_MAX;
+    }
+    if (!positive_finite(cfg->speed_max_mps)) {
+        return TVO_PARAM_SPEED_MAX;
+    }
+    if (!positive_finite(cfg->min_speed_mps) || !(cfg->min_speed_mps < cfg->speed_max_mps)) {
+        return TVO_PARAM_MIN_SPEED;
+    }
+    if (cfg->watchdog_periods == 0u || cfg->watchdog_periods > TVO_MAX_TICK_SPAN / cfg->period_ticks) {
+        return TVO_PARAM_WATCHDOG;
+    }
+    for (uint8_t r = 0; r < cfg->robot_count; ++r) {
+        if (!isfinite(cfg->initial_speed_mps[r]) || TVO_FABS(cfg->initial_speed_mps[r]) > cfg->speed_max_mps) {
+            return TVO_PARAM_INITIAL_SPEED;
+        }
+    }
+    if (objective->dim != 2u * cfg->robot_count || objective->term_count == 0u) {
+        return TVO_PARAM_OBJECTIVE;
+    }
+    return TVO_PARAM_NONE;
+}
+
+tvo_status_t tvo_controller_init(tvo_controller_t *ctl, const tvo_controller_config_t *cfg,
+                                 const tvo_objective_t *objective, uint32_t epoch_tick,
+                                 tvo_param_t *bad_param)
+{
+    if (bad_param != NULL) {
+        *bad_param = TVO_PARAM_NONE;
+    }
+    if (ctl == NULL || cfg == NULL || objective == NULL) {
+        return TVO_ERR_NULL;
+    }
+    memset(ctl, 0, sizeof(*ctl));
+    const tvo_param_t bad = first_bad_param(cfg, objective);
+    if (bad != TVO_PARAM_NONE) {
+        if (bad_param != NULL) {
+            *bad_param = bad;
+        }
+        return TVO_ERR_PARAM;
+    }
+    ctl->cfg = *cfg;
+    ctl->objective = objective;
+    ctl->period_s = tvo_ticks_to_seconds(cfg->period_ticks, cfg->tick_hz);
+    const tvo_real_t gains[2] = {cfg->gain_kp, cfg->gain_kd};
+    tvo_status_t st = tvo_law_init(&ctl->law, 2u, objective->dim, gains);
+    if (st == TVO_OK) {
+        st = tvo_dirty_derivative_init(&ctl->velocity_filter, objective->dim, cfg->filter_tf_s, ctl->period_s);
+    }
+    if (st != TVO_OK) {
+        if (bad_param != NULL) {
+            *bad_param = TVO_PARAM_OBJECTIVE;
+        }
+        return st;
+    }
+    ctl->epoch_tick = epoch_tick;
+    for (uint8_t r = 0; r < cfg->robot_count; ++r) {
+        ctl->speed_state_mps[r] = cfg->initial_speed_mps[r];
+        ctl->held.speed_mps[r] = cfg->initial_speed_mps[r];
+    }
+    ctl->initialized = 1;
+    return TVO_OK;
+}
+
+static tvo_status_t check_measurement(const tvo_controller_t *ctl, const tvo_measurement_t *meas,
+                                      uint32_t apply_tick)
+{
+    if (meas == NULL) {
+        return TVO_ERR_NO_MEASUREMENT;
+    }
+    const uint8_t n = ctl->cfg.robot_count;
+    for (uint8_t r = 0; r < n; ++r) {
+        if (!isfinite(meas->position_m[r][0]) || !isfinite(meas->position_m[r][1]) ||
+            (meas->heading_valid && !isfinite(meas->heading_rad[r])) ||
+            (meas->speed_valid && !isfinite(meas->speed_mps[r]))) {
+            return TVO_ERR_NOT_FINITE;
+        }
+    }
+    const uint32_t age = apply_tick - meas->stamp_tick;
+    if (age > TVO_MAX_TICK_SPAN) {
+        return TVO_ERR_FUTURE_STAMP; /* negative age in wrap-around arithmetic */
+    }
+    if (age > ctl->cfg.period_ticks) {
+        return TVO_ERR_STALE;
+    }
+    if (ctl->has_stamp) {
+        const uint32_t advance = meas->stamp_tick - ctl->last_stamp_tick;
+        if (advance == 0u || advance > TVO_MAX_TICK_SPAN) {
+            return TVO_ERR_OUT_OF_ORDER;
+        }
+    }
+    if (ctl->cfg.velocity_source == TVO_VELOCITY_FROM_POSE && !meas->heading_valid) {
+        return TVO_ERR_MISSING_FIELD;
+    }
+    return TVO_OK;
+}
+
+static void stop_command(tvo_command_t *cmd, uint32_t flags)
+{
+    memset(cmd, 0, sizeof(*cmd));
+    cmd->flags = flags;
+}
+
+static tvo_real_t clamp(tvo_real_t v, tvo_real_t limit, uint32_t flag, uint32_t *flags)
+{
+    if (v > limit) {
+        *flags |= flag;
+        return limit;
+    }
+    if (v < -limit) {
+        *flags |= flag;
+        return -limit;
+    }
+    return v;
+}
+
+/* A period without a usable measurement (or law result): hold, or stop once the watchdog expires. */
+static tvo_status_t hold_or_stop(tvo_controller_t *ctl, uint32_t periods, tvo_status_t reason,
+                                 tvo_command_t *cmd)
+{
+    ctl->periods_without_measurement += periods;
+    if (ctl->periods_without_measurement >= ctl->cfg.watchdog_periods) {
+        ctl->periods_without_measurement = ctl->cfg.watchdog_periods; /* saturate: no overflow */
+        ctl->stopped = 1;
+        for (uint8_t r = 0; r < TVO_MAX_ROBOTS; ++r) {
+            ctl->speed_state_mps[r] = TVO_R(0.0);
+        }
+        stop_command(&ctl->held, 0u);
+        stop_command(cmd, TVO_FLAG_SAFE_STOP);
+        return TVO_ERR_WATCHDOG;
+    }
+    *cmd = ctl->held;
+    cmd->flags = TVO_FLAG_HOLDING;
+    return reason;
+}
+
+/* Position-only mode: filtered y' at the sample and the heading estimate at the sample. */
+static tvo_status_t position_only_estimate(tvo_controller_t *ctl, const tvo_measurement_t *meas,
+                                           tvo_real_t *rate_at_sample,
+                                           tvo_real_t *heading_at_sample)
+{
+    const uint8_t n = ctl->cfg.robot_count;
+    tvo_real_t position[TVO_MAX_OUTPUT_DIM] = {TVO_R(0.0)};
+    for (uint8_t r = 0; r < n; ++r) {
+        position[2u * r] = meas->position_m[r][0];
+        position[2u * r + 1u] = meas->position_m[r][1];
+    }
+    tvo_status_t st;
+    if (!ctl->velocity_filter.primed) {
+        /* Start as if moving at the speed state along the (first measured, else estimated) heading. */
+        tvo_real_t rate0[TVO_MAX_OUTPUT_DIM] = {TVO_R(0.0)};
+        for (uint8_t r = 0; r < n; ++r) {
+            if (meas->heading_valid) {
+                ctl->heading_estimate_rad[r] = meas->heading_rad[r];
+            }
+            heading_at_sample[r] = ctl->heading_estimate_rad[r];
+            rate0[2u * r] = ctl->speed_state_mps[r] * TVO_COS(heading_at_sample[r]);
+            rate0[2u * r + 1u] = ctl->speed_state_mps[r] * TVO_SIN(heading_at_sample[r]);
+        }
+        st = tvo_dirty_derivative_reset(&ctl->velocity_filter, position, rate0);
+        for (uint8_t i = 0; i < 2u * n; ++i) {
+            rate_at_sample[i] = rate0[i];
+        }
+        return st;
+    }
+    const tvo_real_t dt_s = tvo_ticks_to_seconds(meas->stamp_tick - ctl->last_stamp_tick, ctl->cfg.tick_hz);
+    st = tvo_dirty_derivative_step(&ctl->velocity_filter, position, dt_s, rate_at_sample);
+    if (st != TVO_OK) {
+        return st;
+    }
+    /* Signed time from the last application instant (where the estimate lives) to this sample. */
+    const int32_t since_apply_ticks = (int32_t)(meas->stamp_tick - ctl->last_apply_tick);
+    const tvo_real_t since_apply_s = (tvo_real_t)since_apply_ticks / (tvo_real_t)ctl->cfg.tick_hz;
+    const tvo_real_t correction = ctl->period_s / (TVO_HEADING_CORRECTION_TF_MULTIPLE * ctl->cfg.filter_tf_s);
+    for (uint8_t r = 0; r < n; ++r) {
+        /* Dead-reckon with the held turn rate, then pull toward the velocity direction when the
+         * robot moves fast enough for that direction to mean something. */
+        tvo_real_t heading = ctl->heading_estimate_rad[r] + ctl->held.turn_rate_radps[r] * since_apply_s;
+        const tvo_real_t vx = rate_at_sample[2u * r];
+        const tvo_real_t vy = rate_at_sample[2u * r + 1u];
+        if (vx * vx + vy * vy > TVO_R(4.0) * ctl->cfg.min_speed_mps * ctl->cfg.min_speed_mps) {
+            tvo_real_t direction = TVO_ATAN2(vy, vx);
+            if (ctl->speed_state_mps[r] < TVO_R(0.0)) {
+                direction += TVO_PI; /* reversing: the robot faces against its velocity */
+            }
+            heading += (correction < TVO_R(1.0) ? correction : TVO_R(1.0)) * tvo_wrap_angle(direction - heading);
+        }
+        heading_at_sample[r] = tvo_wrap_angle(heading);
+    }
+    return TVO_OK;
+}
+
+tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t *meas,
+                                 uint32_t apply_tick, tvo_command_t *cmd)
+{
+    if (cmd == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (ctl == NULL) {
+        stop_command(cmd, TVO_FLAG_SAFE_STOP);
+        return TVO_ERR_NULL;
+    }
+    if (!ctl->initialized) {
+        stop_command(cmd, TVO_FLAG_SAFE_STOP);
+        return TVO_ERR_NOT_INITIALIZED;
+    }
+    const tvo_controller_config_t *cfg = &ctl->cfg;
+    const uint8_t n = cfg->robot_count;
+
+    /* Schedule: apply ticks must advance; elapsed time is kept in 64 bits and never wraps. */
+    uint64_t elapsed;
+    uint32_t periods = 1u;
+    if (ctl->started) {
+        const uint32_t advance = apply_tick - ctl->last_apply_tick;
+        if (advance == 0u || advance > TVO_MAX_TICK_SPAN) {
+            *cmd = ctl->held;
+            cmd->flags = TVO_FLAG_HOLDING;
+            return TVO_ERR_OUT_OF_ORDER;
+        }
+        elapsed = ctl->elapsed_ticks + advance;
+        periods = advance / cfg->period_ticks;
+        if (periods == 0u) {
+            periods = 1u;
+        }
+    } else {
+        const uint32_t since_epoch = apply_tick - ctl->epoch_tick;
+        if (since_epoch > TVO_MAX_TICK_SPAN) {
+            *cmd = ctl->held;
+            cmd->flags = TVO_FLAG_HOLDING;
+            return TVO_ERR_OUT_OF_ORDER; /* first application before the epoch */
+        }
+        elapsed = since_epoch;
+    }
+
+    tvo_status_t st = check_measurement(ctl, meas, apply_tick);
+    tvo_real_t rate_filtered[TVO_MAX_OUTPUT_DIM];
+    tvo_real_t heading_at_sample[TVO_MAX_ROBOTS];
+    if (st == TVO_OK) {
+        if (ctl->stopped) {
+            ctl->velocity_filter.primed = 0; /* the gap makes old filter state meaningless */
+        }
+        if (cfg->velocity_source == TVO_VELOCITY_FROM_POSITION) {
+            st = position_only_estimate(ctl, meas, rate_filtered, heading_at_sample);
+        } else {
+            for (uint8_t r = 0; r < n; ++r) {
+                heading_at_sample[r] = meas->heading_rad[r];
+            }
+        }
+    }
+    if (st != TVO_OK) {
+        ctl->started = 1;
+        ctl->last_apply_tick = apply_tick;
+        ctl->elapsed_ticks = elapsed;
+        return hold_or_stop(ctl, periods, st, cmd);
+    }
+    ctl->last_stamp_tick = meas->stamp_tick;
+    ctl->has_stamp = 1;
+
+    const uint32_t age_ticks = apply_tick - meas->stamp_tick;
+    const tvo_real_t age_s = tvo_ticks_to_seconds(age_ticks, cfg->tick_hz);
+    const int compensate = cfg->delay_compensation != 0u;
+    uint32_t flags = (compensate && age_ticks > 0u) ? TVO_FLAG_PREDICTED : 0u;
+
+    /* State the law sees: at the application instant (compensated) or at the sample (not). */
+    tvo_output_derivs_t y;
+    memset(&y, 0, sizeof(y));
+    tvo_real_t heading[TVO_MAX_ROBOTS];
+    for (uint8_t r = 0; r < n; ++r) {
+        if (cfg->velocity_source == TVO_VELOCITY_FROM_POSE && meas->speed_valid) {
+            /* Re-sync the extension with what the plant actually does (slip, disturbance): the plant
+             * should run at the held speed, so shift the state by the measured departure from it. */
+            const tvo_real_t departure = meas->speed_mps[r] - ctl->held.speed_mps[r];
+            ctl->speed_state_mps[r] = clamp(ctl->speed_state_mps[r] + departure, cfg->speed_max_mps, 0u, &flags);
+        }
+        tvo_pose_t pose;
+        pose.position_m[0] = meas->position_m[r][0];
+        pose.position_m[1] = meas->position_m[r][1];
+        pose.heading_rad = heading_at_sample[r];
+        if (compensate) {
+            st = tvo_unicycle_predict(&pose, ctl->held.speed_mps[r], ctl->held.turn_rate_radps[r], age_s, &pose);
+            if (st != TVO_OK) {
+                break;
+            }
+        }
+        heading[r] = pose.heading_rad;
+        y.d[0][2u * r] = pose.position_m[0];
+        y.d[0][2u * r + 1u] = pose.position_m[1];
+        if (cfg->velocity_source == TVO_VELOCITY_FROM_POSITION) {
+            /* The held turn rate rotates the velocity over the age, like the heading. */
+            const tvo_real_t turn = compensate ? ctl->held.turn_rate_radps[r] * age_s : TVO_R(0.0);
+            const tvo_real_t c = TVO_COS(turn);
+            const tvo_real_t s = TVO_SIN(turn);
+            y.d[1][2u * r] = c * rate_filtered[2u * r] - s * rate_filtered[2u * r + 1u];
+            y.d[1][2u * r + 1u] = s * rate_filtered[2u * r] + c * rate_filtered[2u * r + 1u];
+        } else {
+            y.d[1][2u * r] = ctl->speed_state_mps[r] * TVO_COS(pose.heading_rad);
+            y.d[1][2u * r + 1u] = ctl->speed_state_mps[r] * TVO_SIN(pose.heading_rad);
+        }
+    }
+
+    tvo_time_jet_t t;
+    t.ticks = compensate ? elapsed : (elapsed >= age_ticks ? elapsed - age_ticks : 0u);
+    t.tick_hz = cfg->tick_hz;
+    t.t_s = tvo_ticks_to_seconds(t.ticks, cfg->tick_hz);
+    t.rate = TVO_R(1.0);
+
+    tvo_real_t y_accel[TVO_MAX_OUTPUT_DIM];
+    tvo_law_eval_t eval;
+    if (st == TVO_OK) {
+        st = tvo_law_evaluate(&ctl->law, ctl->objective, &y, &t, y_accel, &eval);
+    }
+    tvo_command_t next;
+    memset(&next, 0, sizeof(next));
+    tvo_real_t speed_next[TVO_MAX_ROBOTS];
+    tvo_real_t accel[TVO_MAX_ROBOTS];
+    for (uint8_t r = 0; r < n && st == TVO_OK; ++r) {
+        uint8_t low_speed = 0;
+        tvo_real_t turn_rate;
+        st = tvo_unicycle_flat_map(heading[r], ctl->speed_state_mps[r], &y_accel[2u * r], cfg->min_speed_mps,
+                                   &accel[r], &turn_rate, &low_speed);
+        if (low_speed) {
+            flags |= TVO_FLAG_LOW_SPEED;
+        }
+        accel[r] = clamp(accel[r], cfg->accel_max_mps2, TVO_FLAG_ACCEL_SATURATED, &flags);
+        next.turn_rate_radps[r] = clamp(turn_rate, cfg->omega_max_radps, TVO_FLAG_OMEGA_SATURATED, &flags);
+        /* Anti-windup: the integrator state itself is limited, so no excess accumulates. */
+        speed_next[r] = clamp(ctl->speed_state_mps[r] + accel[r] * ctl->period_s, cfg->speed_max_mps,
+                              TVO_FLAG_SPEED_SATURATED, &flags);
+        /* Hold the interval average of the speed state, so the held straight-line distance matches
+         * the continuous extension to second order in h (end-of-interval speed would lead by a h/2). */
+        next.speed_mps[r] = TVO_R(0.5) * (ctl->speed_state_mps[r] + speed_next[r]);
+        if (!isfinite(next.speed_mps[r]) || !isfinite(next.turn_rate_radps[r])) {
+            st = TVO_ERR_NUMERIC;
+        }
+    }
+
+    ctl->started = 1;
+    ctl->last_apply_tick = apply_tick;
+    ctl->elapsed_ticks = elapsed;
+    if (st != TVO_OK) {
+        return hold_or_stop(ctl, periods, st, cmd);
+    }
+    ctl->periods_without_measurement = 0;
+    ctl->stopped = 0;
+    for (uint8_t r = 0; r < n; ++r) {
+        ctl->speed_state_mps[r] = speed_next[r];
+        /* The estimate lives at the application instant; the next sample dead-reckons from here. */
+        ctl->heading_estimate_rad[r] = compensate ? heading[r]
+                                                  : tvo_wrap_angle(heading[r] + ctl->held.turn_rate_radps[r] * age_s);
+    }
+    next.flags = flags;
+    ctl->held = next;
+    *cmd = next;
+
+    tvo_controller_telemetry_t *tm = &ctl->telemetry;
+    memset(tm, 0, sizeof(*tm));
+    tm->objective_time_s = t.t_s;
+    for (uint8_t i = 0; i < 2u * n; ++i) {
+        tm->output_m[i] = y.d[0][i];
+        tm->output_rate_mps[i] = y.d[1][i];
+        tm->output_accel_mps2[i] = y_accel[i];
+        tm->gradient[i] = eval.grad[0][i];
+        tm->gradient_rate[i] = eval.grad[1][i];
+    }
+    for (uint8_t r = 0; r < n; ++r) {
+        tm->accel_mps2[r] = accel[r];
+    }
+    return TVO_OK;
+}
+
+tvo_status_t tvo_controller_sample_tick(const tvo_controller_t *ctl, uint32_t apply_tick, uint32_t *sample_tick)
+{
+    if (ctl == NULL || sample_tick == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (!ctl->initialized) {
+        return TVO_ERR_NOT_INITIALIZED;
+    }
+    *sample_tick = apply_tick - ctl->cfg.delay_ticks;
+    return TVO_OK;
+}
+
+tvo_status_t tvo_controller_objective_ticks(const tvo_controller_t *ctl, uint32_t tick, uint64_t *objective_ticks)
+{
+    if (ctl == NULL || objective_ticks == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (!ctl->initialized) {
+        return TVO_ERR_NOT_INITIALIZED;
+    }
+    const uint32_t ref_tick = ctl->started ? ctl->last_apply_tick : ctl->epoch_tick;
+    const uint64_t ref_elapsed = ctl->started ? ctl->elapsed_ticks : 0u;
+    const uint32_t forward = tick - ref_tick;
+    if (forward <= TVO_MAX_TICK_SPAN) {
+        *objective_ticks = ref_elapsed + forward;
+        return TVO_OK;
+    }
+    const uint32_t backward = ref_tick - tick;
+    if ((uint64_t)backward > ref_elapsed) {
+        return TVO_ERR_OUT_OF_ORDER; /* before the epoch */
+    }
+    *objective_ticks = ref_elapsed - backward;
+    return TVO_OK;
+}

@@ -1,0 +1,178 @@
+/*
+ * The TV-O feedback law (paper, Theorem "TVO-based control"); see tvo/law.h.
+ *
+ * One jet pass along the trajectory gives grad^(0..k-1) and the y^(k)-free remainder r of
+ * grad^(k); one first-order pass per unit direction (time frozen) gives a Hessian column.
+ * Then y^(k) = -H^{-1} (r + sum_i a_i grad^(i)).
+ */
+#include "tvo/law.h"
+
+#include <string.h>
+
+#include "tvo/linsolve.h"
+
+static int gains_are_hurwitz(uint8_t k, const tvo_real_t *a)
+{
+    for (uint8_t i = 0; i < k; ++i) {
+        if (!isfinite(a[i]) || !(a[i] > TVO_R(0.0))) {
+            return 0;
+        }
+    }
+    /* Routh-Hurwitz for s^3 + a2 s^2 + a1 s + a0: all positive and a2 a1 > a0. */
+    if (k == 3u && !(a[2] * a[1] > a[0])) {
+        return 0;
+    }
+    return 1;
+}
+
+tvo_status_t tvo_law_init(tvo_law_t *law, uint8_t relative_degree, uint8_t dim, const tvo_real_t *gain)
+{
+    if (law == NULL || gain == NULL) {
+        return TVO_ERR_NULL;
+    }
+    memset(law, 0, sizeof(*law));
+    if (relative_degree == 0u || relative_degree > TVO_MAX_RELATIVE_DEGREE) {
+        return TVO_ERR_PARAM;
+    }
+    if (dim == 0u || dim > TVO_MAX_OUTPUT_DIM) {
+        return TVO_ERR_DIMENSION;
+    }
+    if (!gains_are_hurwitz(relative_degree, gain)) {
+        return TVO_ERR_PARAM;
+    }
+    for (uint8_t i = 0; i < relative_degree; ++i) {
+        law->gain[i] = gain[i];
+    }
+    law->relative_degree = relative_degree;
+    law->dim = dim;
+    return TVO_OK;
+}
+
+static void zero_output(tvo_real_t *y_k, uint8_t dim)
+{
+    for (uint8_t i = 0; i < dim && i < TVO_MAX_OUTPUT_DIM; ++i) {
+        y_k[i] = TVO_R(0.0);
+    }
+}
+
+/* H[i][col] = d/dtau grad_i(y + e_col tau, t): a first-order jet with time frozen. */
+static tvo_status_t hessian(const tvo_objective_t *objective, const tvo_output_derivs_t *y,
+                            const tvo_time_jet_t *t, tvo_real_t h[TVO_MAX_OUTPUT_DIM][TVO_MAX_OUTPUT_DIM])
+{
+    const uint8_t m = objective->dim;
+    tvo_time_jet_t frozen = *t;
+    frozen.rate = TVO_R(0.0);
+    tvo_jet_t y_jet[TVO_MAX_OUTPUT_DIM];
+    tvo_jet_t g_jet[TVO_MAX_OUTPUT_DIM];
+    for (uint8_t i = 0; i < m; ++i) {
+        tvo_jet_constant(y->d[0][i], &y_jet[i]);
+    }
+    for (uint8_t col = 0; col < m; ++col) {
+        y_jet[col].c[1] = TVO_R(1.0);
+        const tvo_status_t st = tvo_objective_gradient_jet(objective, y_jet, &frozen, 1u, g_jet);
+        y_jet[col].c[1] = TVO_R(0.0);
+        if (st != TVO_OK) {
+            return st;
+        }
+        for (uint8_t i = 0; i < m; ++i) {
+            h[i][col] = g_jet[i].c[1];
+        }
+    }
+    /* Symmetrise: the exact Hessian is symmetric; rounding should not make the solve see otherwise. */
+    for (uint8_t i = 0; i < m; ++i) {
+        for (uint8_t j = (uint8_t)(i + 1u); j < m; ++j) {
+            const tvo_real_t s = TVO_R(0.5) * (h[i][j] + h[j][i]);
+            h[i][j] = s;
+            h[j][i] = s;
+        }
+    }
+    return TVO_OK;
+}
+
+tvo_status_t tvo_law_evaluate(const tvo_law_t *law, const tvo_objective_t *objective,
+                              const tvo_output_derivs_t *y, const tvo_time_jet_t *t,
+                              tvo_real_t *y_k, tvo_law_eval_t *eval)
+{
+    if (law == NULL || objective == NULL || y == NULL || t == NULL || y_k == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (law->relative_degree == 0u || law->relative_degree > TVO_MAX_RELATIVE_DEGREE) {
+        return TVO_ERR_NOT_INITIALIZED;
+    }
+    const uint8_t k = law->relative_degree;
+    const uint8_t m = law->dim;
+    if (m == 0u || m > TVO_MAX_OUTPUT_DIM || objective->dim != m) {
+        return TVO_ERR_DIMENSION;
+    }
+    zero_output(y_k, m);
+    if (!isfinite(t->t_s) || !isfinite(t->rate)) {
+        return TVO_ERR_NOT_FINITE;
+    }
+    for (uint8_t j = 0; j < k; ++j) {
+        for (uint8_t i = 0; i < m; ++i) {
+            if (!isfinite(y->d[j][i])) {
+                return TVO_ERR_NOT_FINITE;
+            }
+        }
+    }
+
+    /* Trajectory jets y(tau) = sum_{j<k} y^(j) tau^j / j!, with y^(k) = 0 on this curve. */
+    tvo_jet_t y_jet[TVO_MAX_OUTPUT_DIM];
+    tvo_jet_t g_jet[TVO_MAX_OUTPUT_DIM];
+    for (uint8_t i = 0; i < m; ++i) {
+        tvo_jet_constant(TVO_R(0.0), &y_jet[i]);
+        tvo_real_t inv_factorial = TVO_R(1.0);
+        for (uint8_t j = 0; j < k; ++j) {
+            y_jet[i].c[j] = y->d[j][i] * inv_factorial;
+            inv_factorial /= (tvo_real_t)(j + 1u);
+        }
+    }
+    tvo_time_jet_t along = *t;
+    along.rate = TVO_R(1.0);
+    tvo_status_t st = tvo_objective_gradient_jet(objective, y_jet, &along, k, g_jet);
+    if (st != TVO_OK) {
+        return st;
+    }
+
+    /* grad^(j) = j! c_j; rhs = r + sum_{j<k} a_j grad^(j) with r = k! c_k. */
+    tvo_real_t grad[TVO_MAX_RELATIVE_DEGREE + 1][TVO_MAX_OUTPUT_DIM];
+    tvo_real_t rhs[TVO_MAX_OUTPUT_DIM];
+    for (uint8_t i = 0; i < m; ++i) {
+        tvo_real_t factorial = TVO_R(1.0);
+        rhs[i] = TVO_R(0.0);
+        for (uint8_t j = 0; j <= k; ++j) {
+            grad[j][i] = g_jet[i].c[j] * factorial;
+            factorial *= (tvo_real_t)(j + 1u);
+            rhs[i] += (j < k) ? law->gain[j] * grad[j][i] : grad[j][i];
+        }
+    }
+
+    tvo_real_t h[TVO_MAX_OUTPUT_DIM][TVO_MAX_OUTPUT_DIM];
+    st = hessian(objective, y, t, h);
+    if (st != TVO_OK) {
+        return st;
+    }
+    if (eval != NULL) {
+        memset(eval, 0, sizeof(*eval));
+        for (uint8_t j = 0; j <= k; ++j) {
+            for (uint8_t i = 0; i < m; ++i) {
+                eval->grad[j][i] = grad[j][i];
+            }
+        }
+        for (uint8_t i = 0; i < m; ++i) {
+            for (uint8_t j = 0; j < m; ++j) {
+                eval->hessian[i][j] = h[i][j];
+            }
+        }
+    }
+
+    tvo_real_t step[TVO_MAX_OUTPUT_DIM];
+    st = tvo_cholesky_solve(h, m, rhs, step);
+    if (st != TVO_OK) {
+        return st;
+    }
+    for (uint8_t i = 0; i < m; ++i) {
+        y_k[i] = -step[i];
+    }
+    return TVO_OK;
+}

@@ -1,0 +1,56 @@
+/* Weighted tracking term; see tvo/tracking.h. */
+#include "tvo/tracking.h"
+
+tvo_status_t tvo_tracking_init(tvo_tracking_term_t *term, const tvo_target_t *target,
+                               const tvo_real_t weight[2], uint8_t offset)
+{
+    if (term == NULL || target == NULL || weight == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (!isfinite(weight[0]) || !isfinite(weight[1])) {
+        return TVO_ERR_NOT_FINITE;
+    }
+    /* W > 0 keeps f0 strongly convex, which the law's Newton step relies on. */
+    if (!(weight[0] > TVO_R(0.0)) || !(weight[1] > TVO_R(0.0))) {
+        return TVO_ERR_PARAM;
+    }
+    if ((unsigned)offset + 2u > TVO_MAX_OUTPUT_DIM) {
+        return TVO_ERR_DIMENSION;
+    }
+    term->target = target;
+    term->weight[0] = weight[0];
+    term->weight[1] = weight[1];
+    term->offset = offset;
+    return TVO_OK;
+}
+
+tvo_status_t tvo_tracking_gradient_jet(const void *term, const tvo_jet_t *y, uint8_t dim,
+                                       const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad)
+{
+    const tvo_tracking_term_t *self = (const tvo_tracking_term_t *)term;
+    if (self == NULL || y == NULL || t == NULL || grad == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if ((unsigned)self->offset + 2u > dim) {
+        return TVO_ERR_DIMENSION;
+    }
+    tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2];
+    const tvo_status_t st = tvo_target_derivatives(self->target, t, order, deriv);
+    if (st != TVO_OK) {
+        return st;
+    }
+    for (uint8_t axis = 0; axis < 2u; ++axis) {
+        /* y_d(t + rate tau) as a jet: c_j = y_d^(j)(t) rate^j / j!. */
+        tvo_jet_t target_jet;
+        tvo_jet_constant(TVO_R(0.0), &target_jet);
+        tvo_real_t scale = TVO_R(1.0);
+        for (uint8_t j = 0; j <= order && j <= TVO_JET_MAX_ORDER; ++j) {
+            target_jet.c[j] = deriv[j][axis] * scale;
+            scale *= t->rate / (tvo_real_t)(j + 1u);
+        }
+        tvo_jet_t error;
+        tvo_jet_sub(&y[self->offset + axis], &target_jet, order, &error);
+        tvo_jet_axpy(self->weight[axis], &error, order, &grad[self->offset + axis]);
+    }
+    return TVO_OK;
+}

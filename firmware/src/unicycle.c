@@ -1,0 +1,85 @@
+/* Unicycle flat map and exact held-command motion; see tvo/unicycle.h. */
+#include "tvo/unicycle.h"
+
+#define TVO_PI TVO_R(3.14159265358979323846)
+
+tvo_real_t tvo_wrap_angle(tvo_real_t angle_rad)
+{
+    if (!isfinite(angle_rad)) {
+        return angle_rad;
+    }
+    /* atan2 of (sin, cos) wraps in constant time, without a loop bounded by the angle. */
+    return TVO_ATAN2(TVO_SIN(angle_rad), TVO_COS(angle_rad));
+}
+
+tvo_status_t tvo_unicycle_flat_map(tvo_real_t heading_rad, tvo_real_t speed_mps,
+                                   const tvo_real_t output_accel_mps2[2], tvo_real_t min_speed_mps,
+                                   tvo_real_t *accel_mps2, tvo_real_t *turn_rate_radps, uint8_t *low_speed)
+{
+    if (output_accel_mps2 == NULL || accel_mps2 == NULL || turn_rate_radps == NULL || low_speed == NULL) {
+        return TVO_ERR_NULL;
+    }
+    *accel_mps2 = TVO_R(0.0);
+    *turn_rate_radps = TVO_R(0.0);
+    *low_speed = 0;
+    if (!isfinite(heading_rad) || !isfinite(speed_mps) || !isfinite(output_accel_mps2[0]) ||
+        !isfinite(output_accel_mps2[1]) || !isfinite(min_speed_mps)) {
+        return TVO_ERR_NOT_FINITE;
+    }
+    if (!(min_speed_mps > TVO_R(0.0))) {
+        return TVO_ERR_PARAM;
+    }
+    const tvo_real_t c = TVO_COS(heading_rad);
+    const tvo_real_t s = TVO_SIN(heading_rad);
+    /* Along-track part drives the speed state; cross-track part, divided by v, turns. */
+    const tvo_real_t along = output_accel_mps2[0] * c + output_accel_mps2[1] * s;
+    const tvo_real_t across = c * output_accel_mps2[1] - s * output_accel_mps2[0];
+    tvo_real_t v = speed_mps;
+    if (TVO_FABS(v) < min_speed_mps) {
+        v = (v < TVO_R(0.0)) ? -min_speed_mps : min_speed_mps;
+        *low_speed = 1;
+    }
+    *accel_mps2 = along;
+    *turn_rate_radps = across / v;
+    return TVO_OK;
+}
+
+tvo_status_t tvo_unicycle_predict(const tvo_pose_t *start, tvo_real_t speed_mps, tvo_real_t turn_rate_radps,
+                                  tvo_real_t dt_s, tvo_pose_t *out)
+{
+    if (start == NULL || out == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (!isfinite(start->position_m[0]) || !isfinite(start->position_m[1]) || !isfinite(start->heading_rad) ||
+        !isfinite(speed_mps) || !isfinite(turn_rate_radps) || !isfinite(dt_s)) {
+        return TVO_ERR_NOT_FINITE;
+    }
+    if (dt_s < TVO_R(0.0)) {
+        return TVO_ERR_PARAM;
+    }
+    const tvo_real_t th = start->heading_rad;
+    const tvo_real_t dth = turn_rate_radps * dt_s;
+    /* Displacement = v dt [sinc(dth), (1 - cos dth)/dth] rotated by th; both factors by their
+     * series when dth is small, where the closed forms would cancel catastrophically. */
+    tvo_real_t sinc;
+    tvo_real_t cosc;
+    if (TVO_FABS(dth) < TVO_R(1e-3)) {
+        const tvo_real_t d2 = dth * dth;
+        sinc = TVO_R(1.0) - d2 / TVO_R(6.0);
+        cosc = dth * (TVO_R(0.5) - d2 / TVO_R(24.0));
+    } else {
+        sinc = TVO_SIN(dth) / dth;
+        cosc = (TVO_R(1.0) - TVO_COS(dth)) / dth;
+    }
+    const tvo_real_t dist = speed_mps * dt_s;
+    const tvo_real_t fwd = dist * sinc;
+    const tvo_real_t left = dist * cosc;
+    const tvo_real_t c = TVO_COS(th);
+    const tvo_real_t s = TVO_SIN(th);
+    const tvo_real_t x = start->position_m[0] + c * fwd - s * left;
+    const tvo_real_t y = start->position_m[1] + s * fwd + c * left;
+    out->position_m[0] = x;
+    out->position_m[1] = y;
+    out->heading_rad = tvo_wrap_angle(th + dth);
+    return TVO_OK;
+}
