@@ -69,7 +69,9 @@ tvo_status_t tvo_unicycle_predict(const tvo_pose_t *start, tvo_real_t speed_mps,
         cosc = dth * (TVO_R(0.5) - d2 / TVO_R(24.0));
     } else {
         sinc = TVO_SIN(dth) / dth;
-        cosc = (TVO_R(1.0) - TVO_COS(dth)) / dth;
+        /* 1 - cos x = 2 sin^2(x/2): no cancellation for small turns in float32. */
+        const tvo_real_t half_sin = TVO_SIN(TVO_R(0.5) * dth);
+        cosc = TVO_R(2.0) * half_sin * half_sin / dth;
     }
     const tvo_real_t dist = speed_mps * dt_s;
     const tvo_real_t fwd = dist * sinc;

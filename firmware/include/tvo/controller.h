@@ -11,6 +11,17 @@
  *     the state at the instant its command takes effect. The actual age apply_tick - stamp_tick is
  *     used, so jitter in the sampling instant is compensated too.
  *
+ *   - with compensation off, the law is evaluated at the sampling instant (state and objective
+ *     time both at stamp_tick), as an uncompensated implementation of the paper would;
+ *   - the held speed is the interval average of the speed state, v_n + a_n h / 2 (the held arc then
+ *     covers the continuous extension's distance to second order in h; holding the end-of-interval
+ *     speed measured 7x worse RMS tracking in the default demo);
+ *   - a valid measured speed (pose mode) shifts the speed state by (measured - held): slip and
+ *     disturbances the plant reports are absorbed instead of integrated against;
+ *   - position-only mode: y' comes from the dirty-derivative filter; the heading used by the flat
+ *     map starts from the first sample's heading if it has one, is dead-reckoned with the held
+ *     turn rate, and is pulled toward the filtered velocity direction with time constant 10 T_f.
+ *
  * Measurements are rejected (the status says why, the previous command is held) when they carry
  * NaN/Inf, are stamped after apply_tick, are older than one period, or do not advance. After
  * watchdog_periods periods without a valid measurement the controller stops the robots
@@ -113,7 +124,7 @@ tvo_status_t tvo_controller_init(tvo_controller_t *ctl, const tvo_controller_con
 
 /**
  * One period: computes the command applied at apply_tick from the measurement (NULL when none
- * arrived). cmd always receives a safe command: the new one on TVO_OK; otherwise the held one
+ * arrived: the held command is repeated with TVO_FLAG_HOLDING and TVO_ERR_NO_MEASUREMENT). cmd always receives a safe command: the new one on TVO_OK; otherwise the held one
  * (TVO_FLAG_HOLDING) or a stop (TVO_FLAG_SAFE_STOP), with the reason as the status.
  * apply_tick must advance on every call (TVO_ERR_OUT_OF_ORDER otherwise, previous command held).
  */

@@ -32,8 +32,9 @@ typedef struct {
 } tvo_law_eval_t;
 
 /**
- * Validates k in 1..TVO_MAX_RELATIVE_DEGREE, 1 <= dim <= TVO_MAX_OUTPUT_DIM and that the gains make
- * s^k + a_{k-1}s^{k-1} + ... + a_0 Hurwitz (Routh-Hurwitz); TVO_ERR_PARAM otherwise.
+ * Validates k in 1..TVO_MAX_RELATIVE_DEGREE (TVO_ERR_PARAM), 1 <= dim <= TVO_MAX_OUTPUT_DIM
+ * (TVO_ERR_DIMENSION) and that the gains make s^k + a_{k-1}s^{k-1} + ... + a_0 Hurwitz
+ * (Routh-Hurwitz; TVO_ERR_PARAM otherwise).
  */
 tvo_status_t tvo_law_init(tvo_law_t *law, uint8_t relative_degree, uint8_t dim, const tvo_real_t *gain);
 
