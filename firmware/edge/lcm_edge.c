@@ -1,0 +1,261 @@
+/* LCM <-> control-core conversions of the firmware node; see lcm_edge.h. */
+#include "lcm_edge.h"
+
+#include <string.h>
+
+/* Stride of one robot's block in session_t.target_params (circle, ellipse). */
+#define EDGE_TARGET_STRIDE 8
+/* Stride of one robot's and one axis's block for polynomial targets. */
+#define EDGE_POLY_ROBOT_STRIDE 16
+#define EDGE_POLY_AXIS_STRIDE 8
+
+static tvo_real_t edge_real(double value)
+{
+    return (tvo_real_t)value;
+}
+
+static tvo_status_t edge_reject(tvo_param_t param, tvo_param_t *bad_param)
+{
+    if (bad_param != NULL) {
+        *bad_param = param;
+    }
+    return TVO_ERR_PARAM;
+}
+
+/* One robot's on-board target from the session's parameter block. */
+static tvo_status_t edge_target_init(tvo_target_t *target, int32_t kind, const double *params, uint8_t robot)
+{
+    const double *p = params + (size_t)robot * EDGE_TARGET_STRIDE;
+    switch (kind) {
+    case TVO_LCM_SESSION_T_TARGET_POLYNOMIAL: {
+        tvo_real_t coeff[2][TVO_POLY_MAX_DEGREE + 1];
+        const double *q = params + (size_t)robot * EDGE_POLY_ROBOT_STRIDE;
+        for (size_t axis = 0; axis < 2; ++axis) {
+            for (size_t j = 0; j <= TVO_POLY_MAX_DEGREE; ++j) {
+                coeff[axis][j] = edge_real(q[axis * EDGE_POLY_AXIS_STRIDE + j]);
+            }
+        }
+        /* C11 does not convert T (*)[n] to const T (*)[n] implicitly: the cast only adds const. */
+        return tvo_target_init_polynomial(target, (const tvo_real_t(*)[TVO_POLY_MAX_DEGREE + 1])coeff);
+    }
+    case TVO_LCM_SESSION_T_TARGET_CIRCLE: {
+        const tvo_real_t center_m[2] = {edge_real(p[0]), edge_real(p[1])};
+        return tvo_target_init_circle(target, center_m, edge_real(p[2]), edge_real(p[3]), edge_real(p[4]));
+    }
+    case TVO_LCM_SESSION_T_TARGET_ELLIPSE: {
+        tvo_target_ellipse_t ellipse;
+        ellipse.center_m[0] = edge_real(p[0]);
+        ellipse.center_m[1] = edge_real(p[1]);
+        ellipse.semi_axis_m[0] = edge_real(p[2]);
+        ellipse.semi_axis_m[1] = edge_real(p[3]);
+        ellipse.omega_radps = edge_real(p[4]);
+        ellipse.phase_rad = edge_real(p[5]);
+        ellipse.rotation_rad = edge_real(p[6]);
+        return tvo_target_init_ellipse(target, &ellipse);
+    }
+    case TVO_LCM_SESSION_T_TARGET_STREAMED:
+        return tvo_target_init_streamed(target);
+    default:
+        return TVO_ERR_PARAM;
+    }
+}
+
+/* Controller configuration from the session; the core validates ranges, the edge only casts safely. */
+static tvo_status_t edge_config_from_session(const tvo_lcm_session_t *msg, tvo_controller_config_t *cfg,
+                                             tvo_param_t *bad_param)
+{
+    tvo_status_t st = tvo_controller_config_default(cfg);
+    if (st != TVO_OK) {
+        return st;
+    }
+    /* Values that would wrap when narrowed to the core's unsigned fields are rejected here. */
+    if (msg->period_us <= 0 || msg->period_us > (int64_t)UINT32_MAX) {
+        return edge_reject(TVO_PARAM_PERIOD, bad_param);
+    }
+    if (msg->delay_us < 0 || msg->delay_us > (int64_t)UINT32_MAX) {
+        return edge_reject(TVO_PARAM_DELAY, bad_param);
+    }
+    if (msg->watchdog_periods < 0) {
+        return edge_reject(TVO_PARAM_WATCHDOG, bad_param);
+    }
+    if (msg->velocity_source == TVO_LCM_SESSION_T_VELOCITY_FROM_POSE) {
+        cfg->velocity_source = TVO_VELOCITY_FROM_POSE;
+    } else if (msg->velocity_source == TVO_LCM_SESSION_T_VELOCITY_FROM_POSITION) {
+        cfg->velocity_source = TVO_VELOCITY_FROM_POSITION;
+    } else {
+        return edge_reject(TVO_PARAM_VELOCITY_SOURCE, bad_param);
+    }
+    cfg->tick_hz = TVO_EDGE_TICK_HZ;
+    cfg->period_ticks = (uint32_t)msg->period_us;
+    cfg->delay_ticks = (uint32_t)msg->delay_us;
+    cfg->robot_count = (uint8_t)msg->robot_count;
+    cfg->delay_compensation = msg->delay_compensation ? 1u : 0u;
+    cfg->filter_tf_s = edge_real(msg->filter_tf_s);
+    cfg->gain_kp = edge_real(msg->gain_kp);
+    cfg->gain_kd = edge_real(msg->gain_kd);
+    cfg->omega_max_radps = edge_real(msg->omega_max_radps);
+    cfg->accel_max_mps2 = edge_real(msg->accel_max_mps2);
+    cfg->speed_max_mps = edge_real(msg->speed_max_mps);
+    cfg->min_speed_mps = edge_real(msg->min_speed_mps);
+    cfg->watchdog_periods = (uint32_t)msg->watchdog_periods;
+    for (size_t r = 0; r < TVO_MAX_ROBOTS; ++r) {
+        cfg->initial_speed_mps[r] = edge_real(msg->initial_speed_mps[r]);
+    }
+    return TVO_OK;
+}
+
+/* Targets, one tracking term per robot (offset 2r) and the objective summing them. */
+static tvo_status_t edge_objective_from_session(tvo_edge_session_t *session, const tvo_lcm_session_t *msg,
+                                                tvo_param_t *bad_param)
+{
+    tvo_status_t st = tvo_objective_init(&session->objective, (uint8_t)(2u * session->robot_count));
+    for (uint8_t r = 0; st == TVO_OK && r < session->robot_count; ++r) {
+        const tvo_real_t weight[2] = {edge_real(msg->tracking_weight[r][0]),
+                                      edge_real(msg->tracking_weight[r][1])};
+        st = edge_target_init(&session->targets[r], msg->target_kind, msg->target_params, r);
+        if (st == TVO_OK) {
+            st = tvo_tracking_init(&session->terms[r], &session->targets[r], weight, (uint8_t)(2u * r));
+        }
+        if (st == TVO_OK) {
+            st = tvo_objective_add_term(&session->objective, tvo_tracking_gradient_jet, &session->terms[r]);
+        }
+    }
+    if (st != TVO_OK && bad_param != NULL) {
+        *bad_param = TVO_PARAM_OBJECTIVE;
+    }
+    return st;
+}
+
+tvo_status_t tvo_edge_session_start(tvo_edge_session_t *session, const tvo_lcm_session_t *msg,
+                                    tvo_param_t *bad_param)
+{
+    if (session == NULL || msg == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (bad_param != NULL) {
+        *bad_param = TVO_PARAM_NONE;
+    }
+    session->active = 0;
+    session->has_sequence = 0;
+    session->session_id = msg->session_id;
+    if (msg->robot_count < 1 || msg->robot_count > TVO_MAX_ROBOTS) {
+        return edge_reject(TVO_PARAM_ROBOT_COUNT, bad_param);
+    }
+    session->robot_count = (uint8_t)msg->robot_count;
+    session->period_us = msg->period_us;
+    session->delay_us = msg->delay_us;
+
+    tvo_controller_config_t cfg;
+    tvo_status_t st = edge_config_from_session(msg, &cfg, bad_param);
+    if (st == TVO_OK) {
+        st = edge_objective_from_session(session, msg, bad_param);
+    }
+    if (st == TVO_OK) {
+        st = tvo_controller_init(&session->controller, &cfg, &session->objective, (uint32_t)msg->epoch_utime,
+                                 bad_param);
+    }
+    session->active = (st == TVO_OK) ? 1u : 0u;
+    return st;
+}
+
+tvo_status_t tvo_edge_measurement_from_lcm(const tvo_lcm_measurement_t *msg, uint8_t robot_count,
+                                           tvo_measurement_t *meas)
+{
+    if (msg == NULL || meas == NULL) {
+        return TVO_ERR_NULL;
+    }
+    memset(meas, 0, sizeof(*meas));
+    if (msg->robot_count != (int32_t)robot_count) {
+        return TVO_ERR_DIMENSION;
+    }
+    meas->stamp_tick = (uint32_t)msg->utime;
+    for (size_t r = 0; r < robot_count; ++r) {
+        meas->position_m[r][0] = edge_real(msg->position_m[r][0]);
+        meas->position_m[r][1] = edge_real(msg->position_m[r][1]);
+        meas->heading_rad[r] = edge_real(msg->heading_rad[r]);
+        meas->speed_mps[r] = edge_real(msg->speed_mps[r]);
+    }
+    meas->heading_valid = msg->heading_valid ? 1u : 0u;
+    meas->speed_valid = msg->speed_valid ? 1u : 0u;
+    return TVO_OK;
+}
+
+void tvo_edge_command_to_lcm(const tvo_command_t *cmd, tvo_status_t status, int64_t apply_utime,
+                             int64_t sequence, uint8_t robot_count, tvo_lcm_command_t *msg)
+{
+    memset(msg, 0, sizeof(*msg));
+    msg->utime = apply_utime;
+    msg->measurement_sequence = sequence;
+    msg->robot_count = robot_count;
+    for (size_t r = 0; r < robot_count && r < TVO_MAX_ROBOTS; ++r) {
+        msg->speed_mps[r] = (double)cmd->speed_mps[r];
+        msg->turn_rate_radps[r] = (double)cmd->turn_rate_radps[r];
+    }
+    msg->status = (int32_t)status;
+    msg->flags = (int32_t)cmd->flags;
+}
+
+void tvo_edge_telemetry_to_lcm(const tvo_controller_t *ctl, tvo_status_t status, uint32_t flags,
+                               int64_t apply_utime, int64_t sequence, tvo_lcm_telemetry_t *msg)
+{
+    memset(msg, 0, sizeof(*msg));
+    const tvo_controller_telemetry_t *tel = &ctl->telemetry;
+    const size_t dim = 2u * (size_t)ctl->cfg.robot_count;
+    msg->utime = apply_utime;
+    msg->measurement_sequence = sequence;
+    msg->status = (int32_t)status;
+    msg->flags = (int32_t)flags;
+    msg->objective_time_s = (double)tel->objective_time_s;
+    msg->dim = (int32_t)dim;
+    for (size_t i = 0; i < dim && i < TVO_MAX_OUTPUT_DIM; ++i) {
+        msg->gradient[i] = (double)tel->gradient[i];
+        msg->gradient_rate[i] = (double)tel->gradient_rate[i];
+        msg->output_m[i] = (double)tel->output_m[i];
+        msg->output_rate_mps[i] = (double)tel->output_rate_mps[i];
+        msg->output_accel_mps2[i] = (double)tel->output_accel_mps2[i];
+    }
+    for (size_t r = 0; r < ctl->cfg.robot_count && r < TVO_MAX_ROBOTS; ++r) {
+        msg->speed_state_mps[r] = (double)ctl->speed_state_mps[r];
+    }
+}
+
+tvo_status_t tvo_edge_target_update(tvo_edge_session_t *session, const tvo_lcm_target_t *msg)
+{
+    if (session == NULL || msg == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (!session->active) {
+        return TVO_ERR_NOT_INITIALIZED;
+    }
+    if (msg->robot_count != (int32_t)session->robot_count) {
+        return TVO_ERR_DIMENSION;
+    }
+    uint64_t stamp_ticks = 0;
+    tvo_status_t st = tvo_controller_objective_ticks(&session->controller, (uint32_t)msg->utime, &stamp_ticks);
+    for (uint8_t r = 0; st == TVO_OK && r < session->robot_count; ++r) {
+        if (session->targets[r].kind != TVO_TARGET_STREAMED) {
+            return TVO_ERR_PARAM;
+        }
+        tvo_real_t deriv[TVO_STREAM_MAX_DERIV + 1][2];
+        for (size_t axis = 0; axis < 2; ++axis) {
+            deriv[0][axis] = edge_real(msg->position_m[r][axis]);
+            deriv[1][axis] = edge_real(msg->velocity_mps[r][axis]);
+            deriv[2][axis] = edge_real(msg->acceleration_mps2[r][axis]);
+            deriv[3][axis] = edge_real(msg->jerk_mps3[r][axis]);
+        }
+        st = tvo_target_stream_update(&session->targets[r], stamp_ticks,
+                                      (const tvo_real_t(*)[2])deriv);  /* adds const only (C11) */
+    }
+    return st;
+}
+
+void tvo_edge_ack_to_lcm(int64_t utime, int64_t session_id, int8_t action, tvo_status_t status,
+                         tvo_param_t bad_param, tvo_lcm_session_ack_t *msg)
+{
+    memset(msg, 0, sizeof(*msg));
+    msg->utime = utime;
+    msg->session_id = session_id;
+    msg->action = action;
+    msg->status = (int32_t)status;
+    msg->bad_param = (int32_t)bad_param;
+}

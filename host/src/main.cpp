@@ -1,0 +1,161 @@
+// tvo_sim: the plant side of the hardware-in-the-loop run (see sim_loop.hpp for the timing).
+//
+// Exit codes: 0 run completed; 1 runtime failure (LCM, firmware rejected or silent, files);
+// 2 bad command line; 128 + signal when interrupted (130 for Ctrl-C).
+#include <signal.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <iostream>
+
+#include "firmware_process.hpp"
+#include "metrics.hpp"
+#include "options.hpp"
+#include "run_recorder.hpp"
+#include "scenario.hpp"
+#include "session.hpp"
+#include "sim_loop.hpp"
+#include "summary.hpp"
+#include "transport.hpp"
+
+namespace {
+
+volatile std::sig_atomic_t g_signal = 0;  // the signal that asked us to stop, 0 if none
+
+extern "C" void on_signal(int signo)
+{
+    g_signal = signo;
+}
+
+void install_signal_handlers()
+{
+    struct sigaction action {};
+    action.sa_handler = on_signal;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = 0;  // no SA_RESTART: a blocking select returns EINTR and the loop notices
+    sigaction(SIGINT, &action, nullptr);
+    sigaction(SIGTERM, &action, nullptr);
+}
+
+constexpr std::chrono::milliseconds kStartTimeout{5000};
+constexpr std::chrono::milliseconds kStopTimeout{1000};
+constexpr std::chrono::milliseconds kChildExitTimeout{2000};
+constexpr double kRmsWindowS = 5.0;
+
+std::int64_t make_session_id()
+{
+    const auto ticks = std::chrono::steady_clock::now().time_since_epoch().count();
+    return (static_cast<std::int64_t>(getpid()) << 32) ^ static_cast<std::int64_t>(ticks);
+}
+
+/// STOP the session and let the child go; a child that ignores STOP is terminated.
+void finish(tvo_host::SessionClient& session, tvo_host::FirmwareProcess& firmware, std::int64_t stop_utime)
+{
+    if (g_signal != 0) {
+        firmware.send_signal(g_signal);  // a signal sent to us alone reaches the child too
+    }
+    session.stop(stop_utime, kStopTimeout);
+    if (firmware.spawned() && !firmware.wait_for_exit(kChildExitTimeout)) {
+        std::cerr << "tvo_sim: warning: the firmware node did not exit after STOP; terminating it\n";
+        firmware.terminate();
+    }
+}
+
+int run(const tvo_host::SimOptions& options)
+{
+    using namespace tvo_host;
+    const std::filesystem::path out_dir(options.out_dir);
+    std::filesystem::create_directories(out_dir);
+    const std::string csv_path = (out_dir / "run.csv").string();
+    const std::string log_path = (out_dir / "run.lcmlog").string();
+
+    const Scenario scenario = make_demo_scenario(options.robots, options.target);
+    LcmTransport transport(options.lcm_url, log_path);
+    FirmwareProcess firmware;
+    if (!options.firmware.empty()) {
+        firmware.spawn(options.firmware, options.lcm_url);
+    }
+    SessionClient session(transport, make_start_session(options, scenario, make_session_id()));
+    const auto keep_waiting = [&firmware] { return g_signal == 0 && (!firmware.spawned() || firmware.running()); };
+    if (!session.start(kStartTimeout, keep_waiting)) {
+        if (g_signal != 0) {
+            finish(session, firmware, options.start_utime_us);
+            std::cerr << "tvo_sim: interrupted\n";
+            return 128 + g_signal;
+        }
+        std::cerr << "tvo_sim: error: the firmware node " << firmware.exit_description()
+                  << " before acknowledging the session\n";
+        return 1;
+    }
+    if (session.ack().status != TVO_OK) {
+        std::cerr << "tvo_sim: error: " << describe_rejection(session.ack(), options) << '\n';
+        finish(session, firmware, options.start_utime_us);
+        return 1;
+    }
+
+    const double duration_s = static_cast<double>(options.steps * options.period_us) * 1e-6;
+    RunRecorder recorder(csv_path);
+    TrackingMetrics metrics(duration_s, kRmsWindowS);
+    SimLoop loop(options, scenario, transport, recorder, metrics, g_signal);
+    LoopResult result;
+    try {
+        result = loop.run();
+    } catch (const TransportError& e) {
+        std::cerr << "tvo_sim: error: " << e.what();
+        if (firmware.spawned() && !firmware.running()) {
+            std::cerr << "; the firmware node " << firmware.exit_description();
+        }
+        std::cerr << '\n';
+        finish(session, firmware, options.start_utime_us + options.steps * options.period_us);
+        return 1;
+    }
+    finish(session, firmware, options.start_utime_us + result.steps * options.period_us);
+    if (!recorder.close()) {
+        std::cerr << "tvo_sim: error: writing " << csv_path << " failed\n";
+        return 1;
+    }
+    if (result.interrupted) {
+        std::cerr << "tvo_sim: interrupted after " << result.steps << " steps\n";
+        return 128 + (g_signal != 0 ? g_signal : SIGINT);
+    }
+
+    RunSummary summary;
+    summary.final_error_m = metrics.final_error_m();
+    summary.rms_error_last5s_m = metrics.rms_error_window_m();
+    summary.max_abs_omega_radps = metrics.max_abs_omega_radps();
+    summary.steps = result.steps;
+    summary.steps_per_s = result.wall_s > 0.0 ? static_cast<double>(result.steps) / result.wall_s : 0.0;
+    summary.faults = metrics.faults();
+    summary.commands = metrics.commands();
+    summary.drops = result.drops;
+    summary.late_commands = result.late_commands;
+    print_summary_table(std::cout, summary, options);
+    write_summary_json(options.summary_json, summary);
+    std::cout << "  outputs: " << csv_path << ", " << log_path << " (" << transport.logged_events()
+              << " LCM events), " << options.summary_json << '\n';
+    if (!transport.log_ok()) {
+        std::cerr << "tvo_sim: error: writing " << log_path << " failed\n";
+        return 1;
+    }
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+    tvo_host::SimOptions options;
+    const int parsed = tvo_host::parse_options(argc, argv, &options);
+    if (parsed >= 0) {
+        return parsed;
+    }
+    install_signal_handlers();
+    try {
+        return run(options);
+    } catch (const std::exception& e) {
+        std::cerr << "tvo_sim: error: " << e.what() << '\n';
+        return 1;
+    }
+}

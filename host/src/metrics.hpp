@@ -1,0 +1,36 @@
+// Run metrics: tracking error (final, RMS over the last seconds), largest turn rate, faults.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace tvo_host {
+
+class TrackingMetrics {
+public:
+    /// Errors sampled at t >= duration_s - window_s enter the RMS (all of them if the run is shorter).
+    TrackingMetrics(double duration_s, double window_s);
+
+    /// Tracking error at t_s: the largest distance of a robot from its target (metres).
+    void add_error_sample(double t_s, double error_m);
+
+    /// One command received from the firmware: its turn rates and whether it reports a fault.
+    void add_command(const double* turn_rate_radps, std::size_t robot_count, bool fault);
+
+    double final_error_m() const { return final_error_m_; }
+    double rms_error_window_m() const;
+    double max_abs_omega_radps() const { return max_abs_omega_radps_; }
+    std::uint64_t faults() const { return faults_; }
+    std::uint64_t commands() const { return commands_; }
+
+private:
+    double window_start_s_;
+    double final_error_m_{0.0};
+    double window_sum_sq_{0.0};
+    std::uint64_t window_count_{0};
+    double max_abs_omega_radps_{0.0};
+    std::uint64_t faults_{0};
+    std::uint64_t commands_{0};
+};
+
+}  // namespace tvo_host

@@ -1,0 +1,215 @@
+// tvo_sim's command line; see options.hpp.
+#include "options.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <sstream>
+
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+
+namespace tvo_host {
+
+namespace {
+
+constexpr double kUsPerS = 1e6;
+// A period must be whole microseconds (the wire's clock); allow float round-off of the decimal input.
+constexpr double kWholeUsTolerance = 1e-3;
+// Upper bound on the injected latency: beyond it the plant would queue many periods of commands.
+constexpr double kMaxExtraDelayS = 10.0;
+
+int fail(const std::string& option, const std::string& why)
+{
+    std::cerr << "tvo_sim: error: " << option << ": " << why << " (see --help)\n";
+    return 2;
+}
+
+std::string one_line(std::string text)
+{
+    for (char& c : text) {
+        c = (c == '\n') ? ' ' : c;
+    }
+    while (!text.empty() && text.back() == ' ') {
+        text.pop_back();
+    }
+    return text;
+}
+
+/// "A,B" -> two finite numbers.
+bool parse_pair(const std::string& text, double* first, double* second)
+{
+    const std::size_t comma = text.find(',');
+    if (comma == std::string::npos) {
+        return false;
+    }
+    const std::string a = text.substr(0, comma);
+    const std::string b = text.substr(comma + 1);
+    char* end_a = nullptr;
+    char* end_b = nullptr;
+    *first = std::strtod(a.c_str(), &end_a);
+    *second = std::strtod(b.c_str(), &end_b);
+    return !a.empty() && !b.empty() && *end_a == '\0' && *end_b == '\0' && std::isfinite(*first) &&
+           std::isfinite(*second);
+}
+
+std::string number(double value)
+{
+    std::ostringstream out;
+    out << value;
+    return out.str();
+}
+
+/// Cross-field checks and derived microsecond timing; returns -1 or 2.
+int validate(SimOptions* o, bool delay_given)
+{
+    if (!std::isfinite(o->period_s) || !(o->period_s > 0.0)) {
+        return fail("--period-s", "must be > 0, got " + number(o->period_s));
+    }
+    const double period_us = o->period_s * kUsPerS;
+    o->period_us = static_cast<std::int64_t>(std::llround(period_us));
+    if (o->period_us < 1 || std::abs(period_us - static_cast<double>(o->period_us)) > kWholeUsTolerance) {
+        return fail("--period-s", "must be a whole number of microseconds, got " + number(o->period_s));
+    }
+    if (!delay_given) {
+        o->delay_s = o->period_s / 2.0;
+    }
+    if (!std::isfinite(o->delay_s) || o->delay_s < 0.0 || o->delay_s > o->period_s) {
+        return fail("--delay-s", "must be within 0 .. --period-s (" + number(o->period_s) + "), got " +
+                                     number(o->delay_s));
+    }
+    o->delay_us = std::min<std::int64_t>(o->period_us, std::llround(o->delay_s * kUsPerS));
+    if (!std::isfinite(o->duration_s) || !(o->duration_s > 0.0)) {
+        return fail("--duration-s", "must be > 0, got " + number(o->duration_s));
+    }
+    o->steps = static_cast<std::int64_t>(std::llround(o->duration_s / o->period_s));
+    if (o->steps < 1) {
+        return fail("--duration-s", "must cover at least one period");
+    }
+    if (!std::isfinite(o->sigma) || o->sigma < 0.0) {
+        return fail("--sigma", "must be >= 0, got " + number(o->sigma));
+    }
+    if (!std::isfinite(o->filter_tf_s)) {
+        return fail("--filter-tf-s", "must be a finite number");
+    }
+    if (!std::isfinite(o->drop_prob) || o->drop_prob < 0.0 || o->drop_prob > 1.0) {
+        return fail("--drop-prob", "must be within 0 .. 1, got " + number(o->drop_prob));
+    }
+    if (!std::isfinite(o->extra_delay_s) || o->extra_delay_s < 0.0 || o->extra_delay_s > kMaxExtraDelayS) {
+        return fail("--extra-delay-s", "must be within 0 .. 10, got " + number(o->extra_delay_s));
+    }
+    o->extra_delay_us = static_cast<std::int64_t>(std::llround(o->extra_delay_s * kUsPerS));
+    if (o->disturbance_speed_mps < 0.0 || o->disturbance_turn_radps < 0.0) {
+        return fail("--disturbance", "sigmas must be >= 0");
+    }
+    if (o->robots < 1 || o->robots > kMaxRobots) {
+        return fail("--robots", "must be 1 .. 4, got " + std::to_string(o->robots));
+    }
+    if (!std::isfinite(o->answer_timeout_s) || !(o->answer_timeout_s > 0.0)) {
+        return fail("--answer-timeout-s", "must be > 0, got " + number(o->answer_timeout_s));
+    }
+    if (o->start_utime_us < 0) {
+        return fail("--start-utime-us", "must be >= 0");
+    }
+    if (o->out_dir.empty()) {
+        return fail("--out-dir", "must not be empty");
+    }
+    if (!o->firmware.empty() && access(o->firmware.c_str(), X_OK) != 0) {
+        return fail("--firmware", "cannot execute '" + o->firmware + "'");
+    }
+    if (o->summary_json.empty()) {
+        o->summary_json = o->out_dir + "/summary.json";
+    }
+    return -1;
+}
+
+}  // namespace
+
+int parse_options(int argc, char** argv, SimOptions* o)
+{
+    CLI::App app{"Closes the TV-O unicycle controller (tvo_firmware_node) in the loop with an exact plant "
+                 "simulation over LCM, hardware-in-the-loop style. Writes a CSV, an LCM log and a JSON "
+                 "summary to --out-dir and prints a summary table.",
+                 "tvo_sim"};
+    app.get_formatter()->column_width(36);
+    std::string gains = "40,13";
+    std::string disturbance = "0,0";
+    std::string target = "ellipse";
+
+    app.add_option("--period-s", o->period_s, "sampling period h, seconds (whole microseconds)")
+        ->capture_default_str();
+    CLI::Option* delay = app.add_option("--delay-s", o->delay_s,
+                                        "computation delay tau, 0 .. h: the pose is sampled at t_{n+1} - tau and "
+                                        "the command applied at t_{n+1} [default: h/2]");
+    app.add_flag("--no-compensation", "do not predict the pose over tau in the controller");
+    app.add_option("--sigma", o->sigma,
+                   "measurement noise sigma: position (m, per axis), heading (rad) and speed (m/s)")
+        ->capture_default_str();
+    app.add_option("--seed", o->seed, "seed of the noise, drop and disturbance streams")->capture_default_str();
+    app.add_option("--duration-s", o->duration_s, "simulated time T, seconds")->capture_default_str();
+    app.add_flag("--position-only",
+                 "measure positions only (the first sample also carries the initial heading); the controller "
+                 "derives y' with its dirty-derivative filter");
+    app.add_option("--filter-tf-s", o->filter_tf_s, "dirty-derivative time constant T_f, seconds")
+        ->capture_default_str();
+    app.add_option("--gains", gains, "KP,KD of s^2 + KD s + KP")->capture_default_str();
+    app.add_option("--omega-max-radps", o->omega_max_radps, "turn-rate limit")->capture_default_str();
+    app.add_option("--accel-max-mps2", o->accel_max_mps2, "acceleration limit")->capture_default_str();
+    app.add_option("--speed-max-mps", o->speed_max_mps, "speed limit")->capture_default_str();
+    app.add_option("--min-speed-mps", o->min_speed_mps, "1/v regularisation floor")->capture_default_str();
+    app.add_option("--watchdog-periods", o->watchdog_periods, "safe stop after this many periods without a "
+                   "valid measurement")->capture_default_str();
+    app.add_option("--robots", o->robots, "number of unicycles, 1 .. 4 (the demo picture turned per robot)")
+        ->capture_default_str();
+    app.add_option("--target", target, "ellipse | circle (on-board targets) | streamed (the ellipse sent on "
+                   "TVO_TARGET every period)")->capture_default_str();
+    app.add_flag("--realtime", "run on the wall clock at 1/h (commands applied when they arrive, by their utime) "
+                 "instead of lockstep");
+    app.add_option("--answer-timeout-s", o->answer_timeout_s, "lockstep: longest wait for the firmware's answer")
+        ->capture_default_str();
+    app.add_option("--drop-prob", o->drop_prob, "probability that a measurement is lost (never published; the "
+                   "plant holds the last command)")->capture_default_str();
+    app.add_option("--extra-delay-s", o->extra_delay_s, "extra latency: each command takes effect this long "
+                   "after its utime (unknown to the controller)")->capture_default_str();
+    app.add_option("--disturbance", disturbance, "SV,SW: sigma of a random speed (m/s) and turn-rate (rad/s) "
+                   "perturbation drawn per applied command")->capture_default_str();
+    app.add_option("--start-utime-us", o->start_utime_us, "wire time (us) of plant time 0; near 2^32 it tests "
+                   "the firmware's tick wrap-around")->capture_default_str();
+    app.add_option("--lcm-url", o->lcm_url, "LCM URL for this run and the spawned firmware [default: "
+                   "$LCM_DEFAULT_URL or LCM's udpm default]");
+    app.add_option("--firmware", o->firmware, "tvo_firmware_node to spawn as a child process; without it one "
+                   "must already be running on the same LCM URL");
+    app.add_option("--out-dir", o->out_dir, "directory for run.csv, run.lcmlog (and the demo's run.png)")
+        ->capture_default_str();
+    app.add_option("--summary-json", o->summary_json, "JSON summary path [default: <out-dir>/summary.json]");
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp&) {
+        std::cout << app.help();
+        return 0;
+    } catch (const CLI::CallForAllHelp&) {
+        std::cout << app.help("", CLI::AppFormatMode::All);
+        return 0;
+    } catch (const CLI::ParseError& e) {
+        std::cerr << "tvo_sim: error: " << one_line(e.what()) << " (see --help)\n";
+        return 2;
+    }
+    o->delay_compensation = app.count("--no-compensation") == 0;
+    o->position_only = app.count("--position-only") > 0;
+    o->realtime = app.count("--realtime") > 0;
+    if (!parse_pair(gains, &o->gain_kp, &o->gain_kd)) {
+        return fail("--gains", "expected KP,KD (two numbers), got '" + gains + "'");
+    }
+    if (!parse_pair(disturbance, &o->disturbance_speed_mps, &o->disturbance_turn_radps)) {
+        return fail("--disturbance", "expected SV,SW (two numbers), got '" + disturbance + "'");
+    }
+    if (!parse_target_kind(target, &o->target)) {
+        return fail("--target", "expected ellipse, circle or streamed, got '" + target + "'");
+    }
+    return validate(o, delay->count() > 0);
+}
+
+}  // namespace tvo_host

@@ -1,0 +1,63 @@
+// Command line of tvo_sim (CLI11), validated into whole-microsecond timing.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "scenario.hpp"
+
+namespace tvo_host {
+
+struct SimOptions {
+    // Timing (seconds as given; *_us derived, whole microseconds).
+    double period_s{0.01};
+    double delay_s{0.005};         // default h/2
+    double duration_s{20.0};
+    bool delay_compensation{true};
+    bool realtime{false};
+    double answer_timeout_s{2.0};   // lockstep: longest wait for the firmware's answer
+    std::int64_t start_utime_us{1000000};  // plant time 0 on the wire (the session's epoch)
+
+    // Sensing.
+    double sigma{0.0};              // position (m), heading (rad) and speed (m/s) noise sigma
+    bool position_only{false};
+    double filter_tf_s{0.05};
+    std::uint64_t seed{1};
+
+    // Controller (validated by the firmware, not here: the firmware is the authority).
+    double gain_kp{40.0};
+    double gain_kd{13.0};
+    double omega_max_radps{6.283185307179586};
+    double accel_max_mps2{15.0};
+    double speed_max_mps{5.0};
+    double min_speed_mps{0.05};
+    std::int32_t watchdog_periods{10};
+
+    // Scenario.
+    std::size_t robots{1};
+    TargetKind target{TargetKind::Ellipse};
+
+    // Faults.
+    double drop_prob{0.0};
+    double extra_delay_s{0.0};
+    double disturbance_speed_mps{0.0};
+    double disturbance_turn_radps{0.0};
+
+    // Plumbing.
+    std::string lcm_url;            // empty: LCM's default ($LCM_DEFAULT_URL or udpm)
+    std::string firmware;           // tvo_firmware_node to spawn; empty: one is already running
+    std::string out_dir{"runs/demo"};
+    std::string summary_json;       // empty: <out-dir>/summary.json
+
+    // Derived.
+    std::int64_t period_us{10000};
+    std::int64_t delay_us{5000};
+    std::int64_t extra_delay_us{0};
+    std::int64_t steps{2000};
+};
+
+/// Parses and validates argv. Returns -1 to run, or the exit code to leave with: 0 after --help,
+/// 2 after a one-line error naming the offending option.
+int parse_options(int argc, char** argv, SimOptions* options);
+
+}  // namespace tvo_host

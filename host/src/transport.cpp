@@ -1,0 +1,120 @@
+// LCM transport and in-process log; see transport.hpp.
+#include "transport.hpp"
+
+#include <sys/select.h>
+
+#include <algorithm>
+#include <cerrno>
+
+namespace tvo_host {
+
+namespace {
+// Larger than any of the protocol's fixed-size messages (session_t is the biggest, ~730 bytes).
+constexpr std::size_t kBufferBytes = 4096;
+}  // namespace
+
+LcmTransport::LcmTransport(const std::string& url, const std::string& log_path)
+    : lcm_(url), buffer_(kBufferBytes)
+{
+    if (!lcm_.good()) {
+        throw TransportError(
+            "cannot create LCM on '" + (url.empty() ? std::string("LCM default") : url) +
+            "'. UDP multicast on loopback may be disabled; fix (as root): `ip link set lo multicast on` and "
+            "`ip route add 224.0.0.0/4 dev lo`, or choose another provider with --lcm-url or LCM_DEFAULT_URL");
+    }
+    log_ = std::make_unique<lcm::LogFile>(log_path, "w");
+    if (!log_->good()) {
+        throw TransportError("cannot write the LCM log " + log_path);
+    }
+    event_.channel.reserve(32);
+    lcm_.subscribe(channel::kCommand, &LcmTransport::on_raw, this);
+    lcm_.subscribe(channel::kSessionAck, &LcmTransport::on_raw, this);
+    lcm_.subscribe(channel::kTelemetry, &LcmTransport::on_raw, this);
+}
+
+void LcmTransport::log(const std::string& channel, const void* data, std::int32_t size, std::int64_t utime)
+{
+    event_.timestamp = utime;
+    event_.channel = channel;
+    event_.datalen = size;
+    event_.data = const_cast<void*>(data);  // LogEvent's field is non-const; writeEvent only reads it
+    if (log_->writeEvent(&event_) != 0) {
+        log_ok_ = false;
+    }
+    ++logged_events_;
+}
+
+template <class Msg>
+void LcmTransport::publish_encoded(const std::string& channel, const Msg& msg)
+{
+    const int size = msg.encode(buffer_.data(), 0, static_cast<int>(buffer_.size()));
+    if (size < 0) {
+        throw TransportError("cannot encode a message for " + channel);
+    }
+    if (lcm_.publish(channel, buffer_.data(), static_cast<unsigned>(size)) != 0) {
+        throw TransportError("LCM publish on " + channel + " failed");
+    }
+    log(channel, buffer_.data(), size, msg.utime);
+}
+
+void LcmTransport::publish(const tvo_lcm::session_t& msg)
+{
+    publish_encoded(session_channel_, msg);
+}
+
+void LcmTransport::publish(const tvo_lcm::measurement_t& msg)
+{
+    publish_encoded(measurement_channel_, msg);
+}
+
+void LcmTransport::publish(const tvo_lcm::target_t& msg)
+{
+    publish_encoded(target_channel_, msg);
+}
+
+void LcmTransport::on_raw(const lcm::ReceiveBuffer* rbuf, const std::string& channel)
+{
+    const auto size = static_cast<int>(rbuf->data_size);
+    log(channel, rbuf->data, size, log_utime_);
+    if (listener_ == nullptr) {
+        return;
+    }
+    // Decoding fixed-size messages into members allocates nothing.
+    if (channel == channel::kCommand) {
+        if (command_.decode(rbuf->data, 0, size) >= 0) {
+            listener_->on_command(command_);
+        }
+    } else if (channel == channel::kSessionAck) {
+        if (ack_.decode(rbuf->data, 0, size) >= 0) {
+            listener_->on_session_ack(ack_);
+        }
+    }
+}
+
+WaitResult LcmTransport::wait(std::chrono::microseconds timeout)
+{
+    const int fd = lcm_.getFileno();
+    fd_set readable;
+    FD_ZERO(&readable);
+    FD_SET(fd, &readable);
+    const auto us = std::max<std::int64_t>(0, timeout.count());
+    timeval tv{};
+    tv.tv_sec = static_cast<time_t>(us / 1000000);
+    tv.tv_usec = static_cast<suseconds_t>(us % 1000000);
+    const int ready = select(fd + 1, &readable, nullptr, nullptr, &tv);
+    if (ready < 0) {
+        if (errno == EINTR) {
+            return WaitResult::Interrupted;
+        }
+        throw TransportError("select on the LCM socket failed");
+    }
+    if (ready == 0) {
+        return WaitResult::Timeout;
+    }
+    if (lcm_.handle() != 0) {
+        throw TransportError("LCM receive failed");
+    }
+    return WaitResult::Handled;
+}
+
+}  // namespace tvo_host

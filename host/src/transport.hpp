@@ -1,0 +1,74 @@
+// The simulator's LCM side: publishes without per-message allocation, dispatches what the
+// firmware sends, and logs every message both ways in LCM's own log format (lcm-logplayer replays it).
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <lcm/lcm-cpp.hpp>
+
+#include "lcm_messages.hpp"
+
+namespace tvo_host {
+
+class TransportError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/// Receives the firmware's messages (called from LcmTransport::wait).
+class TransportListener {
+public:
+    virtual ~TransportListener() = default;
+    virtual void on_command(const tvo_lcm::command_t& command) = 0;
+    virtual void on_session_ack(const tvo_lcm::session_ack_t& ack) = 0;
+};
+
+enum class WaitResult { Timeout, Handled, Interrupted };
+
+class LcmTransport {
+public:
+    /// Opens LCM on url (empty: LCM's default) and the log at log_path. TransportError with a fix on failure.
+    LcmTransport(const std::string& url, const std::string& log_path);
+
+    void set_listener(TransportListener* listener) { listener_ = listener; }
+    /// Plant-clock utime stamped on received messages in the log (the sim's notion of "now").
+    void set_log_utime(std::int64_t utime) { log_utime_ = utime; }
+
+    void publish(const tvo_lcm::session_t& msg);
+    void publish(const tvo_lcm::measurement_t& msg);
+    void publish(const tvo_lcm::target_t& msg);
+
+    /// Waits up to timeout for one message and dispatches it.
+    WaitResult wait(std::chrono::microseconds timeout);
+
+    std::uint64_t logged_events() const { return logged_events_; }
+    bool log_ok() const { return log_ok_; }
+
+private:
+    template <class Msg>
+    void publish_encoded(const std::string& channel, const Msg& msg);
+    void on_raw(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
+    void log(const std::string& channel, const void* data, std::int32_t size, std::int64_t utime);
+
+    lcm::LCM lcm_;
+    std::unique_ptr<lcm::LogFile> log_;
+    TransportListener* listener_{nullptr};
+    std::vector<std::uint8_t> buffer_;     // sized once for the largest message
+    lcm::LogEvent event_{};                 // reused: its channel string stays within SSO capacity
+    std::int64_t log_utime_{0};
+    std::uint64_t logged_events_{0};
+    bool log_ok_{true};
+    tvo_lcm::command_t command_{};
+    tvo_lcm::session_ack_t ack_{};
+    // Channel names as std::string once, so publishing builds no temporaries.
+    const std::string session_channel_{channel::kSession};
+    const std::string measurement_channel_{channel::kMeasurement};
+    const std::string target_channel_{channel::kTarget};
+};
+
+}  // namespace tvo_host
