@@ -1,0 +1,87 @@
+/*
+ * Link probe for the allocation check: a bare-metal program that uses the whole control core
+ * (controller, law, objective, tracking term, every target kind, status strings) so that a
+ * --gc-sections link keeps everything the firmware would keep. The check then looks for allocator
+ * symbols in the ELF. Not meant to run; inputs are volatile so nothing is constant-folded away.
+ */
+#include <stdint.h>
+
+#include "tvo/controller.h"
+#include "tvo/status.h"
+#include "tvo/target.h"
+#include "tvo/tracking.h"
+
+int main(void);
+
+static volatile uint32_t input_tick;
+static volatile tvo_real_t input_position;
+static volatile uint32_t output_sink;
+
+static tvo_target_t targets[3];
+static tvo_tracking_term_t terms[3];
+static tvo_objective_t objective;
+static tvo_controller_t controller;
+
+static uint32_t failures;
+
+static void check(tvo_status_t status)
+{
+    if (status != TVO_OK) {
+        ++failures;
+    }
+}
+
+static void setup_targets(void)
+{
+    static const tvo_real_t coeff[2][TVO_POLY_MAX_DEGREE + 1] = {
+        {TVO_R(0.0), TVO_R(1.0)}, {TVO_R(0.5), TVO_R(0.0), TVO_R(0.1)}};
+    static const tvo_target_ellipse_t ellipse = {
+        {TVO_R(0.0), TVO_R(0.0)}, {TVO_R(2.0), TVO_R(1.0)}, TVO_R(0.5), TVO_R(0.0), TVO_R(0.3)};
+    const tvo_real_t center[2] = {TVO_R(1.0), TVO_R(-1.0)};
+    const tvo_real_t deriv[TVO_STREAM_MAX_DERIV + 1][2] = {{(tvo_real_t)input_position, TVO_R(0.0)}};
+    check(tvo_target_init_polynomial(&targets[0], coeff));
+    check(tvo_target_init_ellipse(&targets[1], &ellipse));
+    check(tvo_target_init_circle(&targets[1], center, TVO_R(1.5), TVO_R(0.7), TVO_R(0.0)));
+    check(tvo_target_init_streamed(&targets[2]));
+    check(tvo_target_stream_update(&targets[2], 0u, deriv));
+}
+
+int main(void)
+{
+    tvo_controller_config_t cfg;
+    tvo_param_t bad_param = TVO_PARAM_NONE;
+    const tvo_real_t weight[2] = {TVO_R(1.0), TVO_R(1.0)};
+    tvo_measurement_t meas = {0};
+    tvo_command_t cmd;
+    uint32_t flags = 0u;
+    uint8_t r;
+
+    tvo_status_t status = TVO_OK;
+
+    check(tvo_controller_config_default(&cfg));
+    cfg.robot_count = 3u;
+    cfg.velocity_source = (input_tick & 1u) ? TVO_VELOCITY_FROM_POSITION : TVO_VELOCITY_FROM_POSE;
+    setup_targets();
+    check(tvo_objective_init(&objective, (uint8_t)(2u * cfg.robot_count)));
+    for (r = 0u; r < cfg.robot_count; ++r) {
+        check(tvo_tracking_init(&terms[r], &targets[r], weight, (uint8_t)(2u * r)));
+        check(tvo_objective_add_term(&objective, tvo_tracking_gradient_jet, &terms[r]));
+    }
+    check(tvo_controller_init(&controller, &cfg, &objective, input_tick, &bad_param));
+
+    for (uint32_t n = 1u; n <= 4u; ++n) {
+        uint32_t apply_tick = input_tick + n * cfg.period_ticks;
+        uint32_t sample_tick = 0u;
+        check(tvo_controller_sample_tick(&controller, apply_tick, &sample_tick));
+        meas.stamp_tick = sample_tick;
+        for (r = 0u; r < cfg.robot_count; ++r) {
+            meas.position_m[r][0] = (tvo_real_t)input_position;
+            meas.position_m[r][1] = (tvo_real_t)r;
+        }
+        meas.heading_valid = 1u;
+        status = tvo_controller_step(&controller, (n == 3u) ? NULL : &meas, apply_tick, &cmd);
+        flags |= cmd.flags;
+    }
+    output_sink = flags + failures + (uint32_t)tvo_status_str(status)[0] + (uint32_t)tvo_param_str(bad_param)[0];
+    return (int)status;
+}

@@ -1,0 +1,103 @@
+# Configures firmware/ as a standalone project (optionally with a cross toolchain file), builds the
+# control core tvo_core (warnings are errors there), and optionally checks it for allocator use and
+# links the allocation probe against it.
+#
+#   cmake -DFIRMWARE_DIR=<src> -DBINARY_DIR=<dir> [-DTOOLCHAIN_FILE=<file>] [-DGENERATOR=<gen>]
+#         [-DC_COMPILER=<cc>] [-DTVO_DOUBLE=ON] [-DCHECK_ALLOCATOR=ON] [-DPROBE_DIR=<probe project>]
+#         -P firmware_build.cmake
+cmake_minimum_required(VERSION 3.16)
+include("${CMAKE_CURRENT_LIST_DIR}/check_no_allocator.cmake")
+
+foreach(var FIRMWARE_DIR BINARY_DIR)
+  if(NOT ${var})
+    message(FATAL_ERROR "firmware_build.cmake: ${var} is required")
+  endif()
+endforeach()
+if(NOT GENERATOR)
+  set(GENERATOR "Unix Makefiles")
+endif()
+if(TVO_DOUBLE)
+  set(TVO_DOUBLE ON)
+else()
+  set(TVO_DOUBLE OFF)
+endif()
+cmake_host_system_information(RESULT jobs QUERY NUMBER_OF_LOGICAL_CORES)
+
+# Runs a command, echoing it; stops the test with <what> if it fails.
+function(run what)
+  string(REPLACE ";" " " shown "${ARGN}")
+  message(STATUS "${what}: ${shown}")
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${what} FAILED (exit ${rc})")
+  endif()
+endfunction()
+
+set(common_args -G "${GENERATOR}" -DCMAKE_BUILD_TYPE=Release -DTVO_DOUBLE=${TVO_DOUBLE})
+if(TOOLCHAIN_FILE)
+  if(NOT EXISTS "${TOOLCHAIN_FILE}")
+    message(FATAL_ERROR "toolchain file ${TOOLCHAIN_FILE} not found")
+  endif()
+  list(APPEND common_args "-DCMAKE_TOOLCHAIN_FILE=${TOOLCHAIN_FILE}")
+elseif(C_COMPILER)
+  list(APPEND common_args "-DCMAKE_C_COMPILER=${C_COMPILER}")
+endif()
+
+# A toolchain file is read only when a build folder is first configured: start afresh if it changed.
+if(TOOLCHAIN_FILE AND EXISTS "${BINARY_DIR}/CMakeCache.txt"
+   AND "${TOOLCHAIN_FILE}" IS_NEWER_THAN "${BINARY_DIR}/CMakeCache.txt")
+  message(STATUS "${TOOLCHAIN_FILE} changed: removing ${BINARY_DIR}")
+  file(REMOVE_RECURSE "${BINARY_DIR}")
+endif()
+
+# 1. firmware/ on its own, as a cross build would configure it
+run("configure firmware" "${CMAKE_COMMAND}" -S "${FIRMWARE_DIR}" -B "${BINARY_DIR}" ${common_args})
+run("build tvo_core" "${CMAKE_COMMAND}" --build "${BINARY_DIR}" --target tvo_core --parallel ${jobs})
+
+load_cache("${BINARY_DIR}" READ_WITH_PREFIX SUB_ CMAKE_NM CMAKE_SIZE CMAKE_C_COMPILER)
+set(core_lib "${BINARY_DIR}/libtvo_core.a")
+if(NOT EXISTS "${core_lib}")
+  message(FATAL_ERROR "${core_lib} was not produced")
+endif()
+message(STATUS "built ${core_lib} with ${SUB_CMAKE_C_COMPILER}")
+
+# 2. no allocator in the core library
+if(CHECK_ALLOCATOR)
+  tvo_find_allocator_symbols(found "${SUB_CMAKE_NM}" "${core_lib}")
+  if(found)
+    string(REPLACE ";" ", " found "${found}")
+    message(FATAL_ERROR "allocator symbols in ${core_lib}: ${found}")
+  endif()
+  message(STATUS "no allocator symbols in ${core_lib}")
+endif()
+
+# 3. the probe: a --gc-sections link of the whole core, then the same check on the ELF, plus the
+#    negative control (a program calling malloc must be caught by the same check)
+if(PROBE_DIR)
+  set(probe_bin "${BINARY_DIR}/probe")
+  run("configure probe" "${CMAKE_COMMAND}" -S "${PROBE_DIR}" -B "${probe_bin}" ${common_args}
+      "-DTVO_CORE_LIBRARY=${core_lib}" "-DTVO_FIRMWARE_INCLUDE_DIR=${FIRMWARE_DIR}/include")
+  run("build probe" "${CMAKE_COMMAND}" --build "${probe_bin}" --parallel ${jobs})
+
+  tvo_find_allocator_symbols(found "${SUB_CMAKE_NM}" "${probe_bin}/alloc_probe.elf")
+  if(found)
+    string(REPLACE ";" ", " found "${found}")
+    message(FATAL_ERROR "allocator symbols in the linked probe alloc_probe.elf: ${found}")
+  endif()
+  message(STATUS "no allocator symbols in ${probe_bin}/alloc_probe.elf")
+
+  tvo_find_allocator_symbols(found "${SUB_CMAKE_NM}" "${probe_bin}/alloc_canary.elf")
+  if(NOT found)
+    message(FATAL_ERROR "self-test FAILED: no allocator found in alloc_canary.elf, which calls malloc: the check is broken")
+  endif()
+  string(REPLACE ";" ", " found "${found}")
+  message(STATUS "self-test passed: alloc_canary.elf (calls malloc) is caught: ${found}")
+
+  if(SUB_CMAKE_SIZE)
+    message(STATUS "size of the linked probe (core + libm + newlib-nano startup), for information:")
+    execute_process(COMMAND "${SUB_CMAKE_SIZE}" "${probe_bin}/alloc_probe.elf")
+    message(STATUS "size of libtvo_core.a (all objects, before --gc-sections), for information:")
+    execute_process(COMMAND "${SUB_CMAKE_SIZE}" --totals "${core_lib}")
+  endif()
+endif()
+message(STATUS "firmware build check passed")

@@ -1,0 +1,1167 @@
+/*
+ * The sampled-data controller: parameter validation, the timing contract (sampling instant,
+ * delay compensation, wrap-around ticks), measurement rejection, the watchdog, actuator limits with
+ * anti-windup, determinism, and closed-loop convergence on a plant simulated with
+ * tvo_unicycle_predict (see fx_closed_loop_step in test_support.h for the plant's timing).
+ */
+#include "test_support.h"
+
+void setUp(void) {}
+void tearDown(void) {}
+
+static fx_t fx_a;
+static fx_t fx_b;
+
+static double h_s(const fx_t *fx)
+{
+    return (double)fx->cfg.period_ticks / (double)fx->cfg.tick_hz;
+}
+
+/* A controller for one robot at the origin heading east, at rest, target a static point. */
+static void fx_static_point(fx_t *fx, double tx, double ty)
+{
+    fx_reset(fx, 1);
+    fx_line_target(&fx->target[0], tx, ty, 0.0, 0.0);
+}
+
+static void fx_start(fx_t *fx, uint32_t epoch)
+{
+    ASSERT_STATUS(TVO_OK, fx_init_controller(fx, epoch));
+    ASSERT_PARAM(TVO_PARAM_NONE, fx->bad_param);
+}
+
+static void fx_set_pose(fx_t *fx, uint8_t r, double x, double y, double th)
+{
+    fx->pose[r].position_m[0] = test_r(x);
+    fx->pose[r].position_m[1] = test_r(y);
+    fx->pose[r].heading_rad = test_r(th);
+}
+
+static void run_ok(fx_t *fx, int steps)
+{
+    for (int i = 0; i < steps; ++i) {
+        ASSERT_STATUS(TVO_OK, fx_closed_loop_step(fx, NULL));
+    }
+}
+
+static void assert_command_finite(const tvo_command_t *cmd, uint8_t robots)
+{
+    for (uint8_t r = 0; r < robots; ++r) {
+        TEST_ASSERT_TRUE(test_is_finite(cmd->speed_mps[r]));
+        TEST_ASSERT_TRUE(test_is_finite(cmd->turn_rate_radps[r]));
+    }
+}
+
+static void assert_same_motion(const tvo_command_t *expected, const tvo_command_t *actual, uint8_t robots)
+{
+    for (uint8_t r = 0; r < robots; ++r) {
+        ASSERT_NEAR(expected->speed_mps[r], actual->speed_mps[r], 0.0);
+        ASSERT_NEAR(expected->turn_rate_radps[r], actual->turn_rate_radps[r], 0.0);
+    }
+}
+
+/* A measurement of the plant's current poses stamped at stamp (plant is not advanced). */
+static tvo_measurement_t measure_now(const fx_t *fx, uint32_t stamp)
+{
+    tvo_measurement_t m;
+    fx_measure(fx, fx->pose, stamp, &m);
+    return m;
+}
+
+/* ------------------------------------------------------------------------------------------------
+ * Configuration and init
+ * --------------------------------------------------------------------------------------------- */
+
+static void test_default_config_is_the_papers(void)
+{
+    tvo_controller_config_t cfg;
+    memset(&cfg, 0xFF, sizeof(cfg));
+    ASSERT_STATUS(TVO_OK, tvo_controller_config_default(&cfg));
+    ASSERT_NEAR(40.0, cfg.gain_kp, 0.0);
+    ASSERT_NEAR(13.0, cfg.gain_kd, 0.0);
+    ASSERT_NEAR(2.0 * TEST_PI, cfg.omega_max_radps, TEST_TOL(2, 7.0));
+    ASSERT_NEAR(15.0, cfg.accel_max_mps2, 0.0);
+    TEST_ASSERT_TRUE(cfg.tick_hz > 0u);
+    ASSERT_NEAR(0.010, (double)cfg.period_ticks / (double)cfg.tick_hz, 1e-12);
+    TEST_ASSERT_EQUAL_UINT32(cfg.period_ticks / 2u, cfg.delay_ticks);
+    TEST_ASSERT_EQUAL_UINT32(cfg.period_ticks, 2u * cfg.delay_ticks);
+}
+
+static void test_default_config_is_accepted_by_init(void)
+{
+    tvo_controller_config_t cfg;
+    ASSERT_STATUS(TVO_OK, tvo_controller_config_default(&cfg));
+    TEST_ASSERT_TRUE(cfg.robot_count >= 1u && cfg.robot_count <= TVO_MAX_ROBOTS);
+    fx_reset(&fx_a, cfg.robot_count);
+    fx_a.cfg = cfg;
+    for (uint8_t r = 0; r < cfg.robot_count; ++r) {
+        fx_circle_target(&fx_a.target[r], 0.0, 0.0, 1.0, 0.5);
+    }
+    fx_start(&fx_a, 0);
+}
+
+static void test_valid_config_reports_no_bad_param(void)
+{
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_start(&fx_a, 12345u);
+}
+
+/* Edits one field of a valid config, then expects TVO_ERR_PARAM naming `param` and an unusable
+ * controller afterwards. */
+static void expect_rejected(fx_t *fx, tvo_param_t param)
+{
+    const tvo_status_t st = fx_init_controller(fx, 0);
+    ASSERT_STATUS(TVO_ERR_PARAM, st);
+    ASSERT_PARAM(param, fx->bad_param);
+    tvo_command_t cmd;
+    memset(&cmd, 0x7F, sizeof(cmd));
+    tvo_measurement_t m = measure_now(fx, 0);
+    ASSERT_STATUS(TVO_ERR_NOT_INITIALIZED, tvo_controller_step(&fx->ctl, &m, FX_PERIOD, &cmd));
+    ASSERT_NEAR(0.0, cmd.speed_mps[0], 0.0);
+    ASSERT_NEAR(0.0, cmd.turn_rate_radps[0], 0.0);
+}
+
+static void test_init_rejects_zero_tick_rate(void)
+{
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_a.cfg.tick_hz = 0;
+    expect_rejected(&fx_a, TVO_PARAM_TICK_HZ);
+}
+
+static void test_init_rejects_zero_period(void)
+{
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_a.cfg.period_ticks = 0;
+    fx_a.cfg.delay_ticks = 0;
+    expect_rejected(&fx_a, TVO_PARAM_PERIOD);
+}
+
+static void test_init_rejects_period_of_two_to_the_thirty(void)
+{
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_a.cfg.period_ticks = 1u << 30;
+    expect_rejected(&fx_a, TVO_PARAM_PERIOD);
+}
+
+static void test_init_rejects_delay_longer_than_period(void)
+{
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_a.cfg.delay_ticks = FX_PERIOD + 1u;
+    expect_rejected(&fx_a, TVO_PARAM_DELAY);
+}
+
+static void test_init_accepts_delay_of_zero_and_of_one_period(void)
+{
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_a.cfg.delay_ticks = FX_PERIOD;
+    fx_start(&fx_a, 0);
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_a.cfg.delay_ticks = 0;
+    fx_start(&fx_a, 0);
+}
+
+static void test_init_rejects_nonpositive_filter_time_constant(void)
+{
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_a.cfg.filter_tf_s = TVO_R(0.0);
+    expect_rejected(&fx_a, TVO_PARAM_FILTER_TF);
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_a.cfg.filter_tf_s = TVO_R(-0.02);
+    expect_rejected(&fx_a, TVO_PARAM_FILTER_TF);
+}
+
+static void test_init_rejects_nan_filter_time_constant(void)
+{
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_a.cfg.filter_tf_s = TEST_NAN;
+    expect_rejected(&fx_a, TVO_PARAM_FILTER_TF);
+}
+
+static void test_init_rejects_non_hurwitz_gains(void)
+{
+    /* s^2 + kd s + kp is Hurwitz iff kp > 0 and kd > 0. */
+    const double bad[][2] = {{0.0, 13.0}, {40.0, 0.0}, {-40.0, 13.0}, {40.0, -13.0}};
+    for (size_t i = 0; i < sizeof(bad) / sizeof(bad[0]); ++i) {
+        fx_static_point(&fx_a, 1.0, 1.0);
+        fx_a.cfg.gain_kp = test_r(bad[i][0]);
+        fx_a.cfg.gain_kd = test_r(bad[i][1]);
+        expect_rejected(&fx_a, TVO_PARAM_GAINS);
+    }
+}
+
+static void test_init_rejects_nan_gains(void)
+{
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_a.cfg.gain_kp = TEST_NAN;
+    expect_rejected(&fx_a, TVO_PARAM_GAINS);
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_a.cfg.gain_kd = TEST_NAN;
+    expect_rejected(&fx_a, TVO_PARAM_GAINS);
+}
+
+static void test_init_rejects_nonpositive_omega_max(void)
+{
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_a.cfg.omega_max_radps = TVO_R(0.0);
+    expect_rejected(&fx_a, TVO_PARAM_OMEGA_MAX);
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_a.cfg.omega_max_radps = TEST_NAN;
+    expect_rejected(&fx_a, TVO_PARAM_OMEGA_MAX);
+}
+
+static void test_init_rejects_nonpositive_accel_max(void)
+{
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_a.cfg.accel_max_mps2 = TVO_R(0.0);
+    expect_rejected(&fx_a, TVO_PARAM_ACCEL_MAX);
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_a.cfg.accel_max_mps2 = TEST_NAN;
+    expect_rejected(&fx_a, TVO_PARAM_ACCEL_MAX);
+}
+
+static void test_init_rejects_nonpositive_speed_max(void)
+{
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_a.cfg.speed_max_mps = TVO_R(0.0);
+    expect_rejected(&fx_a, TVO_PARAM_SPEED_MAX);
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_a.cfg.speed_max_mps = TEST_NAN;
+    expect_rejected(&fx_a, TVO_PARAM_SPEED_MAX);
+}
+
+static void test_init_rejects_nonpositive_min_speed(void)
+{
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_a.cfg.min_speed_mps = TVO_R(0.0);
+    expect_rejected(&fx_a, TVO_PARAM_MIN_SPEED);
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_a.cfg.min_speed_mps = TEST_NAN;
+    expect_rejected(&fx_a, TVO_PARAM_MIN_SPEED);
+}
+
+static void test_init_rejects_min_speed_not_below_speed_max(void)
+{
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_a.cfg.min_speed_mps = fx_a.cfg.speed_max_mps;
+    expect_rejected(&fx_a, TVO_PARAM_MIN_SPEED);
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_a.cfg.min_speed_mps = TVO_R(3.0);
+    expect_rejected(&fx_a, TVO_PARAM_MIN_SPEED);
+}
+
+static void test_init_rejects_zero_watchdog(void)
+{
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_a.cfg.watchdog_periods = 0;
+    expect_rejected(&fx_a, TVO_PARAM_WATCHDOG);
+}
+
+static void test_init_rejects_zero_robots(void)
+{
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_a.cfg.robot_count = 0;
+    /* fx_init_controller builds a 2N-dim objective: N = 0 cannot make one, so bind a valid
+     * 2-dim objective by hand. */
+    const tvo_real_t w[2] = {TVO_R(1.0), TVO_R(1.0)};
+    ASSERT_STATUS(TVO_OK, tvo_objective_init(&fx_a.objective, 2));
+    ASSERT_STATUS(TVO_OK, tvo_tracking_init(&fx_a.term[0], &fx_a.target[0], w, 0));
+    ASSERT_STATUS(TVO_OK, tvo_objective_add_term(&fx_a.objective, tvo_tracking_gradient_jet, &fx_a.term[0]));
+    fx_a.bad_param = TVO_PARAM_NONE;
+    ASSERT_STATUS(TVO_ERR_PARAM, tvo_controller_init(&fx_a.ctl, &fx_a.cfg, &fx_a.objective, 0, &fx_a.bad_param));
+    ASSERT_PARAM(TVO_PARAM_ROBOT_COUNT, fx_a.bad_param);
+}
+
+static void test_init_rejects_too_many_robots(void)
+{
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_a.cfg.robot_count = TVO_MAX_ROBOTS + 1;
+    const tvo_real_t w[2] = {TVO_R(1.0), TVO_R(1.0)};
+    ASSERT_STATUS(TVO_OK, tvo_objective_init(&fx_a.objective, TVO_MAX_OUTPUT_DIM));
+    ASSERT_STATUS(TVO_OK, tvo_tracking_init(&fx_a.term[0], &fx_a.target[0], w, 0));
+    ASSERT_STATUS(TVO_OK, tvo_objective_add_term(&fx_a.objective, tvo_tracking_gradient_jet, &fx_a.term[0]));
+    fx_a.bad_param = TVO_PARAM_NONE;
+    ASSERT_STATUS(TVO_ERR_PARAM, tvo_controller_init(&fx_a.ctl, &fx_a.cfg, &fx_a.objective, 0, &fx_a.bad_param));
+    ASSERT_PARAM(TVO_PARAM_ROBOT_COUNT, fx_a.bad_param);
+}
+
+static void test_init_rejects_objective_of_wrong_dimension(void)
+{
+    /* Two robots need a 4-dim objective; bind the 2-dim one of a single robot. */
+    fx_static_point(&fx_a, 1.0, 1.0);
+    ASSERT_STATUS(TVO_OK, fx_init_controller(&fx_a, 0));
+    fx_a.cfg.robot_count = 2;
+    fx_a.bad_param = TVO_PARAM_NONE;
+    ASSERT_STATUS(TVO_ERR_PARAM, tvo_controller_init(&fx_a.ctl, &fx_a.cfg, &fx_a.objective, 0, &fx_a.bad_param));
+    ASSERT_PARAM(TVO_PARAM_OBJECTIVE, fx_a.bad_param);
+}
+
+static void test_init_rejects_unknown_velocity_source(void)
+{
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_a.cfg.velocity_source = (tvo_velocity_source_t)7;
+    expect_rejected(&fx_a, TVO_PARAM_VELOCITY_SOURCE);
+}
+
+static void test_init_rejects_initial_speed_above_speed_max(void)
+{
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_a.cfg.initial_speed_mps[0] = TVO_R(-2.5);
+    expect_rejected(&fx_a, TVO_PARAM_INITIAL_SPEED);
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_a.cfg.initial_speed_mps[0] = TEST_NAN;
+    expect_rejected(&fx_a, TVO_PARAM_INITIAL_SPEED);
+}
+
+static void test_init_rejects_null_pointers(void)
+{
+    fx_static_point(&fx_a, 1.0, 1.0);
+    ASSERT_STATUS(TVO_OK, fx_init_controller(&fx_a, 0));
+    tvo_param_t bad;
+    ASSERT_STATUS(TVO_ERR_NULL, tvo_controller_init(NULL, &fx_a.cfg, &fx_a.objective, 0, &bad));
+    ASSERT_STATUS(TVO_ERR_NULL, tvo_controller_init(&fx_a.ctl, NULL, &fx_a.objective, 0, &bad));
+    ASSERT_STATUS(TVO_ERR_NULL, tvo_controller_init(&fx_a.ctl, &fx_a.cfg, NULL, 0, &bad));
+    ASSERT_STATUS(TVO_ERR_NULL, tvo_controller_config_default(NULL));
+}
+
+static void test_init_accepts_null_bad_param(void)
+{
+    fx_static_point(&fx_a, 1.0, 1.0);
+    ASSERT_STATUS(TVO_OK, fx_init_controller(&fx_a, 0));
+    ASSERT_STATUS(TVO_OK, tvo_controller_init(&fx_a.ctl, &fx_a.cfg, &fx_a.objective, 0, NULL));
+    fx_a.cfg.watchdog_periods = 0;
+    ASSERT_STATUS(TVO_ERR_PARAM, tvo_controller_init(&fx_a.ctl, &fx_a.cfg, &fx_a.objective, 0, NULL));
+}
+
+static void test_step_and_queries_reject_null_pointers(void)
+{
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_start(&fx_a, 0);
+    tvo_command_t cmd;
+    tvo_measurement_t m = measure_now(&fx_a, FX_PERIOD - FX_DELAY);
+    uint32_t tick;
+    uint64_t ticks64;
+    ASSERT_STATUS(TVO_ERR_NULL, tvo_controller_step(NULL, &m, FX_PERIOD, &cmd));
+    ASSERT_STATUS(TVO_ERR_NULL, tvo_controller_step(&fx_a.ctl, &m, FX_PERIOD, NULL));
+    ASSERT_STATUS(TVO_ERR_NULL, tvo_controller_sample_tick(NULL, FX_PERIOD, &tick));
+    ASSERT_STATUS(TVO_ERR_NULL, tvo_controller_sample_tick(&fx_a.ctl, FX_PERIOD, NULL));
+    ASSERT_STATUS(TVO_ERR_NULL, tvo_controller_objective_ticks(NULL, FX_PERIOD, &ticks64));
+    ASSERT_STATUS(TVO_ERR_NULL, tvo_controller_objective_ticks(&fx_a.ctl, FX_PERIOD, NULL));
+}
+
+static void test_step_before_init_stops(void)
+{
+    memset(&fx_a, 0, sizeof(fx_a));
+    tvo_command_t cmd;
+    memset(&cmd, 0x7F, sizeof(cmd));
+    ASSERT_STATUS(TVO_ERR_NOT_INITIALIZED, tvo_controller_step(&fx_a.ctl, NULL, 100, &cmd));
+    ASSERT_NEAR(0.0, cmd.speed_mps[0], 0.0);
+    ASSERT_NEAR(0.0, cmd.turn_rate_radps[0], 0.0);
+}
+
+/* ------------------------------------------------------------------------------------------------
+ * Timing
+ * --------------------------------------------------------------------------------------------- */
+
+static void test_sample_tick_is_apply_minus_delay_with_wrap(void)
+{
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_start(&fx_a, 0);
+    uint32_t s = 0;
+    ASSERT_STATUS(TVO_OK, tvo_controller_sample_tick(&fx_a.ctl, 1000000u, &s));
+    TEST_ASSERT_EQUAL_UINT32(1000000u - FX_DELAY, s);
+    ASSERT_STATUS(TVO_OK, tvo_controller_sample_tick(&fx_a.ctl, 1000u, &s));
+    TEST_ASSERT_EQUAL_UINT32(UINT32_MAX - (FX_DELAY - 1000u) + 1u, s); /* 1000 - 5000 mod 2^32 */
+}
+
+static void test_objective_ticks_count_from_the_epoch_across_wrap(void)
+{
+    const uint32_t epoch = UINT32_MAX - 999u; /* 1000 ticks before the wrap */
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_start(&fx_a, epoch);
+    uint64_t t = 0;
+    ASSERT_STATUS(TVO_OK, tvo_controller_objective_ticks(&fx_a.ctl, epoch + 500u, &t));
+    TEST_ASSERT_TRUE(t == 500u);
+    ASSERT_STATUS(TVO_OK, tvo_controller_objective_ticks(&fx_a.ctl, 4000u, &t)); /* wrapped */
+    TEST_ASSERT_TRUE(t == 5000u);
+    /* After steps across the wrap the count keeps growing past 2^32 - epoch. */
+    run_ok(&fx_a, 3);
+    const uint32_t last_apply = fx_a.apply - FX_PERIOD;
+    ASSERT_STATUS(TVO_OK, tvo_controller_objective_ticks(&fx_a.ctl, last_apply, &t));
+    TEST_ASSERT_TRUE(t == 3u * FX_PERIOD);
+}
+
+static void test_law_runs_at_the_apply_instant(void)
+{
+    /* Compensation on: the objective's time is (apply - epoch) / tick_hz, and with W = I the law is
+     * y'' = yd'' - kp (y - yd) - kd (y' - yd') with every target term at that time. Target
+     * yd(t) = (1 + 0.5 t, -0.5 + 0.2 t) (yd'' = 0); epoch 777, first apply 777 + h. */
+    fx_reset(&fx_a, 1);
+    fx_line_target(&fx_a.target[0], 1.0, -0.5, 0.5, 0.2);
+    fx_set_pose(&fx_a, 0, 0.0, 0.0, 0.3);
+    fx_start(&fx_a, 777u);
+    run_ok(&fx_a, 4);
+    const tvo_controller_telemetry_t *tm = &fx_a.ctl.telemetry;
+    const double t = 4.0 * h_s(&fx_a);
+    ASSERT_NEAR(t, tm->objective_time_s, TEST_TOL(4, t));
+    const double yd[2] = {1.0 + 0.5 * t, -0.5 + 0.2 * t};
+    const double vd[2] = {0.5, 0.2};
+    for (int i = 0; i < 2; ++i) {
+        const double e = test_d(tm->output_m[i]) - yd[i];
+        const double de = test_d(tm->output_rate_mps[i]) - vd[i];
+        ASSERT_NEAR(e, tm->gradient[i], TEST_TOL(16, 2.0));
+        ASSERT_NEAR(de, tm->gradient_rate[i], TEST_TOL(16, 2.0));
+        ASSERT_NEAR(-40.0 * e - 13.0 * de, tm->output_accel_mps2[i], TEST_TOL(64, 60.0));
+    }
+}
+
+/* ------------------------------------------------------------------------------------------------
+ * One step
+ * --------------------------------------------------------------------------------------------- */
+
+static void test_first_step_from_rest_gives_finite_command(void)
+{
+    fx_static_point(&fx_a, 3.0, 4.0);
+    fx_start(&fx_a, 0);
+    tvo_command_t cmd;
+    ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_a, &cmd));
+    assert_command_finite(&cmd, 1);
+    TEST_ASSERT_TRUE(test_d(cmd.speed_mps[0]) > 0.0); /* target ahead-left: speeds up */
+    TEST_ASSERT_TRUE(test_d(cmd.turn_rate_radps[0]) > 0.0); /* and turns left */
+}
+
+static void test_zero_speed_start_gives_finite_turn_rate(void)
+{
+    /* At rest facing east with the target due north: y'' is perpendicular to the heading, so all of
+     * it is turning, divided by the regularised speed (+min_speed). */
+    fx_static_point(&fx_a, 0.0, 1.0);
+    fx_start(&fx_a, 0);
+    tvo_command_t cmd;
+    ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_a, &cmd));
+    TEST_ASSERT_TRUE(test_is_finite(cmd.turn_rate_radps[0]));
+    TEST_ASSERT_TRUE(test_d(cmd.turn_rate_radps[0]) > 0.0);
+    ASSERT_LE(fabs(test_d(cmd.turn_rate_radps[0])), test_d(fx_a.cfg.omega_max_radps), "|omega|");
+    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_LOW_SPEED);
+}
+
+static void test_unsaturated_command_is_the_flat_map_of_the_laws_demand(void)
+{
+    /* Compensation off, small error: omega = (e_theta x y'') / v and v' = y''.e_theta at the
+     * measured heading and the speed state before the step; the commanded speed lies between the
+     * speed state at the start of the interval and after integrating v' over it. */
+    fx_reset(&fx_a, 1);
+    fx_a.cfg.delay_compensation = 0;
+    fx_a.cfg.initial_speed_mps[0] = TVO_R(0.5);
+    fx_line_target(&fx_a.target[0], 0.05, 0.02, 0.5, 0.0);
+    fx_set_pose(&fx_a, 0, 0.0, 0.0, 0.05);
+    fx_start(&fx_a, 0);
+    run_ok(&fx_a, 3);
+    const double v0 = test_d(fx_a.ctl.speed_state_mps[0]);
+    const uint32_t stamp = fx_a.apply - FX_DELAY;
+    tvo_measurement_t m = measure_now(&fx_a, stamp);
+    m.heading_rad[0] = TVO_R(0.1);
+    tvo_command_t cmd;
+    ASSERT_STATUS(TVO_OK, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd));
+    ASSERT_FLAG_CLEAR(cmd.flags, TVO_FLAG_OMEGA_SATURATED | TVO_FLAG_ACCEL_SATURATED | TVO_FLAG_SPEED_SATURATED);
+    const tvo_controller_telemetry_t *tm = &fx_a.ctl.telemetry;
+    const double ax = test_d(tm->output_accel_mps2[0]), ay = test_d(tm->output_accel_mps2[1]);
+    const double c = cos(0.1), s = sin(0.1);
+    ASSERT_NEAR(ax * c + ay * s, tm->accel_mps2[0], TEST_TOL(16, 20.0));
+    ASSERT_NEAR((c * ay - s * ax) / v0, cmd.turn_rate_radps[0], TEST_TOL(32, 40.0));
+    /* y' = v e_theta (pose mode, speed from the extension) */
+    ASSERT_NEAR(v0 * c, tm->output_rate_mps[0], TEST_TOL(8, 1.0));
+    ASSERT_NEAR(v0 * s, tm->output_rate_mps[1], TEST_TOL(8, 1.0));
+    const double v1 = v0 + test_d(tm->accel_mps2[0]) * h_s(&fx_a);
+    const double lo = fmin(v0, v1) - TEST_TOL(8, 1.0), hi = fmax(v0, v1) + TEST_TOL(8, 1.0);
+    TEST_ASSERT_TRUE_MESSAGE(test_d(cmd.speed_mps[0]) >= lo && test_d(cmd.speed_mps[0]) <= hi,
+                             "commanded speed outside [v, v + v' h]");
+}
+
+static void test_measured_speed_resyncs_the_speed_state(void)
+{
+    /* First step, compensation off, speed 0.7 measured at heading 0.4: y' = 0.7 (cos 0.4, sin 0.4). */
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_a.cfg.delay_compensation = 0;
+    fx_set_pose(&fx_a, 0, 0.0, 0.0, 0.4);
+    fx_start(&fx_a, 0);
+    tvo_measurement_t m = measure_now(&fx_a, fx_a.apply - FX_DELAY);
+    m.speed_mps[0] = TVO_R(0.7);
+    m.speed_valid = 1;
+    tvo_command_t cmd;
+    ASSERT_STATUS(TVO_OK, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd));
+    ASSERT_NEAR(0.7 * cos(0.4), fx_a.ctl.telemetry.output_rate_mps[0], TEST_TOL(8, 1.0));
+    ASSERT_NEAR(0.7 * sin(0.4), fx_a.ctl.telemetry.output_rate_mps[1], TEST_TOL(8, 1.0));
+}
+
+static void test_pose_mode_requires_heading(void)
+{
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_start(&fx_a, 0);
+    tvo_measurement_t m = measure_now(&fx_a, fx_a.apply - FX_DELAY);
+    m.heading_valid = 0;
+    tvo_command_t cmd;
+    ASSERT_STATUS(TVO_ERR_MISSING_FIELD, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd));
+    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_HOLDING);
+}
+
+/* Runs robot 0 on a circle for a while so the held command has a clear speed and turn rate. */
+static void fx_moving_on_circle(fx_t *fx, uint8_t compensation)
+{
+    fx_reset(fx, 1);
+    fx->cfg.delay_compensation = compensation;
+    fx_circle_target(&fx->target[0], 0.0, 0.0, 1.0, 2.0 * TEST_PI / 10.0);
+    fx_set_pose(fx, 0, 1.2, -0.1, 1.4);
+    fx_start(fx, 0);
+    run_ok(fx, 150);
+    TEST_ASSERT_TRUE(fabs(test_d(fx->cmd.speed_mps[0])) > 0.1);
+    TEST_ASSERT_TRUE(fabs(test_d(fx->cmd.turn_rate_radps[0])) > 0.1);
+}
+
+static void check_prediction_over_age(uint32_t age_ticks)
+{
+    fx_moving_on_circle(&fx_a, 1);
+    const tvo_command_t held = fx_a.cmd;
+    const tvo_pose_t meas_pose = {{TVO_R(0.9), TVO_R(0.35)}, TVO_R(1.9)};
+    tvo_measurement_t m;
+    fx_measure(&fx_a, &meas_pose, fx_a.apply - age_ticks, &m);
+    tvo_command_t cmd;
+    ASSERT_STATUS(TVO_OK, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd));
+    tvo_pose_t expected;
+    ASSERT_STATUS(TVO_OK, tvo_unicycle_predict(&meas_pose, held.speed_mps[0], held.turn_rate_radps[0],
+                                               test_r((double)age_ticks / FX_TICK_HZ), &expected));
+    const tvo_controller_telemetry_t *tm = &fx_a.ctl.telemetry;
+    ASSERT_NEAR(expected.position_m[0], tm->output_m[0], TEST_TOL(16, 2.0));
+    ASSERT_NEAR(expected.position_m[1], tm->output_m[1], TEST_TOL(16, 2.0));
+    /* y' = v e_theta along the predicted heading: parallel to (cos, sin) of it. */
+    const double c = cos(test_d(expected.heading_rad)), s = sin(test_d(expected.heading_rad));
+    const double vx = test_d(tm->output_rate_mps[0]), vy = test_d(tm->output_rate_mps[1]);
+    ASSERT_NEAR(0.0, c * vy - s * vx, TEST_TOL(64, 2.0));
+    TEST_ASSERT_TRUE(c * vx + s * vy > 0.1);
+    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_PREDICTED);
+}
+
+static void test_compensation_predicts_over_the_nominal_delay(void)
+{
+    check_prediction_over_age(FX_DELAY);
+}
+
+static void test_compensation_predicts_over_the_actual_jittered_age(void)
+{
+    check_prediction_over_age(FX_DELAY + 1234u);
+    check_prediction_over_age(FX_DELAY - 2100u);
+}
+
+static void test_without_compensation_law_sees_the_measured_pose(void)
+{
+    fx_moving_on_circle(&fx_a, 0);
+    const tvo_pose_t meas_pose = {{TVO_R(0.9), TVO_R(0.35)}, TVO_R(1.9)};
+    tvo_measurement_t m;
+    fx_measure(&fx_a, &meas_pose, fx_a.apply - FX_DELAY, &m);
+    tvo_command_t cmd;
+    ASSERT_STATUS(TVO_OK, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd));
+    const tvo_controller_telemetry_t *tm = &fx_a.ctl.telemetry;
+    ASSERT_NEAR(test_d(TVO_R(0.9)), tm->output_m[0], 0.0);
+    ASSERT_NEAR(test_d(TVO_R(0.35)), tm->output_m[1], 0.0);
+    const double c = cos(1.9), s = sin(1.9);
+    ASSERT_NEAR(0.0, c * test_d(tm->output_rate_mps[1]) - s * test_d(tm->output_rate_mps[0]), TEST_TOL(16, 2.0));
+    ASSERT_FLAG_CLEAR(cmd.flags, TVO_FLAG_PREDICTED);
+}
+
+static void test_identical_inputs_give_bit_identical_commands(void)
+{
+    /* Two instances, same configuration and measurement sequence: every command and all telemetry
+     * identical to the bit (no hidden state, no uninitialised reads). */
+    for (int k = 0; k < 2; ++k) {
+        fx_t *fx = k ? &fx_b : &fx_a;
+        fx_reset(fx, 2);
+        fx_circle_target(&fx->target[0], 0.0, 0.0, 1.0, 0.6);
+        fx_circle_target(&fx->target[1], 2.0, 1.0, 0.5, -0.9);
+        fx_set_pose(fx, 0, 1.5, 0.2, 0.5);
+        fx_set_pose(fx, 1, 2.0, 0.0, -2.0);
+        fx_start(fx, 4242u);
+    }
+    for (int i = 0; i < 300; ++i) {
+        tvo_command_t ca, cb;
+        ASSERT_STATUS(fx_closed_loop_step(&fx_a, &ca), fx_closed_loop_step(&fx_b, &cb));
+        assert_commands_bit_identical(&ca, &cb);
+        TEST_ASSERT_EQUAL_MEMORY(&fx_a.ctl.telemetry, &fx_b.ctl.telemetry, sizeof(fx_a.ctl.telemetry));
+    }
+}
+
+/* ------------------------------------------------------------------------------------------------
+ * Limits and anti-windup
+ * --------------------------------------------------------------------------------------------- */
+
+/* Runs `steps` closed-loop steps and checks every command against the limits:
+ * |omega| <= omega_max, |v'| <= accel_max, |v| <= speed_max, and |v_n - v_{n-1}| <= accel_max h
+ * (speed is the integral of the limited v'). Flags must mark commands at the limits. Returns the OR
+ * of all flags seen. */
+static uint32_t run_checking_limits(fx_t *fx, int steps)
+{
+    const double wmax = test_d(fx->cfg.omega_max_radps), amax = test_d(fx->cfg.accel_max_mps2);
+    const double vmax = test_d(fx->cfg.speed_max_mps), h = h_s(fx);
+    const double slack = TEST_TOL(8, 10.0);
+    uint32_t seen = 0;
+    for (int i = 0; i < steps; ++i) {
+        const double v_prev = test_d(fx->cmd.speed_mps[0]);
+        tvo_command_t cmd;
+        ASSERT_STATUS(TVO_OK, fx_closed_loop_step(fx, &cmd));
+        const double w = test_d(cmd.turn_rate_radps[0]), v = test_d(cmd.speed_mps[0]);
+        const double a = test_d(fx->ctl.telemetry.accel_mps2[0]);
+        ASSERT_LE(fabs(w), wmax + slack, "|omega| above omega_max");
+        ASSERT_LE(fabs(a), amax + slack, "|v'| above accel_max");
+        ASSERT_LE(fabs(v), vmax + slack, "|v| above speed_max");
+        ASSERT_LE(fabs(v - v_prev), amax * h + slack, "speed changed faster than accel_max");
+        if (cmd.flags & TVO_FLAG_OMEGA_SATURATED) {
+            ASSERT_NEAR(wmax, fabs(w), slack);
+        }
+        if (cmd.flags & TVO_FLAG_ACCEL_SATURATED) {
+            ASSERT_NEAR(amax, fabs(a), slack);
+        }
+        seen |= cmd.flags;
+    }
+    return seen;
+}
+
+static void test_huge_error_respects_every_limit_and_flags_it(void)
+{
+    /* Target 1000 m due north of a robot at rest facing east: kp |e| = 40000 m/s^2 demanded. */
+    fx_static_point(&fx_a, 0.0, 1000.0);
+    fx_start(&fx_a, 0);
+    const uint32_t seen = run_checking_limits(&fx_a, 300);
+    ASSERT_FLAG_SET(seen, TVO_FLAG_OMEGA_SATURATED);
+    ASSERT_FLAG_SET(seen, TVO_FLAG_ACCEL_SATURATED);
+    ASSERT_FLAG_SET(seen, TVO_FLAG_SPEED_SATURATED);
+    /* After 3 s it is driving at the speed limit toward the target. */
+    ASSERT_NEAR(test_d(fx_a.cfg.speed_max_mps), fx_a.cmd.speed_mps[0], TEST_TOL(8, 2.0));
+    ASSERT_FLAG_SET(fx_a.cmd.flags, TVO_FLAG_SPEED_SATURATED);
+}
+
+static void test_first_step_toward_far_target_saturates_turn_rate(void)
+{
+    fx_static_point(&fx_a, 0.0, 1000.0);
+    fx_start(&fx_a, 0);
+    tvo_command_t cmd;
+    ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_a, &cmd));
+    ASSERT_NEAR(test_d(fx_a.cfg.omega_max_radps), cmd.turn_rate_radps[0], TEST_TOL(4, 7.0));
+    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_OMEGA_SATURATED);
+}
+
+static void test_far_target_ahead_saturates_acceleration(void)
+{
+    fx_static_point(&fx_a, 1000.0, 0.0);
+    fx_start(&fx_a, 0);
+    tvo_command_t cmd;
+    ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_a, &cmd));
+    ASSERT_NEAR(test_d(fx_a.cfg.accel_max_mps2), fx_a.ctl.telemetry.accel_mps2[0], TEST_TOL(4, 15.0));
+    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_ACCEL_SATURATED);
+    ASSERT_NEAR(0.0, cmd.turn_rate_radps[0], TEST_TOL(4, 1.0));
+}
+
+static void test_speed_limit_does_not_wind_up(void)
+{
+    /* Drive at the speed limit toward a target 1000 m ahead for 3 s (the unclamped integral of
+     * v' = 15 m/s^2 would be ~45 m/s), then put the target 1000 m behind. The speed must start
+     * dropping at once, at the acceleration limit: the first new command is at least
+     * ~accel_max h / 2 below the limit (the exact amount depends on where in the interval the
+     * held speed is taken), not stuck at speed_max while a wound-up state unwinds. */
+    fx_static_point(&fx_a, 1000.0, 0.0);
+    fx_start(&fx_a, 0);
+    const uint32_t seen = run_checking_limits(&fx_a, 300);
+    ASSERT_FLAG_SET(seen, TVO_FLAG_SPEED_SATURATED);
+    const double vmax = test_d(fx_a.cfg.speed_max_mps);
+    ASSERT_NEAR(vmax, fx_a.cmd.speed_mps[0], TEST_TOL(8, 2.0));
+
+    fx_line_target(&fx_a.target[0], -1000.0, 0.0, 0.0, 0.0); /* the term points at this storage */
+    const double amax_h = test_d(fx_a.cfg.accel_max_mps2) * h_s(&fx_a);
+    tvo_command_t cmd;
+    ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_a, &cmd));
+    ASSERT_NEAR(-test_d(fx_a.cfg.accel_max_mps2), fx_a.ctl.telemetry.accel_mps2[0], TEST_TOL(4, 15.0));
+    ASSERT_LE(test_d(cmd.speed_mps[0]), vmax - 0.45 * amax_h, "first speed after reversal");
+    double prev = test_d(cmd.speed_mps[0]);
+    for (int i = 0; i < 5; ++i) {
+        ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_a, &cmd));
+        ASSERT_NEAR(prev - amax_h, cmd.speed_mps[0], TEST_TOL(64, 2.0));
+        prev = test_d(cmd.speed_mps[0]);
+    }
+}
+
+/* ------------------------------------------------------------------------------------------------
+ * Measurement rejection
+ * --------------------------------------------------------------------------------------------- */
+
+/* A controller that has produced a few good commands; returns the last one in fx->cmd. */
+static void fx_running(fx_t *fx)
+{
+    fx_static_point(fx, 2.0, 1.0);
+    fx_set_pose(fx, 0, 0.0, 0.0, 0.2);
+    fx_start(fx, 0);
+    run_ok(fx, 10);
+}
+
+static void expect_held(const fx_t *fx, tvo_status_t expected, tvo_status_t st, const tvo_command_t *cmd)
+{
+    ASSERT_STATUS(expected, st);
+    assert_same_motion(&fx->cmd, cmd, 1);
+    ASSERT_FLAG_SET(cmd->flags, TVO_FLAG_HOLDING);
+}
+
+static void test_nan_position_is_rejected_and_previous_command_held(void)
+{
+    fx_running(&fx_a);
+    tvo_measurement_t m = measure_now(&fx_a, fx_a.apply - FX_DELAY);
+    m.position_m[0][1] = TEST_NAN;
+    tvo_command_t cmd;
+    expect_held(&fx_a, TVO_ERR_NOT_FINITE, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), &cmd);
+}
+
+static void test_infinite_heading_is_rejected_and_previous_command_held(void)
+{
+    fx_running(&fx_a);
+    tvo_measurement_t m = measure_now(&fx_a, fx_a.apply - FX_DELAY);
+    m.heading_rad[0] = TEST_INF;
+    tvo_command_t cmd;
+    expect_held(&fx_a, TVO_ERR_NOT_FINITE, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), &cmd);
+}
+
+static void test_nan_speed_is_rejected_when_marked_valid(void)
+{
+    fx_running(&fx_a);
+    tvo_measurement_t m = measure_now(&fx_a, fx_a.apply - FX_DELAY);
+    m.speed_mps[0] = TEST_NAN;
+    m.speed_valid = 1;
+    tvo_command_t cmd;
+    expect_held(&fx_a, TVO_ERR_NOT_FINITE, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), &cmd);
+}
+
+static void test_measurement_older_than_one_period_is_stale(void)
+{
+    fx_running(&fx_a);
+    tvo_measurement_t m = measure_now(&fx_a, fx_a.apply - FX_PERIOD - 1u);
+    tvo_command_t cmd;
+    expect_held(&fx_a, TVO_ERR_STALE, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), &cmd);
+}
+
+static void test_measurement_exactly_one_period_old_is_accepted(void)
+{
+    fx_running(&fx_a);
+    tvo_measurement_t m = measure_now(&fx_a, fx_a.apply - FX_PERIOD);
+    tvo_command_t cmd;
+    ASSERT_STATUS(TVO_OK, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd));
+}
+
+static void test_repeated_stamp_is_out_of_order(void)
+{
+    /* Step n uses a stamp at its apply tick (age 0); step n+1 re-sends that stamp (age = h, not
+     * stale): it did not advance. */
+    fx_running(&fx_a);
+    tvo_command_t cmd;
+    tvo_measurement_t m = measure_now(&fx_a, fx_a.apply);
+    ASSERT_STATUS(TVO_OK, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd));
+    fx_a.cmd = cmd;
+    fx_a.apply += FX_PERIOD;
+    expect_held(&fx_a, TVO_ERR_OUT_OF_ORDER, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), &cmd);
+}
+
+static void test_earlier_stamp_is_out_of_order(void)
+{
+    /* Step n: stamp = apply (age 0). Step n+1 half a period later with a stamp 1 tick before the
+     * previous one (age h/2 + 1, not stale). */
+    fx_running(&fx_a);
+    tvo_command_t cmd;
+    const uint32_t stamp = fx_a.apply;
+    tvo_measurement_t m = measure_now(&fx_a, stamp);
+    ASSERT_STATUS(TVO_OK, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd));
+    fx_a.cmd = cmd;
+    fx_a.apply += FX_PERIOD / 2u;
+    m.stamp_tick = stamp - 1u;
+    expect_held(&fx_a, TVO_ERR_OUT_OF_ORDER, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), &cmd);
+}
+
+static void test_stamp_after_apply_tick_is_future(void)
+{
+    fx_running(&fx_a);
+    tvo_measurement_t m = measure_now(&fx_a, fx_a.apply + 1u);
+    tvo_command_t cmd;
+    expect_held(&fx_a, TVO_ERR_FUTURE_STAMP, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), &cmd);
+}
+
+static void test_apply_tick_not_advancing_is_out_of_order(void)
+{
+    fx_running(&fx_a);
+    const uint32_t last_apply = fx_a.apply - FX_PERIOD;
+    tvo_measurement_t m = measure_now(&fx_a, last_apply - 1u);
+    tvo_command_t cmd;
+    expect_held(&fx_a, TVO_ERR_OUT_OF_ORDER, tvo_controller_step(&fx_a.ctl, &m, last_apply, &cmd), &cmd);
+    m.stamp_tick = last_apply - FX_PERIOD / 2u;
+    expect_held(&fx_a, TVO_ERR_OUT_OF_ORDER, tvo_controller_step(&fx_a.ctl, &m, last_apply - FX_PERIOD, &cmd),
+                &cmd);
+}
+
+static void test_rejected_measurement_leaves_the_controller_usable(void)
+{
+    fx_running(&fx_a);
+    tvo_measurement_t bad = measure_now(&fx_a, fx_a.apply - FX_DELAY);
+    bad.position_m[0][0] = TEST_NAN;
+    tvo_command_t cmd;
+    ASSERT_STATUS(TVO_ERR_NOT_FINITE, tvo_controller_step(&fx_a.ctl, &bad, fx_a.apply, &cmd));
+    fx_a.apply += FX_PERIOD;
+    tvo_measurement_t good = measure_now(&fx_a, fx_a.apply - FX_DELAY);
+    ASSERT_STATUS(TVO_OK, tvo_controller_step(&fx_a.ctl, &good, fx_a.apply, &cmd));
+    assert_command_finite(&cmd, 1);
+    ASSERT_FLAG_CLEAR(cmd.flags, TVO_FLAG_HOLDING);
+}
+
+/* ------------------------------------------------------------------------------------------------
+ * Watchdog
+ * --------------------------------------------------------------------------------------------- */
+
+static void test_missing_measurement_holds_then_watchdog_stops(void)
+{
+    fx_running(&fx_a); /* watchdog_periods = 5 */
+    const tvo_command_t last_good = fx_a.cmd;
+    fx_a.meas_mode = FX_MEAS_NONE;
+    tvo_command_t cmd;
+    for (uint32_t i = 1; i < fx_a.cfg.watchdog_periods; ++i) {
+        ASSERT_STATUS(TVO_ERR_NO_MEASUREMENT, fx_closed_loop_step(&fx_a, &cmd));
+        assert_same_motion(&last_good, &cmd, 1);
+        ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_HOLDING);
+        ASSERT_FLAG_CLEAR(cmd.flags, TVO_FLAG_SAFE_STOP);
+    }
+    ASSERT_STATUS(TVO_ERR_WATCHDOG, fx_closed_loop_step(&fx_a, &cmd));
+    ASSERT_NEAR(0.0, cmd.speed_mps[0], 0.0);
+    ASSERT_NEAR(0.0, cmd.turn_rate_radps[0], 0.0);
+    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_SAFE_STOP);
+    /* It stays stopped while nothing arrives. */
+    for (int i = 0; i < 3; ++i) {
+        ASSERT_STATUS(TVO_ERR_WATCHDOG, fx_closed_loop_step(&fx_a, &cmd));
+        ASSERT_NEAR(0.0, cmd.speed_mps[0], 0.0);
+        ASSERT_NEAR(0.0, cmd.turn_rate_radps[0], 0.0);
+        ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_SAFE_STOP);
+    }
+}
+
+static void test_watchdog_recovers_from_rest_when_measurements_resume(void)
+{
+    fx_running(&fx_a);
+    fx_a.meas_mode = FX_MEAS_NONE;
+    tvo_command_t cmd;
+    for (uint32_t i = 0; i < fx_a.cfg.watchdog_periods + 2u; ++i) {
+        (void)fx_closed_loop_step(&fx_a, &cmd);
+    }
+    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_SAFE_STOP);
+    fx_a.meas_mode = FX_MEAS_NORMAL;
+    ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_a, &cmd));
+    ASSERT_FLAG_CLEAR(cmd.flags, TVO_FLAG_SAFE_STOP | TVO_FLAG_HOLDING);
+    assert_command_finite(&cmd, 1);
+    /* The speed state was reset: the robot restarts from rest, within one period's acceleration. */
+    ASSERT_LE(fabs(test_d(cmd.speed_mps[0])), test_d(fx_a.cfg.accel_max_mps2) * h_s(&fx_a) + TEST_TOL(8, 1.0),
+              "speed after restart");
+    run_ok(&fx_a, 20);
+}
+
+static void test_watchdog_counts_rejected_measurements(void)
+{
+    fx_running(&fx_a);
+    fx_a.meas_mode = FX_MEAS_NAN;
+    tvo_command_t cmd;
+    for (uint32_t i = 1; i < fx_a.cfg.watchdog_periods; ++i) {
+        ASSERT_STATUS(TVO_ERR_NOT_FINITE, fx_closed_loop_step(&fx_a, &cmd));
+        ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_HOLDING);
+    }
+    ASSERT_STATUS(TVO_ERR_WATCHDOG, fx_closed_loop_step(&fx_a, &cmd));
+    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_SAFE_STOP);
+    ASSERT_NEAR(0.0, cmd.speed_mps[0], 0.0);
+    ASSERT_NEAR(0.0, cmd.turn_rate_radps[0], 0.0);
+}
+
+static void test_one_good_measurement_resets_the_watchdog_count(void)
+{
+    fx_running(&fx_a);
+    tvo_command_t cmd;
+    for (int round = 0; round < 3; ++round) {
+        fx_a.meas_mode = FX_MEAS_NONE;
+        for (uint32_t i = 1; i < fx_a.cfg.watchdog_periods; ++i) {
+            ASSERT_STATUS(TVO_ERR_NO_MEASUREMENT, fx_closed_loop_step(&fx_a, &cmd));
+        }
+        fx_a.meas_mode = FX_MEAS_NORMAL;
+        ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_a, &cmd));
+    }
+}
+
+/* ------------------------------------------------------------------------------------------------
+ * Wrap-around
+ * --------------------------------------------------------------------------------------------- */
+
+static void test_tick_wrap_gives_bit_identical_commands(void)
+{
+    /* Run A starts at tick 0; run B is the same run shifted so that the uint32 clock wraps after
+     * 150 of its 300 periods. Only tick differences may matter. */
+    const uint32_t shift = UINT32_MAX - 150u * FX_PERIOD + 1234u;
+    for (int k = 0; k < 2; ++k) {
+        fx_t *fx = k ? &fx_b : &fx_a;
+        fx_reset(fx, 1);
+        fx_circle_target(&fx->target[0], 0.0, 0.0, 1.0, 2.0 * TEST_PI / 10.0);
+        fx_set_pose(fx, 0, 2.0, 0.0, TEST_PI / 2.0);
+        fx_start(fx, k ? shift : 0u);
+    }
+    int wrapped = 0;
+    for (int i = 0; i < 300; ++i) {
+        const uint32_t before = fx_b.apply;
+        tvo_command_t ca, cb;
+        ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_a, &ca));
+        ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_b, &cb));
+        wrapped |= (fx_b.apply < before);
+        assert_commands_bit_identical(&ca, &cb);
+        TEST_ASSERT_EQUAL_MEMORY(&fx_a.ctl.telemetry, &fx_b.ctl.telemetry, sizeof(fx_a.ctl.telemetry));
+    }
+    TEST_ASSERT_TRUE_MESSAGE(wrapped, "run B did not cross 2^32");
+}
+
+/* ------------------------------------------------------------------------------------------------
+ * Closed loop
+ * --------------------------------------------------------------------------------------------- */
+
+/* Max tracking error of robot r over the next `steps` closed-loop steps. */
+static double run_max_error(fx_t *fx, uint8_t r, int steps)
+{
+    double worst = 0.0;
+    for (int i = 0; i < steps; ++i) {
+        ASSERT_STATUS(TVO_OK, fx_closed_loop_step(fx, NULL));
+        const double e = fx_tracking_error(fx, r);
+        worst = e > worst ? e : worst;
+    }
+    return worst;
+}
+
+/*
+ * Pose mode on the paper's testbed: circle of radius 1 at w = 2 pi / 10, start at (2, 0) at rest,
+ * kp = 40, kd = 13 (poles -5, -8). The initial 1 m error decays like exp(-5 t) once the limits
+ * release (~1 s): after 8 s it is below 1e-14 m. On a circle the exact steady command is constant
+ * (v = r w, omega = w), which a zero-order hold and a delay reproduce exactly, so nothing but
+ * rounding is left (float: ~1e-6 m on 1 m coordinates). Bound: 1e-4 m.
+ */
+static void test_pose_mode_tracks_a_circle(void)
+{
+    fx_reset(&fx_a, 1);
+    fx_circle_target(&fx_a.target[0], 0.0, 0.0, 1.0, 2.0 * TEST_PI / 10.0);
+    fx_set_pose(&fx_a, 0, 2.0, 0.0, TEST_PI / 2.0);
+    fx_start(&fx_a, 0);
+    TEST_ASSERT_TRUE(fx_tracking_error(&fx_a, 0) > 0.9);
+    (void)run_max_error(&fx_a, 0, 800);
+    const double steady = run_max_error(&fx_a, 0, 200);
+    ASSERT_LE(steady, 1e-4, "steady tracking error on the circle (m)");
+}
+
+/* Ellipse a = 1.5, b = 0.8, rotated 0.4, w = 0.5, centre (3, -1); the robot starts 1 m off. */
+static void fx_ellipse_target(tvo_target_t *target)
+{
+    tvo_target_ellipse_t el;
+    el.center_m[0] = TVO_R(3.0);
+    el.center_m[1] = TVO_R(-1.0);
+    el.semi_axis_m[0] = TVO_R(1.5);
+    el.semi_axis_m[1] = TVO_R(0.8);
+    el.omega_radps = TVO_R(0.5);
+    el.phase_rad = TVO_R(0.0);
+    el.rotation_rad = TVO_R(0.4);
+    ASSERT_STATUS(TVO_OK, tvo_target_init_ellipse(target, &el));
+}
+
+static void fx_ellipse_start_pose(fx_t *fx, uint8_t r)
+{
+    fx_set_pose(fx, r, 3.0 + 1.5 * cos(0.4), -1.0 + 1.5 * sin(0.4) - 1.0, 0.0);
+}
+
+/*
+ * Sampling floor on the ellipse: unlike the circle the command varies, and holding (v, omega)
+ * over h misses about |jerk| h / 2 of the demanded acceleration on average, which the loop turns
+ * into an error |jerk| h / (2 kp). With |jerk| <= a w^3 = 0.19 m/s^3: 2.3e-5 m.
+ */
+static double ellipse_floor(const fx_t *fx)
+{
+    return 1.5 * 0.5 * 0.5 * 0.5 * h_s(fx) / (2.0 * test_d(fx->cfg.gain_kp));
+}
+
+static double ellipse_steady_error(fx_t *fx, uint8_t compensation, uint32_t delay)
+{
+    fx_reset(fx, 1);
+    fx->cfg.delay_compensation = compensation;
+    fx->cfg.delay_ticks = delay;
+    fx_ellipse_target(&fx->target[0]);
+    fx_ellipse_start_pose(fx, 0);
+    fx_start(fx, 0);
+    TEST_ASSERT_TRUE(fx_tracking_error(fx, 0) > 0.9);
+    (void)run_max_error(fx, 0, 800);
+    return run_max_error(fx, 0, 200);
+}
+
+static void test_pose_mode_tracks_an_ellipse_to_the_sampling_floor(void)
+{
+    const double steady = ellipse_steady_error(&fx_a, 1, FX_DELAY);
+    ASSERT_LE(steady, 2.0 * ellipse_floor(&fx_a), "steady tracking error on the ellipse (m)");
+}
+
+static void test_delay_compensation_removes_the_delay_from_the_error(void)
+{
+    /* Compensated, the error does not depend on the delay (0 or a whole period): the law sees the
+     * state at the apply instant either way. Uncompensated, a delay of one period leaves the
+     * robot reacting to a pose h old: several times the floor. */
+    const double no_delay = ellipse_steady_error(&fx_a, 1, 0);
+    const double compensated = ellipse_steady_error(&fx_a, 1, FX_PERIOD);
+    const double uncompensated = ellipse_steady_error(&fx_a, 0, FX_PERIOD);
+    ASSERT_NEAR(no_delay, compensated, 0.1 * no_delay + 1e-6);
+    TEST_ASSERT_TRUE_MESSAGE(uncompensated > 5.0 * compensated, "compensation made no difference");
+}
+
+/* Two robots, one on the circle and one on the ellipse, sharing one controller and objective. */
+static void test_pose_mode_tracks_circle_and_ellipse_with_two_robots(void)
+{
+    fx_reset(&fx_a, 2);
+    fx_circle_target(&fx_a.target[0], 0.0, 0.0, 1.0, 2.0 * TEST_PI / 10.0);
+    fx_ellipse_target(&fx_a.target[1]);
+    fx_set_pose(&fx_a, 0, 2.0, 0.0, TEST_PI / 2.0);
+    fx_ellipse_start_pose(&fx_a, 1);
+    fx_start(&fx_a, 0);
+    TEST_ASSERT_TRUE(fx_tracking_error(&fx_a, 0) > 0.9);
+    TEST_ASSERT_TRUE(fx_tracking_error(&fx_a, 1) > 0.9);
+    for (int i = 0; i < 800; ++i) {
+        ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_a, NULL));
+    }
+    double worst[2] = {0.0, 0.0};
+    for (int i = 0; i < 200; ++i) {
+        ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_a, NULL));
+        for (uint8_t r = 0; r < 2; ++r) {
+            const double e = fx_tracking_error(&fx_a, r);
+            worst[r] = e > worst[r] ? e : worst[r];
+        }
+    }
+    ASSERT_LE(worst[0], 1e-4, "robot 0 (circle) steady error (m)");
+    ASSERT_LE(worst[1], 2.0 * ellipse_floor(&fx_a), "robot 1 (ellipse) steady error (m)");
+}
+
+/*
+ * Position-only mode: y' comes from the dirty-derivative filter (T_f = 0.02 s). On the circle the
+ * filter lags the velocity by about atan(w T_f) = w T_f, a velocity error |dv| = |yd'| w T_f =
+ * r w^2 T_f = 7.9e-3 m/s rotating with the target. The error dynamics e'' + kd e' + kp e = kd dv
+ * turn that into |e| = kd |dv| / |kp - w^2 + j kd w| = 2.6e-3 m. Bound: 2x that (5.2e-3 m), well
+ * below the 1 m initial error; a ZOH-discretized filter (velocity over-estimated by h / (2 T_f) =
+ * 25 %) would give ~5 cm.
+ */
+static void test_position_only_mode_tracks_a_circle(void)
+{
+    fx_reset(&fx_a, 1);
+    fx_a.cfg.velocity_source = TVO_VELOCITY_FROM_POSITION;
+    fx_a.heading_first_only = 1;
+    fx_circle_target(&fx_a.target[0], 0.0, 0.0, 1.0, 2.0 * TEST_PI / 10.0);
+    fx_set_pose(&fx_a, 0, 2.0, 0.0, TEST_PI / 2.0);
+    fx_start(&fx_a, 0);
+    (void)run_max_error(&fx_a, 0, 800);
+    const double steady = run_max_error(&fx_a, 0, 200);
+    const double w = 2.0 * TEST_PI / 10.0, tf = test_d(fx_a.cfg.filter_tf_s);
+    const double dv = 1.0 * w * w * tf;
+    const double bias = 13.0 * dv / hypot(40.0 - w * w, 13.0 * w);
+    ASSERT_LE(steady, 2.0 * bias, "steady position-only error (m)");
+}
+
+static void test_position_only_mode_ignores_heading_and_speed_after_the_first_sample(void)
+{
+    /* Run A: heading only on the first sample. Run B: every sample carries a wrong heading (+1 rad)
+     * and a wrong speed, both marked valid. Neither is used in position-only mode: bit-identical. */
+    for (int k = 0; k < 2; ++k) {
+        fx_t *fx = k ? &fx_b : &fx_a;
+        fx_reset(fx, 1);
+        fx->cfg.velocity_source = TVO_VELOCITY_FROM_POSITION;
+        fx_circle_target(&fx->target[0], 0.0, 0.0, 1.0, 0.6);
+        fx_set_pose(fx, 0, 1.5, 0.0, 1.0);
+        fx_start(fx, 0);
+    }
+    fx_a.heading_first_only = 1;
+    for (int i = 0; i < 100; ++i) {
+        tvo_command_t ca, cb;
+        ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_a, &ca));
+        /* B by hand, so its measurement can be corrupted. */
+        tvo_pose_t at_sample;
+        fx_predict_all(&fx_b, &fx_b.cmd, fx_b.pose, FX_PERIOD - FX_DELAY, &at_sample);
+        tvo_measurement_t m;
+        fx_measure(&fx_b, &at_sample, fx_b.apply - FX_DELAY, &m);
+        if (i > 0) {
+            m.heading_rad[0] = test_r(test_d(at_sample.heading_rad) + 1.0);
+            m.speed_mps[0] = TVO_R(1.7);
+            m.speed_valid = 1;
+        }
+        ASSERT_STATUS(TVO_OK, tvo_controller_step(&fx_b.ctl, &m, fx_b.apply, &cb));
+        fx_predict_all(&fx_b, &fx_b.cmd, &at_sample, FX_DELAY, fx_b.pose);
+        fx_b.cmd = cb;
+        fx_b.apply += FX_PERIOD;
+        assert_commands_bit_identical(&ca, &cb);
+    }
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_default_config_is_the_papers);
+    RUN_TEST(test_default_config_is_accepted_by_init);
+    RUN_TEST(test_valid_config_reports_no_bad_param);
+    RUN_TEST(test_init_rejects_zero_tick_rate);
+    RUN_TEST(test_init_rejects_zero_period);
+    RUN_TEST(test_init_rejects_period_of_two_to_the_thirty);
+    RUN_TEST(test_init_rejects_delay_longer_than_period);
+    RUN_TEST(test_init_accepts_delay_of_zero_and_of_one_period);
+    RUN_TEST(test_init_rejects_nonpositive_filter_time_constant);
+    RUN_TEST(test_init_rejects_nan_filter_time_constant);
+    RUN_TEST(test_init_rejects_non_hurwitz_gains);
+    RUN_TEST(test_init_rejects_nan_gains);
+    RUN_TEST(test_init_rejects_nonpositive_omega_max);
+    RUN_TEST(test_init_rejects_nonpositive_accel_max);
+    RUN_TEST(test_init_rejects_nonpositive_speed_max);
+    RUN_TEST(test_init_rejects_nonpositive_min_speed);
+    RUN_TEST(test_init_rejects_min_speed_not_below_speed_max);
+    RUN_TEST(test_init_rejects_zero_watchdog);
+    RUN_TEST(test_init_rejects_zero_robots);
+    RUN_TEST(test_init_rejects_too_many_robots);
+    RUN_TEST(test_init_rejects_objective_of_wrong_dimension);
+    RUN_TEST(test_init_rejects_unknown_velocity_source);
+    RUN_TEST(test_init_rejects_initial_speed_above_speed_max);
+    RUN_TEST(test_init_rejects_null_pointers);
+    RUN_TEST(test_init_accepts_null_bad_param);
+    RUN_TEST(test_step_and_queries_reject_null_pointers);
+    RUN_TEST(test_step_before_init_stops);
+    RUN_TEST(test_sample_tick_is_apply_minus_delay_with_wrap);
+    RUN_TEST(test_objective_ticks_count_from_the_epoch_across_wrap);
+    RUN_TEST(test_law_runs_at_the_apply_instant);
+    RUN_TEST(test_first_step_from_rest_gives_finite_command);
+    RUN_TEST(test_zero_speed_start_gives_finite_turn_rate);
+    RUN_TEST(test_unsaturated_command_is_the_flat_map_of_the_laws_demand);
+    RUN_TEST(test_measured_speed_resyncs_the_speed_state);
+    RUN_TEST(test_pose_mode_requires_heading);
+    RUN_TEST(test_compensation_predicts_over_the_nominal_delay);
+    RUN_TEST(test_compensation_predicts_over_the_actual_jittered_age);
+    RUN_TEST(test_without_compensation_law_sees_the_measured_pose);
+    RUN_TEST(test_identical_inputs_give_bit_identical_commands);
+    RUN_TEST(test_huge_error_respects_every_limit_and_flags_it);
+    RUN_TEST(test_first_step_toward_far_target_saturates_turn_rate);
+    RUN_TEST(test_far_target_ahead_saturates_acceleration);
+    RUN_TEST(test_speed_limit_does_not_wind_up);
+    RUN_TEST(test_nan_position_is_rejected_and_previous_command_held);
+    RUN_TEST(test_infinite_heading_is_rejected_and_previous_command_held);
+    RUN_TEST(test_nan_speed_is_rejected_when_marked_valid);
+    RUN_TEST(test_measurement_older_than_one_period_is_stale);
+    RUN_TEST(test_measurement_exactly_one_period_old_is_accepted);
+    RUN_TEST(test_repeated_stamp_is_out_of_order);
+    RUN_TEST(test_earlier_stamp_is_out_of_order);
+    RUN_TEST(test_stamp_after_apply_tick_is_future);
+    RUN_TEST(test_apply_tick_not_advancing_is_out_of_order);
+    RUN_TEST(test_rejected_measurement_leaves_the_controller_usable);
+    RUN_TEST(test_missing_measurement_holds_then_watchdog_stops);
+    RUN_TEST(test_watchdog_recovers_from_rest_when_measurements_resume);
+    RUN_TEST(test_watchdog_counts_rejected_measurements);
+    RUN_TEST(test_one_good_measurement_resets_the_watchdog_count);
+    RUN_TEST(test_tick_wrap_gives_bit_identical_commands);
+    RUN_TEST(test_pose_mode_tracks_a_circle);
+    RUN_TEST(test_pose_mode_tracks_an_ellipse_to_the_sampling_floor);
+    RUN_TEST(test_delay_compensation_removes_the_delay_from_the_error);
+    RUN_TEST(test_pose_mode_tracks_circle_and_ellipse_with_two_robots);
+    RUN_TEST(test_position_only_mode_tracks_a_circle);
+    RUN_TEST(test_position_only_mode_ignores_heading_and_speed_after_the_first_sample);
+    return UNITY_END();
+}
