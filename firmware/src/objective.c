@@ -1,17 +1,37 @@
 /* The objective as a sum of gradient-jet terms; see tvo/objective.h. */
 #include "tvo/objective.h"
 
-tvo_status_t tvo_objective_init(tvo_objective_t *objective, uint8_t dim)
+tvo_status_t tvo_objective_init(tvo_objective_t *objective, uint8_t primal_dim)
 {
     if (objective == NULL) {
         return TVO_ERR_NULL;
     }
     objective->term_count = 0;
+    objective->primal_dim = 0;
+    objective->dual_dim = 0;
     objective->dim = 0;
-    if (dim == 0u || dim > TVO_MAX_OUTPUT_DIM) {
+    if (primal_dim == 0u || primal_dim > TVO_MAX_OUTPUT_DIM) {
         return TVO_ERR_DIMENSION;
     }
-    objective->dim = dim;
+    objective->primal_dim = primal_dim;
+    objective->dim = primal_dim;
+    return TVO_OK;
+}
+
+static tvo_status_t append_term(tvo_objective_t *objective, tvo_gradient_jet_fn gradient_jet,
+                                tvo_constraint_max_fn constraint_max, const void *term)
+{
+    if (objective->dim == 0u) {
+        return TVO_ERR_NOT_INITIALIZED;
+    }
+    if (objective->term_count >= TVO_MAX_TERMS) {
+        return TVO_ERR_CAPACITY;
+    }
+    tvo_term_t *slot = &objective->terms[objective->term_count];
+    slot->gradient_jet = gradient_jet;
+    slot->constraint_max = constraint_max;
+    slot->term = term;
+    objective->term_count++;
     return TVO_OK;
 }
 
@@ -21,25 +41,45 @@ tvo_status_t tvo_objective_add_term(tvo_objective_t *objective, tvo_gradient_jet
     if (objective == NULL || gradient_jet == NULL || term == NULL) {
         return TVO_ERR_NULL;
     }
+    return append_term(objective, gradient_jet, NULL, term);
+}
+
+tvo_status_t tvo_objective_add_constraint(tvo_objective_t *objective, tvo_gradient_jet_fn gradient_jet,
+                                          tvo_constraint_max_fn constraint_max, const void *term)
+{
+    if (objective == NULL || gradient_jet == NULL || constraint_max == NULL || term == NULL) {
+        return TVO_ERR_NULL;
+    }
+    return append_term(objective, gradient_jet, constraint_max, term);
+}
+
+tvo_status_t tvo_objective_reserve_multipliers(tvo_objective_t *objective, uint8_t count, uint8_t *first_index)
+{
+    if (objective == NULL || first_index == NULL) {
+        return TVO_ERR_NULL;
+    }
     if (objective->dim == 0u) {
         return TVO_ERR_NOT_INITIALIZED;
     }
-    if (objective->term_count >= TVO_MAX_TERMS) {
+    if (count == 0u || (unsigned)objective->dual_dim + count > TVO_MAX_EQUALITIES) {
         return TVO_ERR_CAPACITY;
     }
-    objective->terms[objective->term_count].gradient_jet = gradient_jet;
-    objective->terms[objective->term_count].term = term;
-    objective->term_count++;
+    if ((unsigned)objective->dual_dim + count >= objective->primal_dim) {
+        return TVO_ERR_DIMENSION;
+    }
+    *first_index = objective->dim;
+    objective->dual_dim = (uint8_t)(objective->dual_dim + count);
+    objective->dim = (uint8_t)(objective->primal_dim + objective->dual_dim);
     return TVO_OK;
 }
 
-tvo_status_t tvo_objective_gradient_jet(const tvo_objective_t *objective, const tvo_jet_t *y,
+tvo_status_t tvo_objective_gradient_jet(const tvo_objective_t *objective, const tvo_jet_t *z,
                                         const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad)
 {
-    if (objective == NULL || y == NULL || t == NULL || grad == NULL) {
+    if (objective == NULL || z == NULL || t == NULL || grad == NULL) {
         return TVO_ERR_NULL;
     }
-    if (objective->dim == 0u || objective->dim > TVO_MAX_OUTPUT_DIM || objective->term_count == 0u) {
+    if (objective->dim == 0u || objective->dim > TVO_MAX_Z_DIM || objective->term_count == 0u) {
         return TVO_ERR_NOT_INITIALIZED;
     }
     if (order > TVO_JET_MAX_ORDER) {
@@ -50,7 +90,7 @@ tvo_status_t tvo_objective_gradient_jet(const tvo_objective_t *objective, const 
     }
     for (uint8_t k = 0; k < objective->term_count && k < TVO_MAX_TERMS; ++k) {
         const tvo_term_t *term = &objective->terms[k];
-        const tvo_status_t st = term->gradient_jet(term->term, y, objective->dim, t, order, grad);
+        const tvo_status_t st = term->gradient_jet(term->term, z, objective->dim, t, order, grad);
         if (st != TVO_OK) {
             return st;
         }
@@ -59,6 +99,46 @@ tvo_status_t tvo_objective_gradient_jet(const tvo_objective_t *objective, const 
         if (!tvo_jet_is_finite(&grad[i], order)) {
             return TVO_ERR_NUMERIC;
         }
+    }
+    return TVO_OK;
+}
+
+tvo_status_t tvo_objective_constraint_max(const tvo_objective_t *objective, const tvo_real_t *y, tvo_real_t t_s,
+                                          tvo_real_t *max_value, uint8_t *has_constraints)
+{
+    if (objective == NULL || y == NULL || max_value == NULL || has_constraints == NULL) {
+        return TVO_ERR_NULL;
+    }
+    *max_value = TVO_R(0.0);
+    *has_constraints = 0;
+    if (objective->dim == 0u) {
+        return TVO_ERR_NOT_INITIALIZED;
+    }
+    if (!isfinite(t_s)) {
+        return TVO_ERR_NOT_FINITE;
+    }
+    for (uint8_t i = 0; i < objective->primal_dim; ++i) {
+        if (!isfinite(y[i])) {
+            return TVO_ERR_NOT_FINITE;
+        }
+    }
+    for (uint8_t k = 0; k < objective->term_count && k < TVO_MAX_TERMS; ++k) {
+        const tvo_term_t *term = &objective->terms[k];
+        if (term->constraint_max == NULL) {
+            continue;
+        }
+        tvo_real_t value = TVO_R(0.0);
+        const tvo_status_t st = term->constraint_max(term->term, y, objective->primal_dim, t_s, &value);
+        if (st != TVO_OK) {
+            return st;
+        }
+        if (!isfinite(value)) {
+            return TVO_ERR_NUMERIC;
+        }
+        if (!*has_constraints || value > *max_value) {
+            *max_value = value;
+        }
+        *has_constraints = 1;
     }
     return TVO_OK;
 }

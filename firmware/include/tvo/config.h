@@ -46,8 +46,18 @@ typedef float tvo_real_t;
 #define TVO_JET_MAX_ORDER TVO_MAX_RELATIVE_DEGREE
 /** Largest flat-output dimension (2 per unicycle). */
 #define TVO_MAX_OUTPUT_DIM 8
+/** Most robots one controller drives (each contributes 2 flat outputs). */
+#define TVO_MAX_ROBOTS (TVO_MAX_OUTPUT_DIM / 2)
+/** Most equality constraints (Lagrange multipliers) one objective may carry. */
+#define TVO_MAX_EQUALITIES 4
+/** Largest primal-dual dimension z = (y, nu): the size of the law's linear solve. */
+#define TVO_MAX_Z_DIM (TVO_MAX_OUTPUT_DIM + TVO_MAX_EQUALITIES)
 /** Most objective terms one objective may sum. */
-#define TVO_MAX_TERMS 8
+#define TVO_MAX_TERMS 16
+/** Most disk obstacles one free-space term avoids. */
+#define TVO_MAX_OBSTACLES 8
+/** Highest degree m_r of the relaxed barrier's Taylor continuation. */
+#define TVO_BARRIER_MAX_DEGREE 8
 /** Highest polynomial degree of an on-board polynomial target. */
 #define TVO_POLY_MAX_DEGREE 7
 /** Highest target derivative order a streamed target carries (position .. jerk). */

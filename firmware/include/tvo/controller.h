@@ -35,8 +35,6 @@
 #include "tvo/objective.h"
 #include "tvo/unicycle.h"
 
-#define TVO_MAX_ROBOTS (TVO_MAX_OUTPUT_DIM / 2)
-
 typedef enum {
     /** y' = v e_theta with the measured heading; a valid measured speed re-syncs the speed state. */
     TVO_VELOCITY_FROM_POSE = 0,

@@ -1,10 +1,18 @@
 /*
- * The objective Phi(y, t) as a sum of terms behind one interface.
+ * The objective Phi(z, t) as a sum of terms behind one interface.
  *
- * A term contributes only its gradient, evaluated on jets: given y(tau) and t(tau) as jets, it adds
- * grad_y phi_term(y(tau), t(tau)) as jets into grad. From that single function the law derives the
+ * A term contributes only its gradient, evaluated on jets: given z(tau) and t(tau) as jets, it adds
+ * grad_z phi_term(z(tau), t(tau)) as jets into grad. From that single function the law derives the
  * gradient, its total time derivatives along the trajectory and (with unit-direction jets) the
  * Hessian, so adding a term (barrier, constraint) never touches the law.
+ *
+ * The variable is z = (y, nu): the flat output y (primal_dim entries, 2 per robot) followed by the
+ * Lagrange multipliers nu of equality constraints (dual_dim entries, reserved by the equality terms).
+ * Without equality constraints z = y and the objective is f0 plus barrier terms; with them it is the
+ * Lagrangian and its Hessian is the KKT matrix (paper, "Equality Constrained ...").
+ *
+ * An inequality-constraint term can also report max_i f_i(y, t), which chooses the barrier's slack
+ * s0 from the first measurement (tvo_objective_constraint_max).
  */
 #ifndef TVO_OBJECTIVE_H
 #define TVO_OBJECTIVE_H
@@ -26,36 +34,61 @@ typedef struct {
 } tvo_time_jet_t;
 
 /**
- * Adds a term's gradient jets into grad[0..dim-1]. Returns TVO_OK or an error; must not write past
- * dim and must leave grad finite on success.
+ * Adds a term's gradient jets into grad[0..dim-1] (dim = the objective's z dimension). Returns
+ * TVO_OK or an error; must not write past dim and must leave grad finite on success.
  */
-typedef tvo_status_t (*tvo_gradient_jet_fn)(const void *term, const tvo_jet_t *y, uint8_t dim,
+typedef tvo_status_t (*tvo_gradient_jet_fn)(const void *term, const tvo_jet_t *z, uint8_t dim,
                                             const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad);
+
+/** *max_value = max_i f_i(y, t) over the term's inequality constraints f_i(y, t) <= 0. */
+typedef tvo_status_t (*tvo_constraint_max_fn)(const void *term, const tvo_real_t *y, uint8_t primal_dim,
+                                              tvo_real_t t_s, tvo_real_t *max_value);
 
 typedef struct {
     tvo_gradient_jet_fn gradient_jet;
+    tvo_constraint_max_fn constraint_max;   /* NULL for terms without inequality constraints */
     const void *term;
 } tvo_term_t;
 
 typedef struct {
     tvo_term_t terms[TVO_MAX_TERMS];
     uint8_t term_count;
-    uint8_t dim;       /* flat-output dimension m */
+    uint8_t primal_dim;  /* flat-output dimension m (2 per robot) */
+    uint8_t dual_dim;    /* equality multipliers q, reserved by tvo_objective_reserve_multipliers */
+    uint8_t dim;         /* m + q: the size of z, of the gradient and of the law's solve */
 } tvo_objective_t;
 
-/** Empty objective over y in R^dim, 1 <= dim <= TVO_MAX_OUTPUT_DIM. */
-tvo_status_t tvo_objective_init(tvo_objective_t *objective, uint8_t dim);
+/** Empty objective over y in R^primal_dim, 1 <= primal_dim <= TVO_MAX_OUTPUT_DIM, no multipliers. */
+tvo_status_t tvo_objective_init(tvo_objective_t *objective, uint8_t primal_dim);
 
 /** Appends a term; the term's storage must outlive the objective. */
 tvo_status_t tvo_objective_add_term(tvo_objective_t *objective, tvo_gradient_jet_fn gradient_jet,
                                     const void *term);
 
+/** Appends an inequality-constraint term (constraint_max must not be NULL). */
+tvo_status_t tvo_objective_add_constraint(tvo_objective_t *objective, tvo_gradient_jet_fn gradient_jet,
+                                          tvo_constraint_max_fn constraint_max, const void *term);
+
 /**
- * grad[0..dim-1] = sum over terms of their gradient jets at (y, t), to the given order.
+ * Reserves count Lagrange multipliers; *first_index is the z index of the first one. Total at most
+ * TVO_MAX_EQUALITIES (TVO_ERR_CAPACITY), and fewer than primal_dim (TVO_ERR_DIMENSION: more
+ * independent equalities than outputs leave nothing to optimise).
+ */
+tvo_status_t tvo_objective_reserve_multipliers(tvo_objective_t *objective, uint8_t count, uint8_t *first_index);
+
+/**
+ * grad[0..dim-1] = sum over terms of their gradient jets at (z, t), to the given order.
  * Returns the first failing term's status, or TVO_ERR_NUMERIC if the sum is not finite.
  */
-tvo_status_t tvo_objective_gradient_jet(const tvo_objective_t *objective, const tvo_jet_t *y,
+tvo_status_t tvo_objective_gradient_jet(const tvo_objective_t *objective, const tvo_jet_t *z,
                                         const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad);
+
+/**
+ * *max_value = max over all inequality constraints of f_i(y, t) (y: primal_dim values);
+ * *has_constraints = 0 (and *max_value = 0) when the objective has none.
+ */
+tvo_status_t tvo_objective_constraint_max(const tvo_objective_t *objective, const tvo_real_t *y, tvo_real_t t_s,
+                                          tvo_real_t *max_value, uint8_t *has_constraints);
 
 /** Seconds since the epoch for an exact tick count (integer part split off to keep precision). */
 tvo_real_t tvo_ticks_to_seconds(uint64_t ticks, uint32_t tick_hz);
