@@ -86,7 +86,7 @@ static tvo_param_t first_bad_param(const tvo_controller_config_t *cfg, const tvo
             return TVO_PARAM_INITIAL_SPEED;
         }
     }
-    if (objective->dim != 2u * cfg->robot_count || objective->term_count == 0u) {
+    if (objective->primal_dim != 2u * cfg->robot_count || objective->term_count == 0u) {
         return TVO_PARAM_OBJECTIVE;
     }
     return TVO_PARAM_NONE;
@@ -116,7 +116,7 @@ tvo_status_t tvo_controller_init(tvo_controller_t *ctl, const tvo_controller_con
     const tvo_real_t gains[2] = {cfg->gain_kp, cfg->gain_kd};
     tvo_status_t st = tvo_law_init(&ctl->law, 2u, objective->dim, gains);
     if (st == TVO_OK) {
-        st = tvo_dirty_derivative_init(&ctl->velocity_filter, objective->dim, cfg->filter_tf_s, ctl->period_s);
+        st = tvo_dirty_derivative_init(&ctl->velocity_filter, objective->primal_dim, cfg->filter_tf_s, ctl->period_s);
     }
     if (st != TVO_OK) {
         if (bad_param != NULL) {
@@ -195,6 +195,9 @@ static tvo_status_t hold_or_stop(tvo_controller_t *ctl, uint32_t periods, tvo_st
         ctl->stopped = 1;
         for (uint8_t r = 0; r < TVO_MAX_ROBOTS; ++r) {
             ctl->speed_state_mps[r] = TVO_R(0.0);
+        }
+        for (uint8_t q = 0; q < TVO_MAX_EQUALITIES; ++q) {
+            ctl->multiplier_rate[q] = TVO_R(0.0); /* the robots stop; so does the dual dynamics */
         }
         stop_command(&ctl->held, 0u);
         stop_command(cmd, TVO_FLAG_SAFE_STOP);
@@ -375,13 +378,24 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     t.t_s = tvo_ticks_to_seconds(t.ticks, cfg->tick_hz);
     t.rate = TVO_R(1.0);
 
-    tvo_real_t y_accel[TVO_MAX_OUTPUT_DIM];
+    /* Multipliers (equality constraints) and their rates: controller states living at apply times. */
+    const uint8_t primal = ctl->objective->primal_dim;
+    const uint8_t dual = ctl->objective->dual_dim;
+    for (uint8_t q = 0; q < dual && q < TVO_MAX_EQUALITIES; ++q) {
+        y.d[0][primal + q] = ctl->multiplier[q];
+        y.d[1][primal + q] = ctl->multiplier_rate[q];
+    }
+
+    tvo_real_t y_accel[TVO_MAX_Z_DIM];
     tvo_law_eval_t eval;
     if (st == TVO_OK) {
         st = tvo_law_evaluate(&ctl->law, ctl->objective, &y, &t, y_accel, &eval);
     }
     tvo_command_t next;
     memset(&next, 0, sizeof(next));
+    if (st == TVO_OK && eval.regularization > TVO_R(0.0)) {
+        flags |= TVO_FLAG_REGULARIZED;
+    }
     tvo_real_t speed_next[TVO_MAX_ROBOTS];
     tvo_real_t accel[TVO_MAX_ROBOTS];
     for (uint8_t r = 0; r < n && st == TVO_OK; ++r) {
@@ -413,6 +427,12 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     }
     ctl->periods_without_measurement = 0;
     ctl->stopped = 0;
+    for (uint8_t q = 0; q < dual && q < TVO_MAX_EQUALITIES; ++q) {
+        /* Exact for the constant nu'' the law asked for over the period. */
+        const tvo_real_t accel_q = y_accel[primal + q];
+        ctl->multiplier[q] += (ctl->multiplier_rate[q] + TVO_R(0.5) * accel_q * ctl->period_s) * ctl->period_s;
+        ctl->multiplier_rate[q] += accel_q * ctl->period_s;
+    }
     for (uint8_t r = 0; r < n; ++r) {
         ctl->speed_state_mps[r] = speed_next[r];
         /* The estimate lives at the application instant; the next sample dead-reckons from here. */
@@ -436,6 +456,10 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     for (uint8_t r = 0; r < n; ++r) {
         tm->accel_mps2[r] = accel[r];
     }
+    for (uint8_t q = 0; q < dual && q < TVO_MAX_EQUALITIES; ++q) {
+        tm->multiplier[q] = ctl->multiplier[q];
+    }
+    tm->regularization = eval.regularization;
     return TVO_OK;
 }
 

@@ -34,7 +34,7 @@ tvo_status_t tvo_law_init(tvo_law_t *law, uint8_t relative_degree, uint8_t dim, 
     if (relative_degree == 0u || relative_degree > TVO_MAX_RELATIVE_DEGREE) {
         return TVO_ERR_PARAM;
     }
-    if (dim == 0u || dim > TVO_MAX_OUTPUT_DIM) {
+    if (dim == 0u || dim > TVO_MAX_Z_DIM) {
         return TVO_ERR_DIMENSION;
     }
     if (!gains_are_hurwitz(relative_degree, gain)) {
@@ -50,20 +50,20 @@ tvo_status_t tvo_law_init(tvo_law_t *law, uint8_t relative_degree, uint8_t dim, 
 
 static void zero_output(tvo_real_t *y_k, uint8_t dim)
 {
-    for (uint8_t i = 0; i < dim && i < TVO_MAX_OUTPUT_DIM; ++i) {
+    for (uint8_t i = 0; i < dim && i < TVO_MAX_Z_DIM; ++i) {
         y_k[i] = TVO_R(0.0);
     }
 }
 
 /* H[i][col] = d/dtau grad_i(y + e_col tau, t): a first-order jet with time frozen. */
 static tvo_status_t hessian(const tvo_objective_t *objective, const tvo_output_derivs_t *y,
-                            const tvo_time_jet_t *t, tvo_real_t h[TVO_MAX_OUTPUT_DIM][TVO_MAX_OUTPUT_DIM])
+                            const tvo_time_jet_t *t, tvo_matrix_t h)
 {
     const uint8_t m = objective->dim;
     tvo_time_jet_t frozen = *t;
     frozen.rate = TVO_R(0.0);
-    tvo_jet_t y_jet[TVO_MAX_OUTPUT_DIM];
-    tvo_jet_t g_jet[TVO_MAX_OUTPUT_DIM];
+    tvo_jet_t y_jet[TVO_MAX_Z_DIM];
+    tvo_jet_t g_jet[TVO_MAX_Z_DIM];
     for (uint8_t i = 0; i < m; ++i) {
         tvo_jet_constant(y->d[0][i], &y_jet[i]);
     }
@@ -101,7 +101,8 @@ tvo_status_t tvo_law_evaluate(const tvo_law_t *law, const tvo_objective_t *objec
     }
     const uint8_t k = law->relative_degree;
     const uint8_t m = law->dim;
-    if (m == 0u || m > TVO_MAX_OUTPUT_DIM || objective->dim != m) {
+    if (m == 0u || m > TVO_MAX_Z_DIM || objective->dim != m ||
+        (unsigned)objective->primal_dim + objective->dual_dim != m) {
         return TVO_ERR_DIMENSION;
     }
     zero_output(y_k, m);
@@ -117,8 +118,8 @@ tvo_status_t tvo_law_evaluate(const tvo_law_t *law, const tvo_objective_t *objec
     }
 
     /* Trajectory jets y(tau) = sum_{j<k} y^(j) tau^j / j!, with y^(k) = 0 on this curve. */
-    tvo_jet_t y_jet[TVO_MAX_OUTPUT_DIM];
-    tvo_jet_t g_jet[TVO_MAX_OUTPUT_DIM];
+    tvo_jet_t y_jet[TVO_MAX_Z_DIM];
+    tvo_jet_t g_jet[TVO_MAX_Z_DIM];
     for (uint8_t i = 0; i < m; ++i) {
         tvo_jet_constant(TVO_R(0.0), &y_jet[i]);
         tvo_real_t inv_factorial = TVO_R(1.0);
@@ -135,8 +136,8 @@ tvo_status_t tvo_law_evaluate(const tvo_law_t *law, const tvo_objective_t *objec
     }
 
     /* grad^(j) = j! c_j; rhs = r + sum_{j<k} a_j grad^(j) with r = k! c_k. */
-    tvo_real_t grad[TVO_MAX_RELATIVE_DEGREE + 1][TVO_MAX_OUTPUT_DIM];
-    tvo_real_t rhs[TVO_MAX_OUTPUT_DIM];
+    tvo_real_t grad[TVO_MAX_RELATIVE_DEGREE + 1][TVO_MAX_Z_DIM];
+    tvo_real_t rhs[TVO_MAX_Z_DIM];
     for (uint8_t i = 0; i < m; ++i) {
         tvo_real_t factorial = TVO_R(1.0);
         rhs[i] = TVO_R(0.0);
@@ -147,7 +148,7 @@ tvo_status_t tvo_law_evaluate(const tvo_law_t *law, const tvo_objective_t *objec
         }
     }
 
-    tvo_real_t h[TVO_MAX_OUTPUT_DIM][TVO_MAX_OUTPUT_DIM];
+    tvo_matrix_t h;
     st = hessian(objective, y, t, h);
     if (st != TVO_OK) {
         return st;
@@ -166,8 +167,12 @@ tvo_status_t tvo_law_evaluate(const tvo_law_t *law, const tvo_objective_t *objec
         }
     }
 
-    tvo_real_t step[TVO_MAX_OUTPUT_DIM];
-    st = tvo_cholesky_solve(h, m, rhs, step);
+    tvo_real_t step[TVO_MAX_Z_DIM];
+    tvo_real_t shift = TVO_R(0.0);
+    st = tvo_saddle_solve(h, objective->primal_dim, objective->dual_dim, rhs, step, &shift);
+    if (eval != NULL) {
+        eval->regularization = shift;
+    }
     if (st != TVO_OK) {
         return st;
     }

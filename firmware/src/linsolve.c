@@ -1,37 +1,34 @@
-/* Fixed-size Cholesky solve; see tvo/linsolve.h. */
+/* Fixed-size Cholesky and saddle-point solves; see tvo/linsolve.h. */
 #include "tvo/linsolve.h"
 
-tvo_status_t tvo_cholesky_solve(tvo_real_t a[TVO_MAX_OUTPUT_DIM][TVO_MAX_OUTPUT_DIM], uint8_t n,
-                                const tvo_real_t *b, tvo_real_t *x)
+#include <string.h>
+
+/* Regularisation ladder: mu = s * 10^(LADDER_FIRST_EXP + j), j = 0 .. LADDER_STEPS - 1. */
+#define LADDER_STEPS 9u
+#define LADDER_FIRST_SCALE TVO_R(1e-6)
+
+/* In-place LL^T of the leading n x n block; 0 if a pivot is not above the relative floor. */
+static int cholesky_factor(tvo_matrix_t a, uint8_t n)
 {
-    if (a == NULL || b == NULL || x == NULL) {
-        return TVO_ERR_NULL;
-    }
-    if (n == 0u || n > TVO_MAX_OUTPUT_DIM) {
-        return TVO_ERR_DIMENSION;
-    }
-    /* A pivot must exceed this fraction of the largest diagonal entry: a relative test, so
-     * the verdict does not depend on the objective's scale. */
     tvo_real_t max_diag = TVO_R(0.0);
     for (uint8_t i = 0; i < n; ++i) {
-        if (!isfinite(a[i][i])) {
-            return TVO_ERR_NOT_FINITE;
-        }
         if (a[i][i] > max_diag) {
             max_diag = a[i][i];
         }
     }
-    const tvo_real_t pivot_floor = max_diag * TVO_R(64.0) * TVO_EPSILON;
     if (!(max_diag > TVO_R(0.0))) {
-        return TVO_ERR_NOT_POSITIVE_DEFINITE;
+        return 0;
     }
+    /* A pivot must exceed this fraction of the largest diagonal entry: a relative test, so the
+     * verdict does not depend on the objective's scale. */
+    const tvo_real_t pivot_floor = max_diag * TVO_R(64.0) * TVO_EPSILON;
     for (uint8_t j = 0; j < n; ++j) {
         tvo_real_t d = a[j][j];
         for (uint8_t k = 0; k < j; ++k) {
             d -= a[j][k] * a[j][k];
         }
         if (!(d > pivot_floor)) {
-            return TVO_ERR_NOT_POSITIVE_DEFINITE;
+            return 0;
         }
         const tvo_real_t l_jj = TVO_SQRT(d);
         a[j][j] = l_jj;
@@ -43,26 +40,182 @@ tvo_status_t tvo_cholesky_solve(tvo_real_t a[TVO_MAX_OUTPUT_DIM][TVO_MAX_OUTPUT_
             a[i][j] = s / l_jj;
         }
     }
-    /* Forward (L z = b) then backward (L^T x = z) substitution, in place in x. */
+    return 1;
+}
+
+/* x = (L L^T)^-1 b with the factor in the lower triangle (read only; not const: C11 cannot pass
+ * T (*)[n] as const T (*)[n] without a cast); x may alias b. */
+static void cholesky_substitute(tvo_matrix_t l, uint8_t n, const tvo_real_t *b, tvo_real_t *x)
+{
     for (uint8_t i = 0; i < n; ++i) {
         tvo_real_t s = b[i];
         for (uint8_t k = 0; k < i; ++k) {
-            s -= a[i][k] * x[k];
+            s -= l[i][k] * x[k];
         }
-        x[i] = s / a[i][i];
+        x[i] = s / l[i][i];
     }
     for (uint8_t ii = n; ii > 0u; --ii) {
         const uint8_t i = (uint8_t)(ii - 1u);
         tvo_real_t s = x[i];
         for (uint8_t k = (uint8_t)(i + 1u); k < n; ++k) {
-            s -= a[k][i] * x[k];
+            s -= l[k][i] * x[k];
         }
-        x[i] = s / a[i][i];
+        x[i] = s / l[i][i];
+    }
+}
+
+static int all_finite(const tvo_real_t *v, uint8_t n)
+{
+    for (uint8_t i = 0; i < n; ++i) {
+        if (!isfinite(v[i])) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
+tvo_status_t tvo_cholesky_solve(tvo_matrix_t a, uint8_t n, const tvo_real_t *b, tvo_real_t *x)
+{
+    if (a == NULL || b == NULL || x == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (n == 0u || n > TVO_MAX_Z_DIM) {
+        return TVO_ERR_DIMENSION;
     }
     for (uint8_t i = 0; i < n; ++i) {
-        if (!isfinite(x[i])) {
-            return TVO_ERR_NUMERIC;
+        if (!isfinite(a[i][i])) {
+            return TVO_ERR_NOT_FINITE;
         }
     }
-    return TVO_OK;
+    if (!cholesky_factor(a, n)) {
+        return TVO_ERR_NOT_POSITIVE_DEFINITE;
+    }
+    cholesky_substitute(a, n, b, x);
+    return all_finite(x, n) ? TVO_OK : TVO_ERR_NUMERIC;
+}
+
+/* Factors P + mu I in place (p = the primal block of a), smallest workable mu first. */
+static tvo_status_t regularized_factor(tvo_matrix_t a, uint8_t n, tvo_real_t *shift)
+{
+    tvo_real_t diag[TVO_MAX_Z_DIM];
+    tvo_real_t scale = TVO_R(1.0);
+    tvo_real_t gershgorin = TVO_R(0.0);
+    for (uint8_t i = 0; i < n; ++i) {
+        diag[i] = a[i][i];
+        if (TVO_FABS(diag[i]) > scale) {
+            scale = TVO_FABS(diag[i]);
+        }
+        tvo_real_t off = TVO_R(0.0);
+        for (uint8_t j = 0; j < n; ++j) {
+            if (j != i) {
+                off += TVO_FABS(a[i][j]);
+            }
+        }
+        /* Shift that makes row i strictly diagonally dominant with a positive diagonal. */
+        const tvo_real_t need = off - diag[i];
+        if (need > gershgorin) {
+            gershgorin = need;
+        }
+    }
+    /* Keep the strict upper triangle as the pristine copy (the factor overwrites only the lower). */
+    tvo_real_t mu = TVO_R(0.0);
+    for (uint8_t attempt = 0; attempt <= LADDER_STEPS + 1u; ++attempt) {
+        if (attempt == LADDER_STEPS + 1u) {
+            mu = gershgorin + LADDER_FIRST_SCALE * scale; /* always positive definite */
+        }
+        for (uint8_t i = 0; i < n; ++i) {
+            a[i][i] = diag[i] + mu;
+            for (uint8_t j = 0; j < i; ++j) {
+                a[i][j] = a[j][i];
+            }
+        }
+        if (cholesky_factor(a, n)) {
+            *shift = mu;
+            return TVO_OK;
+        }
+        mu = (attempt == 0u) ? LADDER_FIRST_SCALE * scale : mu * TVO_R(10.0);
+    }
+    return TVO_ERR_NOT_POSITIVE_DEFINITE;
+}
+
+tvo_status_t tvo_saddle_solve(tvo_matrix_t a, uint8_t primal_n, uint8_t dual_n, const tvo_real_t *b, tvo_real_t *x,
+                              tvo_real_t *shift)
+{
+    if (a == NULL || b == NULL || x == NULL) {
+        return TVO_ERR_NULL;
+    }
+    const uint8_t n = (uint8_t)(primal_n + dual_n);
+    if (primal_n == 0u || (unsigned)primal_n + dual_n > TVO_MAX_Z_DIM) {
+        return TVO_ERR_DIMENSION;
+    }
+    if (shift != NULL) {
+        *shift = TVO_R(0.0);
+    }
+    for (uint8_t i = 0; i < n; ++i) {
+        if (!all_finite(a[i], n) || !isfinite(b[i])) {
+            return TVO_ERR_NOT_FINITE;
+        }
+    }
+    tvo_real_t mu = TVO_R(0.0);
+    tvo_status_t st = regularized_factor(a, primal_n, &mu);
+    if (st != TVO_OK) {
+        return st;
+    }
+    if (shift != NULL) {
+        *shift = mu;
+    }
+    /* u = P^-1 b_p; then, with equalities, Y = P^-1 C^T and S w = C u - b_d, x_p = u - Y w. */
+    tvo_real_t u[TVO_MAX_Z_DIM];
+    cholesky_substitute(a, primal_n, b, u);
+    if (dual_n > 0u) {
+        tvo_real_t y_cols[TVO_MAX_EQUALITIES][TVO_MAX_Z_DIM];
+        tvo_matrix_t schur;
+        tvo_real_t rhs[TVO_MAX_Z_DIM];
+        tvo_real_t w[TVO_MAX_Z_DIM];
+        for (uint8_t q = 0; q < dual_n && q < TVO_MAX_EQUALITIES; ++q) {
+            cholesky_substitute(a, primal_n, a[primal_n + q], y_cols[q]);
+        }
+        for (uint8_t q = 0; q < dual_n && q < TVO_MAX_EQUALITIES; ++q) {
+            const tvo_real_t *c_row = a[primal_n + q];
+            tvo_real_t s = -b[primal_n + q];
+            for (uint8_t i = 0; i < primal_n; ++i) {
+                s += c_row[i] * u[i];
+            }
+            rhs[q] = s;
+            for (uint8_t r = 0; r < dual_n && r < TVO_MAX_EQUALITIES; ++r) {
+                tvo_real_t v = -a[primal_n + q][primal_n + r];
+                for (uint8_t i = 0; i < primal_n; ++i) {
+                    v += c_row[i] * y_cols[r][i];
+                }
+                schur[q][r] = v;
+            }
+        }
+        /* The Schur complement is symmetric in exact arithmetic; average away the rounding. */
+        for (uint8_t q = 0; q < dual_n; ++q) {
+            for (uint8_t r = 0; r < q; ++r) {
+                const tvo_real_t avg = TVO_R(0.5) * (schur[q][r] + schur[r][q]);
+                schur[q][r] = avg;
+                schur[r][q] = avg;
+            }
+        }
+        if (!cholesky_factor(schur, dual_n)) {
+            return TVO_ERR_NOT_POSITIVE_DEFINITE;
+        }
+        cholesky_substitute(schur, dual_n, rhs, w);
+        for (uint8_t i = 0; i < primal_n; ++i) {
+            tvo_real_t s = u[i];
+            for (uint8_t q = 0; q < dual_n && q < TVO_MAX_EQUALITIES; ++q) {
+                s -= y_cols[q][i] * w[q];
+            }
+            x[i] = s;
+        }
+        for (uint8_t q = 0; q < dual_n; ++q) {
+            x[primal_n + q] = w[q];
+        }
+    } else {
+        for (uint8_t i = 0; i < primal_n; ++i) {
+            x[i] = u[i];
+        }
+    }
+    return all_finite(x, n) ? TVO_OK : TVO_ERR_NUMERIC;
 }

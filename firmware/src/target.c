@@ -194,3 +194,27 @@ tvo_status_t tvo_target_derivatives(const tvo_target_t *target, const tvo_time_j
         return TVO_ERR_PARAM;
     }
 }
+
+tvo_status_t tvo_target_jet(const tvo_target_t *target, const tvo_time_jet_t *t, uint8_t order, tvo_jet_t out[2])
+{
+    if (target == NULL || t == NULL || out == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (order > TVO_JET_MAX_ORDER) {
+        return TVO_ERR_PARAM;
+    }
+    tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2];
+    const tvo_status_t st = tvo_target_derivatives(target, t, order, deriv);
+    if (st != TVO_OK) {
+        return st;
+    }
+    for (uint8_t axis = 0; axis < 2u; ++axis) {
+        tvo_jet_constant(TVO_R(0.0), &out[axis]);
+        tvo_real_t scale = TVO_R(1.0);
+        for (uint8_t j = 0; j <= order; ++j) {
+            out[axis].c[j] = deriv[j][axis] * scale;
+            scale *= t->rate / (tvo_real_t)(j + 1u);
+        }
+    }
+    return TVO_OK;
+}

@@ -14,7 +14,7 @@ tvo_status_t tvo_tracking_init(tvo_tracking_term_t *term, const tvo_target_t *ta
     if (!(weight[0] > TVO_R(0.0)) || !(weight[1] > TVO_R(0.0))) {
         return TVO_ERR_PARAM;
     }
-    if ((unsigned)offset + 2u > TVO_MAX_OUTPUT_DIM) {
+    if ((unsigned)offset + 2u > TVO_MAX_OUTPUT_DIM) /* a robot's output, never a multiplier */ {
         return TVO_ERR_DIMENSION;
     }
     term->target = target;
@@ -34,22 +34,14 @@ tvo_status_t tvo_tracking_gradient_jet(const void *term, const tvo_jet_t *y, uin
     if ((unsigned)self->offset + 2u > dim) {
         return TVO_ERR_DIMENSION;
     }
-    tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2];
-    const tvo_status_t st = tvo_target_derivatives(self->target, t, order, deriv);
+    tvo_jet_t target_jet[2];
+    const tvo_status_t st = tvo_target_jet(self->target, t, order, target_jet);
     if (st != TVO_OK) {
         return st;
     }
     for (uint8_t axis = 0; axis < 2u; ++axis) {
-        /* y_d(t + rate tau) as a jet: c_j = y_d^(j)(t) rate^j / j!. */
-        tvo_jet_t target_jet;
-        tvo_jet_constant(TVO_R(0.0), &target_jet);
-        tvo_real_t scale = TVO_R(1.0);
-        for (uint8_t j = 0; j <= order && j <= TVO_JET_MAX_ORDER; ++j) {
-            target_jet.c[j] = deriv[j][axis] * scale;
-            scale *= t->rate / (tvo_real_t)(j + 1u);
-        }
         tvo_jet_t error;
-        tvo_jet_sub(&y[self->offset + axis], &target_jet, order, &error);
+        tvo_jet_sub(&y[self->offset + axis], &target_jet[axis], order, &error);
         tvo_jet_axpy(self->weight[axis], &error, order, &grad[self->offset + axis]);
     }
     return TVO_OK;

@@ -380,6 +380,18 @@ static tvo_status_t saddle_gradient_jet(const void *term, const tvo_jet_t *y, ui
     return TVO_OK;
 }
 
+/* f = 1/2 |y|^2: H = I. */
+static tvo_status_t identity_gradient_jet_for_regularization(const void *term, const tvo_jet_t *y, uint8_t dim,
+                                                             const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad)
+{
+    (void)term;
+    (void)dim;
+    (void)t;
+    tvo_jet_add(&grad[0], &y[0], order, &grad[0]);
+    tvo_jet_add(&grad[1], &y[1], order, &grad[1]);
+    return TVO_OK;
+}
+
 /* f = 1/2 y1^2: H = diag(1, 0), singular. */
 static tvo_status_t trough_gradient_jet(const void *term, const tvo_jet_t *y, uint8_t dim, const tvo_time_jet_t *t,
                                         uint8_t order, tvo_jet_t *grad)
@@ -406,7 +418,7 @@ static tvo_status_t nan_gradient_jet(const void *term, const tvo_jet_t *y, uint8
 
 static const int dummy_term_storage = 0;
 
-static tvo_status_t evaluate_single_term(tvo_gradient_jet_fn fn, tvo_real_t ydd[2])
+static tvo_status_t evaluate_single_term(tvo_gradient_jet_fn fn, tvo_real_t ydd[2], tvo_law_eval_t *ev)
 {
     tvo_objective_t obj;
     ASSERT_STATUS(TVO_OK, tvo_objective_init(&obj, 2));
@@ -418,29 +430,47 @@ static tvo_status_t evaluate_single_term(tvo_gradient_jet_fn fn, tvo_real_t ydd[
     const tvo_time_jet_t tj = time_at(0.5);
     ydd[0] = TVO_R(123.0);
     ydd[1] = TVO_R(456.0);
-    return tvo_law_evaluate(&law, &obj, &y, &tj, ydd, NULL);
+    return tvo_law_evaluate(&law, &obj, &y, &tj, ydd, ev);
 }
 
-static void test_indefinite_hessian_is_reported_and_output_zeroed(void)
+/* H = diag(1, -1) is indefinite: the solve shifts it by the first ladder step that makes it
+ * positive definite (1e-6 .. 1e2 times max(1, max |H_ii|) = 1: mu = 10), and the law returns
+ * -(H + 10 I)^-1 (k_p g + k_d g') with g = (1, 0.5), g' = (0.3, -0.8). */
+static void test_indefinite_hessian_is_regularized_by_the_ladder(void)
 {
     tvo_real_t ydd[2];
-    ASSERT_STATUS(TVO_ERR_NOT_POSITIVE_DEFINITE, evaluate_single_term(saddle_gradient_jet, ydd));
-    ASSERT_NEAR(0.0, ydd[0], 0.0);
+    tvo_law_eval_t ev;
+    ASSERT_STATUS(TVO_OK, evaluate_single_term(saddle_gradient_jet, ydd, &ev));
+    ASSERT_NEAR(10.0, ev.regularization, 10.0 * 1e-6);
+    ASSERT_NEAR(-(40.0 * 1.0 + 13.0 * 0.3) / 11.0, ydd[0], 1e-5);
+    ASSERT_NEAR(-(40.0 * 0.5 + 13.0 * -0.8) / 9.0, ydd[1], 1e-5);
+}
+
+/* H = diag(1, 0) is singular: the smallest ladder shift above the pivot floor (64 eps) is used;
+ * the flat direction has zero gradient, so it gets no acceleration. */
+static void test_singular_hessian_is_regularized_minimally(void)
+{
+    tvo_real_t ydd[2];
+    tvo_law_eval_t ev;
+    ASSERT_STATUS(TVO_OK, evaluate_single_term(trough_gradient_jet, ydd, &ev));
+    TEST_ASSERT_TRUE(ev.regularization > TVO_R(0.0));
+    TEST_ASSERT_TRUE(ev.regularization <= TVO_R(1e-3));
+    ASSERT_NEAR(-(40.0 * 1.0 + 13.0 * 0.3), ydd[0], 1e-2);
     ASSERT_NEAR(0.0, ydd[1], 0.0);
 }
 
-static void test_singular_hessian_is_reported_and_output_zeroed(void)
+static void test_positive_definite_hessian_is_not_regularized(void)
 {
     tvo_real_t ydd[2];
-    ASSERT_STATUS(TVO_ERR_NOT_POSITIVE_DEFINITE, evaluate_single_term(trough_gradient_jet, ydd));
-    ASSERT_NEAR(0.0, ydd[0], 0.0);
-    ASSERT_NEAR(0.0, ydd[1], 0.0);
+    tvo_law_eval_t ev;
+    ASSERT_STATUS(TVO_OK, evaluate_single_term(identity_gradient_jet_for_regularization, ydd, &ev));
+    ASSERT_NEAR(0.0, ev.regularization, 0.0);
 }
 
 static void test_non_finite_gradient_is_reported_and_output_zeroed(void)
 {
     tvo_real_t ydd[2];
-    ASSERT_STATUS(TVO_ERR_NUMERIC, evaluate_single_term(nan_gradient_jet, ydd));
+    ASSERT_STATUS(TVO_ERR_NUMERIC, evaluate_single_term(nan_gradient_jet, ydd, NULL));
     ASSERT_NEAR(0.0, ydd[0], 0.0);
     ASSERT_NEAR(0.0, ydd[1], 0.0);
 }
@@ -582,9 +612,9 @@ static void test_init_rejects_bad_dimension(void)
     /* law.h says TVO_ERR_PARAM for every rejection; status.h reserves TVO_ERR_DIMENSION for sizes
      * out of range. Both name the fault; the test only requires a rejection that is one of them. */
     const tvo_status_t zero = init_with(2, 0, 40, 13, 0);
-    const tvo_status_t big = init_with(2, TVO_MAX_OUTPUT_DIM + 1, 40, 13, 0);
+    const tvo_status_t big = init_with(2, TVO_MAX_Z_DIM + 1, 40, 13, 0);
     TEST_ASSERT_TRUE_MESSAGE(zero == TVO_ERR_PARAM || zero == TVO_ERR_DIMENSION, "dim 0 accepted");
-    TEST_ASSERT_TRUE_MESSAGE(big == TVO_ERR_PARAM || big == TVO_ERR_DIMENSION, "dim 9 accepted");
+    TEST_ASSERT_TRUE_MESSAGE(big == TVO_ERR_PARAM || big == TVO_ERR_DIMENSION, "dim above TVO_MAX_Z_DIM accepted");
 }
 
 static void test_null_pointers_are_rejected(void)
@@ -616,8 +646,9 @@ int main(void)
     RUN_TEST(test_k2_two_robots_are_decoupled);
     RUN_TEST(test_k2_custom_quartic_term_matches_hand_newton_step);
     RUN_TEST(test_k2_custom_term_closed_loop_identity);
-    RUN_TEST(test_indefinite_hessian_is_reported_and_output_zeroed);
-    RUN_TEST(test_singular_hessian_is_reported_and_output_zeroed);
+    RUN_TEST(test_indefinite_hessian_is_regularized_by_the_ladder);
+    RUN_TEST(test_singular_hessian_is_regularized_minimally);
+    RUN_TEST(test_positive_definite_hessian_is_not_regularized);
     RUN_TEST(test_non_finite_gradient_is_reported_and_output_zeroed);
     RUN_TEST(test_term_error_is_propagated_and_output_zeroed);
     RUN_TEST(test_non_finite_state_is_rejected);

@@ -9,12 +9,12 @@
 void setUp(void) {}
 void tearDown(void) {}
 
-typedef tvo_real_t mat_t[TVO_MAX_OUTPUT_DIM][TVO_MAX_OUTPUT_DIM];
+typedef tvo_real_t mat_t[TVO_MAX_Z_DIM][TVO_MAX_Z_DIM];
 
 static void mat_fill(mat_t a, double v)
 {
-    for (int i = 0; i < TVO_MAX_OUTPUT_DIM; ++i) {
-        for (int j = 0; j < TVO_MAX_OUTPUT_DIM; ++j) {
+    for (int i = 0; i < TVO_MAX_Z_DIM; ++i) {
+        for (int j = 0; j < TVO_MAX_Z_DIM; ++j) {
             a[i][j] = test_r(v);
         }
     }
@@ -82,7 +82,7 @@ static void test_overwrites_a_with_its_cholesky_factor(void)
 static void test_solves_8x8_known_solution(void)
 {
     /* A = 8 I + Lehmer(min(i,j)/max(i,j)) (SPD, condition number < 10), x_true_i = (-1)^i (i + 1) / 3. */
-    enum { n = TVO_MAX_OUTPUT_DIM };
+    enum { n = TVO_MAX_Z_DIM };
     double A[n][n], xt[n], bd[n];
     mat_t a;
     tvo_real_t b[n], x[n];
@@ -218,16 +218,16 @@ static void test_rejects_singular_block_inside_8x8(void)
     /* Identity except a rank-deficient 2x2 block in the last rows: the last pivot is 0. */
     mat_t a;
     mat_fill(a, 0.0);
-    for (int i = 0; i < TVO_MAX_OUTPUT_DIM; ++i) {
+    for (int i = 0; i < TVO_MAX_Z_DIM; ++i) {
         a[i][i] = TVO_R(1.0);
     }
     a[7][6] = TVO_R(1.0);
     a[6][7] = TVO_R(1.0);
-    tvo_real_t b[TVO_MAX_OUTPUT_DIM], x[TVO_MAX_OUTPUT_DIM];
-    for (int i = 0; i < TVO_MAX_OUTPUT_DIM; ++i) {
+    tvo_real_t b[TVO_MAX_Z_DIM], x[TVO_MAX_Z_DIM];
+    for (int i = 0; i < TVO_MAX_Z_DIM; ++i) {
         b[i] = TVO_R(1.0);
     }
-    ASSERT_STATUS(TVO_ERR_NOT_POSITIVE_DEFINITE, tvo_cholesky_solve(a, TVO_MAX_OUTPUT_DIM, b, x));
+    ASSERT_STATUS(TVO_ERR_NOT_POSITIVE_DEFINITE, tvo_cholesky_solve(a, TVO_MAX_Z_DIM, b, x));
 }
 
 static void test_rejects_non_finite_matrix(void)
@@ -246,13 +246,13 @@ static void test_rejects_dimension_zero_and_above_maximum(void)
 {
     mat_t a;
     mat_fill(a, 0.0);
-    for (int i = 0; i < TVO_MAX_OUTPUT_DIM; ++i) {
+    for (int i = 0; i < TVO_MAX_Z_DIM; ++i) {
         a[i][i] = TVO_R(1.0);
     }
-    tvo_real_t b[TVO_MAX_OUTPUT_DIM + 1] = {TVO_R(0.0)};
-    tvo_real_t x[TVO_MAX_OUTPUT_DIM + 1];
+    tvo_real_t b[TVO_MAX_Z_DIM + 1] = {TVO_R(0.0)};
+    tvo_real_t x[TVO_MAX_Z_DIM + 1];
     ASSERT_STATUS(TVO_ERR_DIMENSION, tvo_cholesky_solve(a, 0, b, x));
-    ASSERT_STATUS(TVO_ERR_DIMENSION, tvo_cholesky_solve(a, (uint8_t)(TVO_MAX_OUTPUT_DIM + 1), b, x));
+    ASSERT_STATUS(TVO_ERR_DIMENSION, tvo_cholesky_solve(a, (uint8_t)(TVO_MAX_Z_DIM + 1), b, x));
 }
 
 static void test_rejects_null(void)

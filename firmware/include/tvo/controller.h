@@ -85,6 +85,8 @@ typedef struct {
     tvo_real_t gradient[TVO_MAX_OUTPUT_DIM];
     tvo_real_t gradient_rate[TVO_MAX_OUTPUT_DIM];
     tvo_real_t accel_mps2[TVO_MAX_ROBOTS];            /* v' after limits */
+    tvo_real_t multiplier[TVO_MAX_EQUALITIES];        /* nu after the step (equality constraints) */
+    tvo_real_t regularization;                        /* Hessian shift of the solve, 0 if none */
 } tvo_controller_telemetry_t;
 
 typedef struct {
@@ -103,6 +105,8 @@ typedef struct {
     uint8_t stopped;                 /* watchdog safe stop in force */
     tvo_real_t speed_state_mps[TVO_MAX_ROBOTS];   /* dynamic extension v */
     tvo_real_t heading_estimate_rad[TVO_MAX_ROBOTS]; /* position-only mode: dead-reckoned heading */
+    tvo_real_t multiplier[TVO_MAX_EQUALITIES];       /* nu of equality constraints, at apply_tick */
+    tvo_real_t multiplier_rate[TVO_MAX_EQUALITIES];  /* nu' */
     tvo_command_t held;              /* command applied over the current interval */
     tvo_controller_telemetry_t telemetry;
     uint8_t initialized;
@@ -113,7 +117,9 @@ tvo_status_t tvo_controller_config_default(tvo_controller_config_t *cfg);
 
 /**
  * Validates every parameter (on TVO_ERR_PARAM *bad_param names the first wrong one; bad_param may
- * be NULL) and binds the objective (dim must be 2 * robot_count; it must outlive the controller).
+ * be NULL) and binds the objective (primal_dim must be 2 * robot_count; it must outlive the
+ * controller). Multipliers of equality constraints start at 0 and are integrated by the controller
+ * with the nu'' the law returns (they are not measured).
  * epoch_tick is the tick at which the objective's time is 0.
  */
 tvo_status_t tvo_controller_init(tvo_controller_t *ctl, const tvo_controller_config_t *cfg,

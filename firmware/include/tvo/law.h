@@ -8,6 +8,9 @@
  * objective's gradient along y(tau) = sum_{j<k} y^(j) tau^j / j!, t(tau) = t + tau: coefficient i
  * times i! is grad^(i) for i < k, and coefficient k times k! is r (y^(k) = 0 on that curve).
  * For k = 2 this is y'' = -H^{-1}(r + k_p g + k_d g').
+ *
+ * With equality constraints the same law runs on z = (y, nu) and the Lagrangian: H is then the KKT
+ * matrix and the solve is tvo_saddle_solve (which also regularises an indefinite primal block).
  */
 #ifndef TVO_LAW_H
 #define TVO_LAW_H
@@ -16,32 +19,34 @@
 
 typedef struct {
     uint8_t relative_degree;                       /* k */
-    uint8_t dim;                                   /* m */
+    uint8_t dim;                                   /* size of z: m (+ q multipliers) */
     tvo_real_t gain[TVO_MAX_RELATIVE_DEGREE];      /* a_0 .. a_{k-1}: s^k + a_{k-1} s^{k-1} + .. + a_0 */
 } tvo_law_t;
 
-/** y^(0..k-1) at the evaluation instant, each in R^dim. */
+/** z^(0..k-1) at the evaluation instant, each in R^dim. */
 typedef struct {
-    tvo_real_t d[TVO_MAX_RELATIVE_DEGREE][TVO_MAX_OUTPUT_DIM];
+    tvo_real_t d[TVO_MAX_RELATIVE_DEGREE][TVO_MAX_Z_DIM];
 } tvo_output_derivs_t;
 
 /** What the law computed, for telemetry and tests. */
 typedef struct {
-    tvo_real_t grad[TVO_MAX_RELATIVE_DEGREE + 1][TVO_MAX_OUTPUT_DIM]; /* grad^(0..k-1), then r */
-    tvo_real_t hessian[TVO_MAX_OUTPUT_DIM][TVO_MAX_OUTPUT_DIM];
+    tvo_real_t grad[TVO_MAX_RELATIVE_DEGREE + 1][TVO_MAX_Z_DIM]; /* grad^(0..k-1), then r */
+    tvo_real_t hessian[TVO_MAX_Z_DIM][TVO_MAX_Z_DIM];
+    tvo_real_t regularization;  /* shift mu added to the primal Hessian block (0: none needed) */
 } tvo_law_eval_t;
 
 /**
- * Validates k in 1..TVO_MAX_RELATIVE_DEGREE (TVO_ERR_PARAM), 1 <= dim <= TVO_MAX_OUTPUT_DIM
+ * Validates k in 1..TVO_MAX_RELATIVE_DEGREE (TVO_ERR_PARAM), 1 <= dim <= TVO_MAX_Z_DIM
  * (TVO_ERR_DIMENSION) and that the gains make s^k + a_{k-1}s^{k-1} + ... + a_0 Hurwitz
  * (Routh-Hurwitz; TVO_ERR_PARAM otherwise).
  */
 tvo_status_t tvo_law_init(tvo_law_t *law, uint8_t relative_degree, uint8_t dim, const tvo_real_t *gain);
 
 /**
- * y_k[0..dim-1] = y^(k) demanded by the law at (y^[k-1], t). eval may be NULL.
- * TVO_ERR_NOT_POSITIVE_DEFINITE if the Hessian is not positive definite; TVO_ERR_NUMERIC if a
- * result is not finite. On error y_k is zeroed.
+ * y_k[0..dim-1] = z^(k) demanded by the law at (z^[k-1], t). eval may be NULL.
+ * An indefinite or singular primal Hessian is regularised (eval->regularization > 0, see
+ * tvo/linsolve.h); TVO_ERR_NOT_POSITIVE_DEFINITE if even that fails or the equality constraints are
+ * dependent; TVO_ERR_NUMERIC if a result is not finite. On error y_k is zeroed.
  */
 tvo_status_t tvo_law_evaluate(const tvo_law_t *law, const tvo_objective_t *objective,
                               const tvo_output_derivs_t *y, const tvo_time_jet_t *t,

@@ -56,6 +56,7 @@ typedef enum {
 #define TVO_FLAG_HOLDING (1u << 4)          /* no usable measurement: previous command held */
 #define TVO_FLAG_SAFE_STOP (1u << 5)        /* watchdog expired or law failed: v = 0, omega = 0 */
 #define TVO_FLAG_PREDICTED (1u << 6)        /* state predicted over the computation delay */
+#define TVO_FLAG_REGULARIZED (1u << 7)      /* Hessian not positive definite: the solve shifted it */
 
 /** Short English description of a status, for logs at the edge (no stdio in the core). */
 const char *tvo_status_str(tvo_status_t status);

@@ -9,6 +9,7 @@
 #define TVO_TARGET_H
 
 #include "tvo/config.h"
+#include "tvo/jet.h"
 #include "tvo/objective.h"
 #include "tvo/status.h"
 
@@ -71,5 +72,8 @@ tvo_status_t tvo_target_stream_update(tvo_target_t *target, uint64_t stamp_ticks
  */
 tvo_status_t tvo_target_derivatives(const tvo_target_t *target, const tvo_time_jet_t *t, uint8_t order,
                                     tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2]);
+
+/** y_d(t(tau)) as one jet per axis, to the given order (c_j = y_d^(j)(t) rate^j / j!). */
+tvo_status_t tvo_target_jet(const tvo_target_t *target, const tvo_time_jet_t *t, uint8_t order, tvo_jet_t out[2]);
 
 #endif /* TVO_TARGET_H */

@@ -1,0 +1,196 @@
+/* Relaxed logarithmic barrier and its schedules; see tvo/barrier.h. */
+#include "tvo/barrier.h"
+
+#include <string.h>
+
+/* Stand-in for "never" when c does not grow (alpha_c = 0): far beyond any run, still finite. */
+#define BARRIER_NEVER_S TVO_R(1e30)
+
+tvo_status_t tvo_barrier_config_default(tvo_barrier_config_t *cfg)
+{
+    if (cfg == NULL) {
+        return TVO_ERR_NULL;
+    }
+    cfg->c0 = TVO_R(1.0);
+    cfg->alpha_c_per_s = TVO_R(1.0);
+    cfg->c_max = TVO_R(1e4);
+    cfg->delta0 = TVO_R(0.05);
+    cfg->alpha_s_per_s = TVO_R(1.0);
+    cfg->slack_margin = TVO_R(0.1);
+    cfg->relaxation_degree = 4u;
+    return TVO_OK;
+}
+
+static int positive_finite(tvo_real_t v)
+{
+    return isfinite(v) && v > TVO_R(0.0);
+}
+
+tvo_status_t tvo_barrier_init(tvo_barrier_t *barrier, const tvo_barrier_config_t *cfg, uint8_t relative_degree)
+{
+    if (barrier == NULL || cfg == NULL) {
+        return TVO_ERR_NULL;
+    }
+    memset(barrier, 0, sizeof(*barrier));
+    if (!positive_finite(cfg->c0) || !isfinite(cfg->alpha_c_per_s) || cfg->alpha_c_per_s < TVO_R(0.0) ||
+        !isfinite(cfg->c_max) || cfg->c_max < cfg->c0 || !positive_finite(cfg->delta0) ||
+        !positive_finite(cfg->alpha_s_per_s) || !positive_finite(cfg->slack_margin)) {
+        return TVO_ERR_PARAM;
+    }
+    /* m_r >= k + 1: the law differentiates the barrier's gradient k times. */
+    if (relative_degree == 0u || relative_degree > TVO_MAX_RELATIVE_DEGREE ||
+        cfg->relaxation_degree < relative_degree + 1u || cfg->relaxation_degree > TVO_BARRIER_MAX_DEGREE) {
+        return TVO_ERR_PARAM;
+    }
+    barrier->cfg = *cfg;
+    barrier->cap_time_s = (cfg->alpha_c_per_s > TVO_R(0.0))
+                              ? TVO_LOG(cfg->c_max / cfg->c0) / cfg->alpha_c_per_s
+                              : BARRIER_NEVER_S;
+    barrier->initialized = 1;
+    return TVO_OK;
+}
+
+tvo_status_t tvo_barrier_choose_slack(tvo_barrier_t *barrier, tvo_real_t max_constraint_value)
+{
+    if (barrier == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (!barrier->initialized) {
+        return TVO_ERR_NOT_INITIALIZED;
+    }
+    if (!isfinite(max_constraint_value)) {
+        return TVO_ERR_NOT_FINITE;
+    }
+    barrier->slack0 = (max_constraint_value < TVO_R(0.0)) ? TVO_R(0.0)
+                                                          : max_constraint_value + barrier->cfg.slack_margin;
+    return TVO_OK;
+}
+
+/* c(t) and whether it still grows (past the cap it is constant). */
+static tvo_real_t barrier_c(const tvo_barrier_t *barrier, tvo_real_t t_s, int *growing)
+{
+    if (t_s >= barrier->cap_time_s) {
+        *growing = 0;
+        return barrier->cfg.c_max;
+    }
+    *growing = barrier->cfg.alpha_c_per_s > TVO_R(0.0);
+    return barrier->cfg.c0 * TVO_EXP(barrier->cfg.alpha_c_per_s * t_s);
+}
+
+tvo_status_t tvo_barrier_schedule(const tvo_barrier_t *barrier, tvo_real_t t_s, tvo_real_t *c, tvo_real_t *slack,
+                                  tvo_real_t *delta)
+{
+    if (barrier == NULL || c == NULL || slack == NULL || delta == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (!barrier->initialized) {
+        return TVO_ERR_NOT_INITIALIZED;
+    }
+    if (!isfinite(t_s)) {
+        return TVO_ERR_NOT_FINITE;
+    }
+    int growing = 0;
+    *c = barrier_c(barrier, t_s, &growing);
+    *slack = barrier->slack0 * TVO_EXP(-barrier->cfg.alpha_s_per_s * t_s);
+    *delta = barrier->cfg.delta0 / *c;
+    return TVO_OK;
+}
+
+tvo_status_t tvo_barrier_derivatives(uint8_t relaxation_degree, tvo_real_t sigma, tvo_real_t delta, uint8_t order,
+                                     tvo_real_t *derivs)
+{
+    if (derivs == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (relaxation_degree == 0u || relaxation_degree > TVO_BARRIER_MAX_DEGREE || order > TVO_BARRIER_MAX_DEGREE) {
+        return TVO_ERR_PARAM;
+    }
+    if (!isfinite(sigma) || !positive_finite(delta)) {
+        return TVO_ERR_NOT_FINITE;
+    }
+    if (sigma >= delta) {
+        /* d^n/dsigma^n (-log sigma) = (-1)^n (n-1)! / sigma^n for n >= 1. */
+        derivs[0] = -TVO_LOG(sigma);
+        tvo_real_t term = TVO_R(-1.0) / sigma;
+        for (uint8_t n = 1; n <= order; ++n) {
+            derivs[n] = term;
+            term *= -(tvo_real_t)n / sigma;
+        }
+        return TVO_OK;
+    }
+    /* With u = (delta - sigma)/delta: B = -log delta + sum_j u^j / j and du/dsigma = -1/delta, so
+     * d^n B/dsigma^n = (-1/delta)^n sum_{j>=max(n,1)} (j-1)!/(j-n)! u^(j-n). */
+    const tvo_real_t u = (delta - sigma) / delta;
+    tvo_real_t chain = TVO_R(1.0);
+    for (uint8_t n = 0; n <= order; ++n) {
+        tvo_real_t sum = (n == 0u) ? -TVO_LOG(delta) : TVO_R(0.0);
+        for (uint8_t j = (n == 0u) ? 1u : n; j <= relaxation_degree; ++j) {
+            /* (j-1)!/(j-n)! u^(j-n) / (n==0 ? j : 1): falling product of j-1 down to j-n+1. */
+            tvo_real_t coeff = (n == 0u) ? TVO_R(1.0) / (tvo_real_t)j : TVO_R(1.0);
+            for (uint8_t f = 1; f < n; ++f) {
+                coeff *= (tvo_real_t)(j - f);
+            }
+            tvo_real_t power = TVO_R(1.0);
+            for (uint8_t e = 0; e < j - n; ++e) {
+                power *= u;
+            }
+            sum += coeff * power;
+        }
+        derivs[n] = chain * sum;
+        chain *= TVO_R(-1.0) / delta;
+    }
+    return TVO_OK;
+}
+
+tvo_status_t tvo_barrier_weight_jet(const tvo_barrier_t *barrier, const tvo_jet_t *f_jet, const tvo_time_jet_t *t,
+                                    uint8_t order, tvo_jet_t *w_jet)
+{
+    if (barrier == NULL || f_jet == NULL || t == NULL || w_jet == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (!barrier->initialized) {
+        return TVO_ERR_NOT_INITIALIZED;
+    }
+    if (order > TVO_JET_MAX_ORDER) {
+        return TVO_ERR_PARAM;
+    }
+    /* c(t + rate tau) and s(t + rate tau) as jets: exponentials in tau. */
+    int growing = 0;
+    const tvo_real_t c_now = barrier_c(barrier, t->t_s, &growing);
+    const tvo_real_t c_rate = growing ? barrier->cfg.alpha_c_per_s * t->rate : TVO_R(0.0);
+    const tvo_real_t s_now = barrier->slack0 * TVO_EXP(-barrier->cfg.alpha_s_per_s * t->t_s);
+    const tvo_real_t s_rate = -barrier->cfg.alpha_s_per_s * t->rate;
+    tvo_jet_t c_jet;
+    tvo_jet_t sigma;
+    tvo_jet_constant(TVO_R(0.0), &c_jet);
+    tvo_jet_constant(TVO_R(0.0), &sigma);
+    tvo_real_t c_term = c_now;
+    tvo_real_t s_term = s_now;
+    for (uint8_t j = 0; j <= order; ++j) {
+        c_jet.c[j] = c_term;
+        sigma.c[j] = s_term - f_jet->c[j];
+        c_term *= c_rate / (tvo_real_t)(j + 1u);
+        s_term *= s_rate / (tvo_real_t)(j + 1u);
+    }
+    /* c sigma / delta0 = 1 + x: the branch is the logarithm when it is >= 1 at tau = 0. */
+    tvo_jet_t c_sigma;
+    tvo_jet_mul(&c_jet, &sigma, order, &c_sigma);
+    if (c_sigma.c[0] >= barrier->cfg.delta0) {
+        tvo_jet_t one;
+        tvo_jet_constant(TVO_R(1.0), &one);
+        tvo_jet_div(&one, &c_sigma, order, w_jet); /* w = 1 / (c sigma) */
+    } else {
+        /* w = (1/delta0) sum_{j<m_r} u^j with u = -x = 1 - c sigma / delta0, by Horner. */
+        tvo_jet_t u;
+        tvo_jet_scale(&c_sigma, TVO_R(-1.0) / barrier->cfg.delta0, order, &u);
+        u.c[0] += TVO_R(1.0);
+        tvo_jet_t acc;
+        tvo_jet_constant(TVO_R(1.0), &acc);
+        for (uint8_t j = 1; j < barrier->cfg.relaxation_degree && j < TVO_BARRIER_MAX_DEGREE; ++j) {
+            tvo_jet_mul(&acc, &u, order, &acc);
+            acc.c[0] += TVO_R(1.0);
+        }
+        tvo_jet_scale(&acc, TVO_R(1.0) / barrier->cfg.delta0, order, w_jet);
+    }
+    return tvo_jet_is_finite(w_jet, order) ? TVO_OK : TVO_ERR_NUMERIC;
+}

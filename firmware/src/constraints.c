@@ -1,0 +1,332 @@
+/* Inequality-constraint terms through the relaxed barrier; see tvo/constraints.h. */
+#include "tvo/constraints.h"
+
+#include <string.h>
+
+/* A robot centre closer than this to an obstacle centre has no defined separating plane. */
+#define FREE_SPACE_MIN_CENTER_DISTANCE_M TVO_R(1e-6)
+
+static int finite2(const tvo_real_t v[2])
+{
+    return isfinite(v[0]) && isfinite(v[1]);
+}
+
+/* value + rate (t + t_rate tau) as a jet. */
+static void affine_time_jet(tvo_real_t value, tvo_real_t rate, const tvo_time_jet_t *t, tvo_jet_t *out)
+{
+    tvo_jet_variable(value + rate * t->t_s, rate * t->rate, out);
+}
+
+/* grad[index] += w * df (jets). */
+static void add_weighted(tvo_jet_t *grad, uint8_t index, const tvo_jet_t *w, const tvo_jet_t *df, uint8_t order)
+{
+    tvo_jet_t product;
+    tvo_jet_mul(w, df, order, &product);
+    tvo_jet_add(&grad[index], &product, order, &grad[index]);
+}
+
+/* ---------------------------------------------------------------- distance bounds */
+
+tvo_status_t tvo_distance_term_init(tvo_distance_term_t *term, const tvo_barrier_t *barrier, tvo_distance_kind_t kind,
+                                    uint8_t robot_a, uint8_t robot_b, tvo_real_t bound_m, tvo_real_t bound_rate_mps)
+{
+    if (term == NULL || barrier == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (robot_a >= TVO_MAX_ROBOTS || robot_b >= TVO_MAX_ROBOTS) {
+        return TVO_ERR_DIMENSION;
+    }
+    if (!isfinite(bound_m) || !isfinite(bound_rate_mps)) {
+        return TVO_ERR_NOT_FINITE;
+    }
+    if (robot_a == robot_b || !(bound_m > TVO_R(0.0)) || (kind != TVO_DISTANCE_MIN && kind != TVO_DISTANCE_MAX)) {
+        return TVO_ERR_PARAM;
+    }
+    term->barrier = barrier;
+    term->kind = kind;
+    term->offset_a = (uint8_t)(2u * robot_a);
+    term->offset_b = (uint8_t)(2u * robot_b);
+    term->bound_m = bound_m;
+    term->bound_rate_mps = bound_rate_mps;
+    return TVO_OK;
+}
+
+/* Sign of f in |D|^2: +1 for a maximum bound (|D|^2 - d^2), -1 for a minimum (d^2 - |D|^2). */
+static tvo_real_t distance_sign(const tvo_distance_term_t *self)
+{
+    return (self->kind == TVO_DISTANCE_MAX) ? TVO_R(1.0) : TVO_R(-1.0);
+}
+
+tvo_status_t tvo_distance_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
+                                       uint8_t order, tvo_jet_t *grad)
+{
+    const tvo_distance_term_t *self = (const tvo_distance_term_t *)term;
+    if (self == NULL || z == NULL || t == NULL || grad == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if ((unsigned)self->offset_a + 2u > dim || (unsigned)self->offset_b + 2u > dim) {
+        return TVO_ERR_DIMENSION;
+    }
+    tvo_jet_t bound;
+    affine_time_jet(self->bound_m, self->bound_rate_mps, t, &bound);
+    if (!(bound.c[0] > TVO_R(0.0))) {
+        return TVO_ERR_PARAM; /* the schedule d(t) ran through zero */
+    }
+    const tvo_real_t sign = distance_sign(self);
+    tvo_jet_t diff[2];
+    tvo_jet_t f;
+    tvo_jet_mul(&bound, &bound, order, &f);
+    tvo_jet_scale(&f, -sign, order, &f);
+    for (uint8_t axis = 0; axis < 2u; ++axis) {
+        tvo_jet_t square;
+        tvo_jet_sub(&z[self->offset_a + axis], &z[self->offset_b + axis], order, &diff[axis]);
+        tvo_jet_mul(&diff[axis], &diff[axis], order, &square);
+        tvo_jet_axpy(sign, &square, order, &f);
+    }
+    tvo_jet_t w;
+    const tvo_status_t st = tvo_barrier_weight_jet(self->barrier, &f, t, order, &w);
+    if (st != TVO_OK) {
+        return st;
+    }
+    for (uint8_t axis = 0; axis < 2u; ++axis) {
+        /* grad_{y_a} f = 2 sign D, grad_{y_b} f = -2 sign D. */
+        tvo_jet_t df;
+        tvo_jet_scale(&diff[axis], TVO_R(2.0) * sign, order, &df);
+        add_weighted(grad, (uint8_t)(self->offset_a + axis), &w, &df, order);
+        tvo_jet_scale(&df, TVO_R(-1.0), order, &df);
+        add_weighted(grad, (uint8_t)(self->offset_b + axis), &w, &df, order);
+    }
+    return TVO_OK;
+}
+
+tvo_status_t tvo_distance_constraint_max(const void *term, const tvo_real_t *y, uint8_t primal_dim, tvo_real_t t_s,
+                                         tvo_real_t *max_value)
+{
+    const tvo_distance_term_t *self = (const tvo_distance_term_t *)term;
+    if (self == NULL || y == NULL || max_value == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if ((unsigned)self->offset_a + 2u > primal_dim || (unsigned)self->offset_b + 2u > primal_dim) {
+        return TVO_ERR_DIMENSION;
+    }
+    const tvo_real_t dx = y[self->offset_a] - y[self->offset_b];
+    const tvo_real_t dy = y[self->offset_a + 1u] - y[self->offset_b + 1u];
+    const tvo_real_t bound = self->bound_m + self->bound_rate_mps * t_s;
+    *max_value = distance_sign(self) * (dx * dx + dy * dy - bound * bound);
+    return TVO_OK;
+}
+
+/* ---------------------------------------------------------------- half-spaces */
+
+tvo_status_t tvo_halfspace_term_init(tvo_halfspace_term_t *term, const tvo_barrier_t *barrier, uint8_t robot,
+                                     const tvo_real_t normal[2], const tvo_real_t normal_rate[2], tvo_real_t bound_m,
+                                     tvo_real_t bound_rate_mps)
+{
+    if (term == NULL || barrier == NULL || normal == NULL || normal_rate == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (robot >= TVO_MAX_ROBOTS) {
+        return TVO_ERR_DIMENSION;
+    }
+    if (!finite2(normal) || !finite2(normal_rate) || !isfinite(bound_m) || !isfinite(bound_rate_mps)) {
+        return TVO_ERR_NOT_FINITE;
+    }
+    if (normal[0] == TVO_R(0.0) && normal[1] == TVO_R(0.0)) {
+        return TVO_ERR_PARAM;
+    }
+    term->barrier = barrier;
+    term->offset = (uint8_t)(2u * robot);
+    for (uint8_t axis = 0; axis < 2u; ++axis) {
+        term->normal[axis] = normal[axis];
+        term->normal_rate[axis] = normal_rate[axis];
+    }
+    term->bound_m = bound_m;
+    term->bound_rate_mps = bound_rate_mps;
+    return TVO_OK;
+}
+
+tvo_status_t tvo_halfspace_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
+                                        uint8_t order, tvo_jet_t *grad)
+{
+    const tvo_halfspace_term_t *self = (const tvo_halfspace_term_t *)term;
+    if (self == NULL || z == NULL || t == NULL || grad == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if ((unsigned)self->offset + 2u > dim) {
+        return TVO_ERR_DIMENSION;
+    }
+    tvo_jet_t normal[2];
+    tvo_jet_t f;
+    affine_time_jet(-self->bound_m, -self->bound_rate_mps, t, &f);
+    for (uint8_t axis = 0; axis < 2u; ++axis) {
+        tvo_jet_t product;
+        affine_time_jet(self->normal[axis], self->normal_rate[axis], t, &normal[axis]);
+        tvo_jet_mul(&normal[axis], &z[self->offset + axis], order, &product);
+        tvo_jet_add(&f, &product, order, &f);
+    }
+    tvo_jet_t w;
+    const tvo_status_t st = tvo_barrier_weight_jet(self->barrier, &f, t, order, &w);
+    if (st != TVO_OK) {
+        return st;
+    }
+    for (uint8_t axis = 0; axis < 2u; ++axis) {
+        add_weighted(grad, (uint8_t)(self->offset + axis), &w, &normal[axis], order);
+    }
+    return TVO_OK;
+}
+
+tvo_status_t tvo_halfspace_constraint_max(const void *term, const tvo_real_t *y, uint8_t primal_dim, tvo_real_t t_s,
+                                          tvo_real_t *max_value)
+{
+    const tvo_halfspace_term_t *self = (const tvo_halfspace_term_t *)term;
+    if (self == NULL || y == NULL || max_value == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if ((unsigned)self->offset + 2u > primal_dim) {
+        return TVO_ERR_DIMENSION;
+    }
+    tvo_real_t f = -(self->bound_m + self->bound_rate_mps * t_s);
+    for (uint8_t axis = 0; axis < 2u; ++axis) {
+        f += (self->normal[axis] + self->normal_rate[axis] * t_s) * y[self->offset + axis];
+    }
+    *max_value = f;
+    return TVO_OK;
+}
+
+/* ---------------------------------------------------------------- local free space among disks */
+
+tvo_real_t tvo_disk_clearance(const tvo_disk_t *obstacle, tvo_real_t robot_radius_m, const tvo_real_t position_m[2])
+{
+    if (obstacle == NULL || position_m == NULL) {
+        return TVO_R(0.0);
+    }
+    const tvo_real_t dx = position_m[0] - obstacle->center_m[0];
+    const tvo_real_t dy = position_m[1] - obstacle->center_m[1];
+    return TVO_SQRT(dx * dx + dy * dy) - robot_radius_m - obstacle->radius_m;
+}
+
+tvo_status_t tvo_free_space_term_init(tvo_free_space_term_t *term, const tvo_barrier_t *barrier, uint8_t robot,
+                                      tvo_real_t robot_radius_m, const tvo_disk_t *obstacles, uint8_t count)
+{
+    if (term == NULL || barrier == NULL || obstacles == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (robot >= TVO_MAX_ROBOTS || count == 0u || count > TVO_MAX_OBSTACLES) {
+        return TVO_ERR_DIMENSION;
+    }
+    if (!isfinite(robot_radius_m)) {
+        return TVO_ERR_NOT_FINITE;
+    }
+    if (robot_radius_m < TVO_R(0.0)) {
+        return TVO_ERR_PARAM;
+    }
+    for (uint8_t i = 0; i < count; ++i) {
+        if (!finite2(obstacles[i].center_m) || !isfinite(obstacles[i].radius_m)) {
+            return TVO_ERR_NOT_FINITE;
+        }
+        if (!(obstacles[i].radius_m > TVO_R(0.0))) {
+            return TVO_ERR_PARAM;
+        }
+        for (uint8_t j = 0; j < i; ++j) {
+            /* The local free space is built for non-intersecting obstacles. */
+            if (tvo_disk_clearance(&obstacles[j], obstacles[i].radius_m, obstacles[i].center_m) <= TVO_R(0.0)) {
+                return TVO_ERR_PARAM;
+            }
+        }
+    }
+    memset(term, 0, sizeof(*term));
+    term->barrier = barrier;
+    term->offset = (uint8_t)(2u * robot);
+    term->obstacle_count = count;
+    term->robot_radius_m = robot_radius_m;
+    for (uint8_t i = 0; i < count; ++i) {
+        term->obstacle[i] = obstacles[i];
+    }
+    return TVO_OK;
+}
+
+/* The separating half-plane a^T y <= b of obstacle i for a robot centred at y_c. */
+static tvo_status_t free_space_plane(const tvo_free_space_term_t *self, uint8_t i, const tvo_real_t y_c[2],
+                                     tvo_real_t normal[2], tvo_real_t *bound)
+{
+    const tvo_disk_t *o = &self->obstacle[i];
+    normal[0] = o->center_m[0] - y_c[0];
+    normal[1] = o->center_m[1] - y_c[1];
+    const tvo_real_t dist_sq = normal[0] * normal[0] + normal[1] * normal[1];
+    const tvo_real_t dist = TVO_SQRT(dist_sq);
+    if (!(dist > FREE_SPACE_MIN_CENTER_DISTANCE_M)) {
+        return TVO_ERR_NUMERIC;
+    }
+    const tvo_real_t r = self->robot_radius_m;
+    const tvo_real_t theta = TVO_R(0.5) - (o->radius_m * o->radius_m - r * r) / (TVO_R(2.0) * dist_sq);
+    tvo_real_t b = TVO_R(0.0);
+    for (uint8_t axis = 0; axis < 2u; ++axis) {
+        const tvo_real_t point = theta * o->center_m[axis] + (TVO_R(1.0) - theta) * y_c[axis] - r * normal[axis] / dist;
+        b += normal[axis] * point;
+    }
+    *bound = b;
+    return TVO_OK;
+}
+
+tvo_status_t tvo_free_space_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
+                                         uint8_t order, tvo_jet_t *grad)
+{
+    const tvo_free_space_term_t *self = (const tvo_free_space_term_t *)term;
+    if (self == NULL || z == NULL || t == NULL || grad == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if ((unsigned)self->offset + 2u > dim) {
+        return TVO_ERR_DIMENSION;
+    }
+    /* y_c frozen at the current output: the planes do not move along the jet (see the header). */
+    const tvo_real_t y_c[2] = {z[self->offset].c[0], z[self->offset + 1u].c[0]};
+    for (uint8_t i = 0; i < self->obstacle_count && i < TVO_MAX_OBSTACLES; ++i) {
+        tvo_real_t normal[2];
+        tvo_real_t bound;
+        tvo_status_t st = free_space_plane(self, i, y_c, normal, &bound);
+        if (st != TVO_OK) {
+            return st;
+        }
+        tvo_jet_t f;
+        tvo_jet_constant(-bound, &f);
+        tvo_jet_axpy(normal[0], &z[self->offset], order, &f);
+        tvo_jet_axpy(normal[1], &z[self->offset + 1u], order, &f);
+        tvo_jet_t w;
+        st = tvo_barrier_weight_jet(self->barrier, &f, t, order, &w);
+        if (st != TVO_OK) {
+            return st;
+        }
+        tvo_jet_axpy(normal[0], &w, order, &grad[self->offset]);
+        tvo_jet_axpy(normal[1], &w, order, &grad[self->offset + 1u]);
+    }
+    return TVO_OK;
+}
+
+tvo_status_t tvo_free_space_constraint_max(const void *term, const tvo_real_t *y, uint8_t primal_dim, tvo_real_t t_s,
+                                           tvo_real_t *max_value)
+{
+    const tvo_free_space_term_t *self = (const tvo_free_space_term_t *)term;
+    (void)t_s;
+    if (self == NULL || y == NULL || max_value == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if ((unsigned)self->offset + 2u > primal_dim) {
+        return TVO_ERR_DIMENSION;
+    }
+    const tvo_real_t y_c[2] = {y[self->offset], y[self->offset + 1u]};
+    tvo_real_t worst = TVO_R(0.0);
+    for (uint8_t i = 0; i < self->obstacle_count && i < TVO_MAX_OBSTACLES; ++i) {
+        tvo_real_t normal[2];
+        tvo_real_t bound;
+        const tvo_status_t st = free_space_plane(self, i, y_c, normal, &bound);
+        if (st != TVO_OK) {
+            return st;
+        }
+        const tvo_real_t f = normal[0] * y_c[0] + normal[1] * y_c[1] - bound;
+        if (i == 0u || f > worst) {
+            worst = f;
+        }
+    }
+    *max_value = worst;
+    return TVO_OK;
+}

@@ -1,0 +1,194 @@
+/* A whole planning problem assembled from a plain description; see tvo/problem.h. */
+#include "tvo/problem.h"
+
+#include <string.h>
+
+enum {
+    PART_ROBOTS = 0,
+    PART_BARRIER = 1,
+    PART_DISTANCE = 2,
+    PART_HALFSPACE = 3,
+    PART_OBSTACLES = 4,
+    PART_OFFSETS = 5
+};
+
+tvo_status_t tvo_problem_desc_default(tvo_problem_desc_t *desc)
+{
+    if (desc == NULL) {
+        return TVO_ERR_NULL;
+    }
+    memset(desc, 0, sizeof(*desc));
+    for (uint8_t r = 0; r < TVO_MAX_ROBOTS; ++r) {
+        desc->tracking_weight[r][0] = TVO_R(1.0);
+        desc->tracking_weight[r][1] = TVO_R(1.0);
+    }
+    return tvo_barrier_config_default(&desc->barrier);
+}
+
+static tvo_status_t add_distance(tvo_problem_t *problem, tvo_distance_kind_t kind, const tvo_distance_bound_desc_t *d,
+                                 tvo_real_t bound_m, tvo_real_t rate_mps)
+{
+    if (problem->distance_term_count >= 2u * TVO_MAX_DISTANCE_BOUNDS) {
+        return TVO_ERR_CAPACITY;
+    }
+    tvo_distance_term_t *term = &problem->distance[problem->distance_term_count];
+    tvo_status_t st = tvo_distance_term_init(term, &problem->barrier, kind, d->robot_a, d->robot_b, bound_m, rate_mps);
+    if (st == TVO_OK) {
+        st = tvo_objective_add_constraint(&problem->objective, tvo_distance_gradient_jet, tvo_distance_constraint_max,
+                                          term);
+    }
+    if (st == TVO_OK) {
+        problem->distance_term_count++;
+    }
+    return st;
+}
+
+static tvo_status_t build_constraints(tvo_problem_t *problem, const tvo_problem_desc_t *desc, uint8_t *part)
+{
+    const uint8_t n = desc->robot_count;
+    tvo_status_t st = TVO_OK;
+    *part = PART_DISTANCE;
+    if (desc->distance_count > TVO_MAX_DISTANCE_BOUNDS) {
+        return TVO_ERR_CAPACITY;
+    }
+    for (uint8_t i = 0; st == TVO_OK && i < desc->distance_count; ++i) {
+        const tvo_distance_bound_desc_t *d = &desc->distance[i];
+        if (d->robot_a >= n || d->robot_b >= n || !isfinite(d->min_m) || !isfinite(d->max_m) || d->min_m < TVO_R(0.0) ||
+            d->max_m < TVO_R(0.0) || (d->min_m == TVO_R(0.0) && d->max_m == TVO_R(0.0)) ||
+            (d->max_m > TVO_R(0.0) && d->min_m >= d->max_m)) {
+            return TVO_ERR_PARAM;
+        }
+        if (d->min_m > TVO_R(0.0)) {
+            st = add_distance(problem, TVO_DISTANCE_MIN, d, d->min_m, d->min_rate_mps);
+        }
+        if (st == TVO_OK && d->max_m > TVO_R(0.0)) {
+            st = add_distance(problem, TVO_DISTANCE_MAX, d, d->max_m, d->max_rate_mps);
+        }
+    }
+    if (st != TVO_OK) {
+        return st;
+    }
+    *part = PART_HALFSPACE;
+    if (desc->halfspace_count > TVO_MAX_HALFSPACES) {
+        return TVO_ERR_CAPACITY;
+    }
+    for (uint8_t i = 0; st == TVO_OK && i < desc->halfspace_count; ++i) {
+        const tvo_halfspace_desc_t *h = &desc->halfspace[i];
+        if (h->robot >= n) {
+            return TVO_ERR_PARAM;
+        }
+        st = tvo_halfspace_term_init(&problem->halfspace[i], &problem->barrier, h->robot, h->normal, h->normal_rate,
+                                     h->bound_m, h->bound_rate_mps);
+        if (st == TVO_OK) {
+            st = tvo_objective_add_constraint(&problem->objective, tvo_halfspace_gradient_jet,
+                                              tvo_halfspace_constraint_max, &problem->halfspace[i]);
+        }
+    }
+    if (st != TVO_OK) {
+        return st;
+    }
+    *part = PART_OBSTACLES;
+    if (desc->obstacle_count > TVO_MAX_OBSTACLES) {
+        return TVO_ERR_CAPACITY;
+    }
+    for (uint8_t r = 0; st == TVO_OK && desc->obstacle_count > 0u && r < n; ++r) {
+        st = tvo_free_space_term_init(&problem->free_space[r], &problem->barrier, r, desc->robot_radius_m,
+                                      desc->obstacle, desc->obstacle_count);
+        if (st == TVO_OK) {
+            st = tvo_objective_add_constraint(&problem->objective, tvo_free_space_gradient_jet,
+                                              tvo_free_space_constraint_max, &problem->free_space[r]);
+        }
+    }
+    return st;
+}
+
+tvo_status_t tvo_problem_init(tvo_problem_t *problem, const tvo_problem_desc_t *desc, uint8_t relative_degree,
+                              uint8_t *bad_part)
+{
+    uint8_t part = PART_ROBOTS;
+    if (bad_part != NULL) {
+        *bad_part = PART_ROBOTS;
+    }
+    if (problem == NULL || desc == NULL) {
+        return TVO_ERR_NULL;
+    }
+    memset(problem, 0, sizeof(*problem));
+    const uint8_t n = desc->robot_count;
+    tvo_status_t st = (n == 0u || n > TVO_MAX_ROBOTS) ? TVO_ERR_DIMENSION : TVO_OK;
+    if (st == TVO_OK) {
+        st = tvo_objective_init(&problem->objective, (uint8_t)(2u * n));
+    }
+    for (uint8_t r = 0; st == TVO_OK && r < n; ++r) {
+        problem->target[r] = desc->target[r];
+        st = tvo_tracking_init(&problem->tracking[r], &problem->target[r], desc->tracking_weight[r], (uint8_t)(2u * r));
+        if (st == TVO_OK) {
+            st = tvo_objective_add_term(&problem->objective, tvo_tracking_gradient_jet, &problem->tracking[r]);
+        }
+    }
+    const uint8_t any_inequality = (uint8_t)(desc->distance_count > 0u || desc->halfspace_count > 0u ||
+                                             desc->obstacle_count > 0u);
+    if (st == TVO_OK && any_inequality) {
+        part = PART_BARRIER;
+        st = tvo_barrier_init(&problem->barrier, &desc->barrier, relative_degree);
+        if (st == TVO_OK) {
+            st = build_constraints(problem, desc, &part);
+        }
+    }
+    if (st == TVO_OK) {
+        part = PART_OFFSETS;
+        if (desc->offset_count > TVO_MAX_OFFSET_EQUALITIES) {
+            st = TVO_ERR_CAPACITY;
+        }
+    }
+    for (uint8_t i = 0; st == TVO_OK && i < desc->offset_count; ++i) {
+        const tvo_offset_desc_t *o = &desc->offset[i];
+        if (o->robot_a >= n || o->robot_b >= n) {
+            st = TVO_ERR_PARAM;
+            break;
+        }
+        problem->offset_function[i] = o->offset;
+        st = tvo_offset_equality_add(&problem->offset[i], &problem->objective, &problem->offset_function[i],
+                                     o->robot_a, o->robot_b);
+    }
+    if (st != TVO_OK) {
+        if (bad_part != NULL) {
+            *bad_part = part;
+        }
+        memset(problem, 0, sizeof(*problem));
+        return st;
+    }
+    problem->has_inequalities = any_inequality;
+    problem->initialized = 1;
+    return TVO_OK;
+}
+
+tvo_status_t tvo_problem_choose_slack(tvo_problem_t *problem, const tvo_real_t *y, tvo_real_t t_s)
+{
+    if (problem == NULL || y == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (!problem->initialized) {
+        return TVO_ERR_NOT_INITIALIZED;
+    }
+    if (!problem->has_inequalities || problem->slack_chosen) {
+        return TVO_OK;
+    }
+    tvo_real_t max_value = TVO_R(0.0);
+    uint8_t has_constraints = 0;
+    tvo_status_t st = tvo_objective_constraint_max(&problem->objective, y, t_s, &max_value, &has_constraints);
+    if (st == TVO_OK && has_constraints) {
+        st = tvo_barrier_choose_slack(&problem->barrier, max_value);
+    }
+    if (st == TVO_OK) {
+        problem->slack_chosen = 1;
+    }
+    return st;
+}
+
+tvo_target_t *tvo_problem_target(tvo_problem_t *problem, uint8_t robot)
+{
+    if (problem == NULL || !problem->initialized || robot >= problem->objective.primal_dim / 2u) {
+        return NULL;
+    }
+    return &problem->target[robot];
+}
