@@ -7,27 +7,19 @@
 #define LADDER_STEPS 9u
 #define LADDER_FIRST_SCALE TVO_R(1e-6)
 
-/* In-place LL^T of the leading n x n block; 0 if a pivot is not above the relative floor. */
+/* In-place LL^T of the leading n x n block; 0 if a pivot is not above its floor.
+ * Each pivot must keep more than 64 eps of its own diagonal entry: the test of Cholesky on the
+ * diagonally scaled matrix, so a barrier that stiffens one direction by 1e6 does not make the soft
+ * directions look singular (a floor relative to the largest diagonal would). */
 static int cholesky_factor(tvo_matrix_t a, uint8_t n)
 {
-    tvo_real_t max_diag = TVO_R(0.0);
-    for (uint8_t i = 0; i < n; ++i) {
-        if (a[i][i] > max_diag) {
-            max_diag = a[i][i];
-        }
-    }
-    if (!(max_diag > TVO_R(0.0))) {
-        return 0;
-    }
-    /* A pivot must exceed this fraction of the largest diagonal entry: a relative test, so the
-     * verdict does not depend on the objective's scale. */
-    const tvo_real_t pivot_floor = max_diag * TVO_R(64.0) * TVO_EPSILON;
     for (uint8_t j = 0; j < n; ++j) {
-        tvo_real_t d = a[j][j];
+        const tvo_real_t diagonal = a[j][j];
+        tvo_real_t d = diagonal;
         for (uint8_t k = 0; k < j; ++k) {
             d -= a[j][k] * a[j][k];
         }
-        if (!(d > pivot_floor)) {
+        if (!(diagonal > TVO_R(0.0)) || !(d > TVO_R(64.0) * TVO_EPSILON * diagonal)) {
             return 0;
         }
         const tvo_real_t l_jj = TVO_SQRT(d);
