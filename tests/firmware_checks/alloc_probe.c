@@ -1,12 +1,14 @@
 /*
  * Link probe for the allocation check: a bare-metal program that uses the whole control core
- * (controller, law, objective, tracking term, every target kind, status strings) so that a
+ * (controller, law, objective, tracking term, every target kind, the problem assembly with every
+ * constraint kind and an equality, status strings) so that a
  * --gc-sections link keeps everything the firmware would keep. The check then looks for allocator
  * symbols in the ELF. Not meant to run; inputs are volatile so nothing is constant-folded away.
  */
 #include <stdint.h>
 
 #include "tvo/controller.h"
+#include "tvo/problem.h"
 #include "tvo/status.h"
 #include "tvo/target.h"
 #include "tvo/tracking.h"
@@ -21,6 +23,8 @@ static tvo_target_t targets[3];
 static tvo_tracking_term_t terms[3];
 static tvo_objective_t objective;
 static tvo_controller_t controller;
+static tvo_problem_t problem;
+static tvo_controller_t constrained_controller;
 
 static uint32_t failures;
 
@@ -82,6 +86,36 @@ int main(void)
         status = tvo_controller_step(&controller, (n == 3u) ? NULL : &meas, apply_tick, &cmd);
         flags |= cmd.flags;
     }
+    /* Every constraint kind and an equality, through the problem assembly. */
+    static tvo_problem_desc_t desc;
+    uint8_t bad_part = 0u;
+    check(tvo_problem_desc_default(&desc));
+    desc.robot_count = 2u;
+    desc.target[0] = targets[0];
+    desc.target[1] = targets[1];
+    desc.distance_count = 1u;
+    desc.distance[0].robot_b = 1u;
+    desc.distance[0].min_m = TVO_R(0.5);
+    desc.distance[0].max_m = TVO_R(3.0);
+    desc.halfspace_count = 1u;
+    desc.halfspace[0].normal[0] = TVO_R(1.0);
+    desc.halfspace[0].bound_m = TVO_R(10.0);
+    desc.obstacle_count = 1u;
+    desc.robot_radius_m = TVO_R(0.2);
+    desc.obstacle[0].center_m[0] = TVO_R(5.0);
+    desc.obstacle[0].radius_m = TVO_R(1.0);
+    desc.offset_count = 1u;
+    desc.offset[0].robot_b = 1u;
+    desc.offset[0].offset = targets[2];
+    check(tvo_problem_init(&problem, &desc, 2u, &bad_part));
+    cfg.robot_count = 2u;
+    check(tvo_controller_init(&constrained_controller, &cfg, &problem.objective, input_tick, &bad_param));
+    const tvo_real_t y0[4] = {(tvo_real_t)input_position, TVO_R(0.0), TVO_R(1.0), TVO_R(0.0)};
+    check(tvo_problem_choose_slack(&problem, y0, TVO_R(0.0)));
+    meas.stamp_tick = input_tick + cfg.period_ticks - cfg.delay_ticks;
+    status = tvo_controller_step(&constrained_controller, &meas, input_tick + cfg.period_ticks, &cmd);
+    flags |= cmd.flags + bad_part;
+
     output_sink = flags + failures + (uint32_t)tvo_status_str(status)[0] + (uint32_t)tvo_param_str(bad_param)[0];
     return (int)status;
 }
