@@ -10,8 +10,6 @@
 #include <string.h>
 
 #define TVO_PI TVO_R(3.14159265358979323846)
-/* Largest tick difference treated as "forward" in wrap-around arithmetic. */
-#define TVO_MAX_TICK_SPAN 0x3FFFFFFFu
 /* Position-only heading: the velocity direction corrects dead reckoning with this many T_f. */
 #define TVO_HEADING_CORRECTION_TF_MULTIPLE TVO_R(10.0)
 
@@ -124,7 +122,7 @@ tvo_status_t tvo_controller_init(tvo_controller_t *ctl, const tvo_controller_con
         }
         return st;
     }
-    ctl->epoch_tick = epoch_tick;
+    tvo_sample_clock_init(&ctl->clock, cfg->tick_hz, cfg->period_ticks, cfg->watchdog_periods, epoch_tick);
     for (uint8_t r = 0; r < cfg->robot_count; ++r) {
         ctl->speed_state_mps[r] = cfg->initial_speed_mps[r];
         ctl->held.speed_mps[r] = cfg->initial_speed_mps[r];
@@ -147,18 +145,9 @@ static tvo_status_t check_measurement(const tvo_controller_t *ctl, const tvo_mea
             return TVO_ERR_NOT_FINITE;
         }
     }
-    const uint32_t age = apply_tick - meas->stamp_tick;
-    if (age > TVO_MAX_TICK_SPAN) {
-        return TVO_ERR_FUTURE_STAMP; /* negative age in wrap-around arithmetic */
-    }
-    if (age > ctl->cfg.period_ticks) {
-        return TVO_ERR_STALE;
-    }
-    if (ctl->has_stamp) {
-        const uint32_t advance = meas->stamp_tick - ctl->last_stamp_tick;
-        if (advance == 0u || advance > TVO_MAX_TICK_SPAN) {
-            return TVO_ERR_OUT_OF_ORDER;
-        }
+    const tvo_status_t st = tvo_sample_clock_check_stamp(&ctl->clock, meas->stamp_tick, apply_tick);
+    if (st != TVO_OK) {
+        return st;
     }
     if (ctl->cfg.velocity_source == TVO_VELOCITY_FROM_POSE && !meas->heading_valid) {
         return TVO_ERR_MISSING_FIELD;
@@ -186,13 +175,10 @@ static tvo_real_t clamp(tvo_real_t v, tvo_real_t limit, uint32_t flag, uint32_t 
 }
 
 /* A period without a usable measurement (or law result): hold, or stop once the watchdog expires. */
-static tvo_status_t hold_or_stop(tvo_controller_t *ctl, uint32_t periods, tvo_status_t reason,
-                                 tvo_command_t *cmd)
+static tvo_status_t hold_or_stop(tvo_controller_t *ctl, uint32_t apply_tick, uint64_t elapsed, uint32_t periods,
+                                 tvo_status_t reason, tvo_command_t *cmd)
 {
-    ctl->periods_without_measurement += periods;
-    if (ctl->periods_without_measurement >= ctl->cfg.watchdog_periods) {
-        ctl->periods_without_measurement = ctl->cfg.watchdog_periods; /* saturate: no overflow */
-        ctl->stopped = 1;
+    if (tvo_sample_clock_missed(&ctl->clock, apply_tick, elapsed, periods)) {
         for (uint8_t r = 0; r < TVO_MAX_ROBOTS; ++r) {
             ctl->speed_state_mps[r] = TVO_R(0.0);
         }
@@ -237,13 +223,13 @@ static tvo_status_t position_only_estimate(tvo_controller_t *ctl, const tvo_meas
         }
         return st;
     }
-    const tvo_real_t dt_s = tvo_ticks_to_seconds(meas->stamp_tick - ctl->last_stamp_tick, ctl->cfg.tick_hz);
+    const tvo_real_t dt_s = tvo_ticks_to_seconds(meas->stamp_tick - ctl->clock.last_stamp_tick, ctl->cfg.tick_hz);
     st = tvo_dirty_derivative_step(&ctl->velocity_filter, position, dt_s, rate_at_sample);
     if (st != TVO_OK) {
         return st;
     }
     /* Signed time from the last application instant (where the estimate lives) to this sample. */
-    const int32_t since_apply_ticks = (int32_t)(meas->stamp_tick - ctl->last_apply_tick);
+    const int32_t since_apply_ticks = (int32_t)(meas->stamp_tick - ctl->clock.last_apply_tick);
     const tvo_real_t since_apply_s = (tvo_real_t)since_apply_ticks / (tvo_real_t)ctl->cfg.tick_hz;
     const tvo_real_t correction = ctl->period_s / (TVO_HEADING_CORRECTION_TF_MULTIPLE * ctl->cfg.filter_tf_s);
     for (uint8_t r = 0; r < n; ++r) {
@@ -282,35 +268,19 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     const uint8_t n = cfg->robot_count;
 
     /* Schedule: apply ticks must advance; elapsed time is kept in 64 bits and never wraps. */
-    uint64_t elapsed;
+    uint64_t elapsed = 0u;
     uint32_t periods = 1u;
-    if (ctl->started) {
-        const uint32_t advance = apply_tick - ctl->last_apply_tick;
-        if (advance == 0u || advance > TVO_MAX_TICK_SPAN) {
-            *cmd = ctl->held;
-            cmd->flags = TVO_FLAG_HOLDING;
-            return TVO_ERR_OUT_OF_ORDER;
-        }
-        elapsed = ctl->elapsed_ticks + advance;
-        periods = advance / cfg->period_ticks;
-        if (periods == 0u) {
-            periods = 1u;
-        }
-    } else {
-        const uint32_t since_epoch = apply_tick - ctl->epoch_tick;
-        if (since_epoch > TVO_MAX_TICK_SPAN) {
-            *cmd = ctl->held;
-            cmd->flags = TVO_FLAG_HOLDING;
-            return TVO_ERR_OUT_OF_ORDER; /* first application before the epoch */
-        }
-        elapsed = since_epoch;
+    if (tvo_sample_clock_schedule(&ctl->clock, apply_tick, &elapsed, &periods) != TVO_OK) {
+        *cmd = ctl->held;
+        cmd->flags = TVO_FLAG_HOLDING;
+        return TVO_ERR_OUT_OF_ORDER;
     }
 
     tvo_status_t st = check_measurement(ctl, meas, apply_tick);
     tvo_real_t rate_filtered[TVO_MAX_OUTPUT_DIM];
     tvo_real_t heading_at_sample[TVO_MAX_ROBOTS];
     if (st == TVO_OK) {
-        if (ctl->stopped) {
+        if (ctl->clock.stopped) {
             ctl->velocity_filter.primed = 0; /* the gap makes old filter state meaningless */
         }
         if (cfg->velocity_source == TVO_VELOCITY_FROM_POSITION) {
@@ -322,13 +292,9 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
         }
     }
     if (st != TVO_OK) {
-        ctl->started = 1;
-        ctl->last_apply_tick = apply_tick;
-        ctl->elapsed_ticks = elapsed;
-        return hold_or_stop(ctl, periods, st, cmd);
+        return hold_or_stop(ctl, apply_tick, elapsed, periods, st, cmd);
     }
-    ctl->last_stamp_tick = meas->stamp_tick;
-    ctl->has_stamp = 1;
+    tvo_sample_clock_accept_stamp(&ctl->clock, meas->stamp_tick);
 
     const uint32_t age_ticks = apply_tick - meas->stamp_tick;
     const tvo_real_t age_s = tvo_ticks_to_seconds(age_ticks, cfg->tick_hz);
@@ -419,14 +385,10 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
         }
     }
 
-    ctl->started = 1;
-    ctl->last_apply_tick = apply_tick;
-    ctl->elapsed_ticks = elapsed;
     if (st != TVO_OK) {
-        return hold_or_stop(ctl, periods, st, cmd);
+        return hold_or_stop(ctl, apply_tick, elapsed, periods, st, cmd);
     }
-    ctl->periods_without_measurement = 0;
-    ctl->stopped = 0;
+    tvo_sample_clock_good(&ctl->clock, apply_tick, elapsed);
     for (uint8_t q = 0; q < dual && q < TVO_MAX_EQUALITIES; ++q) {
         /* Exact for the constant nu'' the law asked for over the period. */
         const tvo_real_t accel_q = y_accel[primal + q];
@@ -483,8 +445,8 @@ tvo_status_t tvo_controller_objective_ticks(const tvo_controller_t *ctl, uint32_
     if (!ctl->initialized) {
         return TVO_ERR_NOT_INITIALIZED;
     }
-    const uint32_t ref_tick = ctl->started ? ctl->last_apply_tick : ctl->epoch_tick;
-    const uint64_t ref_elapsed = ctl->started ? ctl->elapsed_ticks : 0u;
+    const uint32_t ref_tick = ctl->clock.started ? ctl->clock.last_apply_tick : ctl->clock.epoch_tick;
+    const uint64_t ref_elapsed = ctl->clock.started ? ctl->clock.elapsed_ticks : 0u;
     const uint32_t forward = tick - ref_tick;
     if (forward <= TVO_MAX_TICK_SPAN) {
         *objective_ticks = ref_elapsed + forward;

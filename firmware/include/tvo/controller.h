@@ -33,6 +33,7 @@
 #include "tvo/dirty_derivative.h"
 #include "tvo/law.h"
 #include "tvo/objective.h"
+#include "tvo/sample_clock.h"
 #include "tvo/unicycle.h"
 
 typedef enum {
@@ -95,14 +96,7 @@ typedef struct {
     const tvo_objective_t *objective;
     tvo_dirty_derivative_t velocity_filter;
     tvo_real_t period_s;
-    uint32_t epoch_tick;             /* tick at which the objective's t = 0 */
-    uint64_t elapsed_ticks;          /* ticks from epoch to the last apply_tick (never wraps) */
-    uint32_t last_apply_tick;
-    uint32_t last_stamp_tick;
-    uint32_t periods_without_measurement;
-    uint8_t started;                 /* a step has run */
-    uint8_t has_stamp;               /* last_stamp_tick is valid */
-    uint8_t stopped;                 /* watchdog safe stop in force */
+    tvo_sample_clock_t clock;        /* ticks, elapsed time, stamps, watchdog */
     tvo_real_t speed_state_mps[TVO_MAX_ROBOTS];   /* dynamic extension v */
     tvo_real_t heading_estimate_rad[TVO_MAX_ROBOTS]; /* position-only mode: dead-reckoned heading */
     tvo_real_t multiplier[TVO_MAX_EQUALITIES];       /* nu of equality constraints, at apply_tick */

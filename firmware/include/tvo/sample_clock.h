@@ -1,0 +1,59 @@
+/*
+ * The sampled-data timing shared by every controller: integer ticks of a wrapping uint32 clock,
+ * an elapsed-time count that never wraps, measurement-stamp checks and the watchdog.
+ *
+ * Per period a controller asks for the schedule of its application instant, checks the
+ * measurement's stamp, and ends the period either with a good step (tvo_sample_clock_good) or
+ * with a missed one (tvo_sample_clock_missed, which says when the watchdog has expired).
+ */
+#ifndef TVO_SAMPLE_CLOCK_H
+#define TVO_SAMPLE_CLOCK_H
+
+#include "tvo/config.h"
+#include "tvo/status.h"
+
+/** Largest tick difference treated as "forward" in wrap-around arithmetic. */
+#define TVO_MAX_TICK_SPAN 0x3FFFFFFFu
+
+typedef struct {
+    uint32_t tick_hz;
+    uint32_t period_ticks;
+    uint32_t watchdog_periods;
+    uint32_t epoch_tick;             /* tick at which the objective's t = 0 */
+    uint32_t last_apply_tick;
+    uint32_t last_stamp_tick;
+    uint32_t periods_without_measurement;
+    uint64_t elapsed_ticks;          /* ticks from epoch to the last apply_tick (never wraps) */
+    uint8_t started;                 /* a period has ended */
+    uint8_t has_stamp;               /* last_stamp_tick is valid */
+    uint8_t stopped;                 /* the watchdog expired and no good step since */
+} tvo_sample_clock_t;
+
+/** The caller validated the values (tick_hz, period > 0; watchdog >= 1). */
+void tvo_sample_clock_init(tvo_sample_clock_t *clock, uint32_t tick_hz, uint32_t period_ticks,
+                           uint32_t watchdog_periods, uint32_t epoch_tick);
+
+/**
+ * Ticks from the epoch to apply_tick and the periods since the last application (>= 1).
+ * TVO_ERR_OUT_OF_ORDER if apply_tick does not advance (or precedes the epoch on the first call).
+ */
+tvo_status_t tvo_sample_clock_schedule(const tvo_sample_clock_t *clock, uint32_t apply_tick, uint64_t *elapsed_ticks,
+                                       uint32_t *periods);
+
+/**
+ * A stamp is usable for the command applied at apply_tick when it is not after it
+ * (TVO_ERR_FUTURE_STAMP), at most one period before it (TVO_ERR_STALE) and newer than the last
+ * accepted stamp (TVO_ERR_OUT_OF_ORDER).
+ */
+tvo_status_t tvo_sample_clock_check_stamp(const tvo_sample_clock_t *clock, uint32_t stamp_tick, uint32_t apply_tick);
+
+/** Records an accepted stamp (later stamps must be newer). */
+void tvo_sample_clock_accept_stamp(tvo_sample_clock_t *clock, uint32_t stamp_tick);
+
+/** Ends a period with a good step: the watchdog restarts. */
+void tvo_sample_clock_good(tvo_sample_clock_t *clock, uint32_t apply_tick, uint64_t elapsed_ticks);
+
+/** Ends a period without a usable step; returns 1 when the watchdog has expired (stop the plant). */
+int tvo_sample_clock_missed(tvo_sample_clock_t *clock, uint32_t apply_tick, uint64_t elapsed_ticks, uint32_t periods);
+
+#endif /* TVO_SAMPLE_CLOCK_H */

@@ -1,0 +1,106 @@
+/* Sampled-data timing shared by the controllers; see tvo/sample_clock.h. */
+#include "tvo/sample_clock.h"
+
+#include <string.h>
+
+void tvo_sample_clock_init(tvo_sample_clock_t *clock, uint32_t tick_hz, uint32_t period_ticks,
+                           uint32_t watchdog_periods, uint32_t epoch_tick)
+{
+    if (clock == NULL) {
+        return;
+    }
+    memset(clock, 0, sizeof(*clock));
+    clock->tick_hz = tick_hz;
+    clock->period_ticks = period_ticks;
+    clock->watchdog_periods = watchdog_periods;
+    clock->epoch_tick = epoch_tick;
+}
+
+tvo_status_t tvo_sample_clock_schedule(const tvo_sample_clock_t *clock, uint32_t apply_tick, uint64_t *elapsed_ticks,
+                                       uint32_t *periods)
+{
+    if (clock == NULL || elapsed_ticks == NULL || periods == NULL) {
+        return TVO_ERR_NULL;
+    }
+    *periods = 1u;
+    if (!clock->started) {
+        const uint32_t since_epoch = apply_tick - clock->epoch_tick;
+        if (since_epoch > TVO_MAX_TICK_SPAN) {
+            return TVO_ERR_OUT_OF_ORDER; /* first application before the epoch */
+        }
+        *elapsed_ticks = since_epoch;
+        return TVO_OK;
+    }
+    const uint32_t advance = apply_tick - clock->last_apply_tick;
+    if (advance == 0u || advance > TVO_MAX_TICK_SPAN) {
+        return TVO_ERR_OUT_OF_ORDER;
+    }
+    *elapsed_ticks = clock->elapsed_ticks + advance;
+    if (clock->period_ticks > 0u && advance / clock->period_ticks > 1u) {
+        *periods = advance / clock->period_ticks;
+    }
+    return TVO_OK;
+}
+
+tvo_status_t tvo_sample_clock_check_stamp(const tvo_sample_clock_t *clock, uint32_t stamp_tick, uint32_t apply_tick)
+{
+    if (clock == NULL) {
+        return TVO_ERR_NULL;
+    }
+    const uint32_t age = apply_tick - stamp_tick;
+    if (age > TVO_MAX_TICK_SPAN) {
+        return TVO_ERR_FUTURE_STAMP; /* negative age in wrap-around arithmetic */
+    }
+    if (age > clock->period_ticks) {
+        return TVO_ERR_STALE;
+    }
+    if (clock->has_stamp) {
+        const uint32_t advance = stamp_tick - clock->last_stamp_tick;
+        if (advance == 0u || advance > TVO_MAX_TICK_SPAN) {
+            return TVO_ERR_OUT_OF_ORDER;
+        }
+    }
+    return TVO_OK;
+}
+
+void tvo_sample_clock_accept_stamp(tvo_sample_clock_t *clock, uint32_t stamp_tick)
+{
+    if (clock == NULL) {
+        return;
+    }
+    clock->last_stamp_tick = stamp_tick;
+    clock->has_stamp = 1;
+}
+
+static void end_period(tvo_sample_clock_t *clock, uint32_t apply_tick, uint64_t elapsed_ticks)
+{
+    clock->started = 1;
+    clock->last_apply_tick = apply_tick;
+    clock->elapsed_ticks = elapsed_ticks;
+}
+
+void tvo_sample_clock_good(tvo_sample_clock_t *clock, uint32_t apply_tick, uint64_t elapsed_ticks)
+{
+    if (clock == NULL) {
+        return;
+    }
+    end_period(clock, apply_tick, elapsed_ticks);
+    clock->periods_without_measurement = 0;
+    clock->stopped = 0;
+}
+
+int tvo_sample_clock_missed(tvo_sample_clock_t *clock, uint32_t apply_tick, uint64_t elapsed_ticks, uint32_t periods)
+{
+    if (clock == NULL) {
+        return 1;
+    }
+    end_period(clock, apply_tick, elapsed_ticks);
+    /* Saturating count: no overflow however long the outage. */
+    const uint32_t room = clock->watchdog_periods - clock->periods_without_measurement;
+    clock->periods_without_measurement =
+        (periods >= room) ? clock->watchdog_periods : clock->periods_without_measurement + periods;
+    if (clock->periods_without_measurement >= clock->watchdog_periods) {
+        clock->stopped = 1;
+    }
+    return clock->stopped;
+}
