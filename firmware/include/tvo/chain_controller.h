@@ -1,0 +1,85 @@
+/*
+ * Sampled-data TV-O controller for the integrator-chain testbed y^(k) = u, y in R^m, k = 1..3: the
+ * simplest flat system of each relative degree (paper, "Practical considerations"). The flat map is
+ * the identity, so u is the law's y^(k); everything else is the unicycle controller's sampled-data
+ * machinery: the same sample clock, timing convention, delay compensation and dirty-derivative
+ * filters.
+ *
+ * Timing (ticks; see tvo/controller.h): the command applied at apply_tick is held until the next;
+ * it is computed from a measurement stamped at apply_tick - delay.
+ *   - compensation off: the law is evaluated at the sample instant with the sampled state, so its
+ *     command lags the state by tau + h/2 on average (the paper's convention: error ratios 1 + 2 tau/h);
+ *   - compensation on: the state is first predicted to apply_tick with the held command (exact for
+ *     the chain), and the law is evaluated at apply_tick;
+ *   - ZOH-aware (zoh_aware = 1, past the paper): the state is predicted on to the middle of the held
+ *     interval, apply_tick + h/2, still with the held command, and the law (its feedforward included)
+ *     is evaluated there. The held value then matches the continuous law's interval average to
+ *     second order, so the tracking error becomes O(h^2) instead of O(h).
+ * Derivatives y^(1..k-1) are measured, or (filtered_derivatives = 1) reconstructed from y by dirty-
+ * derivative filters: one for y', a second in cascade on the first's output for y''.
+ */
+#ifndef TVO_CHAIN_CONTROLLER_H
+#define TVO_CHAIN_CONTROLLER_H
+
+#include "tvo/dirty_derivative.h"
+#include "tvo/law.h"
+#include "tvo/objective.h"
+#include "tvo/sample_clock.h"
+
+typedef struct {
+    uint32_t tick_hz;             /* > 0 */
+    uint32_t period_ticks;        /* h, > 0 and < 2^30 */
+    uint32_t delay_ticks;         /* tau, 0 .. h */
+    uint8_t relative_degree;      /* k, 1 .. TVO_MAX_RELATIVE_DEGREE */
+    uint8_t delay_compensation;   /* 1: predict over the measurement's age */
+    uint8_t zoh_aware;            /* 1: evaluate at the middle of the held interval */
+    uint8_t filtered_derivatives; /* 1: y^(1..k-1) from dirty-derivative filters on y */
+    tvo_real_t filter_tf_s;       /* T_f > 0 (used when filtered) */
+    tvo_real_t gain[TVO_MAX_RELATIVE_DEGREE]; /* a_0 .. a_{k-1}, Hurwitz */
+    tvo_real_t input_max;         /* |u_i| limit, > 0 */
+    uint32_t watchdog_periods;    /* >= 1 */
+} tvo_chain_config_t;
+
+typedef struct {
+    uint32_t stamp_tick;
+    tvo_output_derivs_t y;        /* y.d[0] = y; y.d[1..k-1] = its derivatives (read only if measured) */
+} tvo_chain_measurement_t;
+
+typedef struct {
+    tvo_real_t u[TVO_MAX_OUTPUT_DIM];
+    uint32_t flags;               /* TVO_FLAG_* (TVO_FLAG_ACCEL_SATURATED: |u| clipped) */
+} tvo_chain_command_t;
+
+typedef struct {
+    tvo_chain_config_t cfg;
+    tvo_law_t law;
+    const tvo_objective_t *objective;
+    tvo_sample_clock_t clock;
+    tvo_dirty_derivative_t filter[TVO_MAX_RELATIVE_DEGREE - 1]; /* cascade: y -> y' -> y'' */
+    tvo_real_t period_s;
+    tvo_chain_command_t held;
+    uint8_t initialized;
+} tvo_chain_controller_t;
+
+/** k = 2, poles at -1.6 (a = 2.56, 3.2), h = 10 ms, tau = h/2 compensated, T_f = 0.05 s, |u| <= 1e3. */
+tvo_status_t tvo_chain_config_default(tvo_chain_config_t *cfg);
+
+/** Validates cfg (*bad_param names the first wrong field) and binds the objective (primal only). */
+tvo_status_t tvo_chain_controller_init(tvo_chain_controller_t *ctl, const tvo_chain_config_t *cfg,
+                                       const tvo_objective_t *objective, uint32_t epoch_tick, tvo_param_t *bad_param);
+
+/**
+ * One period, as tvo_controller_step: cmd always receives a safe command (new, held with
+ * TVO_FLAG_HOLDING, or zero with TVO_FLAG_SAFE_STOP after the watchdog) and the status says why.
+ */
+tvo_status_t tvo_chain_controller_step(tvo_chain_controller_t *ctl, const tvo_chain_measurement_t *meas,
+                                       uint32_t apply_tick, tvo_chain_command_t *cmd);
+
+/**
+ * The chain's exact flow over dt >= 0 with u held: d[j] <- sum_{i>=j} d[i] dt^(i-j)/(i-j)! +
+ * u dt^(k-j)/(k-j)! for j < k, per output (state may alias out). Used for prediction, and by simulators of the testbed.
+ */
+tvo_status_t tvo_chain_predict(uint8_t relative_degree, uint8_t dim, const tvo_output_derivs_t *state,
+                               const tvo_real_t *u, tvo_real_t dt_s, tvo_output_derivs_t *out);
+
+#endif /* TVO_CHAIN_CONTROLLER_H */

@@ -1,0 +1,261 @@
+/* Sampled-data controller of the integrator-chain testbed; see tvo/chain_controller.h. */
+#include "tvo/chain_controller.h"
+
+#include <string.h>
+
+tvo_status_t tvo_chain_config_default(tvo_chain_config_t *cfg)
+{
+    if (cfg == NULL) {
+        return TVO_ERR_NULL;
+    }
+    memset(cfg, 0, sizeof(*cfg));
+    cfg->tick_hz = 1000000u;
+    cfg->period_ticks = 10000u;
+    cfg->delay_ticks = 5000u;
+    cfg->relative_degree = 2u;
+    cfg->delay_compensation = 1u;
+    cfg->filter_tf_s = TVO_R(0.05);
+    cfg->gain[0] = TVO_R(2.56); /* (s + 1.6)^2 */
+    cfg->gain[1] = TVO_R(3.2);
+    cfg->input_max = TVO_R(1e3);
+    cfg->watchdog_periods = 10u;
+    return TVO_OK;
+}
+
+static tvo_param_t first_bad_param(const tvo_chain_config_t *cfg, const tvo_objective_t *objective)
+{
+    if (cfg->tick_hz == 0u) {
+        return TVO_PARAM_TICK_HZ;
+    }
+    if (cfg->period_ticks == 0u || cfg->period_ticks > TVO_MAX_TICK_SPAN) {
+        return TVO_PARAM_PERIOD;
+    }
+    if (cfg->delay_ticks > cfg->period_ticks) {
+        return TVO_PARAM_DELAY;
+    }
+    if (cfg->relative_degree == 0u || cfg->relative_degree > TVO_MAX_RELATIVE_DEGREE) {
+        return TVO_PARAM_GAINS;
+    }
+    if (cfg->filtered_derivatives && !(isfinite(cfg->filter_tf_s) && cfg->filter_tf_s > TVO_R(0.0))) {
+        return TVO_PARAM_FILTER_TF;
+    }
+    if (!(isfinite(cfg->input_max) && cfg->input_max > TVO_R(0.0))) {
+        return TVO_PARAM_ACCEL_MAX;
+    }
+    if (cfg->watchdog_periods == 0u || cfg->watchdog_periods > TVO_MAX_TICK_SPAN / cfg->period_ticks) {
+        return TVO_PARAM_WATCHDOG;
+    }
+    if (objective->dual_dim != 0u || objective->term_count == 0u) {
+        return TVO_PARAM_OBJECTIVE;
+    }
+    return TVO_PARAM_NONE;
+}
+
+tvo_status_t tvo_chain_controller_init(tvo_chain_controller_t *ctl, const tvo_chain_config_t *cfg,
+                                       const tvo_objective_t *objective, uint32_t epoch_tick, tvo_param_t *bad_param)
+{
+    if (bad_param != NULL) {
+        *bad_param = TVO_PARAM_NONE;
+    }
+    if (ctl == NULL || cfg == NULL || objective == NULL) {
+        return TVO_ERR_NULL;
+    }
+    memset(ctl, 0, sizeof(*ctl));
+    tvo_param_t bad = first_bad_param(cfg, objective);
+    tvo_status_t st = TVO_OK;
+    if (bad == TVO_PARAM_NONE) {
+        st = tvo_law_init(&ctl->law, cfg->relative_degree, objective->primal_dim, cfg->gain);
+        bad = (st == TVO_OK) ? TVO_PARAM_NONE : TVO_PARAM_GAINS;
+    }
+    ctl->period_s = tvo_ticks_to_seconds(cfg->period_ticks, cfg->tick_hz);
+    for (uint8_t j = 0; bad == TVO_PARAM_NONE && j + 1u < cfg->relative_degree; ++j) {
+        st = tvo_dirty_derivative_init(&ctl->filter[j], objective->primal_dim,
+                                       cfg->filtered_derivatives ? cfg->filter_tf_s : TVO_R(1.0), ctl->period_s);
+        bad = (st == TVO_OK) ? TVO_PARAM_NONE : TVO_PARAM_FILTER_TF;
+    }
+    if (bad != TVO_PARAM_NONE) {
+        if (bad_param != NULL) {
+            *bad_param = bad;
+        }
+        memset(ctl, 0, sizeof(*ctl));
+        return TVO_ERR_PARAM;
+    }
+    ctl->cfg = *cfg;
+    ctl->objective = objective;
+    tvo_sample_clock_init(&ctl->clock, cfg->tick_hz, cfg->period_ticks, cfg->watchdog_periods, epoch_tick);
+    ctl->initialized = 1;
+    return TVO_OK;
+}
+
+tvo_status_t tvo_chain_predict(uint8_t relative_degree, uint8_t dim, const tvo_output_derivs_t *state,
+                               const tvo_real_t *u, tvo_real_t dt_s, tvo_output_derivs_t *out)
+{
+    if (state == NULL || u == NULL || out == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (relative_degree == 0u || relative_degree > TVO_MAX_RELATIVE_DEGREE || dim == 0u || dim > TVO_MAX_OUTPUT_DIM) {
+        return TVO_ERR_DIMENSION;
+    }
+    if (!isfinite(dt_s) || dt_s < TVO_R(0.0)) {
+        return TVO_ERR_PARAM;
+    }
+    const uint8_t k = relative_degree;
+    for (uint8_t i = 0; i < dim; ++i) {
+        /* Taylor polynomial of degree k in dt, exact because y^(k) = u is constant; j ascending
+         * reads only entries >= j, which are not yet overwritten when out aliases state. */
+        for (uint8_t j = 0; j < k; ++j) {
+            tvo_real_t sum = TVO_R(0.0);
+            tvo_real_t factor = TVO_R(1.0); /* dt^(m-j) / (m-j)! */
+            for (uint8_t m = j; m <= k; ++m) {
+                sum += ((m < k) ? state->d[m][i] : u[i]) * factor;
+                factor *= dt_s / (tvo_real_t)(m - j + 1u);
+            }
+            out->d[j][i] = sum;
+        }
+    }
+    return TVO_OK;
+}
+
+/* y^(1..k-1) at the sample, from the filters (cascade) or as measured. */
+static tvo_status_t derivatives_at_sample(tvo_chain_controller_t *ctl, const tvo_chain_measurement_t *meas,
+                                          tvo_output_derivs_t *x)
+{
+    const uint8_t k = ctl->cfg.relative_degree;
+    const uint8_t m = ctl->objective->primal_dim;
+    *x = meas->y;
+    if (!ctl->cfg.filtered_derivatives || k == 1u) {
+        return TVO_OK;
+    }
+    tvo_status_t st = TVO_OK;
+    const int primed = ctl->filter[0].primed;
+    const tvo_real_t dt_s = primed ? tvo_ticks_to_seconds(meas->stamp_tick - ctl->clock.last_stamp_tick, ctl->cfg.tick_hz)
+                                   : TVO_R(0.0);
+    for (uint8_t j = 0; st == TVO_OK && j + 1u < k; ++j) {
+        if (!primed || !ctl->filter[j].primed) {
+            /* Start at rest: the filters have seen nothing yet. */
+            tvo_real_t zero[TVO_MAX_OUTPUT_DIM] = {TVO_R(0.0)};
+            st = tvo_dirty_derivative_reset(&ctl->filter[j], x->d[j], zero);
+            for (uint8_t i = 0; i < m; ++i) {
+                x->d[j + 1u][i] = TVO_R(0.0);
+            }
+        } else {
+            st = tvo_dirty_derivative_step(&ctl->filter[j], x->d[j], dt_s, x->d[j + 1u]);
+        }
+    }
+    return st;
+}
+
+static tvo_status_t check_finite(const tvo_chain_controller_t *ctl, const tvo_chain_measurement_t *meas)
+{
+    const uint8_t read = ctl->cfg.filtered_derivatives ? 1u : ctl->cfg.relative_degree;
+    for (uint8_t j = 0; j < read; ++j) {
+        for (uint8_t i = 0; i < ctl->objective->primal_dim; ++i) {
+            if (!isfinite(meas->y.d[j][i])) {
+                return TVO_ERR_NOT_FINITE;
+            }
+        }
+    }
+    return TVO_OK;
+}
+
+static tvo_status_t hold_or_stop(tvo_chain_controller_t *ctl, uint32_t apply_tick, uint64_t elapsed, uint32_t periods,
+                                 tvo_status_t reason, tvo_chain_command_t *cmd)
+{
+    if (tvo_sample_clock_missed(&ctl->clock, apply_tick, elapsed, periods)) {
+        memset(&ctl->held, 0, sizeof(ctl->held));
+        memset(cmd, 0, sizeof(*cmd));
+        cmd->flags = TVO_FLAG_SAFE_STOP;
+        return TVO_ERR_WATCHDOG;
+    }
+    *cmd = ctl->held;
+    cmd->flags = TVO_FLAG_HOLDING;
+    return reason;
+}
+
+tvo_status_t tvo_chain_controller_step(tvo_chain_controller_t *ctl, const tvo_chain_measurement_t *meas,
+                                       uint32_t apply_tick, tvo_chain_command_t *cmd)
+{
+    if (cmd == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (ctl == NULL || !ctl->initialized) {
+        memset(cmd, 0, sizeof(*cmd));
+        cmd->flags = TVO_FLAG_SAFE_STOP;
+        return (ctl == NULL) ? TVO_ERR_NULL : TVO_ERR_NOT_INITIALIZED;
+    }
+    uint64_t elapsed = 0u;
+    uint32_t periods = 1u;
+    if (tvo_sample_clock_schedule(&ctl->clock, apply_tick, &elapsed, &periods) != TVO_OK) {
+        *cmd = ctl->held;
+        cmd->flags = TVO_FLAG_HOLDING;
+        return TVO_ERR_OUT_OF_ORDER;
+    }
+    tvo_status_t st = (meas == NULL) ? TVO_ERR_NO_MEASUREMENT : check_finite(ctl, meas);
+    if (st == TVO_OK) {
+        st = tvo_sample_clock_check_stamp(&ctl->clock, meas->stamp_tick, apply_tick);
+    }
+    tvo_output_derivs_t x;
+    if (st == TVO_OK) {
+        if (ctl->clock.stopped) {
+            for (uint8_t j = 0; j + 1u < TVO_MAX_RELATIVE_DEGREE; ++j) {
+                ctl->filter[j].primed = 0; /* the gap makes old filter state meaningless */
+            }
+        }
+        st = derivatives_at_sample(ctl, meas, &x);
+    }
+    if (st != TVO_OK) {
+        return hold_or_stop(ctl, apply_tick, elapsed, periods, st, cmd);
+    }
+    tvo_sample_clock_accept_stamp(&ctl->clock, meas->stamp_tick);
+
+    const uint8_t k = ctl->cfg.relative_degree;
+    const uint8_t m = ctl->objective->primal_dim;
+    const uint32_t age_ticks = apply_tick - meas->stamp_tick;
+    uint32_t flags = 0u;
+    /* Where the law is evaluated: the sample (uncompensated), the application instant, or the
+     * middle of the held interval (ZOH-aware); the state is carried there with the held command. */
+    uint64_t law_ticks = (elapsed >= age_ticks) ? elapsed - age_ticks : 0u;
+    tvo_real_t carry_s = TVO_R(0.0);
+    if (ctl->cfg.delay_compensation) {
+        law_ticks = elapsed;
+        carry_s = tvo_ticks_to_seconds(age_ticks, ctl->cfg.tick_hz);
+        flags |= (age_ticks > 0u) ? TVO_FLAG_PREDICTED : 0u;
+    }
+    if (ctl->cfg.zoh_aware) {
+        law_ticks += ctl->cfg.period_ticks / 2u;
+        carry_s += TVO_R(0.5) * ctl->period_s;
+        flags |= TVO_FLAG_PREDICTED;
+    }
+    if (carry_s > TVO_R(0.0)) {
+        st = tvo_chain_predict(k, m, &x, ctl->held.u, carry_s, &x);
+    }
+    tvo_time_jet_t t;
+    t.ticks = law_ticks;
+    t.tick_hz = ctl->cfg.tick_hz;
+    t.t_s = tvo_ticks_to_seconds(law_ticks, ctl->cfg.tick_hz);
+    t.rate = TVO_R(1.0);
+    tvo_real_t u[TVO_MAX_Z_DIM];
+    if (st == TVO_OK) {
+        st = tvo_law_evaluate(&ctl->law, ctl->objective, &x, &t, u, NULL);
+    }
+    if (st != TVO_OK) {
+        return hold_or_stop(ctl, apply_tick, elapsed, periods, st, cmd);
+    }
+    tvo_chain_command_t next;
+    memset(&next, 0, sizeof(next));
+    for (uint8_t i = 0; i < m; ++i) {
+        next.u[i] = u[i];
+        if (next.u[i] > ctl->cfg.input_max) {
+            next.u[i] = ctl->cfg.input_max;
+            flags |= TVO_FLAG_ACCEL_SATURATED;
+        } else if (next.u[i] < -ctl->cfg.input_max) {
+            next.u[i] = -ctl->cfg.input_max;
+            flags |= TVO_FLAG_ACCEL_SATURATED;
+        }
+    }
+    next.flags = flags;
+    tvo_sample_clock_good(&ctl->clock, apply_tick, elapsed);
+    ctl->held = next;
+    *cmd = next;
+    return TVO_OK;
+}
