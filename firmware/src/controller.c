@@ -304,7 +304,7 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     /* State the law sees: at the application instant (compensated) or at the sample (not). */
     tvo_output_derivs_t y;
     memset(&y, 0, sizeof(y));
-    tvo_real_t heading[TVO_MAX_ROBOTS];
+    tvo_real_t heading[TVO_MAX_ROBOTS] = {TVO_R(0.0)};
     for (uint8_t r = 0; r < n; ++r) {
         if (cfg->velocity_source == TVO_VELOCITY_FROM_POSE && meas->speed_valid) {
             /* Re-sync the extension with what the plant actually does (slip, disturbance): the plant
@@ -362,8 +362,8 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     if (st == TVO_OK && eval.regularization > TVO_R(0.0)) {
         flags |= TVO_FLAG_REGULARIZED;
     }
-    tvo_real_t speed_next[TVO_MAX_ROBOTS];
-    tvo_real_t accel[TVO_MAX_ROBOTS];
+    tvo_real_t speed_next[TVO_MAX_ROBOTS] = {TVO_R(0.0)};
+    tvo_real_t accel[TVO_MAX_ROBOTS] = {TVO_R(0.0)};
     for (uint8_t r = 0; r < n && st == TVO_OK; ++r) {
         uint8_t low_speed = 0;
         tvo_real_t turn_rate;

@@ -2,6 +2,8 @@
  * Build-time configuration of the control core: the scalar type and every size limit.
  *
  * Everything in the core is sized from the constants below; nothing is allocated at run time.
+ * Each limit can be set at build time (-DTVO_MAX_OUTPUT_DIM=2 ...) to size RAM and stack for a
+ * product: a single-robot board needs neither 4 robots' arrays nor equality multipliers.
  * Build with -DTVO_USE_DOUBLE=1 (CMake option TVO_DOUBLE) for double precision; the default is
  * float32, which a Cortex-M4F executes in hardware.
  */
@@ -41,26 +43,53 @@ typedef float tvo_real_t;
 #endif
 
 /** Highest relative degree k the law supports (jets carry k+1 Taylor coefficients). */
+#ifndef TVO_MAX_RELATIVE_DEGREE
 #define TVO_MAX_RELATIVE_DEGREE 3
+#endif
 /** Highest jet order: Taylor coefficients c[0..TVO_JET_MAX_ORDER]. */
 #define TVO_JET_MAX_ORDER TVO_MAX_RELATIVE_DEGREE
 /** Largest flat-output dimension (2 per unicycle). */
+#ifndef TVO_MAX_OUTPUT_DIM
 #define TVO_MAX_OUTPUT_DIM 8
+#endif
 /** Most robots one controller drives (each contributes 2 flat outputs). */
 #define TVO_MAX_ROBOTS (TVO_MAX_OUTPUT_DIM / 2)
 /** Most equality constraints (Lagrange multipliers) one objective may carry. */
+#ifndef TVO_MAX_EQUALITIES
 #define TVO_MAX_EQUALITIES 4
+#endif
 /** Largest primal-dual dimension z = (y, nu): the size of the law's linear solve. */
 #define TVO_MAX_Z_DIM (TVO_MAX_OUTPUT_DIM + TVO_MAX_EQUALITIES)
 /** Most objective terms one objective may sum. */
+#ifndef TVO_MAX_TERMS
 #define TVO_MAX_TERMS 16
+#endif
 /** Most disk obstacles one free-space term avoids. */
+#ifndef TVO_MAX_OBSTACLES
 #define TVO_MAX_OBSTACLES 8
+#endif
 /** Highest degree m_r of the relaxed barrier's Taylor continuation. */
+#ifndef TVO_BARRIER_MAX_DEGREE
 #define TVO_BARRIER_MAX_DEGREE 8
+#endif
 /** Highest polynomial degree of an on-board polynomial target. */
+#ifndef TVO_POLY_MAX_DEGREE
 #define TVO_POLY_MAX_DEGREE 7
+#endif
 /** Highest target derivative order a streamed target carries (position .. jerk). */
+#ifndef TVO_STREAM_MAX_DERIV
 #define TVO_STREAM_MAX_DERIV 3
+#endif
+
+/* The limits must make sense together. */
+#if TVO_MAX_OUTPUT_DIM < 2 || TVO_MAX_OUTPUT_DIM % 2 != 0
+#error "TVO_MAX_OUTPUT_DIM must be a positive even number (2 per robot)"
+#endif
+#if TVO_MAX_RELATIVE_DEGREE < 1 || TVO_MAX_RELATIVE_DEGREE > 3
+#error "TVO_MAX_RELATIVE_DEGREE must be 1, 2 or 3"
+#endif
+#if TVO_MAX_EQUALITIES < 2 || TVO_MAX_EQUALITIES % 2 != 0
+#error "TVO_MAX_EQUALITIES must be a positive even number (a formation offset uses 2)"
+#endif
 
 #endif /* TVO_CONFIG_H */
