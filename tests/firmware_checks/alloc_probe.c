@@ -28,6 +28,10 @@ static tvo_controller_t constrained_controller;
 
 static uint32_t failures;
 
+/* Instance sizes as section sizes, which tools/footprint.py reads from the link map. */
+const uint8_t tvo_sizeof_controller[sizeof(tvo_controller_t)] = {1u};
+const uint8_t tvo_sizeof_problem[sizeof(tvo_problem_t)] = {1u};
+
 static void check(tvo_status_t status)
 {
     if (status != TVO_OK) {
@@ -116,6 +120,6 @@ int main(void)
     status = tvo_controller_step(&constrained_controller, &meas, input_tick + cfg.period_ticks, &cmd);
     flags |= cmd.flags + bad_part;
 
-    output_sink = flags + failures + (uint32_t)tvo_status_str(status)[0] + (uint32_t)tvo_param_str(bad_param)[0];
+    output_sink = flags + failures + tvo_sizeof_controller[input_tick & 0u] + tvo_sizeof_problem[input_tick & 0u] + (uint32_t)tvo_status_str(status)[0] + (uint32_t)tvo_param_str(bad_param)[0];
     return (int)status;
 }

@@ -4,7 +4,10 @@
 #
 #   cmake -DFIRMWARE_DIR=<src> -DBINARY_DIR=<dir> [-DTOOLCHAIN_FILE=<file>] [-DGENERATOR=<gen>]
 #         [-DC_COMPILER=<cc>] [-DTVO_DOUBLE=ON] [-DCHECK_ALLOCATOR=ON] [-DPROBE_DIR=<probe project>]
+#         [-DBUILD_TYPE=Release|MinSizeRel] [-DFOOTPRINT_TOOL=tools/footprint.py]
 #         -P firmware_build.cmake
+# With a probe and FOOTPRINT_TOOL, writes <dir>/footprint.json: the core's flash and RAM in the
+# probe's --gc-sections link and the worst-case stack of one controller step.
 cmake_minimum_required(VERSION 3.16)
 include("${CMAKE_CURRENT_LIST_DIR}/check_no_allocator.cmake")
 
@@ -33,7 +36,10 @@ function(run what)
   endif()
 endfunction()
 
-set(common_args -G "${GENERATOR}" -DCMAKE_BUILD_TYPE=Release -DTVO_DOUBLE=${TVO_DOUBLE})
+if(NOT BUILD_TYPE)
+  set(BUILD_TYPE Release)
+endif()
+set(common_args -G "${GENERATOR}" -DCMAKE_BUILD_TYPE=${BUILD_TYPE} -DTVO_DOUBLE=${TVO_DOUBLE})
 if(TOOLCHAIN_FILE)
   if(NOT EXISTS "${TOOLCHAIN_FILE}")
     message(FATAL_ERROR "toolchain file ${TOOLCHAIN_FILE} not found")
@@ -51,7 +57,8 @@ if(TOOLCHAIN_FILE AND EXISTS "${BINARY_DIR}/CMakeCache.txt"
 endif()
 
 # 1. firmware/ on its own, as a cross build would configure it
-run("configure firmware" "${CMAKE_COMMAND}" -S "${FIRMWARE_DIR}" -B "${BINARY_DIR}" ${common_args})
+run("configure firmware" "${CMAKE_COMMAND}" -S "${FIRMWARE_DIR}" -B "${BINARY_DIR}" ${common_args}
+    -DTVO_STACK_USAGE=ON)
 run("build tvo_core" "${CMAKE_COMMAND}" --build "${BINARY_DIR}" --target tvo_core --parallel ${jobs})
 
 load_cache("${BINARY_DIR}" READ_WITH_PREFIX SUB_ CMAKE_NM CMAKE_SIZE CMAKE_C_COMPILER)
@@ -99,5 +106,10 @@ if(PROBE_DIR)
     message(STATUS "size of libtvo_core.a (all objects, before --gc-sections), for information:")
     execute_process(COMMAND "${SUB_CMAKE_SIZE}" --totals "${core_lib}")
   endif()
+endif()
+if(PROBE_DIR AND FOOTPRINT_TOOL)
+  run("footprint" "${FOOTPRINT_TOOL}" --core-dir "${BINARY_DIR}/CMakeFiles/tvo_core.dir"
+      --map "${probe_bin}/alloc_probe.map" --root tvo_controller_step --root tvo_chain_controller_step
+      --json "${BINARY_DIR}/footprint.json")
 endif()
 message(STATUS "firmware build check passed")

@@ -1,0 +1,32 @@
+/*
+ * Board support for QEMU's mps2-an386 (Cortex-M4F): console output and exit code through ARM
+ * semihosting, and SysTick as a cycle counter. Board code only; the control core never sees it.
+ *
+ * Under `qemu-system-arm -icount shift=0` one instruction takes 1 ns of virtual time and SysTick
+ * (25 MHz on this board) advances once per 40 instructions, deterministically.
+ */
+#ifndef TVO_BOARD_H
+#define TVO_BOARD_H
+
+#include <stdint.h>
+
+/** Instructions per SysTick count under -icount shift=0 on mps2-an386. */
+#define TVO_BOARD_INSTRUCTIONS_PER_TICK 40u
+
+void tvo_board_putc(char c);
+void tvo_board_puts(const char *s);
+/** Decimal, without stdio. */
+void tvo_board_put_u32(uint32_t value);
+void tvo_board_put_i32(int32_t value);
+
+/** Ends the program; QEMU exits with this code (semihosting SYS_EXIT_EXTENDED). */
+void tvo_board_exit(int code) __attribute__((noreturn));
+
+/** Starts SysTick free-running from its 24-bit reload value, counting down on the CPU clock. */
+void tvo_board_cycle_counter_start(void);
+/** Current SysTick count (counts down; wraps every 2^24 ticks). */
+uint32_t tvo_board_cycle_counter_read(void);
+/** Ticks from start to end, for a span shorter than one wrap. */
+uint32_t tvo_board_cycle_counter_elapsed(uint32_t start, uint32_t end);
+
+#endif /* TVO_BOARD_H */

@@ -1,0 +1,26 @@
+# CTest registration of the on-target Unity tests (included by the top-level CMakeLists.txt):
+# target_build builds every tests/unit/test_*.c for Cortex-M4F on the mps2-an386 board (a CTest
+# fixture), then target_<name> runs each ELF in qemu-system-arm; semihosting passes Unity's
+# failure count out as QEMU's exit code.
+find_program(TVO_QEMU_ARM qemu-system-arm)
+if(NOT TVO_QEMU_ARM)
+  message(FATAL_ERROR "qemu-system-arm not found: install the Debian package qemu-system-arm (or run tools/setup)")
+endif()
+set(tvo_target_bin ${CMAKE_BINARY_DIR}/target)
+add_test(NAME target_build
+  COMMAND ${CMAKE_COMMAND} -DSOURCE_DIR=${CMAKE_CURRENT_LIST_DIR} -DBINARY_DIR=${tvo_target_bin}
+          -DTOOLCHAIN_FILE=${PROJECT_SOURCE_DIR}/tools/cmake/arm-none-eabi-cortex-m4f.cmake
+          -DUNITY_DIR=${TVO_UNITY_DIR} "-DGENERATOR=${CMAKE_GENERATOR}"
+          -P ${CMAKE_CURRENT_LIST_DIR}/build_target.cmake)
+set_tests_properties(target_build PROPERTIES FIXTURES_SETUP tvo_target_elfs LABELS target TIMEOUT 600)
+
+file(GLOB tvo_target_sources CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/tests/unit/test_*.c)
+list(SORT tvo_target_sources)
+foreach(source IN LISTS tvo_target_sources)
+  get_filename_component(name ${source} NAME_WE)
+  add_test(NAME target_${name}
+    COMMAND ${TVO_QEMU_ARM} -M mps2-an386 -cpu cortex-m4 -nographic -monitor none
+            -semihosting-config enable=on,target=native -kernel ${tvo_target_bin}/${name}.elf)
+  set_tests_properties(target_${name} PROPERTIES FIXTURES_REQUIRED tvo_target_elfs LABELS target
+    TIMEOUT 300 FAIL_REGULAR_EXPRESSION "FAIL")
+endforeach()
