@@ -55,15 +55,14 @@ static void zero_output(tvo_real_t *y_k, uint8_t dim)
     }
 }
 
-/* H[i][col] = d/dtau grad_i(y + e_col tau, t): a first-order jet with time frozen. */
+/* H[i][col] = d/dtau grad_i(y + e_col tau, t): a first-order jet with time frozen. The jet buffers
+ * are the caller's (their trajectory contents are no longer needed): one set on the stack, not two. */
 static tvo_status_t hessian(const tvo_objective_t *objective, const tvo_output_derivs_t *y,
-                            const tvo_time_jet_t *t, tvo_matrix_t h)
+                            const tvo_time_jet_t *t, tvo_jet_t *y_jet, tvo_jet_t *g_jet, tvo_matrix_t h)
 {
     const uint8_t m = objective->dim;
     tvo_time_jet_t frozen = *t;
     frozen.rate = TVO_R(0.0);
-    tvo_jet_t y_jet[TVO_MAX_Z_DIM];
-    tvo_jet_t g_jet[TVO_MAX_Z_DIM];
     for (uint8_t i = 0; i < m; ++i) {
         tvo_jet_constant(y->d[0][i], &y_jet[i]);
     }
@@ -116,6 +115,9 @@ tvo_status_t tvo_law_evaluate(const tvo_law_t *law, const tvo_objective_t *objec
             }
         }
     }
+    if (eval != NULL) {
+        memset(eval, 0, sizeof(*eval));
+    }
 
     /* Trajectory jets y(tau) = sum_{j<k} y^(j) tau^j / j!, with y^(k) = 0 on this curve. */
     tvo_jet_t y_jet[TVO_MAX_Z_DIM];
@@ -135,31 +137,28 @@ tvo_status_t tvo_law_evaluate(const tvo_law_t *law, const tvo_objective_t *objec
         return st;
     }
 
-    /* grad^(j) = j! c_j; rhs = r + sum_{j<k} a_j grad^(j) with r = k! c_k. */
-    tvo_real_t grad[TVO_MAX_RELATIVE_DEGREE + 1][TVO_MAX_Z_DIM];
+    /* grad^(j) = j! c_j; rhs = r + sum_{j<k} a_j grad^(j) with r = k! c_k. The solve overwrites rhs
+     * with the step (it may alias). */
     tvo_real_t rhs[TVO_MAX_Z_DIM];
     for (uint8_t i = 0; i < m; ++i) {
         tvo_real_t factorial = TVO_R(1.0);
         rhs[i] = TVO_R(0.0);
         for (uint8_t j = 0; j <= k; ++j) {
-            grad[j][i] = g_jet[i].c[j] * factorial;
+            const tvo_real_t grad = g_jet[i].c[j] * factorial;
             factorial *= (tvo_real_t)(j + 1u);
-            rhs[i] += (j < k) ? law->gain[j] * grad[j][i] : grad[j][i];
+            rhs[i] += (j < k) ? law->gain[j] * grad : grad;
+            if (eval != NULL) {
+                eval->grad[j][i] = grad;
+            }
         }
     }
 
     tvo_matrix_t h;
-    st = hessian(objective, y, t, h);
+    st = hessian(objective, y, t, y_jet, g_jet, h);
     if (st != TVO_OK) {
         return st;
     }
     if (eval != NULL) {
-        memset(eval, 0, sizeof(*eval));
-        for (uint8_t j = 0; j <= k; ++j) {
-            for (uint8_t i = 0; i < m; ++i) {
-                eval->grad[j][i] = grad[j][i];
-            }
-        }
         for (uint8_t i = 0; i < m; ++i) {
             for (uint8_t j = 0; j < m; ++j) {
                 eval->hessian[i][j] = h[i][j];
@@ -167,9 +166,8 @@ tvo_status_t tvo_law_evaluate(const tvo_law_t *law, const tvo_objective_t *objec
         }
     }
 
-    tvo_real_t step[TVO_MAX_Z_DIM];
     tvo_real_t shift = TVO_R(0.0);
-    st = tvo_saddle_solve(h, objective->primal_dim, objective->dual_dim, rhs, step, &shift);
+    st = tvo_saddle_solve(h, objective->primal_dim, objective->dual_dim, rhs, rhs, &shift);
     if (eval != NULL) {
         eval->regularization = shift;
     }
@@ -177,7 +175,7 @@ tvo_status_t tvo_law_evaluate(const tvo_law_t *law, const tvo_objective_t *objec
         return st;
     }
     for (uint8_t i = 0; i < m; ++i) {
-        y_k[i] = -step[i];
+        y_k[i] = -rhs[i];
     }
     return TVO_OK;
 }

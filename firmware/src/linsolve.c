@@ -7,52 +7,53 @@
 #define LADDER_STEPS 9u
 #define LADDER_FIRST_SCALE TVO_R(1e-6)
 
-/* In-place LL^T of the leading n x n block; 0 if a pivot is not above its floor.
- * Each pivot must keep more than 64 eps of its own diagonal entry: the test of Cholesky on the
- * diagonally scaled matrix, so a barrier that stiffens one direction by 1e6 does not make the soft
- * directions look singular (a floor relative to the largest diagonal would). */
-static int cholesky_factor(tvo_matrix_t a, uint8_t n)
+/* In-place LL^T of the leading n x n block (row-major, row stride `stride`); 0 if a pivot is not
+ * above its floor. Each pivot must keep more than 64 eps of its own diagonal entry: the test of
+ * Cholesky on the diagonally scaled matrix, so a barrier that stiffens one direction by 1e6 does not
+ * make the soft directions look singular (a floor relative to the largest diagonal would). */
+#define AT(a, stride, i, j) ((a)[(size_t)(i) * (stride) + (j)])
+
+static int cholesky_factor(tvo_real_t *a, uint8_t stride, uint8_t n)
 {
     for (uint8_t j = 0; j < n; ++j) {
-        const tvo_real_t diagonal = a[j][j];
+        const tvo_real_t diagonal = AT(a, stride, j, j);
         tvo_real_t d = diagonal;
         for (uint8_t k = 0; k < j; ++k) {
-            d -= a[j][k] * a[j][k];
+            d -= AT(a, stride, j, k) * AT(a, stride, j, k);
         }
         if (!(diagonal > TVO_R(0.0)) || !(d > TVO_R(64.0) * TVO_EPSILON * diagonal)) {
             return 0;
         }
         const tvo_real_t l_jj = TVO_SQRT(d);
-        a[j][j] = l_jj;
+        AT(a, stride, j, j) = l_jj;
         for (uint8_t i = (uint8_t)(j + 1u); i < n; ++i) {
-            tvo_real_t s = a[i][j];
+            tvo_real_t s = AT(a, stride, i, j);
             for (uint8_t k = 0; k < j; ++k) {
-                s -= a[i][k] * a[j][k];
+                s -= AT(a, stride, i, k) * AT(a, stride, j, k);
             }
-            a[i][j] = s / l_jj;
+            AT(a, stride, i, j) = s / l_jj;
         }
     }
     return 1;
 }
 
-/* x = (L L^T)^-1 b with the factor in the lower triangle (read only; not const: C11 cannot pass
- * T (*)[n] as const T (*)[n] without a cast); x may alias b. */
-static void cholesky_substitute(tvo_matrix_t l, uint8_t n, const tvo_real_t *b, tvo_real_t *x)
+/* x = (L L^T)^-1 b with the factor in the lower triangle; x may alias b. */
+static void cholesky_substitute(const tvo_real_t *l, uint8_t stride, uint8_t n, const tvo_real_t *b, tvo_real_t *x)
 {
     for (uint8_t i = 0; i < n; ++i) {
         tvo_real_t s = b[i];
         for (uint8_t k = 0; k < i; ++k) {
-            s -= l[i][k] * x[k];
+            s -= AT(l, stride, i, k) * x[k];
         }
-        x[i] = s / l[i][i];
+        x[i] = s / AT(l, stride, i, i);
     }
     for (uint8_t ii = n; ii > 0u; --ii) {
         const uint8_t i = (uint8_t)(ii - 1u);
         tvo_real_t s = x[i];
         for (uint8_t k = (uint8_t)(i + 1u); k < n; ++k) {
-            s -= l[k][i] * x[k];
+            s -= AT(l, stride, k, i) * x[k];
         }
-        x[i] = s / l[i][i];
+        x[i] = s / AT(l, stride, i, i);
     }
 }
 
@@ -79,10 +80,10 @@ tvo_status_t tvo_cholesky_solve(tvo_matrix_t a, uint8_t n, const tvo_real_t *b, 
             return TVO_ERR_NOT_FINITE;
         }
     }
-    if (!cholesky_factor(a, n)) {
+    if (!cholesky_factor(&a[0][0], TVO_MAX_Z_DIM, n)) {
         return TVO_ERR_NOT_POSITIVE_DEFINITE;
     }
-    cholesky_substitute(a, n, b, x);
+    cholesky_substitute(&a[0][0], TVO_MAX_Z_DIM, n, b, x);
     return all_finite(x, n) ? TVO_OK : TVO_ERR_NUMERIC;
 }
 
@@ -121,7 +122,7 @@ static tvo_status_t regularized_factor(tvo_matrix_t a, uint8_t n, tvo_real_t *sh
                 a[i][j] = a[j][i];
             }
         }
-        if (cholesky_factor(a, n)) {
+        if (cholesky_factor(&a[0][0], TVO_MAX_Z_DIM, n)) {
             *shift = mu;
             return TVO_OK;
         }
@@ -137,7 +138,7 @@ tvo_status_t tvo_saddle_solve(tvo_matrix_t a, uint8_t primal_n, uint8_t dual_n, 
         return TVO_ERR_NULL;
     }
     const uint8_t n = (uint8_t)(primal_n + dual_n);
-    if (primal_n == 0u || (unsigned)primal_n + dual_n > TVO_MAX_Z_DIM) {
+    if (primal_n == 0u || dual_n > TVO_MAX_EQUALITIES || (unsigned)primal_n + dual_n > TVO_MAX_Z_DIM) {
         return TVO_ERR_DIMENSION;
     }
     if (shift != NULL) {
@@ -158,14 +159,14 @@ tvo_status_t tvo_saddle_solve(tvo_matrix_t a, uint8_t primal_n, uint8_t dual_n, 
     }
     /* u = P^-1 b_p; then, with equalities, Y = P^-1 C^T and S w = C u - b_d, x_p = u - Y w. */
     tvo_real_t u[TVO_MAX_Z_DIM];
-    cholesky_substitute(a, primal_n, b, u);
+    cholesky_substitute(&a[0][0], TVO_MAX_Z_DIM, primal_n, b, u);
     if (dual_n > 0u) {
         tvo_real_t y_cols[TVO_MAX_EQUALITIES][TVO_MAX_Z_DIM];
-        tvo_matrix_t schur;
-        tvo_real_t rhs[TVO_MAX_Z_DIM];
-        tvo_real_t w[TVO_MAX_Z_DIM];
+        tvo_real_t schur[TVO_MAX_EQUALITIES][TVO_MAX_EQUALITIES];
+        tvo_real_t rhs[TVO_MAX_EQUALITIES];
+        tvo_real_t w[TVO_MAX_EQUALITIES];
         for (uint8_t q = 0; q < dual_n && q < TVO_MAX_EQUALITIES; ++q) {
-            cholesky_substitute(a, primal_n, a[primal_n + q], y_cols[q]);
+            cholesky_substitute(&a[0][0], TVO_MAX_Z_DIM, primal_n, a[primal_n + q], y_cols[q]);
         }
         for (uint8_t q = 0; q < dual_n && q < TVO_MAX_EQUALITIES; ++q) {
             const tvo_real_t *c_row = a[primal_n + q];
@@ -190,10 +191,10 @@ tvo_status_t tvo_saddle_solve(tvo_matrix_t a, uint8_t primal_n, uint8_t dual_n, 
                 schur[r][q] = avg;
             }
         }
-        if (!cholesky_factor(schur, dual_n)) {
+        if (!cholesky_factor(&schur[0][0], TVO_MAX_EQUALITIES, dual_n)) {
             return TVO_ERR_NOT_POSITIVE_DEFINITE;
         }
-        cholesky_substitute(schur, dual_n, rhs, w);
+        cholesky_substitute(&schur[0][0], TVO_MAX_EQUALITIES, dual_n, rhs, w);
         for (uint8_t i = 0; i < primal_n; ++i) {
             tvo_real_t s = u[i];
             for (uint8_t q = 0; q < dual_n && q < TVO_MAX_EQUALITIES; ++q) {

@@ -15,16 +15,21 @@
 
 int main(void);
 
+/* Robots the probe drives: three, or fewer in a build sized for fewer (-DTVO_MAX_OUTPUT_DIM=2). */
+#define PROBE_ROBOTS (TVO_MAX_ROBOTS < 3 ? TVO_MAX_ROBOTS : 3)
+
 static volatile uint32_t input_tick;
 static volatile tvo_real_t input_position;
 static volatile uint32_t output_sink;
 
 static tvo_target_t targets[3];
-static tvo_tracking_term_t terms[3];
+static tvo_tracking_term_t terms[PROBE_ROBOTS];
 static tvo_objective_t objective;
 static tvo_controller_t controller;
+#if TVO_MAX_ROBOTS >= 2
 static tvo_problem_t problem;
 static tvo_controller_t constrained_controller;
+#endif
 
 static uint32_t failures;
 
@@ -67,7 +72,7 @@ int main(void)
     tvo_status_t status = TVO_OK;
 
     check(tvo_controller_config_default(&cfg));
-    cfg.robot_count = 3u;
+    cfg.robot_count = (uint8_t)PROBE_ROBOTS;
     cfg.velocity_source = (input_tick & 1u) ? TVO_VELOCITY_FROM_POSITION : TVO_VELOCITY_FROM_POSE;
     setup_targets();
     check(tvo_objective_init(&objective, (uint8_t)(2u * cfg.robot_count)));
@@ -90,6 +95,7 @@ int main(void)
         status = tvo_controller_step(&controller, (n == 3u) ? NULL : &meas, apply_tick, &cmd);
         flags |= cmd.flags;
     }
+#if TVO_MAX_ROBOTS >= 2
     /* Every constraint kind and an equality, through the problem assembly. */
     static tvo_problem_desc_t desc;
     uint8_t bad_part = 0u;
@@ -119,6 +125,7 @@ int main(void)
     meas.stamp_tick = input_tick + cfg.period_ticks - cfg.delay_ticks;
     status = tvo_controller_step(&constrained_controller, &meas, input_tick + cfg.period_ticks, &cmd);
     flags |= cmd.flags + bad_part;
+#endif
 
     output_sink = flags + failures + tvo_sizeof_controller[input_tick & 0u] + tvo_sizeof_problem[input_tick & 0u] + (uint32_t)tvo_status_str(status)[0] + (uint32_t)tvo_param_str(bad_param)[0];
     return (int)status;

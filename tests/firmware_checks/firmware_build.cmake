@@ -5,6 +5,7 @@
 #   cmake -DFIRMWARE_DIR=<src> -DBINARY_DIR=<dir> [-DTOOLCHAIN_FILE=<file>] [-DGENERATOR=<gen>]
 #         [-DC_COMPILER=<cc>] [-DTVO_DOUBLE=ON] [-DCHECK_ALLOCATOR=ON] [-DPROBE_DIR=<probe project>]
 #         [-DBUILD_TYPE=Release|MinSizeRel] [-DFOOTPRINT_TOOL=tools/footprint.py]
+#         [-DLIMITS=<size limits, e.g. TVO_MAX_OUTPUT_DIM=2,TVO_MAX_EQUALITIES=2>]
 #         -P firmware_build.cmake
 # With a probe and FOOTPRINT_TOOL, writes <dir>/footprint.json: the core's flash and RAM in the
 # probe's --gc-sections link and the worst-case stack of one controller step.
@@ -40,6 +41,7 @@ if(NOT BUILD_TYPE)
   set(BUILD_TYPE Release)
 endif()
 set(common_args -G "${GENERATOR}" -DCMAKE_BUILD_TYPE=${BUILD_TYPE} -DTVO_DOUBLE=${TVO_DOUBLE})
+list(APPEND common_args "-DTVO_LIMITS=${LIMITS}")
 if(TOOLCHAIN_FILE)
   if(NOT EXISTS "${TOOLCHAIN_FILE}")
     message(FATAL_ERROR "toolchain file ${TOOLCHAIN_FILE} not found")

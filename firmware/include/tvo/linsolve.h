@@ -28,7 +28,8 @@ typedef tvo_real_t tvo_matrix_t[TVO_MAX_Z_DIM][TVO_MAX_Z_DIM];
 tvo_status_t tvo_cholesky_solve(tvo_matrix_t a, uint8_t n, const tvo_real_t *b, tvo_real_t *x);
 
 /**
- * Solves the saddle system of size primal_n + dual_n (primal_n >= 1, total <= TVO_MAX_Z_DIM);
+ * Solves the saddle system of size primal_n + dual_n (primal_n >= 1, dual_n <= TVO_MAX_EQUALITIES,
+ * total <= TVO_MAX_Z_DIM);
  * a (symmetric, full matrix read) is overwritten. x may alias b. shift may be NULL.
  */
 tvo_status_t tvo_saddle_solve(tvo_matrix_t a, uint8_t primal_n, uint8_t dual_n, const tvo_real_t *b, tvo_real_t *x,
