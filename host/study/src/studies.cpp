@@ -153,6 +153,11 @@ Study1Result run_study1(const StudyOptions &opt)
         }
         c.err_m.assign(hs.size(), kNaN);
         c.diverged.assign(hs.size(), 0);
+        c.edge_exact_s = exact_stability_edge(2, chain_gains(2, kPole), LoopTiming{c.tau_frac, c.compensation, c.zoh_aware});
+        c.unstable.assign(hs.size(), 0);
+        for (size_t i = 0; i < hs.size(); ++i) {
+            c.unstable[i] = (c.h_s[i] >= c.edge_exact_s) ? 1 : 0;
+        }
     }
     const size_t nh = hs.size(), nc = r.curves.size();
     std::vector<uint64_t> not_ok(nc * nh, 0);
@@ -201,8 +206,7 @@ Study1Result run_study1(const StudyOptions &opt)
 double run_study2(const StudyOptions &opt, Study1Result &s1)
 {
     const double t0 = now_s();
-    const std::vector<double> a = chain_gains(2, kPole);
-    // The simulated sweep: h from 10 ms to 1.2 s in 1 ms steps (quick: 4 ms steps from 0.2 s).
+    // (The exact edges were computed with study 1.) The simulated sweep: h from 10 ms to 1.2 s in 1 ms steps (quick: 4 ms steps from 0.2 s).
     const double lo = opt.quick ? 0.2 : 0.01, hi = 1.2, step = opt.quick ? 0.004 : 0.001;
     std::vector<double> sweep;
     for (int i = 0;; ++i) {
@@ -217,13 +221,7 @@ double run_study2(const StudyOptions &opt, Study1Result &s1)
     // Each run records its peak |e|/|e(0)|; "diverged" at a threshold is peak > threshold (runs stop
     // early only beyond 1e6 or at a non-finite value).
     std::vector<double> peak(nc * ns * static_cast<size_t>(n_durations), 0.0);
-    parallel_for(nc + peak.size(), opt.threads, [&](size_t job) {
-        if (job < nc) {
-            Curve &c = s1.curves[job];
-            c.edge_exact_s = exact_stability_edge(2, a, LoopTiming{c.tau_frac, c.compensation, c.zoh_aware});
-            return;
-        }
-        const size_t j = job - nc;
+    parallel_for(peak.size(), opt.threads, [&](size_t j) {
         const size_t d = j / (nc * ns);
         const Curve &c = s1.curves[(j % (nc * ns)) / ns];
         const size_t i = j % ns;
@@ -417,10 +415,15 @@ void print_study1(const Study1Result &r)
     for (size_t i = 0; i < r.curves[0].h_s.size(); ++i) {
         std::printf("%10.4g", r.curves[0].h_s[i]);
         for (const Curve &c : r.curves) {
-            print_value(c.err_m[i]);
+            if (c.unstable[i] && std::isfinite(c.err_m[i])) {
+                std::printf(" %9.3e*", c.err_m[i]);
+            } else {
+                print_value(c.err_m[i]);
+            }
         }
         std::printf("\n");
     }
+    std::printf("(*: h beyond the exact stability edge, growing but not yet 10x |e(0)| in 20 s; not plotted)\n");
     std::printf("%-24s %10s %12s %8s %22s\n", "curve", "order", "fit range", "points", "small-h ratio to tau=0");
     for (const Curve &c : r.curves) {
         std::printf("%-24s %10.4f %5.3g..%-6.3g %8d %22.4f\n", c.label.c_str(), c.order, c.fit_lo_s, c.fit_hi_s,
@@ -501,6 +504,7 @@ nlohmann::json to_json(const Curve &c)
     nlohmann::json table = nlohmann::json::array();
     for (size_t i = 0; i < c.h_s.size(); ++i) {
         table.push_back({{"h_s", c.h_s[i]}, {"max_err_m", num(c.err_m[i])}, {"diverged", c.diverged[i] != 0},
+                         {"beyond_exact_edge", c.unstable[i] != 0},
                          {"ratio_to_tau0", num(c.ratio_to_tau0[i])}});
     }
     j["table"] = table;

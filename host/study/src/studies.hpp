@@ -30,6 +30,7 @@ struct Curve {
     std::vector<double> h_s;
     std::vector<double> err_m;        // NaN where diverged
     std::vector<uint8_t> diverged;
+    std::vector<uint8_t> unstable;    // h at or beyond the exact edge (rho >= 1), diverged visibly or not
     double fit_lo_s = 0.0, fit_hi_s = 0.0;
     double order = 0.0;               // least-squares slope of log err vs log h over [fit_lo, fit_hi]
     int fit_points = 0;
