@@ -45,6 +45,9 @@ tvo_status_t tvo_target_init_ellipse(tvo_target_t *target, const tvo_target_elli
     memset(target, 0, sizeof(*target));
     target->kind = TVO_TARGET_ELLIPSE;
     target->u.ellipse = *ellipse;
+    /* The rotation is fixed: its cosine and sine once here, not at every evaluation. */
+    target->rotation_cs[0] = TVO_COS(ellipse->rotation_rad);
+    target->rotation_cs[1] = TVO_SIN(ellipse->rotation_rad);
     return TVO_OK;
 }
 
@@ -121,8 +124,8 @@ static void polynomial_derivatives(const tvo_target_polynomial_t *p, tvo_real_t 
     }
 }
 
-static void ellipse_derivatives(const tvo_target_ellipse_t *e, tvo_real_t t_s, uint8_t order,
-                                tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2])
+static void ellipse_derivatives(const tvo_target_ellipse_t *e, const tvo_real_t rotation_cs[2], tvo_real_t t_s,
+                                uint8_t order, tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2])
 {
     const tvo_real_t phi = e->omega_radps * t_s + e->phase_rad;
     const tvo_real_t c = TVO_COS(phi);
@@ -130,8 +133,8 @@ static void ellipse_derivatives(const tvo_target_ellipse_t *e, tvo_real_t t_s, u
     /* d^j/dphi^j of (cos, sin) cycles with period 4. */
     const tvo_real_t dcos[4] = {c, -s, -c, s};
     const tvo_real_t dsin[4] = {s, c, -s, -c};
-    const tvo_real_t cr = TVO_COS(e->rotation_rad);
-    const tvo_real_t sr = TVO_SIN(e->rotation_rad);
+    const tvo_real_t cr = rotation_cs[0];
+    const tvo_real_t sr = rotation_cs[1];
     tvo_real_t omega_pow = TVO_R(1.0);
     for (uint8_t j = 0; j <= order; ++j) {
         const tvo_real_t u = e->semi_axis_m[0] * dcos[j & 3u] * omega_pow;
@@ -186,7 +189,7 @@ tvo_status_t tvo_target_derivatives(const tvo_target_t *target, const tvo_time_j
         return TVO_OK;
     case TVO_TARGET_CIRCLE:
     case TVO_TARGET_ELLIPSE:
-        ellipse_derivatives(&target->u.ellipse, t->t_s, order, deriv);
+        ellipse_derivatives(&target->u.ellipse, target->rotation_cs, t->t_s, order, deriv);
         return TVO_OK;
     case TVO_TARGET_STREAMED:
         return streamed_derivatives(&target->u.streamed, t, order, deriv);
@@ -204,14 +207,16 @@ tvo_status_t tvo_target_jet(const tvo_target_t *target, const tvo_time_jet_t *t,
         return TVO_ERR_PARAM;
     }
     tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2];
-    const tvo_status_t st = tvo_target_derivatives(target, t, order, deriv);
+    /* With time frozen (rate 0: Hessian columns) only the position enters the jet. */
+    const uint8_t needed = (t->rate == TVO_R(0.0)) ? 0u : order;
+    const tvo_status_t st = tvo_target_derivatives(target, t, needed, deriv);
     if (st != TVO_OK) {
         return st;
     }
     for (uint8_t axis = 0; axis < 2u; ++axis) {
         tvo_jet_constant(TVO_R(0.0), &out[axis]);
         tvo_real_t scale = TVO_R(1.0);
-        for (uint8_t j = 0; j <= order; ++j) {
+        for (uint8_t j = 0; j <= needed; ++j) {
             out[axis].c[j] = deriv[j][axis] * scale;
             scale *= t->rate / (tvo_real_t)(j + 1u);
         }

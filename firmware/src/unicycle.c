@@ -1,6 +1,12 @@
 /* Unicycle flat map and exact held-command motion; see tvo/unicycle.h. */
 #include "tvo/unicycle.h"
 
+#define UNICYCLE_PI TVO_R(3.14159265358979323846)
+#define UNICYCLE_INV_TWO_PI TVO_R(0.15915494309189533577)
+/* 2 pi = HI + LO with HI = 6.28125 (8 significant bits: n * HI is exact for |n| < 2^16). */
+#define UNICYCLE_TWO_PI_HI TVO_R(6.28125)
+#define UNICYCLE_TWO_PI_LO TVO_R(0.0019353071795864769253)
+
 #define TVO_PI TVO_R(3.14159265358979323846)
 
 tvo_real_t tvo_wrap_angle(tvo_real_t angle_rad)
@@ -8,8 +14,18 @@ tvo_real_t tvo_wrap_angle(tvo_real_t angle_rad)
     if (!isfinite(angle_rad)) {
         return angle_rad;
     }
-    /* atan2 of (sin, cos) wraps in constant time, without a loop bounded by the angle. */
-    return TVO_ATAN2(TVO_SIN(angle_rad), TVO_COS(angle_rad));
+    /* In range: unchanged (the common case: headings move by at most omega_max h per step). */
+    if (angle_rad <= UNICYCLE_PI && angle_rad > -UNICYCLE_PI) {
+        return angle_rad;
+    }
+    /* Subtract the nearest multiple of 2 pi in constant time, 2 pi split in two parts (Cody-Waite)
+     * so that n * 2pi_hi is exact and the reduction keeps the angle's own precision. */
+    const tvo_real_t turns = TVO_FLOOR(angle_rad * UNICYCLE_INV_TWO_PI + TVO_R(0.5));
+    tvo_real_t wrapped = (angle_rad - turns * UNICYCLE_TWO_PI_HI) - turns * UNICYCLE_TWO_PI_LO;
+    if (wrapped <= -UNICYCLE_PI) {
+        wrapped += TVO_R(2.0) * UNICYCLE_PI; /* rounding at the boundary: keep (-pi, pi] */
+    }
+    return wrapped;
 }
 
 tvo_status_t tvo_unicycle_flat_map(tvo_real_t heading_rad, tvo_real_t speed_mps,

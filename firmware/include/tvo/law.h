@@ -28,7 +28,7 @@ typedef struct {
     tvo_real_t d[TVO_MAX_RELATIVE_DEGREE][TVO_MAX_Z_DIM];
 } tvo_output_derivs_t;
 
-/** What the law computed, for telemetry and tests. */
+/** What the law computed, for telemetry and tests (entries beyond the used sizes are zero). */
 typedef struct {
     tvo_real_t grad[TVO_MAX_RELATIVE_DEGREE + 1][TVO_MAX_Z_DIM]; /* grad^(0..k-1), then r */
     tvo_real_t hessian[TVO_MAX_Z_DIM][TVO_MAX_Z_DIM];

@@ -45,6 +45,7 @@ typedef struct {
         tvo_target_ellipse_t ellipse;   /* circles are ellipses with equal semi-axes */
         tvo_target_streamed_t streamed;
     } u;
+    tvo_real_t rotation_cs[2];  /* ellipse: cos, sin of its fixed rotation, computed by init */
 } tvo_target_t;
 
 /** Polynomial target; coeff[axis][j] multiplies t^j, degree <= TVO_POLY_MAX_DEGREE. */
