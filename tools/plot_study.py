@@ -44,7 +44,7 @@ LABEL = {
 
 def plot_error_vs_h(d, path):
     s1 = d["study1"]
-    fig, ax = plt.subplots(figsize=(6.4, 4.8))
+    fig, ax = plt.subplots(figsize=(8.8, 4.8))
     hs_all = []
     for c in s1["curves"]:
         pts = [(r["h_s"], r["max_err_m"]) for r in c["table"]
@@ -65,7 +65,7 @@ def plot_error_vs_h(d, path):
     ax.set_ylabel("worst-case tracking error (m), last target period")
     ax.set_title("(c) error vs h, k = 2 (each curve up to its exact stability edge, dashed verticals)", fontsize=9)
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=7.5, loc="upper left")
+    ax.legend(fontsize=7.5, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
     fig.tight_layout()
     fig.savefig(path, dpi=130)
     plt.close(fig)
