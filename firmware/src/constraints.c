@@ -322,7 +322,14 @@ tvo_status_t tvo_free_space_constraint_max(const void *term, const tvo_real_t *y
         if (st != TVO_OK) {
             return st;
         }
-        const tvo_real_t f = normal[0] * y_c[0] + normal[1] * y_c[1] - bound;
+        tvo_real_t f = normal[0] * y_c[0] + normal[1] * y_c[1] - bound;
+        /* At y = y_c the plane gives f = -c (c + 2 r_i) / 2 with c the clearance: positive for every
+         * collision with -2 r_i < c < 0, but negative again for a robot covering a smaller obstacle
+         * (c < -2 r_i). The s0 rule must see every collision as a violation, so a colliding robot
+         * reports |f|: the plane's own value wherever that is already right. */
+        if (tvo_disk_clearance(&self->obstacle[i], self->robot_radius_m, y_c) < TVO_R(0.0)) {
+            f = TVO_FABS(f);
+        }
         if (i == 0u || f > worst) {
             worst = f;
         }

@@ -24,6 +24,7 @@ tvo_status_t tvo_controller_config_default(tvo_controller_config_t *cfg)
     cfg->delay_ticks = 5000u;
     cfg->robot_count = 1u;
     cfg->delay_compensation = 1u;
+    cfg->zoh_aware = 0u;
     cfg->velocity_source = TVO_VELOCITY_FROM_POSE;
     cfg->filter_tf_s = TVO_R(0.05);
     cfg->gain_kp = TVO_R(40.0);
@@ -54,6 +55,9 @@ static tvo_param_t first_bad_param(const tvo_controller_config_t *cfg, const tvo
     }
     if (cfg->robot_count == 0u || cfg->robot_count > TVO_MAX_ROBOTS) {
         return TVO_PARAM_ROBOT_COUNT;
+    }
+    if (cfg->delay_compensation > 1u || cfg->zoh_aware > 1u) {
+        return TVO_PARAM_DELAY; /* switches are 0 or 1 */
     }
     if (cfg->velocity_source != TVO_VELOCITY_FROM_POSE && cfg->velocity_source != TVO_VELOCITY_FROM_POSITION) {
         return TVO_PARAM_VELOCITY_SOURCE;
@@ -299,12 +303,17 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     const uint32_t age_ticks = apply_tick - meas->stamp_tick;
     const tvo_real_t age_s = tvo_ticks_to_seconds(age_ticks, cfg->tick_hz);
     const int compensate = cfg->delay_compensation != 0u;
-    uint32_t flags = (compensate && age_ticks > 0u) ? TVO_FLAG_PREDICTED : 0u;
+    const int zoh_aware = cfg->zoh_aware != 0u;
+    /* How far the sampled state is carried with the held command: over the measurement's age to the
+     * application instant (compensation), then half a period on (ZOH-aware: mid-interval). */
+    const tvo_real_t carry_s = (compensate ? age_s : TVO_R(0.0)) + (zoh_aware ? TVO_R(0.5) * ctl->period_s : TVO_R(0.0));
+    uint32_t flags = (carry_s > TVO_R(0.0)) ? TVO_FLAG_PREDICTED : 0u;
 
-    /* State the law sees: at the application instant (compensated) or at the sample (not). */
+    /* State the law sees: at the sample (no compensation), the application instant, or mid-interval. */
     tvo_output_derivs_t y;
     memset(&y, 0, sizeof(y));
     tvo_real_t heading[TVO_MAX_ROBOTS] = {TVO_R(0.0)};
+    tvo_real_t speed[TVO_MAX_ROBOTS] = {TVO_R(0.0)}; /* dynamic-extension speed where the law is evaluated */
     for (uint8_t r = 0; r < n; ++r) {
         if (cfg->velocity_source == TVO_VELOCITY_FROM_POSE && meas->speed_valid) {
             /* Re-sync the extension with what the plant actually does (slip, disturbance): the plant
@@ -316,30 +325,37 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
         pose.position_m[0] = meas->position_m[r][0];
         pose.position_m[1] = meas->position_m[r][1];
         pose.heading_rad = heading_at_sample[r];
-        if (compensate) {
-            st = tvo_unicycle_predict(&pose, ctl->held.speed_mps[r], ctl->held.turn_rate_radps[r], age_s, &pose);
+        if (carry_s > TVO_R(0.0)) {
+            st = tvo_unicycle_predict(&pose, ctl->held.speed_mps[r], ctl->held.turn_rate_radps[r], carry_s, &pose);
             if (st != TVO_OK) {
                 break;
             }
         }
         heading[r] = pose.heading_rad;
+        /* Mid-interval speed: the state plus half a period of the last acceleration (O(h^2)). */
+        speed[r] = ctl->speed_state_mps[r] +
+                   (zoh_aware ? TVO_R(0.5) * ctl->period_s * ctl->telemetry.accel_mps2[r] : TVO_R(0.0));
         y.d[0][2u * r] = pose.position_m[0];
         y.d[0][2u * r + 1u] = pose.position_m[1];
         if (cfg->velocity_source == TVO_VELOCITY_FROM_POSITION) {
             /* The held turn rate rotates the velocity over the age, like the heading. */
-            const tvo_real_t turn = compensate ? ctl->held.turn_rate_radps[r] * age_s : TVO_R(0.0);
+            const tvo_real_t turn = ctl->held.turn_rate_radps[r] * carry_s;
             const tvo_real_t c = TVO_COS(turn);
             const tvo_real_t s = TVO_SIN(turn);
             y.d[1][2u * r] = c * rate_filtered[2u * r] - s * rate_filtered[2u * r + 1u];
             y.d[1][2u * r + 1u] = s * rate_filtered[2u * r] + c * rate_filtered[2u * r + 1u];
         } else {
-            y.d[1][2u * r] = ctl->speed_state_mps[r] * TVO_COS(pose.heading_rad);
-            y.d[1][2u * r + 1u] = ctl->speed_state_mps[r] * TVO_SIN(pose.heading_rad);
+            /* Mid-interval speed: the state plus half a period of the last acceleration (O(h^2)). */
+            y.d[1][2u * r] = speed[r] * TVO_COS(pose.heading_rad);
+            y.d[1][2u * r + 1u] = speed[r] * TVO_SIN(pose.heading_rad);
         }
     }
 
     tvo_time_jet_t t;
     t.ticks = compensate ? elapsed : (elapsed >= age_ticks ? elapsed - age_ticks : 0u);
+    if (zoh_aware) {
+        t.ticks += cfg->period_ticks / 2u;
+    }
     t.tick_hz = cfg->tick_hz;
     t.t_s = tvo_ticks_to_seconds(t.ticks, cfg->tick_hz);
     t.rate = TVO_R(1.0);
@@ -367,7 +383,7 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     for (uint8_t r = 0; r < n && st == TVO_OK; ++r) {
         uint8_t low_speed = 0;
         tvo_real_t turn_rate;
-        st = tvo_unicycle_flat_map(heading[r], ctl->speed_state_mps[r], &y_accel[2u * r], cfg->min_speed_mps,
+        st = tvo_unicycle_flat_map(heading[r], speed[r], &y_accel[2u * r], cfg->min_speed_mps,
                                    &accel[r], &turn_rate, &low_speed);
         if (low_speed) {
             flags |= TVO_FLAG_LOW_SPEED;
@@ -398,8 +414,7 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     for (uint8_t r = 0; r < n; ++r) {
         ctl->speed_state_mps[r] = speed_next[r];
         /* The estimate lives at the application instant; the next sample dead-reckons from here. */
-        ctl->heading_estimate_rad[r] = compensate ? heading[r]
-                                                  : tvo_wrap_angle(heading[r] + ctl->held.turn_rate_radps[r] * age_s);
+        ctl->heading_estimate_rad[r] = tvo_wrap_angle(heading[r] + ctl->held.turn_rate_radps[r] * (age_s - carry_s));
     }
     next.flags = flags;
     ctl->held = next;

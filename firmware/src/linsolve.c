@@ -114,7 +114,10 @@ static tvo_status_t regularized_factor(tvo_matrix_t a, uint8_t n, tvo_real_t *sh
     tvo_real_t mu = TVO_R(0.0);
     for (uint8_t attempt = 0; attempt <= LADDER_STEPS + 1u; ++attempt) {
         if (attempt == LADDER_STEPS + 1u) {
-            mu = gershgorin + LADDER_FIRST_SCALE * scale; /* always positive definite */
+            /* Strict diagonal dominance with a margin that survives rounding and the pivot floor:
+             * positive definite in floating point, not only in exact arithmetic. */
+            mu = gershgorin + LADDER_FIRST_SCALE * scale +
+                 TVO_R(128.0) * TVO_EPSILON * (tvo_real_t)n * (scale + gershgorin);
         }
         for (uint8_t i = 0; i < n; ++i) {
             a[i][i] = diag[i] + mu;

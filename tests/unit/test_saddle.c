@@ -194,7 +194,9 @@ static void test_gershgorin_fallback_when_the_ladder_is_not_enough(void)
     tvo_real_t shift = TVO_R(0.0);
     ASSERT_STATUS(TVO_OK, tvo_saddle_solve(a, 3, 0, b, x, &shift));
     ASSERT_LE(100.0, shift, "beyond the ladder");
-    ASSERT_NEAR(2.0 * M + 1e-6, shift, TEST_TOL(8, 2.0 * M)); /* the Gershgorin radius + 1e-6 s, to rounding */
+    /* The Gershgorin shift 2M plus the documented margin 1e-6 s + 128 n eps (s + shift), s = 1, n = 3. */
+    const double expected_shift = 2.0 * M + 1e-6 + 128.0 * TEST_EPS * 3.0 * (1.0 + 2.0 * M);
+    ASSERT_NEAR(expected_shift, shift, TEST_TOL(8, 2.0 * M));
     double scale = 0.0;
     const double res = residual(copy, 3, 3, test_d(shift), x, bd, &scale);
     ASSERT_LE(res, 32.0 * TEST_EPS * scale, "(P + mu I) x = b");

@@ -15,6 +15,18 @@
 #define SYST_CSR_CLKSOURCE_CPU (1u << 2)
 #define SYST_RELOAD_MAX 0x00FFFFFFu
 
+/* CMSDK APB UART0 of the mps2 boards (ARM DDI 0479, CMSDK, "APB UART"). */
+#define UART0_BASE 0x40004000u
+#define UART_DATA (*(volatile uint32_t *)(UART0_BASE + 0x000u))
+#define UART_STATE (*(volatile uint32_t *)(UART0_BASE + 0x004u))
+#define UART_CTRL (*(volatile uint32_t *)(UART0_BASE + 0x008u))
+#define UART_BAUDDIV (*(volatile uint32_t *)(UART0_BASE + 0x010u))
+#define UART_STATE_TX_FULL (1u << 0)
+#define UART_STATE_RX_FULL (1u << 1)
+#define UART_CTRL_TX_EN (1u << 0)
+#define UART_CTRL_RX_EN (1u << 1)
+#define UART_BAUDDIV_MIN 16u /* the smallest divider the UART accepts */
+
 static uint32_t semihosting_call(uint32_t operation, const void *argument)
 {
     register uint32_t r0 __asm__("r0") = operation;
@@ -81,4 +93,29 @@ uint32_t tvo_board_cycle_counter_read(void)
 uint32_t tvo_board_cycle_counter_elapsed(uint32_t start, uint32_t end)
 {
     return (start - end) & SYST_RELOAD_MAX; /* counts down, modulo 2^24 */
+}
+
+void tvo_board_uart_init(void)
+{
+    UART_BAUDDIV = UART_BAUDDIV_MIN;
+    UART_CTRL = UART_CTRL_TX_EN | UART_CTRL_RX_EN;
+}
+
+void tvo_board_uart_write(const uint8_t *data, uint32_t length)
+{
+    for (uint32_t i = 0; i < length; ++i) {
+        while ((UART_STATE & UART_STATE_TX_FULL) != 0u) {
+            /* wait for room: bounded by the UART draining, which it always does */
+        }
+        UART_DATA = data[i];
+    }
+}
+
+int tvo_board_uart_read(uint8_t *byte)
+{
+    if ((UART_STATE & UART_STATE_RX_FULL) == 0u) {
+        return 0;
+    }
+    *byte = (uint8_t)UART_DATA;
+    return 1;
 }

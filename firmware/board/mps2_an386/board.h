@@ -29,4 +29,11 @@ uint32_t tvo_board_cycle_counter_read(void);
 /** Ticks from start to end, for a span shorter than one wrap. */
 uint32_t tvo_board_cycle_counter_elapsed(uint32_t start, uint32_t end);
 
+/** UART0 (CMSDK APB UART; QEMU's first -serial), transmitter and receiver on. */
+void tvo_board_uart_init(void);
+/** Blocking write of length bytes. */
+void tvo_board_uart_write(const uint8_t *data, uint32_t length);
+/** Non-blocking read: 1 and *byte when a byte was waiting, else 0. */
+int tvo_board_uart_read(uint8_t *byte);
+
 #endif /* TVO_BOARD_H */

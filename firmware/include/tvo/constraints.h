@@ -18,8 +18,11 @@
  *   see the half-planes as fixed, and they are re-derived at every evaluation. So the law's
  *   g-dot = H y' + grad_yt omits (d grad / d y_c) y' (the motion of the planes with the robot); the
  *   gradient dynamics are imposed on the "projected goal" problem of Arslan & Koditschek at each
- *   instant, not on the total derivative. At y = y_c, f_i = -((|o_i - y_c| - r)^2 - r_i^2)/2, which
- *   is negative exactly when the robot clears obstacle i.
+ *   instant, not on the total derivative. At y = y_c, f_i = -c (c + 2 r_i)/2 with c the clearance
+ *   |o_i - y_c| - r - r_i: negative when the robot clears obstacle i. (A robot covering a smaller
+ *   obstacle, c < -2 r_i, is outside what the construction handles: the plane there reads feasible.
+ *   tvo_free_space_constraint_max reports |f| for a colliding robot, so the s0 rule always sees a
+ *   collision as a violation.)
  */
 #ifndef TVO_CONSTRAINTS_H
 #define TVO_CONSTRAINTS_H

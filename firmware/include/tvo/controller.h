@@ -11,6 +11,10 @@
  *     the state at the instant its command takes effect. The actual age apply_tick - stamp_tick is
  *     used, so jitter in the sampling instant is compensated too.
  *
+ *   - ZOH-aware (zoh_aware = 1): the pose is carried on to the middle of the held interval, the
+ *     speed state by half a period of the last acceleration, and the law is evaluated there, so the
+ *     held command matches the continuous law's interval average to second order in h (the
+ *     tracking error becomes O(h^2); see the chain controller and the study in README);
  *   - with compensation off, the law is evaluated at the sampling instant (state and objective
  *     time both at stamp_tick), as an uncompensated implementation of the paper would;
  *   - the held speed is the interval average of the speed state, v_n + a_n h / 2 (the held arc then
@@ -50,6 +54,7 @@ typedef struct {
     uint32_t delay_ticks;        /* tau: nominal sampling instant is apply - tau; 0 <= tau <= h */
     uint8_t robot_count;         /* N, 1 .. TVO_MAX_ROBOTS; the objective's dim must be 2N */
     uint8_t delay_compensation;  /* 1: predict over the measurement's age before the law */
+    uint8_t zoh_aware;           /* 1: evaluate the law at the middle of the held interval */
     tvo_velocity_source_t velocity_source;
     tvo_real_t filter_tf_s;      /* dirty-derivative time constant T_f > 0 */
     tvo_real_t gain_kp;          /* a_0; with gain_kd must make s^2 + kd s + kp Hurwitz */

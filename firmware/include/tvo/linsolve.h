@@ -8,7 +8,9 @@
  *   P is factored by Cholesky; when P is not positive definite (a nonconvex term such as a
  *   minimum-distance bound), it is regularised by the smallest shift mu I of the ladder
  *   mu = 1e-6 s, 1e-5 s, ..., 1e2 s (s = max(1, max |P_ii|)) that makes it so, and if none does,
- *   by the Gershgorin shift that provably does. The step then descends Phi but does not impose the
+ *   by the Gershgorin shift (the largest row's off-diagonal sum minus its diagonal) plus
+ *   1e-6 s + 128 n eps (s + shift), a margin that keeps the shifted matrix positive definite after
+ *   rounding too. The step then descends Phi but does not impose the
  *   gradient dynamics exactly; *shift reports mu (0 when none was needed). The dual part is
  *   eliminated through the Schur complement S = C P^-1 C^T - D, which must be positive definite
  *   (the equalities independent): TVO_ERR_NOT_POSITIVE_DEFINITE otherwise.
