@@ -9,6 +9,9 @@
  * the node first runs the core once per missed period with no measurement (the core holds the
  * previous command, as the plant did, and its watchdog counts the gap) and publishes those
  * holding commands too, so the plant side sees and counts the fault.
+ *
+ * Constraints: the barrier's slack s0 is chosen once, from the first measurement the node can use
+ * (the paper's rule on f_i(y(0), 0)), before the first step that uses it.
  */
 #define _POSIX_C_SOURCE 200809L
 
@@ -24,7 +27,8 @@
 /* The only global: set by SIGINT/SIGTERM, polled by the main loop. */
 static volatile sig_atomic_t g_stop_signal = 0;
 
-/* Large enough for the biggest message (session_t is about 700 bytes encoded). */
+/* Encode buffer for what the node publishes (command, telemetry, ack: each under 1 kB encoded; the
+ * larger session_t is only decoded). main() checks the encoded sizes against it at start-up. */
 #define NODE_BUFFER_BYTES 2048
 /* How long one lcm_handle_timeout call may block before the stop flag is checked again. */
 #define NODE_POLL_MS 100
@@ -46,10 +50,11 @@ static void on_signal(int signo)
     g_stop_signal = 1;
 }
 
-static void publish_ack(node_t *node, const tvo_lcm_session_t *msg, tvo_status_t status, tvo_param_t bad)
+static void publish_ack(node_t *node, const tvo_lcm_session_t *msg, tvo_status_t status, tvo_param_t bad,
+                        int32_t bad_part)
 {
     tvo_lcm_session_ack_t ack;
-    tvo_edge_ack_to_lcm(msg->utime, msg->session_id, msg->action, status, bad, &ack);
+    tvo_edge_ack_to_lcm(msg->utime, msg->session_id, msg->action, status, bad, bad_part, &ack);
     const int len = tvo_lcm_session_ack_t_encode(node->buffer, 0, NODE_BUFFER_BYTES, &ack);
     if (len > 0) {
         lcm_publish(node->lcm, TVO_CHANNEL_SESSION_ACK, node->buffer, (unsigned)len);
@@ -66,7 +71,7 @@ static void publish_step(node_t *node, const tvo_command_t *cmd, tvo_status_t st
         lcm_publish(node->lcm, TVO_CHANNEL_COMMAND, node->buffer, (unsigned)len);
     }
     tvo_lcm_telemetry_t tel;
-    tvo_edge_telemetry_to_lcm(&node->session.controller, status, cmd->flags, apply_utime, sequence, &tel);
+    tvo_edge_telemetry_to_lcm(&node->session, status, cmd->flags, apply_utime, sequence, &tel);
     len = tvo_lcm_telemetry_t_encode(node->buffer, 0, NODE_BUFFER_BYTES, &tel);
     if (len > 0) {
         lcm_publish(node->lcm, TVO_CHANNEL_TELEMETRY, node->buffer, (unsigned)len);
@@ -111,6 +116,12 @@ static void on_measurement(const lcm_recv_buf_t *rbuf, const char *channel, cons
     tvo_measurement_t meas;
     tvo_command_t cmd;
     const tvo_status_t conv = tvo_edge_measurement_from_lcm(msg, s->robot_count, &meas);
+    if (conv == TVO_OK && !s->problem.slack_chosen) {
+        const tvo_status_t slack = tvo_edge_choose_slack(s, &meas);
+        if (slack != TVO_OK && slack != TVO_ERR_NOT_FINITE) {
+            fprintf(stderr, "tvo_firmware_node: choosing the barrier slack failed: %s\n", tvo_status_str(slack));
+        }
+    }
     tvo_status_t st = tvo_controller_step(&s->controller, conv == TVO_OK ? &meas : NULL, (uint32_t)apply_utime,
                                           &cmd);
     if (conv != TVO_OK) {
@@ -143,23 +154,32 @@ static void on_start(node_t *node, const tvo_lcm_session_t *msg)
     tvo_edge_session_t *s = &node->session;
     /* The host repeats START until acked: answer a repeat without restarting the controller. */
     if (node->has_start && msg->session_id == s->session_id) {
-        publish_ack(node, msg, s->start_status, s->start_bad_param);
+        publish_ack(node, msg, s->start_status, s->start_bad_param, s->start_bad_part);
         return;
     }
     tvo_param_t bad = TVO_PARAM_NONE;
-    const tvo_status_t st = tvo_edge_session_start(s, msg, &bad);
+    int32_t bad_part = TVO_LCM_SESSION_ACK_T_PART_NONE;
+    const tvo_status_t st = tvo_edge_session_start(s, msg, &bad, &bad_part);
     s->start_status = st;
     s->start_bad_param = bad;
+    s->start_bad_part = bad_part;
     node->has_start = 1;
     node->target_errors = 0;
     if (st == TVO_OK) {
-        fprintf(stderr, "tvo_firmware_node: session %lld started (%d robot(s), h = %lld us, tau = %lld us)\n",
-                (long long)msg->session_id, (int)s->robot_count, (long long)s->period_us, (long long)s->delay_us);
+        const tvo_objective_t *obj = &s->problem.objective;
+        fprintf(stderr,
+                "tvo_firmware_node: session %lld started (%d robot(s), h = %lld us, tau = %lld us, %d term(s), "
+                "%d multiplier(s))\n",
+                (long long)msg->session_id, (int)s->robot_count, (long long)s->period_us, (long long)s->delay_us,
+                (int)obj->term_count, (int)obj->dual_dim);
+    } else if (bad_part != TVO_LCM_SESSION_ACK_T_PART_NONE) {
+        fprintf(stderr, "tvo_firmware_node: session %lld rejected: %s (parameter %s, part: %s)\n",
+                (long long)msg->session_id, tvo_status_str(st), tvo_param_str(bad), tvo_edge_part_str(bad_part));
     } else {
         fprintf(stderr, "tvo_firmware_node: session %lld rejected: %s (parameter %s)\n", (long long)msg->session_id,
                 tvo_status_str(st), tvo_param_str(bad));
     }
-    publish_ack(node, msg, st, bad);
+    publish_ack(node, msg, st, bad, bad_part);
 }
 
 static void on_session(const lcm_recv_buf_t *rbuf, const char *channel, const tvo_lcm_session_t *msg, void *user)
@@ -174,10 +194,10 @@ static void on_session(const lcm_recv_buf_t *rbuf, const char *channel, const tv
         if (!node->has_start || msg->session_id == node->session.session_id) {
             node->session.active = 0;
             node->stop_requested = 1;
-            publish_ack(node, msg, TVO_OK, TVO_PARAM_NONE);
+            publish_ack(node, msg, TVO_OK, TVO_PARAM_NONE, TVO_LCM_SESSION_ACK_T_PART_NONE);
         }
     } else {
-        publish_ack(node, msg, TVO_ERR_PARAM, TVO_PARAM_NONE);
+        publish_ack(node, msg, TVO_ERR_PARAM, TVO_PARAM_NONE, TVO_LCM_SESSION_ACK_T_PART_NONE);
     }
 }
 
@@ -220,12 +240,31 @@ static int install_signal_handlers(void)
     return (sigaction(SIGINT, &sa, NULL) == 0 && sigaction(SIGTERM, &sa, NULL) == 0) ? 0 : -1;
 }
 
+/* The published messages are fixed-size: their encoded sizes are constants, checked once here. */
+static int buffer_fits_messages(void)
+{
+    tvo_lcm_command_t command;
+    tvo_lcm_telemetry_t telemetry;
+    tvo_lcm_session_ack_t ack;
+    memset(&command, 0, sizeof(command));
+    memset(&telemetry, 0, sizeof(telemetry));
+    memset(&ack, 0, sizeof(ack));
+    return tvo_lcm_command_t_encoded_size(&command) <= NODE_BUFFER_BYTES &&
+           tvo_lcm_telemetry_t_encoded_size(&telemetry) <= NODE_BUFFER_BYTES &&
+           tvo_lcm_session_ack_t_encoded_size(&ack) <= NODE_BUFFER_BYTES;
+}
+
 int main(int argc, char **argv)
 {
     const char *url = NULL;
     const int arg_status = parse_args(argc, argv, &url);
     if (arg_status != 0) {
         return arg_status;
+    }
+    if (!buffer_fits_messages()) {
+        fprintf(stderr, "tvo_firmware_node: error: NODE_BUFFER_BYTES (%d) is smaller than an encoded message\n",
+                NODE_BUFFER_BYTES);
+        return 1;
     }
     if (install_signal_handlers() != 0) {
         perror("tvo_firmware_node: sigaction");

@@ -1,6 +1,7 @@
 /* LCM <-> control-core conversions of the firmware node; see lcm_edge.h. */
 #include "lcm_edge.h"
 
+#include <float.h>
 #include <string.h>
 
 /* Stride of one robot's block in session_t.target_params (circle, ellipse). */
@@ -9,8 +10,18 @@
 #define EDGE_POLY_ROBOT_STRIDE 16
 #define EDGE_POLY_AXIS_STRIDE 8
 
+/* A wire double as the core's scalar. Out of float range becomes +-infinity, which the core rejects
+ * as not finite (a plain conversion of such a value to float is undefined behaviour in C). */
 static tvo_real_t edge_real(double value)
 {
+#if !TVO_USE_DOUBLE
+    if (value > (double)FLT_MAX) {
+        return INFINITY;
+    }
+    if (value < -(double)FLT_MAX) {
+        return -INFINITY;
+    }
+#endif
     return (tvo_real_t)value;
 }
 
@@ -104,20 +115,183 @@ static tvo_status_t edge_config_from_session(const tvo_lcm_session_t *msg, tvo_c
     return TVO_OK;
 }
 
-/* Targets, one tracking term per robot (offset 2r) and the objective summing them. */
-static tvo_status_t edge_objective_from_session(tvo_edge_session_t *session, const tvo_lcm_session_t *msg,
-                                                tvo_param_t *bad_param)
+/* Parts of the problem named in a rejection (session_ack_t.PART_*), from tvo_problem_init's index. */
+static int32_t edge_part_from_problem(uint8_t problem_part)
 {
-    tvo_status_t st = tvo_objective_init(&session->objective, (uint8_t)(2u * session->robot_count));
-    for (uint8_t r = 0; st == TVO_OK && r < session->robot_count; ++r) {
-        const tvo_real_t weight[2] = {edge_real(msg->tracking_weight[r][0]),
-                                      edge_real(msg->tracking_weight[r][1])};
-        st = edge_target_init(&session->targets[r], msg->target_kind, msg->target_params, r);
-        if (st == TVO_OK) {
-            st = tvo_tracking_init(&session->terms[r], &session->targets[r], weight, (uint8_t)(2u * r));
+    static const int32_t parts[] = {
+        TVO_LCM_SESSION_ACK_T_PART_ROBOTS,    TVO_LCM_SESSION_ACK_T_PART_BARRIER,
+        TVO_LCM_SESSION_ACK_T_PART_DISTANCE,  TVO_LCM_SESSION_ACK_T_PART_HALFSPACE,
+        TVO_LCM_SESSION_ACK_T_PART_OBSTACLES, TVO_LCM_SESSION_ACK_T_PART_OFFSETS};
+    return problem_part < sizeof(parts) / sizeof(parts[0]) ? parts[problem_part] : TVO_LCM_SESSION_ACK_T_PART_NONE;
+}
+
+/* A count from the wire, 0 .. max; anything else would index past the message's arrays. */
+static int edge_count_ok(int32_t count, int32_t max)
+{
+    return count >= 0 && count <= max;
+}
+
+/* A robot index from the wire: 0 .. robot_count - 1 (checked before narrowing to uint8_t). */
+static int edge_robot_ok(int32_t robot, uint8_t robot_count)
+{
+    return robot >= 0 && robot < (int32_t)robot_count;
+}
+
+static tvo_status_t edge_barrier_from_session(const tvo_lcm_session_t *msg, tvo_barrier_config_t *cfg)
+{
+    if (msg->barrier_relaxation_degree < 0 || msg->barrier_relaxation_degree > (int32_t)UINT8_MAX) {
+        return TVO_ERR_PARAM;
+    }
+    cfg->c0 = edge_real(msg->barrier_c0);
+    cfg->alpha_c_per_s = edge_real(msg->barrier_alpha_c_per_s);
+    cfg->c_max = edge_real(msg->barrier_c_max);
+    cfg->delta0 = edge_real(msg->barrier_delta0);
+    cfg->alpha_s_per_s = edge_real(msg->barrier_alpha_s_per_s);
+    cfg->slack_margin = edge_real(msg->barrier_slack_margin);
+    cfg->relaxation_degree = (uint8_t)msg->barrier_relaxation_degree;
+    return TVO_OK;  /* ranges: tvo_barrier_init, through tvo_problem_init */
+}
+
+static tvo_status_t edge_distances_from_session(const tvo_lcm_session_t *msg, tvo_problem_desc_t *desc)
+{
+    if (!edge_count_ok(msg->distance_count, TVO_LCM_SESSION_T_MAX_DISTANCE_BOUNDS) ||
+        msg->distance_count > TVO_MAX_DISTANCE_BOUNDS) {
+        return TVO_ERR_CAPACITY;
+    }
+    desc->distance_count = (uint8_t)msg->distance_count;
+    for (size_t i = 0; i < desc->distance_count; ++i) {
+        if (!edge_robot_ok(msg->distance_robot_a[i], desc->robot_count) ||
+            !edge_robot_ok(msg->distance_robot_b[i], desc->robot_count)) {
+            return TVO_ERR_PARAM;
         }
-        if (st == TVO_OK) {
-            st = tvo_objective_add_term(&session->objective, tvo_tracking_gradient_jet, &session->terms[r]);
+        tvo_distance_bound_desc_t *d = &desc->distance[i];
+        d->robot_a = (uint8_t)msg->distance_robot_a[i];
+        d->robot_b = (uint8_t)msg->distance_robot_b[i];
+        d->min_m = edge_real(msg->distance_min_m[i]);
+        d->min_rate_mps = edge_real(msg->distance_min_rate_mps[i]);
+        d->max_m = edge_real(msg->distance_max_m[i]);
+        d->max_rate_mps = edge_real(msg->distance_max_rate_mps[i]);
+    }
+    return TVO_OK;
+}
+
+static tvo_status_t edge_halfspaces_from_session(const tvo_lcm_session_t *msg, tvo_problem_desc_t *desc)
+{
+    if (!edge_count_ok(msg->halfspace_count, TVO_LCM_SESSION_T_MAX_HALFSPACES) ||
+        msg->halfspace_count > TVO_MAX_HALFSPACES) {
+        return TVO_ERR_CAPACITY;
+    }
+    desc->halfspace_count = (uint8_t)msg->halfspace_count;
+    for (size_t i = 0; i < desc->halfspace_count; ++i) {
+        if (!edge_robot_ok(msg->halfspace_robot[i], desc->robot_count)) {
+            return TVO_ERR_PARAM;
+        }
+        tvo_halfspace_desc_t *h = &desc->halfspace[i];
+        h->robot = (uint8_t)msg->halfspace_robot[i];
+        for (size_t axis = 0; axis < 2; ++axis) {
+            h->normal[axis] = edge_real(msg->halfspace_normal[i][axis]);
+            h->normal_rate[axis] = edge_real(msg->halfspace_normal_rate[i][axis]);
+        }
+        h->bound_m = edge_real(msg->halfspace_bound_m[i]);
+        h->bound_rate_mps = edge_real(msg->halfspace_bound_rate_mps[i]);
+    }
+    return TVO_OK;
+}
+
+static tvo_status_t edge_obstacles_from_session(const tvo_lcm_session_t *msg, tvo_problem_desc_t *desc)
+{
+    if (!edge_count_ok(msg->obstacle_count, TVO_LCM_SESSION_T_MAX_OBSTACLES) ||
+        msg->obstacle_count > TVO_MAX_OBSTACLES) {
+        return TVO_ERR_CAPACITY;
+    }
+    desc->obstacle_count = (uint8_t)msg->obstacle_count;
+    desc->robot_radius_m = edge_real(msg->robot_radius_m);
+    for (size_t i = 0; i < desc->obstacle_count; ++i) {
+        desc->obstacle[i].center_m[0] = edge_real(msg->obstacle_center_m[i][0]);
+        desc->obstacle[i].center_m[1] = edge_real(msg->obstacle_center_m[i][1]);
+        desc->obstacle[i].radius_m = edge_real(msg->obstacle_radius_m[i]);
+    }
+    return TVO_OK;  /* radii, disjointness: tvo_free_space_term_init */
+}
+
+static tvo_status_t edge_offsets_from_session(const tvo_lcm_session_t *msg, tvo_problem_desc_t *desc)
+{
+    if (!edge_count_ok(msg->offset_count, TVO_LCM_SESSION_T_MAX_OFFSETS) ||
+        msg->offset_count > TVO_MAX_OFFSET_EQUALITIES) {
+        return TVO_ERR_CAPACITY;
+    }
+    desc->offset_count = (uint8_t)msg->offset_count;
+    for (size_t i = 0; i < desc->offset_count; ++i) {
+        /* d(t) has no stream of its own on the wire: only on-board time functions. */
+        if (!edge_robot_ok(msg->offset_robot_a[i], desc->robot_count) ||
+            !edge_robot_ok(msg->offset_robot_b[i], desc->robot_count) ||
+            msg->offset_kind[i] == TVO_LCM_SESSION_T_TARGET_STREAMED) {
+            return TVO_ERR_PARAM;
+        }
+        tvo_offset_desc_t *o = &desc->offset[i];
+        o->robot_a = (uint8_t)msg->offset_robot_a[i];
+        o->robot_b = (uint8_t)msg->offset_robot_b[i];
+        const tvo_status_t st = edge_target_init(&o->offset, msg->offset_kind[i], msg->offset_params[i], 0u);
+        if (st != TVO_OK) {
+            return st;
+        }
+    }
+    return TVO_OK;
+}
+
+/* The problem description from the session; *bad_part names the first part the wire got wrong. */
+static tvo_status_t edge_problem_desc_from_session(const tvo_lcm_session_t *msg, tvo_problem_desc_t *desc,
+                                                   int32_t *bad_part)
+{
+    tvo_status_t st = tvo_problem_desc_default(desc);
+    if (st != TVO_OK) {
+        return st;
+    }
+    desc->robot_count = (uint8_t)msg->robot_count;  /* 1 .. TVO_MAX_ROBOTS, checked by the caller */
+    *bad_part = TVO_LCM_SESSION_ACK_T_PART_ROBOTS;
+    for (uint8_t r = 0; st == TVO_OK && r < desc->robot_count; ++r) {
+        desc->tracking_weight[r][0] = edge_real(msg->tracking_weight[r][0]);
+        desc->tracking_weight[r][1] = edge_real(msg->tracking_weight[r][1]);
+        st = edge_target_init(&desc->target[r], msg->target_kind, msg->target_params, r);
+    }
+    if (st == TVO_OK) {
+        *bad_part = TVO_LCM_SESSION_ACK_T_PART_BARRIER;
+        st = edge_barrier_from_session(msg, &desc->barrier);
+    }
+    if (st == TVO_OK) {
+        *bad_part = TVO_LCM_SESSION_ACK_T_PART_DISTANCE;
+        st = edge_distances_from_session(msg, desc);
+    }
+    if (st == TVO_OK) {
+        *bad_part = TVO_LCM_SESSION_ACK_T_PART_HALFSPACE;
+        st = edge_halfspaces_from_session(msg, desc);
+    }
+    if (st == TVO_OK) {
+        *bad_part = TVO_LCM_SESSION_ACK_T_PART_OBSTACLES;
+        st = edge_obstacles_from_session(msg, desc);
+    }
+    if (st == TVO_OK) {
+        *bad_part = TVO_LCM_SESSION_ACK_T_PART_OFFSETS;
+        st = edge_offsets_from_session(msg, desc);
+    }
+    if (st == TVO_OK) {
+        *bad_part = TVO_LCM_SESSION_ACK_T_PART_NONE;
+    }
+    return st;
+}
+
+/* The problem: the edge's wire checks, then the core's (which names its own part). */
+static tvo_status_t edge_problem_from_session(tvo_edge_session_t *session, const tvo_lcm_session_t *msg,
+                                              tvo_param_t *bad_param, int32_t *bad_part)
+{
+    tvo_problem_desc_t desc;
+    tvo_status_t st = edge_problem_desc_from_session(msg, &desc, bad_part);
+    if (st == TVO_OK) {
+        uint8_t problem_part = 0;
+        /* k = 2: the unicycle's flat output has relative degree 2 (bounds the barrier's m_r below). */
+        st = tvo_problem_init(&session->problem, &desc, 2u, &problem_part);
+        if (st != TVO_OK) {
+            *bad_part = edge_part_from_problem(problem_part);
         }
     }
     if (st != TVO_OK && bad_param != NULL) {
@@ -126,9 +300,27 @@ static tvo_status_t edge_objective_from_session(tvo_edge_session_t *session, con
     return st;
 }
 
-tvo_status_t tvo_edge_session_start(tvo_edge_session_t *session, const tvo_lcm_session_t *msg,
-                                    tvo_param_t *bad_param)
+const char *tvo_edge_part_str(int32_t part)
 {
+    switch (part) {
+    case TVO_LCM_SESSION_ACK_T_PART_NONE: return "none";
+    case TVO_LCM_SESSION_ACK_T_PART_ROBOTS: return "robots/targets";
+    case TVO_LCM_SESSION_ACK_T_PART_BARRIER: return "barrier";
+    case TVO_LCM_SESSION_ACK_T_PART_DISTANCE: return "distance bounds";
+    case TVO_LCM_SESSION_ACK_T_PART_HALFSPACE: return "half-spaces";
+    case TVO_LCM_SESSION_ACK_T_PART_OBSTACLES: return "obstacles";
+    case TVO_LCM_SESSION_ACK_T_PART_OFFSETS: return "formation offsets";
+    default: return "unknown part";
+    }
+}
+
+tvo_status_t tvo_edge_session_start(tvo_edge_session_t *session, const tvo_lcm_session_t *msg,
+                                    tvo_param_t *bad_param, int32_t *bad_part)
+{
+    int32_t part = TVO_LCM_SESSION_ACK_T_PART_NONE;
+    if (bad_part != NULL) {
+        *bad_part = part;
+    }
     if (session == NULL || msg == NULL) {
         return TVO_ERR_NULL;
     }
@@ -148,14 +340,34 @@ tvo_status_t tvo_edge_session_start(tvo_edge_session_t *session, const tvo_lcm_s
     tvo_controller_config_t cfg;
     tvo_status_t st = edge_config_from_session(msg, &cfg, bad_param);
     if (st == TVO_OK) {
-        st = edge_objective_from_session(session, msg, bad_param);
+        st = edge_problem_from_session(session, msg, bad_param, &part);
     }
     if (st == TVO_OK) {
-        st = tvo_controller_init(&session->controller, &cfg, &session->objective, (uint32_t)msg->epoch_utime,
-                                 bad_param);
+        st = tvo_controller_init(&session->controller, &cfg, &session->problem.objective,
+                                 (uint32_t)msg->epoch_utime, bad_param);
+    }
+    if (bad_part != NULL) {
+        *bad_part = part;
     }
     session->active = (st == TVO_OK) ? 1u : 0u;
     return st;
+}
+
+tvo_status_t tvo_edge_choose_slack(tvo_edge_session_t *session, const tvo_measurement_t *meas)
+{
+    if (session == NULL || meas == NULL) {
+        return TVO_ERR_NULL;
+    }
+    tvo_real_t y[TVO_MAX_OUTPUT_DIM];
+    for (size_t r = 0; r < session->robot_count; ++r) {
+        y[2u * r] = meas->position_m[r][0];
+        y[2u * r + 1u] = meas->position_m[r][1];
+        if (!isfinite(y[2u * r]) || !isfinite(y[2u * r + 1u])) {
+            return TVO_ERR_NOT_FINITE;  /* the controller rejects this sample too; wait for a good one */
+        }
+    }
+    /* s0 from f_i(y(0), 0): the first usable sample stands for the state at the objective's t = 0. */
+    return tvo_problem_choose_slack(&session->problem, y, TVO_R(0.0));
 }
 
 tvo_status_t tvo_edge_measurement_from_lcm(const tvo_lcm_measurement_t *msg, uint8_t robot_count,
@@ -195,10 +407,11 @@ void tvo_edge_command_to_lcm(const tvo_command_t *cmd, tvo_status_t status, int6
     msg->flags = (int32_t)cmd->flags;
 }
 
-void tvo_edge_telemetry_to_lcm(const tvo_controller_t *ctl, tvo_status_t status, uint32_t flags,
+void tvo_edge_telemetry_to_lcm(const tvo_edge_session_t *session, tvo_status_t status, uint32_t flags,
                                int64_t apply_utime, int64_t sequence, tvo_lcm_telemetry_t *msg)
 {
     memset(msg, 0, sizeof(*msg));
+    const tvo_controller_t *ctl = &session->controller;
     const tvo_controller_telemetry_t *tel = &ctl->telemetry;
     const size_t dim = 2u * (size_t)ctl->cfg.robot_count;
     msg->utime = apply_utime;
@@ -217,6 +430,21 @@ void tvo_edge_telemetry_to_lcm(const tvo_controller_t *ctl, tvo_status_t status,
     for (size_t r = 0; r < ctl->cfg.robot_count && r < TVO_MAX_ROBOTS; ++r) {
         msg->speed_state_mps[r] = (double)ctl->speed_state_mps[r];
     }
+    const size_t multipliers = session->problem.objective.dual_dim;
+    for (size_t q = 0; q < multipliers && q < TVO_MAX_EQUALITIES && q < 4u; ++q) {
+        msg->multiplier[q] = (double)tel->multiplier[q];
+    }
+    msg->regularization = (double)tel->regularization;
+    if (session->problem.has_inequalities) {
+        tvo_real_t c = TVO_R(0.0);
+        tvo_real_t slack = TVO_R(0.0);
+        tvo_real_t delta = TVO_R(0.0);
+        const tvo_real_t t_s = tel->objective_time_s >= TVO_R(0.0) ? tel->objective_time_s : TVO_R(0.0);
+        if (tvo_barrier_schedule(&session->problem.barrier, t_s, &c, &slack, &delta) == TVO_OK) {
+            msg->barrier_c = (double)c;
+            msg->barrier_slack = (double)slack;
+        }
+    }
 }
 
 tvo_status_t tvo_edge_target_update(tvo_edge_session_t *session, const tvo_lcm_target_t *msg)
@@ -233,7 +461,11 @@ tvo_status_t tvo_edge_target_update(tvo_edge_session_t *session, const tvo_lcm_t
     uint64_t stamp_ticks = 0;
     tvo_status_t st = tvo_controller_objective_ticks(&session->controller, (uint32_t)msg->utime, &stamp_ticks);
     for (uint8_t r = 0; st == TVO_OK && r < session->robot_count; ++r) {
-        if (session->targets[r].kind != TVO_TARGET_STREAMED) {
+        tvo_target_t *target = tvo_problem_target(&session->problem, r);
+        if (target == NULL) {
+            return TVO_ERR_NOT_INITIALIZED;
+        }
+        if (target->kind != TVO_TARGET_STREAMED) {
             return TVO_ERR_PARAM;
         }
         tvo_real_t deriv[TVO_STREAM_MAX_DERIV + 1][2];
@@ -243,14 +475,14 @@ tvo_status_t tvo_edge_target_update(tvo_edge_session_t *session, const tvo_lcm_t
             deriv[2][axis] = edge_real(msg->acceleration_mps2[r][axis]);
             deriv[3][axis] = edge_real(msg->jerk_mps3[r][axis]);
         }
-        st = tvo_target_stream_update(&session->targets[r], stamp_ticks,
+        st = tvo_target_stream_update(target, stamp_ticks,
                                       (const tvo_real_t(*)[2])deriv);  /* adds const only (C11) */
     }
     return st;
 }
 
 void tvo_edge_ack_to_lcm(int64_t utime, int64_t session_id, int8_t action, tvo_status_t status,
-                         tvo_param_t bad_param, tvo_lcm_session_ack_t *msg)
+                         tvo_param_t bad_param, int32_t bad_part, tvo_lcm_session_ack_t *msg)
 {
     memset(msg, 0, sizeof(*msg));
     msg->utime = utime;
@@ -258,4 +490,5 @@ void tvo_edge_ack_to_lcm(int64_t utime, int64_t session_id, int8_t action, tvo_s
     msg->action = action;
     msg->status = (int32_t)status;
     msg->bad_param = (int32_t)bad_param;
+    msg->bad_part = bad_part;
 }

@@ -1,9 +1,10 @@
 /*
  * The firmware edge: conversions between the LCM messages (package tvo_lcm) and the control core.
  *
- * Everything a session needs lives in one tvo_edge_session_t (controller, objective, targets,
- * tracking terms), so the node holds no globals and the core's pointers into it stay valid for the
- * session's life. Times: the core's uint32 tick is the plant's utime in microseconds, truncated.
+ * Everything a session needs lives in one tvo_edge_session_t (controller and the problem: targets,
+ * tracking terms, constraints, equalities), so the node holds no globals and the core's pointers
+ * into it stay valid for the session's life. Times: the core's uint32 tick is the plant's utime in
+ * microseconds, truncated.
  */
 #ifndef TVO_LCM_EDGE_H
 #define TVO_LCM_EDGE_H
@@ -11,8 +12,8 @@
 #include <stdint.h>
 
 #include "tvo/controller.h"
+#include "tvo/problem.h"
 #include "tvo/target.h"
-#include "tvo/tracking.h"
 
 #include "tvo_lcm_command_t.h"
 #include "tvo_lcm_measurement_t.h"
@@ -34,9 +35,7 @@
 
 typedef struct {
     tvo_controller_t controller;
-    tvo_objective_t objective;
-    tvo_target_t targets[TVO_MAX_ROBOTS];
-    tvo_tracking_term_t terms[TVO_MAX_ROBOTS];
+    tvo_problem_t problem;      /* objective, targets and constraint terms the controller points into */
     int64_t session_id;
     int64_t period_us;
     int64_t delay_us;
@@ -46,15 +45,27 @@ typedef struct {
     uint8_t active;             /* a START was accepted and no STOP seen */
     tvo_status_t start_status;  /* outcome of the last START, re-sent on a duplicate */
     tvo_param_t start_bad_param;
+    int32_t start_bad_part;
 } tvo_edge_session_t;
 
 /**
- * Builds targets, tracking terms (one per robot, offset 2r, weights from tracking_weight), the
- * objective and the controller configuration from a START message, then initialises the
- * controller with epoch_tick = (uint32_t)epoch_utime. *bad_param names the rejected parameter.
+ * Builds the problem (targets and tracking terms per robot, distance bounds, half-spaces, obstacles,
+ * formation offsets, barrier) and the controller configuration from a START message, then
+ * initialises the controller with epoch_tick = (uint32_t)epoch_utime. On rejection *bad_param names
+ * the parameter (TVO_PARAM_OBJECTIVE for the problem) and *bad_part the part of the problem
+ * (TVO_LCM_SESSION_ACK_T_PART_*, PART_NONE when the problem was not at fault).
  */
 tvo_status_t tvo_edge_session_start(tvo_edge_session_t *session, const tvo_lcm_session_t *msg,
-                                    tvo_param_t *bad_param);
+                                    tvo_param_t *bad_param, int32_t *bad_part);
+
+/**
+ * Once, before the first step with a usable measurement: chooses the barrier slack s0 from the
+ * measured positions at objective time 0 (the paper's rule; no-op without inequalities).
+ */
+tvo_status_t tvo_edge_choose_slack(tvo_edge_session_t *session, const tvo_measurement_t *meas);
+
+/** Short name of a problem part (TVO_LCM_SESSION_ACK_T_PART_*), for logs. */
+const char *tvo_edge_part_str(int32_t part);
 
 /** Core measurement from an LCM one; TVO_ERR_DIMENSION if its robot count differs from the session's. */
 tvo_status_t tvo_edge_measurement_from_lcm(const tvo_lcm_measurement_t *msg, uint8_t robot_count,
@@ -64,8 +75,8 @@ tvo_status_t tvo_edge_measurement_from_lcm(const tvo_lcm_measurement_t *msg, uin
 void tvo_edge_command_to_lcm(const tvo_command_t *cmd, tvo_status_t status, int64_t apply_utime,
                              int64_t sequence, uint8_t robot_count, tvo_lcm_command_t *msg);
 
-/** LCM telemetry of the controller's last step. */
-void tvo_edge_telemetry_to_lcm(const tvo_controller_t *ctl, tvo_status_t status, uint32_t flags,
+/** LCM telemetry of the session's last step (controller state, multipliers, barrier schedule). */
+void tvo_edge_telemetry_to_lcm(const tvo_edge_session_t *session, tvo_status_t status, uint32_t flags,
                                int64_t apply_utime, int64_t sequence, tvo_lcm_telemetry_t *msg);
 
 /** Feeds a streamed target sample to every robot's streamed target (stamp converted by the core). */
@@ -73,6 +84,6 @@ tvo_status_t tvo_edge_target_update(tvo_edge_session_t *session, const tvo_lcm_t
 
 /** Session ack for a session message. */
 void tvo_edge_ack_to_lcm(int64_t utime, int64_t session_id, int8_t action, tvo_status_t status,
-                         tvo_param_t bad_param, tvo_lcm_session_ack_t *msg);
+                         tvo_param_t bad_param, int32_t bad_part, tvo_lcm_session_ack_t *msg);
 
 #endif /* TVO_LCM_EDGE_H */
