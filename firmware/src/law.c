@@ -2,7 +2,7 @@
  * The TV-O feedback law (paper, Theorem "TVO-based control"); see tvo/law.h.
  *
  * One jet pass along the trajectory gives grad^(0..k-1) and the y^(k)-free remainder r of
- * grad^(k); one first-order pass per unit direction (time frozen) gives a Hessian column.
+ * grad^(k); one pass per two unit directions (time frozen) gives two Hessian columns.
  * Then y^(k) = -H^{-1} (r + sum_i a_i grad^(i)).
  */
 #include "tvo/law.h"
@@ -55,8 +55,25 @@ static void zero_output(tvo_real_t *y_k, uint8_t dim)
     }
 }
 
-/* H[i][col] = d/dtau grad_i(y + e_col tau, t): a first-order jet with time frozen. The jet buffers
- * are the caller's (their trajectory contents are no longer needed): one set on the stack, not two. */
+/*
+ * Hessian columns H[:, col] = d/dtau grad(y + e_col tau, t) with time frozen, two columns per
+ * gradient evaluation: direction a is seeded at tau^2 and direction b at tau^3 of an order-3 jet.
+ * Any product of two seeded terms is O(tau^4) and truncated, so
+ *   grad(y + e_a tau^2 + e_b tau^3) = grad(y) + H e_a tau^2 + H e_b tau^3 + O(tau^4)
+ * exactly, with the ordinary Taylor arithmetic of every term (no mode, no special jet type).
+ * With jets shorter than order 3 (a build limited to k < 3), one column per evaluation at tau^1.
+ * The jet buffers are the caller's (their trajectory contents are no longer needed).
+ */
+#if TVO_JET_MAX_ORDER >= 3
+#define HESSIAN_ORDER 3u
+#define HESSIAN_COLUMNS_PER_PASS 2u
+static const uint8_t hessian_seed_power[HESSIAN_COLUMNS_PER_PASS] = {2u, 3u};
+#else
+#define HESSIAN_ORDER 1u
+#define HESSIAN_COLUMNS_PER_PASS 1u
+static const uint8_t hessian_seed_power[HESSIAN_COLUMNS_PER_PASS] = {1u};
+#endif
+
 static tvo_status_t hessian(const tvo_objective_t *objective, const tvo_output_derivs_t *y,
                             const tvo_time_jet_t *t, tvo_jet_t *y_jet, tvo_jet_t *g_jet, tvo_matrix_t h)
 {
@@ -66,15 +83,21 @@ static tvo_status_t hessian(const tvo_objective_t *objective, const tvo_output_d
     for (uint8_t i = 0; i < m; ++i) {
         tvo_jet_constant(y->d[0][i], &y_jet[i]);
     }
-    for (uint8_t col = 0; col < m; ++col) {
-        y_jet[col].c[1] = TVO_R(1.0);
-        const tvo_status_t st = tvo_objective_gradient_jet(objective, y_jet, &frozen, 1u, g_jet);
-        y_jet[col].c[1] = TVO_R(0.0);
+    for (uint8_t first = 0; first < m; first = (uint8_t)(first + HESSIAN_COLUMNS_PER_PASS)) {
+        for (uint8_t d = 0; d < HESSIAN_COLUMNS_PER_PASS && first + d < m; ++d) {
+            y_jet[first + d].c[hessian_seed_power[d]] = TVO_R(1.0);
+        }
+        const tvo_status_t st = tvo_objective_gradient_jet(objective, y_jet, &frozen, HESSIAN_ORDER, g_jet);
+        for (uint8_t d = 0; d < HESSIAN_COLUMNS_PER_PASS && first + d < m; ++d) {
+            y_jet[first + d].c[hessian_seed_power[d]] = TVO_R(0.0);
+        }
         if (st != TVO_OK) {
             return st;
         }
-        for (uint8_t i = 0; i < m; ++i) {
-            h[i][col] = g_jet[i].c[1];
+        for (uint8_t d = 0; d < HESSIAN_COLUMNS_PER_PASS && first + d < m; ++d) {
+            for (uint8_t i = 0; i < m; ++i) {
+                h[i][first + d] = g_jet[i].c[hessian_seed_power[d]];
+            }
         }
     }
     /* Symmetrise: the exact Hessian is symmetric; rounding should not make the solve see otherwise. */
