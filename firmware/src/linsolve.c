@@ -90,19 +90,28 @@ tvo_status_t tvo_cholesky_solve(tvo_matrix_t a, uint8_t n, const tvo_real_t *b, 
 /* Factors P + mu I in place (p = the primal block of a), smallest workable mu first. */
 static tvo_status_t regularized_factor(tvo_matrix_t a, uint8_t n, tvo_real_t *shift)
 {
+    /* The factor overwrites the lower triangle and the diagonal: keep the diagonal, and let the strict
+     * upper triangle (never written) be the pristine copy the retries restore from. */
     tvo_real_t diag[TVO_MAX_Z_DIM];
+    for (uint8_t i = 0; i < n; ++i) {
+        diag[i] = a[i][i];
+        for (uint8_t j = 0; j < i; ++j) {
+            a[i][j] = a[j][i];
+        }
+    }
+    *shift = TVO_R(0.0);
+    if (cholesky_factor(&a[0][0], TVO_MAX_Z_DIM, n)) {
+        return TVO_OK; /* the usual case: positive definite, no shift */
+    }
     tvo_real_t scale = TVO_R(1.0);
     tvo_real_t gershgorin = TVO_R(0.0);
     for (uint8_t i = 0; i < n; ++i) {
-        diag[i] = a[i][i];
         if (TVO_FABS(diag[i]) > scale) {
             scale = TVO_FABS(diag[i]);
         }
         tvo_real_t off = TVO_R(0.0);
         for (uint8_t j = 0; j < n; ++j) {
-            if (j != i) {
-                off += TVO_FABS(a[i][j]);
-            }
+            off += (j == i) ? TVO_R(0.0) : TVO_FABS(j > i ? a[i][j] : a[j][i]);
         }
         /* Shift that makes row i strictly diagonally dominant with a positive diagonal. */
         const tvo_real_t need = off - diag[i];
@@ -110,9 +119,8 @@ static tvo_status_t regularized_factor(tvo_matrix_t a, uint8_t n, tvo_real_t *sh
             gershgorin = need;
         }
     }
-    /* Keep the strict upper triangle as the pristine copy (the factor overwrites only the lower). */
-    tvo_real_t mu = TVO_R(0.0);
-    for (uint8_t attempt = 0; attempt <= LADDER_STEPS + 1u; ++attempt) {
+    tvo_real_t mu = LADDER_FIRST_SCALE * scale;
+    for (uint8_t attempt = 1u; attempt <= LADDER_STEPS + 1u; ++attempt) {
         if (attempt == LADDER_STEPS + 1u) {
             /* Strict diagonal dominance with a margin that survives rounding and the pivot floor:
              * positive definite in floating point, not only in exact arithmetic. */
@@ -129,7 +137,7 @@ static tvo_status_t regularized_factor(tvo_matrix_t a, uint8_t n, tvo_real_t *sh
             *shift = mu;
             return TVO_OK;
         }
-        mu = (attempt == 0u) ? LADDER_FIRST_SCALE * scale : mu * TVO_R(10.0);
+        mu *= TVO_R(10.0);
     }
     return TVO_ERR_NOT_POSITIVE_DEFINITE;
 }
