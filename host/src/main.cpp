@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "constraint_metrics.hpp"
 #include "firmware_process.hpp"
 #include "metrics.hpp"
 #include "options.hpp"
@@ -63,6 +64,44 @@ void finish(tvo_host::SessionClient& session, tvo_host::FirmwareProcess& firmwar
     }
 }
 
+/// The summary keys that apply to the scenario (host/README.md, "Outputs").
+void add_constraint_figures(const tvo_host::Scenario& scenario, const tvo_host::ConstraintMonitor& monitor,
+                            const tvo_host::TrackingMetrics& metrics, tvo_host::RunSummary* summary)
+{
+    if (monitor.has_contacts()) {
+        summary->collisions = monitor.collisions();
+        summary->min_clearance_m = monitor.min_clearance_m();
+    }
+    if (monitor.has_pair()) {
+        summary->min_distance_m = monitor.min_distance_m();
+        summary->final_distance_m = monitor.final_distance_m();
+        if (scenario.crossing_window) {
+            summary->min_distance_crossing_m = monitor.min_distance_window_m();
+        }
+    }
+    if (scenario.has_inequalities()) {
+        summary->max_violation_frac = monitor.max_violation_frac();
+        summary->initial_violation_frac = monitor.initial_violation_frac();
+        summary->time_to_feasible_s = monitor.time_to_feasible_s();
+        summary->regularized_steps = metrics.regularized();
+        bool has_min = false;
+        bool has_max = false;
+        for (const tvo_host::DistanceBound& d : scenario.distances) {
+            has_min = has_min || d.min_m > 0.0;
+            has_max = has_max || d.max_m > 0.0;
+        }
+        if (has_min) {
+            summary->max_violation_min_bound_frac = monitor.max_violation_min_bound_frac();
+        }
+        if (has_max) {
+            summary->max_violation_max_bound_frac = monitor.max_violation_max_bound_frac();
+        }
+    }
+    if (!scenario.offsets.empty()) {
+        summary->equality_residual_m = monitor.equality_residual_m();
+    }
+}
+
 int run(const tvo_host::SimOptions& options)
 {
     using namespace tvo_host;
@@ -71,7 +110,8 @@ int run(const tvo_host::SimOptions& options)
     const std::string csv_path = (out_dir / "run.csv").string();
     const std::string log_path = (out_dir / "run.lcmlog").string();
 
-    const Scenario scenario = make_demo_scenario(options.robots, options.target);
+    Scenario scenario = make_scenario(options.scenario, options.robots, options.target);
+    scenario.barrier.apply(options.barrier);
     LcmTransport transport(options.lcm_url, log_path);
     FirmwareProcess firmware;
     if (!options.firmware.empty()) {
@@ -98,7 +138,8 @@ int run(const tvo_host::SimOptions& options)
     const double duration_s = static_cast<double>(options.steps * options.period_us) * 1e-6;
     RunRecorder recorder(csv_path);
     TrackingMetrics metrics(duration_s, kRmsWindowS);
-    SimLoop loop(options, scenario, transport, recorder, metrics, g_signal);
+    ConstraintMonitor monitor(scenario);
+    SimLoop loop(options, scenario, transport, recorder, metrics, monitor, g_signal);
     LoopResult result;
     try {
         result = loop.run();
@@ -131,10 +172,13 @@ int run(const tvo_host::SimOptions& options)
     summary.commands = metrics.commands();
     summary.drops = result.drops;
     summary.late_commands = result.late_commands;
+    add_constraint_figures(scenario, monitor, metrics, &summary);
     print_summary_table(std::cout, summary, options);
     write_summary_json(options.summary_json, summary);
+    const std::string scenario_path = (out_dir / "scenario.json").string();
+    write_scenario_json(scenario_path, scenario, duration_s);
     std::cout << "  outputs: " << csv_path << ", " << log_path << " (" << transport.logged_events()
-              << " LCM events), " << options.summary_json << '\n';
+              << " LCM events), " << options.summary_json << ", " << scenario_path << '\n';
     if (!transport.log_ok()) {
         std::cerr << "tvo_sim: error: writing " << log_path << " failed\n";
         return 1;

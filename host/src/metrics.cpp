@@ -25,9 +25,10 @@ void TrackingMetrics::add_error_sample(double t_s, double error_m)
     }
 }
 
-void TrackingMetrics::add_command(const double* turn_rate_radps, std::size_t robot_count, bool fault)
+void TrackingMetrics::add_command(const double* turn_rate_radps, std::size_t robot_count, bool fault, bool regularized)
 {
     ++commands_;
+    regularized_ += regularized ? 1u : 0u;
     faults_ += fault ? 1u : 0u;
     for (std::size_t r = 0; r < robot_count; ++r) {
         max_abs_omega_radps_ = std::max(max_abs_omega_radps_, std::abs(turn_rate_radps[r]));

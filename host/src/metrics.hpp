@@ -14,14 +14,16 @@ public:
     /// Tracking error at t_s: the largest distance of a robot from its target (metres).
     void add_error_sample(double t_s, double error_m);
 
-    /// One command received from the firmware: its turn rates and whether it reports a fault.
-    void add_command(const double* turn_rate_radps, std::size_t robot_count, bool fault);
+    /// One command received from the firmware: its turn rates, whether it reports a fault and whether
+    /// its solve regularised an indefinite Hessian (TVO_FLAG_REGULARIZED).
+    void add_command(const double* turn_rate_radps, std::size_t robot_count, bool fault, bool regularized = false);
 
     double final_error_m() const { return final_error_m_; }
     double rms_error_window_m() const;
     double max_abs_omega_radps() const { return max_abs_omega_radps_; }
     std::uint64_t faults() const { return faults_; }
     std::uint64_t commands() const { return commands_; }
+    std::uint64_t regularized() const { return regularized_; }
 
 private:
     double window_start_s_;
@@ -31,6 +33,7 @@ private:
     double max_abs_omega_radps_{0.0};
     std::uint64_t faults_{0};
     std::uint64_t commands_{0};
+    std::uint64_t regularized_{0};
 };
 
 }  // namespace tvo_host

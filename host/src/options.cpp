@@ -4,8 +4,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <iomanip>
 #include <iostream>
+#include <optional>
 #include <sstream>
+#include <utility>
 
 #include <unistd.h>
 
@@ -63,8 +66,34 @@ std::string number(double value)
 }
 
 /// Cross-field checks and derived microsecond timing; returns -1 or 2.
-int validate(SimOptions* o, bool delay_given)
+int validate(SimOptions* o, bool delay_given, bool duration_given, bool robots_given, bool target_given)
 {
+    if (!scenario_exists(o->scenario)) {
+        return fail("--scenario", "unknown scenario '" + o->scenario + "' (--list-scenarios lists them)");
+    }
+    if (o->scenario != "demo") {
+        if (robots_given) {
+            return fail("--robots", "only the demo takes a robot count (scenario " + o->scenario + " has its own)");
+        }
+        if (target_given && o->target != TargetKind::Streamed) {
+            return fail("--target", "scenario " + o->scenario + " has its own targets (only 'streamed' applies)");
+        }
+        if (!duration_given) {
+            o->duration_s = make_scenario(o->scenario, 1, TargetKind::Ellipse).duration_s;
+        }
+    }
+    const auto& b = o->barrier;
+    for (const auto& [name, value] : {std::pair<const char*, std::optional<double>>{"--barrier-c0", b.c0},
+                                      {"--barrier-alpha-c", b.alpha_c_per_s},
+                                      {"--barrier-c-max", b.c_max},
+                                      {"--barrier-delta0", b.delta0},
+                                      {"--barrier-alpha-s", b.alpha_s_per_s},
+                                      {"--barrier-slack-margin", b.slack_margin}}) {
+        // Ranges are the firmware's to judge (it names the part it rejects); here only numbers.
+        if (value && !std::isfinite(*value)) {
+            return fail(name, "must be a finite number");
+        }
+    }
     if (!std::isfinite(o->period_s) || !(o->period_s > 0.0)) {
         return fail("--period-s", "must be > 0, got " + number(o->period_s));
     }
@@ -161,10 +190,21 @@ int parse_options(int argc, char** argv, SimOptions* o)
     app.add_option("--min-speed-mps", o->min_speed_mps, "1/v regularisation floor")->capture_default_str();
     app.add_option("--watchdog-periods", o->watchdog_periods, "safe stop after this many periods without a "
                    "valid measurement")->capture_default_str();
-    app.add_option("--robots", o->robots, "number of unicycles, 1 .. 4 (the demo picture turned per robot)")
+    app.add_option("--scenario", o->scenario, "what to run: demo, formation-max, formation-bilateral, obstacles, "
+                   "obstacles-infeasible-target, infeasible-start, formation-equality (--list-scenarios)")
         ->capture_default_str();
-    app.add_option("--target", target, "ellipse | circle (on-board targets) | streamed (the ellipse sent on "
-                   "TVO_TARGET every period)")->capture_default_str();
+    app.add_flag("--list-scenarios", o->list_scenarios, "list the scenarios with one line each and exit");
+    app.add_option("--robots", o->robots, "demo: number of unicycles, 1 .. 4 (the demo picture turned per robot)")
+        ->capture_default_str();
+    app.add_option("--target", target, "demo: ellipse | circle (on-board targets); any scenario: streamed (the "
+                   "targets sent on TVO_TARGET every period)")->capture_default_str();
+    app.add_option("--barrier-c0", o->barrier.c0, "barrier: c(0) [default: the scenario's, else the firmware's]");
+    app.add_option("--barrier-alpha-c", o->barrier.alpha_c_per_s, "barrier: growth rate of c(t), 1/s");
+    app.add_option("--barrier-c-max", o->barrier.c_max, "barrier: cap of c(t)");
+    app.add_option("--barrier-delta0", o->barrier.delta0, "barrier: delta(t) = delta0 / c(t)");
+    app.add_option("--barrier-alpha-s", o->barrier.alpha_s_per_s, "barrier: decay rate of the slack s(t), 1/s");
+    app.add_option("--barrier-slack-margin", o->barrier.slack_margin, "barrier: epsilon_s of the slack rule");
+    app.add_option("--barrier-degree", o->barrier.relaxation_degree, "barrier: relaxation degree m_r (>= 3)");
     app.add_flag("--realtime", "run on the wall clock at 1/h (commands applied when they arrive, by their utime) "
                  "instead of lockstep");
     app.add_option("--answer-timeout-s", o->answer_timeout_s, "lockstep: longest wait for the firmware's answer")
@@ -209,7 +249,19 @@ int parse_options(int argc, char** argv, SimOptions* o)
     if (!parse_target_kind(target, &o->target)) {
         return fail("--target", "expected ellipse, circle or streamed, got '" + target + "'");
     }
-    return validate(o, delay->count() > 0);
+    if (o->list_scenarios) {
+        print_scenario_list(std::cout);
+        return 0;
+    }
+    return validate(o, delay->count() > 0, app.count("--duration-s") > 0, app.count("--robots") > 0,
+                    app.count("--target") > 0);
+}
+
+void print_scenario_list(std::ostream& out)
+{
+    for (const ScenarioInfo& info : scenario_catalog()) {
+        out << std::left << std::setw(30) << info.name << info.summary << '\n';
+    }
 }
 
 }  // namespace tvo_host

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <ostream>
 #include <string>
 
 #include "scenario.hpp"
@@ -33,9 +34,12 @@ struct SimOptions {
     double min_speed_mps{0.05};
     std::int32_t watchdog_periods{10};
 
-    // Scenario.
+    // Scenario (scenario.hpp). robots and the ellipse/circle choice shape the demo only.
+    std::string scenario{"demo"};
     std::size_t robots{1};
     TargetKind target{TargetKind::Ellipse};
+    BarrierOverrides barrier;       // --barrier-*: replace the scenario's barrier settings
+    bool list_scenarios{false};
 
     // Faults.
     double drop_prob{0.0};
@@ -55,6 +59,9 @@ struct SimOptions {
     std::int64_t extra_delay_us{0};
     std::int64_t steps{2000};
 };
+
+/// Prints each scenario's name and one line about it.
+void print_scenario_list(std::ostream& out);
 
 /// Parses and validates argv. Returns -1 to run, or the exit code to leave with: 0 after --help,
 /// 2 after a one-line error naming the offending option.

@@ -17,7 +17,7 @@ RunRecorder::RunRecorder(const std::string& path) : file_(std::fopen(path.c_str(
     }
     std::setvbuf(file_, nullptr, _IOFBF, kBufferBytes);
     std::fprintf(file_, "t_s,robot,x_m,y_m,heading_rad,target_x_m,target_y_m,error_m,"
-                        "cmd_speed_mps,cmd_turn_rate_radps,status,flags\n");
+                        "cmd_speed_mps,cmd_turn_rate_radps,status,flags,barrier_c,barrier_slack,regularization\n");
 }
 
 RunRecorder::~RunRecorder()
@@ -26,12 +26,14 @@ RunRecorder::~RunRecorder()
 }
 
 void RunRecorder::row(double t_s, std::size_t robot, const UnicycleState& state, const Eigen::Vector2d& target_m,
-                      double error_m, const UnicycleInput& command, std::int32_t status, std::int32_t flags)
+                      double error_m, const UnicycleInput& command, std::int32_t status, std::int32_t flags,
+                      const StepTelemetry& telemetry)
 {
-    const int written = std::fprintf(file_, "%.6f,%zu,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%d\n", t_s, robot,
-                                     state.position_m.x(), state.position_m.y(), state.heading_rad, target_m.x(),
-                                     target_m.y(), error_m, command.speed_mps, command.turn_rate_radps,
-                                     static_cast<int>(status), static_cast<int>(flags));
+    const int written = std::fprintf(file_, "%.6f,%zu,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%d,%.9g,%.9g,%.9g\n",
+                                     t_s, robot, state.position_m.x(), state.position_m.y(), state.heading_rad,
+                                     target_m.x(), target_m.y(), error_m, command.speed_mps, command.turn_rate_radps,
+                                     static_cast<int>(status), static_cast<int>(flags), telemetry.barrier_c,
+                                     telemetry.barrier_slack, telemetry.regularization);
     ok_ = ok_ && written > 0;
 }
 

@@ -1,46 +1,135 @@
-// What the robots should do: their start poses and moving targets, with analytic derivatives.
+// What the robots should do, as data: start poses, targets, tracking weights, and the constraints
+// of the problem the firmware solves (distance bounds, half-spaces, disk obstacles, formation
+// offsets, barrier settings). The session message is filled from it (session.cpp) and the metrics
+// judge the run against it (constraint_metrics.cpp), so a scenario is written down exactly once.
 //
-// The default is the demo (like the paper's Fig. 2): an ellipse, not a circle, because a held
-// arc follows a circle exactly and would hide the discretization error.
+// Scenarios (scenario_catalog() lists them with one line each):
+//   demo                         one or more unicycles on an ellipse (the paper's Fig. 2 setting)
+//   formation-max                two robots, |y1 - y2| <= 3, targets approach, cross and separate
+//   formation-bilateral          the same with 1 <= |y1 - y2| <= 3
+//   obstacles                    a disk robot among four disk obstacles, target in free space
+//   obstacles-infeasible-target  the same, the target's path crosses an obstacle
+//   infeasible-start             two robots starting 4.5 m apart with |y1 - y2| <= 3
+//   formation-equality           both robots track a midpoint target with y1 - y2 = d(t)
 #pragma once
 
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
 #include "plant.hpp"
+#include "target_path.hpp"
 
 namespace tvo_host {
 
-/// How the firmware learns the target: on-board analytic (ellipse, circle) or streamed by the host.
+/// How the firmware learns the demo's target: on-board analytic (ellipse, circle) or streamed by the host.
 enum class TargetKind { Ellipse, Circle, Streamed };
 
 /// Parses "ellipse" | "circle" | "streamed"; false if unknown.
 bool parse_target_kind(const std::string& text, TargetKind* kind);
 const char* target_kind_name(TargetKind kind);
 
-/// y_d(t) = c + R(rotation) (a cos(phi), b sin(phi)), phi = omega t + phase. a = b: a circle.
-struct EllipseTarget {
-    Eigen::Vector2d center_m{Eigen::Vector2d::Zero()};
-    Eigen::Vector2d semi_axis_m{Eigen::Vector2d::Ones()};
-    double omega_radps{0.0};
-    double phase_rad{0.0};
-    double rotation_rad{0.0};
+/// Barrier settings a scenario (or the command line) changes; the rest are the firmware's
+/// tvo_barrier_config_default (c0 = 1, alpha_c = 1/s, c_max = 1e4, delta0 = 0.05, alpha_s = 1/s,
+/// epsilon_s = 0.1, m_r = 4).
+struct BarrierOverrides {
+    std::optional<double> c0;
+    std::optional<double> alpha_c_per_s;
+    std::optional<double> c_max;
+    std::optional<double> delta0;
+    std::optional<double> alpha_s_per_s;
+    std::optional<double> slack_margin;
+    std::optional<int> relaxation_degree;
 
-    /// deriv[j] = j-th time derivative of y_d at t_s, j = 0..3 (position .. jerk).
-    std::array<Eigen::Vector2d, 4> derivatives(double t_s) const;
-    Eigen::Vector2d position(double t_s) const;
+    /// Fields set in `other` replace this one's.
+    void apply(const BarrierOverrides& other);
+};
+
+/// d_min(t) <= |y_a - y_b| <= d_max(t), d(t) = d0 + rate t; a zero d0 means no such bound.
+struct DistanceBound {
+    std::size_t robot_a{0};
+    std::size_t robot_b{1};
+    double min_m{0.0};
+    double min_rate_mps{0.0};
+    double max_m{0.0};
+    double max_rate_mps{0.0};
+
+    double min_at(double t_s) const { return min_m + min_rate_mps * t_s; }
+    double max_at(double t_s) const { return max_m + max_rate_mps * t_s; }
+};
+
+/// a(t)^T y_robot <= b(t), a(t) = normal + normal_rate t, b(t) = bound + bound_rate t.
+struct HalfSpace {
+    std::size_t robot{0};
+    Eigen::Vector2d normal{Eigen::Vector2d::UnitX()};
+    Eigen::Vector2d normal_rate{Eigen::Vector2d::Zero()};
+    double bound_m{0.0};
+    double bound_rate_mps{0.0};
+};
+
+struct Disk {
+    Eigen::Vector2d center_m{Eigen::Vector2d::Zero()};
+    double radius_m{0.0};
+};
+
+/// y_a - y_b = d(t).
+struct OffsetEquality {
+    std::size_t robot_a{0};
+    std::size_t robot_b{1};
+    TargetPath offset;
+};
+
+struct TimeWindow {
+    double start_s{0.0};
+    double end_s{0.0};
 };
 
 struct Scenario {
-    TargetKind kind{TargetKind::Ellipse};
+    std::string name{"demo"};
+    double duration_s{20.0};          // T when --duration-s is not given
+    bool streamed{false};             // targets streamed on TVO_TARGET instead of evaluated on board
     std::size_t robot_count{1};
-    std::array<EllipseTarget, kMaxRobots> targets{};
+    std::array<TargetPath, kMaxRobots> targets{};
     std::array<UnicycleState, kMaxRobots> starts{};
     std::array<Eigen::Vector2d, kMaxRobots> weights{};  // diagonal of each tracking term's W
+
+    BarrierOverrides barrier;
+    std::vector<DistanceBound> distances;
+    std::vector<HalfSpace> halfspaces;
+    double robot_radius_m{0.0};       // disk robots: obstacle clearance and robot-robot contact
+    std::vector<Disk> obstacles;
+    std::vector<OffsetEquality> offsets;
+
+    std::optional<TimeWindow> crossing_window;  // min inter-robot distance is also reported inside it
+    double settle_time_s{5.0};                  // the equality residual counts from here on
+
+    bool has_inequalities() const { return !distances.empty() || !halfspaces.empty() || !obstacles.empty(); }
+
+    /// Per robot, what its tracking error is measured against at t_s: its target, or with formation
+    /// offsets the minimiser of sum_r 1/2 |y_r - y_d,r|_W^2 subject to the offsets (a KKT solve).
+    std::array<Eigen::Vector2d, kMaxRobots> references(double t_s) const;
+
+    /// The robot pair whose distance the summary reports: the first distance bound's, else the first
+    /// offset's, else none.
+    std::optional<std::array<std::size_t, 2>> reported_pair() const;
 };
+
+struct ScenarioInfo {
+    const char* name;
+    const char* summary;
+};
+
+/// Every scenario, in the order `tools/scenario --list` prints them.
+const std::vector<ScenarioInfo>& scenario_catalog();
+bool scenario_exists(const std::string& name);
+
+/// The scenario called name (std::invalid_argument if unknown). robots and kind shape the demo only;
+/// kind == Streamed streams any scenario's targets.
+Scenario make_scenario(const std::string& name, std::size_t robots, TargetKind kind);
 
 /// The demo: ellipse centre (0, 0), semi-axes (3, 1.5), omega 2 pi / 10 rad/s; robot 0 starts at
 /// (-1, -2) heading 0 at rest. Further robots are the same picture turned by 2 pi r / N.

@@ -2,44 +2,161 @@
 #include "session.hpp"
 
 #include <sstream>
+#include <stdexcept>
+
+extern "C" {
+#include "tvo/barrier.h"
+}
 
 namespace tvo_host {
 
 namespace {
 // START is repeated at this interval until acknowledged (LCM drops messages nobody subscribed yet).
 constexpr std::chrono::milliseconds kStartRepeat{100};
-// Parameter block stride per robot for circle and ellipse targets (see session_t.lcm).
+// Parameter block strides per robot in target_params (see session_t.lcm): circle and ellipse use 8
+// values per robot, polynomials 16 (8 coefficients per axis).
 constexpr std::size_t kTargetStride = 8;
+constexpr std::size_t kPolyRobotStride = 16;
+
+std::int32_t wire_kind(PathKind kind)
+{
+    switch (kind) {
+    case PathKind::Polynomial: return tvo_lcm::session_t::TARGET_POLYNOMIAL;
+    case PathKind::Circle: return tvo_lcm::session_t::TARGET_CIRCLE;
+    case PathKind::Ellipse: return tvo_lcm::session_t::TARGET_ELLIPSE;
+    }
+    throw std::logic_error("unknown path kind");
+}
+
+std::size_t wire_stride(PathKind kind)
+{
+    return kind == PathKind::Polynomial ? kPolyRobotStride : kTargetStride;
+}
+
+/// One path in the firmware's block layout (p points at the block's first value).
+void fill_path(const TargetPath& path, double* p)
+{
+    if (path.kind() == PathKind::Polynomial) {
+        for (std::size_t axis = 0; axis < 2; ++axis) {
+            for (std::size_t j = 0; j < kPolyCoeffs; ++j) {
+                p[axis * kPolyCoeffs + j] = path.coefficients()[axis][j];
+            }
+        }
+        return;
+    }
+    const EllipseTarget& e = path.ellipse_params();
+    p[0] = e.center_m.x();
+    p[1] = e.center_m.y();
+    if (path.kind() == PathKind::Circle) {
+        p[2] = e.semi_axis_m.x();
+        p[3] = e.omega_radps;
+        p[4] = e.phase_rad;
+    } else {
+        p[2] = e.semi_axis_m.x();
+        p[3] = e.semi_axis_m.y();
+        p[4] = e.omega_radps;
+        p[5] = e.phase_rad;
+        p[6] = e.rotation_rad;
+    }
+}
 
 void fill_targets(const Scenario& scenario, tvo_lcm::session_t* msg)
 {
-    switch (scenario.kind) {
-    case TargetKind::Ellipse:
-        msg->target_kind = tvo_lcm::session_t::TARGET_ELLIPSE;
-        break;
-    case TargetKind::Circle:
-        msg->target_kind = tvo_lcm::session_t::TARGET_CIRCLE;
-        break;
-    case TargetKind::Streamed:
+    if (scenario.streamed) {
         msg->target_kind = tvo_lcm::session_t::TARGET_STREAMED;
         return;
     }
+    // The wire has one target kind for all robots.
+    const PathKind kind = scenario.targets[0].kind();
+    msg->target_kind = wire_kind(kind);
     for (std::size_t r = 0; r < scenario.robot_count; ++r) {
-        const EllipseTarget& t = scenario.targets[r];
-        double* p = msg->target_params + r * kTargetStride;
-        p[0] = t.center_m.x();
-        p[1] = t.center_m.y();
-        if (scenario.kind == TargetKind::Circle) {
-            p[2] = t.semi_axis_m.x();
-            p[3] = t.omega_radps;
-            p[4] = t.phase_rad;
-        } else {
-            p[2] = t.semi_axis_m.x();
-            p[3] = t.semi_axis_m.y();
-            p[4] = t.omega_radps;
-            p[5] = t.phase_rad;
-            p[6] = t.rotation_rad;
+        if (scenario.targets[r].kind() != kind) {
+            throw std::invalid_argument("scenario " + scenario.name + ": every robot's target must be of one kind");
         }
+        fill_path(scenario.targets[r], msg->target_params + r * wire_stride(kind));
+    }
+}
+
+void fill_barrier(const BarrierOverrides& overrides, tvo_lcm::session_t* msg)
+{
+    // The firmware's defaults, so that the host states only what a scenario changes.
+    tvo_barrier_config_t defaults{};
+    if (tvo_barrier_config_default(&defaults) != TVO_OK) {
+        throw std::logic_error("tvo_barrier_config_default failed");
+    }
+    msg->barrier_c0 = overrides.c0.value_or(static_cast<double>(defaults.c0));
+    msg->barrier_alpha_c_per_s = overrides.alpha_c_per_s.value_or(static_cast<double>(defaults.alpha_c_per_s));
+    msg->barrier_c_max = overrides.c_max.value_or(static_cast<double>(defaults.c_max));
+    msg->barrier_delta0 = overrides.delta0.value_or(static_cast<double>(defaults.delta0));
+    msg->barrier_alpha_s_per_s = overrides.alpha_s_per_s.value_or(static_cast<double>(defaults.alpha_s_per_s));
+    msg->barrier_slack_margin = overrides.slack_margin.value_or(static_cast<double>(defaults.slack_margin));
+    msg->barrier_relaxation_degree = overrides.relaxation_degree.value_or(defaults.relaxation_degree);
+}
+
+/// Checked copy of a scenario's table into a fixed-size message field.
+void require_fits(std::size_t count, std::size_t capacity, const std::string& what, const Scenario& scenario)
+{
+    if (count > capacity) {
+        throw std::invalid_argument("scenario " + scenario.name + ": " + std::to_string(count) + " " + what +
+                                    ", the session message carries " + std::to_string(capacity));
+    }
+}
+
+void fill_constraints(const Scenario& s, tvo_lcm::session_t* msg)
+{
+    fill_barrier(s.barrier, msg);
+    require_fits(s.distances.size(), tvo_lcm::session_t::MAX_DISTANCE_BOUNDS, "distance bounds", s);
+    msg->distance_count = static_cast<std::int32_t>(s.distances.size());
+    for (std::size_t i = 0; i < s.distances.size(); ++i) {
+        const DistanceBound& d = s.distances[i];
+        msg->distance_robot_a[i] = static_cast<std::int32_t>(d.robot_a);
+        msg->distance_robot_b[i] = static_cast<std::int32_t>(d.robot_b);
+        msg->distance_min_m[i] = d.min_m;
+        msg->distance_min_rate_mps[i] = d.min_rate_mps;
+        msg->distance_max_m[i] = d.max_m;
+        msg->distance_max_rate_mps[i] = d.max_rate_mps;
+    }
+    require_fits(s.halfspaces.size(), tvo_lcm::session_t::MAX_HALFSPACES, "half-spaces", s);
+    msg->halfspace_count = static_cast<std::int32_t>(s.halfspaces.size());
+    for (std::size_t i = 0; i < s.halfspaces.size(); ++i) {
+        const HalfSpace& h = s.halfspaces[i];
+        msg->halfspace_robot[i] = static_cast<std::int32_t>(h.robot);
+        for (int axis = 0; axis < 2; ++axis) {
+            msg->halfspace_normal[i][axis] = h.normal[axis];
+            msg->halfspace_normal_rate[i][axis] = h.normal_rate[axis];
+        }
+        msg->halfspace_bound_m[i] = h.bound_m;
+        msg->halfspace_bound_rate_mps[i] = h.bound_rate_mps;
+    }
+    require_fits(s.obstacles.size(), tvo_lcm::session_t::MAX_OBSTACLES, "obstacles", s);
+    msg->robot_radius_m = s.robot_radius_m;
+    msg->obstacle_count = static_cast<std::int32_t>(s.obstacles.size());
+    for (std::size_t i = 0; i < s.obstacles.size(); ++i) {
+        msg->obstacle_center_m[i][0] = s.obstacles[i].center_m.x();
+        msg->obstacle_center_m[i][1] = s.obstacles[i].center_m.y();
+        msg->obstacle_radius_m[i] = s.obstacles[i].radius_m;
+    }
+    require_fits(s.offsets.size(), tvo_lcm::session_t::MAX_OFFSETS, "formation offsets", s);
+    msg->offset_count = static_cast<std::int32_t>(s.offsets.size());
+    for (std::size_t i = 0; i < s.offsets.size(); ++i) {
+        const OffsetEquality& o = s.offsets[i];
+        msg->offset_robot_a[i] = static_cast<std::int32_t>(o.robot_a);
+        msg->offset_robot_b[i] = static_cast<std::int32_t>(o.robot_b);
+        msg->offset_kind[i] = wire_kind(o.offset.kind());
+        fill_path(o.offset, msg->offset_params[i]);
+    }
+}
+
+const char* part_name(std::int32_t part)
+{
+    switch (part) {
+    case tvo_lcm::session_ack_t::PART_ROBOTS: return "robots/targets";
+    case tvo_lcm::session_ack_t::PART_BARRIER: return "barrier";
+    case tvo_lcm::session_ack_t::PART_DISTANCE: return "distance bounds";
+    case tvo_lcm::session_ack_t::PART_HALFSPACE: return "half-spaces";
+    case tvo_lcm::session_ack_t::PART_OBSTACLES: return "obstacles";
+    case tvo_lcm::session_ack_t::PART_OFFSETS: return "formation offsets";
+    default: return "unknown";
     }
 }
 
@@ -91,6 +208,7 @@ tvo_lcm::session_t make_start_session(const SimOptions& o, const Scenario& scena
         msg.tracking_weight[r][1] = scenario.weights[r].y();
     }
     fill_targets(scenario, &msg);
+    fill_constraints(scenario, &msg);
     return msg;
 }
 
@@ -104,6 +222,13 @@ std::string describe_rejection(const tvo_lcm::session_ack_t& ack, const SimOptio
         if (!option.empty()) {
             out << " (" << option << ")";
         }
+    }
+    if (ack.bad_part != tvo_lcm::session_ack_t::PART_NONE) {
+        out << ", part of the problem: " << part_name(ack.bad_part) << " (scenario " << options.scenario;
+        if (ack.bad_part == tvo_lcm::session_ack_t::PART_BARRIER) {
+            out << ", --barrier-* options";
+        }
+        out << ")";
     }
     return out.str();
 }

@@ -12,6 +12,9 @@ constexpr double kSPerUs = 1e-6;
 constexpr std::chrono::microseconds kRealtimeSlice{2000};
 // Enough pending commands for the longest allowed extra delay at the shortest period seen in practice.
 constexpr std::size_t kPendingReserve = 1024;
+// Constraint checks along the exact arcs at least this often (plant time): at 5 m/s a robot moves
+// 5 mm between checks.
+constexpr std::int64_t kCheckStepUs = 1000;
 
 bool is_fault(std::int32_t status, std::int32_t flags)
 {
@@ -21,12 +24,13 @@ bool is_fault(std::int32_t status, std::int32_t flags)
 }  // namespace
 
 SimLoop::SimLoop(const SimOptions& options, const Scenario& scenario, LcmTransport& transport, RunRecorder& recorder,
-                 TrackingMetrics& metrics, const volatile std::sig_atomic_t& stop_signal)
+                 TrackingMetrics& metrics, ConstraintMonitor& monitor, const volatile std::sig_atomic_t& stop_signal)
     : options_(options),
       scenario_(scenario),
       transport_(transport),
       recorder_(recorder),
       metrics_(metrics),
+      monitor_(monitor),
       stop_signal_(stop_signal),
       plant_(scenario.robot_count, scenario.starts),
       noise_(MeasurementNoiseConfig{options.sigma, options.sigma, options.sigma}, options.seed),
@@ -47,7 +51,8 @@ void SimLoop::on_command(const tvo_lcm::command_t& command)
     const std::size_t robots = scenario_.robot_count;
     const bool count_ok = command.robot_count == static_cast<std::int32_t>(robots);
     metrics_.add_command(command.turn_rate_radps, count_ok ? robots : 0,
-                         !count_ok || is_fault(command.status, command.flags));
+                         !count_ok || is_fault(command.status, command.flags),
+                         (command.flags & static_cast<std::int32_t>(TVO_FLAG_REGULARIZED)) != 0);
     answered_sequence_ = std::max(answered_sequence_, command.measurement_sequence);
     // Only the newest answer may actuate: a repeat or an older one would move the plant back in time.
     if (!count_ok || command.measurement_sequence <= last_queued_sequence_) {
@@ -77,11 +82,42 @@ void SimLoop::on_command(const tvo_lcm::command_t& command)
     pending_.insert(at, pending);
 }
 
+void SimLoop::on_telemetry(const tvo_lcm::telemetry_t& telemetry)
+{
+    if (telemetry.measurement_sequence < telemetry_sequence_) {
+        return;
+    }
+    telemetry_sequence_ = telemetry.measurement_sequence;
+    telemetry_.barrier_c = telemetry.barrier_c;
+    telemetry_.barrier_slack = telemetry.barrier_slack;
+    telemetry_.regularization = telemetry.regularization;
+}
+
+void SimLoop::check_constraints(std::int64_t t_us)
+{
+    // The interior points of the held arcs since now_us_, then t_us itself; the plant's own state is
+    // advanced in one piece (integrate_to), exactly as without the checks.
+    Positions positions{};
+    for (std::int64_t at = now_us_ + kCheckStepUs; at < t_us; at += kCheckStepUs) {
+        const double dt_s = static_cast<double>(at - now_us_) * kSPerUs;
+        for (std::size_t r = 0; r < scenario_.robot_count; ++r) {
+            positions[r] = exact_arc(plant_.state(r), plant_.input(r), dt_s).position_m;
+        }
+        monitor_.observe(static_cast<double>(at) * kSPerUs, positions);
+    }
+}
+
 void SimLoop::integrate_to(std::int64_t t_us)
 {
     if (t_us > now_us_) {
+        check_constraints(t_us);
         plant_.advance(static_cast<double>(t_us - now_us_) * kSPerUs);
         now_us_ = t_us;
+        Positions positions{};
+        for (std::size_t r = 0; r < scenario_.robot_count; ++r) {
+            positions[r] = plant_.state(r).position_m;
+        }
+        monitor_.observe(static_cast<double>(now_us_) * kSPerUs, positions);
     }
 }
 
@@ -105,7 +141,7 @@ void SimLoop::publish_sample(std::int64_t sequence, std::int64_t sample_us)
     const std::int64_t utime = options_.start_utime_us + sample_us;
     const auto robots = static_cast<std::int32_t>(scenario_.robot_count);
     const double t_s = static_cast<double>(sample_us) * kSPerUs;
-    if (scenario_.kind == TargetKind::Streamed) {
+    if (scenario_.streamed) {
         // The target source is independent of the pose sensor: it is streamed even when a pose is lost.
         target_.utime = utime;
         target_.sequence = sequence;
@@ -144,17 +180,19 @@ void SimLoop::publish_sample(std::int64_t sequence, std::int64_t sample_us)
 
 bool SimLoop::await_answer(std::int64_t sequence)
 {
+    // The telemetry follows its command: waiting for both keeps the CSV's telemetry columns in step.
     const auto timeout = std::chrono::duration_cast<std::chrono::microseconds>(
         std::chrono::duration<double>(options_.answer_timeout_s));
     const auto deadline = std::chrono::steady_clock::now() + timeout;
-    while (answered_sequence_ < sequence) {
+    while (answered_sequence_ < sequence || telemetry_sequence_ < sequence) {
         if (stopping()) {
             return false;
         }
         const auto left = std::chrono::duration_cast<std::chrono::microseconds>(deadline -
                                                                                 std::chrono::steady_clock::now());
         if (left.count() <= 0) {
-            throw TransportError("no command from the firmware node answering measurement " +
+            throw TransportError(std::string(answered_sequence_ < sequence ? "no command" : "no telemetry") +
+                                 " from the firmware node answering measurement " +
                                  std::to_string(sequence) + " within " + std::to_string(options_.answer_timeout_s) +
                                  " s (wall clock)");
         }
@@ -182,12 +220,12 @@ void SimLoop::record(std::int64_t t_us)
 {
     const double t_s = static_cast<double>(t_us) * kSPerUs;
     double worst_m = 0.0;
+    const auto references = scenario_.references(t_s);
     for (std::size_t r = 0; r < scenario_.robot_count; ++r) {
-        const Eigen::Vector2d target_m = scenario_.targets[r].position(t_s);
-        const double error_m = (plant_.state(r).position_m - target_m).norm();
+        const double error_m = (plant_.state(r).position_m - references[r]).norm();
         worst_m = std::max(worst_m, error_m);
-        recorder_.row(t_s, r, plant_.state(r), target_m, error_m, applied_.input[r], applied_.status,
-                      applied_.flags);
+        recorder_.row(t_s, r, plant_.state(r), references[r], error_m, applied_.input[r], applied_.status,
+                      applied_.flags, telemetry_);
     }
     metrics_.add_error_sample(t_s, worst_m);
 }
@@ -198,6 +236,11 @@ LoopResult SimLoop::run()
     transport_.set_listener(this);
     const auto wall_start = std::chrono::steady_clock::now();
     wall_epoch_ = wall_start;
+    Positions start{};
+    for (std::size_t r = 0; r < scenario_.robot_count; ++r) {
+        start[r] = plant_.state(r).position_m;
+    }
+    monitor_.observe(0.0, start);
     record(0);
     for (std::int64_t n = 0; n < options_.steps; ++n) {
         const std::int64_t apply_us = (n + 1) * options_.period_us;

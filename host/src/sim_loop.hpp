@@ -6,7 +6,9 @@
 //   applied at its utime t_{n+1} (+ any injected extra delay) and held until the next one.
 //   The robots hold zero input until the first command; the run ends at T = steps h.
 // Lockstep: after publishing measurement n the loop blocks (wall-clock timeout) until the command
-//   answering n arrives, so the run is deterministic and as fast as the transport.
+//   and the telemetry answering n arrive, so the run is deterministic and as fast as the transport.
+// Constraint checks: the constraint monitor sees the true positions every kCheckStepUs of plant
+//   time along the exact arcs, and at every sample and command instant.
 // Realtime: plant time follows the wall clock; commands take effect at their utime, or on arrival
 //   when they come late (counted). A dropped measurement is never sent and nothing is awaited.
 #pragma once
@@ -16,6 +18,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "constraint_metrics.hpp"
 #include "faults.hpp"
 #include "metrics.hpp"
 #include "noise.hpp"
@@ -38,13 +41,14 @@ struct LoopResult {
 class SimLoop : public TransportListener {
 public:
     SimLoop(const SimOptions& options, const Scenario& scenario, LcmTransport& transport, RunRecorder& recorder,
-            TrackingMetrics& metrics, const volatile std::sig_atomic_t& stop_signal);
+            TrackingMetrics& metrics, ConstraintMonitor& monitor, const volatile std::sig_atomic_t& stop_signal);
 
     /// Runs all periods. TransportError if, in lockstep, the firmware does not answer in time.
     LoopResult run();
 
     void on_command(const tvo_lcm::command_t& command) override;
     void on_session_ack(const tvo_lcm::session_ack_t&) override {}
+    void on_telemetry(const tvo_lcm::telemetry_t& telemetry) override;
 
 private:
     struct PendingCommand {
@@ -57,6 +61,7 @@ private:
 
     void advance_to(std::int64_t t_us);
     void integrate_to(std::int64_t t_us);
+    void check_constraints(std::int64_t t_us);
     void publish_sample(std::int64_t sequence, std::int64_t sample_us);
     bool await_answer(std::int64_t sequence);  // false when interrupted
     bool wait_until(std::int64_t t_us);        // realtime; false when interrupted
@@ -69,6 +74,7 @@ private:
     LcmTransport& transport_;
     RunRecorder& recorder_;
     TrackingMetrics& metrics_;
+    ConstraintMonitor& monitor_;
     const volatile std::sig_atomic_t& stop_signal_;
 
     UnicyclePlant plant_;
@@ -81,6 +87,8 @@ private:
     PendingCommand applied_{};               // command in force (as commanded, before disturbance)
     std::int64_t last_queued_sequence_{-1};
     std::int64_t answered_sequence_{-1};
+    std::int64_t telemetry_sequence_{-1};    // newest telemetry received
+    StepTelemetry telemetry_{};              // newest received (lockstep: of the command in force)
     std::uint64_t late_commands_{0};
     bool heading_sent_{false};
     std::chrono::steady_clock::time_point wall_epoch_{};

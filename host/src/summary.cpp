@@ -1,6 +1,7 @@
 // Summary table and JSON; see summary.hpp.
 #include "summary.hpp"
 
+#include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -19,18 +20,43 @@ void line(std::ostream& out, const char* label, const std::string& value)
 std::string sci(double value, const char* unit)
 {
     std::ostringstream s;
-    s << std::scientific << std::setprecision(3) << value << ' ' << unit;
+    if (std::isfinite(value)) {
+        s << std::scientific << std::setprecision(3) << value << ' ' << unit;
+    } else {
+        s << "never (still violated at the end)";
+    }
     return s.str();
+}
+
+void optional_line(std::ostream& out, const char* label, const std::optional<double>& value, const char* unit)
+{
+    if (value) {
+        line(out, label, sci(*value, unit));
+    }
+}
+
+nlohmann::json number_or_null(double value)
+{
+    return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+}
+
+void write_json_file(const std::string& path, const nlohmann::json& json)
+{
+    std::ofstream file(path);
+    file << json.dump(2) << '\n';
+    if (!file) {
+        throw std::runtime_error("cannot write " + path);
+    }
 }
 }  // namespace
 
 void print_summary_table(std::ostream& out, const RunSummary& s, const SimOptions& o)
 {
     std::ostringstream mode;
-    mode << (o.realtime ? "realtime" : "lockstep") << ", h = " << o.period_us << " us, tau = " << o.delay_us
+    mode << o.scenario << ", " << (o.realtime ? "realtime" : "lockstep") << ", h = " << o.period_us << " us, tau = " << o.delay_us
          << " us, compensation " << (o.delay_compensation ? "on" : "off") << ", "
          << (o.position_only ? "position only" : "pose measured") << ", sigma = " << o.sigma << ", "
-         << o.robots << " robot(s), " << target_kind_name(o.target) << " target";
+         << (o.target == TargetKind::Streamed ? "streamed targets" : "on-board targets");
     out << "tvo_sim summary (" << mode.str() << ")\n";
     line(out, "final tracking error", sci(s.final_error_m, "m"));
     line(out, "RMS tracking error, last 5 s", sci(s.rms_error_last5s_m, "m"));
@@ -42,11 +68,28 @@ void print_summary_table(std::ostream& out, const RunSummary& s, const SimOption
     line(out, "faults", std::to_string(s.faults) + " of " + std::to_string(s.commands) + " commands");
     line(out, "measurements dropped", std::to_string(s.drops));
     line(out, "late commands", std::to_string(s.late_commands));
+    if (s.collisions) {
+        line(out, "collisions", std::to_string(*s.collisions));
+    }
+    optional_line(out, "min clearance", s.min_clearance_m, "m");
+    optional_line(out, "min inter-robot distance", s.min_distance_m, "m");
+    optional_line(out, "  while the targets cross", s.min_distance_crossing_m, "m");
+    optional_line(out, "final inter-robot distance", s.final_distance_m, "m");
+    optional_line(out, "max violation (relative)", s.max_violation_frac, "");
+    optional_line(out, "  of a minimum distance", s.max_violation_min_bound_frac, "");
+    optional_line(out, "  of a maximum distance", s.max_violation_max_bound_frac, "");
+    optional_line(out, "violation at the start", s.initial_violation_frac, "");
+    optional_line(out, "time to feasibility", s.time_to_feasible_s, "s");
+    optional_line(out, "equality residual (t >= 5 s)", s.equality_residual_m, "m");
+    if (s.regularized_steps) {
+        line(out, "regularised solves", std::to_string(*s.regularized_steps) + " of " + std::to_string(s.commands) +
+                                            " commands");
+    }
 }
 
 void write_summary_json(const std::string& path, const RunSummary& s)
 {
-    const nlohmann::json json = {
+    nlohmann::json json = {
         {"final_error_m", s.final_error_m},
         {"rms_error_last5s_m", s.rms_error_last5s_m},
         {"max_abs_omega_radps", s.max_abs_omega_radps},
@@ -54,11 +97,63 @@ void write_summary_json(const std::string& path, const RunSummary& s)
         {"steps_per_s", s.steps_per_s},
         {"faults", s.faults},
     };
-    std::ofstream file(path);
-    file << json.dump(2) << '\n';
-    if (!file) {
-        throw std::runtime_error("cannot write " + path);
+    const auto put = [&json](const char* key, const std::optional<double>& value) {
+        if (value) {
+            json[key] = number_or_null(*value);
+        }
+    };
+    if (s.collisions) {
+        json["collisions"] = *s.collisions;
     }
+    put("min_clearance_m", s.min_clearance_m);
+    put("min_distance_m", s.min_distance_m);
+    put("min_distance_crossing_m", s.min_distance_crossing_m);
+    put("final_distance_m", s.final_distance_m);
+    put("max_violation_frac", s.max_violation_frac);
+    put("max_violation_min_bound_frac", s.max_violation_min_bound_frac);
+    put("max_violation_max_bound_frac", s.max_violation_max_bound_frac);
+    put("initial_violation_frac", s.initial_violation_frac);
+    put("time_to_feasible_s", s.time_to_feasible_s);
+    put("equality_residual_m", s.equality_residual_m);
+    if (s.regularized_steps) {
+        json["regularized_steps"] = *s.regularized_steps;
+    }
+    write_json_file(path, json);
+}
+
+void write_scenario_json(const std::string& path, const Scenario& sc, double duration_s)
+{
+    nlohmann::json obstacles = nlohmann::json::array();
+    for (const Disk& o : sc.obstacles) {
+        obstacles.push_back({{"center_m", {o.center_m.x(), o.center_m.y()}}, {"radius_m", o.radius_m}});
+    }
+    nlohmann::json distances = nlohmann::json::array();
+    for (const DistanceBound& d : sc.distances) {
+        distances.push_back({{"robot_a", d.robot_a},
+                             {"robot_b", d.robot_b},
+                             {"min_m", d.min_m},
+                             {"min_rate_mps", d.min_rate_mps},
+                             {"max_m", d.max_m},
+                             {"max_rate_mps", d.max_rate_mps}});
+    }
+    nlohmann::json offsets = nlohmann::json::array();
+    for (const OffsetEquality& e : sc.offsets) {
+        offsets.push_back({{"robot_a", e.robot_a}, {"robot_b", e.robot_b}});
+    }
+    nlohmann::json json = {
+        {"name", sc.name},
+        {"duration_s", duration_s},
+        {"robot_count", sc.robot_count},
+        {"robot_radius_m", sc.robot_radius_m},
+        {"obstacles", obstacles},
+        {"distance_bounds", distances},
+        {"offsets", offsets},
+        {"settle_time_s", sc.settle_time_s},
+    };
+    if (sc.crossing_window) {
+        json["crossing_window_s"] = {sc.crossing_window->start_s, sc.crossing_window->end_s};
+    }
+    write_json_file(path, json);
 }
 
 }  // namespace tvo_host

@@ -2,10 +2,12 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <ostream>
 #include <string>
 
 #include "options.hpp"
+#include "scenario.hpp"
 
 namespace tvo_host {
 
@@ -19,12 +21,31 @@ struct RunSummary {
     std::uint64_t commands{0};
     std::uint64_t drops{0};
     std::uint64_t late_commands{0};
+
+    // Where the scenario has them (host/README.md defines each); absent keys do not apply.
+    std::optional<std::uint64_t> collisions;
+    std::optional<double> min_clearance_m;
+    std::optional<double> min_distance_m;
+    std::optional<double> min_distance_crossing_m;
+    std::optional<double> final_distance_m;
+    std::optional<double> max_violation_frac;
+    std::optional<double> max_violation_min_bound_frac;
+    std::optional<double> max_violation_max_bound_frac;
+    std::optional<double> initial_violation_frac;
+    std::optional<double> time_to_feasible_s;   // infinity: infeasible at the end (JSON null)
+    std::optional<double> equality_residual_m;
+    std::optional<std::uint64_t> regularized_steps;
 };
 
 void print_summary_table(std::ostream& out, const RunSummary& summary, const SimOptions& options);
 
-/// Keys exactly: final_error_m, rms_error_last5s_m, max_abs_omega_radps, steps, steps_per_s, faults.
+/// Keys: final_error_m, rms_error_last5s_m, max_abs_omega_radps, steps, steps_per_s, faults, then the
+/// scenario's keys that are set (same names as the fields; a non-finite value is written as null).
 /// std::runtime_error if the file cannot be written.
 void write_summary_json(const std::string& path, const RunSummary& summary);
+
+/// The scenario's geometry for the plot (tools/plot_run.py): name, robot radius, obstacles, distance
+/// bounds, offsets, crossing window. std::runtime_error if the file cannot be written.
+void write_scenario_json(const std::string& path, const Scenario& scenario, double duration_s);
 
 }  // namespace tvo_host

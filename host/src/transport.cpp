@@ -9,7 +9,8 @@
 namespace tvo_host {
 
 namespace {
-// Larger than any of the protocol's fixed-size messages (session_t is the biggest, ~730 bytes).
+// Larger than any of the protocol's fixed-size messages (session_t is the biggest, ~2 kB with the
+// problem's constraints); the constructor checks it against the encoded sizes.
 constexpr std::size_t kBufferBytes = 4096;
 }  // namespace
 
@@ -27,6 +28,13 @@ LcmTransport::LcmTransport(const std::string& url, const std::string& log_path)
         throw TransportError("cannot write the LCM log " + log_path);
     }
     event_.channel.reserve(32);
+    // Fixed-size messages: their encoded sizes are constants, so one check covers every publish.
+    const int largest = std::max({tvo_lcm::session_t{}.getEncodedSize(), tvo_lcm::measurement_t{}.getEncodedSize(),
+                                  tvo_lcm::target_t{}.getEncodedSize()});
+    if (largest < 0 || static_cast<std::size_t>(largest) > buffer_.size()) {
+        throw TransportError("the encode buffer (" + std::to_string(buffer_.size()) + " bytes) is smaller than a " +
+                             std::to_string(largest) + "-byte message");
+    }
     lcm_.subscribe(channel::kCommand, &LcmTransport::on_raw, this);
     lcm_.subscribe(channel::kSessionAck, &LcmTransport::on_raw, this);
     lcm_.subscribe(channel::kTelemetry, &LcmTransport::on_raw, this);
@@ -87,6 +95,10 @@ void LcmTransport::on_raw(const lcm::ReceiveBuffer* rbuf, const std::string& cha
     } else if (channel == channel::kSessionAck) {
         if (ack_.decode(rbuf->data, 0, size) >= 0) {
             listener_->on_session_ack(ack_);
+        }
+    } else if (channel == channel::kTelemetry) {
+        if (telemetry_.decode(rbuf->data, 0, size) >= 0) {
+            listener_->on_telemetry(telemetry_);
         }
     }
 }

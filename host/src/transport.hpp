@@ -26,6 +26,7 @@ public:
     virtual ~TransportListener() = default;
     virtual void on_command(const tvo_lcm::command_t& command) = 0;
     virtual void on_session_ack(const tvo_lcm::session_ack_t& ack) = 0;
+    virtual void on_telemetry(const tvo_lcm::telemetry_t& /*telemetry*/) {}
 };
 
 enum class WaitResult { Timeout, Handled, Interrupted };
@@ -65,6 +66,7 @@ private:
     bool log_ok_{true};
     tvo_lcm::command_t command_{};
     tvo_lcm::session_ack_t ack_{};
+    tvo_lcm::telemetry_t telemetry_{};
     // Channel names as std::string once, so publishing builds no temporaries.
     const std::string session_channel_{channel::kSession};
     const std::string measurement_channel_{channel::kMeasurement};
