@@ -24,3 +24,38 @@ foreach(source IN LISTS tvo_target_sources)
   set_tests_properties(target_${name} PROPERTIES FIXTURES_REQUIRED tvo_target_elfs LABELS target
     TIMEOUT 300 FAIL_REGULAR_EXPRESSION "FAIL")
 endforeach()
+
+# Processor in the loop: the PIL program (built by target_build with the tests) in QEMU, the bridge,
+# and the plant simulator over LCM; one clean run compared with the host build, one with frames
+# corrupted on the link.
+if(TARGET tvo_sim AND TARGET tvo_pil_bridge AND TARGET tvo_firmware_node)
+  set(tvo_pil_elf ${tvo_target_bin}/firmware/apps/pil/tvo_pil.elf)
+  foreach(variant IN ITEMS clean corrupted)
+    if(variant STREQUAL "clean")
+      set(extra "")
+      set(port 7760)
+    else()
+      set(extra --corrupt-every 20 --duration-s 6)
+      set(port 7762)
+    endif()
+    add_test(NAME target_pil_${variant}
+      COMMAND /usr/bin/python3 ${CMAKE_CURRENT_LIST_DIR}/pil_check.py --tools ${PROJECT_SOURCE_DIR}/tools
+              --elf ${tvo_pil_elf} --bridge $<TARGET_FILE:tvo_pil_bridge> --sim $<TARGET_FILE:tvo_sim>
+              --firmware $<TARGET_FILE:tvo_firmware_node> --out ${CMAKE_BINARY_DIR}/pil_${variant}
+              --port ${port} ${extra})
+    set_tests_properties(target_pil_${variant} PROPERTIES FIXTURES_REQUIRED tvo_target_elfs LABELS "target;pil"
+      TIMEOUT 300)
+  endforeach()
+endif()
+
+# The firmware images that run on the board link no allocator (the PIL program includes LCM's
+# generated encode/decode and the framing; the benchmark, the whole core).
+find_program(TVO_ARM_NM arm-none-eabi-nm)
+if(TVO_ARM_NM)
+  add_test(NAME target_images_no_allocator
+    COMMAND ${CMAKE_COMMAND} -DNM=${TVO_ARM_NM}
+            "-DFILES=${tvo_target_bin}/firmware/apps/pil/tvo_pil.elf;${tvo_target_bin}/firmware/apps/bench/tvo_bench.elf"
+            -P ${PROJECT_SOURCE_DIR}/tests/firmware_checks/check_no_allocator.cmake)
+  set_tests_properties(target_images_no_allocator PROPERTIES FIXTURES_REQUIRED tvo_target_elfs LABELS "target;firmware"
+    TIMEOUT 60)
+endif()

@@ -1,0 +1,267 @@
+/*
+ * tvo_pil_bridge: joins LCM and the serial link of a processor-in-the-loop target (QEMU's -serial
+ * socket). Messages on TVO_SESSION, TVO_MEASUREMENT and TVO_TARGET go to the target as frames
+ * (serial_frame.h: COBS + CRC-32, tagged with node.h's channel numbers); frames from the target
+ * (TVO_SESSION_ACK, TVO_COMMAND, TVO_TELEMETRY) are republished on LCM unchanged. The bridge decodes
+ * nothing: it moves LCM's encoded bytes, so the target sees exactly what tvo_firmware_node would.
+ *
+ * Usage: tvo_pil_bridge --connect HOST:PORT [--lcm-url URL] [--corrupt-every N] [--connect-timeout-s S]
+ *   --corrupt-every N   flip one bit in every N-th frame sent to the target (a test of the framing:
+ *                       the target must drop those frames, which then look like lost messages)
+ * Ends when the target closes the link (its program ended), on SIGINT/SIGTERM, or on an error;
+ * prints the frame counts. Exit code 0, or 1 on errors, 2 on bad arguments.
+ */
+#define _POSIX_C_SOURCE 200809L
+
+#include <errno.h>
+#include <netdb.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <poll.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/socket.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <lcm/lcm.h>
+
+#include "node.h"
+#include "serial_frame.h"
+
+static volatile sig_atomic_t g_stop_signal = 0;
+
+#define BRIDGE_READ_CHUNK 4096
+#define BRIDGE_POLL_MS 100
+
+typedef struct {
+    lcm_t *lcm;
+    int socket_fd;
+    long corrupt_every;
+    unsigned long frames_to_target;
+    unsigned long frames_corrupted;
+    unsigned long frames_from_target;
+    int failed;
+    tvo_frame_decoder_t decoder;
+    uint8_t frame[TVO_FRAME_MAX_ENCODED];
+    uint8_t payload[TVO_FRAME_MAX_PAYLOAD];
+} bridge_t;
+
+static void on_signal(int signo)
+{
+    (void)signo;
+    g_stop_signal = 1;
+}
+
+static int write_all(int fd, const uint8_t *data, size_t length)
+{
+    while (length > 0u) {
+        const ssize_t n = write(fd, data, length);
+        if (n < 0 && errno == EINTR) {
+            continue;
+        }
+        if (n <= 0) {
+            return -1;
+        }
+        data += n;
+        length -= (size_t)n;
+    }
+    return 0;
+}
+
+static void to_target(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
+{
+    bridge_t *b = (bridge_t *)user;
+    size_t length = 0u;
+    const tvo_frame_status_t st = tvo_frame_encode((uint8_t)tvo_node_channel_of(channel), (const uint8_t *)rbuf->data,
+                                                   rbuf->data_size, b->frame, sizeof(b->frame), &length);
+    if (st != TVO_FRAME_OK) {
+        fprintf(stderr, "tvo_pil_bridge: a %u-byte message on %s does not fit a frame (dropped)\n",
+                rbuf->data_size, channel);
+        return;
+    }
+    ++b->frames_to_target;
+    if (b->corrupt_every > 0 && b->frames_to_target % (unsigned long)b->corrupt_every == 0u && length > 2u) {
+        b->frame[length / 2u] ^= 0x10u; /* one bit in the middle of the frame (never the delimiter) */
+        if (b->frame[length / 2u] == 0u) {
+            b->frame[length / 2u] = 0x10u; /* keep framing intact: a zero would split the frame */
+        }
+        ++b->frames_corrupted;
+    }
+    if (write_all(b->socket_fd, b->frame, length) != 0) {
+        fprintf(stderr, "tvo_pil_bridge: error: writing to the target failed: %s\n", strerror(errno));
+        b->failed = 1;
+    }
+}
+
+static int connect_to(const char *host_port, double timeout_s)
+{
+    char host[256];
+    const char *colon = strrchr(host_port, ':');
+    if (colon == NULL || (size_t)(colon - host_port) >= sizeof(host)) {
+        return -2;
+    }
+    memcpy(host, host_port, (size_t)(colon - host_port));
+    host[colon - host_port] = '\0';
+    struct addrinfo hints;
+    memset(&hints, 0, sizeof(hints));
+    hints.ai_family = AF_UNSPEC;
+    hints.ai_socktype = SOCK_STREAM;
+    struct addrinfo *addresses = NULL;
+    if (getaddrinfo(host, colon + 1, &hints, &addresses) != 0) {
+        return -2;
+    }
+    /* The target (QEMU) may still be starting: retry until the timeout. */
+    const struct timespec pause = {0, 50000000L};
+    int fd = -1;
+    for (double waited = 0.0; fd < 0 && waited <= timeout_s && !g_stop_signal; waited += 0.05) {
+        for (struct addrinfo *a = addresses; a != NULL && fd < 0; a = a->ai_next) {
+            fd = socket(a->ai_family, a->ai_socktype, a->ai_protocol);
+            if (fd >= 0 && connect(fd, a->ai_addr, a->ai_addrlen) != 0) {
+                close(fd);
+                fd = -1;
+            }
+            if (fd >= 0) {
+                /* Frames are small and lockstep waits for each answer: no Nagle delay. */
+                const int one = 1;
+                (void)setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof(one));
+            }
+        }
+        if (fd < 0) {
+            nanosleep(&pause, NULL);
+        }
+    }
+    freeaddrinfo(addresses);
+    return fd;
+}
+
+static void from_target(bridge_t *b, const uint8_t *bytes, size_t n)
+{
+    for (size_t i = 0; i < n; ++i) {
+        uint8_t channel = 0u;
+        size_t length = 0u;
+        if (tvo_frame_decoder_push(&b->decoder, bytes[i], &channel, b->payload, &length) != TVO_FRAME_OK) {
+            continue;
+        }
+        const char *name = tvo_node_channel_name(channel);
+        if (name == NULL) {
+            fprintf(stderr, "tvo_pil_bridge: frame on unknown channel %u (dropped)\n", (unsigned)channel);
+            continue;
+        }
+        ++b->frames_from_target;
+        lcm_publish(b->lcm, name, b->payload, (unsigned)length);
+    }
+}
+
+static int usage(FILE *out, int code)
+{
+    fprintf(out, "Usage: tvo_pil_bridge --connect HOST:PORT [--lcm-url URL] [--corrupt-every N] "
+                 "[--connect-timeout-s S]\n"
+                 "Joins LCM and a processor-in-the-loop target's serial socket (see the source's header).\n");
+    return code;
+}
+
+int main(int argc, char **argv)
+{
+    const char *connect_arg = NULL;
+    const char *url = NULL;
+    long corrupt_every = 0;
+    double timeout_s = 10.0;
+    for (int i = 1; i < argc; ++i) {
+        const char *arg = argv[i];
+        const char *value = (i + 1 < argc) ? argv[i + 1] : NULL;
+        char *end = NULL;
+        if (strcmp(arg, "-h") == 0 || strcmp(arg, "--help") == 0) {
+            return usage(stdout, 0);
+        } else if (strcmp(arg, "--connect") == 0 && value != NULL) {
+            connect_arg = value;
+            ++i;
+        } else if (strcmp(arg, "--lcm-url") == 0 && value != NULL) {
+            url = value;
+            ++i;
+        } else if (strcmp(arg, "--corrupt-every") == 0 && value != NULL) {
+            corrupt_every = strtol(value, &end, 10);
+            if (*end != '\0' || corrupt_every < 0) {
+                fprintf(stderr, "tvo_pil_bridge: error: --corrupt-every: expected N >= 0, got '%s'\n", value);
+                return 2;
+            }
+            ++i;
+        } else if (strcmp(arg, "--connect-timeout-s") == 0 && value != NULL) {
+            timeout_s = strtod(value, &end);
+            if (*end != '\0' || !(timeout_s >= 0.0)) {
+                fprintf(stderr, "tvo_pil_bridge: error: --connect-timeout-s: expected S >= 0, got '%s'\n", value);
+                return 2;
+            }
+            ++i;
+        } else {
+            fprintf(stderr, "tvo_pil_bridge: error: unexpected argument '%s'\n", arg);
+            return usage(stderr, 2);
+        }
+    }
+    if (connect_arg == NULL) {
+        fprintf(stderr, "tvo_pil_bridge: error: --connect HOST:PORT is required\n");
+        return usage(stderr, 2);
+    }
+    struct sigaction sa;
+    memset(&sa, 0, sizeof(sa));
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+    signal(SIGPIPE, SIG_IGN); /* a closed link is reported by write(), not by a signal */
+
+    static bridge_t b;
+    memset(&b, 0, sizeof(b));
+    b.corrupt_every = corrupt_every;
+    tvo_frame_decoder_init(&b.decoder);
+    b.socket_fd = connect_to(connect_arg, timeout_s);
+    if (b.socket_fd < 0) {
+        fprintf(stderr, "tvo_pil_bridge: error: cannot connect to %s (is the target's QEMU running with "
+                        "-serial tcp:%s,server?)\n", connect_arg, connect_arg);
+        return 1;
+    }
+    b.lcm = lcm_create(url);
+    if (b.lcm == NULL) {
+        fprintf(stderr, "tvo_pil_bridge: error: cannot create LCM on '%s' (see tvo_firmware_node --help "
+                        "for the multicast fix)\n", url != NULL ? url : "LCM default");
+        close(b.socket_fd);
+        return 1;
+    }
+    lcm_subscribe(b.lcm, TVO_CHANNEL_SESSION, to_target, &b);
+    lcm_subscribe(b.lcm, TVO_CHANNEL_MEASUREMENT, to_target, &b);
+    lcm_subscribe(b.lcm, TVO_CHANNEL_TARGET, to_target, &b);
+
+    uint8_t chunk[BRIDGE_READ_CHUNK];
+    int link_open = 1;
+    while (!g_stop_signal && link_open && !b.failed) {
+        struct pollfd fds[2] = {{lcm_get_fileno(b.lcm), POLLIN, 0}, {b.socket_fd, POLLIN, 0}};
+        const int ready = poll(fds, 2, BRIDGE_POLL_MS);
+        if (ready < 0) {
+            if (errno == EINTR) {
+                continue;
+            }
+            fprintf(stderr, "tvo_pil_bridge: error: poll: %s\n", strerror(errno));
+            b.failed = 1;
+            break;
+        }
+        if (fds[1].revents & (POLLIN | POLLHUP | POLLERR)) {
+            const ssize_t n = read(b.socket_fd, chunk, sizeof(chunk));
+            if (n > 0) {
+                from_target(&b, chunk, (size_t)n);
+            } else if (n == 0 || errno != EINTR) {
+                link_open = 0; /* the target's program ended and QEMU closed the socket */
+            }
+        }
+        if (fds[0].revents & POLLIN) {
+            lcm_handle(b.lcm);
+        }
+    }
+    fprintf(stderr,
+            "tvo_pil_bridge: frames to target %lu (%lu corrupted on purpose), from target %lu ok, %lu dropped\n",
+            b.frames_to_target, b.frames_corrupted, b.frames_from_target, (unsigned long)b.decoder.frames_dropped);
+    lcm_destroy(b.lcm);
+    close(b.socket_fd);
+    return b.failed ? 1 : 0;
+}

@@ -1,0 +1,107 @@
+#!/usr/bin/python3
+"""Runs a processor-in-the-loop closed loop: the firmware's PIL program in QEMU (mps2-an386,
+Cortex-M4F), tvo_pil_bridge between its serial port and LCM, and tvo_sim as the plant.
+
+  tools/pil_run.py --elf PIL.elf --bridge tvo_pil_bridge --sim tvo_sim [--corrupt-every N]
+                   [--lcm-url URL] -- [tvo_sim options...]
+
+tvo_sim runs without --firmware: the node it talks to is the microcontroller. The exit code is
+tvo_sim's (non-zero also when QEMU or the bridge fail). Writes <out-dir>/pil.json with the target's
+frame counts (received, dropped, undecodable, sent) and the bridge's.
+"""
+import argparse
+import json
+import os
+import re
+import socket
+import subprocess
+import sys
+import tempfile
+
+END_TIMEOUT_S = 20
+
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def option_value(args, name, default):
+    for i, arg in enumerate(args):
+        if arg == name and i + 1 < len(args):
+            return args[i + 1]
+        if arg.startswith(name + "="):
+            return arg.split("=", 1)[1]
+    return default
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--elf", required=True)
+    parser.add_argument("--bridge", required=True)
+    parser.add_argument("--sim", required=True)
+    parser.add_argument("--qemu", default="qemu-system-arm")
+    parser.add_argument("--corrupt-every", type=int, default=0)
+    parser.add_argument("--lcm-url", default="")
+    parser.add_argument("sim_args", nargs="*")
+    args = parser.parse_args()
+
+    port = free_port()
+    out_dir = option_value(args.sim_args, "--out-dir", "runs/demo")
+    os.makedirs(out_dir, exist_ok=True)
+    lcm = ["--lcm-url", args.lcm_url] if args.lcm_url else []
+    qemu_log = tempfile.TemporaryFile(mode="w+")
+    bridge_log = tempfile.TemporaryFile(mode="w+")
+    qemu = subprocess.Popen(
+        [args.qemu, "-M", "mps2-an386", "-cpu", "cortex-m4", "-nographic", "-monitor", "none",
+         "-semihosting-config", "enable=on,target=native",
+         "-serial", f"tcp:127.0.0.1:{port},server=on,wait=on,nodelay=on", "-kernel", args.elf],
+        stdin=subprocess.DEVNULL, stdout=qemu_log, stderr=subprocess.STDOUT)
+    bridge = subprocess.Popen(
+        [args.bridge, "--connect", f"127.0.0.1:{port}", "--corrupt-every", str(args.corrupt_every)] + lcm,
+        stdin=subprocess.DEVNULL, stdout=bridge_log, stderr=subprocess.STDOUT)
+    try:
+        sim_rc = subprocess.call([args.sim] + lcm + args.sim_args)
+    except KeyboardInterrupt:
+        sim_rc = 130
+    rc = sim_rc
+    for name, proc in (("QEMU", qemu), ("tvo_pil_bridge", bridge)):
+        try:
+            proc.wait(timeout=END_TIMEOUT_S)
+        except subprocess.TimeoutExpired:
+            print(f"pil: {name} did not end after the session; terminating it", file=sys.stderr)
+            proc.kill()
+            proc.wait()
+            rc = rc or 1
+        if proc.returncode not in (0, None) and sim_rc == 0:
+            rc = 1
+            print(f"pil: {name} failed (exit {proc.returncode})", file=sys.stderr)
+    qemu_log.seek(0)
+    bridge_log.seek(0)
+    target_text = qemu_log.read()
+    bridge_text = bridge_log.read()
+    shown = [line for line in target_text.splitlines() if line.strip() and "waiting for connection" not in line]
+    sys.stderr.write("".join(f"pil target: {line}\n" for line in shown))
+    sys.stderr.write("".join(f"pil bridge: {line}\n" for line in bridge_text.splitlines() if line.strip()))
+    counts = {}
+    m = re.search(r"PIL frames received (\d+) dropped (\d+) undecodable (\d+) sent (\d+)", target_text)
+    if m:
+        counts = {"target_frames_received": int(m.group(1)), "target_frames_dropped": int(m.group(2)),
+                  "target_undecodable": int(m.group(3)), "target_frames_sent": int(m.group(4))}
+    elif rc == 0:
+        print("pil: the target printed no frame counts (did its program end on STOP?)", file=sys.stderr)
+        rc = 1
+    m = re.search(r"frames to target (\d+) \((\d+) corrupted on purpose\), from target (\d+) ok, (\d+) dropped",
+                  bridge_text)
+    if m:
+        counts.update({"bridge_frames_to_target": int(m.group(1)), "bridge_frames_corrupted": int(m.group(2)),
+                       "bridge_frames_from_target": int(m.group(3)), "bridge_frames_dropped": int(m.group(4))})
+    with open(os.path.join(out_dir, "pil.json"), "w") as f:
+        json.dump(counts, f, indent=2)
+        f.write("\n")
+    return rc
+
+
+if __name__ == "__main__":
+    sys.exit(main())
