@@ -138,8 +138,8 @@ Scenario obstacles(const std::string& name, bool infeasible_target)
                                             {20.0, 1, {0.0, 0.0}},
                                             {20.0, 2, {0.0, 0.0}}});
     } else {
-        // Runs straight through the second disk (inside it for t = 8.7 .. 11.6 s, through its centre
-        // near t = 10 s) and comes to rest at (1.2, 0.6), 0.81 m clear of every obstacle.
+        // Runs straight through the second disk (inside it for t = 8.5 .. 12.3 s, 6 cm from its centre
+        // at t = 10.4 s) and comes to rest at (1.2, 0.6), 0.81 m clear of every obstacle.
         s.targets[0] = TargetPath::through({{0.0, 0, start_m},
                                             {0.0, 1, start_velocity},
                                             {0.0, 2, {0.0, 0.0}},
