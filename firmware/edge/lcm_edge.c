@@ -101,6 +101,7 @@ static tvo_status_t edge_config_from_session(const tvo_lcm_session_t *msg, tvo_c
     cfg->delay_ticks = (uint32_t)msg->delay_us;
     cfg->robot_count = (uint8_t)msg->robot_count;
     cfg->delay_compensation = msg->delay_compensation ? 1u : 0u;
+    cfg->zoh_aware = msg->zoh_aware ? 1u : 0u;
     cfg->filter_tf_s = edge_real(msg->filter_tf_s);
     cfg->gain_kp = edge_real(msg->gain_kp);
     cfg->gain_kd = edge_real(msg->gain_kd);
@@ -280,6 +281,42 @@ static tvo_status_t edge_problem_desc_from_session(const tvo_lcm_session_t *msg,
     return st;
 }
 
+/* The chain controller's configuration (session PLANT_CHAIN); the core validates ranges. */
+static tvo_status_t edge_chain_config_from_session(const tvo_lcm_session_t *msg, tvo_chain_config_t *cfg,
+                                                   tvo_param_t *bad_param)
+{
+    tvo_status_t st = tvo_chain_config_default(cfg);
+    if (st != TVO_OK) {
+        return st;
+    }
+    if (msg->period_us <= 0 || msg->period_us > (int64_t)UINT32_MAX) {
+        return edge_reject(TVO_PARAM_PERIOD, bad_param);
+    }
+    if (msg->delay_us < 0 || msg->delay_us > (int64_t)UINT32_MAX) {
+        return edge_reject(TVO_PARAM_DELAY, bad_param);
+    }
+    if (msg->watchdog_periods < 0) {
+        return edge_reject(TVO_PARAM_WATCHDOG, bad_param);
+    }
+    if (msg->chain_relative_degree < 1 || msg->chain_relative_degree > TVO_MAX_RELATIVE_DEGREE) {
+        return edge_reject(TVO_PARAM_GAINS, bad_param);
+    }
+    cfg->tick_hz = TVO_EDGE_TICK_HZ;
+    cfg->period_ticks = (uint32_t)msg->period_us;
+    cfg->delay_ticks = (uint32_t)msg->delay_us;
+    cfg->relative_degree = (uint8_t)msg->chain_relative_degree;
+    cfg->delay_compensation = msg->delay_compensation ? 1u : 0u;
+    cfg->zoh_aware = msg->zoh_aware ? 1u : 0u;
+    cfg->filtered_derivatives = (msg->velocity_source == TVO_LCM_SESSION_T_VELOCITY_FROM_POSITION) ? 1u : 0u;
+    cfg->filter_tf_s = edge_real(msg->filter_tf_s);
+    for (size_t i = 0; i < TVO_MAX_RELATIVE_DEGREE; ++i) {
+        cfg->gain[i] = edge_real(msg->chain_gains[i]);
+    }
+    cfg->input_max = edge_real(msg->chain_input_max);
+    cfg->watchdog_periods = (uint32_t)msg->watchdog_periods;
+    return TVO_OK;
+}
+
 /* The problem: the edge's wire checks, then the core's (which names its own part). */
 static tvo_status_t edge_problem_from_session(tvo_edge_session_t *session, const tvo_lcm_session_t *msg,
                                               tvo_param_t *bad_param, int32_t *bad_part)
@@ -288,8 +325,9 @@ static tvo_status_t edge_problem_from_session(tvo_edge_session_t *session, const
     tvo_status_t st = edge_problem_desc_from_session(msg, &desc, bad_part);
     if (st == TVO_OK) {
         uint8_t problem_part = 0;
-        /* k = 2: the unicycle's flat output has relative degree 2 (bounds the barrier's m_r below). */
-        st = tvo_problem_init(&session->problem, &desc, 2u, &problem_part);
+        /* The flat output's relative degree bounds the barrier's m_r below: 2 for the unicycle. */
+        const uint8_t k = session->plant_chain ? (uint8_t)msg->chain_relative_degree : 2u;
+        st = tvo_problem_init(&session->problem, &desc, k, &problem_part);
         if (st != TVO_OK) {
             *bad_part = edge_part_from_problem(problem_part);
         }
@@ -336,6 +374,26 @@ tvo_status_t tvo_edge_session_start(tvo_edge_session_t *session, const tvo_lcm_s
     session->robot_count = (uint8_t)msg->robot_count;
     session->period_us = msg->period_us;
     session->delay_us = msg->delay_us;
+    if (msg->plant_kind != TVO_LCM_SESSION_T_PLANT_UNICYCLE && msg->plant_kind != TVO_LCM_SESSION_T_PLANT_CHAIN) {
+        return edge_reject(TVO_PARAM_OBJECTIVE, bad_param);
+    }
+    session->plant_chain = (msg->plant_kind == TVO_LCM_SESSION_T_PLANT_CHAIN) ? 1u : 0u;
+    if (session->plant_chain) {
+        tvo_chain_config_t chain_cfg;
+        tvo_status_t chain_st = edge_chain_config_from_session(msg, &chain_cfg, bad_param);
+        if (chain_st == TVO_OK) {
+            chain_st = edge_problem_from_session(session, msg, bad_param, &part);
+        }
+        if (chain_st == TVO_OK) {
+            chain_st = tvo_chain_controller_init(&session->chain, &chain_cfg, &session->problem.objective,
+                                                 (uint32_t)msg->epoch_utime, bad_param);
+        }
+        if (bad_part != NULL) {
+            *bad_part = part;
+        }
+        session->active = (chain_st == TVO_OK) ? 1u : 0u;
+        return chain_st;
+    }
 
     tvo_controller_config_t cfg;
     tvo_status_t st = edge_config_from_session(msg, &cfg, bad_param);
@@ -390,6 +448,46 @@ tvo_status_t tvo_edge_measurement_from_lcm(const tvo_lcm_measurement_t *msg, uin
     meas->heading_valid = msg->heading_valid ? 1u : 0u;
     meas->speed_valid = msg->speed_valid ? 1u : 0u;
     return TVO_OK;
+}
+
+tvo_status_t tvo_edge_chain_measurement_from_lcm(const tvo_lcm_measurement_t *msg, uint8_t robot_count,
+                                                 tvo_chain_measurement_t *meas)
+{
+    if (msg == NULL || meas == NULL) {
+        return TVO_ERR_NULL;
+    }
+    memset(meas, 0, sizeof(*meas));
+    if (msg->robot_count != (int32_t)robot_count) {
+        return TVO_ERR_DIMENSION;
+    }
+    meas->stamp_tick = (uint32_t)msg->utime;
+    for (size_t r = 0; r < robot_count; ++r) {
+        for (size_t axis = 0; axis < 2; ++axis) {
+            const size_t i = 2u * r + axis;
+            meas->y.d[0][i] = edge_real(msg->position_m[r][axis]);
+            if (msg->derivatives_valid) {
+                meas->y.d[1][i] = edge_real(msg->output_rate_mps[r][axis]);
+#if TVO_MAX_RELATIVE_DEGREE >= 3
+                meas->y.d[2][i] = edge_real(msg->output_accel_mps2[r][axis]);
+#endif
+            }
+        }
+    }
+    return TVO_OK;
+}
+
+void tvo_edge_chain_command_to_lcm(const tvo_chain_command_t *cmd, tvo_status_t status, int64_t apply_utime,
+                                   int64_t sequence, uint8_t robot_count, tvo_lcm_command_t *msg)
+{
+    memset(msg, 0, sizeof(*msg));
+    msg->utime = apply_utime;
+    msg->measurement_sequence = sequence;
+    msg->robot_count = robot_count;
+    for (size_t i = 0; i < 2u * (size_t)robot_count && i < TVO_MAX_OUTPUT_DIM && i < 8u; ++i) {
+        msg->input[i] = (double)cmd->u[i];
+    }
+    msg->status = (int32_t)status;
+    msg->flags = (int32_t)cmd->flags;
 }
 
 void tvo_edge_command_to_lcm(const tvo_command_t *cmd, tvo_status_t status, int64_t apply_utime,

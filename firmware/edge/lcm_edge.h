@@ -11,6 +11,7 @@
 
 #include <stdint.h>
 
+#include "tvo/chain_controller.h"
 #include "tvo/controller.h"
 #include "tvo/problem.h"
 #include "tvo/target.h"
@@ -35,6 +36,8 @@
 
 typedef struct {
     tvo_controller_t controller;
+    tvo_chain_controller_t chain;  /* PLANT_CHAIN sessions run this controller instead */
+    uint8_t plant_chain;           /* 1: the session's plant is the integrator chain */
     tvo_problem_t problem;      /* objective, targets and constraint terms the controller points into */
     int64_t session_id;
     int64_t period_us;
@@ -70,6 +73,14 @@ const char *tvo_edge_part_str(int32_t part);
 /** Core measurement from an LCM one; TVO_ERR_DIMENSION if its robot count differs from the session's. */
 tvo_status_t tvo_edge_measurement_from_lcm(const tvo_lcm_measurement_t *msg, uint8_t robot_count,
                                            tvo_measurement_t *meas);
+
+/** Chain measurement (positions, and y', y'' when derivatives_valid) from an LCM one. */
+tvo_status_t tvo_edge_chain_measurement_from_lcm(const tvo_lcm_measurement_t *msg, uint8_t robot_count,
+                                                 tvo_chain_measurement_t *meas);
+
+/** LCM command carrying a chain command u in input[]. */
+void tvo_edge_chain_command_to_lcm(const tvo_chain_command_t *cmd, tvo_status_t status, int64_t apply_utime,
+                                   int64_t sequence, uint8_t robot_count, tvo_lcm_command_t *msg);
 
 /** LCM command answering measurement `sequence`, applied at apply_utime. */
 void tvo_edge_command_to_lcm(const tvo_command_t *cmd, tvo_status_t status, int64_t apply_utime,

@@ -60,6 +60,29 @@ static void publish_ack(tvo_node_t *node, const tvo_lcm_session_t *msg, tvo_stat
     }
 }
 
+/* A chain step: the command carries u; the telemetry only the step's outcome (the unicycle
+ * controller's telemetry fields do not apply). */
+static void publish_chain_step(tvo_node_t *node, const tvo_chain_command_t *cmd, tvo_status_t status,
+                               int64_t apply_utime, int64_t sequence)
+{
+    tvo_lcm_command_t out;
+    tvo_edge_chain_command_to_lcm(cmd, status, apply_utime, sequence, node->session.robot_count, &out);
+    int len = tvo_lcm_command_t_encode(node->buffer, 0, TVO_NODE_BUFFER_BYTES, &out);
+    if (len > 0) {
+        node->publish(node->publish_context, TVO_NODE_CH_COMMAND, node->buffer, (uint32_t)len);
+    }
+    tvo_lcm_telemetry_t tel;
+    memset(&tel, 0, sizeof(tel));
+    tel.utime = apply_utime;
+    tel.measurement_sequence = sequence;
+    tel.status = (int32_t)status;
+    tel.flags = (int32_t)cmd->flags;
+    len = tvo_lcm_telemetry_t_encode(node->buffer, 0, TVO_NODE_BUFFER_BYTES, &tel);
+    if (len > 0) {
+        node->publish(node->publish_context, TVO_NODE_CH_TELEMETRY, node->buffer, (uint32_t)len);
+    }
+}
+
 static void publish_step(tvo_node_t *node, const tvo_command_t *cmd, tvo_status_t status, int64_t apply_utime,
                          int64_t sequence)
 {
@@ -92,9 +115,15 @@ static void step_missed_periods(tvo_node_t *node, int64_t sequence, int64_t appl
     }
     for (int64_t k = missed; k >= 1; --k) {
         const int64_t missed_apply_utime = apply_utime - k * s->period_us;
-        tvo_command_t cmd;
-        const tvo_status_t st = tvo_controller_step(&s->controller, NULL, (uint32_t)missed_apply_utime, &cmd);
-        publish_step(node, &cmd, st, missed_apply_utime, sequence - k);
+        if (s->plant_chain) {
+            tvo_chain_command_t cmd;
+            const tvo_status_t st = tvo_chain_controller_step(&s->chain, NULL, (uint32_t)missed_apply_utime, &cmd);
+            publish_chain_step(node, &cmd, st, missed_apply_utime, sequence - k);
+        } else {
+            tvo_command_t cmd;
+            const tvo_status_t st = tvo_controller_step(&s->controller, NULL, (uint32_t)missed_apply_utime, &cmd);
+            publish_step(node, &cmd, st, missed_apply_utime, sequence - k);
+        }
     }
 }
 
@@ -107,6 +136,19 @@ static void on_measurement(tvo_node_t *node, const tvo_lcm_measurement_t *msg)
     /* The node's schedule: sampled at t_{n+1} - tau, applied at t_{n+1}. */
     const int64_t apply_utime = msg->utime + s->delay_us;
     step_missed_periods(node, msg->sequence, apply_utime);
+    if (s->plant_chain) {
+        tvo_chain_measurement_t chain_meas;
+        tvo_chain_command_t chain_cmd;
+        const tvo_status_t conv = tvo_edge_chain_measurement_from_lcm(msg, s->robot_count, &chain_meas);
+        tvo_status_t st = tvo_chain_controller_step(&s->chain, conv == TVO_OK ? &chain_meas : NULL,
+                                                    (uint32_t)apply_utime, &chain_cmd);
+        publish_chain_step(node, &chain_cmd, conv != TVO_OK ? conv : st, apply_utime, msg->sequence);
+        if (!s->has_sequence || msg->sequence > s->last_sequence) {
+            s->last_sequence = msg->sequence;
+            s->has_sequence = 1;
+        }
+        return;
+    }
 
     tvo_measurement_t meas;
     tvo_command_t cmd;

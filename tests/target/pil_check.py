@@ -48,9 +48,11 @@ def main():
         # answer, so this run is real time (at a period QEMU's serial link keeps up with).
         sim_args += ["--realtime", "--period-s", "0.05"]
     pil_out = os.path.join(a.out, "pil")
+    # QEMU's emulated UART is slow and shares the machine with other tests: wait longer for answers.
     run(["/usr/bin/python3", os.path.join(a.tools, "pil_run.py"), "--elf", a.elf, "--bridge", a.bridge,
          "--sim", a.sim, "--corrupt-every", str(a.corrupt_every),
-         "--lcm-url", f"udpm://239.255.76.67:{a.port}?ttl=0", "--"] + sim_args + ["--out-dir", pil_out])
+         "--lcm-url", f"udpm://239.255.76.67:{a.port}?ttl=0", "--"] + sim_args +
+        ["--answer-timeout-s", "10", "--out-dir", pil_out])
     pil, pil_rows = load(pil_out)
     with open(os.path.join(pil_out, "pil.json")) as f:
         frames = json.load(f)

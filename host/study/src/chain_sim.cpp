@@ -173,8 +173,15 @@ SimResult run_chain(const SimConfig &cfg, std::vector<TraceRow> *trace)
             res.not_ok++;
         }
         if (trace != nullptr) {
-            TraceRow row{n, apply_tick, meas.stamp_tick, {measured[0], measured[1]},
-                         {static_cast<float>(cmd.u[0]), static_cast<float>(cmd.u[1])}, static_cast<int>(st), cmd.flags};
+            TraceRow row{n,
+                         apply_tick,
+                         meas.stamp_tick,
+                         {measured[0], measured[1]},
+                         {k > 1 ? xs[0][1] : 0.0, k > 1 ? xs[1][1] : 0.0},
+                         {k > 2 ? xs[0][2] : 0.0, k > 2 ? xs[1][2] : 0.0},
+                         {static_cast<float>(cmd.u[0]), static_cast<float>(cmd.u[1])},
+                         static_cast<int>(st),
+                         cmd.flags};
             trace->push_back(row);
         }
         // The plant at t_n, where the new command takes over.

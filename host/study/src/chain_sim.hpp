@@ -50,6 +50,8 @@ struct TraceRow {
     uint32_t apply_tick;
     uint32_t stamp_tick;
     double measured[2];
+    double rate[2];     // y' at the sample (sent when derivatives are measured)
+    double accel[2];    // y'' at the sample (k = 3)
     float u[2];
     int status;
     uint32_t flags;

@@ -1,0 +1,220 @@
+// tvo_study_lcm_check: one configuration of the study run twice — in-process (the chain controller
+// linked into this program) and over LCM (the same float32 core inside tvo_firmware_node, session
+// PLANT_CHAIN) — and the two command sequences compared bit for bit.
+//
+// The LCM run replays the in-process run's measurements (same stamps, positions and derivatives as
+// doubles on the wire) and waits for each answer. As long as every command matches bit for bit, the
+// plant of a closed LCM loop would see exactly these measurements, so the replay is the closed loop;
+// the first differing command would end that equivalence and is reported.
+//
+// Exit code 0 when every command (and status) is identical, 1 otherwise or on errors, 2 on bad usage.
+#include <unistd.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <lcm/lcm-cpp.hpp>
+#include <nlohmann/json.hpp>
+
+#include "chain_sim.hpp"
+#include "tvo_lcm/command_t.hpp"
+#include "tvo_lcm/measurement_t.hpp"
+#include "tvo_lcm/session_ack_t.hpp"
+#include "tvo_lcm/session_t.hpp"
+
+extern char **environ;
+
+namespace {
+
+constexpr int64_t kEpochUs = 1000000;  // chain_sim's epoch tick (1 tick = 1 us)
+
+struct Listener {
+    int64_t session_id = 0;
+    bool acked = false;
+    int32_t ack_status = -1;
+    int64_t answered = -1;
+    tvo_lcm::command_t last{};
+    void on_ack(const lcm::ReceiveBuffer *, const std::string &, const tvo_lcm::session_ack_t *ack)
+    {
+        if (ack->session_id == session_id && ack->action == tvo_lcm::session_t::ACTION_START) {
+            acked = true;
+            ack_status = ack->status;
+        }
+    }
+    void on_command(const lcm::ReceiveBuffer *, const std::string &, const tvo_lcm::command_t *cmd)
+    {
+        if (cmd->measurement_sequence > answered) {
+            answered = cmd->measurement_sequence;
+            last = *cmd;
+        }
+    }
+};
+
+bool same_bits(float a, float b)
+{
+    return std::memcmp(&a, &b, sizeof(a)) == 0;
+}
+
+}  // namespace
+
+int main(int argc, char **argv)
+{
+    CLI::App app{"tvo_study_lcm_check: one study configuration in-process and over LCM, compared bit for bit"};
+    study::SimConfig cfg;
+    double h_s = 0.01;
+    double tau_frac = 0.5;
+    std::string firmware;
+    std::string url;
+    std::string json_path;
+    double duration_s = 20.0;
+    app.add_option("--k", cfg.k, "relative degree")->check(CLI::Range(1, 3));
+    app.add_option("--h", h_s, "sampling period, s")->check(CLI::Range(1e-4, 1.0));
+    app.add_option("--tau", tau_frac, "computation delay as a fraction of h")->check(CLI::Range(0.0, 1.0));
+    app.add_flag("--comp", cfg.compensation, "delay compensation on");
+    app.add_flag("--zoh", cfg.zoh_aware, "ZOH-aware evaluation");
+    app.add_option("--duration-s", duration_s, "simulated time")->check(CLI::PositiveNumber);
+    app.add_option("--firmware", firmware, "tvo_firmware_node to spawn")->required();
+    app.add_option("--lcm-url", url, "LCM URL (default: LCM's)");
+    app.add_option("--json", json_path, "write the outcome as JSON here");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError &e) {
+        return app.exit(e);
+    }
+    cfg.period_ticks = static_cast<uint32_t>(std::llround(h_s * 1e6));
+    cfg.delay_ticks = static_cast<uint32_t>(std::llround(tau_frac * h_s * 1e6));
+    cfg.duration_s = duration_s;
+    cfg.window_s = duration_s / 2.0;
+
+    std::vector<study::TraceRow> trace;
+    (void)study::run_chain(cfg, &trace);
+
+    lcm::LCM lcm(url);
+    if (!lcm.good()) {
+        std::fprintf(stderr, "tvo_study_lcm_check: error: cannot create LCM on '%s'\n", url.c_str());
+        return 1;
+    }
+    std::vector<std::string> child_args = {firmware};
+    if (!url.empty()) {
+        child_args.push_back("--lcm-url");
+        child_args.push_back(url);
+    }
+    std::vector<char *> child_argv;
+    for (std::string &a : child_args) {
+        child_argv.push_back(a.data());
+    }
+    child_argv.push_back(nullptr);
+    pid_t child = 0;
+    if (posix_spawn(&child, firmware.c_str(), nullptr, nullptr, child_argv.data(), environ) != 0) {
+        std::fprintf(stderr, "tvo_study_lcm_check: error: cannot start %s\n", firmware.c_str());
+        return 1;
+    }
+
+    Listener listener;
+    listener.session_id = static_cast<int64_t>(getpid()) * 1000 + 7;
+    lcm.subscribe("TVO_SESSION_ACK", &Listener::on_ack, &listener);
+    lcm.subscribe("TVO_COMMAND", &Listener::on_command, &listener);
+
+    tvo_lcm::session_t start{};
+    start.utime = kEpochUs;
+    start.session_id = listener.session_id;
+    start.action = tvo_lcm::session_t::ACTION_START;
+    start.epoch_utime = kEpochUs;
+    start.period_us = cfg.period_ticks;
+    start.delay_us = cfg.delay_ticks;
+    start.delay_compensation = cfg.compensation;
+    start.zoh_aware = cfg.zoh_aware;
+    start.plant_kind = tvo_lcm::session_t::PLANT_CHAIN;
+    start.velocity_source = tvo_lcm::session_t::VELOCITY_FROM_POSE;  // derivatives measured, not filtered
+    start.filter_tf_s = cfg.filter_tf_s;
+    start.chain_relative_degree = cfg.k;
+    const std::vector<double> gains = study::chain_gains(cfg.k, cfg.pole);
+    for (size_t i = 0; i < gains.size(); ++i) {
+        start.chain_gains[i] = gains[i];
+    }
+    start.chain_input_max = 1e30;  // as the in-process run: the unsaturated loop
+    start.watchdog_periods = 10;
+    start.robot_count = 1;
+    start.tracking_weight[0][0] = 1.0;
+    start.tracking_weight[0][1] = 1.0;
+    start.target_kind = tvo_lcm::session_t::TARGET_CIRCLE;
+    start.target_params[0] = 0.0;  // centre
+    start.target_params[1] = 0.0;
+    start.target_params[2] = 1.0;  // radius
+    start.target_params[3] = study::paper_omega();
+    start.target_params[4] = 0.0;  // phase
+
+    int rc = 0;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+    while (!listener.acked && std::chrono::steady_clock::now() < deadline) {
+        lcm.publish("TVO_SESSION", &start);  // repeated until acked (the node may not be listening yet)
+        lcm.handleTimeout(100);
+    }
+    uint64_t identical = 0;
+    int64_t first_mismatch = -1;
+    if (!listener.acked || listener.ack_status != 0) {
+        std::fprintf(stderr, "tvo_study_lcm_check: error: the node did not accept the chain session (status %d)\n",
+                     listener.ack_status);
+        rc = 1;
+    } else {
+        tvo_lcm::measurement_t m{};
+        for (const study::TraceRow &row : trace) {
+            m.utime = row.stamp_tick;
+            m.sequence = static_cast<int64_t>(row.step);
+            m.robot_count = 1;
+            m.derivatives_valid = true;
+            for (int i = 0; i < 2; ++i) {
+                m.position_m[0][i] = row.measured[i];
+                m.output_rate_mps[0][i] = row.rate[i];
+                m.output_accel_mps2[0][i] = row.accel[i];
+            }
+            lcm.publish("TVO_MEASUREMENT", &m);
+            const auto wait_until = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+            while (listener.answered < m.sequence && std::chrono::steady_clock::now() < wait_until) {
+                lcm.handleTimeout(50);
+            }
+            if (listener.answered < m.sequence) {
+                std::fprintf(stderr, "tvo_study_lcm_check: error: no answer to measurement %lld\n",
+                             static_cast<long long>(m.sequence));
+                rc = 1;
+                break;
+            }
+            const bool same = same_bits(static_cast<float>(listener.last.input[0]), row.u[0]) &&
+                              same_bits(static_cast<float>(listener.last.input[1]), row.u[1]) &&
+                              listener.last.status == row.status;
+            if (same) {
+                ++identical;
+            } else if (first_mismatch < 0) {
+                first_mismatch = m.sequence;
+                std::fprintf(stderr, "first difference at step %lld: LCM %.9g %.9g, in-process %.9g %.9g\n",
+                             static_cast<long long>(m.sequence), listener.last.input[0], listener.last.input[1],
+                             static_cast<double>(row.u[0]), static_cast<double>(row.u[1]));
+            }
+        }
+    }
+    tvo_lcm::session_t stop = start;
+    stop.action = tvo_lcm::session_t::ACTION_STOP;
+    lcm.publish("TVO_SESSION", &stop);
+    int status = 0;
+    waitpid(child, &status, 0);
+
+    const bool all_same = rc == 0 && identical == trace.size();
+    std::printf("tvo_study_lcm_check: k=%d h=%g tau=%g*h comp=%d zoh=%d: %llu of %zu commands identical bit for bit%s\n",
+                cfg.k, h_s, tau_frac, cfg.compensation ? 1 : 0, cfg.zoh_aware ? 1 : 0,
+                static_cast<unsigned long long>(identical), trace.size(), all_same ? "" : " (DIFFERENT)");
+    if (!json_path.empty()) {
+        nlohmann::json out = {{"commands", trace.size()}, {"identical", identical}, {"first_mismatch", first_mismatch},
+                              {"k", cfg.k}, {"h_s", h_s}, {"tau_fraction", tau_frac},
+                              {"compensation", cfg.compensation}, {"zoh_aware", cfg.zoh_aware}};
+        std::ofstream(json_path) << out.dump(2) << '\n';
+    }
+    return all_same ? 0 : 1;
+}
