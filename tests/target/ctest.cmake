@@ -43,8 +43,10 @@ if(TARGET tvo_sim AND TARGET tvo_pil_bridge AND TARGET tvo_firmware_node)
               --elf ${tvo_pil_elf} --bridge $<TARGET_FILE:tvo_pil_bridge> --sim $<TARGET_FILE:tvo_sim>
               --firmware $<TARGET_FILE:tvo_firmware_node> --out ${CMAKE_BINARY_DIR}/pil_${variant}
               --port ${port} ${extra})
+    # One PIL run at a time: each picks a free TCP port for QEMU's serial socket, and two starting
+    # together can be handed the same one (then the bridges cross); QEMU also needs the CPU.
     set_tests_properties(target_pil_${variant} PROPERTIES FIXTURES_REQUIRED tvo_target_elfs LABELS "target;pil"
-      TIMEOUT 300)
+      TIMEOUT 300 RESOURCE_LOCK tvo_qemu_pil)
   endforeach()
 endif()
 
