@@ -173,6 +173,8 @@ int parse_options(int argc, char** argv, SimOptions* o)
                                         "computation delay tau, 0 .. h: the pose is sampled at t_{n+1} - tau and "
                                         "the command applied at t_{n+1} [default: h/2]");
     app.add_flag("--no-compensation", "do not predict the pose over tau in the controller");
+    app.add_flag("--zoh-aware", "evaluate the law at the middle of each held interval (tracking error second "
+                 "order in h instead of first)");
     app.add_option("--sigma", o->sigma,
                    "measurement noise sigma: position (m, per axis), heading (rad) and speed (m/s)")
         ->capture_default_str();
@@ -238,6 +240,7 @@ int parse_options(int argc, char** argv, SimOptions* o)
         return 2;
     }
     o->delay_compensation = app.count("--no-compensation") == 0;
+    o->zoh_aware = app.count("--zoh-aware") > 0;
     o->position_only = app.count("--position-only") > 0;
     o->realtime = app.count("--realtime") > 0;
     if (!parse_pair(gains, &o->gain_kp, &o->gain_kd)) {

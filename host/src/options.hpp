@@ -15,6 +15,7 @@ struct SimOptions {
     double delay_s{0.005};         // default h/2
     double duration_s{20.0};
     bool delay_compensation{true};
+    bool zoh_aware{false};          // evaluate the law at the middle of each held interval
     bool realtime{false};
     double answer_timeout_s{2.0};   // lockstep: longest wait for the firmware's answer
     std::int64_t start_utime_us{1000000};  // plant time 0 on the wire (the session's epoch)

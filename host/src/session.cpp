@@ -191,6 +191,7 @@ tvo_lcm::session_t make_start_session(const SimOptions& o, const Scenario& scena
     msg.period_us = o.period_us;
     msg.delay_us = o.delay_us;
     msg.delay_compensation = o.delay_compensation;
+    msg.zoh_aware = o.zoh_aware;
     msg.velocity_source = o.position_only ? static_cast<std::int32_t>(tvo_lcm::session_t::VELOCITY_FROM_POSITION)
                                           : static_cast<std::int32_t>(tvo_lcm::session_t::VELOCITY_FROM_POSE);
     msg.filter_tf_s = o.filter_tf_s;

@@ -54,7 +54,8 @@ void print_summary_table(std::ostream& out, const RunSummary& s, const SimOption
 {
     std::ostringstream mode;
     mode << o.scenario << ", " << (o.realtime ? "realtime" : "lockstep") << ", h = " << o.period_us << " us, tau = " << o.delay_us
-         << " us, compensation " << (o.delay_compensation ? "on" : "off") << ", "
+         << " us, compensation " << (o.delay_compensation ? "on" : "off") << (o.zoh_aware ? ", ZOH-aware" : "")
+         << ", "
          << (o.position_only ? "position only" : "pose measured") << ", sigma = " << o.sigma << ", "
          << (o.target == TargetKind::Streamed ? "streamed targets" : "on-board targets");
     out << "tvo_sim summary (" << mode.str() << ")\n";
