@@ -71,15 +71,10 @@ static tvo_status_t edge_target_init(tvo_target_t *target, int32_t kind, const d
     }
 }
 
-/* Controller configuration from the session; the core validates ranges, the edge only casts safely. */
-static tvo_status_t edge_config_from_session(const tvo_lcm_session_t *msg, tvo_controller_config_t *cfg,
-                                             tvo_param_t *bad_param)
+/* Timing values that would wrap when narrowed to the core's unsigned fields are rejected here (both
+ * controllers); the core validates the rest of the ranges. */
+static tvo_status_t edge_timing_ok(const tvo_lcm_session_t *msg, tvo_param_t *bad_param)
 {
-    tvo_status_t st = tvo_controller_config_default(cfg);
-    if (st != TVO_OK) {
-        return st;
-    }
-    /* Values that would wrap when narrowed to the core's unsigned fields are rejected here. */
     if (msg->period_us <= 0 || msg->period_us > (int64_t)UINT32_MAX) {
         return edge_reject(TVO_PARAM_PERIOD, bad_param);
     }
@@ -88,6 +83,21 @@ static tvo_status_t edge_config_from_session(const tvo_lcm_session_t *msg, tvo_c
     }
     if (msg->watchdog_periods < 0) {
         return edge_reject(TVO_PARAM_WATCHDOG, bad_param);
+    }
+    return TVO_OK;
+}
+
+/* Controller configuration from the session; the core validates ranges, the edge only casts safely. */
+static tvo_status_t edge_config_from_session(const tvo_lcm_session_t *msg, tvo_controller_config_t *cfg,
+                                             tvo_param_t *bad_param)
+{
+    tvo_status_t st = tvo_controller_config_default(cfg);
+    if (st != TVO_OK) {
+        return st;
+    }
+    st = edge_timing_ok(msg, bad_param);
+    if (st != TVO_OK) {
+        return st;
     }
     if (msg->velocity_source == TVO_LCM_SESSION_T_VELOCITY_FROM_POSE) {
         cfg->velocity_source = TVO_VELOCITY_FROM_POSE;
@@ -289,14 +299,9 @@ static tvo_status_t edge_chain_config_from_session(const tvo_lcm_session_t *msg,
     if (st != TVO_OK) {
         return st;
     }
-    if (msg->period_us <= 0 || msg->period_us > (int64_t)UINT32_MAX) {
-        return edge_reject(TVO_PARAM_PERIOD, bad_param);
-    }
-    if (msg->delay_us < 0 || msg->delay_us > (int64_t)UINT32_MAX) {
-        return edge_reject(TVO_PARAM_DELAY, bad_param);
-    }
-    if (msg->watchdog_periods < 0) {
-        return edge_reject(TVO_PARAM_WATCHDOG, bad_param);
+    st = edge_timing_ok(msg, bad_param);
+    if (st != TVO_OK) {
+        return st;
     }
     if (msg->chain_relative_degree < 1 || msg->chain_relative_degree > TVO_MAX_RELATIVE_DEGREE) {
         return edge_reject(TVO_PARAM_GAINS, bad_param);

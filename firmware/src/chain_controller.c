@@ -24,14 +24,9 @@ tvo_status_t tvo_chain_config_default(tvo_chain_config_t *cfg)
 
 static tvo_param_t first_bad_param(const tvo_chain_config_t *cfg, const tvo_objective_t *objective)
 {
-    if (cfg->tick_hz == 0u) {
-        return TVO_PARAM_TICK_HZ;
-    }
-    if (cfg->period_ticks == 0u || cfg->period_ticks > TVO_MAX_TICK_SPAN) {
-        return TVO_PARAM_PERIOD;
-    }
-    if (cfg->delay_ticks > cfg->period_ticks) {
-        return TVO_PARAM_DELAY;
+    const tvo_param_t timing = tvo_sample_clock_check_timing(cfg->tick_hz, cfg->period_ticks, cfg->delay_ticks);
+    if (timing != TVO_PARAM_NONE) {
+        return timing;
     }
     if (cfg->relative_degree == 0u || cfg->relative_degree > TVO_MAX_RELATIVE_DEGREE) {
         return TVO_PARAM_GAINS;
@@ -42,7 +37,7 @@ static tvo_param_t first_bad_param(const tvo_chain_config_t *cfg, const tvo_obje
     if (!(isfinite(cfg->input_max) && cfg->input_max > TVO_R(0.0))) {
         return TVO_PARAM_ACCEL_MAX;
     }
-    if (cfg->watchdog_periods == 0u || cfg->watchdog_periods > TVO_MAX_TICK_SPAN / cfg->period_ticks) {
+    if (!tvo_sample_clock_watchdog_ok(cfg->period_ticks, cfg->watchdog_periods)) {
         return TVO_PARAM_WATCHDOG;
     }
     if (objective->dual_dim != 0u || objective->term_count == 0u) {

@@ -44,14 +44,9 @@ static int positive_finite(tvo_real_t v)
 
 static tvo_param_t first_bad_param(const tvo_controller_config_t *cfg, const tvo_objective_t *objective)
 {
-    if (cfg->tick_hz == 0u) {
-        return TVO_PARAM_TICK_HZ;
-    }
-    if (cfg->period_ticks == 0u || cfg->period_ticks > TVO_MAX_TICK_SPAN) {
-        return TVO_PARAM_PERIOD;
-    }
-    if (cfg->delay_ticks > cfg->period_ticks) {
-        return TVO_PARAM_DELAY;
+    const tvo_param_t timing = tvo_sample_clock_check_timing(cfg->tick_hz, cfg->period_ticks, cfg->delay_ticks);
+    if (timing != TVO_PARAM_NONE) {
+        return timing;
     }
     if (cfg->robot_count == 0u || cfg->robot_count > TVO_MAX_ROBOTS) {
         return TVO_PARAM_ROBOT_COUNT;
@@ -80,7 +75,7 @@ static tvo_param_t first_bad_param(const tvo_controller_config_t *cfg, const tvo
     if (!positive_finite(cfg->min_speed_mps) || !(cfg->min_speed_mps < cfg->speed_max_mps)) {
         return TVO_PARAM_MIN_SPEED;
     }
-    if (cfg->watchdog_periods == 0u || cfg->watchdog_periods > TVO_MAX_TICK_SPAN / cfg->period_ticks) {
+    if (!tvo_sample_clock_watchdog_ok(cfg->period_ticks, cfg->watchdog_periods)) {
         return TVO_PARAM_WATCHDOG;
     }
     for (uint8_t r = 0; r < cfg->robot_count; ++r) {

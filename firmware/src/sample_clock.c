@@ -3,6 +3,25 @@
 
 #include <string.h>
 
+tvo_param_t tvo_sample_clock_check_timing(uint32_t tick_hz, uint32_t period_ticks, uint32_t delay_ticks)
+{
+    if (tick_hz == 0u) {
+        return TVO_PARAM_TICK_HZ;
+    }
+    if (period_ticks == 0u || period_ticks > TVO_MAX_TICK_SPAN) {
+        return TVO_PARAM_PERIOD;
+    }
+    if (delay_ticks > period_ticks) {
+        return TVO_PARAM_DELAY;
+    }
+    return TVO_PARAM_NONE;
+}
+
+int tvo_sample_clock_watchdog_ok(uint32_t period_ticks, uint32_t watchdog_periods)
+{
+    return period_ticks > 0u && watchdog_periods >= 1u && watchdog_periods <= TVO_MAX_TICK_SPAN / period_ticks;
+}
+
 void tvo_sample_clock_init(tvo_sample_clock_t *clock, uint32_t tick_hz, uint32_t period_ticks,
                            uint32_t watchdog_periods, uint32_t epoch_tick)
 {

@@ -29,6 +29,15 @@ typedef struct {
     uint8_t stopped;                 /* the watchdog expired and no good step since */
 } tvo_sample_clock_t;
 
+/**
+ * The timing parameters every controller validates: TVO_PARAM_TICK_HZ (zero), TVO_PARAM_PERIOD
+ * (zero or beyond TVO_MAX_TICK_SPAN), TVO_PARAM_DELAY (beyond the period), or TVO_PARAM_NONE.
+ */
+tvo_param_t tvo_sample_clock_check_timing(uint32_t tick_hz, uint32_t period_ticks, uint32_t delay_ticks);
+
+/** 1 if watchdog_periods >= 1 and the watchdog's span stays within TVO_MAX_TICK_SPAN ticks. */
+int tvo_sample_clock_watchdog_ok(uint32_t period_ticks, uint32_t watchdog_periods);
+
 /** The caller validated the values (tick_hz, period > 0; watchdog >= 1). */
 void tvo_sample_clock_init(tvo_sample_clock_t *clock, uint32_t tick_hz, uint32_t period_ticks,
                            uint32_t watchdog_periods, uint32_t epoch_tick);
