@@ -77,7 +77,8 @@ tvo_status_t tvo_chain_controller_init(tvo_chain_controller_t *ctl, const tvo_ch
     }
     ctl->cfg = *cfg;
     ctl->objective = objective;
-    tvo_sample_clock_init(&ctl->clock, cfg->tick_hz, cfg->period_ticks, cfg->watchdog_periods, epoch_tick);
+    /* The timing was validated above: the clock cannot reject it. */
+    (void)tvo_sample_clock_init(&ctl->clock, cfg->tick_hz, cfg->period_ticks, cfg->watchdog_periods, epoch_tick);
     ctl->initialized = 1;
     return TVO_OK;
 }
@@ -201,7 +202,7 @@ tvo_status_t tvo_chain_controller_step(tvo_chain_controller_t *ctl, const tvo_ch
     if (st != TVO_OK) {
         return hold_or_stop(ctl, apply_tick, elapsed, periods, st, cmd);
     }
-    tvo_sample_clock_accept_stamp(&ctl->clock, meas->stamp_tick);
+    (void)tvo_sample_clock_accept_stamp(&ctl->clock, meas->stamp_tick);
 
     const uint8_t k = ctl->cfg.relative_degree;
     const uint8_t m = ctl->objective->primal_dim;
@@ -249,7 +250,7 @@ tvo_status_t tvo_chain_controller_step(tvo_chain_controller_t *ctl, const tvo_ch
         }
     }
     next.flags = flags;
-    tvo_sample_clock_good(&ctl->clock, apply_tick, elapsed);
+    (void)tvo_sample_clock_good(&ctl->clock, apply_tick, elapsed);
     ctl->held = next;
     *cmd = next;
     return TVO_OK;

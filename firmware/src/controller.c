@@ -121,7 +121,8 @@ tvo_status_t tvo_controller_init(tvo_controller_t *ctl, const tvo_controller_con
         }
         return st;
     }
-    tvo_sample_clock_init(&ctl->clock, cfg->tick_hz, cfg->period_ticks, cfg->watchdog_periods, epoch_tick);
+    /* The timing was validated above: the clock cannot reject it. */
+    (void)tvo_sample_clock_init(&ctl->clock, cfg->tick_hz, cfg->period_ticks, cfg->watchdog_periods, epoch_tick);
     for (uint8_t r = 0; r < cfg->robot_count; ++r) {
         ctl->speed_state_mps[r] = cfg->initial_speed_mps[r];
         ctl->held.speed_mps[r] = cfg->initial_speed_mps[r];
@@ -293,7 +294,7 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     if (st != TVO_OK) {
         return hold_or_stop(ctl, apply_tick, elapsed, periods, st, cmd);
     }
-    tvo_sample_clock_accept_stamp(&ctl->clock, meas->stamp_tick);
+    (void)tvo_sample_clock_accept_stamp(&ctl->clock, meas->stamp_tick);
 
     const uint32_t age_ticks = apply_tick - meas->stamp_tick;
     const tvo_real_t age_s = tvo_ticks_to_seconds(age_ticks, cfg->tick_hz);
@@ -399,7 +400,7 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     if (st != TVO_OK) {
         return hold_or_stop(ctl, apply_tick, elapsed, periods, st, cmd);
     }
-    tvo_sample_clock_good(&ctl->clock, apply_tick, elapsed);
+    (void)tvo_sample_clock_good(&ctl->clock, apply_tick, elapsed);
     for (uint8_t q = 0; q < dual && q < TVO_MAX_EQUALITIES; ++q) {
         /* Exact for the constant nu'' the law asked for over the period. */
         const tvo_real_t accel_q = y_accel[primal + q];

@@ -22,17 +22,22 @@ int tvo_sample_clock_watchdog_ok(uint32_t period_ticks, uint32_t watchdog_period
     return period_ticks > 0u && watchdog_periods >= 1u && watchdog_periods <= TVO_MAX_TICK_SPAN / period_ticks;
 }
 
-void tvo_sample_clock_init(tvo_sample_clock_t *clock, uint32_t tick_hz, uint32_t period_ticks,
-                           uint32_t watchdog_periods, uint32_t epoch_tick)
+tvo_status_t tvo_sample_clock_init(tvo_sample_clock_t *clock, uint32_t tick_hz, uint32_t period_ticks,
+                                   uint32_t watchdog_periods, uint32_t epoch_tick)
 {
     if (clock == NULL) {
-        return;
+        return TVO_ERR_NULL;
     }
     memset(clock, 0, sizeof(*clock));
+    if (tvo_sample_clock_check_timing(tick_hz, period_ticks, 0u) != TVO_PARAM_NONE ||
+        !tvo_sample_clock_watchdog_ok(period_ticks, watchdog_periods)) {
+        return TVO_ERR_PARAM;
+    }
     clock->tick_hz = tick_hz;
     clock->period_ticks = period_ticks;
     clock->watchdog_periods = watchdog_periods;
     clock->epoch_tick = epoch_tick;
+    return TVO_OK;
 }
 
 tvo_status_t tvo_sample_clock_schedule(const tvo_sample_clock_t *clock, uint32_t apply_tick, uint64_t *elapsed_ticks,
@@ -82,13 +87,14 @@ tvo_status_t tvo_sample_clock_check_stamp(const tvo_sample_clock_t *clock, uint3
     return TVO_OK;
 }
 
-void tvo_sample_clock_accept_stamp(tvo_sample_clock_t *clock, uint32_t stamp_tick)
+tvo_status_t tvo_sample_clock_accept_stamp(tvo_sample_clock_t *clock, uint32_t stamp_tick)
 {
     if (clock == NULL) {
-        return;
+        return TVO_ERR_NULL;
     }
     clock->last_stamp_tick = stamp_tick;
     clock->has_stamp = 1;
+    return TVO_OK;
 }
 
 static void end_period(tvo_sample_clock_t *clock, uint32_t apply_tick, uint64_t elapsed_ticks)
@@ -98,14 +104,15 @@ static void end_period(tvo_sample_clock_t *clock, uint32_t apply_tick, uint64_t 
     clock->elapsed_ticks = elapsed_ticks;
 }
 
-void tvo_sample_clock_good(tvo_sample_clock_t *clock, uint32_t apply_tick, uint64_t elapsed_ticks)
+tvo_status_t tvo_sample_clock_good(tvo_sample_clock_t *clock, uint32_t apply_tick, uint64_t elapsed_ticks)
 {
     if (clock == NULL) {
-        return;
+        return TVO_ERR_NULL;
     }
     end_period(clock, apply_tick, elapsed_ticks);
     clock->periods_without_measurement = 0;
     clock->stopped = 0;
+    return TVO_OK;
 }
 
 int tvo_sample_clock_missed(tvo_sample_clock_t *clock, uint32_t apply_tick, uint64_t elapsed_ticks, uint32_t periods)

@@ -38,8 +38,8 @@ tvo_param_t tvo_sample_clock_check_timing(uint32_t tick_hz, uint32_t period_tick
 /** 1 if watchdog_periods >= 1 and the watchdog's span stays within TVO_MAX_TICK_SPAN ticks. */
 int tvo_sample_clock_watchdog_ok(uint32_t period_ticks, uint32_t watchdog_periods);
 
-/** The caller validated the values (tick_hz, period > 0; watchdog >= 1). */
-void tvo_sample_clock_init(tvo_sample_clock_t *clock, uint32_t tick_hz, uint32_t period_ticks,
+/** TVO_ERR_PARAM unless the timing and watchdog pass the two checks above. */
+tvo_status_t tvo_sample_clock_init(tvo_sample_clock_t *clock, uint32_t tick_hz, uint32_t period_ticks,
                            uint32_t watchdog_periods, uint32_t epoch_tick);
 
 /**
@@ -57,10 +57,10 @@ tvo_status_t tvo_sample_clock_schedule(const tvo_sample_clock_t *clock, uint32_t
 tvo_status_t tvo_sample_clock_check_stamp(const tvo_sample_clock_t *clock, uint32_t stamp_tick, uint32_t apply_tick);
 
 /** Records an accepted stamp (later stamps must be newer). */
-void tvo_sample_clock_accept_stamp(tvo_sample_clock_t *clock, uint32_t stamp_tick);
+tvo_status_t tvo_sample_clock_accept_stamp(tvo_sample_clock_t *clock, uint32_t stamp_tick);
 
 /** Ends a period with a good step: the watchdog restarts. */
-void tvo_sample_clock_good(tvo_sample_clock_t *clock, uint32_t apply_tick, uint64_t elapsed_ticks);
+tvo_status_t tvo_sample_clock_good(tvo_sample_clock_t *clock, uint32_t apply_tick, uint64_t elapsed_ticks);
 
 /** Ends a period without a usable step; returns 1 when the watchdog has expired (stop the plant). */
 int tvo_sample_clock_missed(tvo_sample_clock_t *clock, uint32_t apply_tick, uint64_t elapsed_ticks, uint32_t periods);
