@@ -9,6 +9,7 @@
 #   -DEXPECT_FILES=<|-list of names in OUT_DIR that must exist and be non-empty>
 # Fails (FATAL_ERROR) on the first unmet expectation, after printing the run's output.
 cmake_minimum_required(VERSION 3.19)   # string(JSON)
+include(${CMAKE_CURRENT_LIST_DIR}/run_sim.cmake)
 
 if(NOT SIM OR NOT OUT_DIR)
   message(FATAL_ERROR "run_sim_check: SIM and OUT_DIR are required")
@@ -22,18 +23,7 @@ if(NOT DEFINED EXPECT_EXIT)
 endif()
 
 file(REMOVE_RECURSE ${OUT_DIR})
-set(cmd ${SIM} --out-dir ${OUT_DIR})
-if(FIRMWARE)
-  list(APPEND cmd --firmware ${FIRMWARE})
-endif()
-if(LCM_URL)
-  list(APPEND cmd --lcm-url ${LCM_URL})
-endif()
-list(APPEND cmd ${SIM_ARGS})
-string(REPLACE ";" " " shown "${cmd}")
-message(STATUS "running: ${shown}")
-execute_process(COMMAND ${cmd} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 120)
-message(STATUS "exit code: ${rc}\n--- stdout\n${out}--- stderr\n${err}---")
+tvo_run_sim(${OUT_DIR} rc out err)
 
 if(EXPECT_EXIT_NONZERO)
   if(rc STREQUAL "0" OR NOT rc MATCHES "^[0-9]+$")

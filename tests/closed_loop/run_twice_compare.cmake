@@ -4,6 +4,7 @@
 #   -DSIM=<tvo_sim> -DOUT_DIR=<dir> [-DFIRMWARE=<tvo_firmware_node>] [-DLCM_URL=<url>]
 #   -DSIM_ARGS=<|-list of arguments>
 cmake_minimum_required(VERSION 3.19)   # string(JSON)
+include(${CMAKE_CURRENT_LIST_DIR}/run_sim.cmake)
 
 if(NOT SIM OR NOT OUT_DIR)
   message(FATAL_ERROR "run_twice_compare: SIM and OUT_DIR are required")
@@ -12,18 +13,7 @@ string(REPLACE "|" ";" SIM_ARGS "${SIM_ARGS}")
 file(REMOVE_RECURSE ${OUT_DIR})
 
 foreach(run a b)
-  set(cmd ${SIM} --out-dir ${OUT_DIR}/${run})
-  if(FIRMWARE)
-    list(APPEND cmd --firmware ${FIRMWARE})
-  endif()
-  if(LCM_URL)
-    list(APPEND cmd --lcm-url ${LCM_URL})
-  endif()
-  list(APPEND cmd ${SIM_ARGS})
-  string(REPLACE ";" " " shown "${cmd}")
-  message(STATUS "running: ${shown}")
-  execute_process(COMMAND ${cmd} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 120)
-  message(STATUS "exit code: ${rc}\n--- stdout\n${out}--- stderr\n${err}---")
+  tvo_run_sim(${OUT_DIR}/${run} rc out err)
   if(NOT rc STREQUAL "0")
     message(FATAL_ERROR "run ${run} failed with exit code '${rc}'")
   endif()

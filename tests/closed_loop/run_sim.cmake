@@ -1,0 +1,20 @@
+# tvo_run_sim(<out_dir> <rc_var> <out_var> <err_var>): runs ${SIM} once into <out_dir> with
+# ${FIRMWARE} and ${LCM_URL} when set, then ${SIM_ARGS}; echoes the command and its output.
+# Shared by run_sim_check.cmake and run_twice_compare.cmake.
+function(tvo_run_sim out_dir rc_var out_var err_var)
+  set(cmd ${SIM} --out-dir ${out_dir})
+  if(FIRMWARE)
+    list(APPEND cmd --firmware ${FIRMWARE})
+  endif()
+  if(LCM_URL)
+    list(APPEND cmd --lcm-url ${LCM_URL})
+  endif()
+  list(APPEND cmd ${SIM_ARGS})
+  string(REPLACE ";" " " shown "${cmd}")
+  message(STATUS "running: ${shown}")
+  execute_process(COMMAND ${cmd} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 120)
+  message(STATUS "exit code: ${rc}\n--- stdout\n${out}--- stderr\n${err}---")
+  set(${rc_var} "${rc}" PARENT_SCOPE)
+  set(${out_var} "${out}" PARENT_SCOPE)
+  set(${err_var} "${err}" PARENT_SCOPE)
+endfunction()
