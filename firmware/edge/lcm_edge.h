@@ -16,20 +16,13 @@
 #include "tvo/problem.h"
 #include "tvo/target.h"
 
+#include "channels.h"
 #include "tvo_lcm_command_t.h"
 #include "tvo_lcm_measurement_t.h"
 #include "tvo_lcm_session_ack_t.h"
 #include "tvo_lcm_session_t.h"
 #include "tvo_lcm_target_t.h"
 #include "tvo_lcm_telemetry_t.h"
-
-/* LCM channels of the protocol (the host uses the same names). */
-#define TVO_CHANNEL_SESSION "TVO_SESSION"
-#define TVO_CHANNEL_SESSION_ACK "TVO_SESSION_ACK"
-#define TVO_CHANNEL_MEASUREMENT "TVO_MEASUREMENT"
-#define TVO_CHANNEL_TARGET "TVO_TARGET"
-#define TVO_CHANNEL_COMMAND "TVO_COMMAND"
-#define TVO_CHANNEL_TELEMETRY "TVO_TELEMETRY"
 
 /** Ticks of the core's clock per second: ticks are microseconds, like LCM's utime. */
 #define TVO_EDGE_TICK_HZ 1000000u

@@ -19,22 +19,8 @@
 
 #include <stdint.h>
 
+#include "channels.h"
 #include "lcm_edge.h"
-
-/** Channels of the protocol; the numbers also tag frames on a serial link. */
-typedef enum {
-    TVO_NODE_CH_SESSION = 1,
-    TVO_NODE_CH_SESSION_ACK = 2,
-    TVO_NODE_CH_MEASUREMENT = 3,
-    TVO_NODE_CH_TARGET = 4,
-    TVO_NODE_CH_COMMAND = 5,
-    TVO_NODE_CH_TELEMETRY = 6
-} tvo_node_channel_t;
-
-/** LCM channel name of a channel, or NULL. */
-const char *tvo_node_channel_name(int channel);
-/** Channel of an LCM channel name, or 0. */
-int tvo_node_channel_of(const char *name);
 
 /** Encode buffer size: command, telemetry and ack are each well under 1 kB encoded. */
 #define TVO_NODE_BUFFER_BYTES 2048

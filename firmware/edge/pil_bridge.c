@@ -28,7 +28,7 @@
 
 #include <lcm/lcm.h>
 
-#include "node.h"
+#include "channels.h"
 #include "serial_frame.h"
 
 static volatile sig_atomic_t g_stop_signal = 0;
