@@ -4,6 +4,8 @@
 #include <stddef.h>
 #include <string.h>
 
+#include "tvo_lcm_session_ack_t.h"
+
 static const char *const channel_names[] = {
     NULL, TVO_CHANNEL_SESSION, TVO_CHANNEL_SESSION_ACK, TVO_CHANNEL_MEASUREMENT,
     TVO_CHANNEL_TARGET, TVO_CHANNEL_COMMAND, TVO_CHANNEL_TELEMETRY};
@@ -24,4 +26,18 @@ int tvo_node_channel_of(const char *name)
         }
     }
     return 0;
+}
+
+const char *tvo_protocol_part_str(int32_t part)
+{
+    switch (part) {
+    case TVO_LCM_SESSION_ACK_T_PART_NONE: return "none";
+    case TVO_LCM_SESSION_ACK_T_PART_ROBOTS: return "robots/targets";
+    case TVO_LCM_SESSION_ACK_T_PART_BARRIER: return "barrier";
+    case TVO_LCM_SESSION_ACK_T_PART_DISTANCE: return "distance bounds";
+    case TVO_LCM_SESSION_ACK_T_PART_HALFSPACE: return "half-spaces";
+    case TVO_LCM_SESSION_ACK_T_PART_OBSTACLES: return "obstacles";
+    case TVO_LCM_SESSION_ACK_T_PART_OFFSETS: return "formation offsets";
+    default: return "unknown part";
+    }
 }

@@ -1,9 +1,17 @@
 /*
- * The protocol's channels: LCM names, and the numbers that tag frames on a serial link. No
- * dependencies, so transports (the LCM node, the PIL program, the bridge) share one table.
+ * The protocol's names, written once: LCM channel names, the numbers that tag frames on a serial
+ * link, and the names of the problem's parts in a session ack. No dependencies but the generated
+ * message constants, so every transport (the LCM node, the PIL program, the bridge) and the host
+ * (C++, through extern "C") share one table.
  */
 #ifndef TVO_CHANNELS_H
 #define TVO_CHANNELS_H
+
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
 
 /* LCM channels of the protocol (the host uses the same names). */
 #define TVO_CHANNEL_SESSION "TVO_SESSION"
@@ -27,5 +35,12 @@ typedef enum {
 const char *tvo_node_channel_name(int channel);
 /** Channel of an LCM channel name, or 0. */
 int tvo_node_channel_of(const char *name);
+
+/** Short name of a problem part named by a session ack (session_ack_t.PART_*), for logs. */
+const char *tvo_protocol_part_str(int32_t part);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* TVO_CHANNELS_H */
