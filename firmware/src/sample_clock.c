@@ -115,6 +115,16 @@ tvo_status_t tvo_sample_clock_good(tvo_sample_clock_t *clock, uint32_t apply_tic
     return TVO_OK;
 }
 
+tvo_status_t tvo_sample_clock_expire(tvo_sample_clock_t *clock)
+{
+    if (clock == NULL) {
+        return TVO_ERR_NULL;
+    }
+    clock->periods_without_measurement = clock->watchdog_periods;
+    clock->stopped = 1;
+    return TVO_OK;
+}
+
 int tvo_sample_clock_missed(tvo_sample_clock_t *clock, uint32_t apply_tick, uint64_t elapsed_ticks, uint32_t periods)
 {
     if (clock == NULL) {

@@ -20,6 +20,9 @@ const char *tvo_status_str(tvo_status_t status)
     case TVO_ERR_MISSING_FIELD: return "measurement lacks a field the configuration needs";
     case TVO_ERR_TARGET_NOT_READY: return "streamed target has no sample yet";
     case TVO_ERR_WATCHDOG: return "watchdog expired: safe stop";
+    case TVO_ERR_IMPLAUSIBLE_STAMP: return "stamp does not fit the session's schedule";
+    case TVO_ERR_SESSION_CONFLICT: return "session id already running with other parameters";
+    case TVO_ERR_NO_SESSION: return "no such session running (send START)";
     default: return "unknown status";
     }
 }
