@@ -511,17 +511,5 @@ tvo_status_t tvo_controller_objective_ticks(const tvo_controller_t *ctl, uint32_
     if (!ctl->initialized) {
         return TVO_ERR_NOT_INITIALIZED;
     }
-    const uint32_t ref_tick = ctl->clock.started ? ctl->clock.last_apply_tick : ctl->clock.epoch_tick;
-    const uint64_t ref_elapsed = ctl->clock.started ? ctl->clock.elapsed_ticks : 0u;
-    const uint32_t forward = tick - ref_tick;
-    if (forward <= TVO_MAX_TICK_SPAN) {
-        *objective_ticks = ref_elapsed + forward;
-        return TVO_OK;
-    }
-    const uint32_t backward = ref_tick - tick;
-    if ((uint64_t)backward > ref_elapsed) {
-        return TVO_ERR_OUT_OF_ORDER; /* before the epoch */
-    }
-    *objective_ticks = ref_elapsed - backward;
-    return TVO_OK;
+    return tvo_sample_clock_objective_ticks(&ctl->clock, tick, objective_ticks);
 }

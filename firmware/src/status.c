@@ -46,6 +46,8 @@ const char *tvo_param_str(tvo_param_t param)
     case TVO_PARAM_VELOCITY_SOURCE: return "velocity_source";
     case TVO_PARAM_INITIAL_SPEED: return "initial_speed_mps";
     case TVO_PARAM_EPOCH: return "epoch_tick";
+    case TVO_PARAM_CLOCK_SOURCE: return "clock_source";
+    case TVO_PARAM_PLANT_KIND: return "plant_kind";
     default: return "unknown parameter";
     }
 }

@@ -66,6 +66,12 @@ tvo_status_t tvo_sample_clock_accept_stamp(tvo_sample_clock_t *clock, uint32_t s
 /** Ends a period with a good step: the watchdog restarts. */
 tvo_status_t tvo_sample_clock_good(tvo_sample_clock_t *clock, uint32_t apply_tick, uint64_t elapsed_ticks);
 
+/**
+ * Ticks from the epoch to a tick near the clock's present (within TVO_MAX_TICK_SPAN either way):
+ * the objective time of a stamp. TVO_ERR_OUT_OF_ORDER if it lies before the epoch.
+ */
+tvo_status_t tvo_sample_clock_objective_ticks(const tvo_sample_clock_t *clock, uint32_t tick, uint64_t *objective_ticks);
+
 /** Expires the watchdog now (a safe stop ordered from outside the step, e.g. the edge's timer). */
 tvo_status_t tvo_sample_clock_expire(tvo_sample_clock_t *clock);
 
