@@ -1145,6 +1145,167 @@ static void test_slack_rule_is_undone_when_the_first_step_fails(void)
     TEST_ASSERT_TRUE(s->problem.barrier.slack0 == reference_slack); /* chosen from x = 1, not x = 2 */
 }
 
+/* A session whose single robot streams its target (no constraints). */
+static void streamed_session(int32_t clock_source, int64_t now_us)
+{
+    ef_start(&start, EF_SESSION_ID, clock_source, 1);
+    start.robot[0].target.kind = TVO_LCM_PATH_T_KIND_STREAMED;
+    ef_record_clear(&rec);
+    (void)send_session(&start, now_us);
+    EF_ASSERT_STATUS(TVO_OK, THE_ACK().status);
+}
+
+/* ------------------------------------------------------------------------------------------------
+ * More timing: the tick span, chain sessions, refusals by the controller's step
+ * --------------------------------------------------------------------------------------------- */
+
+static void test_plant_first_measurement_beyond_the_tick_span_is_implausible(void)
+{
+    /* Issue 9: an epoch 20 min before the first measurement. Every measurement says why, and after
+     * watchdog_periods of them the answer is a safe stop. */
+    start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
+    const int64_t twenty_minutes = (int64_t)20 * 60 * 1000000;
+    for (int64_t k = 0; k < W + 1; ++k) {
+        tvo_lcm_measurement_t m;
+        ef_measurement(&m, EF_SESSION_ID, EF_EPOCH + twenty_minutes + k * H - TAU, k, 1);
+        (void)EXPECT_REFUSED(m, 0, k + 1 < W ? TVO_ERR_IMPLAUSIBLE_STAMP : TVO_ERR_WATCHDOG);
+    }
+    TEST_ASSERT_EQUAL_INT32((int32_t)W + 1, node.counters.refused[TVO_ERR_IMPLAUSIBLE_STAMP]);
+    /* The last period the controller's clock reaches from the epoch is still served. */
+    const int64_t last = (int64_t)TVO_MAX_TICK_SPAN / H;
+    tvo_lcm_measurement_t m;
+    plant_meas(&m, last);
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(last));
+}
+
+static void test_chain_session_runs_through_the_node(void)
+{
+    for (int clock = TVO_LCM_SESSION_T_CLOCK_PLANT; clock <= TVO_LCM_SESSION_T_CLOCK_NODE; ++clock) {
+        setUp();
+        ef_start(&start, EF_SESSION_ID, clock, 1);
+        start.plant_kind = TVO_LCM_SESSION_T_PLANT_CHAIN;
+        (void)send_session(&start, NODE_T0);
+        EF_ASSERT_STATUS(TVO_OK, THE_ACK().status);
+        const int node_clock = clock == TVO_LCM_SESSION_T_CLOCK_NODE;
+        tvo_lcm_command_t cmd;
+        for (int64_t j = 1; j <= 3; ++j) {
+            tvo_lcm_measurement_t m;
+            if (node_clock) {
+                node_meas(&m, j, j);
+            } else {
+                plant_meas(&m, j);
+            }
+            m.derivatives_valid = 1;
+            cmd = EXPECT_ACCEPTED(m, node_clock ? node_arrival(j) : 0,
+                                  node_clock ? node_apply(j) - OFFSET : plant_apply(j));
+            TEST_ASSERT_TRUE(cmd.input[0] != 0.0);       /* the chain's u, x and y */
+            TEST_ASSERT_TRUE(cmd.speed_mps[0] == 0.0);   /* no unicycle command */
+        }
+        if (node_clock) {
+            EXPECT_TIMER_QUIET(node_arrival(3), node_apply(3 + W));
+            ef_record_clear(&rec);
+            (void)tvo_node_poll(&node, node_apply(3 + W));
+            cmd = THE_COMMAND();
+        } else {
+            tvo_lcm_measurement_t dup;
+            plant_meas(&dup, 3);
+            for (int64_t k = 1; k < W; ++k) {
+                cmd = EXPECT_REFUSED(dup, 0, TVO_ERR_OUT_OF_ORDER);
+                TEST_ASSERT_TRUE(cmd.input[0] != 0.0); /* the chain's held u */
+            }
+            cmd = EXPECT_REFUSED(dup, 0, TVO_ERR_WATCHDOG);
+        }
+        EF_ASSERT_STATUS(TVO_ERR_WATCHDOG, cmd.status);
+        TEST_ASSERT_EQUAL_HEX32(TVO_FLAG_SAFE_STOP, (uint32_t)cmd.flags);
+        for (int i = 0; i < 8; ++i) {
+            TEST_ASSERT_TRUE(cmd.input[i] == 0.0);
+        }
+        TEST_ASSERT_TRUE(tvo_node_session(&node)->controller.u.chain.held.u[0] == TVO_R(0.0));
+    }
+}
+
+/* A streamed-target session after periods 1 and 2, whose next target sample lies 10 s ahead: the
+ * controller's check passes the next measurements, its law then fails (the sample is in its future). */
+static void session_whose_law_fails_next(void)
+{
+    streamed_session(TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
+    tvo_lcm_target_t t;
+    target_at_epoch(&t);
+    (void)send_target(&t, 0);
+    for (int64_t j = 1; j <= 2; ++j) {
+        tvo_lcm_measurement_t m;
+        plant_meas(&m, j);
+        (void)EXPECT_ACCEPTED(m, 0, plant_apply(j));
+    }
+    t.utime = EF_EPOCH + 10000000;
+    (void)send_target(&t, 0);
+    EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
+}
+
+static void test_plant_refusal_by_the_step_keeps_nothing(void)
+{
+    session_whose_law_fails_next();
+    take_snapshot();
+    tvo_lcm_measurement_t m;
+    plant_meas(&m, 3);
+    ef_record_clear(&rec);
+    (void)send_measurement(&m, 0);
+    const tvo_lcm_command_t cmd = THE_COMMAND();
+    TEST_ASSERT_TRUE(cmd.status != TVO_OK);
+    TEST_ASSERT_EQUAL_HEX32(TVO_FLAG_HOLDING, (uint32_t)cmd.flags);
+    TEST_ASSERT_TRUE(cmd.utime >= m.utime);
+    const tvo_node_session_t *s = tvo_node_session(&node);
+    const tvo_sample_clock_t *before = &snapshot.controller.u.unicycle.clock;
+    const tvo_sample_clock_t *after = &s->controller.u.unicycle.clock;
+    if (before->last_apply_tick != after->last_apply_tick || before->elapsed_ticks != after->elapsed_ticks ||
+        before->periods_without_measurement != after->periods_without_measurement) {
+        static char text[240];
+        (void)snprintf(text, sizeof(text),
+                       "refused (status %d) yet the controller's clock moved: last_apply_tick %u -> %u, "
+                       "elapsed %llu -> %llu, periods_without_measurement %u -> %u",
+                       (int)cmd.status, (unsigned)before->last_apply_tick, (unsigned)after->last_apply_tick,
+                       (unsigned long long)before->elapsed_ticks, (unsigned long long)after->elapsed_ticks,
+                       (unsigned)before->periods_without_measurement, (unsigned)after->periods_without_measurement);
+        TEST_FAIL_MESSAGE(text);
+    }
+    ASSERT_SESSION_KEPT();
+}
+
+static void test_plant_step_refusals_count_toward_the_watchdog(void)
+{
+    /* Refusals of the node's own checks (a duplicate) and of the controller's step (the law) in
+     * turn: watchdog_periods of them in a row must end in a safe stop. */
+    session_whose_law_fails_next();
+    tvo_lcm_measurement_t dup;
+    plant_meas(&dup, 2);
+    int64_t refusals = 0;
+    int64_t j = 3;
+    tvo_lcm_command_t cmd;
+    memset(&cmd, 0, sizeof(cmd));
+    while (refusals < W) {
+        tvo_lcm_measurement_t m;
+        if (refusals % 2 == 0) {
+            plant_meas(&m, j++);
+        } else {
+            m = dup;
+        }
+        ef_record_clear(&rec);
+        (void)send_measurement(&m, 0);
+        cmd = THE_COMMAND();
+        TEST_ASSERT_TRUE(cmd.status != TVO_OK);
+        ++refusals;
+    }
+    if (cmd.status != (int32_t)TVO_ERR_WATCHDOG || ((uint32_t)cmd.flags & TVO_FLAG_SAFE_STOP) == 0u) {
+        static char text[200];
+        (void)snprintf(text, sizeof(text),
+                       "refusal %lld in a row (watchdog_periods %lld) answered status %d flags 0x%x, "
+                       "not a safe stop; the node's count is %u",
+                       (long long)refusals, (long long)W, (int)cmd.status, (unsigned)cmd.flags,
+                       (unsigned)tvo_node_session(&node)->refused_in_row);
+        TEST_FAIL_MESSAGE(text);
+    }
+}
+
 /* ------------------------------------------------------------------------------------------------
  * Integers from the wire at their extremes: START
  * --------------------------------------------------------------------------------------------- */
@@ -1495,16 +1656,6 @@ static void test_measurement_session_id_extremes(void)
     }
 }
 
-/* A session whose single robot streams its target (no constraints). */
-static void streamed_session(int32_t clock_source, int64_t now_us)
-{
-    ef_start(&start, EF_SESSION_ID, clock_source, 1);
-    start.robot[0].target.kind = TVO_LCM_PATH_T_KIND_STREAMED;
-    ef_record_clear(&rec);
-    (void)send_session(&start, now_us);
-    EF_ASSERT_STATUS(TVO_OK, THE_ACK().status);
-}
-
 static void test_target_utime_robot_count_and_session_extremes(void)
 {
     for (int clock = TVO_LCM_SESSION_T_CLOCK_PLANT; clock <= TVO_LCM_SESSION_T_CLOCK_NODE; ++clock) {
@@ -1677,6 +1828,10 @@ int main(void)
     RUN_TEST(test_telemetry_counts_every_kind_of_event);
     RUN_TEST(test_telemetry_counts_speed_mismatch_steps);
     RUN_TEST(test_slack_rule_is_undone_when_the_first_step_fails);
+    RUN_TEST(test_plant_first_measurement_beyond_the_tick_span_is_implausible);
+    RUN_TEST(test_chain_session_runs_through_the_node);
+    RUN_TEST(test_plant_refusal_by_the_step_keeps_nothing);
+    RUN_TEST(test_plant_step_refusals_count_toward_the_watchdog);
     RUN_TEST(test_start_utime_extremes);
     RUN_TEST(test_start_epoch_extremes);
     RUN_TEST(test_start_period_extremes);
