@@ -1224,11 +1224,17 @@ static void test_chain_session_runs_through_the_node(void)
     }
 }
 
-/* A streamed-target session after periods 1 and 2, whose next target sample lies 10 s ahead: the
- * controller's check passes the next measurements, its law then fails (the sample is in its future). */
+/* An uncompensated streamed-target session after periods 1 and 2, whose next target sample is
+ * stamped at period 3's apply instant (the latest the node takes): the controller's check passes
+ * measurement 3, its law (evaluated at the sample, tau before) then fails: the sample is its future. */
 static void session_whose_law_fails_next(void)
 {
-    streamed_session(TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
+    ef_start(&start, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+    start.delay_compensation = 0;
+    start.robot[0].target.kind = TVO_LCM_PATH_T_KIND_STREAMED;
+    ef_record_clear(&rec);
+    (void)send_session(&start, 0);
+    EF_ASSERT_STATUS(TVO_OK, THE_ACK().status);
     tvo_lcm_target_t t;
     target_at_epoch(&t);
     (void)send_target(&t, 0);
@@ -1237,9 +1243,33 @@ static void session_whose_law_fails_next(void)
         plant_meas(&m, j);
         (void)EXPECT_ACCEPTED(m, 0, plant_apply(j));
     }
-    t.utime = EF_EPOCH + 10000000;
+    t.utime = plant_apply(3);
     (void)send_target(&t, 0);
     EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
+}
+
+static void test_plant_target_beyond_the_next_period_is_refused(void)
+{
+    /* A stray sample 10 s ahead would hold back every genuine sample after it: refused, and the
+     * genuine stream goes on. */
+    streamed_session(TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
+    tvo_lcm_target_t t;
+    target_at_epoch(&t);
+    (void)send_target(&t, 0);
+    EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
+    tvo_lcm_measurement_t m;
+    plant_meas(&m, 1);
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(1));
+    tvo_lcm_target_t stray = t;
+    stray.utime = EF_EPOCH + 10000000;
+    (void)send_target(&stray, 0);
+    EF_ASSERT_STATUS(TVO_ERR_IMPLAUSIBLE_STAMP, node.last_target_status);
+    TEST_ASSERT_EQUAL_INT32(1, node.counters.targets_refused);
+    t.utime = plant_apply(2) - TAU;
+    (void)send_target(&t, 0);
+    EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
+    plant_meas(&m, 2);
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(2));
 }
 
 static void test_plant_refusal_by_the_step_keeps_nothing(void)
@@ -1273,37 +1303,25 @@ static void test_plant_refusal_by_the_step_keeps_nothing(void)
 
 static void test_plant_step_refusals_count_toward_the_watchdog(void)
 {
-    /* Refusals of the node's own checks (a duplicate) and of the controller's step (the law) in
-     * turn: watchdog_periods of them in a row must end in a safe stop. */
+    /* A refusal by the controller's step (the law) and refusals of the node's own checks (duplicates)
+     * in a row: watchdog_periods of them must end in a safe stop. */
     session_whose_law_fails_next();
+    tvo_lcm_measurement_t m;
+    plant_meas(&m, 3);
+    ef_record_clear(&rec);
+    (void)send_measurement(&m, 0);
+    tvo_lcm_command_t cmd = THE_COMMAND();
+    EF_ASSERT_STATUS(TVO_ERR_FUTURE_STAMP, cmd.status);
+    TEST_ASSERT_EQUAL_UINT32(1u, tvo_node_session(&node)->refused_in_row);
     tvo_lcm_measurement_t dup;
     plant_meas(&dup, 2);
-    int64_t refusals = 0;
-    int64_t j = 3;
-    tvo_lcm_command_t cmd;
-    memset(&cmd, 0, sizeof(cmd));
-    while (refusals < W) {
-        tvo_lcm_measurement_t m;
-        if (refusals % 2 == 0) {
-            plant_meas(&m, j++);
-        } else {
-            m = dup;
-        }
+    for (int64_t refusals = 1; refusals < W; ++refusals) {
         ef_record_clear(&rec);
-        (void)send_measurement(&m, 0);
+        (void)send_measurement(&dup, 0);
         cmd = THE_COMMAND();
-        TEST_ASSERT_TRUE(cmd.status != TVO_OK);
-        ++refusals;
     }
-    if (cmd.status != (int32_t)TVO_ERR_WATCHDOG || ((uint32_t)cmd.flags & TVO_FLAG_SAFE_STOP) == 0u) {
-        static char text[200];
-        (void)snprintf(text, sizeof(text),
-                       "refusal %lld in a row (watchdog_periods %lld) answered status %d flags 0x%x, "
-                       "not a safe stop; the node's count is %u",
-                       (long long)refusals, (long long)W, (int)cmd.status, (unsigned)cmd.flags,
-                       (unsigned)tvo_node_session(&node)->refused_in_row);
-        TEST_FAIL_MESSAGE(text);
-    }
+    EF_ASSERT_STATUS(TVO_ERR_WATCHDOG, cmd.status);
+    TEST_ASSERT_TRUE(((uint32_t)cmd.flags & TVO_FLAG_SAFE_STOP) != 0u);
 }
 
 /* ------------------------------------------------------------------------------------------------
@@ -1539,9 +1557,10 @@ static void test_start_path_kind_extremes(void)
     EXPECT_START_SITE(edit_offset_kind, bad, TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_OFFSETS, 0);
 }
 
-static void test_start_session_id_extremes_are_ids_like_any_other(void)
+static void test_start_session_id_extremes(void)
 {
-    const int64_t ids[] = {INT64_MIN, 0, INT64_MAX};
+    /* Any id >= 0 is an id like any other; a negative one is refused (-1 means "none" in acks). */
+    const int64_t ids[] = {0, INT64_MAX};
     for (size_t i = 0; i < sizeof(ids) / sizeof(ids[0]); ++i) {
         setUp();
         start_session(ids[i], TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
@@ -1554,6 +1573,17 @@ static void test_start_session_id_extremes_are_ids_like_any_other(void)
         ef_record_clear(&rec);
         (void)send_session(&stop, 0);
         EF_ASSERT_STATUS(TVO_OK, THE_ACK().status);
+        TEST_ASSERT_NULL(tvo_node_session(&node));
+    }
+    const int64_t negative[] = {INT64_MIN, -1};
+    for (size_t i = 0; i < sizeof(negative) / sizeof(negative[0]); ++i) {
+        setUp();
+        tvo_lcm_session_t bad;
+        ef_start(&bad, negative[i], TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+        ef_record_clear(&rec);
+        (void)send_session(&bad, 0);
+        EF_ASSERT_STATUS(TVO_ERR_PARAM, THE_ACK().status);
+        TEST_ASSERT_EQUAL_INT32(TVO_PARAM_SESSION_ID, THE_ACK().bad_param);
         TEST_ASSERT_NULL(tvo_node_session(&node));
     }
 }
@@ -1662,13 +1692,15 @@ static void test_target_utime_robot_count_and_session_extremes(void)
         setUp();
         streamed_session(clock, NODE_T0);
         take_snapshot();
+        /* The node's clock at the epoch: a sample stamped there is neither early nor late. */
+        const int64_t now = NODE_T0 + EF_EPOCH_LEAD;
         tvo_lcm_target_t t;
         target_at_epoch(&t);
         int32_t refused = 0;
         for (size_t i = 0; i < sizeof(time_extremes) / sizeof(time_extremes[0]); ++i) {
             t.utime = time_extremes[i];
             ef_record_clear(&rec);
-            TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_TARGET, send_target(&t, NODE_T0));
+            TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_TARGET, send_target(&t, now));
             EXPECT_NOTHING_PUBLISHED();
             EF_ASSERT_STATUS(TVO_ERR_IMPLAUSIBLE_STAMP, node.last_target_status);
             TEST_ASSERT_EQUAL_INT32(++refused, node.counters.targets_refused);
@@ -1677,7 +1709,7 @@ static void test_target_utime_robot_count_and_session_extremes(void)
         const int64_t counts[] = {INT32_MIN, -1, 0, 2, INT32_MAX};
         for (size_t i = 0; i < sizeof(counts) / sizeof(counts[0]); ++i) {
             t.robot_count = as_int32(counts[i]);
-            (void)send_target(&t, NODE_T0);
+            (void)send_target(&t, now);
             EF_ASSERT_STATUS(TVO_ERR_DIMENSION, node.last_target_status);
             TEST_ASSERT_EQUAL_INT32(++refused, node.counters.targets_refused);
         }
@@ -1685,14 +1717,14 @@ static void test_target_utime_robot_count_and_session_extremes(void)
         const int64_t ids[] = {INT64_MIN, -1, INT64_MAX};
         for (size_t i = 0; i < sizeof(ids) / sizeof(ids[0]); ++i) {
             t.session_id = ids[i];
-            (void)send_target(&t, NODE_T0);
+            (void)send_target(&t, now);
             TEST_ASSERT_EQUAL_INT32((int32_t)i + 1, node.counters.other_session);
         }
         ASSERT_SESSION_KEPT(); /* no target stream was touched */
         /* The sequence is not read: its extremes are harmless. */
         t.session_id = EF_SESSION_ID;
         t.sequence = INT64_MIN;
-        (void)send_target(&t, NODE_T0);
+        (void)send_target(&t, now);
         EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
         TEST_ASSERT_EQUAL_UINT8(1u, tvo_node_session(&node)->problem.target[0].u.streamed.has_sample);
     }
@@ -1831,6 +1863,7 @@ int main(void)
     RUN_TEST(test_plant_first_measurement_beyond_the_tick_span_is_implausible);
     RUN_TEST(test_chain_session_runs_through_the_node);
     RUN_TEST(test_plant_refusal_by_the_step_keeps_nothing);
+    RUN_TEST(test_plant_target_beyond_the_next_period_is_refused);
     RUN_TEST(test_plant_step_refusals_count_toward_the_watchdog);
     RUN_TEST(test_start_utime_extremes);
     RUN_TEST(test_start_epoch_extremes);
@@ -1846,7 +1879,7 @@ int main(void)
     RUN_TEST(test_start_count_extremes);
     RUN_TEST(test_start_robot_index_extremes);
     RUN_TEST(test_start_path_kind_extremes);
-    RUN_TEST(test_start_session_id_extremes_are_ids_like_any_other);
+    RUN_TEST(test_start_session_id_extremes);
     RUN_TEST(test_measurement_utime_extremes);
     RUN_TEST(test_measurement_sequence_extremes);
     RUN_TEST(test_measurement_robot_count_extremes);
