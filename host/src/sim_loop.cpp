@@ -18,8 +18,6 @@ constexpr std::size_t kPendingReserve = 1024;
 constexpr std::int64_t kCheckStepUs = 1000;
 // Lockstep: longest wait for the node to acknowledge a re-sent START (as for the first START).
 constexpr std::chrono::milliseconds kRestartTimeout{5000};
-// TODO(issue 9): replace with TVO_ERR_NO_SESSION from tvo/status.h once it lands on main.
-constexpr std::int32_t kStatusNoSession = 18;
 
 bool is_fault(std::int32_t status, std::int32_t flags)
 {
@@ -95,7 +93,7 @@ void SimLoop::on_command(const tvo_lcm::command_t& command)
     metrics_.add_command(command.turn_rate_radps, usable ? robots : 0,
                          !usable || is_fault(command.status, command.flags),
                          (command.flags & static_cast<std::int32_t>(TVO_FLAG_REGULARIZED)) != 0);
-    if (command.status == kStatusNoSession && !restart_pending_ &&
+    if (command.status == static_cast<std::int32_t>(TVO_ERR_NO_SESSION) && !restart_pending_ &&
         command.measurement_sequence > restart_acked_through_sequence_) {
         // The node lost our session (it restarted): START again, from the loop (not from inside LCM's handler).
         restart_pending_ = true;
@@ -135,7 +133,8 @@ void SimLoop::on_command(const tvo_lcm::command_t& command)
         pending.input[r] = UnicycleInput{command.speed_mps[r], command.turn_rate_radps[r]};
     }
     if (pending.apply_us < arrival_us) {
-        ++counts_.late_commands;
+        // The node's own safe stops are stamped when published: they always act on arrival.
+        counts_.late_commands += command.measurement_sequence >= 0 ? 1u : 0u;
         // The plant cannot go back in time: a realtime robot acts on arrival, lockstep discards it
         // (only an answer given up on with --on-missing-answer hold can arrive late there).
         if (!options_.realtime) {
@@ -281,7 +280,7 @@ SimLoop::Answer SimLoop::await_answer(std::int64_t sequence)
     const auto deadline = std::chrono::steady_clock::now() + timeout;
     const auto answered = [&] {
         return answered_sequence_ >= sequence &&
-               (telemetry_sequence_ >= sequence || answered_status_ == kStatusNoSession);
+               (telemetry_sequence_ >= sequence || answered_status_ == static_cast<std::int32_t>(TVO_ERR_NO_SESSION));
     };
     while (!answered()) {
         if (stopping()) {
