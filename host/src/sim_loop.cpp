@@ -5,6 +5,10 @@
 #include <cmath>
 #include <string>
 
+extern "C" {
+#include "session_codec.h"  // TVO_WIRE_TIME_MAX_US
+}
+
 namespace tvo_host {
 
 namespace {
@@ -30,10 +34,12 @@ bool is_safe_stop(std::int32_t flags)
     return (flags & static_cast<std::int32_t>(TVO_FLAG_SAFE_STOP)) != 0;
 }
 
-/// A command the plant can act on: our robot count and finite inputs.
+/// A command the plant can act on: a time within the wire's range (so no arithmetic on it can
+/// overflow), our robot count and finite inputs.
 bool well_formed(const tvo_lcm::command_t& command, std::size_t robots)
 {
-    if (command.robot_count != static_cast<std::int32_t>(robots)) {
+    if (command.utime < 0 || command.utime > TVO_WIRE_TIME_MAX_US ||
+        command.robot_count != static_cast<std::int32_t>(robots)) {
         return false;
     }
     for (std::size_t r = 0; r < robots; ++r) {
