@@ -70,10 +70,15 @@ void tvo_board_puts(const char *s)
 
 void tvo_board_put_u32(uint32_t value)
 {
-    char digits[11];
+    tvo_board_put_u64(value);
+}
+
+void tvo_board_put_u64(uint64_t value)
+{
+    char digits[21];
     uint32_t n = 0u;
     do {
-        digits[n++] = (char)('0' + (value % 10u));
+        digits[n++] = (char)('0' + (char)(value % 10u));
         value /= 10u;
     } while (value != 0u && n < sizeof(digits));
     while (n > 0u) {

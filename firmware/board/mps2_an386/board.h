@@ -18,6 +18,7 @@ void tvo_board_putc(char c);
 void tvo_board_puts(const char *s);
 /** Decimal, without stdio. */
 void tvo_board_put_u32(uint32_t value);
+void tvo_board_put_u64(uint64_t value);
 void tvo_board_put_i32(int32_t value);
 
 /** Ends the program; QEMU exits with this code (semihosting SYS_EXIT_EXTENDED). */
