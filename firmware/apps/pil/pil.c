@@ -56,6 +56,13 @@ static void report(int64_t now_us)
     put_node_count(" undecodable=", node.counters.undecodable);
     put_node_count(" accepted=", node.counters.accepted);
     put_node_count(" safe_stops=", node.counters.safe_stops);
+    for (uint32_t status = 0u; status < TVO_LCM_NODE_COUNTERS_T_STATUS_SLOTS; ++status) {
+        if (node.counters.refused[status] != 0) { /* refused_<tvo_status_t>=count, for the reasons seen */
+            tvo_board_puts(" refused_");
+            tvo_board_put_u32(status);
+            put_node_count("=", node.counters.refused[status]);
+        }
+    }
     put_count(" clock_us=", (uint64_t)now_us);
     put_count(" clock_faults=", clock_faults);
     tvo_board_putc('\n');

@@ -186,6 +186,10 @@ void tvo_board_uart_init(void)
 {
     UART_BAUDDIV = UART_BAUDDIV_MIN;
     UART_CTRL = UART_CTRL_TX_EN | UART_CTRL_RX_EN;
+    /* Empty the receive register. Under QEMU this read also tells the -serial backend the receiver
+     * has room (enabling it does not): without it, bytes already waiting sit there until QEMU's main
+     * loop wakes for another reason (measured: half a second, until SysTick's timer fired). */
+    (void)UART_DATA;
 }
 
 void tvo_board_uart_write(const uint8_t *data, uint32_t length)
