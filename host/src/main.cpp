@@ -59,8 +59,13 @@ void finish(tvo_host::SessionClient& session, tvo_host::FirmwareProcess& firmwar
     if (g_signal != 0) {
         firmware.send_signal(g_signal);  // a signal sent to us alone reaches the child too
     }
-    session.stop(stop_utime, kStopTimeout);
-    if (firmware.spawned() && !firmware.wait_for_exit(kChildExitTimeout)) {
+    const bool acked = session.stop(stop_utime, kStopTimeout);
+    if (!firmware.spawned()) {
+        return;
+    }
+    if (acked && session.ack().status != TVO_OK) {
+        firmware.terminate();  // it runs no session of ours (START refused): STOP does not end it
+    } else if (!firmware.wait_for_exit(kChildExitTimeout)) {
         std::cerr << "tvo_sim: warning: the firmware node did not exit after STOP; terminating it\n";
         firmware.terminate();
     }

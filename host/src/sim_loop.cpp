@@ -5,6 +5,10 @@
 #include <cmath>
 #include <string>
 
+extern "C" {
+#include "session_codec.h"  // TVO_WIRE_TIME_MAX_US
+}
+
 namespace tvo_host {
 
 namespace {
@@ -18,8 +22,6 @@ constexpr std::size_t kPendingReserve = 1024;
 constexpr std::int64_t kCheckStepUs = 1000;
 // Lockstep: longest wait for the node to acknowledge a re-sent START (as for the first START).
 constexpr std::chrono::milliseconds kRestartTimeout{5000};
-// TODO(issue 9): replace with TVO_ERR_NO_SESSION from tvo/status.h once it lands on main.
-constexpr std::int32_t kStatusNoSession = 18;
 
 bool is_fault(std::int32_t status, std::int32_t flags)
 {
@@ -32,10 +34,12 @@ bool is_safe_stop(std::int32_t flags)
     return (flags & static_cast<std::int32_t>(TVO_FLAG_SAFE_STOP)) != 0;
 }
 
-/// A command the plant can act on: our robot count and finite inputs.
+/// A command the plant can act on: a time within the wire's range (so no arithmetic on it can
+/// overflow), our robot count and finite inputs.
 bool well_formed(const tvo_lcm::command_t& command, std::size_t robots)
 {
-    if (command.robot_count != static_cast<std::int32_t>(robots)) {
+    if (command.utime < 0 || command.utime > TVO_WIRE_TIME_MAX_US ||
+        command.robot_count != static_cast<std::int32_t>(robots)) {
         return false;
     }
     for (std::size_t r = 0; r < robots; ++r) {
@@ -95,7 +99,7 @@ void SimLoop::on_command(const tvo_lcm::command_t& command)
     metrics_.add_command(command.turn_rate_radps, usable ? robots : 0,
                          !usable || is_fault(command.status, command.flags),
                          (command.flags & static_cast<std::int32_t>(TVO_FLAG_REGULARIZED)) != 0);
-    if (command.status == kStatusNoSession && !restart_pending_ &&
+    if (command.status == static_cast<std::int32_t>(TVO_ERR_NO_SESSION) && !restart_pending_ &&
         command.measurement_sequence > restart_acked_through_sequence_) {
         // The node lost our session (it restarted): START again, from the loop (not from inside LCM's handler).
         restart_pending_ = true;
@@ -135,7 +139,8 @@ void SimLoop::on_command(const tvo_lcm::command_t& command)
         pending.input[r] = UnicycleInput{command.speed_mps[r], command.turn_rate_radps[r]};
     }
     if (pending.apply_us < arrival_us) {
-        ++counts_.late_commands;
+        // The node's own safe stops are stamped when published: they always act on arrival.
+        counts_.late_commands += command.measurement_sequence >= 0 ? 1u : 0u;
         // The plant cannot go back in time: a realtime robot acts on arrival, lockstep discards it
         // (only an answer given up on with --on-missing-answer hold can arrive late there).
         if (!options_.realtime) {
@@ -281,7 +286,7 @@ SimLoop::Answer SimLoop::await_answer(std::int64_t sequence)
     const auto deadline = std::chrono::steady_clock::now() + timeout;
     const auto answered = [&] {
         return answered_sequence_ >= sequence &&
-               (telemetry_sequence_ >= sequence || answered_status_ == kStatusNoSession);
+               (telemetry_sequence_ >= sequence || answered_status_ == static_cast<std::int32_t>(TVO_ERR_NO_SESSION));
     };
     while (!answered()) {
         if (stopping()) {
