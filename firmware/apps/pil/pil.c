@@ -25,6 +25,18 @@ static uint8_t frame[TVO_FRAME_MAX_ENCODED];
 static uint32_t frames_sent;
 static uint32_t clock_faults; /* readings that failed or went back: must stay 0 (the node needs monotonic time) */
 
+/*
+ * A message is stamped with the arrival of its first byte: clocking in the rest takes time in
+ * proportion to its length (on QEMU's UART a 2 KB START takes ~40 ms, a measurement ~5 ms; at 115200
+ * baud 184 ms and 26 ms), and the node takes a START's transit as age for its whole session (the
+ * plant-to-node clock offset), so a START stamped at its last byte makes every later measurement
+ * look that much early. The node's timer is not polled while a frame arrives (a stamp must not
+ * precede a time the node was already given), but only while its bytes keep coming and for at most
+ * FRAME_HOLD_MAX_US, so a broken or endless frame cannot hold the watchdog off.
+ */
+#define FRAME_HOLD_MAX_US 200000
+#define FRAME_BYTE_GAP_US 10000
+
 static void publish(void *context, int channel, const uint8_t *data, uint32_t length)
 {
     (void)context;
@@ -83,7 +95,10 @@ int main(void)
     tvo_frame_decoder_init(&decoder);
     tvo_board_puts("PIL ready\n");
     int64_t last_us = 0;
-    int64_t deadline_us = 0; /* poll the node when its deadline has come, and after every message */
+    int64_t given_us = 0;        /* the latest time given to the node: it must never go back */
+    int64_t deadline_us = 0;     /* poll the node when its deadline has come, and after every message */
+    int64_t frame_start_us = -1; /* arrival of the first byte of the frame being received; -1 between frames */
+    int64_t last_byte_us = 0;
     while (!node.stop_requested) {
         const int64_t now_us = tvo_board_now_us();
         if (now_us < last_us) {
@@ -91,18 +106,31 @@ int main(void)
             continue; /* -1 (a read that kept racing the wrap interrupt) or a step back: not a time */
         }
         last_us = now_us;
-        if (now_us >= deadline_us) {
+        const int receiving = frame_start_us >= 0 && now_us - frame_start_us < FRAME_HOLD_MAX_US &&
+                              now_us - last_byte_us < FRAME_BYTE_GAP_US;
+        if (!receiving && now_us >= deadline_us) {
             deadline_us = tvo_node_poll(&node, now_us);
+            given_us = now_us;
         }
         uint8_t byte = 0u;
         if (!tvo_board_uart_read(&byte)) {
             continue;
         }
+        last_byte_us = now_us;
+        if (byte != 0u && frame_start_us < 0) {
+            frame_start_us = now_us;
+        }
         uint8_t channel = 0u;
         size_t length = 0u;
-        if (tvo_frame_decoder_push(&decoder, byte, &channel, payload, &length) == TVO_FRAME_OK) {
-            (void)tvo_node_handle(&node, channel, payload, (uint32_t)length, now_us);
-            deadline_us = now_us; /* the message may have moved the deadline */
+        const tvo_frame_status_t st = tvo_frame_decoder_push(&decoder, byte, &channel, payload, &length);
+        if (byte == 0u) {
+            const int64_t arrival_us = frame_start_us > given_us ? frame_start_us : given_us;
+            frame_start_us = -1;
+            if (st == TVO_FRAME_OK) {
+                (void)tvo_node_handle(&node, channel, payload, (uint32_t)length, arrival_us);
+                given_us = arrival_us;
+                deadline_us = now_us; /* the message may have moved the deadline */
+            }
         }
     }
     report(last_us);
