@@ -6,7 +6,6 @@
 #include <string>
 
 extern "C" {
-#include "session_codec.h"  // TVO_WIRE_TIME_MAX_US
 }
 
 namespace tvo_host {

@@ -266,7 +266,7 @@ static tvo_lcm_command_t expect_refused(const tvo_lcm_measurement_t *m, int64_t 
     ef_record_clear(&rec);
     UNITY_TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_MEASUREMENT, send_measurement(m, now_us), line, "handled");
     const tvo_lcm_command_t cmd = the_command(line);
-    ef_assert_status(reason, cmd.status, line);
+    ef_assert_status((int)reason, cmd.status, line);
     UNITY_TEST_ASSERT_EQUAL_INT64(m->sequence, cmd.measurement_sequence, line, "sequence echoed");
     UNITY_TEST_ASSERT_EQUAL_INT64(m->session_id, cmd.session_id, line, "session echoed");
     const int64_t stamp = m->utime < 0 ? 0 : (m->utime > EF_TWO_POW_60 ? EF_TWO_POW_60 : m->utime);
