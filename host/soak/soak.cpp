@@ -55,9 +55,9 @@ constexpr std::int64_t kTickSpanUs = std::int64_t{1} << 32;  // the node's uint3
 constexpr std::int64_t kSessionId = 1;                        // one session per process: any id >= 0
 // Option ranges (checked before any work; exit 2 naming the option).
 constexpr double kMinHours = 0.001;   // 360 periods
-constexpr double kMaxHours = 240.0;   // ten days: 86.4 M periods, hours of CPU
+constexpr double kMaxHours = 240.0;   // ten days: 86.4 M periods (2.2 min of CPU here)
 constexpr double kMaxBelowWrapS = 4294.0;  // less than one tick span: the first wrap lies within the run's first span
-constexpr double kMaxTraceHours = 1.0;     // --trace-csv: one row per period, ~100 bytes: at most ~40 MB
+constexpr double kMaxTraceHours = 1.0;     // --trace-csv: one row per period, ~200 bytes: at most ~75 MB
 // --constrained: x <= bound for robot 0 (the demo's ellipse reaches x = 3 m; its start is at x = -1 m).
 constexpr double kDefaultHalfSpaceXMaxM = 2.9;
 constexpr double kMinHalfSpaceXMaxM = 0.5;
