@@ -1,12 +1,11 @@
 /*
  * tvo_firmware_node: the control core behind LCM, as a host process (hardware-in-the-loop edge).
  *
- * Subscribes TVO_SESSION, TVO_MEASUREMENT and TVO_TARGET; answers every measurement with a
- * command on TVO_COMMAND (applied at stamp + delay) and telemetry on TVO_TELEMETRY. A session
- * STOP, SIGINT or SIGTERM ends the process with exit code 0.
- *
- * The logic (sessions, missed periods, the slack rule, streamed targets) is node.c's, shared with the
- * processor-in-the-loop program; this file is the LCM transport, the command line and the logs.
+ * Subscribes TVO_SESSION, TVO_MEASUREMENT and TVO_TARGET and publishes TVO_SESSION_ACK,
+ * TVO_COMMAND and TVO_TELEMETRY. The logic (sessions, schedule, watchdog timer, codecs) is node.c's,
+ * shared with the processor-in-the-loop program; this file is the LCM transport, the node's clock
+ * (CLOCK_MONOTONIC), the command line and the logs. SIGINT or SIGTERM ends the process with exit
+ * code 0; so does a session STOP, unless --keep-running.
  */
 #define _POSIX_C_SOURCE 200809L
 
@@ -14,6 +13,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/select.h>
+#include <time.h>
+#include <unistd.h>
 
 #include <lcm/lcm.h>
 
@@ -22,14 +24,30 @@
 /* The only global: set by SIGINT/SIGTERM, polled by the main loop. */
 static volatile sig_atomic_t g_stop_signal = 0;
 
-/* How long one lcm_handle_timeout call may block before the stop flag is checked again. */
-#define NODE_POLL_MS 100
-/* Streamed-target errors reported at most this many times (the rest are only counted). */
-#define NODE_MAX_TARGET_WARNINGS 5
+/* Longest wait for a message before the stop flag, the parent and the node's timer are checked. */
+#define NODE_POLL_US 100000
+/* Each kind of log line is written at most once per this interval, with a count of the rest. */
+#define NODE_LOG_INTERVAL_US 1000000
+/* Log keys: one per refusal status, then the other kinds of event. */
+enum {
+    LOG_UNDECODABLE = TVO_LCM_NODE_COUNTERS_T_STATUS_SLOTS,
+    LOG_OTHER_SESSION,
+    LOG_SAFE_STOP,
+    LOG_TARGET,
+    LOG_SPEED_MISMATCH,
+    LOG_ACK,
+    LOG_KEYS
+};
+
+typedef struct {
+    int64_t last_us;     /* when this kind was last written; -1: never */
+    uint32_t unwritten;  /* events since then */
+} log_limit_t;
 
 typedef struct {
     lcm_t *lcm;
-    tvo_node_t node;   /* the transport-independent logic (node.h) */
+    tvo_node_t node;     /* the transport-independent logic (node.h) */
+    log_limit_t limits[LOG_KEYS];
 } lcm_node_t;
 
 static void on_signal(int signo)
@@ -38,79 +56,137 @@ static void on_signal(int signo)
     g_stop_signal = 1;
 }
 
+/* The node's clock: CLOCK_MONOTONIC in microseconds (never steps with the wall clock). */
+static int64_t monotonic_us(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (int64_t)ts.tv_sec * 1000000 + (int64_t)(ts.tv_nsec / 1000);
+}
+
 static void publish(void *context, int channel, const uint8_t *data, uint32_t length)
 {
     lcm_node_t *self = (lcm_node_t *)context;
     lcm_publish(self->lcm, tvo_node_channel_name(channel), data, length);
 }
 
-static void report_start(const tvo_node_t *node)
+/* Whether a line of this kind may be written now; *suppressed gets how many were not. */
+static int log_allowed(lcm_node_t *self, int key, uint32_t events, uint32_t *suppressed)
 {
-    const tvo_edge_session_t *s = &node->session;
-    if (s->start_status == TVO_OK) {
-        const tvo_objective_t *obj = &s->problem.objective;
-        fprintf(stderr,
-                "tvo_firmware_node: session %lld started (%d robot(s), h = %lld us, tau = %lld us, %d term(s), "
-                "%d multiplier(s))\n",
-                (long long)s->session_id, (int)s->robot_count, (long long)s->period_us, (long long)s->delay_us,
-                (int)obj->term_count, (int)obj->dual_dim);
-    } else if (s->start_bad_part != TVO_LCM_SESSION_ACK_T_PART_NONE) {
-        fprintf(stderr, "tvo_firmware_node: session %lld rejected: %s (parameter %s, part: %s)\n",
-                (long long)s->session_id, tvo_status_str(s->start_status), tvo_param_str(s->start_bad_param),
-                tvo_edge_part_str(s->start_bad_part));
-    } else {
-        fprintf(stderr, "tvo_firmware_node: session %lld rejected: %s (parameter %s)\n", (long long)s->session_id,
-                tvo_status_str(s->start_status), tvo_param_str(s->start_bad_param));
+    log_limit_t *limit = &self->limits[key];
+    const int64_t now = monotonic_us();
+    limit->unwritten += events;
+    if (limit->last_us >= 0 && now - limit->last_us < NODE_LOG_INTERVAL_US) {
+        return 0;
     }
+    *suppressed = limit->unwritten - 1u;
+    limit->unwritten = 0;
+    limit->last_us = now;
+    return 1;
+}
+
+static void log_event(lcm_node_t *self, int key, uint32_t events, const char *what)
+{
+    uint32_t suppressed = 0;
+    if (events > 0u && log_allowed(self, key, events, &suppressed)) {
+        if (suppressed > 0u) {
+            fprintf(stderr, "tvo_firmware_node: %s (and %u more like it in the last second)\n", what, suppressed);
+        } else {
+            fprintf(stderr, "tvo_firmware_node: %s\n", what);
+        }
+    }
+}
+
+static void log_ack(lcm_node_t *self)
+{
+    const tvo_lcm_session_ack_t *ack = &self->node.last_ack;
+    char line[256];
+    const char *action = ack->action == TVO_LCM_SESSION_T_ACTION_START  ? "START"
+                         : ack->action == TVO_LCM_SESSION_T_ACTION_STOP ? "STOP"
+                                                                        : "session message";
+    if (ack->status == TVO_OK) {
+        snprintf(line, sizeof(line), "%s of session %lld done (running: %lld)", action, (long long)ack->session_id,
+                 (long long)ack->running_session_id);
+    } else {
+        snprintf(line, sizeof(line), "%s of session %lld refused: %s (parameter %s, part %s, entry %d; running: %lld)",
+                 action, (long long)ack->session_id, tvo_status_str((tvo_status_t)ack->status),
+                 tvo_param_str((tvo_param_t)ack->bad_param), tvo_protocol_part_str(ack->bad_part), (int)ack->bad_index,
+                 (long long)ack->running_session_id);
+    }
+    log_event(self, LOG_ACK, 1u, line);
+}
+
+/* What changed in the counters during one message or timer call, as rate-limited log lines. */
+static void log_changes(lcm_node_t *self, const tvo_lcm_node_counters_t *before, uint32_t acks_before)
+{
+    const tvo_lcm_node_counters_t *after = &self->node.counters;
+    char line[160];
+    if (self->node.acks != acks_before) {
+        log_ack(self);
+        return; /* a new session resets the counters: nothing else to compare */
+    }
+    for (int s = 0; s < TVO_LCM_NODE_COUNTERS_T_STATUS_SLOTS; ++s) {
+        if (after->refused[s] > before->refused[s]) {
+            snprintf(line, sizeof(line), "measurement refused: %s", tvo_status_str((tvo_status_t)s));
+            log_event(self, s, (uint32_t)(after->refused[s] - before->refused[s]), line);
+        }
+    }
+    log_event(self, LOG_UNDECODABLE, (uint32_t)(after->undecodable - before->undecodable),
+              "a message did not decode (ignored)");
+    log_event(self, LOG_OTHER_SESSION, (uint32_t)(after->other_session - before->other_session),
+              "a message for another session id (ignored)");
+    log_event(self, LOG_SAFE_STOP, (uint32_t)(after->safe_stops - before->safe_stops), "safe stop published");
+    log_event(self, LOG_TARGET, (uint32_t)(after->targets_refused - before->targets_refused),
+              "streamed target sample refused");
+    log_event(self, LOG_SPEED_MISMATCH, (uint32_t)(after->speed_mismatch - before->speed_mismatch),
+              "measured speed contradicts the commanded speed (stalled wheels?)");
 }
 
 /* Every subscribed channel arrives here encoded; node.c decodes it (the same path as on the MCU). */
 static void on_message(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
 {
     lcm_node_t *self = (lcm_node_t *)user;
-    tvo_node_t *node = &self->node;
-    const int64_t previous_id = node->session.session_id;
-    const uint8_t had_start = node->has_start;
-    const uint32_t target_errors = node->target_errors;
-    const uint32_t slack_errors = node->slack_errors;
-    const int handled = tvo_node_handle(node, tvo_node_channel_of(channel), (const uint8_t *)rbuf->data,
-                                        rbuf->data_size);
-    if (handled == 0) {
-        fprintf(stderr, "tvo_firmware_node: a message on %s did not decode (ignored)\n", channel);
-    } else if (handled == TVO_NODE_CH_SESSION && node->rx.session.action == TVO_LCM_SESSION_T_ACTION_START &&
-               (!had_start || node->session.session_id != previous_id)) {
-        report_start(node);
-    } else if (node->target_errors > target_errors && node->target_errors <= NODE_MAX_TARGET_WARNINGS) {
-        fprintf(stderr, "tvo_firmware_node: streamed target sample %lld rejected: %s\n",
-                (long long)node->rx.target.sequence, tvo_status_str(node->last_target_status));
-    }
-    if (node->slack_errors > slack_errors) {
-        fprintf(stderr, "tvo_firmware_node: choosing the barrier slack from the first measurement failed\n");
-    }
+    const tvo_lcm_node_counters_t before = self->node.counters;
+    const uint32_t acks_before = self->node.acks;
+    (void)tvo_node_handle(&self->node, tvo_node_channel_of(channel), (const uint8_t *)rbuf->data, rbuf->data_size,
+                          monotonic_us());
+    log_changes(self, &before, acks_before);
 }
 
 static void print_usage(FILE *out)
 {
     fprintf(out,
-            "Usage: tvo_firmware_node [--lcm-url URL]\n"
-            "Runs the TV-O unicycle controller behind LCM until a session STOP, SIGINT or SIGTERM.\n"
-            "  --lcm-url URL  LCM provider URL (default: $LCM_DEFAULT_URL, else LCM's default udpm)\n"
-            "  -h, --help     show this help\n");
+            "Usage: tvo_firmware_node [--lcm-url URL] [--keep-running] [--exit-with-parent]\n"
+            "Runs the TV-O controller behind LCM: sessions on TVO_SESSION, measurements in, commands out.\n"
+            "  --lcm-url URL       LCM provider URL (default: $LCM_DEFAULT_URL, else LCM's default udpm)\n"
+            "  --keep-running      serve session after session (default: exit after a session's STOP)\n"
+            "  --exit-with-parent  exit when the process that started this one dies (no orphans)\n"
+            "  -h, --help          show this help\n");
 }
 
-/* Returns 0 and sets *url (NULL: LCM's default), or 2 after printing why the arguments are bad. */
-static int parse_args(int argc, char **argv, const char **url)
+typedef struct {
+    const char *url;      /* NULL: LCM's default */
+    int keep_running;
+    int exit_with_parent;
+} node_options_t;
+
+/* Returns 0 and fills *opt, 1 after --help, or 2 after printing why the arguments are bad. */
+static int parse_args(int argc, char **argv, node_options_t *opt)
 {
-    *url = NULL;
+    memset(opt, 0, sizeof(*opt));
     for (int i = 1; i < argc; ++i) {
         const char *arg = argv[i];
         if (strcmp(arg, "-h") == 0 || strcmp(arg, "--help") == 0) {
             print_usage(stdout);
-            exit(0);
+            return 1;
         } else if (strcmp(arg, "--lcm-url") == 0 && i + 1 < argc) {
-            *url = argv[++i];
+            opt->url = argv[++i];
         } else if (strncmp(arg, "--lcm-url=", 10) == 0) {
-            *url = arg + 10;
+            opt->url = arg + 10;
+        } else if (strcmp(arg, "--keep-running") == 0) {
+            opt->keep_running = 1;
+        } else if (strcmp(arg, "--exit-with-parent") == 0) {
+            opt->exit_with_parent = 1;
         } else {
             fprintf(stderr, "tvo_firmware_node: error: unexpected argument '%s' (see --help)\n", arg);
             return 2;
@@ -128,12 +204,31 @@ static int install_signal_handlers(void)
     return (sigaction(SIGINT, &sa, NULL) == 0 && sigaction(SIGTERM, &sa, NULL) == 0) ? 0 : -1;
 }
 
+/* Waits for LCM traffic until deadline_us (node clock) at most; -1 on a receive error. */
+static int wait_and_handle(lcm_t *lcm, int64_t deadline_us)
+{
+    int64_t wait_us = deadline_us - monotonic_us();
+    wait_us = wait_us < 0 ? 0 : (wait_us > NODE_POLL_US ? NODE_POLL_US : wait_us);
+    const int fd = lcm_get_fileno(lcm);
+    fd_set readable;
+    FD_ZERO(&readable);
+    FD_SET(fd, &readable);
+    struct timeval tv;
+    tv.tv_sec = (time_t)(wait_us / 1000000);
+    tv.tv_usec = (suseconds_t)(wait_us % 1000000);
+    const int ready = select(fd + 1, &readable, NULL, NULL, &tv);
+    if (ready < 0) {
+        return g_stop_signal ? 0 : -1; /* a signal interrupts the wait: a request to stop */
+    }
+    return (ready > 0) ? lcm_handle(lcm) : 0;
+}
+
 int main(int argc, char **argv)
 {
-    const char *url = NULL;
-    const int arg_status = parse_args(argc, argv, &url);
+    node_options_t opt;
+    const int arg_status = parse_args(argc, argv, &opt);
     if (arg_status != 0) {
-        return arg_status;
+        return arg_status == 1 ? 0 : arg_status;
     }
     if (tvo_node_check_buffer() != 0) {
         fprintf(stderr, "tvo_firmware_node: error: TVO_NODE_BUFFER_BYTES (%d) is smaller than an encoded message\n",
@@ -144,17 +239,21 @@ int main(int argc, char **argv)
         perror("tvo_firmware_node: sigaction");
         return 1;
     }
-    /* Static: the node holds the session, the decoded message and the encode buffer (kilobytes). */
+    const pid_t parent = getppid();
+    /* Static: the node holds two session slots, the decoded message and the encode buffer (kilobytes). */
     static lcm_node_t self;
     tvo_node_init(&self.node, publish, &self);
-    self.lcm = lcm_create(url);
+    for (int k = 0; k < LOG_KEYS; ++k) {
+        self.limits[k].last_us = -1;
+    }
+    self.lcm = lcm_create(opt.url);
     if (self.lcm == NULL) {
         fprintf(stderr,
                 "tvo_firmware_node: error: cannot create LCM on '%s'.\n"
                 "  UDP multicast on loopback may be disabled. Fix (as root):\n"
                 "    ip link set lo multicast on && ip route add 224.0.0.0/4 dev lo\n"
                 "  or choose another provider with --lcm-url URL or LCM_DEFAULT_URL.\n",
-                url != NULL ? url : "LCM default");
+                opt.url != NULL ? opt.url : "LCM default");
         return 1;
     }
     lcm_subscribe(self.lcm, TVO_CHANNEL_SESSION, on_message, &self);
@@ -162,9 +261,16 @@ int main(int argc, char **argv)
     lcm_subscribe(self.lcm, TVO_CHANNEL_TARGET, on_message, &self);
 
     int exit_code = 0;
-    while (!g_stop_signal && !self.node.stop_requested) {
-        /* A signal interrupts the wait with -1: that is a request to stop, not a failure. */
-        if (lcm_handle_timeout(self.lcm, NODE_POLL_MS) < 0 && !g_stop_signal) {
+    while (!g_stop_signal && (opt.keep_running || !self.node.stop_requested)) {
+        if (opt.exit_with_parent && getppid() != parent) {
+            fprintf(stderr, "tvo_firmware_node: the parent process is gone; exiting\n");
+            break;
+        }
+        const tvo_lcm_node_counters_t before = self.node.counters;
+        const uint32_t acks_before = self.node.acks;
+        const int64_t deadline = tvo_node_poll(&self.node, monotonic_us());
+        log_changes(&self, &before, acks_before);
+        if (wait_and_handle(self.lcm, deadline) < 0) {
             fprintf(stderr, "tvo_firmware_node: error: LCM receive failed\n");
             exit_code = 1;
             break;

@@ -1,7 +1,14 @@
-/* The firmware node's transport-independent logic; see node.h. */
+/* The firmware node's transport-independent logic; see node.h and README.md ("Sessions", "Timing"). */
 #include "node.h"
 
 #include <string.h>
+
+#include "tvo/sample_clock.h"
+
+_Static_assert(TVO_STATUS_COUNT <= TVO_LCM_NODE_COUNTERS_T_STATUS_SLOTS, "node_counters_t.refused has a slot per status");
+
+/* CLOCK_NODE: a stamp may lead the node's clock by at most half a period (clock offset, jitter). */
+#define NODE_FUTURE_TOLERANCE_DIVISOR 2
 
 int tvo_node_check_buffer(void)
 {
@@ -27,192 +34,376 @@ void tvo_node_init(tvo_node_t *node, tvo_node_publish_fn publish, void *publish_
     node->publish_context = publish_context;
 }
 
-static void publish_ack(tvo_node_t *node, const tvo_lcm_session_t *msg, tvo_status_t status, tvo_param_t bad,
-                        int32_t bad_part)
+const tvo_node_session_t *tvo_node_session(const tvo_node_t *node)
 {
-    tvo_lcm_session_ack_t ack;
-    tvo_edge_ack_to_lcm(msg->utime, msg->session_id, msg->action, status, bad, bad_part, &ack);
-    const int len = tvo_lcm_session_ack_t_encode(node->buffer, 0, TVO_NODE_BUFFER_BYTES, &ack);
-    if (len > 0) {
-        node->publish(node->publish_context, TVO_NODE_CH_SESSION_ACK, node->buffer, (uint32_t)len);
+    return (node != NULL && node->has_session) ? &node->slot[node->running] : NULL;
+}
+
+static tvo_node_session_t *running_session(tvo_node_t *node)
+{
+    return node->has_session ? &node->slot[node->running] : NULL;
+}
+
+/* Counters saturate: a long run never overflows one (signed overflow would be undefined). */
+static void count(int32_t *counter)
+{
+    if (*counter < INT32_MAX) {
+        ++*counter;
     }
 }
 
-/* A chain step: the command carries u; the telemetry only the step's outcome (the unicycle
- * controller's telemetry fields do not apply). */
-static void publish_chain_step(tvo_node_t *node, const tvo_chain_command_t *cmd, tvo_status_t status,
-                               int64_t apply_utime, int64_t sequence)
+static int64_t clamp_time(int64_t t)
 {
-    tvo_lcm_command_t out;
-    tvo_edge_chain_command_to_lcm(cmd, status, apply_utime, sequence, node->session.robot_count, &out);
-    int len = tvo_lcm_command_t_encode(node->buffer, 0, TVO_NODE_BUFFER_BYTES, &out);
-    if (len > 0) {
-        node->publish(node->publish_context, TVO_NODE_CH_COMMAND, node->buffer, (uint32_t)len);
+    return t < 0 ? 0 : (t > TVO_WIRE_TIME_MAX_US ? TVO_WIRE_TIME_MAX_US : t);
+}
+
+static int wire_time_ok(int64_t t)
+{
+    return t >= 0 && t <= TVO_WIRE_TIME_MAX_US;
+}
+
+/* The core's uint32 tick of a schedule time (wrapping, like the board's free-running counter). */
+static uint32_t schedule_tick(int64_t t_us)
+{
+    return (uint32_t)(uint64_t)t_us;
+}
+
+static void publish_encoded(tvo_node_t *node, int channel, int length)
+{
+    if (length > 0 && node->publish != NULL) {
+        node->publish(node->publish_context, channel, node->buffer, (uint32_t)length);
     }
+}
+
+static void publish_ack(tvo_node_t *node, const tvo_lcm_session_t *msg, const tvo_session_reject_t *why)
+{
+    const tvo_node_session_t *s = tvo_node_session(node);
+    tvo_session_ack(msg, why, s != NULL ? s->session_id : -1, &node->last_ack);
+    node->acks++;
+    publish_encoded(node, TVO_NODE_CH_SESSION_ACK,
+                    tvo_lcm_session_ack_t_encode(node->buffer, 0, TVO_NODE_BUFFER_BYTES, &node->last_ack));
+}
+
+/* A command and the telemetry that follows it. */
+static void publish_step(tvo_node_t *node, tvo_node_session_t *s, const tvo_edge_command_t *cmd,
+                         const tvo_step_stamp_t *stamp, int64_t now_us)
+{
+    const tvo_edge_controller_ops_t *ops = s->controller.ops;
+    const uint32_t flags = ops->flags(cmd);
+    if ((flags & TVO_FLAG_SAFE_STOP) != 0u) {
+        count(&node->counters.safe_stops);
+    }
+    if ((flags & TVO_FLAG_SPEED_MISMATCH) != 0u) {
+        count(&node->counters.speed_mismatch);
+    }
+    tvo_lcm_command_t out;
+    ops->command_to_lcm(cmd, stamp, &out);
+    publish_encoded(node, TVO_NODE_CH_COMMAND, tvo_lcm_command_t_encode(node->buffer, 0, TVO_NODE_BUFFER_BYTES, &out));
     tvo_lcm_telemetry_t tel;
     memset(&tel, 0, sizeof(tel));
-    tel.utime = apply_utime;
-    tel.measurement_sequence = sequence;
-    tel.status = (int32_t)status;
-    tel.flags = (int32_t)cmd->flags;
-    len = tvo_lcm_telemetry_t_encode(node->buffer, 0, TVO_NODE_BUFFER_BYTES, &tel);
-    if (len > 0) {
-        node->publish(node->publish_context, TVO_NODE_CH_TELEMETRY, node->buffer, (uint32_t)len);
-    }
+    ops->telemetry_to_lcm(&s->controller, &s->problem, &tel);
+    tvo_step_telemetry_stamp(stamp, flags, &tel);
+    tel.node_time_us = (s->timing.clock_source == TVO_LCM_SESSION_T_CLOCK_NODE) ? now_us : 0;
+    tel.counters = node->counters;
+    publish_encoded(node, TVO_NODE_CH_TELEMETRY,
+                    tvo_lcm_telemetry_t_encode(node->buffer, 0, TVO_NODE_BUFFER_BYTES, &tel));
 }
 
-static void publish_step(tvo_node_t *node, const tvo_command_t *cmd, tvo_status_t status, int64_t apply_utime,
-                         int64_t sequence)
+/* ---- sessions ---------------------------------------------------------------------------------- */
+
+/* Builds a session from a START into `s` (the spare slot); the running one is not touched. */
+static tvo_status_t build_session(tvo_node_session_t *s, const tvo_lcm_session_t *msg, uint32_t content_hash,
+                                  int64_t now_us, tvo_session_reject_t *why)
 {
-    tvo_lcm_command_t out;
-    tvo_edge_command_to_lcm(cmd, status, apply_utime, sequence, node->session.robot_count, &out);
-    int len = tvo_lcm_command_t_encode(node->buffer, 0, TVO_NODE_BUFFER_BYTES, &out);
-    if (len > 0) {
-        node->publish(node->publish_context, TVO_NODE_CH_COMMAND, node->buffer, (uint32_t)len);
+    memset(s, 0, sizeof(*s));
+    tvo_status_t st = tvo_session_decode_timing(msg, &s->timing, why);
+    if (st != TVO_OK) {
+        return st;
     }
-    tvo_lcm_telemetry_t tel;
-    tvo_edge_telemetry_to_lcm(&node->session, status, cmd->flags, apply_utime, sequence, &tel);
-    len = tvo_lcm_telemetry_t_encode(node->buffer, 0, TVO_NODE_BUFFER_BYTES, &tel);
-    if (len > 0) {
-        node->publish(node->publish_context, TVO_NODE_CH_TELEMETRY, node->buffer, (uint32_t)len);
+    const tvo_edge_controller_ops_t *ops = tvo_edge_controller_ops(s->timing.plant_kind);
+    if (ops == NULL) {
+        why->status = TVO_ERR_PARAM;
+        why->param = TVO_PARAM_PLANT_KIND;
+        return TVO_ERR_PARAM;
     }
+    tvo_problem_desc_t desc;
+    st = tvo_session_decode_problem(msg, &desc, why);
+    if (st == TVO_OK) {
+        uint8_t problem_part = 0;
+        st = tvo_problem_init(&s->problem, &desc, ops->relative_degree(msg), &problem_part);
+        if (st != TVO_OK) {
+            why->status = st;
+            why->param = TVO_PARAM_OBJECTIVE;
+            why->part = tvo_session_part_from_problem(problem_part);
+            why->index = -1;
+        }
+    }
+    if (st != TVO_OK) {
+        return st;
+    }
+    /* CLOCK_NODE: the plant's clock maps onto the node's through this START's arrival (its transit
+     * counts as age). Both times are within the wire range, so nothing here can overflow. */
+    s->offset_us = (s->timing.clock_source == TVO_LCM_SESSION_T_CLOCK_NODE) ? now_us - msg->utime : 0;
+    s->epoch_schedule_us = s->timing.epoch_utime + s->offset_us;
+    s->controller.ops = ops;
+    st = ops->init(&s->controller, msg, &s->problem.objective, schedule_tick(s->epoch_schedule_us), why);
+    if (st != TVO_OK) {
+        return st;
+    }
+    s->session_id = msg->session_id;
+    s->content_hash = content_hash;
+    return TVO_OK;
 }
 
-/* Runs the core with no measurement for the periods the plant skipped before `sequence`. */
-static void step_missed_periods(tvo_node_t *node, int64_t sequence, int64_t apply_utime)
+static void on_start(tvo_node_t *node, const tvo_lcm_session_t *msg, uint32_t content_hash, int64_t now_us)
 {
-    tvo_edge_session_t *s = &node->session;
-    if (!s->has_sequence || sequence <= s->last_sequence + 1) {
+    tvo_session_reject_t why = {TVO_OK, TVO_PARAM_NONE, TVO_LCM_SESSION_ACK_T_PART_NONE, -1};
+    const tvo_node_session_t *running = tvo_node_session(node);
+    if (running != NULL && msg->session_id == running->session_id) {
+        /* The plant repeats START until acked: the same content is answered again, not restarted. */
+        if (content_hash != running->content_hash) {
+            why.status = TVO_ERR_SESSION_CONFLICT;
+        }
+        publish_ack(node, msg, &why);
         return;
     }
-    int64_t missed = sequence - s->last_sequence - 1;
-    /* Beyond the watchdog more empty steps change nothing: bound the work a wild sequence can cause. */
-    const int64_t cap = (int64_t)s->controller.cfg.watchdog_periods + 1;
-    if (missed > cap) {
-        missed = cap;
+    const uint8_t spare = node->has_session ? (uint8_t)(1u - node->running) : node->running;
+    if (build_session(&node->slot[spare], msg, content_hash, now_us, &why) == TVO_OK) {
+        node->running = spare;
+        node->has_session = 1;
+        node->stop_requested = 0;
+        memset(&node->counters, 0, sizeof(node->counters));
+        node->last_target_status = TVO_OK;
     }
-    for (int64_t k = missed; k >= 1; --k) {
-        const int64_t missed_apply_utime = apply_utime - k * s->period_us;
-        if (s->plant_chain) {
-            tvo_chain_command_t cmd;
-            const tvo_status_t st = tvo_chain_controller_step(&s->chain, NULL, (uint32_t)missed_apply_utime, &cmd);
-            publish_chain_step(node, &cmd, st, missed_apply_utime, sequence - k);
+    publish_ack(node, msg, &why);
+}
+
+static void on_session(tvo_node_t *node, const tvo_lcm_session_t *msg, uint32_t content_hash, int64_t now_us)
+{
+    tvo_session_reject_t why = {TVO_OK, TVO_PARAM_NONE, TVO_LCM_SESSION_ACK_T_PART_NONE, -1};
+    if (msg->action == TVO_LCM_SESSION_T_ACTION_START) {
+        on_start(node, msg, content_hash, now_us);
+        return;
+    }
+    if (msg->action == TVO_LCM_SESSION_T_ACTION_STOP) {
+        const tvo_node_session_t *running = tvo_node_session(node);
+        if (running != NULL && msg->session_id == running->session_id) {
+            node->has_session = 0;
+            node->stop_requested = 1;
         } else {
-            tvo_command_t cmd;
-            const tvo_status_t st = tvo_controller_step(&s->controller, NULL, (uint32_t)missed_apply_utime, &cmd);
-            publish_step(node, &cmd, st, missed_apply_utime, sequence - k);
+            why.status = TVO_ERR_NO_SESSION; /* not ours to obey: whatever runs, runs on */
         }
+    } else {
+        why.status = TVO_ERR_PARAM;
     }
+    publish_ack(node, msg, &why);
 }
 
-static void on_measurement(tvo_node_t *node, const tvo_lcm_measurement_t *msg)
+/* ---- measurements ------------------------------------------------------------------------------ */
+
+/* Period index of schedule time t: the smallest j >= 0 with epoch + j h > t (the next apply instant). */
+static int64_t next_period_after(const tvo_node_session_t *s, int64_t t_us)
 {
-    tvo_edge_session_t *s = &node->session;
-    if (!s->active) {
-        return;
-    }
-    /* The node's schedule: sampled at t_{n+1} - tau, applied at t_{n+1}. */
-    const int64_t apply_utime = msg->utime + s->delay_us;
-    step_missed_periods(node, msg->sequence, apply_utime);
-    if (s->plant_chain) {
-        tvo_chain_measurement_t chain_meas;
-        tvo_chain_command_t chain_cmd;
-        const tvo_status_t conv = tvo_edge_chain_measurement_from_lcm(msg, s->robot_count, &chain_meas);
-        tvo_status_t st = tvo_chain_controller_step(&s->chain, conv == TVO_OK ? &chain_meas : NULL,
-                                                    (uint32_t)apply_utime, &chain_cmd);
-        publish_chain_step(node, &chain_cmd, conv != TVO_OK ? conv : st, apply_utime, msg->sequence);
-        if (!s->has_sequence || msg->sequence > s->last_sequence) {
-            s->last_sequence = msg->sequence;
-            s->has_sequence = 1;
-        }
-        return;
-    }
-
-    tvo_measurement_t meas;
-    tvo_command_t cmd;
-    const tvo_status_t conv = tvo_edge_measurement_from_lcm(msg, s->robot_count, &meas);
-    if (conv == TVO_OK && !s->problem.slack_chosen) {
-        const tvo_status_t slack = tvo_edge_choose_slack(s, &meas);
-        if (slack != TVO_OK && slack != TVO_ERR_NOT_FINITE) {
-            node->slack_errors++;
-        }
-    }
-    tvo_status_t st = tvo_controller_step(&s->controller, conv == TVO_OK ? &meas : NULL, (uint32_t)apply_utime,
-                                          &cmd);
-    if (conv != TVO_OK) {
-        st = conv;  /* report why the measurement was unusable, not merely that none arrived */
-    }
-    publish_step(node, &cmd, st, apply_utime, msg->sequence);
-    if (!s->has_sequence || msg->sequence > s->last_sequence) {
-        s->last_sequence = msg->sequence;
-        s->has_sequence = 1;
-    }
+    const int64_t since = t_us - s->epoch_schedule_us;
+    return since < 0 ? 0 : since / s->timing.period_us + 1;
 }
+
+static int64_t apply_instant(const tvo_node_session_t *s, int64_t period)
+{
+    return s->epoch_schedule_us + period * s->timing.period_us;
+}
+
+/*
+ * Which period the measurement serves and when that period's command applies (schedule clock), or
+ * why it cannot serve any. Only wire-range-checked values enter the arithmetic.
+ */
+static tvo_status_t schedule_measurement(const tvo_node_session_t *s, const tvo_lcm_measurement_t *msg,
+                                         int64_t now_us, int64_t *period, int64_t *stamp_us)
+{
+    if (!wire_time_ok(msg->utime) || !wire_time_ok(msg->sequence)) {
+        return TVO_ERR_IMPLAUSIBLE_STAMP;
+    }
+    const int64_t h = s->timing.period_us;
+    *stamp_us = msg->utime + s->offset_us;
+    if (s->timing.clock_source == TVO_LCM_SESSION_T_CLOCK_NODE) {
+        if (*stamp_us > now_us + h / NODE_FUTURE_TOLERANCE_DIVISOR) {
+            return TVO_ERR_IMPLAUSIBLE_STAMP; /* from the future by the node's own clock */
+        }
+        const int64_t next = next_period_after(s, now_us);
+        *period = (s->has_accepted && next <= s->last_period) ? s->last_period + 1 : next;
+        return TVO_OK; /* the age against the apply instant: the controller's check */
+    }
+    /* CLOCK_PLANT: the period whose apply instant is nearest to stamp + tau. */
+    const int64_t to_apply = *stamp_us + s->timing.delay_us - s->epoch_schedule_us + h / 2;
+    if (to_apply < 0) {
+        return TVO_ERR_IMPLAUSIBLE_STAMP; /* before the epoch */
+    }
+    *period = to_apply / h;
+    if (!s->has_accepted) {
+        return (*period * h <= (int64_t)TVO_MAX_TICK_SPAN) ? TVO_OK : TVO_ERR_IMPLAUSIBLE_STAMP;
+    }
+    if (*period <= s->last_period) {
+        return TVO_ERR_OUT_OF_ORDER; /* a duplicate, or older than the last accepted */
+    }
+    if (msg->sequence - s->last_sequence != *period - s->last_period) {
+        return TVO_ERR_IMPLAUSIBLE_STAMP; /* stamp and sequence disagree: a stray, or a wild number */
+    }
+    return TVO_OK;
+}
+
+/* The refusal's answer: the command in force (or, after watchdog_periods refusals in a row in
+ * CLOCK_PLANT, a safe stop), stamped no earlier than the measurement. Nothing of the message is kept. */
+static void refuse_measurement(tvo_node_t *node, tvo_node_session_t *s, const tvo_lcm_measurement_t *msg,
+                               tvo_status_t reason, int64_t now_us)
+{
+    count(&node->counters.refused[(uint32_t)reason < (uint32_t)TVO_LCM_NODE_COUNTERS_T_STATUS_SLOTS ? reason : 0]);
+    node->last_refusal = reason;
+    tvo_step_stamp_t stamp = {clamp_time(msg->utime), s->session_id, msg->sequence, reason, s->timing.robot_count};
+    if (s->timing.clock_source == TVO_LCM_SESSION_T_CLOCK_NODE) {
+        const int64_t plant_now = clamp_time(now_us - s->offset_us);
+        stamp.utime = stamp.utime > plant_now ? stamp.utime : plant_now;
+    }
+    tvo_edge_command_t cmd;
+    if (s->refused_in_row < UINT32_MAX) {
+        s->refused_in_row++;
+    }
+    if (s->timing.clock_source == TVO_LCM_SESSION_T_CLOCK_PLANT && s->refused_in_row >= s->timing.watchdog_periods) {
+        (void)s->controller.ops->safe_stop(&s->controller, &cmd);
+        stamp.status = TVO_ERR_WATCHDOG;
+    } else {
+        s->controller.ops->holding(&s->controller, &cmd);
+    }
+    publish_step(node, s, &cmd, &stamp, now_us);
+}
+
+/* A measurement when no session runs: a safe stop that tells the plant to START again. */
+static void answer_without_session(tvo_node_t *node, const tvo_lcm_measurement_t *msg)
+{
+    count(&node->counters.refused[TVO_ERR_NO_SESSION]);
+    node->last_refusal = TVO_ERR_NO_SESSION;
+    tvo_lcm_command_t out;
+    memset(&out, 0, sizeof(out));
+    out.utime = clamp_time(msg->utime);
+    out.session_id = msg->session_id;
+    out.measurement_sequence = msg->sequence;
+    out.robot_count = (msg->robot_count >= 1 && msg->robot_count <= TVO_MAX_ROBOTS) ? msg->robot_count : 0;
+    out.status = (int32_t)TVO_ERR_NO_SESSION;
+    out.flags = (int32_t)TVO_FLAG_SAFE_STOP;
+    publish_encoded(node, TVO_NODE_CH_COMMAND, tvo_lcm_command_t_encode(node->buffer, 0, TVO_NODE_BUFFER_BYTES, &out));
+}
+
+static void on_measurement(tvo_node_t *node, const tvo_lcm_measurement_t *msg, int64_t now_us)
+{
+    tvo_node_session_t *s = running_session(node);
+    if (s == NULL) {
+        answer_without_session(node, msg);
+        return;
+    }
+    if (msg->session_id != s->session_id) {
+        count(&node->counters.other_session); /* another plant's: not ours to answer */
+        return;
+    }
+    const tvo_edge_controller_ops_t *ops = s->controller.ops;
+    int64_t period = 0;
+    int64_t stamp_us = 0;
+    tvo_edge_measurement_t meas;
+    tvo_status_t st = (msg->robot_count == (int32_t)s->timing.robot_count) ? TVO_OK : TVO_ERR_DIMENSION;
+    if (st == TVO_OK) {
+        st = schedule_measurement(s, msg, now_us, &period, &stamp_us);
+    }
+    const int64_t apply_us = (st == TVO_OK) ? apply_instant(s, period) : 0;
+    if (st == TVO_OK && s->has_accepted &&
+        (period - s->last_period) > (int64_t)TVO_MAX_TICK_SPAN / s->timing.period_us) {
+        st = TVO_ERR_STALE; /* a silence longer than the clock spans: START a new session */
+    }
+    if (st == TVO_OK) {
+        st = ops->measurement(msg, s->timing.robot_count, schedule_tick(stamp_us), &meas);
+    }
+    if (st == TVO_OK) {
+        st = ops->check(&s->controller, &meas, schedule_tick(apply_us));
+    }
+    if (st != TVO_OK) {
+        refuse_measurement(node, s, msg, st, now_us);
+        return;
+    }
+    /* The paper's slack rule takes the first accepted sample as the state at t = 0; undone if the
+     * step then fails, so a refused first sample leaves the rule for the next one. */
+    const uint8_t slack_was_chosen = s->problem.slack_chosen;
+    if (!slack_was_chosen) {
+        tvo_real_t y[TVO_MAX_OUTPUT_DIM] = {TVO_R(0.0)};
+        ops->positions(&meas, s->timing.robot_count, y);
+        (void)tvo_problem_choose_slack(&s->problem, y, TVO_R(0.0));
+    }
+    tvo_edge_command_t cmd;
+    st = ops->step(&s->controller, &meas, schedule_tick(apply_us), &cmd);
+    if (st != TVO_OK) {
+        s->problem.slack_chosen = slack_was_chosen;
+        count(&node->counters.refused[(uint32_t)st < (uint32_t)TVO_LCM_NODE_COUNTERS_T_STATUS_SLOTS ? st : 0]);
+        node->last_refusal = st;
+    } else {
+        count(&node->counters.accepted);
+        s->has_accepted = 1;
+        s->last_period = period;
+        s->last_sequence = msg->sequence;
+        s->refused_in_row = 0;
+        s->stop_period = period + (int64_t)s->timing.watchdog_periods;
+    }
+    const tvo_step_stamp_t stamp = {apply_us - s->offset_us, s->session_id, msg->sequence, st, s->timing.robot_count};
+    publish_step(node, s, &cmd, &stamp, now_us);
+}
+
+/* ---- streamed targets -------------------------------------------------------------------------- */
 
 static void on_target(tvo_node_t *node, const tvo_lcm_target_t *msg)
 {
-    if (!node->session.active) {
+    tvo_node_session_t *s = running_session(node);
+    if (s == NULL) {
         return;
     }
-    node->last_target_status = tvo_edge_target_update(&node->session, msg);
-    if (node->last_target_status != TVO_OK) {
-        node->target_errors++;
-    }
-}
-
-static void on_start(tvo_node_t *node, const tvo_lcm_session_t *msg)
-{
-    tvo_edge_session_t *s = &node->session;
-    /* The host repeats START until acked: answer a repeat without restarting the controller. */
-    if (node->has_start && msg->session_id == s->session_id) {
-        publish_ack(node, msg, s->start_status, s->start_bad_param, s->start_bad_part);
+    if (msg->session_id != s->session_id) {
+        count(&node->counters.other_session);
         return;
     }
-    tvo_param_t bad = TVO_PARAM_NONE;
-    int32_t bad_part = TVO_LCM_SESSION_ACK_T_PART_NONE;
-    const tvo_status_t st = tvo_edge_session_start(s, msg, &bad, &bad_part);
-    s->start_status = st;
-    s->start_bad_param = bad;
-    s->start_bad_part = bad_part;
-    node->has_start = 1;
-    node->target_errors = 0;
-    publish_ack(node, msg, st, bad, bad_part);
-}
-
-static void on_session(tvo_node_t *node, const tvo_lcm_session_t *msg)
-{
-    if (msg->action == TVO_LCM_SESSION_T_ACTION_START) {
-        on_start(node, msg);
-    } else if (msg->action == TVO_LCM_SESSION_T_ACTION_STOP) {
-        /* A STOP for another host's session is not ours to obey. */
-        if (!node->has_start || msg->session_id == node->session.session_id) {
-            node->session.active = 0;
-            node->stop_requested = 1;
-            publish_ack(node, msg, TVO_OK, TVO_PARAM_NONE, TVO_LCM_SESSION_ACK_T_PART_NONE);
-        }
-    } else {
-        publish_ack(node, msg, TVO_ERR_PARAM, TVO_PARAM_NONE, TVO_LCM_SESSION_ACK_T_PART_NONE);
+    tvo_status_t st = wire_time_ok(msg->utime) ? TVO_OK : TVO_ERR_IMPLAUSIBLE_STAMP;
+    uint64_t objective_ticks = 0u;
+    if (st == TVO_OK) {
+        st = tvo_sample_clock_objective_ticks(s->controller.ops->clock(&s->controller),
+                                              schedule_tick(msg->utime + s->offset_us), &objective_ticks);
+    }
+    if (st == TVO_OK) {
+        st = tvo_step_target_from_lcm(msg, s->timing.robot_count, objective_ticks, &s->problem);
+    }
+    node->last_target_status = st;
+    if (st != TVO_OK) {
+        count(&node->counters.targets_refused);
     }
 }
 
-int tvo_node_handle(tvo_node_t *node, int channel, const uint8_t *data, uint32_t length)
+/* ---- entry points ------------------------------------------------------------------------------ */
+
+int tvo_node_handle(tvo_node_t *node, int channel, const uint8_t *data, uint32_t length, int64_t now_us)
 {
-    if (node == NULL || data == NULL || length > (uint32_t)INT32_MAX) {
+    if (node == NULL) {
         return 0;
     }
+    if (data == NULL || length > (uint32_t)INT32_MAX) {
+        count(&node->counters.undecodable);
+        return 0;
+    }
+    now_us = clamp_time(now_us);
     const int size = (int)length;
     switch (channel) {
     case TVO_NODE_CH_SESSION:
         if (tvo_lcm_session_t_decode(data, 0, size, &node->rx.session) < 0) {
             break;
         }
-        on_session(node, &node->rx.session);
+        on_session(node, &node->rx.session, tvo_session_content_hash(data, length), now_us);
         return channel;
     case TVO_NODE_CH_MEASUREMENT:
         if (tvo_lcm_measurement_t_decode(data, 0, size, &node->rx.measurement) < 0) {
             break;
         }
-        on_measurement(node, &node->rx.measurement);
+        on_measurement(node, &node->rx.measurement, now_us);
         return channel;
     case TVO_NODE_CH_TARGET:
         if (tvo_lcm_target_t_decode(data, 0, size, &node->rx.target) < 0) {
@@ -221,8 +412,28 @@ int tvo_node_handle(tvo_node_t *node, int channel, const uint8_t *data, uint32_t
         on_target(node, &node->rx.target);
         return channel;
     default:
-        return 0;
+        return 0; /* not a channel the node takes (its own outputs, or unknown) */
     }
-    node->decode_errors++;
+    count(&node->counters.undecodable);
     return 0;
+}
+
+int64_t tvo_node_poll(tvo_node_t *node, int64_t now_us)
+{
+    tvo_node_session_t *s = (node != NULL) ? running_session(node) : NULL;
+    if (s == NULL || s->timing.clock_source != TVO_LCM_SESSION_T_CLOCK_NODE || !s->has_accepted) {
+        return TVO_NODE_NO_DEADLINE; /* the watchdog is armed by the first accepted measurement */
+    }
+    now_us = clamp_time(now_us);
+    if (now_us >= apply_instant(s, s->stop_period)) {
+        /* watchdog_periods periods passed with no accepted measurement: stop, stamped now. */
+        tvo_edge_command_t cmd;
+        (void)s->controller.ops->safe_stop(&s->controller, &cmd);
+        const tvo_step_stamp_t stamp = {clamp_time(now_us - s->offset_us), s->session_id, -1, TVO_ERR_WATCHDOG,
+                                        s->timing.robot_count};
+        publish_step(node, s, &cmd, &stamp, now_us);
+        const int64_t next = next_period_after(s, now_us);
+        s->stop_period = next > s->stop_period ? next : s->stop_period + 1;
+    }
+    return apply_instant(s, s->stop_period);
 }

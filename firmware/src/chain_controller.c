@@ -112,9 +112,10 @@ tvo_status_t tvo_chain_predict(uint8_t relative_degree, uint8_t dim, const tvo_o
     return TVO_OK;
 }
 
-/* y^(1..k-1) at the sample, from the filters (cascade) or as measured. */
-static tvo_status_t derivatives_at_sample(tvo_chain_controller_t *ctl, const tvo_chain_measurement_t *meas,
-                                          tvo_output_derivs_t *x)
+/* y^(1..k-1) at the sample, from the filters (cascade; the step's working copies in `filter`,
+ * kept only when the step succeeds) or as measured. */
+static tvo_status_t derivatives_at_sample(const tvo_chain_controller_t *ctl, tvo_dirty_derivative_t *filter,
+                                          const tvo_chain_measurement_t *meas, tvo_output_derivs_t *x)
 {
     const uint8_t k = ctl->cfg.relative_degree;
     const uint8_t m = ctl->objective->primal_dim;
@@ -123,19 +124,19 @@ static tvo_status_t derivatives_at_sample(tvo_chain_controller_t *ctl, const tvo
         return TVO_OK;
     }
     tvo_status_t st = TVO_OK;
-    const int primed = ctl->filter[0].primed;
+    const int primed = filter[0].primed;
     const tvo_real_t dt_s = primed ? tvo_ticks_to_seconds(meas->stamp_tick - ctl->clock.last_stamp_tick, ctl->cfg.tick_hz)
                                    : TVO_R(0.0);
     for (uint8_t j = 0; st == TVO_OK && j + 1u < k; ++j) {
-        if (!primed || !ctl->filter[j].primed) {
+        if (!primed || !filter[j].primed) {
             /* Start at rest: the filters have seen nothing yet. */
             tvo_real_t zero[TVO_MAX_OUTPUT_DIM] = {TVO_R(0.0)};
-            st = tvo_dirty_derivative_reset(&ctl->filter[j], x->d[j], zero);
+            st = tvo_dirty_derivative_reset(&filter[j], x->d[j], zero);
             for (uint8_t i = 0; i < m; ++i) {
                 x->d[j + 1u][i] = TVO_R(0.0);
             }
         } else {
-            st = tvo_dirty_derivative_step(&ctl->filter[j], x->d[j], dt_s, x->d[j + 1u]);
+            st = tvo_dirty_derivative_step(&filter[j], x->d[j], dt_s, x->d[j + 1u]);
         }
     }
     return st;
@@ -168,6 +169,39 @@ static tvo_status_t hold_or_stop(tvo_chain_controller_t *ctl, uint32_t apply_tic
     return reason;
 }
 
+tvo_status_t tvo_chain_controller_check(const tvo_chain_controller_t *ctl, const tvo_chain_measurement_t *meas,
+                                        uint32_t apply_tick)
+{
+    if (ctl == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (!ctl->initialized) {
+        return TVO_ERR_NOT_INITIALIZED;
+    }
+    uint64_t elapsed = 0u;
+    uint32_t periods = 1u;
+    if (tvo_sample_clock_schedule(&ctl->clock, apply_tick, &elapsed, &periods) != TVO_OK) {
+        return TVO_ERR_OUT_OF_ORDER;
+    }
+    const tvo_status_t st = (meas == NULL) ? TVO_ERR_NO_MEASUREMENT : check_finite(ctl, meas);
+    return (st == TVO_OK) ? tvo_sample_clock_check_stamp(&ctl->clock, meas->stamp_tick, apply_tick) : st;
+}
+
+tvo_status_t tvo_chain_controller_safe_stop(tvo_chain_controller_t *ctl, tvo_chain_command_t *cmd)
+{
+    if (cmd == NULL) {
+        return TVO_ERR_NULL;
+    }
+    memset(cmd, 0, sizeof(*cmd));
+    cmd->flags = TVO_FLAG_SAFE_STOP;
+    if (ctl == NULL || !ctl->initialized) {
+        return (ctl == NULL) ? TVO_ERR_NULL : TVO_ERR_NOT_INITIALIZED;
+    }
+    (void)tvo_sample_clock_expire(&ctl->clock);
+    memset(&ctl->held, 0, sizeof(ctl->held));
+    return TVO_OK;
+}
+
 tvo_status_t tvo_chain_controller_step(tvo_chain_controller_t *ctl, const tvo_chain_measurement_t *meas,
                                        uint32_t apply_tick, tvo_chain_command_t *cmd)
 {
@@ -191,18 +225,19 @@ tvo_status_t tvo_chain_controller_step(tvo_chain_controller_t *ctl, const tvo_ch
         st = tvo_sample_clock_check_stamp(&ctl->clock, meas->stamp_tick, apply_tick);
     }
     tvo_output_derivs_t x;
+    tvo_dirty_derivative_t filter[TVO_MAX_RELATIVE_DEGREE - 1]; /* the step's copies, kept on success */
     if (st == TVO_OK) {
-        if (ctl->clock.stopped) {
-            for (uint8_t j = 0; j + 1u < TVO_MAX_RELATIVE_DEGREE; ++j) {
-                ctl->filter[j].primed = 0; /* the gap makes old filter state meaningless */
+        for (uint8_t j = 0; j + 1u < TVO_MAX_RELATIVE_DEGREE; ++j) {
+            filter[j] = ctl->filter[j];
+            if (ctl->clock.stopped) {
+                filter[j].primed = 0; /* the gap makes old filter state meaningless */
             }
         }
-        st = derivatives_at_sample(ctl, meas, &x);
+        st = derivatives_at_sample(ctl, filter, meas, &x);
     }
     if (st != TVO_OK) {
         return hold_or_stop(ctl, apply_tick, elapsed, periods, st, cmd);
     }
-    (void)tvo_sample_clock_accept_stamp(&ctl->clock, meas->stamp_tick);
 
     const uint8_t k = ctl->cfg.relative_degree;
     const uint8_t m = ctl->objective->primal_dim;
@@ -250,7 +285,11 @@ tvo_status_t tvo_chain_controller_step(tvo_chain_controller_t *ctl, const tvo_ch
         }
     }
     next.flags = flags;
+    (void)tvo_sample_clock_accept_stamp(&ctl->clock, meas->stamp_tick);
     (void)tvo_sample_clock_good(&ctl->clock, apply_tick, elapsed);
+    for (uint8_t j = 0; j + 1u < TVO_MAX_RELATIVE_DEGREE; ++j) {
+        ctl->filter[j] = filter[j];
+    }
     ctl->held = next;
     *cmd = next;
     return TVO_OK;

@@ -174,19 +174,26 @@ static tvo_real_t clamp(tvo_real_t v, tvo_real_t limit, uint32_t flag, uint32_t 
     return v;
 }
 
+/* The robots stop: speed states, the dual dynamics and the held command go to zero. */
+static void drop_to_rest(tvo_controller_t *ctl, tvo_command_t *cmd)
+{
+    for (uint8_t r = 0; r < TVO_MAX_ROBOTS; ++r) {
+        ctl->speed_state_mps[r] = TVO_R(0.0);
+    }
+    for (uint8_t q = 0; q < TVO_MAX_EQUALITIES; ++q) {
+        ctl->multiplier_rate[q] = TVO_R(0.0);
+    }
+    ctl->speed_mismatch_periods = 0u;
+    stop_command(&ctl->held, 0u);
+    stop_command(cmd, TVO_FLAG_SAFE_STOP);
+}
+
 /* A period without a usable measurement (or law result): hold, or stop once the watchdog expires. */
 static tvo_status_t hold_or_stop(tvo_controller_t *ctl, uint32_t apply_tick, uint64_t elapsed, uint32_t periods,
                                  tvo_status_t reason, tvo_command_t *cmd)
 {
     if (tvo_sample_clock_missed(&ctl->clock, apply_tick, elapsed, periods)) {
-        for (uint8_t r = 0; r < TVO_MAX_ROBOTS; ++r) {
-            ctl->speed_state_mps[r] = TVO_R(0.0);
-        }
-        for (uint8_t q = 0; q < TVO_MAX_EQUALITIES; ++q) {
-            ctl->multiplier_rate[q] = TVO_R(0.0); /* the robots stop; so does the dual dynamics */
-        }
-        stop_command(&ctl->held, 0u);
-        stop_command(cmd, TVO_FLAG_SAFE_STOP);
+        drop_to_rest(ctl, cmd);
         return TVO_ERR_WATCHDOG;
     }
     *cmd = ctl->held;
@@ -194,9 +201,10 @@ static tvo_status_t hold_or_stop(tvo_controller_t *ctl, uint32_t apply_tick, uin
     return reason;
 }
 
-/* Position-only mode: filtered y' at the sample and the heading estimate at the sample. */
-static tvo_status_t position_only_estimate(tvo_controller_t *ctl, const tvo_measurement_t *meas,
-                                           tvo_real_t *rate_at_sample,
+/* Position-only mode: filtered y' and the heading estimate at the sample. The filter is the step's
+ * working copy (committed only when the step succeeds), so a refused step leaves no trace. */
+static tvo_status_t position_only_estimate(const tvo_controller_t *ctl, tvo_dirty_derivative_t *filter,
+                                           const tvo_measurement_t *meas, tvo_real_t *rate_at_sample,
                                            tvo_real_t *heading_at_sample)
 {
     const uint8_t n = ctl->cfg.robot_count;
@@ -206,25 +214,22 @@ static tvo_status_t position_only_estimate(tvo_controller_t *ctl, const tvo_meas
         position[2u * r + 1u] = meas->position_m[r][1];
     }
     tvo_status_t st;
-    if (!ctl->velocity_filter.primed) {
+    if (!filter->primed) {
         /* Start as if moving at the speed state along the (first measured, else estimated) heading. */
         tvo_real_t rate0[TVO_MAX_OUTPUT_DIM] = {TVO_R(0.0)};
         for (uint8_t r = 0; r < n; ++r) {
-            if (meas->heading_valid) {
-                ctl->heading_estimate_rad[r] = meas->heading_rad[r];
-            }
-            heading_at_sample[r] = ctl->heading_estimate_rad[r];
+            heading_at_sample[r] = meas->heading_valid ? meas->heading_rad[r] : ctl->heading_estimate_rad[r];
             rate0[2u * r] = ctl->speed_state_mps[r] * TVO_COS(heading_at_sample[r]);
             rate0[2u * r + 1u] = ctl->speed_state_mps[r] * TVO_SIN(heading_at_sample[r]);
         }
-        st = tvo_dirty_derivative_reset(&ctl->velocity_filter, position, rate0);
+        st = tvo_dirty_derivative_reset(filter, position, rate0);
         for (uint8_t i = 0; i < 2u * n; ++i) {
             rate_at_sample[i] = rate0[i];
         }
         return st;
     }
     const tvo_real_t dt_s = tvo_ticks_to_seconds(meas->stamp_tick - ctl->clock.last_stamp_tick, ctl->cfg.tick_hz);
-    st = tvo_dirty_derivative_step(&ctl->velocity_filter, position, dt_s, rate_at_sample);
+    st = tvo_dirty_derivative_step(filter, position, dt_s, rate_at_sample);
     if (st != TVO_OK) {
         return st;
     }
@@ -279,12 +284,15 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     tvo_status_t st = check_measurement(ctl, meas, apply_tick);
     tvo_real_t rate_filtered[TVO_MAX_OUTPUT_DIM];
     tvo_real_t heading_at_sample[TVO_MAX_ROBOTS];
+    const int position_only = cfg->velocity_source == TVO_VELOCITY_FROM_POSITION;
+    tvo_dirty_derivative_t filter; /* the step's copy of the velocity filter, kept only on success */
     if (st == TVO_OK) {
-        if (ctl->clock.stopped) {
-            ctl->velocity_filter.primed = 0; /* the gap makes old filter state meaningless */
-        }
-        if (cfg->velocity_source == TVO_VELOCITY_FROM_POSITION) {
-            st = position_only_estimate(ctl, meas, rate_filtered, heading_at_sample);
+        if (position_only) {
+            filter = ctl->velocity_filter;
+            if (ctl->clock.stopped) {
+                filter.primed = 0; /* the gap makes old filter state meaningless */
+            }
+            st = position_only_estimate(ctl, &filter, meas, rate_filtered, heading_at_sample);
         } else {
             for (uint8_t r = 0; r < n; ++r) {
                 heading_at_sample[r] = meas->heading_rad[r];
@@ -294,7 +302,6 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     if (st != TVO_OK) {
         return hold_or_stop(ctl, apply_tick, elapsed, periods, st, cmd);
     }
-    (void)tvo_sample_clock_accept_stamp(&ctl->clock, meas->stamp_tick);
 
     const uint32_t age_ticks = apply_tick - meas->stamp_tick;
     const tvo_real_t age_s = tvo_ticks_to_seconds(age_ticks, cfg->tick_hz);
@@ -310,12 +317,20 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     memset(&y, 0, sizeof(y));
     tvo_real_t heading[TVO_MAX_ROBOTS] = {TVO_R(0.0)};
     tvo_real_t speed[TVO_MAX_ROBOTS] = {TVO_R(0.0)}; /* dynamic-extension speed where the law is evaluated */
+    tvo_real_t speed_state[TVO_MAX_ROBOTS] = {TVO_R(0.0)}; /* the step's copy of the extension's state */
+    int speed_contradicted = 0;
     for (uint8_t r = 0; r < n; ++r) {
+        speed_state[r] = ctl->speed_state_mps[r];
         if (cfg->velocity_source == TVO_VELOCITY_FROM_POSE && meas->speed_valid) {
             /* Re-sync the extension with what the plant actually does (slip, disturbance): the plant
              * should run at the held speed, so shift the state by the measured departure from it. */
-            const tvo_real_t departure = meas->speed_mps[r] - ctl->held.speed_mps[r];
-            ctl->speed_state_mps[r] = clamp(ctl->speed_state_mps[r] + departure, cfg->speed_max_mps, 0u, &flags);
+            const tvo_real_t held_speed = ctl->held.speed_mps[r];
+            const tvo_real_t departure = meas->speed_mps[r] - held_speed;
+            const tvo_real_t tolerance = TVO_SPEED_MISMATCH_FRACTION * TVO_FABS(held_speed);
+            if (TVO_FABS(departure) > (tolerance > TVO_SPEED_MISMATCH_MPS ? tolerance : TVO_SPEED_MISMATCH_MPS)) {
+                speed_contradicted = 1;
+            }
+            speed_state[r] = clamp(speed_state[r] + departure, cfg->speed_max_mps, 0u, &flags);
         }
         tvo_pose_t pose;
         pose.position_m[0] = meas->position_m[r][0];
@@ -329,7 +344,7 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
         }
         heading[r] = pose.heading_rad;
         /* Mid-interval speed: the state plus half a period of the last acceleration (O(h^2)). */
-        speed[r] = ctl->speed_state_mps[r] +
+        speed[r] = speed_state[r] +
                    (zoh_aware ? TVO_R(0.5) * ctl->period_s * ctl->telemetry.accel_mps2[r] : TVO_R(0.0));
         y.d[0][2u * r] = pose.position_m[0];
         y.d[0][2u * r + 1u] = pose.position_m[1];
@@ -387,11 +402,11 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
         accel[r] = clamp(accel[r], cfg->accel_max_mps2, TVO_FLAG_ACCEL_SATURATED, &flags);
         next.turn_rate_radps[r] = clamp(turn_rate, cfg->omega_max_radps, TVO_FLAG_OMEGA_SATURATED, &flags);
         /* Anti-windup: the integrator state itself is limited, so no excess accumulates. */
-        speed_next[r] = clamp(ctl->speed_state_mps[r] + accel[r] * ctl->period_s, cfg->speed_max_mps,
+        speed_next[r] = clamp(speed_state[r] + accel[r] * ctl->period_s, cfg->speed_max_mps,
                               TVO_FLAG_SPEED_SATURATED, &flags);
         /* Hold the interval average of the speed state, so the held straight-line distance matches
          * the continuous extension to second order in h (end-of-interval speed would lead by a h/2). */
-        next.speed_mps[r] = TVO_R(0.5) * (ctl->speed_state_mps[r] + speed_next[r]);
+        next.speed_mps[r] = TVO_R(0.5) * (speed_state[r] + speed_next[r]);
         if (!isfinite(next.speed_mps[r]) || !isfinite(next.turn_rate_radps[r])) {
             st = TVO_ERR_NUMERIC;
         }
@@ -400,7 +415,17 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     if (st != TVO_OK) {
         return hold_or_stop(ctl, apply_tick, elapsed, periods, st, cmd);
     }
+    /* The step succeeded: from here on its working copies become the controller's state. */
+    (void)tvo_sample_clock_accept_stamp(&ctl->clock, meas->stamp_tick);
     (void)tvo_sample_clock_good(&ctl->clock, apply_tick, elapsed);
+    if (position_only) {
+        ctl->velocity_filter = filter;
+    }
+    ctl->speed_mismatch_periods = speed_contradicted ? ctl->speed_mismatch_periods + 1u : 0u;
+    if (ctl->speed_mismatch_periods >= TVO_SPEED_MISMATCH_PERIODS) {
+        ctl->speed_mismatch_periods = TVO_SPEED_MISMATCH_PERIODS; /* saturate: no wrap in a long stall */
+        flags |= TVO_FLAG_SPEED_MISMATCH;
+    }
     for (uint8_t q = 0; q < dual && q < TVO_MAX_EQUALITIES; ++q) {
         /* Exact for the constant nu'' the law asked for over the period. */
         const tvo_real_t accel_q = y_accel[primal + q];
@@ -436,6 +461,36 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     return TVO_OK;
 }
 
+tvo_status_t tvo_controller_check(const tvo_controller_t *ctl, const tvo_measurement_t *meas, uint32_t apply_tick)
+{
+    if (ctl == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (!ctl->initialized) {
+        return TVO_ERR_NOT_INITIALIZED;
+    }
+    uint64_t elapsed = 0u;
+    uint32_t periods = 1u;
+    if (tvo_sample_clock_schedule(&ctl->clock, apply_tick, &elapsed, &periods) != TVO_OK) {
+        return TVO_ERR_OUT_OF_ORDER;
+    }
+    return check_measurement(ctl, meas, apply_tick);
+}
+
+tvo_status_t tvo_controller_safe_stop(tvo_controller_t *ctl, tvo_command_t *cmd)
+{
+    if (cmd == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (ctl == NULL || !ctl->initialized) {
+        stop_command(cmd, TVO_FLAG_SAFE_STOP);
+        return (ctl == NULL) ? TVO_ERR_NULL : TVO_ERR_NOT_INITIALIZED;
+    }
+    (void)tvo_sample_clock_expire(&ctl->clock);
+    drop_to_rest(ctl, cmd);
+    return TVO_OK;
+}
+
 tvo_status_t tvo_controller_sample_tick(const tvo_controller_t *ctl, uint32_t apply_tick, uint32_t *sample_tick)
 {
     if (ctl == NULL || sample_tick == NULL) {
@@ -456,17 +511,5 @@ tvo_status_t tvo_controller_objective_ticks(const tvo_controller_t *ctl, uint32_
     if (!ctl->initialized) {
         return TVO_ERR_NOT_INITIALIZED;
     }
-    const uint32_t ref_tick = ctl->clock.started ? ctl->clock.last_apply_tick : ctl->clock.epoch_tick;
-    const uint64_t ref_elapsed = ctl->clock.started ? ctl->clock.elapsed_ticks : 0u;
-    const uint32_t forward = tick - ref_tick;
-    if (forward <= TVO_MAX_TICK_SPAN) {
-        *objective_ticks = ref_elapsed + forward;
-        return TVO_OK;
-    }
-    const uint32_t backward = ref_tick - tick;
-    if ((uint64_t)backward > ref_elapsed) {
-        return TVO_ERR_OUT_OF_ORDER; /* before the epoch */
-    }
-    *objective_ticks = ref_elapsed - backward;
-    return TVO_OK;
+    return tvo_sample_clock_objective_ticks(&ctl->clock, tick, objective_ticks);
 }

@@ -115,6 +115,16 @@ tvo_status_t tvo_sample_clock_good(tvo_sample_clock_t *clock, uint32_t apply_tic
     return TVO_OK;
 }
 
+tvo_status_t tvo_sample_clock_expire(tvo_sample_clock_t *clock)
+{
+    if (clock == NULL) {
+        return TVO_ERR_NULL;
+    }
+    clock->periods_without_measurement = clock->watchdog_periods;
+    clock->stopped = 1;
+    return TVO_OK;
+}
+
 int tvo_sample_clock_missed(tvo_sample_clock_t *clock, uint32_t apply_tick, uint64_t elapsed_ticks, uint32_t periods)
 {
     if (clock == NULL) {
@@ -129,4 +139,24 @@ int tvo_sample_clock_missed(tvo_sample_clock_t *clock, uint32_t apply_tick, uint
         clock->stopped = 1;
     }
     return clock->stopped;
+}
+
+tvo_status_t tvo_sample_clock_objective_ticks(const tvo_sample_clock_t *clock, uint32_t tick, uint64_t *objective_ticks)
+{
+    if (clock == NULL || objective_ticks == NULL) {
+        return TVO_ERR_NULL;
+    }
+    const uint32_t ref_tick = clock->started ? clock->last_apply_tick : clock->epoch_tick;
+    const uint64_t ref_elapsed = clock->started ? clock->elapsed_ticks : 0u;
+    const uint32_t forward = tick - ref_tick;
+    if (forward <= TVO_MAX_TICK_SPAN) {
+        *objective_ticks = ref_elapsed + forward;
+        return TVO_OK;
+    }
+    const uint32_t backward = ref_tick - tick;
+    if ((uint64_t)backward > ref_elapsed) {
+        return TVO_ERR_OUT_OF_ORDER; /* before the epoch */
+    }
+    *objective_ticks = ref_elapsed - backward;
+    return TVO_OK;
 }

@@ -20,6 +20,9 @@ const char *tvo_status_str(tvo_status_t status)
     case TVO_ERR_MISSING_FIELD: return "measurement lacks a field the configuration needs";
     case TVO_ERR_TARGET_NOT_READY: return "streamed target has no sample yet";
     case TVO_ERR_WATCHDOG: return "watchdog expired: safe stop";
+    case TVO_ERR_IMPLAUSIBLE_STAMP: return "stamp does not fit the session's schedule";
+    case TVO_ERR_SESSION_CONFLICT: return "session id already running with other parameters";
+    case TVO_ERR_NO_SESSION: return "no such session running (send START)";
     default: return "unknown status";
     }
 }
@@ -43,6 +46,8 @@ const char *tvo_param_str(tvo_param_t param)
     case TVO_PARAM_VELOCITY_SOURCE: return "velocity_source";
     case TVO_PARAM_INITIAL_SPEED: return "initial_speed_mps";
     case TVO_PARAM_EPOCH: return "epoch_tick";
+    case TVO_PARAM_CLOCK_SOURCE: return "clock_source";
+    case TVO_PARAM_PLANT_KIND: return "plant_kind";
     default: return "unknown parameter";
     }
 }

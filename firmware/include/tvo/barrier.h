@@ -29,6 +29,10 @@
 #include "tvo/objective.h"
 #include "tvo/status.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct {
     tvo_real_t c0;                  /* c(0) > 0 */
     tvo_real_t alpha_c_per_s;       /* growth rate of c, >= 0 */
@@ -75,5 +79,9 @@ tvo_status_t tvo_barrier_derivatives(uint8_t relaxation_degree, tvo_real_t sigma
  */
 tvo_status_t tvo_barrier_weight_jet(const tvo_barrier_t *barrier, const tvo_jet_t *f_jet, const tvo_time_jet_t *t,
                                     uint8_t order, tvo_jet_t *w_jet);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* TVO_BARRIER_H */

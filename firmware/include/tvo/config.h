@@ -14,6 +14,10 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #ifndef TVO_USE_DOUBLE
 #define TVO_USE_DOUBLE 0
 #endif
@@ -92,6 +96,10 @@ typedef float tvo_real_t;
 #endif
 #if TVO_MAX_EQUALITIES < 2 || TVO_MAX_EQUALITIES % 2 != 0
 #error "TVO_MAX_EQUALITIES must be a positive even number (a formation offset uses 2)"
+#endif
+
+#ifdef __cplusplus
+}
 #endif
 
 #endif /* TVO_CONFIG_H */

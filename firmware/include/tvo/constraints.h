@@ -30,6 +30,10 @@
 #include "tvo/barrier.h"
 #include "tvo/objective.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum {
     TVO_DISTANCE_MIN = 0,
     TVO_DISTANCE_MAX = 1
@@ -96,5 +100,9 @@ tvo_status_t tvo_free_space_constraint_max(const void *term, const tvo_real_t *y
 
 /** Clearance |y_r - o_i| - r - r_i of robot position p to obstacle i (negative: collision). */
 tvo_real_t tvo_disk_clearance(const tvo_disk_t *obstacle, tvo_real_t robot_radius_m, const tvo_real_t position_m[2]);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* TVO_CONSTRAINTS_H */

@@ -27,9 +27,15 @@
  *     turn rate, and is pulled toward the filtered velocity direction with time constant 10 T_f.
  *
  * Measurements are rejected (the status says why, the previous command is held) when they carry
- * NaN/Inf, are stamped after apply_tick, are older than one period, or do not advance. After
- * watchdog_periods periods without a valid measurement the controller stops the robots
+ * NaN/Inf, are stamped after apply_tick, are older than one period, or do not advance; a rejected
+ * measurement changes nothing but the watchdog's count (filters, speed state, stamps are untouched).
+ * After watchdog_periods periods without a valid measurement the controller stops the robots
  * (v = 0, omega = 0, speed state reset) and reports TVO_ERR_WATCHDOG until measurements resume.
+ *
+ * A valid measured speed that departs from the held speed by more than
+ * max(TVO_SPEED_MISMATCH_MPS, TVO_SPEED_MISMATCH_FRACTION |held|) for TVO_SPEED_MISMATCH_PERIODS
+ * accepted steps in a row flags the command TVO_FLAG_SPEED_MISMATCH (stalled wheels, or a plant
+ * that reports a speed it does not have); the command is still computed.
  */
 #ifndef TVO_CONTROLLER_H
 #define TVO_CONTROLLER_H
@@ -39,6 +45,15 @@
 #include "tvo/objective.h"
 #include "tvo/sample_clock.h"
 #include "tvo/unicycle.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Speed-mismatch flag: departure threshold (m/s), relative part, and periods in a row. */
+#define TVO_SPEED_MISMATCH_MPS TVO_R(0.25)
+#define TVO_SPEED_MISMATCH_FRACTION TVO_R(0.5)
+#define TVO_SPEED_MISMATCH_PERIODS 5u
 
 typedef enum {
     /** y' = v e_theta with the measured heading; a valid measured speed re-syncs the speed state. */
@@ -108,6 +123,7 @@ typedef struct {
     tvo_real_t multiplier_rate[TVO_MAX_EQUALITIES];  /* nu' */
     tvo_command_t held;              /* command applied over the current interval */
     tvo_controller_telemetry_t telemetry;
+    uint32_t speed_mismatch_periods; /* accepted steps in a row whose measured speed contradicted the held one */
     uint8_t initialized;
 } tvo_controller_t;
 
@@ -134,6 +150,20 @@ tvo_status_t tvo_controller_init(tvo_controller_t *ctl, const tvo_controller_con
 tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t *meas,
                                  uint32_t apply_tick, tvo_command_t *cmd);
 
+/**
+ * What tvo_controller_step would say of this measurement before computing anything: TVO_OK if it
+ * would use it, else the refusal (out of order, not finite, future, stale, missing field).
+ * Changes nothing, so an edge can refuse a message without a trace in the controller.
+ */
+tvo_status_t tvo_controller_check(const tvo_controller_t *ctl, const tvo_measurement_t *meas, uint32_t apply_tick);
+
+/**
+ * Drops to rest now, as the watchdog does: held command and speed states zero, multiplier rates
+ * zero, the watchdog counted as expired (so filters restart with the next accepted measurement).
+ * cmd receives the safe stop (all zero, TVO_FLAG_SAFE_STOP). The clock does not advance.
+ */
+tvo_status_t tvo_controller_safe_stop(tvo_controller_t *ctl, tvo_command_t *cmd);
+
 /** Tick at which to sample for the command applied at apply_tick: apply_tick - delay. */
 tvo_status_t tvo_controller_sample_tick(const tvo_controller_t *ctl, uint32_t apply_tick,
                                         uint32_t *sample_tick);
@@ -141,5 +171,9 @@ tvo_status_t tvo_controller_sample_tick(const tvo_controller_t *ctl, uint32_t ap
 /** Converts an objective-time tick count to the streamed-target stamp for a plant tick. */
 tvo_status_t tvo_controller_objective_ticks(const tvo_controller_t *ctl, uint32_t tick,
                                             uint64_t *objective_ticks);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* TVO_CONTROLLER_H */

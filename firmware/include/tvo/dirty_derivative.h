@@ -15,6 +15,10 @@
 #include "tvo/config.h"
 #include "tvo/status.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct {
     tvo_real_t tf_s;
     tvo_real_t period_s;
@@ -41,5 +45,9 @@ tvo_status_t tvo_dirty_derivative_reset(tvo_dirty_derivative_t *filter, const tv
  */
 tvo_status_t tvo_dirty_derivative_step(tvo_dirty_derivative_t *filter, const tvo_real_t *input,
                                        tvo_real_t dt_s, tvo_real_t *output);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* TVO_DIRTY_DERIVATIVE_H */

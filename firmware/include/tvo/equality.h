@@ -12,6 +12,10 @@
 #include "tvo/objective.h"
 #include "tvo/target.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct {
     const tvo_target_t *offset;     /* d(t) */
     uint8_t offset_a;               /* 2 * robot_a */
@@ -28,5 +32,9 @@ tvo_status_t tvo_offset_equality_add(tvo_offset_equality_term_t *term, tvo_objec
 
 tvo_status_t tvo_offset_equality_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim,
                                               const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* TVO_EQUALITY_H */

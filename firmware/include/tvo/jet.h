@@ -15,6 +15,10 @@
 
 #include "tvo/config.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct {
     tvo_real_t c[TVO_JET_MAX_ORDER + 1];
 } tvo_jet_t;
@@ -40,5 +44,9 @@ void tvo_jet_log(const tvo_jet_t *a, uint8_t order, tvo_jet_t *out);
 void tvo_jet_exp(const tvo_jet_t *a, uint8_t order, tvo_jet_t *out);
 /** 1 if every coefficient up to order is finite. */
 int tvo_jet_is_finite(const tvo_jet_t *a, uint8_t order);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* TVO_JET_H */

@@ -17,6 +17,10 @@
 
 #include "tvo/objective.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct {
     uint8_t relative_degree;                       /* k */
     uint8_t dim;                                   /* size of z: m (+ q multipliers) */
@@ -51,5 +55,9 @@ tvo_status_t tvo_law_init(tvo_law_t *law, uint8_t relative_degree, uint8_t dim, 
 tvo_status_t tvo_law_evaluate(const tvo_law_t *law, const tvo_objective_t *objective,
                               const tvo_output_derivs_t *y, const tvo_time_jet_t *t,
                               tvo_real_t *y_k, tvo_law_eval_t *eval);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* TVO_LAW_H */

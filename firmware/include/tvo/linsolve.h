@@ -21,6 +21,10 @@
 #include "tvo/config.h"
 #include "tvo/status.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef tvo_real_t tvo_matrix_t[TVO_MAX_Z_DIM][TVO_MAX_Z_DIM];
 
 /**
@@ -36,5 +40,9 @@ tvo_status_t tvo_cholesky_solve(tvo_matrix_t a, uint8_t n, const tvo_real_t *b, 
  */
 tvo_status_t tvo_saddle_solve(tvo_matrix_t a, uint8_t primal_n, uint8_t dual_n, const tvo_real_t *b, tvo_real_t *x,
                               tvo_real_t *shift);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* TVO_LINSOLVE_H */

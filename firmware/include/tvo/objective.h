@@ -21,6 +21,10 @@
 #include "tvo/jet.h"
 #include "tvo/status.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /**
  * Time along a jet: t(tau) = t_s + rate * tau. rate is 1 along the trajectory and 0 for Hessian
  * columns. ticks is the same instant as an exact tick count since the objective's epoch, for
@@ -92,5 +96,9 @@ tvo_status_t tvo_objective_constraint_max(const tvo_objective_t *objective, cons
 
 /** Seconds since the epoch for an exact tick count (integer part split off to keep precision). */
 tvo_real_t tvo_ticks_to_seconds(uint64_t ticks, uint32_t tick_hz);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* TVO_OBJECTIVE_H */

@@ -14,6 +14,10 @@
 #include "tvo/target.h"
 #include "tvo/tracking.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define TVO_MAX_DISTANCE_BOUNDS 6
 #define TVO_MAX_HALFSPACES 4
 #define TVO_MAX_OFFSET_EQUALITIES (TVO_MAX_EQUALITIES / 2)
@@ -93,5 +97,9 @@ tvo_status_t tvo_problem_choose_slack(tvo_problem_t *problem, const tvo_real_t *
 
 /** Streamed targets: the robot's target, to feed with tvo_target_stream_update. */
 tvo_target_t *tvo_problem_target(tvo_problem_t *problem, uint8_t robot);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* TVO_PROBLEM_H */

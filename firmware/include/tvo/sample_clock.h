@@ -12,6 +12,10 @@
 #include "tvo/config.h"
 #include "tvo/status.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /** Largest tick difference treated as "forward" in wrap-around arithmetic. */
 #define TVO_MAX_TICK_SPAN 0x3FFFFFFFu
 
@@ -62,7 +66,20 @@ tvo_status_t tvo_sample_clock_accept_stamp(tvo_sample_clock_t *clock, uint32_t s
 /** Ends a period with a good step: the watchdog restarts. */
 tvo_status_t tvo_sample_clock_good(tvo_sample_clock_t *clock, uint32_t apply_tick, uint64_t elapsed_ticks);
 
+/**
+ * Ticks from the epoch to a tick near the clock's present (within TVO_MAX_TICK_SPAN either way):
+ * the objective time of a stamp. TVO_ERR_OUT_OF_ORDER if it lies before the epoch.
+ */
+tvo_status_t tvo_sample_clock_objective_ticks(const tvo_sample_clock_t *clock, uint32_t tick, uint64_t *objective_ticks);
+
+/** Expires the watchdog now (a safe stop ordered from outside the step, e.g. the edge's timer). */
+tvo_status_t tvo_sample_clock_expire(tvo_sample_clock_t *clock);
+
 /** Ends a period without a usable step; returns 1 when the watchdog has expired (stop the plant). */
 int tvo_sample_clock_missed(tvo_sample_clock_t *clock, uint32_t apply_tick, uint64_t elapsed_ticks, uint32_t periods);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* TVO_SAMPLE_CLOCK_H */

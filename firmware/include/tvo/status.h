@@ -9,6 +9,10 @@
 
 #include <stdint.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum {
     TVO_OK = 0,
     TVO_ERR_NULL = 1,                /* a required pointer was NULL */
@@ -25,8 +29,14 @@ typedef enum {
     TVO_ERR_NO_MEASUREMENT = 12,     /* no measurement arrived for this period */
     TVO_ERR_MISSING_FIELD = 13,      /* the velocity source needs a field the measurement lacks */
     TVO_ERR_TARGET_NOT_READY = 14,   /* a streamed target has no sample yet */
-    TVO_ERR_WATCHDOG = 15            /* no valid measurement within the watchdog: safe stop */
+    TVO_ERR_WATCHDOG = 15,           /* no valid measurement within the watchdog: safe stop */
+    TVO_ERR_IMPLAUSIBLE_STAMP = 16,  /* the stamp (or stamp and sequence) does not fit the schedule */
+    TVO_ERR_SESSION_CONFLICT = 17,   /* a START reuses the running session's id with other content */
+    TVO_ERR_NO_SESSION = 18          /* no such session is running (send START) */
 } tvo_status_t;
+
+/** Number of status codes: arrays indexed by status (the node's refusal counters) hold this many. */
+#define TVO_STATUS_COUNT 19
 
 /** Names the parameter an init rejected. */
 typedef enum {
@@ -45,7 +55,9 @@ typedef enum {
     TVO_PARAM_OBJECTIVE = 12,
     TVO_PARAM_VELOCITY_SOURCE = 13,
     TVO_PARAM_INITIAL_SPEED = 14,
-    TVO_PARAM_EPOCH = 15
+    TVO_PARAM_EPOCH = 15,
+    TVO_PARAM_CLOCK_SOURCE = 16,
+    TVO_PARAM_PLANT_KIND = 17
 } tvo_param_t;
 
 /* Bits of tvo_command_t.flags: what shaped the command, for telemetry and fault counting. */
@@ -57,11 +69,16 @@ typedef enum {
 #define TVO_FLAG_SAFE_STOP (1u << 5)        /* watchdog expired or law failed: v = 0, omega = 0 */
 #define TVO_FLAG_PREDICTED (1u << 6)        /* state predicted over the computation delay */
 #define TVO_FLAG_REGULARIZED (1u << 7)      /* Hessian not positive definite: the solve shifted it */
+#define TVO_FLAG_SPEED_MISMATCH (1u << 8)   /* measured speed contradicts the commanded speed (stall, or a lying plant) */
 
 /** Short English description of a status, for logs at the edge (no stdio in the core). */
 const char *tvo_status_str(tvo_status_t status);
 
 /** Name of a parameter as it appears in tvo_controller_config_t. */
 const char *tvo_param_str(tvo_param_t param);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* TVO_STATUS_H */

@@ -13,6 +13,10 @@
 #include "tvo/objective.h"
 #include "tvo/status.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum {
     TVO_TARGET_POLYNOMIAL = 0,
     TVO_TARGET_CIRCLE = 1,
@@ -76,5 +80,9 @@ tvo_status_t tvo_target_derivatives(const tvo_target_t *target, const tvo_time_j
 
 /** y_d(t(tau)) as one jet per axis, to the given order (c_j = y_d^(j)(t) rate^j / j!). */
 tvo_status_t tvo_target_jet(const tvo_target_t *target, const tvo_time_jet_t *t, uint8_t order, tvo_jet_t out[2]);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* TVO_TARGET_H */

@@ -9,6 +9,10 @@
 #include "tvo/objective.h"
 #include "tvo/target.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct {
     const tvo_target_t *target;
     tvo_real_t weight[2];   /* diagonal of W, both > 0 (strong convexity) */
@@ -21,5 +25,9 @@ tvo_status_t tvo_tracking_init(tvo_tracking_term_t *term, const tvo_target_t *ta
 /** tvo_gradient_jet_fn of the tracking term (term points to a tvo_tracking_term_t). */
 tvo_status_t tvo_tracking_gradient_jet(const void *term, const tvo_jet_t *y, uint8_t dim,
                                        const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* TVO_TRACKING_H */

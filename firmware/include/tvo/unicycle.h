@@ -14,6 +14,10 @@
 #include "tvo/config.h"
 #include "tvo/status.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct {
     tvo_real_t position_m[2];
     tvo_real_t heading_rad;
@@ -36,5 +40,9 @@ tvo_status_t tvo_unicycle_predict(const tvo_pose_t *start, tvo_real_t speed_mps,
 
 /** Wraps an angle to (-pi, pi]. */
 tvo_real_t tvo_wrap_angle(tvo_real_t angle_rad);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* TVO_UNICYCLE_H */

@@ -1,0 +1,74 @@
+/*
+ * One controller interface for the edge: a tagged union of the core's controllers with a small
+ * table of operations (as tvo_term_t does for objective terms). The node never asks which plant a
+ * session runs; adding a plant is one more table.
+ */
+#ifndef TVO_EDGE_CONTROLLER_H
+#define TVO_EDGE_CONTROLLER_H
+
+#include <stdint.h>
+
+#include "tvo/chain_controller.h"
+#include "tvo/controller.h"
+#include "tvo/problem.h"
+
+#include "session_codec.h"
+#include "step_codec.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef union {
+    tvo_measurement_t unicycle;
+    tvo_chain_measurement_t chain;
+} tvo_edge_measurement_t;
+
+typedef union {
+    tvo_command_t unicycle;
+    tvo_chain_command_t chain;
+} tvo_edge_command_t;
+
+typedef struct tvo_edge_controller tvo_edge_controller_t;
+
+typedef struct {
+    const char *name;
+    /** Relative degree of the flat output (bounds the barrier's m_r below). */
+    uint8_t (*relative_degree)(const tvo_lcm_session_t *msg);
+    /** Configuration from the START, then the core's init (which names the culprit in *why). */
+    tvo_status_t (*init)(tvo_edge_controller_t *ctl, const tvo_lcm_session_t *msg, const tvo_objective_t *objective,
+                         uint32_t epoch_tick, tvo_session_reject_t *why);
+    tvo_status_t (*measurement)(const tvo_lcm_measurement_t *msg, uint8_t robot_count, uint32_t stamp_tick,
+                                tvo_edge_measurement_t *meas);
+    /** The measured positions y (2 per robot), for the slack rule. */
+    void (*positions)(const tvo_edge_measurement_t *meas, uint8_t robot_count, tvo_real_t *y);
+    /** What the step would refuse, changing nothing. */
+    tvo_status_t (*check)(const tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas, uint32_t apply_tick);
+    tvo_status_t (*step)(tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas, uint32_t apply_tick,
+                         tvo_edge_command_t *cmd);
+    tvo_status_t (*safe_stop)(tvo_edge_controller_t *ctl, tvo_edge_command_t *cmd);
+    /** The command in force, flagged TVO_FLAG_HOLDING. */
+    void (*holding)(const tvo_edge_controller_t *ctl, tvo_edge_command_t *cmd);
+    uint32_t (*flags)(const tvo_edge_command_t *cmd);
+    void (*command_to_lcm)(const tvo_edge_command_t *cmd, const tvo_step_stamp_t *stamp, tvo_lcm_command_t *msg);
+    /** The controller's part of the telemetry (its last good step). */
+    void (*telemetry_to_lcm)(const tvo_edge_controller_t *ctl, const tvo_problem_t *problem, tvo_lcm_telemetry_t *msg);
+    const tvo_sample_clock_t *(*clock)(const tvo_edge_controller_t *ctl);
+} tvo_edge_controller_ops_t;
+
+struct tvo_edge_controller {
+    const tvo_edge_controller_ops_t *ops;
+    union {
+        tvo_controller_t unicycle;
+        tvo_chain_controller_t chain;
+    } u;
+};
+
+/** The operations for a session's plant kind (session_t.PLANT_*), NULL if there are none. */
+const tvo_edge_controller_ops_t *tvo_edge_controller_ops(int32_t plant_kind);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* TVO_EDGE_CONTROLLER_H */

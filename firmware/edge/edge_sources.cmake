@@ -1,0 +1,9 @@
+# The node's sources (transport-independent: sessions, schedule, codecs, protocol names), listed once
+# for every program that runs the node: tvo_firmware_node on the host, the PIL program on the board.
+set(tvo_edge_dir ${CMAKE_CURRENT_LIST_DIR})
+set(tvo_edge_node_sources
+  ${tvo_edge_dir}/node.c
+  ${tvo_edge_dir}/session_codec.c
+  ${tvo_edge_dir}/step_codec.c
+  ${tvo_edge_dir}/edge_controller.c
+  ${tvo_edge_dir}/channels.c)

@@ -1,0 +1,408 @@
+/* START message -> core configuration, and the session ack; see session_codec.h. */
+#include "session_codec.h"
+
+#include <float.h>
+#include <string.h>
+
+#include "tvo/sample_clock.h"
+#include "wire_real.h"
+
+/* The wire's fixed arrays must hold what the core can use (the reverse is checked per count). */
+_Static_assert(TVO_LCM_PATH_T_MAX_COEFFS >= TVO_POLY_MAX_DEGREE + 1, "path_t.coeff holds the core's polynomials");
+_Static_assert(TVO_LCM_SESSION_T_MAX_ROBOTS >= TVO_MAX_ROBOTS, "session_t.robot holds every robot");
+
+static tvo_status_t reject(tvo_session_reject_t *why, tvo_status_t status, tvo_param_t param, int32_t part,
+                           int32_t index)
+{
+    if (why != NULL) {
+        why->status = status;
+        why->param = param;
+        why->part = part;
+        why->index = index;
+    }
+    return status;
+}
+
+static tvo_status_t reject_param(tvo_session_reject_t *why, tvo_param_t param)
+{
+    return reject(why, TVO_ERR_PARAM, param, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+}
+
+static tvo_status_t reject_part(tvo_session_reject_t *why, tvo_status_t status, int32_t part, int32_t index)
+{
+    return reject(why, status, TVO_PARAM_OBJECTIVE, part, index);
+}
+
+static int wire_time_ok(int64_t t)
+{
+    return t >= 0 && t <= TVO_WIRE_TIME_MAX_US;
+}
+
+tvo_status_t tvo_session_decode_timing(const tvo_lcm_session_t *msg, tvo_session_timing_t *timing,
+                                       tvo_session_reject_t *why)
+{
+    (void)reject(why, TVO_OK, TVO_PARAM_NONE, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+    if (msg == NULL || timing == NULL) {
+        return reject(why, TVO_ERR_NULL, TVO_PARAM_NONE, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+    }
+    memset(timing, 0, sizeof(*timing));
+    if (!wire_time_ok(msg->utime) || !wire_time_ok(msg->epoch_utime)) {
+        return reject_param(why, TVO_PARAM_EPOCH);
+    }
+    /* The controller's clock reaches 2^30-1 ticks from the epoch on its first step. */
+    const int64_t epoch_lead = msg->epoch_utime - msg->utime;
+    if (epoch_lead < -(int64_t)TVO_MAX_TICK_SPAN || epoch_lead > (int64_t)TVO_MAX_TICK_SPAN) {
+        return reject_param(why, TVO_PARAM_EPOCH);
+    }
+    if (msg->clock_source != TVO_LCM_SESSION_T_CLOCK_PLANT && msg->clock_source != TVO_LCM_SESSION_T_CLOCK_NODE) {
+        return reject_param(why, TVO_PARAM_CLOCK_SOURCE);
+    }
+    if (msg->period_us < 1 || msg->period_us > (int64_t)TVO_MAX_TICK_SPAN) {
+        return reject_param(why, TVO_PARAM_PERIOD);
+    }
+    if (msg->delay_us < 0 || msg->delay_us > msg->period_us) {
+        return reject_param(why, TVO_PARAM_DELAY);
+    }
+    if (msg->watchdog_periods < 1 ||
+        !tvo_sample_clock_watchdog_ok((uint32_t)msg->period_us, (uint32_t)msg->watchdog_periods)) {
+        return reject_param(why, TVO_PARAM_WATCHDOG);
+    }
+    if (msg->robot_count < 1 || msg->robot_count > TVO_MAX_ROBOTS) {
+        return reject_param(why, TVO_PARAM_ROBOT_COUNT);
+    }
+    if (msg->plant_kind != TVO_LCM_SESSION_T_PLANT_UNICYCLE && msg->plant_kind != TVO_LCM_SESSION_T_PLANT_CHAIN) {
+        return reject_param(why, TVO_PARAM_PLANT_KIND);
+    }
+    timing->clock_source = msg->clock_source;
+    timing->epoch_utime = msg->epoch_utime;
+    timing->period_us = msg->period_us;
+    timing->delay_us = msg->delay_us;
+    timing->watchdog_periods = (uint32_t)msg->watchdog_periods;
+    timing->robot_count = (uint8_t)msg->robot_count;
+    timing->plant_kind = msg->plant_kind;
+    return TVO_OK;
+}
+
+tvo_status_t tvo_session_decode_unicycle(const tvo_lcm_session_t *msg, tvo_controller_config_t *cfg,
+                                         tvo_session_reject_t *why)
+{
+    if (msg == NULL || cfg == NULL) {
+        return reject(why, TVO_ERR_NULL, TVO_PARAM_NONE, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+    }
+    tvo_session_timing_t timing;
+    tvo_status_t st = tvo_session_decode_timing(msg, &timing, why);
+    if (st == TVO_OK) {
+        st = tvo_controller_config_default(cfg);
+    }
+    if (st != TVO_OK) {
+        return st;
+    }
+    if (msg->velocity_source == TVO_LCM_SESSION_T_VELOCITY_FROM_POSE) {
+        cfg->velocity_source = TVO_VELOCITY_FROM_POSE;
+    } else if (msg->velocity_source == TVO_LCM_SESSION_T_VELOCITY_FROM_POSITION) {
+        cfg->velocity_source = TVO_VELOCITY_FROM_POSITION;
+    } else {
+        return reject_param(why, TVO_PARAM_VELOCITY_SOURCE);
+    }
+    cfg->tick_hz = TVO_EDGE_TICK_HZ;
+    cfg->period_ticks = (uint32_t)timing.period_us;
+    cfg->delay_ticks = (uint32_t)timing.delay_us;
+    cfg->robot_count = timing.robot_count;
+    cfg->delay_compensation = msg->delay_compensation ? 1u : 0u;
+    cfg->zoh_aware = msg->zoh_aware ? 1u : 0u;
+    cfg->filter_tf_s = tvo_wire_real(msg->filter_tf_s);
+    cfg->gain_kp = tvo_wire_real(msg->gain_kp);
+    cfg->gain_kd = tvo_wire_real(msg->gain_kd);
+    cfg->omega_max_radps = tvo_wire_real(msg->omega_max_radps);
+    cfg->accel_max_mps2 = tvo_wire_real(msg->accel_max_mps2);
+    cfg->speed_max_mps = tvo_wire_real(msg->speed_max_mps);
+    cfg->min_speed_mps = tvo_wire_real(msg->min_speed_mps);
+    cfg->watchdog_periods = timing.watchdog_periods;
+    for (uint8_t r = 0; r < TVO_MAX_ROBOTS; ++r) {
+        cfg->initial_speed_mps[r] = (r < timing.robot_count) ? tvo_wire_real(msg->robot[r].initial_speed_mps) : TVO_R(0.0);
+    }
+    return TVO_OK;
+}
+
+tvo_status_t tvo_session_decode_chain(const tvo_lcm_session_t *msg, tvo_chain_config_t *cfg,
+                                      tvo_session_reject_t *why)
+{
+    if (msg == NULL || cfg == NULL) {
+        return reject(why, TVO_ERR_NULL, TVO_PARAM_NONE, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+    }
+    tvo_session_timing_t timing;
+    tvo_status_t st = tvo_session_decode_timing(msg, &timing, why);
+    if (st == TVO_OK) {
+        st = tvo_chain_config_default(cfg);
+    }
+    if (st != TVO_OK) {
+        return st;
+    }
+    if (msg->chain_relative_degree < 1 || msg->chain_relative_degree > TVO_MAX_RELATIVE_DEGREE) {
+        return reject_param(why, TVO_PARAM_GAINS);
+    }
+    if (msg->velocity_source != TVO_LCM_SESSION_T_VELOCITY_FROM_POSE &&
+        msg->velocity_source != TVO_LCM_SESSION_T_VELOCITY_FROM_POSITION) {
+        return reject_param(why, TVO_PARAM_VELOCITY_SOURCE);
+    }
+    cfg->tick_hz = TVO_EDGE_TICK_HZ;
+    cfg->period_ticks = (uint32_t)timing.period_us;
+    cfg->delay_ticks = (uint32_t)timing.delay_us;
+    cfg->relative_degree = (uint8_t)msg->chain_relative_degree;
+    cfg->delay_compensation = msg->delay_compensation ? 1u : 0u;
+    cfg->zoh_aware = msg->zoh_aware ? 1u : 0u;
+    cfg->filtered_derivatives = (msg->velocity_source == TVO_LCM_SESSION_T_VELOCITY_FROM_POSITION) ? 1u : 0u;
+    cfg->filter_tf_s = tvo_wire_real(msg->filter_tf_s);
+    for (size_t i = 0; i < TVO_MAX_RELATIVE_DEGREE; ++i) {
+        cfg->gain[i] = tvo_wire_real(msg->chain_gains[i]);
+    }
+    cfg->input_max = tvo_wire_real(msg->chain_input_max);
+    cfg->watchdog_periods = timing.watchdog_periods;
+    return TVO_OK;
+}
+
+tvo_status_t tvo_session_decode_path(const tvo_lcm_path_t *path, tvo_target_t *target)
+{
+    if (path == NULL || target == NULL) {
+        return TVO_ERR_NULL;
+    }
+    switch (path->kind) {
+    case TVO_LCM_PATH_T_KIND_POLYNOMIAL: {
+        tvo_real_t coeff[2][TVO_POLY_MAX_DEGREE + 1];
+        for (size_t axis = 0; axis < 2; ++axis) {
+            for (size_t j = 0; j < (size_t)TVO_LCM_PATH_T_MAX_COEFFS; ++j) {
+                if (j <= TVO_POLY_MAX_DEGREE) {
+                    coeff[axis][j] = tvo_wire_real(path->coeff[axis][j]);
+                } else if (path->coeff[axis][j] != 0.0) {
+                    return TVO_ERR_CAPACITY; /* a degree this build's limits cannot evaluate */
+                }
+            }
+        }
+        /* C11 does not convert T (*)[n] to const T (*)[n] implicitly: the cast only adds const. */
+        return tvo_target_init_polynomial(target, (const tvo_real_t(*)[TVO_POLY_MAX_DEGREE + 1])coeff);
+    }
+    case TVO_LCM_PATH_T_KIND_CIRCLE: {
+        const tvo_real_t center_m[2] = {tvo_wire_real(path->center_m[0]), tvo_wire_real(path->center_m[1])};
+        return tvo_target_init_circle(target, center_m, tvo_wire_real(path->semi_axis_m[0]),
+                                      tvo_wire_real(path->omega_radps), tvo_wire_real(path->phase_rad));
+    }
+    case TVO_LCM_PATH_T_KIND_ELLIPSE: {
+        tvo_target_ellipse_t ellipse;
+        for (size_t axis = 0; axis < 2; ++axis) {
+            ellipse.center_m[axis] = tvo_wire_real(path->center_m[axis]);
+            ellipse.semi_axis_m[axis] = tvo_wire_real(path->semi_axis_m[axis]);
+        }
+        ellipse.omega_radps = tvo_wire_real(path->omega_radps);
+        ellipse.phase_rad = tvo_wire_real(path->phase_rad);
+        ellipse.rotation_rad = tvo_wire_real(path->rotation_rad);
+        return tvo_target_init_ellipse(target, &ellipse);
+    }
+    case TVO_LCM_PATH_T_KIND_STREAMED:
+        return tvo_target_init_streamed(target);
+    default:
+        return TVO_ERR_PARAM;
+    }
+}
+
+/* A count from the wire, 0 .. both the message's and the core's capacity. */
+static int count_ok(int32_t count, int32_t wire_max, int32_t core_max)
+{
+    return count >= 0 && count <= wire_max && count <= core_max;
+}
+
+/* A robot index from the wire: 0 .. robot_count - 1 (checked before narrowing to uint8_t). */
+static int robot_ok(int32_t robot, uint8_t robot_count)
+{
+    return robot >= 0 && robot < (int32_t)robot_count;
+}
+
+static tvo_status_t decode_robots(const tvo_lcm_session_t *msg, tvo_problem_desc_t *desc, tvo_session_reject_t *why)
+{
+    if (msg->robot_count < 1 || msg->robot_count > TVO_MAX_ROBOTS) {
+        return reject_param(why, TVO_PARAM_ROBOT_COUNT);
+    }
+    desc->robot_count = (uint8_t)msg->robot_count;
+    for (uint8_t r = 0; r < desc->robot_count; ++r) {
+        desc->tracking_weight[r][0] = tvo_wire_real(msg->robot[r].tracking_weight[0]);
+        desc->tracking_weight[r][1] = tvo_wire_real(msg->robot[r].tracking_weight[1]);
+        const tvo_status_t st = tvo_session_decode_path(&msg->robot[r].target, &desc->target[r]);
+        if (st != TVO_OK) {
+            return reject_part(why, st, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, (int32_t)r);
+        }
+    }
+    return TVO_OK;
+}
+
+static tvo_status_t decode_barrier(const tvo_lcm_barrier_t *wire, tvo_barrier_config_t *cfg,
+                                   tvo_session_reject_t *why)
+{
+    if (wire->relaxation_degree < 0 || wire->relaxation_degree > (int32_t)UINT8_MAX) {
+        return reject_part(why, TVO_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PART_BARRIER, -1);
+    }
+    cfg->c0 = tvo_wire_real(wire->c0);
+    cfg->alpha_c_per_s = tvo_wire_real(wire->alpha_c_per_s);
+    cfg->c_max = tvo_wire_real(wire->c_max);
+    cfg->delta0 = tvo_wire_real(wire->delta0);
+    cfg->alpha_s_per_s = tvo_wire_real(wire->alpha_s_per_s);
+    cfg->slack_margin = tvo_wire_real(wire->slack_margin);
+    cfg->relaxation_degree = (uint8_t)wire->relaxation_degree;
+    return TVO_OK; /* ranges: tvo_barrier_init, through tvo_problem_init */
+}
+
+static tvo_status_t decode_distances(const tvo_lcm_session_t *msg, tvo_problem_desc_t *desc,
+                                     tvo_session_reject_t *why)
+{
+    const int32_t part = TVO_LCM_SESSION_ACK_T_PART_DISTANCE;
+    if (!count_ok(msg->distance_count, TVO_LCM_SESSION_T_MAX_DISTANCE_BOUNDS, TVO_MAX_DISTANCE_BOUNDS)) {
+        return reject_part(why, TVO_ERR_CAPACITY, part, -1);
+    }
+    desc->distance_count = (uint8_t)msg->distance_count;
+    for (uint8_t i = 0; i < desc->distance_count; ++i) {
+        const tvo_lcm_distance_bound_t *w = &msg->distance[i];
+        if (!robot_ok(w->robot_a, desc->robot_count) || !robot_ok(w->robot_b, desc->robot_count)) {
+            return reject_part(why, TVO_ERR_PARAM, part, (int32_t)i);
+        }
+        tvo_distance_bound_desc_t *d = &desc->distance[i];
+        d->robot_a = (uint8_t)w->robot_a;
+        d->robot_b = (uint8_t)w->robot_b;
+        d->min_m = tvo_wire_real(w->min_m);
+        d->min_rate_mps = tvo_wire_real(w->min_rate_mps);
+        d->max_m = tvo_wire_real(w->max_m);
+        d->max_rate_mps = tvo_wire_real(w->max_rate_mps);
+    }
+    return TVO_OK;
+}
+
+static tvo_status_t decode_halfspaces(const tvo_lcm_session_t *msg, tvo_problem_desc_t *desc,
+                                      tvo_session_reject_t *why)
+{
+    const int32_t part = TVO_LCM_SESSION_ACK_T_PART_HALFSPACE;
+    if (!count_ok(msg->halfspace_count, TVO_LCM_SESSION_T_MAX_HALFSPACES, TVO_MAX_HALFSPACES)) {
+        return reject_part(why, TVO_ERR_CAPACITY, part, -1);
+    }
+    desc->halfspace_count = (uint8_t)msg->halfspace_count;
+    for (uint8_t i = 0; i < desc->halfspace_count; ++i) {
+        const tvo_lcm_halfspace_t *w = &msg->halfspace[i];
+        if (!robot_ok(w->robot, desc->robot_count)) {
+            return reject_part(why, TVO_ERR_PARAM, part, (int32_t)i);
+        }
+        tvo_halfspace_desc_t *h = &desc->halfspace[i];
+        h->robot = (uint8_t)w->robot;
+        for (size_t axis = 0; axis < 2; ++axis) {
+            h->normal[axis] = tvo_wire_real(w->normal[axis]);
+            h->normal_rate[axis] = tvo_wire_real(w->normal_rate[axis]);
+        }
+        h->bound_m = tvo_wire_real(w->bound_m);
+        h->bound_rate_mps = tvo_wire_real(w->bound_rate_mps);
+    }
+    return TVO_OK;
+}
+
+static tvo_status_t decode_obstacles(const tvo_lcm_session_t *msg, tvo_problem_desc_t *desc,
+                                     tvo_session_reject_t *why)
+{
+    if (!count_ok(msg->obstacle_count, TVO_LCM_SESSION_T_MAX_OBSTACLES, TVO_MAX_OBSTACLES)) {
+        return reject_part(why, TVO_ERR_CAPACITY, TVO_LCM_SESSION_ACK_T_PART_OBSTACLES, -1);
+    }
+    desc->obstacle_count = (uint8_t)msg->obstacle_count;
+    desc->robot_radius_m = tvo_wire_real(msg->robot_radius_m);
+    for (uint8_t i = 0; i < desc->obstacle_count; ++i) {
+        desc->obstacle[i].center_m[0] = tvo_wire_real(msg->obstacle[i].center_m[0]);
+        desc->obstacle[i].center_m[1] = tvo_wire_real(msg->obstacle[i].center_m[1]);
+        desc->obstacle[i].radius_m = tvo_wire_real(msg->obstacle[i].radius_m);
+    }
+    return TVO_OK; /* radii, disjointness: tvo_free_space_term_init */
+}
+
+static tvo_status_t decode_offsets(const tvo_lcm_session_t *msg, tvo_problem_desc_t *desc, tvo_session_reject_t *why)
+{
+    const int32_t part = TVO_LCM_SESSION_ACK_T_PART_OFFSETS;
+    if (!count_ok(msg->offset_count, TVO_LCM_SESSION_T_MAX_OFFSETS, TVO_MAX_OFFSET_EQUALITIES)) {
+        return reject_part(why, TVO_ERR_CAPACITY, part, -1);
+    }
+    desc->offset_count = (uint8_t)msg->offset_count;
+    for (uint8_t i = 0; i < desc->offset_count; ++i) {
+        const tvo_lcm_offset_t *w = &msg->offset[i];
+        /* d(t) has no stream of its own on the wire: only on-board time functions. */
+        if (!robot_ok(w->robot_a, desc->robot_count) || !robot_ok(w->robot_b, desc->robot_count) ||
+            w->offset.kind == TVO_LCM_PATH_T_KIND_STREAMED) {
+            return reject_part(why, TVO_ERR_PARAM, part, (int32_t)i);
+        }
+        tvo_offset_desc_t *o = &desc->offset[i];
+        o->robot_a = (uint8_t)w->robot_a;
+        o->robot_b = (uint8_t)w->robot_b;
+        const tvo_status_t st = tvo_session_decode_path(&w->offset, &o->offset);
+        if (st != TVO_OK) {
+            return reject_part(why, st, part, (int32_t)i);
+        }
+    }
+    return TVO_OK;
+}
+
+tvo_status_t tvo_session_decode_problem(const tvo_lcm_session_t *msg, tvo_problem_desc_t *desc,
+                                        tvo_session_reject_t *why)
+{
+    (void)reject(why, TVO_OK, TVO_PARAM_NONE, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+    if (msg == NULL || desc == NULL) {
+        return reject(why, TVO_ERR_NULL, TVO_PARAM_NONE, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+    }
+    tvo_status_t st = tvo_problem_desc_default(desc);
+    if (st == TVO_OK) {
+        st = decode_robots(msg, desc, why);
+    }
+    if (st == TVO_OK) {
+        st = decode_barrier(&msg->barrier, &desc->barrier, why);
+    }
+    if (st == TVO_OK) {
+        st = decode_distances(msg, desc, why);
+    }
+    if (st == TVO_OK) {
+        st = decode_halfspaces(msg, desc, why);
+    }
+    if (st == TVO_OK) {
+        st = decode_obstacles(msg, desc, why);
+    }
+    if (st == TVO_OK) {
+        st = decode_offsets(msg, desc, why);
+    }
+    return st;
+}
+
+int32_t tvo_session_part_from_problem(uint8_t problem_part)
+{
+    static const int32_t parts[] = {
+        TVO_LCM_SESSION_ACK_T_PART_ROBOTS,    TVO_LCM_SESSION_ACK_T_PART_BARRIER,
+        TVO_LCM_SESSION_ACK_T_PART_DISTANCE,  TVO_LCM_SESSION_ACK_T_PART_HALFSPACE,
+        TVO_LCM_SESSION_ACK_T_PART_OBSTACLES, TVO_LCM_SESSION_ACK_T_PART_OFFSETS};
+    return problem_part < sizeof(parts) / sizeof(parts[0]) ? parts[problem_part] : TVO_LCM_SESSION_ACK_T_PART_NONE;
+}
+
+uint32_t tvo_session_content_hash(const uint8_t *data, uint32_t length)
+{
+    /* Encoded session_t: 8-byte fingerprint, then utime (8 bytes), then the content. */
+    const uint32_t skip = 16u;
+    uint32_t hash = 2166136261u;
+    for (uint32_t i = skip; data != NULL && i < length; ++i) {
+        hash = (hash ^ data[i]) * 16777619u;
+    }
+    return hash;
+}
+
+void tvo_session_ack(const tvo_lcm_session_t *msg, const tvo_session_reject_t *why, int64_t running_session_id,
+                     tvo_lcm_session_ack_t *ack)
+{
+    if (ack == NULL) {
+        return;
+    }
+    memset(ack, 0, sizeof(*ack));
+    if (msg != NULL) {
+        ack->utime = msg->utime;
+        ack->session_id = msg->session_id;
+        ack->action = msg->action;
+    }
+    ack->status = (why != NULL) ? (int32_t)why->status : 0;
+    ack->bad_param = (why != NULL) ? (int32_t)why->param : 0;
+    ack->bad_part = (why != NULL) ? why->part : TVO_LCM_SESSION_ACK_T_PART_NONE;
+    ack->bad_index = (why != NULL) ? why->index : -1;
+    ack->running_session_id = running_session_id;
+}

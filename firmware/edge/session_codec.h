@@ -1,0 +1,91 @@
+/*
+ * Session codec: a START message (tvo_lcm_session_t) into what the core needs (timing, controller
+ * configurations, the problem description), with every integer from the wire range-checked before
+ * any arithmetic, and the session ack out. Pure functions: no state, no allocation.
+ */
+#ifndef TVO_SESSION_CODEC_H
+#define TVO_SESSION_CODEC_H
+
+#include <stdint.h>
+
+#include "tvo/chain_controller.h"
+#include "tvo/controller.h"
+#include "tvo/problem.h"
+
+#include "tvo_lcm_session_ack_t.h"
+#include "tvo_lcm_session_t.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Every time and sequence on the wire lies in [0, TVO_WIRE_TIME_MAX_US]: sums of two never overflow int64. */
+#define TVO_WIRE_TIME_MAX_US ((int64_t)1 << 60)
+
+/** Ticks of the core's clock per second: ticks are microseconds, like LCM's utime. */
+#define TVO_EDGE_TICK_HZ 1000000u
+
+/** Why a START was refused: the status, the parameter, the problem part and its entry. */
+typedef struct {
+    tvo_status_t status;
+    tvo_param_t param;      /* TVO_PARAM_OBJECTIVE when the problem was at fault */
+    int32_t part;           /* TVO_LCM_SESSION_ACK_T_PART_*, PART_NONE if not the problem */
+    int32_t index;          /* entry of that part (robot, bound, obstacle, offset), -1 if none */
+} tvo_session_reject_t;
+
+/** The session's timing, checked: period 1 .. 2^30-1 us, delay 0 .. period, watchdog within the span. */
+typedef struct {
+    int32_t clock_source;   /* TVO_LCM_SESSION_T_CLOCK_PLANT or _CLOCK_NODE */
+    int64_t epoch_utime;
+    int64_t period_us;
+    int64_t delay_us;
+    uint32_t watchdog_periods;
+    uint8_t robot_count;
+    int32_t plant_kind;     /* TVO_LCM_SESSION_T_PLANT_* */
+} tvo_session_timing_t;
+
+/**
+ * The wire checks of a START that need no core: action, times within TVO_WIRE_TIME_MAX_US, the
+ * epoch within 2^30-1 us of the message's own utime, timing ranges, robot count, plant kind,
+ * clock source. TVO_OK or TVO_ERR_PARAM with *why naming the parameter.
+ */
+tvo_status_t tvo_session_decode_timing(const tvo_lcm_session_t *msg, tvo_session_timing_t *timing,
+                                       tvo_session_reject_t *why);
+
+/** The unicycle controller's configuration (the core validates ranges when it is initialised). */
+tvo_status_t tvo_session_decode_unicycle(const tvo_lcm_session_t *msg, tvo_controller_config_t *cfg,
+                                         tvo_session_reject_t *why);
+
+/** The chain controller's configuration (PLANT_CHAIN). */
+tvo_status_t tvo_session_decode_chain(const tvo_lcm_session_t *msg, tvo_chain_config_t *cfg,
+                                      tvo_session_reject_t *why);
+
+/**
+ * The problem description: targets and weights per robot, barrier, distance bounds, half-spaces,
+ * obstacles, formation offsets. Counts and robot indices are checked here (why->part/index name
+ * the entry); values are the core's to judge (tvo_problem_init).
+ */
+tvo_status_t tvo_session_decode_problem(const tvo_lcm_session_t *msg, tvo_problem_desc_t *desc,
+                                        tvo_session_reject_t *why);
+
+/** One path (a target or an offset) from the wire; TVO_ERR_PARAM for an unknown kind. */
+tvo_status_t tvo_session_decode_path(const tvo_lcm_path_t *path, tvo_target_t *target);
+
+/** Part of the problem named by tvo_problem_init's part index (session_ack_t.PART_*). */
+int32_t tvo_session_part_from_problem(uint8_t problem_part);
+
+/**
+ * FNV-1a hash of an encoded session message past its fingerprint and utime: two STARTs with the
+ * same hash differ at most in when they were sent (a repeat).
+ */
+uint32_t tvo_session_content_hash(const uint8_t *data, uint32_t length);
+
+/** The ack of a session message. running_session_id is -1 when no session runs. */
+void tvo_session_ack(const tvo_lcm_session_t *msg, const tvo_session_reject_t *why, int64_t running_session_id,
+                     tvo_lcm_session_ack_t *ack);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* TVO_SESSION_CODEC_H */

@@ -1,0 +1,186 @@
+/* One period's messages <-> the core; see step_codec.h. */
+#include "step_codec.h"
+
+#include <string.h>
+
+#include "wire_real.h"
+
+/* The wire's arrays must hold every robot and output the core can have. */
+_Static_assert(TVO_LCM_MEASUREMENT_T_MAX_ROBOTS >= TVO_MAX_ROBOTS, "measurement_t holds every robot");
+_Static_assert(sizeof(((tvo_lcm_command_t *)0)->input) / sizeof(double) >= TVO_MAX_OUTPUT_DIM,
+               "command_t.input holds every output");
+_Static_assert(sizeof(((tvo_lcm_telemetry_t *)0)->gradient) / sizeof(double) >= TVO_MAX_OUTPUT_DIM,
+               "telemetry_t holds every output");
+
+tvo_status_t tvo_step_measurement_from_lcm(const tvo_lcm_measurement_t *msg, uint8_t robot_count, uint32_t stamp_tick,
+                                           tvo_measurement_t *meas)
+{
+    if (msg == NULL || meas == NULL) {
+        return TVO_ERR_NULL;
+    }
+    memset(meas, 0, sizeof(*meas));
+    if (robot_count > TVO_MAX_ROBOTS || msg->robot_count != (int32_t)robot_count) {
+        return TVO_ERR_DIMENSION;
+    }
+    meas->stamp_tick = stamp_tick;
+    for (size_t r = 0; r < robot_count; ++r) {
+        meas->position_m[r][0] = tvo_wire_real(msg->position_m[r][0]);
+        meas->position_m[r][1] = tvo_wire_real(msg->position_m[r][1]);
+        meas->heading_rad[r] = tvo_wire_real(msg->heading_rad[r]);
+        meas->speed_mps[r] = tvo_wire_real(msg->speed_mps[r]);
+    }
+    meas->heading_valid = msg->heading_valid ? 1u : 0u;
+    meas->speed_valid = msg->speed_valid ? 1u : 0u;
+    return TVO_OK;
+}
+
+tvo_status_t tvo_step_chain_measurement_from_lcm(const tvo_lcm_measurement_t *msg, uint8_t robot_count,
+                                                 uint32_t stamp_tick, tvo_chain_measurement_t *meas)
+{
+    if (msg == NULL || meas == NULL) {
+        return TVO_ERR_NULL;
+    }
+    memset(meas, 0, sizeof(*meas));
+    if (robot_count > TVO_MAX_ROBOTS || msg->robot_count != (int32_t)robot_count) {
+        return TVO_ERR_DIMENSION;
+    }
+    meas->stamp_tick = stamp_tick;
+    for (size_t r = 0; r < robot_count; ++r) {
+        for (size_t axis = 0; axis < 2; ++axis) {
+            const size_t i = 2u * r + axis;
+            meas->y.d[0][i] = tvo_wire_real(msg->position_m[r][axis]);
+            if (msg->derivatives_valid) {
+                meas->y.d[1][i] = tvo_wire_real(msg->output_rate_mps[r][axis]);
+#if TVO_MAX_RELATIVE_DEGREE >= 3
+                meas->y.d[2][i] = tvo_wire_real(msg->output_accel_mps2[r][axis]);
+#endif
+            }
+        }
+    }
+    return TVO_OK;
+}
+
+static void command_stamp(const tvo_step_stamp_t *stamp, uint32_t flags, tvo_lcm_command_t *msg)
+{
+    memset(msg, 0, sizeof(*msg));
+    msg->utime = stamp->utime;
+    msg->session_id = stamp->session_id;
+    msg->measurement_sequence = stamp->sequence;
+    msg->robot_count = stamp->robot_count;
+    msg->status = (int32_t)stamp->status;
+    msg->flags = (int32_t)flags;
+}
+
+void tvo_step_command_to_lcm(const tvo_command_t *cmd, const tvo_step_stamp_t *stamp, tvo_lcm_command_t *msg)
+{
+    if (cmd == NULL || stamp == NULL || msg == NULL) {
+        return;
+    }
+    command_stamp(stamp, cmd->flags, msg);
+    for (size_t r = 0; r < stamp->robot_count && r < TVO_MAX_ROBOTS; ++r) {
+        msg->speed_mps[r] = (double)cmd->speed_mps[r];
+        msg->turn_rate_radps[r] = (double)cmd->turn_rate_radps[r];
+    }
+}
+
+void tvo_step_chain_command_to_lcm(const tvo_chain_command_t *cmd, const tvo_step_stamp_t *stamp,
+                                   tvo_lcm_command_t *msg)
+{
+    if (cmd == NULL || stamp == NULL || msg == NULL) {
+        return;
+    }
+    command_stamp(stamp, cmd->flags, msg);
+    for (size_t i = 0; i < 2u * (size_t)stamp->robot_count && i < TVO_MAX_OUTPUT_DIM; ++i) {
+        msg->input[i] = (double)cmd->u[i];
+    }
+}
+
+void tvo_step_telemetry_stamp(const tvo_step_stamp_t *stamp, uint32_t flags, tvo_lcm_telemetry_t *msg)
+{
+    if (stamp == NULL || msg == NULL) {
+        return;
+    }
+    msg->utime = stamp->utime;
+    msg->session_id = stamp->session_id;
+    msg->measurement_sequence = stamp->sequence;
+    msg->status = (int32_t)stamp->status;
+    msg->flags = (int32_t)flags;
+}
+
+void tvo_step_telemetry_to_lcm(const tvo_controller_t *ctl, const tvo_problem_t *problem, tvo_lcm_telemetry_t *msg)
+{
+    if (ctl == NULL || problem == NULL || msg == NULL) {
+        return;
+    }
+    const tvo_controller_telemetry_t *tel = &ctl->telemetry;
+    const size_t dim = 2u * (size_t)ctl->cfg.robot_count;
+    msg->objective_time_s = (double)tel->objective_time_s;
+    msg->dim = (int32_t)dim;
+    for (size_t i = 0; i < dim && i < TVO_MAX_OUTPUT_DIM; ++i) {
+        msg->gradient[i] = (double)tel->gradient[i];
+        msg->gradient_rate[i] = (double)tel->gradient_rate[i];
+        msg->output_m[i] = (double)tel->output_m[i];
+        msg->output_rate_mps[i] = (double)tel->output_rate_mps[i];
+        msg->output_accel_mps2[i] = (double)tel->output_accel_mps2[i];
+    }
+    for (size_t r = 0; r < ctl->cfg.robot_count && r < TVO_MAX_ROBOTS; ++r) {
+        msg->speed_state_mps[r] = (double)ctl->speed_state_mps[r];
+    }
+    const size_t multipliers = problem->objective.dual_dim;
+    for (size_t q = 0; q < multipliers && q < TVO_MAX_EQUALITIES && q < 4u; ++q) {
+        msg->multiplier[q] = (double)tel->multiplier[q];
+    }
+    msg->regularization = (double)tel->regularization;
+    if (problem->has_inequalities) {
+        tvo_real_t c = TVO_R(0.0);
+        tvo_real_t slack = TVO_R(0.0);
+        tvo_real_t delta = TVO_R(0.0);
+        const tvo_real_t t_s = tel->objective_time_s >= TVO_R(0.0) ? tel->objective_time_s : TVO_R(0.0);
+        if (tvo_barrier_schedule(&problem->barrier, t_s, &c, &slack, &delta) == TVO_OK) {
+            msg->barrier_c = (double)c;
+            msg->barrier_slack = (double)slack;
+        }
+    }
+}
+
+tvo_status_t tvo_step_target_from_lcm(const tvo_lcm_target_t *msg, uint8_t robot_count, uint64_t objective_ticks,
+                                      tvo_problem_t *problem)
+{
+    if (msg == NULL || problem == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (robot_count > TVO_MAX_ROBOTS || msg->robot_count != (int32_t)robot_count) {
+        return TVO_ERR_DIMENSION;
+    }
+    /* Every robot's target must take the sample: check all before feeding any (nothing half-kept). */
+    for (uint8_t r = 0; r < robot_count; ++r) {
+        const tvo_target_t *target = tvo_problem_target(problem, r);
+        if (target == NULL) {
+            return TVO_ERR_NOT_INITIALIZED;
+        }
+        if (target->kind != TVO_TARGET_STREAMED) {
+            return TVO_ERR_PARAM;
+        }
+        for (size_t axis = 0; axis < 2; ++axis) {
+            if (!isfinite(tvo_wire_real(msg->position_m[r][axis])) ||
+                !isfinite(tvo_wire_real(msg->velocity_mps[r][axis])) ||
+                !isfinite(tvo_wire_real(msg->acceleration_mps2[r][axis])) ||
+                !isfinite(tvo_wire_real(msg->jerk_mps3[r][axis]))) {
+                return TVO_ERR_NOT_FINITE;
+            }
+        }
+    }
+    tvo_status_t st = TVO_OK;
+    for (uint8_t r = 0; st == TVO_OK && r < robot_count; ++r) {
+        tvo_real_t deriv[TVO_STREAM_MAX_DERIV + 1][2];
+        for (size_t axis = 0; axis < 2; ++axis) {
+            deriv[0][axis] = tvo_wire_real(msg->position_m[r][axis]);
+            deriv[1][axis] = tvo_wire_real(msg->velocity_mps[r][axis]);
+            deriv[2][axis] = tvo_wire_real(msg->acceleration_mps2[r][axis]);
+            deriv[3][axis] = tvo_wire_real(msg->jerk_mps3[r][axis]);
+        }
+        st = tvo_target_stream_update(tvo_problem_target(problem, r), objective_ticks,
+                                      (const tvo_real_t(*)[2])deriv); /* adds const only (C11) */
+    }
+    return st;
+}

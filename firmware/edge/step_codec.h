@@ -1,0 +1,66 @@
+/*
+ * Step codec: one period's messages between the wire and the core — a measurement into the core's
+ * measurement, a command and the step's telemetry out, a streamed target sample in. Stamps arrive
+ * already converted to the core's ticks (the node owns time). Pure functions: no state.
+ */
+#ifndef TVO_STEP_CODEC_H
+#define TVO_STEP_CODEC_H
+
+#include <stdint.h>
+
+#include "tvo/chain_controller.h"
+#include "tvo/controller.h"
+#include "tvo/problem.h"
+
+#include "tvo_lcm_command_t.h"
+#include "tvo_lcm_measurement_t.h"
+#include "tvo_lcm_target_t.h"
+#include "tvo_lcm_telemetry_t.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Unicycle measurement (poses, headings, speeds) of robot_count robots, stamped stamp_tick. */
+tvo_status_t tvo_step_measurement_from_lcm(const tvo_lcm_measurement_t *msg, uint8_t robot_count, uint32_t stamp_tick,
+                                           tvo_measurement_t *meas);
+
+/** Chain measurement: positions, and y', y'' when derivatives_valid. */
+tvo_status_t tvo_step_chain_measurement_from_lcm(const tvo_lcm_measurement_t *msg, uint8_t robot_count,
+                                                 uint32_t stamp_tick, tvo_chain_measurement_t *meas);
+
+/** The wire fields every command carries: when, which session, which measurement, why. */
+typedef struct {
+    int64_t utime;
+    int64_t session_id;
+    int64_t sequence;       /* measurement answered, -1 for the node's own safe stop */
+    tvo_status_t status;
+    uint8_t robot_count;
+} tvo_step_stamp_t;
+
+/** LCM command carrying a unicycle command (speed and turn rate per robot). */
+void tvo_step_command_to_lcm(const tvo_command_t *cmd, const tvo_step_stamp_t *stamp, tvo_lcm_command_t *msg);
+
+/** LCM command carrying a chain command u in input[]. */
+void tvo_step_chain_command_to_lcm(const tvo_chain_command_t *cmd, const tvo_step_stamp_t *stamp,
+                                   tvo_lcm_command_t *msg);
+
+/** The stamp fields of the telemetry that follows a command (the controller's part is separate). */
+void tvo_step_telemetry_stamp(const tvo_step_stamp_t *stamp, uint32_t flags, tvo_lcm_telemetry_t *msg);
+
+/** Telemetry of the unicycle controller's last good step (state, gradient, multipliers, barrier). */
+void tvo_step_telemetry_to_lcm(const tvo_controller_t *ctl, const tvo_problem_t *problem, tvo_lcm_telemetry_t *msg);
+
+/**
+ * Feeds a streamed target sample, valid at objective_ticks (ticks from the epoch), to every robot's
+ * streamed target. TVO_ERR_DIMENSION if the robot count differs, TVO_ERR_PARAM if a robot's target
+ * is not streamed.
+ */
+tvo_status_t tvo_step_target_from_lcm(const tvo_lcm_target_t *msg, uint8_t robot_count, uint64_t objective_ticks,
+                                      tvo_problem_t *problem);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* TVO_STEP_CODEC_H */

@@ -1,0 +1,24 @@
+/* A wire double as the core's scalar, for both codecs. */
+#ifndef TVO_WIRE_REAL_H
+#define TVO_WIRE_REAL_H
+
+#include <float.h>
+
+#include "tvo/config.h"
+
+/* Out of float range becomes +-infinity, which the core rejects as not finite (a plain conversion
+ * of such a value to float is undefined behaviour in C). */
+static inline tvo_real_t tvo_wire_real(double value)
+{
+#if !TVO_USE_DOUBLE
+    if (value > (double)FLT_MAX) {
+        return INFINITY;
+    }
+    if (value < -(double)FLT_MAX) {
+        return -INFINITY;
+    }
+#endif
+    return (tvo_real_t)value;
+}
+
+#endif /* TVO_WIRE_REAL_H */
