@@ -100,8 +100,10 @@ public:
     /// throws if none comes.
     tvo_lcm::session_ack_t request(const tvo_lcm::session_t& msg,
                                    std::chrono::milliseconds repeat = std::chrono::milliseconds(1000));
-    /// Publishes m again every 200 ms until a command arrives (a node that is starting up).
+    /// Publishes m again every 200 ms until a command arrives (a node that is starting up, or one
+    /// whose socket a burst overflowed); a second answer, if any, is optional.
     void send_until_answered(const tvo_lcm::measurement_t& m, Expect::Kind kind, const std::string& label);
+    void send_genuine_until_answered(const tvo_lcm::measurement_t& m);
     /// Waits until every message sent so far has its answer (or is known to get none).
     void settle();
     /// Restarts the node: SIGKILL, then a fresh process.
@@ -166,6 +168,7 @@ private:
     void shadow_literal_plant(const tvo_lcm::command_t& cmd, bool applied);
     void problem(const std::string& text);
     void publish_expect(const tvo_lcm::measurement_t& m, Expect e);
+    void resend_until_answered(const tvo_lcm::measurement_t& m, std::size_t commands_before, const std::string& label);
 
     Context& ctx_;
     LockstepConfig config_;
