@@ -498,8 +498,8 @@ void case_loss(Context& ctx)
         run.start();
         std::mt19937_64 rng(kSeed + static_cast<std::uint64_t>(percent));
         long dropped = 0;
-        const std::int64_t lossy_from = 100;
-        const std::int64_t lossy_to = 600;   // samples lost from 1 s to 6 s, then 4 s without loss
+        const std::int64_t lossy_from = 300;
+        const std::int64_t lossy_to = 600;   // samples lost from 3 s (converged) to 6 s, then 4 s without
         run.run([&](LockstepRun& r, std::int64_t n) {
             if (n >= lossy_from && n < lossy_to && static_cast<int>(rng() % 100) < percent) {
                 ++dropped;
@@ -509,15 +509,17 @@ void case_loss(Context& ctx)
         });
         run.stop();
         const std::string tag = std::to_string(percent) + " % lost: ";
-        ctx.report.note(tag + "samples dropped (seeded) between 1 s and 6 s", std::to_string(dropped) + " of " +
+        ctx.report.note(tag + "samples dropped (seeded) between 3 s and 6 s", std::to_string(dropped) + " of " +
                                                                                std::to_string(lossy_to - lossy_from));
         check_genuine(ctx.report, run, {});
         check_counters(ctx.report, run);
         // While samples are lost the robot holds each command over the gap: the error grows with the
-        // gaps, and must stay bounded (measured: see the report; the bound is a lost-track detector).
-        const double lossy = run.max_error_between(run.apply_utime(lossy_from + 100), run.apply_utime(lossy_to));
+        // gaps (measured: 1.3e-4 m without loss, 3 mm at 10 %, 7 mm at 30 %, 1.6 cm at 50 %). 5 cm says
+        // the loop still tracks: a robot that stopped falls behind a target moving at 1-2 m/s by
+        // metres over these 3 s.
+        const double lossy = run.max_error_between(run.apply_utime(lossy_from), run.apply_utime(lossy_to));
         ctx.report.check(std::isfinite(lossy) && lossy < 0.05, tag + "the loop keeps tracking while samples are lost",
-                         "max error from 2 s to 6 s " + fmt(lossy) + " m, bound 0.05 m");
+                         "max error from 3 s to 6 s " + fmt(lossy) + " m, bound 0.05 m");
         check_tracking(ctx.report, run, tag + "after the loss");
     }
 }
@@ -799,6 +801,64 @@ void case_plant_restart(Context& ctx)
     check_tracking(ctx.report, plant, "the restarted plant");
 }
 
+// ---- A plant that lies about its speed ------------------------------------------------------------
+
+void case_speed_mismatch(Context& ctx)
+{
+    const std::int32_t mismatch = static_cast<std::int32_t>(TVO_FLAG_SPEED_MISMATCH);
+    auto flagged = [mismatch](const LockstepRun& run, std::int64_t from, std::int64_t to) {
+        long count = 0;
+        std::int64_t first = -1;
+        for (const auto& [seq, answer] : run.genuine_answers()) {
+            if (seq >= from && seq < to && (answer.flags & mismatch) != 0) {
+                first = first < 0 ? seq : first;
+                ++count;
+            }
+        }
+        return std::make_pair(count, first);
+    };
+    const auto ref = run_reference(ctx);
+    const auto [false_alarms, first_false] = flagged(*ref, 0, 1000);
+    ctx.report.check(false_alarms == 0, "no speed mismatch flagged in the run without faults (start from rest included)",
+                     std::to_string(false_alarms) + " flagged" +
+                         (first_false >= 0 ? ", first at sample " + std::to_string(first_false) : ""));
+    const std::int64_t from = 300;
+    const std::int64_t to = 500;   // 2 s
+    struct Variant {
+        bool stall;
+        std::string what;
+    };
+    for (const Variant& v : {Variant{false, "a plant that reports 0 m/s while it moves as commanded"},
+                             Variant{true, "stalled wheels: the robot stands still and reports 0 m/s"}}) {
+        LockstepRun run(ctx, base_config(ctx));
+        run.start();
+        run.run([&](LockstepRun& r, std::int64_t n) {
+            r.set_stalled(v.stall && n >= from && n < to);
+            auto m = r.measure(n);
+            if (n >= from && n < to) {
+                m.speed_mps[0] = 0.0;
+            }
+            r.send_genuine(m);
+        });
+        run.stop();
+        const auto [during, first] = flagged(run, from, to);
+        const double error = run.max_error_between(run.apply_utime(from), run.apply_utime(to));
+        ctx.report.check(first >= from && first <= from + 5 && during >= (to - first) - 1,
+                         v.what + " for 2 s: flagged TVO_FLAG_SPEED_MISMATCH within 5 periods and while it lasts",
+                         "first flagged at sample " + (first < 0 ? std::string("none") : std::to_string(first)) +
+                             " (from " + std::to_string(from) + "), " + std::to_string(during) + " of " +
+                             std::to_string(to - from) + " flagged; meanwhile the error reached " + fmt(error) +
+                             " m with status 0 on every command");
+        const tvo_lcm::telemetry_t* t = run.last_telemetry();
+        ctx.report.check(t != nullptr && t->counters.speed_mismatch == during,
+                         "telemetry counts the flagged steps (counters.speed_mismatch)",
+                         std::to_string(t != nullptr ? t->counters.speed_mismatch : -1) + " counted, " +
+                             std::to_string(during) + " flagged");
+        check_genuine(ctx.report, run, {});
+        check_tracking(ctx.report, run, "4 s after the speed is true again");
+    }
+}
+
 // ---- What CLOCK_PLANT cannot tell (notes, no checks) -----------------------------------------------
 
 void case_clock_plant_limits(Context& ctx)
@@ -806,15 +866,18 @@ void case_clock_plant_limits(Context& ctx)
     // 1. A stray whose stamp and sequence agree with each other (+1 s, sequence + 100): without a
     //    clock of its own the node cannot tell it from a genuine sample after 100 lost ones.
     // 2. A stray stamped +20 s arriving before the first genuine sample: it anchors the sequence.
+    // 3. watchdog_periods strays within one period: the watchdog counts refusals, not periods.
     struct Variant {
         std::int64_t at;
         std::int64_t stamp_shift_us;
         std::int64_t sequence_shift;
+        int copies;
         std::string what;
     };
     const std::vector<Variant> variants = {
-        {300, kUsPerS, 100, "at 3 s, a stray stamped +1 s with sequence +100 (consistent with each other)"},
-        {0, 20 * kUsPerS, 0, "before the first genuine sample, a stray stamped +20 s (sequence 0)"},
+        {300, kUsPerS, 100, 1, "at 3 s, a stray stamped +1 s with sequence +100 (consistent with each other)"},
+        {0, 20 * kUsPerS, 0, 1, "before the first genuine sample, a stray stamped +20 s (sequence 0)"},
+        {300, kUsPerS, 0, 10, "at 3 s, 10 strays stamped +1 s within one period (watchdog_periods = 10)"},
     };
     for (const Variant& v : variants) {
         LockstepRun run(ctx, base_config(ctx));
@@ -824,7 +887,9 @@ void case_clock_plant_limits(Context& ctx)
             if (n == v.at) {
                 auto stray = restamped(m, v.stamp_shift_us);
                 stray.sequence += v.sequence_shift;
-                r.send_expecting(stray, Expect::Kind::Optional, "");
+                for (int k = 0; k < v.copies; ++k) {
+                    r.send_expecting(stray, Expect::Kind::Optional, "");
+                }
             }
             r.send_genuine(m);
         });
@@ -832,8 +897,9 @@ void case_clock_plant_limits(Context& ctx)
         ctx.report.note(v.what,
                         std::to_string(run.genuine_accepted) + " of " + std::to_string(run.genuine_sent) +
                             " genuine samples accepted, " + std::to_string(run.genuine_held) + " held, " +
-                            std::to_string(run.safe_stop_answers) + " safe stops, final error " +
-                            fmt(run.max_error_last(100)) + " m" +
+                            std::to_string(run.safe_stop_answers) + " safe stops, max error from 3 s to 4 s " +
+                            fmt(run.max_error_between(run.apply_utime(300), run.apply_utime(400))) +
+                            " m, final error " + fmt(run.max_error_last(100)) + " m" +
                             (run.problems.empty() ? "" : "; first: " + run.problems.front()));
     }
 }

@@ -27,6 +27,7 @@ void case_duplicates(Context& ctx);
 void case_reordering(Context& ctx);
 void case_loss(Context& ctx);
 void case_refusal_watchdog(Context& ctx);
+void case_speed_mismatch(Context& ctx);
 void case_rejected_start_during_run(Context& ctx);
 void case_same_id_start(Context& ctx);
 void case_implausible_epoch(Context& ctx);

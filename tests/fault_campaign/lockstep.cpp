@@ -333,6 +333,7 @@ void LockstepRun::process(const ReceivedCommand& received)
     const std::int64_t in_force_before = in_force_sequence_;
     const std::size_t pending_before = pending_.size();
     bool matched = false;
+    applied_safe_stop_for_own_ = false;
     while (!expected_.empty() && !matched) {
         const Expect e = expected_.front();
         const bool key = cmd.session_id == e.session_id && cmd.measurement_sequence == e.sequence;
@@ -379,6 +380,11 @@ void LockstepRun::process(const ReceivedCommand& received)
         ++unexpected_answers;
         problem("a command answering nothing sent: " + describe(cmd));
     }
+    // The plant's rule: any safe stop for its session, whatever it answers, takes effect (now if stamped earlier).
+    if (cmd.session_id == session_.session_id && (cmd.flags & kSafeStop) != 0) {
+        ++safe_stop_answers;
+        apply(cmd, std::max(cmd.utime, now_us_), applied_safe_stop_for_own_);
+    }
     const bool applied = pending_.size() != pending_before || in_force_sequence_ != in_force_before;
     shadow_literal_plant(cmd, applied);
 }
@@ -393,14 +399,11 @@ void LockstepRun::verify(const Expect& e, const tvo_lcm::command_t& cmd)
     }
     const Answer answer{cmd.speed_mps[0], cmd.turn_rate_radps[0], cmd.utime, cmd.status, cmd.flags};
     // The plant's rule: its own sample's answer (it knows which message that is), newer than the
-    // command in force; or any safe stop for its session.
+    // command in force; safe stops: process().
     const bool own_session = cmd.session_id == session_.session_id;
-    const bool plant_applies = own_session && ((e.genuine && cmd.measurement_sequence > in_force_sequence_) || safe_stop);
+    const bool plant_applies = own_session && e.genuine && cmd.measurement_sequence > in_force_sequence_ && !safe_stop;
     if (own_session && cmd.status != 0 && e.kind != Expect::Kind::NoSession) {
         ++refusal_answers;
-    }
-    if (own_session && safe_stop) {
-        ++safe_stop_answers;
     }
     switch (e.kind) {
     case Expect::Kind::Accepted: {
@@ -477,13 +480,15 @@ void LockstepRun::verify(const Expect& e, const tvo_lcm::command_t& cmd)
         break;
     }
     if (plant_applies) {
-        apply(cmd, std::max(cmd.utime, now_us_));
+        apply(cmd, std::max(cmd.utime, now_us_), true);
     }
+    applied_safe_stop_for_own_ = e.genuine;
 }
 
-void LockstepRun::apply(const tvo_lcm::command_t& cmd, std::int64_t at_us)
+void LockstepRun::apply(const tvo_lcm::command_t& cmd, std::int64_t at_us, bool answers_own_sample)
 {
-    if (cmd.measurement_sequence > in_force_sequence_) {
+    // A safe stop answering a stray that reused one of its sequences must not hide its own answer.
+    if (answers_own_sample && cmd.measurement_sequence > in_force_sequence_) {
         in_force_sequence_ = cmd.measurement_sequence;
     }
     const Pending p{at_us, tvo_host::UnicycleInput{cmd.speed_mps[0], cmd.turn_rate_radps[0]}};
@@ -523,6 +528,9 @@ void LockstepRun::advance_to(std::int64_t t_us)
         integrate(p.apply_us);
         plant_.hold(0, p.input);
         last_applied_us_ = std::max(p.apply_us, now_us_);
+    }
+    if (stalled_) {
+        plant_.hold(0, tvo_host::UnicycleInput{});
     }
     integrate(t_us);
 }

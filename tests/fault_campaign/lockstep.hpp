@@ -108,6 +108,8 @@ public:
     void settle();
     /// Restarts the node: SIGKILL, then a fresh process.
     void crash_node_and_restart();
+    /// Stalled wheels: while set, the robot stands still whatever it is commanded.
+    void set_stalled(bool stalled) { stalled_ = stalled; }
     /// Sends START (same id and content) until acknowledged: what a plant does after NO_SESSION.
     void restart_session();
 
@@ -164,7 +166,7 @@ private:
     void advance_to(std::int64_t t_us);
     void process(const ReceivedCommand& received);
     void verify(const Expect& e, const tvo_lcm::command_t& cmd);
-    void apply(const tvo_lcm::command_t& cmd, std::int64_t at_us);
+    void apply(const tvo_lcm::command_t& cmd, std::int64_t at_us, bool answers_own_sample);
     void shadow_literal_plant(const tvo_lcm::command_t& cmd, bool applied);
     void problem(const std::string& text);
     void publish_expect(const tvo_lcm::measurement_t& m, Expect e);
@@ -187,6 +189,8 @@ private:
     long consecutive_refusals_{0};
     std::int64_t current_step_{0};
     bool prepared_{false};
+    bool stalled_{false};
+    bool applied_safe_stop_for_own_{false};   // the command being processed answers the plant's own sample
     tvo_lcm::session_ack_t start_ack_{};
     std::map<std::int64_t, Answer> genuine_answers_;
     std::vector<Outcome> outcomes_;

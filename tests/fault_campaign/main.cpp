@@ -35,6 +35,8 @@ const std::vector<Case>& all_cases()
         {"loss", "0, 10, 30 and 50 % of the samples lost (seeded) for 5 s", case_loss, false},
         {"refusal-watchdog", "CLOCK_PLANT: watchdog_periods + 2 refusals in a row, then genuine samples again",
          case_refusal_watchdog, false},
+        {"speed-mismatch", "the plant reports 0 m/s while moving for 50 periods (speed_valid set)",
+         case_speed_mismatch, false},
         {"link-loss-node-clock", "CLOCK_NODE on the wall clock: 1 s without samples (h = 50 ms, watchdog 4)",
          case_link_loss_node_clock, false},
         {"rejected-start-during-run", "STARTs with new ids and a bad parameter while a session runs",
