@@ -13,6 +13,9 @@
 extern "C" {
 #endif
 
+/** Every time and sequence on the wire lies in [0, TVO_WIRE_TIME_MAX_US]: sums of two never overflow int64. */
+#define TVO_WIRE_TIME_MAX_US ((int64_t)1 << 60)
+
 /* LCM channels of the protocol (the host uses the same names). */
 #define TVO_CHANNEL_SESSION "TVO_SESSION"
 #define TVO_CHANNEL_SESSION_ACK "TVO_SESSION_ACK"

@@ -47,10 +47,18 @@ static tvo_status_t unicycle_check(const tvo_edge_controller_t *ctl, const tvo_e
     return tvo_controller_check(&ctl->u.unicycle, &meas->unicycle, apply_tick);
 }
 
-static tvo_status_t unicycle_step(tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas, uint32_t apply_tick,
-                                  tvo_edge_command_t *cmd)
+/* A step that fails after the check passed (the law) leaves only the clock changed (a missed period
+ * for a controller on its own); restoring the clock keeps nothing of it (tvo/controller.h). The one
+ * exception is the watchdog's: a failed step after watchdog_periods of silence stops the robots. */
+static tvo_status_t unicycle_step_or_keep(tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas,
+                                          uint32_t apply_tick, tvo_edge_command_t *cmd)
 {
-    return tvo_controller_step(&ctl->u.unicycle, &meas->unicycle, apply_tick, &cmd->unicycle);
+    const tvo_sample_clock_t clock = ctl->u.unicycle.clock;
+    const tvo_status_t st = tvo_controller_step(&ctl->u.unicycle, &meas->unicycle, apply_tick, &cmd->unicycle);
+    if (st != TVO_OK && st != TVO_ERR_WATCHDOG) {
+        ctl->u.unicycle.clock = clock;
+    }
+    return st;
 }
 
 static tvo_status_t unicycle_safe_stop(tvo_edge_controller_t *ctl, tvo_edge_command_t *cmd)
@@ -93,7 +101,7 @@ static const tvo_edge_controller_ops_t unicycle_ops = {
     .measurement = unicycle_measurement,
     .positions = unicycle_positions,
     .check = unicycle_check,
-    .step = unicycle_step,
+    .step_or_keep = unicycle_step_or_keep,
     .safe_stop = unicycle_safe_stop,
     .holding = unicycle_holding,
     .flags = unicycle_flags,
@@ -145,10 +153,15 @@ static tvo_status_t chain_check(const tvo_edge_controller_t *ctl, const tvo_edge
     return tvo_chain_controller_check(&ctl->u.chain, &meas->chain, apply_tick);
 }
 
-static tvo_status_t chain_step(tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas, uint32_t apply_tick,
-                               tvo_edge_command_t *cmd)
+static tvo_status_t chain_step_or_keep(tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas,
+                                       uint32_t apply_tick, tvo_edge_command_t *cmd)
 {
-    return tvo_chain_controller_step(&ctl->u.chain, &meas->chain, apply_tick, &cmd->chain);
+    const tvo_sample_clock_t clock = ctl->u.chain.clock;
+    const tvo_status_t st = tvo_chain_controller_step(&ctl->u.chain, &meas->chain, apply_tick, &cmd->chain);
+    if (st != TVO_OK && st != TVO_ERR_WATCHDOG) {
+        ctl->u.chain.clock = clock;
+    }
+    return st;
 }
 
 static tvo_status_t chain_safe_stop(tvo_edge_controller_t *ctl, tvo_edge_command_t *cmd)
@@ -192,7 +205,7 @@ static const tvo_edge_controller_ops_t chain_ops = {
     .measurement = chain_measurement,
     .positions = chain_positions,
     .check = chain_check,
-    .step = chain_step,
+    .step_or_keep = chain_step_or_keep,
     .safe_stop = chain_safe_stop,
     .holding = chain_holding,
     .flags = chain_flags,

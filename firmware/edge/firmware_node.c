@@ -35,13 +35,17 @@ enum {
     LOG_SAFE_STOP,
     LOG_TARGET,
     LOG_SPEED_MISMATCH,
-    LOG_ACK,
+    LOG_START_DONE,
+    LOG_START_REFUSED,
+    LOG_STOP,
+    LOG_OTHER_ACK,
     LOG_KEYS
 };
 
 typedef struct {
     int64_t last_us;     /* when this kind was last written; -1: never */
     uint32_t unwritten;  /* events since then */
+    char text[200];      /* the latest event's line, for the count written at exit */
 } log_limit_t;
 
 typedef struct {
@@ -88,6 +92,9 @@ static int log_allowed(lcm_node_t *self, int key, uint32_t events, uint32_t *sup
 static void log_event(lcm_node_t *self, int key, uint32_t events, const char *what)
 {
     uint32_t suppressed = 0;
+    if (events > 0u) {
+        snprintf(self->limits[key].text, sizeof(self->limits[key].text), "%s", what);
+    }
     if (events > 0u && log_allowed(self, key, events, &suppressed)) {
         if (suppressed > 0u) {
             fprintf(stderr, "tvo_firmware_node: %s (and %u more like it in the last second)\n", what, suppressed);
@@ -97,10 +104,22 @@ static void log_event(lcm_node_t *self, int key, uint32_t events, const char *wh
     }
 }
 
+/* At exit: the events a rate limit held back since their kind's last line, so none goes unsaid. */
+static void log_flush(lcm_node_t *self)
+{
+    for (int k = 0; k < LOG_KEYS; ++k) {
+        if (self->limits[k].unwritten > 0u) {
+            fprintf(stderr, "tvo_firmware_node: %s (%u more like it since the last line of its kind)\n", self->limits[k].text,
+                    self->limits[k].unwritten);
+            self->limits[k].unwritten = 0;
+        }
+    }
+}
+
 static void log_ack(lcm_node_t *self)
 {
     const tvo_lcm_session_ack_t *ack = &self->node.last_ack;
-    char line[256];
+    char line[200];
     const char *action = ack->action == TVO_LCM_SESSION_T_ACTION_START  ? "START"
                          : ack->action == TVO_LCM_SESSION_T_ACTION_STOP ? "STOP"
                                                                         : "session message";
@@ -113,7 +132,10 @@ static void log_ack(lcm_node_t *self)
                  tvo_param_str((tvo_param_t)ack->bad_param), tvo_protocol_part_str(ack->bad_part), (int)ack->bad_index,
                  (long long)ack->running_session_id);
     }
-    log_event(self, LOG_ACK, 1u, line);
+    const int key = ack->action == TVO_LCM_SESSION_T_ACTION_START ? (ack->status == TVO_OK ? LOG_START_DONE : LOG_START_REFUSED)
+                    : ack->action == TVO_LCM_SESSION_T_ACTION_STOP ? LOG_STOP
+                                                                   : LOG_OTHER_ACK;
+    log_event(self, key, 1u, line);
 }
 
 /* What changed in the counters during one message or timer call, as rate-limited log lines. */
@@ -276,6 +298,7 @@ int main(int argc, char **argv)
             break;
         }
     }
+    log_flush(&self);
     lcm_destroy(self.lcm);
     return exit_code;
 }

@@ -312,6 +312,9 @@ static void on_measurement(tvo_node_t *node, const tvo_lcm_measurement_t *msg, i
         st = schedule_measurement(s, msg, now_us, &period, &stamp_us);
     }
     const int64_t apply_us = (st == TVO_OK) ? apply_instant(s, period) : 0;
+    if (st == TVO_OK && !wire_time_ok(apply_us - s->offset_us)) {
+        st = TVO_ERR_IMPLAUSIBLE_STAMP; /* its command could not be stamped on the wire */
+    }
     if (st == TVO_OK && s->has_accepted &&
         (period - s->last_period) > (int64_t)TVO_MAX_TICK_SPAN / s->timing.period_us) {
         st = TVO_ERR_STALE; /* a silence longer than the clock spans: START a new session */
@@ -326,35 +329,48 @@ static void on_measurement(tvo_node_t *node, const tvo_lcm_measurement_t *msg, i
         refuse_measurement(node, s, msg, st, now_us);
         return;
     }
-    /* The paper's slack rule takes the first accepted sample as the state at t = 0; undone if the
-     * step then fails, so a refused first sample leaves the rule for the next one. */
+    /* The paper's slack rule takes the first accepted sample as the state at t = 0; undone with the
+     * step if the step fails, so a refused first sample leaves the rule for the next one. */
     const uint8_t slack_was_chosen = s->problem.slack_chosen;
+    const tvo_barrier_t barrier_before = s->problem.barrier;
     if (!slack_was_chosen) {
         tvo_real_t y[TVO_MAX_OUTPUT_DIM] = {TVO_R(0.0)};
         ops->positions(&meas, s->timing.robot_count, y);
         (void)tvo_problem_choose_slack(&s->problem, y, TVO_R(0.0));
     }
     tvo_edge_command_t cmd;
-    st = ops->step(&s->controller, &meas, schedule_tick(apply_us), &cmd);
+    st = ops->step_or_keep(&s->controller, &meas, schedule_tick(apply_us), &cmd);
     if (st != TVO_OK) {
+        /* The law could not use the sample (e.g. a streamed target ahead of it): a refusal like any
+         * other, which keeps nothing and counts toward the watchdog. */
+        s->problem.barrier = barrier_before;
         s->problem.slack_chosen = slack_was_chosen;
-        count(&node->counters.refused[(uint32_t)st < (uint32_t)TVO_LCM_NODE_COUNTERS_T_STATUS_SLOTS ? st : 0]);
-        node->last_refusal = st;
-    } else {
-        count(&node->counters.accepted);
-        s->has_accepted = 1;
-        s->last_period = period;
-        s->last_sequence = msg->sequence;
-        s->refused_in_row = 0;
-        s->stop_period = period + (int64_t)s->timing.watchdog_periods;
+        refuse_measurement(node, s, msg, st, now_us);
+        return;
     }
+    count(&node->counters.accepted);
+    s->has_accepted = 1;
+    s->last_period = period;
+    s->last_sequence = msg->sequence;
+    s->refused_in_row = 0;
+    s->stop_period = period + (int64_t)s->timing.watchdog_periods;
     const tvo_step_stamp_t stamp = {apply_us - s->offset_us, s->session_id, msg->sequence, st, s->timing.robot_count};
     publish_step(node, s, &cmd, &stamp, now_us);
 }
 
 /* ---- streamed targets -------------------------------------------------------------------------- */
 
-static void on_target(tvo_node_t *node, const tvo_lcm_target_t *msg)
+/* The latest stamp (schedule clock) a streamed target sample may carry: the node's now plus half a
+ * period (CLOCK_NODE), or the apply instant of the period after the last accepted one (CLOCK_PLANT). */
+static int64_t latest_plausible_target_us(const tvo_node_session_t *s, int64_t now_us)
+{
+    if (s->timing.clock_source == TVO_LCM_SESSION_T_CLOCK_NODE) {
+        return now_us + s->timing.period_us / NODE_FUTURE_TOLERANCE_DIVISOR;
+    }
+    return apply_instant(s, s->has_accepted ? s->last_period + 1 : 1);
+}
+
+static void on_target(tvo_node_t *node, const tvo_lcm_target_t *msg, int64_t now_us)
 {
     tvo_node_session_t *s = running_session(node);
     if (s == NULL) {
@@ -365,6 +381,11 @@ static void on_target(tvo_node_t *node, const tvo_lcm_target_t *msg)
         return;
     }
     tvo_status_t st = wire_time_ok(msg->utime) ? TVO_OK : TVO_ERR_IMPLAUSIBLE_STAMP;
+    if (st == TVO_OK && msg->utime + s->offset_us > latest_plausible_target_us(s, now_us)) {
+        /* A sample from beyond the next period would hold back every genuine one after it (a
+         * streamed target takes only newer samples): one stray costs at most one period. */
+        st = TVO_ERR_IMPLAUSIBLE_STAMP;
+    }
     uint64_t objective_ticks = 0u;
     if (st == TVO_OK) {
         st = tvo_sample_clock_objective_ticks(s->controller.ops->clock(&s->controller),
@@ -409,7 +430,7 @@ int tvo_node_handle(tvo_node_t *node, int channel, const uint8_t *data, uint32_t
         if (tvo_lcm_target_t_decode(data, 0, size, &node->rx.target) < 0) {
             break;
         }
-        on_target(node, &node->rx.target);
+        on_target(node, &node->rx.target, now_us);
         return channel;
     default:
         return 0; /* not a channel the node takes (its own outputs, or unknown) */

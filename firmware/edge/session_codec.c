@@ -46,6 +46,9 @@ tvo_status_t tvo_session_decode_timing(const tvo_lcm_session_t *msg, tvo_session
         return reject(why, TVO_ERR_NULL, TVO_PARAM_NONE, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
     }
     memset(timing, 0, sizeof(*timing));
+    if (msg->session_id < 0) {
+        return reject_param(why, TVO_PARAM_SESSION_ID); /* -1 means "none" in acks and commands */
+    }
     if (!wire_time_ok(msg->utime) || !wire_time_ok(msg->epoch_utime)) {
         return reject_param(why, TVO_PARAM_EPOCH);
     }

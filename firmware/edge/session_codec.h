@@ -12,15 +12,13 @@
 #include "tvo/controller.h"
 #include "tvo/problem.h"
 
+#include "channels.h"
 #include "tvo_lcm_session_ack_t.h"
 #include "tvo_lcm_session_t.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-/** Every time and sequence on the wire lies in [0, TVO_WIRE_TIME_MAX_US]: sums of two never overflow int64. */
-#define TVO_WIRE_TIME_MAX_US ((int64_t)1 << 60)
 
 /** Ticks of the core's clock per second: ticks are microseconds, like LCM's utime. */
 #define TVO_EDGE_TICK_HZ 1000000u

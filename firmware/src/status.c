@@ -48,6 +48,7 @@ const char *tvo_param_str(tvo_param_t param)
     case TVO_PARAM_EPOCH: return "epoch_tick";
     case TVO_PARAM_CLOCK_SOURCE: return "clock_source";
     case TVO_PARAM_PLANT_KIND: return "plant_kind";
+    case TVO_PARAM_SESSION_ID: return "session_id";
     default: return "unknown parameter";
     }
 }

@@ -1,8 +1,7 @@
 // Transport faults injected by the simulator: dropped measurements and extra command latency.
 //
-// A dropped measurement is never published: the firmware gets nothing that period, the plant keeps
-// holding the last applied command, and the firmware node, seeing the sequence jump at the next
-// measurement, runs its core once with no measurement (a holding command, counted as a fault).
+// A dropped measurement is never published: the firmware gets nothing that period and the plant
+// keeps holding the last applied command; the node accepts the next measurement across the gap.
 // Extra delay postpones when each command takes effect on the plant beyond its utime, an
 // unmodelled latency the controller's delay compensation does not know about.
 #pragma once

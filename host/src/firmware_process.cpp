@@ -33,7 +33,8 @@ void FirmwareProcess::spawn(const std::string& path, const std::string& lcm_url)
     if (access(path.c_str(), X_OK) != 0) {
         throw std::runtime_error("--firmware: cannot execute '" + path + "': " + std::strerror(errno));
     }
-    std::vector<std::string> args{path};
+    // The node ends with us even when we die without a STOP (crash, kill -9); it still exits after STOP.
+    std::vector<std::string> args{path, "--exit-with-parent"};
     if (!lcm_url.empty()) {
         args.emplace_back("--lcm-url");
         args.push_back(lcm_url);

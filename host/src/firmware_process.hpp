@@ -16,7 +16,8 @@ public:
     /// Terminates a child still running (SIGTERM, then SIGKILL).
     ~FirmwareProcess();
 
-    /// Starts `path --lcm-url url` (no URL argument when url is empty). std::runtime_error on failure.
+    /// Starts `path --exit-with-parent --lcm-url url` (no URL argument when url is empty).
+    /// std::runtime_error on failure.
     void spawn(const std::string& path, const std::string& lcm_url);
 
     bool spawned() const { return pid_ > 0; }

@@ -1,4 +1,5 @@
-// The wire protocol as the host sees it: generated message types, channel names, firmware codes.
+// The wire protocol as the host sees it: generated message types, and from the firmware's own
+// (plain C) headers the channel names, status codes, parameter names and flags.
 #pragma once
 
 #include "tvo_lcm/command_t.hpp"
@@ -8,16 +9,7 @@
 #include "tvo_lcm/target_t.hpp"
 #include "tvo_lcm/telemetry_t.hpp"
 
-// Status codes, parameter names and flags come from the firmware's own (plain C) header.
 extern "C" {
+#include "channels.h"
 #include "tvo/status.h"
 }
-
-namespace tvo_host::channel {
-inline const char* const kSession = "TVO_SESSION";
-inline const char* const kSessionAck = "TVO_SESSION_ACK";
-inline const char* const kMeasurement = "TVO_MEASUREMENT";
-inline const char* const kTarget = "TVO_TARGET";
-inline const char* const kCommand = "TVO_COMMAND";
-inline const char* const kTelemetry = "TVO_TELEMETRY";
-}  // namespace tvo_host::channel

@@ -5,6 +5,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <filesystem>
@@ -14,6 +15,7 @@
 #include "firmware_process.hpp"
 #include "metrics.hpp"
 #include "options.hpp"
+#include "plant_clock.hpp"
 #include "run_recorder.hpp"
 #include "scenario.hpp"
 #include "session.hpp"
@@ -57,8 +59,13 @@ void finish(tvo_host::SessionClient& session, tvo_host::FirmwareProcess& firmwar
     if (g_signal != 0) {
         firmware.send_signal(g_signal);  // a signal sent to us alone reaches the child too
     }
-    session.stop(stop_utime, kStopTimeout);
-    if (firmware.spawned() && !firmware.wait_for_exit(kChildExitTimeout)) {
+    const bool acked = session.stop(stop_utime, kStopTimeout);
+    if (!firmware.spawned()) {
+        return;
+    }
+    if (acked && session.ack().status != TVO_OK) {
+        firmware.terminate();  // it runs no session of ours (START refused): STOP does not end it
+    } else if (!firmware.wait_for_exit(kChildExitTimeout)) {
         std::cerr << "tvo_sim: warning: the firmware node did not exit after STOP; terminating it\n";
         firmware.terminate();
     }
@@ -110,6 +117,9 @@ int run(const tvo_host::SimOptions& options)
     const std::string csv_path = (out_dir / "run.csv").string();
     const std::string log_path = (out_dir / "run.lcmlog").string();
 
+    // Realtime: the plant clock runs from here, before the first START (CLOCK_NODE takes the node's
+    // clock offset from the START's stamp). Lockstep never reads it.
+    const PlantClock clock(options.start_utime_us);
     Scenario scenario = make_scenario(options.scenario, options.robots, options.target);
     scenario.barrier.apply(options.barrier);
     LcmTransport transport(options.lcm_url, log_path);
@@ -117,11 +127,20 @@ int run(const tvo_host::SimOptions& options)
     if (!options.firmware.empty()) {
         firmware.spawn(options.firmware, options.lcm_url);
     }
-    SessionClient session(transport, make_start_session(options, scenario, make_session_id()));
+    // Lockstep: START and epoch at --start-utime-us, every START alike (deterministic). Realtime: each
+    // START stamped with the plant's current time; the epoch a fixed lead after the first.
+    const std::int64_t start_utime = options.realtime ? clock.now_utime() : options.start_utime_us;
+    const std::int64_t epoch_utime = options.realtime ? start_utime + kNodeClockEpochLeadUs : start_utime;
+    const auto stamp = [&clock, &options] { return options.realtime ? clock.now_utime() : options.start_utime_us; };
+    SessionClient session(transport, make_start_session(options, scenario, make_session_id(), start_utime, epoch_utime),
+                          stamp);
+    const auto stop_utime = [&](std::int64_t steps) {
+        return options.realtime ? clock.now_utime() : epoch_utime + steps * options.period_us;
+    };
     const auto keep_waiting = [&firmware] { return g_signal == 0 && (!firmware.spawned() || firmware.running()); };
     if (!session.start(kStartTimeout, keep_waiting)) {
         if (g_signal != 0) {
-            finish(session, firmware, options.start_utime_us);
+            finish(session, firmware, stop_utime(0));
             std::cerr << "tvo_sim: interrupted\n";
             return 128 + g_signal;
         }
@@ -131,7 +150,7 @@ int run(const tvo_host::SimOptions& options)
     }
     if (session.ack().status != TVO_OK) {
         std::cerr << "tvo_sim: error: " << describe_rejection(session.ack(), options) << '\n';
-        finish(session, firmware, options.start_utime_us);
+        finish(session, firmware, stop_utime(0));
         return 1;
     }
 
@@ -139,7 +158,7 @@ int run(const tvo_host::SimOptions& options)
     RunRecorder recorder(csv_path);
     TrackingMetrics metrics(duration_s, kRmsWindowS);
     ConstraintMonitor monitor(scenario);
-    SimLoop loop(options, scenario, transport, recorder, metrics, monitor, g_signal);
+    SimLoop loop(options, scenario, transport, session, clock, recorder, metrics, monitor, g_signal);
     LoopResult result;
     try {
         result = loop.run();
@@ -149,10 +168,10 @@ int run(const tvo_host::SimOptions& options)
             std::cerr << "; the firmware node " << firmware.exit_description();
         }
         std::cerr << '\n';
-        finish(session, firmware, options.start_utime_us + options.steps * options.period_us);
+        finish(session, firmware, stop_utime(options.steps));
         return 1;
     }
-    finish(session, firmware, options.start_utime_us + result.steps * options.period_us);
+    finish(session, firmware, stop_utime(result.steps));
     if (!recorder.close()) {
         std::cerr << "tvo_sim: error: writing " << csv_path << " failed\n";
         return 1;
@@ -172,6 +191,25 @@ int run(const tvo_host::SimOptions& options)
     summary.commands = metrics.commands();
     summary.drops = result.drops;
     summary.late_commands = result.late_commands;
+    summary.lost_answers = result.lost_answers;
+    summary.lost_telemetry = result.lost_telemetry;
+    summary.link_lost_measurements = result.link_lost_measurements;
+    summary.ignored_commands = result.ignored_commands;
+    summary.other_session_commands = result.other_session_commands;
+    summary.session_restarts = result.session_restarts;
+    summary.safe_stop_commands = result.safe_stop_commands;
+    summary.first_safe_stop_after_loss_s = result.first_safe_stop_after_loss_s;
+    if (result.node_counters) {
+        const tvo_lcm::node_counters_t& c = *result.node_counters;
+        const auto count = [](std::int32_t n) { return static_cast<std::uint64_t>(std::max<std::int32_t>(n, 0)); };
+        std::uint64_t refused = 0;
+        for (const std::int32_t n : c.refused) {
+            refused += count(n);
+        }
+        summary.node_accepted = count(c.accepted);
+        summary.node_refused = refused;
+        summary.node_safe_stops = count(c.safe_stops);
+    }
     add_constraint_figures(scenario, monitor, metrics, &summary);
     print_summary_table(std::cout, summary, options);
     write_summary_json(options.summary_json, summary);

@@ -23,6 +23,8 @@ constexpr double kUsPerS = 1e6;
 constexpr double kWholeUsTolerance = 1e-3;
 // Upper bound on the injected latency: beyond it the plant would queue many periods of commands.
 constexpr double kMaxExtraDelayS = 10.0;
+// --link-loss ends within a day of plant time: keeps its microseconds far from int64 overflow.
+constexpr double kMaxLinkLossEndS = 86400.0;
 
 int fail(const std::string& option, const std::string& why)
 {
@@ -66,7 +68,8 @@ std::string number(double value)
 }
 
 /// Cross-field checks and derived microsecond timing; returns -1 or 2.
-int validate(SimOptions* o, bool delay_given, bool duration_given, bool robots_given, bool target_given)
+int validate(SimOptions* o, bool delay_given, bool duration_given, bool robots_given, bool target_given,
+             bool link_loss_given)
 {
     if (!scenario_exists(o->scenario)) {
         return fail("--scenario", "unknown scenario '" + o->scenario + "' (--list-scenarios lists them)");
@@ -130,6 +133,15 @@ int validate(SimOptions* o, bool delay_given, bool duration_given, bool robots_g
         return fail("--extra-delay-s", "must be within 0 .. 10, got " + number(o->extra_delay_s));
     }
     o->extra_delay_us = static_cast<std::int64_t>(std::llround(o->extra_delay_s * kUsPerS));
+    if (link_loss_given && (o->link_loss_start_s < 0.0 || !(o->link_loss_duration_s > 0.0) ||
+                            o->link_loss_start_s + o->link_loss_duration_s > kMaxLinkLossEndS)) {
+        return fail("--link-loss", "expected S >= 0 and D > 0 (seconds of plant time), got " +
+                                       number(o->link_loss_start_s) + "," + number(o->link_loss_duration_s));
+    }
+    if (link_loss_given) {
+        o->link_loss_start_us = std::llround(o->link_loss_start_s * kUsPerS);
+        o->link_loss_end_us = std::llround((o->link_loss_start_s + o->link_loss_duration_s) * kUsPerS);
+    }
     if (o->disturbance_speed_mps < 0.0 || o->disturbance_turn_radps < 0.0) {
         return fail("--disturbance", "sigmas must be >= 0");
     }
@@ -166,6 +178,8 @@ int parse_options(int argc, char** argv, SimOptions* o)
     std::string gains = "40,13";
     std::string disturbance = "0,0";
     std::string target = "ellipse";
+    std::string link_loss;
+    std::string on_missing_answer = "fail";
 
     app.add_option("--period-s", o->period_s, "sampling period h, seconds (whole microseconds)")
         ->capture_default_str();
@@ -207,18 +221,24 @@ int parse_options(int argc, char** argv, SimOptions* o)
     app.add_option("--barrier-alpha-s", o->barrier.alpha_s_per_s, "barrier: decay rate of the slack s(t), 1/s");
     app.add_option("--barrier-slack-margin", o->barrier.slack_margin, "barrier: epsilon_s of the slack rule");
     app.add_option("--barrier-degree", o->barrier.relaxation_degree, "barrier: relaxation degree m_r (>= 3)");
-    app.add_flag("--realtime", "run on the wall clock at 1/h (commands applied when they arrive, by their utime) "
-                 "instead of lockstep");
+    app.add_flag("--realtime", "run on the monotonic clock at 1/h with the node keeping the schedule on its own "
+                 "clock (session CLOCK_NODE; commands applied at their utime, or on arrival if late) instead of "
+                 "lockstep");
     app.add_option("--answer-timeout-s", o->answer_timeout_s, "lockstep: longest wait for the firmware's answer")
         ->capture_default_str();
+    app.add_option("--on-missing-answer", on_missing_answer, "lockstep: when no answer comes within "
+                   "--answer-timeout-s, fail (exit code 1) or hold (count it as lost, the plant holds its "
+                   "command, the run goes on)")->capture_default_str();
     app.add_option("--drop-prob", o->drop_prob, "probability that a measurement is lost (never published; the "
                    "plant holds the last command)")->capture_default_str();
     app.add_option("--extra-delay-s", o->extra_delay_s, "extra latency: each command takes effect this long "
                    "after its utime (unknown to the controller)")->capture_default_str();
+    app.add_option("--link-loss", link_loss, "S,D: no measurement is sent for sample times in [S, S + D) "
+                   "seconds of plant time (a link outage; the node's answers still arrive)");
     app.add_option("--disturbance", disturbance, "SV,SW: sigma of a random speed (m/s) and turn-rate (rad/s) "
                    "perturbation drawn per applied command")->capture_default_str();
-    app.add_option("--start-utime-us", o->start_utime_us, "wire time (us) of plant time 0; near 2^32 it tests "
-                   "the firmware's tick wrap-around")->capture_default_str();
+    app.add_option("--start-utime-us", o->start_utime_us, "lockstep: wire time (us) of plant time 0, the "
+                   "session's epoch; realtime: the plant clock's reading at start")->capture_default_str();
     app.add_option("--lcm-url", o->lcm_url, "LCM URL for this run and the spawned firmware [default: "
                    "$LCM_DEFAULT_URL or LCM's udpm default]");
     app.add_option("--firmware", o->firmware, "tvo_firmware_node to spawn as a child process; without it one "
@@ -249,6 +269,17 @@ int parse_options(int argc, char** argv, SimOptions* o)
     if (!parse_pair(disturbance, &o->disturbance_speed_mps, &o->disturbance_turn_radps)) {
         return fail("--disturbance", "expected SV,SW (two numbers), got '" + disturbance + "'");
     }
+    const bool link_loss_given = app.count("--link-loss") > 0;
+    if (link_loss_given && !parse_pair(link_loss, &o->link_loss_start_s, &o->link_loss_duration_s)) {
+        return fail("--link-loss", "expected S,D (two numbers, seconds), got '" + link_loss + "'");
+    }
+    if (on_missing_answer == "fail") {
+        o->on_missing_answer = MissingAnswer::Fail;
+    } else if (on_missing_answer == "hold") {
+        o->on_missing_answer = MissingAnswer::Hold;
+    } else {
+        return fail("--on-missing-answer", "expected fail or hold, got '" + on_missing_answer + "'");
+    }
     if (!parse_target_kind(target, &o->target)) {
         return fail("--target", "expected ellipse, circle or streamed, got '" + target + "'");
     }
@@ -257,7 +288,7 @@ int parse_options(int argc, char** argv, SimOptions* o)
         return 0;
     }
     return validate(o, delay->count() > 0, app.count("--duration-s") > 0, app.count("--robots") > 0,
-                    app.count("--target") > 0);
+                    app.count("--target") > 0, link_loss_given);
 }
 
 void print_scenario_list(std::ostream& out)

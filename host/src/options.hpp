@@ -9,6 +9,12 @@
 
 namespace tvo_host {
 
+/// Lockstep: what a measurement whose answer does not come within --answer-timeout-s does to the run.
+enum class MissingAnswer {
+    Fail,  // the run ends with an error (exit code 1)
+    Hold   // the answer counts as lost; the plant holds its command and the loop goes on
+};
+
 struct SimOptions {
     // Timing (seconds as given; *_us derived, whole microseconds).
     double period_s{0.01};
@@ -18,7 +24,10 @@ struct SimOptions {
     bool zoh_aware{false};          // evaluate the law at the middle of each held interval
     bool realtime{false};
     double answer_timeout_s{2.0};   // lockstep: longest wait for the firmware's answer
-    std::int64_t start_utime_us{1000000};  // plant time 0 on the wire (the session's epoch)
+    MissingAnswer on_missing_answer{MissingAnswer::Fail};
+    // Lockstep: plant time 0 on the wire (the session's epoch). Realtime: the plant clock's reading
+    // when tvo_sim starts (the epoch follows the first START, see sim_loop.hpp).
+    std::int64_t start_utime_us{1000000};
 
     // Sensing.
     double sigma{0.0};              // position (m), heading (rad) and speed (m/s) noise sigma
@@ -47,6 +56,8 @@ struct SimOptions {
     double extra_delay_s{0.0};
     double disturbance_speed_mps{0.0};
     double disturbance_turn_radps{0.0};
+    double link_loss_start_s{0.0};  // --link-loss S,D: no measurement for sample times in [S, S + D)
+    double link_loss_duration_s{0.0};
 
     // Plumbing.
     std::string lcm_url;            // empty: LCM's default ($LCM_DEFAULT_URL or udpm)
@@ -59,6 +70,15 @@ struct SimOptions {
     std::int64_t delay_us{5000};
     std::int64_t extra_delay_us{0};
     std::int64_t steps{2000};
+    std::int64_t link_loss_start_us{0};
+    std::int64_t link_loss_end_us{0};  // == start: no link loss
+
+    bool has_link_loss() const { return link_loss_end_us > link_loss_start_us; }
+    /// True when the measurement sampled at plant time sample_us is lost to --link-loss.
+    bool link_lost_at(std::int64_t sample_us) const
+    {
+        return sample_us >= link_loss_start_us && sample_us < link_loss_end_us;
+    }
 };
 
 /// Prints each scenario's name and one line about it.

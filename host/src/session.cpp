@@ -3,6 +3,7 @@
 
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 extern "C" {
 #include "tvo/barrier.h"
@@ -11,86 +12,32 @@ extern "C" {
 namespace tvo_host {
 
 namespace {
-// START is repeated at this interval until acknowledged (LCM drops messages nobody subscribed yet).
-constexpr std::chrono::milliseconds kStartRepeat{100};
-// Parameter block strides per robot in target_params (see session_t.lcm): circle and ellipse use 8
-// values per robot, polynomials 16 (8 coefficients per axis).
-constexpr std::size_t kTargetStride = 8;
-constexpr std::size_t kPolyRobotStride = 16;
 
-std::int32_t wire_kind(PathKind kind)
+/// One time function of the plan as the wire's path_t (every field by name, nothing laid out).
+tvo_lcm::path_t wire_path(const TargetPath& path)
 {
-    switch (kind) {
-    case PathKind::Polynomial: return tvo_lcm::session_t::TARGET_POLYNOMIAL;
-    case PathKind::Circle: return tvo_lcm::session_t::TARGET_CIRCLE;
-    case PathKind::Ellipse: return tvo_lcm::session_t::TARGET_ELLIPSE;
-    }
-    throw std::logic_error("unknown path kind");
-}
-
-std::size_t wire_stride(PathKind kind)
-{
-    return kind == PathKind::Polynomial ? kPolyRobotStride : kTargetStride;
-}
-
-/// One path in the firmware's block layout (p points at the block's first value).
-void fill_path(const TargetPath& path, double* p)
-{
-    if (path.kind() == PathKind::Polynomial) {
+    tvo_lcm::path_t wire{};
+    switch (path.kind()) {
+    case PathKind::Polynomial:
+        wire.kind = tvo_lcm::path_t::KIND_POLYNOMIAL;
         for (std::size_t axis = 0; axis < 2; ++axis) {
             for (std::size_t j = 0; j < kPolyCoeffs; ++j) {
-                p[axis * kPolyCoeffs + j] = path.coefficients()[axis][j];
+                wire.coeff[axis][j] = path.coefficients()[axis][j];
             }
         }
-        return;
+        return wire;
+    case PathKind::Circle: wire.kind = tvo_lcm::path_t::KIND_CIRCLE; break;
+    case PathKind::Ellipse: wire.kind = tvo_lcm::path_t::KIND_ELLIPSE; break;
     }
     const EllipseTarget& e = path.ellipse_params();
-    p[0] = e.center_m.x();
-    p[1] = e.center_m.y();
-    if (path.kind() == PathKind::Circle) {
-        p[2] = e.semi_axis_m.x();
-        p[3] = e.omega_radps;
-        p[4] = e.phase_rad;
-    } else {
-        p[2] = e.semi_axis_m.x();
-        p[3] = e.semi_axis_m.y();
-        p[4] = e.omega_radps;
-        p[5] = e.phase_rad;
-        p[6] = e.rotation_rad;
-    }
-}
-
-void fill_targets(const Scenario& scenario, tvo_lcm::session_t* msg)
-{
-    if (scenario.streamed) {
-        msg->target_kind = tvo_lcm::session_t::TARGET_STREAMED;
-        return;
-    }
-    // The wire has one target kind for all robots.
-    const PathKind kind = scenario.targets[0].kind();
-    msg->target_kind = wire_kind(kind);
-    for (std::size_t r = 0; r < scenario.robot_count; ++r) {
-        if (scenario.targets[r].kind() != kind) {
-            throw std::invalid_argument("scenario " + scenario.name + ": every robot's target must be of one kind");
-        }
-        fill_path(scenario.targets[r], msg->target_params + r * wire_stride(kind));
-    }
-}
-
-void fill_barrier(const BarrierOverrides& overrides, tvo_lcm::session_t* msg)
-{
-    // The firmware's defaults, so that the host states only what a scenario changes.
-    tvo_barrier_config_t defaults{};
-    if (tvo_barrier_config_default(&defaults) != TVO_OK) {
-        throw std::logic_error("tvo_barrier_config_default failed");
-    }
-    msg->barrier_c0 = overrides.c0.value_or(static_cast<double>(defaults.c0));
-    msg->barrier_alpha_c_per_s = overrides.alpha_c_per_s.value_or(static_cast<double>(defaults.alpha_c_per_s));
-    msg->barrier_c_max = overrides.c_max.value_or(static_cast<double>(defaults.c_max));
-    msg->barrier_delta0 = overrides.delta0.value_or(static_cast<double>(defaults.delta0));
-    msg->barrier_alpha_s_per_s = overrides.alpha_s_per_s.value_or(static_cast<double>(defaults.alpha_s_per_s));
-    msg->barrier_slack_margin = overrides.slack_margin.value_or(static_cast<double>(defaults.slack_margin));
-    msg->barrier_relaxation_degree = overrides.relaxation_degree.value_or(defaults.relaxation_degree);
+    wire.center_m[0] = e.center_m.x();
+    wire.center_m[1] = e.center_m.y();
+    wire.semi_axis_m[0] = e.semi_axis_m.x();  // a circle's radius
+    wire.semi_axis_m[1] = e.semi_axis_m.y();
+    wire.omega_radps = e.omega_radps;
+    wire.phase_rad = e.phase_rad;
+    wire.rotation_rad = e.rotation_rad;
+    return wire;
 }
 
 /// Checked copy of a scenario's table into a fixed-size message field.
@@ -102,61 +49,86 @@ void require_fits(std::size_t count, std::size_t capacity, const std::string& wh
     }
 }
 
+void fill_robots(const Scenario& scenario, tvo_lcm::session_t* msg)
+{
+    require_fits(scenario.robot_count, tvo_lcm::session_t::MAX_ROBOTS, "robots", scenario);
+    msg->robot_count = static_cast<std::int32_t>(scenario.robot_count);
+    for (std::size_t r = 0; r < scenario.robot_count; ++r) {
+        tvo_lcm::robot_t& robot = msg->robot[r];
+        robot.initial_speed_mps = 0.0;  // the robots start at rest
+        robot.tracking_weight[0] = scenario.weights[r].x();
+        robot.tracking_weight[1] = scenario.weights[r].y();
+        if (scenario.streamed) {
+            robot.target.kind = tvo_lcm::path_t::KIND_STREAMED;
+        } else {
+            robot.target = wire_path(scenario.targets[r]);
+        }
+    }
+}
+
+tvo_lcm::barrier_t wire_barrier(const BarrierOverrides& overrides)
+{
+    // The firmware's defaults, so that the host states only what a scenario changes.
+    tvo_barrier_config_t defaults{};
+    if (tvo_barrier_config_default(&defaults) != TVO_OK) {
+        throw std::logic_error("tvo_barrier_config_default failed");
+    }
+    tvo_lcm::barrier_t b{};
+    b.c0 = overrides.c0.value_or(static_cast<double>(defaults.c0));
+    b.alpha_c_per_s = overrides.alpha_c_per_s.value_or(static_cast<double>(defaults.alpha_c_per_s));
+    b.c_max = overrides.c_max.value_or(static_cast<double>(defaults.c_max));
+    b.delta0 = overrides.delta0.value_or(static_cast<double>(defaults.delta0));
+    b.alpha_s_per_s = overrides.alpha_s_per_s.value_or(static_cast<double>(defaults.alpha_s_per_s));
+    b.slack_margin = overrides.slack_margin.value_or(static_cast<double>(defaults.slack_margin));
+    b.relaxation_degree = overrides.relaxation_degree.value_or(defaults.relaxation_degree);
+    return b;
+}
+
 void fill_constraints(const Scenario& s, tvo_lcm::session_t* msg)
 {
-    fill_barrier(s.barrier, msg);
+    msg->barrier = wire_barrier(s.barrier);
     require_fits(s.distances.size(), tvo_lcm::session_t::MAX_DISTANCE_BOUNDS, "distance bounds", s);
     msg->distance_count = static_cast<std::int32_t>(s.distances.size());
     for (std::size_t i = 0; i < s.distances.size(); ++i) {
         const DistanceBound& d = s.distances[i];
-        msg->distance_robot_a[i] = static_cast<std::int32_t>(d.robot_a);
-        msg->distance_robot_b[i] = static_cast<std::int32_t>(d.robot_b);
-        msg->distance_min_m[i] = d.min_m;
-        msg->distance_min_rate_mps[i] = d.min_rate_mps;
-        msg->distance_max_m[i] = d.max_m;
-        msg->distance_max_rate_mps[i] = d.max_rate_mps;
+        tvo_lcm::distance_bound_t& w = msg->distance[i];
+        w.robot_a = static_cast<std::int32_t>(d.robot_a);
+        w.robot_b = static_cast<std::int32_t>(d.robot_b);
+        w.min_m = d.min_m;
+        w.min_rate_mps = d.min_rate_mps;
+        w.max_m = d.max_m;
+        w.max_rate_mps = d.max_rate_mps;
     }
     require_fits(s.halfspaces.size(), tvo_lcm::session_t::MAX_HALFSPACES, "half-spaces", s);
     msg->halfspace_count = static_cast<std::int32_t>(s.halfspaces.size());
     for (std::size_t i = 0; i < s.halfspaces.size(); ++i) {
         const HalfSpace& h = s.halfspaces[i];
-        msg->halfspace_robot[i] = static_cast<std::int32_t>(h.robot);
+        tvo_lcm::halfspace_t& w = msg->halfspace[i];
+        w.robot = static_cast<std::int32_t>(h.robot);
         for (int axis = 0; axis < 2; ++axis) {
-            msg->halfspace_normal[i][axis] = h.normal[axis];
-            msg->halfspace_normal_rate[i][axis] = h.normal_rate[axis];
+            w.normal[axis] = h.normal[axis];
+            w.normal_rate[axis] = h.normal_rate[axis];
         }
-        msg->halfspace_bound_m[i] = h.bound_m;
-        msg->halfspace_bound_rate_mps[i] = h.bound_rate_mps;
+        w.bound_m = h.bound_m;
+        w.bound_rate_mps = h.bound_rate_mps;
     }
     require_fits(s.obstacles.size(), tvo_lcm::session_t::MAX_OBSTACLES, "obstacles", s);
     msg->robot_radius_m = s.robot_radius_m;
     msg->obstacle_count = static_cast<std::int32_t>(s.obstacles.size());
     for (std::size_t i = 0; i < s.obstacles.size(); ++i) {
-        msg->obstacle_center_m[i][0] = s.obstacles[i].center_m.x();
-        msg->obstacle_center_m[i][1] = s.obstacles[i].center_m.y();
-        msg->obstacle_radius_m[i] = s.obstacles[i].radius_m;
+        tvo_lcm::obstacle_t& w = msg->obstacle[i];
+        w.center_m[0] = s.obstacles[i].center_m.x();
+        w.center_m[1] = s.obstacles[i].center_m.y();
+        w.radius_m = s.obstacles[i].radius_m;
     }
     require_fits(s.offsets.size(), tvo_lcm::session_t::MAX_OFFSETS, "formation offsets", s);
     msg->offset_count = static_cast<std::int32_t>(s.offsets.size());
     for (std::size_t i = 0; i < s.offsets.size(); ++i) {
         const OffsetEquality& o = s.offsets[i];
-        msg->offset_robot_a[i] = static_cast<std::int32_t>(o.robot_a);
-        msg->offset_robot_b[i] = static_cast<std::int32_t>(o.robot_b);
-        msg->offset_kind[i] = wire_kind(o.offset.kind());
-        fill_path(o.offset, msg->offset_params[i]);
-    }
-}
-
-const char* part_name(std::int32_t part)
-{
-    switch (part) {
-    case tvo_lcm::session_ack_t::PART_ROBOTS: return "robots/targets";
-    case tvo_lcm::session_ack_t::PART_BARRIER: return "barrier";
-    case tvo_lcm::session_ack_t::PART_DISTANCE: return "distance bounds";
-    case tvo_lcm::session_ack_t::PART_HALFSPACE: return "half-spaces";
-    case tvo_lcm::session_ack_t::PART_OBSTACLES: return "obstacles";
-    case tvo_lcm::session_ack_t::PART_OFFSETS: return "formation offsets";
-    default: return "unknown";
+        tvo_lcm::offset_t& w = msg->offset[i];
+        w.robot_a = static_cast<std::int32_t>(o.robot_a);
+        w.robot_b = static_cast<std::int32_t>(o.robot_b);
+        w.offset = wire_path(o.offset);
     }
 }
 
@@ -175,23 +147,29 @@ std::string option_for(std::int32_t param, const SimOptions& o)
     case TVO_PARAM_MIN_SPEED: out << "--min-speed-mps " << o.min_speed_mps; break;
     case TVO_PARAM_WATCHDOG: out << "--watchdog-periods " << o.watchdog_periods; break;
     case TVO_PARAM_ROBOT_COUNT: out << "--robots " << o.robots; break;
+    case TVO_PARAM_EPOCH: out << "--start-utime-us " << o.start_utime_us; break;
     default: break;
     }
     return out.str();
 }
 }  // namespace
 
-tvo_lcm::session_t make_start_session(const SimOptions& o, const Scenario& scenario, std::int64_t session_id)
+tvo_lcm::session_t make_start_session(const SimOptions& o, const Scenario& scenario, std::int64_t session_id,
+                                      std::int64_t utime, std::int64_t epoch_utime)
 {
     tvo_lcm::session_t msg{};
-    msg.utime = o.start_utime_us;
+    msg.utime = utime;
     msg.session_id = session_id;
     msg.action = tvo_lcm::session_t::ACTION_START;
-    msg.epoch_utime = o.start_utime_us;  // the objective's t = 0 is plant time 0
+    msg.clock_source = o.realtime ? static_cast<std::int32_t>(tvo_lcm::session_t::CLOCK_NODE)
+                                  : static_cast<std::int32_t>(tvo_lcm::session_t::CLOCK_PLANT);
+    msg.epoch_utime = epoch_utime;
     msg.period_us = o.period_us;
     msg.delay_us = o.delay_us;
     msg.delay_compensation = o.delay_compensation;
     msg.zoh_aware = o.zoh_aware;
+    msg.watchdog_periods = o.watchdog_periods;
+    msg.plant_kind = tvo_lcm::session_t::PLANT_UNICYCLE;
     msg.velocity_source = o.position_only ? static_cast<std::int32_t>(tvo_lcm::session_t::VELOCITY_FROM_POSITION)
                                           : static_cast<std::int32_t>(tvo_lcm::session_t::VELOCITY_FROM_POSE);
     msg.filter_tf_s = o.filter_tf_s;
@@ -201,14 +179,7 @@ tvo_lcm::session_t make_start_session(const SimOptions& o, const Scenario& scena
     msg.accel_max_mps2 = o.accel_max_mps2;
     msg.speed_max_mps = o.speed_max_mps;
     msg.min_speed_mps = o.min_speed_mps;
-    msg.watchdog_periods = o.watchdog_periods;
-    msg.robot_count = static_cast<std::int32_t>(scenario.robot_count);
-    for (std::size_t r = 0; r < scenario.robot_count; ++r) {
-        msg.initial_speed_mps[r] = 0.0;  // the robots start at rest
-        msg.tracking_weight[r][0] = scenario.weights[r].x();
-        msg.tracking_weight[r][1] = scenario.weights[r].y();
-    }
-    fill_targets(scenario, &msg);
+    fill_robots(scenario, &msg);
     fill_constraints(scenario, &msg);
     return msg;
 }
@@ -225,7 +196,11 @@ std::string describe_rejection(const tvo_lcm::session_ack_t& ack, const SimOptio
         }
     }
     if (ack.bad_part != tvo_lcm::session_ack_t::PART_NONE) {
-        out << ", part of the problem: " << part_name(ack.bad_part) << " (scenario " << options.scenario;
+        out << ", part of the problem: " << tvo_protocol_part_str(ack.bad_part);
+        if (ack.bad_index >= 0) {
+            out << ", entry " << ack.bad_index;
+        }
+        out << " (scenario " << options.scenario;
         if (ack.bad_part == tvo_lcm::session_ack_t::PART_BARRIER) {
             out << ", --barrier-* options";
         }
@@ -234,9 +209,15 @@ std::string describe_rejection(const tvo_lcm::session_ack_t& ack, const SimOptio
     return out.str();
 }
 
-SessionClient::SessionClient(LcmTransport& transport, const tvo_lcm::session_t& start)
-    : transport_(transport), session_(start)
+SessionClient::SessionClient(LcmTransport& transport, const tvo_lcm::session_t& start,
+                             std::function<std::int64_t()> stamp)
+    : transport_(transport), session_(start), stamp_(std::move(stamp))
 {
+}
+
+bool SessionClient::is_start_ack(const tvo_lcm::session_ack_t& ack) const
+{
+    return ack.session_id == session_.session_id && ack.action == tvo_lcm::session_t::ACTION_START;
 }
 
 void SessionClient::on_session_ack(const tvo_lcm::session_ack_t& ack)
@@ -263,17 +244,30 @@ bool SessionClient::await_ack(std::int8_t action, std::chrono::steady_clock::tim
     return true;
 }
 
+void SessionClient::send_start_again()
+{
+    session_.utime = stamp_();
+    transport_.set_log_utime(session_.utime);
+    transport_.publish(session_);
+}
+
 bool SessionClient::start(std::chrono::milliseconds timeout, const std::function<bool()>& keep_waiting)
 {
     transport_.set_listener(this);
     transport_.set_log_utime(session_.utime);
     acked_ = false;
     const auto deadline = std::chrono::steady_clock::now() + timeout;
+    bool first = true;
     while (std::chrono::steady_clock::now() < deadline) {
         if (!keep_waiting()) {
             return false;
         }
-        transport_.publish(session_);
+        if (first) {
+            transport_.publish(session_);
+            first = false;
+        } else {
+            send_start_again();
+        }
         if (await_ack(tvo_lcm::session_t::ACTION_START, std::chrono::steady_clock::now() + kStartRepeat)) {
             return true;
         }

@@ -2,7 +2,11 @@
 #include "sim_loop.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
+
+extern "C" {
+}
 
 namespace tvo_host {
 
@@ -15,75 +19,159 @@ constexpr std::size_t kPendingReserve = 1024;
 // Constraint checks along the exact arcs at least this often (plant time): at 5 m/s a robot moves
 // 5 mm between checks.
 constexpr std::int64_t kCheckStepUs = 1000;
+// Lockstep: longest wait for the node to acknowledge a re-sent START (as for the first START).
+constexpr std::chrono::milliseconds kRestartTimeout{5000};
 
 bool is_fault(std::int32_t status, std::int32_t flags)
 {
     const auto bad_flags = static_cast<std::int32_t>(TVO_FLAG_HOLDING | TVO_FLAG_SAFE_STOP);
     return status != 0 || (flags & bad_flags) != 0;
 }
+
+bool is_safe_stop(std::int32_t flags)
+{
+    return (flags & static_cast<std::int32_t>(TVO_FLAG_SAFE_STOP)) != 0;
+}
+
+/// A command the plant can act on: a time within the wire's range (so no arithmetic on it can
+/// overflow), our robot count and finite inputs.
+bool well_formed(const tvo_lcm::command_t& command, std::size_t robots)
+{
+    if (command.utime < 0 || command.utime > TVO_WIRE_TIME_MAX_US ||
+        command.robot_count != static_cast<std::int32_t>(robots)) {
+        return false;
+    }
+    for (std::size_t r = 0; r < robots; ++r) {
+        if (!std::isfinite(command.speed_mps[r]) || !std::isfinite(command.turn_rate_radps[r])) {
+            return false;
+        }
+    }
+    return true;
+}
 }  // namespace
 
-SimLoop::SimLoop(const SimOptions& options, const Scenario& scenario, LcmTransport& transport, RunRecorder& recorder,
-                 TrackingMetrics& metrics, ConstraintMonitor& monitor, const volatile std::sig_atomic_t& stop_signal)
+SimLoop::SimLoop(const SimOptions& options, const Scenario& scenario, LcmTransport& transport, SessionClient& session,
+                 const PlantClock& clock, RunRecorder& recorder, TrackingMetrics& metrics, ConstraintMonitor& monitor,
+                 const volatile std::sig_atomic_t& stop_signal)
     : options_(options),
       scenario_(scenario),
       transport_(transport),
+      session_(session),
+      clock_(clock),
       recorder_(recorder),
       metrics_(metrics),
       monitor_(monitor),
       stop_signal_(stop_signal),
+      epoch_utime_(session.start_message().epoch_utime),
       plant_(scenario.robot_count, scenario.starts),
       noise_(MeasurementNoiseConfig{options.sigma, options.sigma, options.sigma}, options.seed),
       disturbance_(DisturbanceConfig{options.disturbance_speed_mps, options.disturbance_turn_radps}, options.seed),
-      faults_(FaultConfig{options.drop_prob, options.extra_delay_us}, options.seed)
+      faults_(FaultConfig{options.drop_prob, options.extra_delay_us}, options.seed),
+      sent_(static_cast<std::size_t>(options.steps), false)
 {
     pending_.reserve(kPendingReserve);
 }
 
 std::int64_t SimLoop::wall_plant_us() const
 {
-    return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() - wall_epoch_)
-        .count();
+    return clock_.now_utime() - epoch_utime_;
+}
+
+bool SimLoop::sent(std::int64_t sequence) const
+{
+    return sequence >= 0 && sequence < options_.steps && sent_[static_cast<std::size_t>(sequence)];
+}
+
+std::int64_t SimLoop::sample_time_us(std::int64_t sequence) const
+{
+    return (sequence + 1) * options_.period_us - options_.delay_us;
 }
 
 void SimLoop::on_command(const tvo_lcm::command_t& command)
 {
-    const std::size_t robots = scenario_.robot_count;
-    const bool count_ok = command.robot_count == static_cast<std::int32_t>(robots);
-    metrics_.add_command(command.turn_rate_radps, count_ok ? robots : 0,
-                         !count_ok || is_fault(command.status, command.flags),
-                         (command.flags & static_cast<std::int32_t>(TVO_FLAG_REGULARIZED)) != 0);
-    answered_sequence_ = std::max(answered_sequence_, command.measurement_sequence);
-    // Only the newest answer may actuate: a repeat or an older one would move the plant back in time.
-    if (!count_ok || command.measurement_sequence <= last_queued_sequence_) {
+    if (command.session_id != session_.session_id()) {
+        ++counts_.other_session_commands;
         return;
     }
-    last_queued_sequence_ = command.measurement_sequence;
+    const std::size_t robots = scenario_.robot_count;
+    const bool usable = well_formed(command, robots);
+    metrics_.add_command(command.turn_rate_radps, usable ? robots : 0,
+                         !usable || is_fault(command.status, command.flags),
+                         (command.flags & static_cast<std::int32_t>(TVO_FLAG_REGULARIZED)) != 0);
+    if (command.status == static_cast<std::int32_t>(TVO_ERR_NO_SESSION) && !restart_pending_ &&
+        command.measurement_sequence > restart_acked_through_sequence_) {
+        // The node lost our session (it restarted): START again, from the loop (not from inside LCM's handler).
+        restart_pending_ = true;
+        restart_sent_at_.reset();
+        ++counts_.session_restarts;
+    }
+    const bool answers_ours = sent(command.measurement_sequence);
+    if (answers_ours && command.measurement_sequence >= answered_sequence_) {
+        answered_sequence_ = command.measurement_sequence;
+        answered_status_ = command.status;
+    }
+    const bool safe_stop = is_safe_stop(command.flags);
+    // Only the newest answer (or a safe stop) may actuate: a repeat, an older answer or a sequence we
+    // never sent (a stray message) would move the plant back in time or hijack it.
+    if (!usable || !((answers_ours && command.measurement_sequence > last_queued_sequence_) || safe_stop)) {
+        ++counts_.ignored_commands;
+        return;
+    }
+    const std::int64_t arrival_us = options_.realtime ? std::max(now_us_, wall_plant_us()) : now_us_;
+    if (options_.realtime && options_.has_link_loss()) {
+        if (answers_ours && command.status == TVO_OK &&
+            sample_time_us(command.measurement_sequence) < options_.link_loss_start_us) {
+            last_answer_before_loss_utime_ = std::max(last_answer_before_loss_utime_.value_or(command.utime),
+                                                      command.utime);
+        }
+        if (safe_stop && arrival_us >= options_.link_loss_start_us && !first_safe_stop_after_loss_utime_) {
+            first_safe_stop_after_loss_utime_ = command.utime;
+        }
+    }
+    last_queued_sequence_ = std::max(last_queued_sequence_, command.measurement_sequence);
     PendingCommand pending;
-    pending.apply_us = command.utime - options_.start_utime_us + faults_.extra_delay_us();
+    pending.apply_us = command.utime - epoch_utime_ + faults_.extra_delay_us();
     pending.sequence = command.measurement_sequence;
     pending.status = command.status;
     pending.flags = command.flags;
     for (std::size_t r = 0; r < robots; ++r) {
         pending.input[r] = UnicycleInput{command.speed_mps[r], command.turn_rate_radps[r]};
     }
-    const std::int64_t now_us = options_.realtime ? std::max(now_us_, wall_plant_us()) : now_us_;
-    if (pending.apply_us < now_us) {
-        ++late_commands_;
+    if (pending.apply_us < arrival_us) {
+        // The node's own safe stops are stamped when published: they always act on arrival.
+        counts_.late_commands += command.measurement_sequence >= 0 ? 1u : 0u;
         // The plant cannot go back in time: a realtime robot acts on arrival, lockstep discards it
-        // (only a dropped period's holding command can arrive late there).
+        // (only an answer given up on with --on-missing-answer hold can arrive late there).
         if (!options_.realtime) {
             return;
         }
-        pending.apply_us = now_us;
+        pending.apply_us = arrival_us;
     }
     const auto at = std::upper_bound(pending_.begin(), pending_.end(), pending.apply_us,
                                      [](std::int64_t t, const PendingCommand& p) { return t < p.apply_us; });
     pending_.insert(at, pending);
 }
 
+void SimLoop::on_session_ack(const tvo_lcm::session_ack_t& ack)
+{
+    if (!restart_pending_ || !session_.is_start_ack(ack)) {
+        return;  // e.g. the node's repeated ack of a START sent twice at the start
+    }
+    restart_pending_ = false;
+    // Measurements sent until now may still reach the node before this START did: their
+    // TVO_ERR_NO_SESSION answers belong to this restart, not to a new one.
+    restart_acked_through_sequence_ = last_sent_sequence_;
+    if (ack.status != TVO_OK) {
+        restart_refused_ = ack;
+    }
+}
+
 void SimLoop::on_telemetry(const tvo_lcm::telemetry_t& telemetry)
 {
+    if (telemetry.session_id != session_.session_id()) {
+        return;
+    }
+    counts_.node_counters = telemetry.counters;
     if (telemetry.measurement_sequence < telemetry_sequence_) {
         return;
     }
@@ -132,18 +220,20 @@ void SimLoop::advance_to(std::int64_t t_us)
             plant_.hold(r, disturbance_.perturb(command.input[r]));
         }
         applied_ = command;
+        counts_.safe_stop_commands += is_safe_stop(command.flags) ? 1u : 0u;
     }
     integrate_to(t_us);
 }
 
-void SimLoop::publish_sample(std::int64_t sequence, std::int64_t sample_us)
+bool SimLoop::publish_sample(std::int64_t sequence, std::int64_t sample_us)
 {
-    const std::int64_t utime = options_.start_utime_us + sample_us;
+    const std::int64_t utime = epoch_utime_ + sample_us;
     const auto robots = static_cast<std::int32_t>(scenario_.robot_count);
     const double t_s = static_cast<double>(sample_us) * kSPerUs;
     if (scenario_.streamed) {
         // The target source is independent of the pose sensor: it is streamed even when a pose is lost.
         target_.utime = utime;
+        target_.session_id = session_.session_id();
         target_.sequence = sequence;
         target_.robot_count = robots;
         for (std::size_t r = 0; r < scenario_.robot_count; ++r) {
@@ -157,10 +247,15 @@ void SimLoop::publish_sample(std::int64_t sequence, std::int64_t sample_us)
         }
         transport_.publish(target_);
     }
+    if (options_.link_lost_at(sample_us)) {
+        ++counts_.link_lost_measurements;
+        return false;
+    }
     if (faults_.drop_measurement()) {
-        return;
+        return false;
     }
     measurement_.utime = utime;
+    measurement_.session_id = session_.session_id();
     measurement_.sequence = sequence;
     measurement_.robot_count = robots;
     // Position-only: the first sample still carries the heading, which the controller needs to start.
@@ -175,28 +270,74 @@ void SimLoop::publish_sample(std::int64_t sequence, std::int64_t sample_us)
         measurement_.speed_mps[r] = options_.position_only ? 0.0 : sample.speed_mps;
     }
     heading_sent_ = true;
+    sent_[static_cast<std::size_t>(sequence)] = true;
+    last_sent_sequence_ = sequence;
     transport_.publish(measurement_);
+    return true;
 }
 
-bool SimLoop::await_answer(std::int64_t sequence)
+SimLoop::Answer SimLoop::await_answer(std::int64_t sequence)
 {
     // The telemetry follows its command: waiting for both keeps the CSV's telemetry columns in step.
+    // A node without our session answers TVO_ERR_NO_SESSION and has no telemetry to send.
     const auto timeout = std::chrono::duration_cast<std::chrono::microseconds>(
         std::chrono::duration<double>(options_.answer_timeout_s));
     const auto deadline = std::chrono::steady_clock::now() + timeout;
-    while (answered_sequence_ < sequence || telemetry_sequence_ < sequence) {
+    const auto answered = [&] {
+        return answered_sequence_ >= sequence &&
+               (telemetry_sequence_ >= sequence || answered_status_ == static_cast<std::int32_t>(TVO_ERR_NO_SESSION));
+    };
+    while (!answered()) {
         if (stopping()) {
-            return false;
+            return Answer::Interrupted;
         }
         const auto left = std::chrono::duration_cast<std::chrono::microseconds>(deadline -
                                                                                 std::chrono::steady_clock::now());
         if (left.count() <= 0) {
-            throw TransportError(std::string(answered_sequence_ < sequence ? "no command" : "no telemetry") +
-                                 " from the firmware node answering measurement " +
-                                 std::to_string(sequence) + " within " + std::to_string(options_.answer_timeout_s) +
-                                 " s (wall clock)");
+            const bool no_command = answered_sequence_ < sequence;
+            if (options_.on_missing_answer == MissingAnswer::Hold) {
+                ++(no_command ? counts_.lost_answers : counts_.lost_telemetry);
+                return Answer::Lost;
+            }
+            throw TransportError(std::string(no_command ? "no command" : "no telemetry") +
+                                 " from the firmware node answering measurement " + std::to_string(sequence) +
+                                 " within " + std::to_string(options_.answer_timeout_s) + " s (wall clock)");
         }
         transport_.wait(left);
+    }
+    return Answer::Received;
+}
+
+void SimLoop::service_restart()
+{
+    if (restart_refused_) {
+        throw TransportError("the node lost the session and refused it again: " +
+                             describe_rejection(*restart_refused_, options_));
+    }
+    if (!restart_pending_) {
+        return;
+    }
+    const auto now = std::chrono::steady_clock::now();
+    if (!restart_sent_at_ || now - *restart_sent_at_ >= kStartRepeat) {
+        session_.send_start_again();
+        restart_sent_at_ = now;
+    }
+}
+
+bool SimLoop::await_restart()
+{
+    const auto deadline = std::chrono::steady_clock::now() + kRestartTimeout;
+    for (service_restart(); restart_pending_; service_restart()) {
+        if (stopping()) {
+            return false;
+        }
+        const auto now = std::chrono::steady_clock::now();
+        if (now >= deadline) {
+            throw TransportError("the node lost the session and did not acknowledge it again within " +
+                                 std::to_string(kRestartTimeout.count()) + " ms");
+        }
+        const auto until_repeat = *restart_sent_at_ + kStartRepeat;
+        transport_.wait(std::chrono::duration_cast<std::chrono::microseconds>(std::min(deadline, until_repeat) - now));
     }
     return true;
 }
@@ -204,6 +345,7 @@ bool SimLoop::await_answer(std::int64_t sequence)
 bool SimLoop::wait_until(std::int64_t t_us)
 {
     for (;;) {
+        service_restart();
         const std::int64_t now = wall_plant_us();
         if (now >= t_us) {
             return true;
@@ -211,7 +353,7 @@ bool SimLoop::wait_until(std::int64_t t_us)
         if (stopping()) {
             return false;
         }
-        transport_.set_log_utime(options_.start_utime_us + now);
+        transport_.set_log_utime(epoch_utime_ + now);
         transport_.wait(std::min(std::chrono::microseconds(t_us - now), kRealtimeSlice));
     }
 }
@@ -232,43 +374,45 @@ void SimLoop::record(std::int64_t t_us)
 
 LoopResult SimLoop::run()
 {
-    LoopResult result;
     transport_.set_listener(this);
+    bool interrupted = options_.realtime && !wait_until(0);  // realtime: plant time 0 is the epoch
     const auto wall_start = std::chrono::steady_clock::now();
-    wall_epoch_ = wall_start;
     Positions start{};
     for (std::size_t r = 0; r < scenario_.robot_count; ++r) {
         start[r] = plant_.state(r).position_m;
     }
     monitor_.observe(0.0, start);
     record(0);
-    for (std::int64_t n = 0; n < options_.steps; ++n) {
+    for (std::int64_t n = 0; n < options_.steps && !interrupted; ++n) {
         const std::int64_t apply_us = (n + 1) * options_.period_us;
-        const std::int64_t sample_us = apply_us - options_.delay_us;
+        const std::int64_t sample_us = sample_time_us(n);
         if (stopping() || (options_.realtime && !wait_until(sample_us))) {
-            result.interrupted = true;
+            interrupted = true;
             break;
         }
         advance_to(sample_us);
-        transport_.set_log_utime(options_.start_utime_us + sample_us);
-        const std::uint64_t drops_before = faults_.drops();
-        publish_sample(n, sample_us);
-        const bool dropped = faults_.drops() != drops_before;
-        if (!options_.realtime && !dropped && !await_answer(n)) {
-            result.interrupted = true;
+        transport_.set_log_utime(epoch_utime_ + sample_us);
+        if (publish_sample(n, sample_us) && !options_.realtime &&
+            (await_answer(n) == Answer::Interrupted || !await_restart())) {
+            interrupted = true;
             break;
         }
         if (options_.realtime && !wait_until(apply_us)) {
-            result.interrupted = true;
+            interrupted = true;
             break;
         }
         advance_to(apply_us);
         record(apply_us);
-        result.steps = n + 1;
+        counts_.steps = n + 1;
     }
+    LoopResult result = counts_;
+    result.interrupted = interrupted;
     result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     result.drops = faults_.drops();
-    result.late_commands = late_commands_;
+    if (last_answer_before_loss_utime_ && first_safe_stop_after_loss_utime_) {
+        result.first_safe_stop_after_loss_s =
+            static_cast<double>(*first_safe_stop_after_loss_utime_ - *last_answer_before_loss_utime_) * kSPerUs;
+    }
     return result;
 }
 

@@ -69,6 +69,23 @@ void print_summary_table(std::ostream& out, const RunSummary& s, const SimOption
     line(out, "faults", std::to_string(s.faults) + " of " + std::to_string(s.commands) + " commands");
     line(out, "measurements dropped", std::to_string(s.drops));
     line(out, "late commands", std::to_string(s.late_commands));
+    if (o.on_missing_answer == MissingAnswer::Hold) {
+        line(out, "lost answers", std::to_string(s.lost_answers) + " (+ " + std::to_string(s.lost_telemetry) +
+                                      " telemetry only)");
+    }
+    if (o.has_link_loss()) {
+        line(out, "lost to the link outage", std::to_string(s.link_lost_measurements) + " measurements");
+    }
+    line(out, "safe stops applied", std::to_string(s.safe_stop_commands));
+    optional_line(out, "first safe stop after loss", s.first_safe_stop_after_loss_s, "s");
+    line(out, "commands ignored", std::to_string(s.ignored_commands) + " (+ " +
+                                      std::to_string(s.other_session_commands) + " for other sessions)");
+    line(out, "session restarts", std::to_string(s.session_restarts));
+    if (s.node_accepted && s.node_refused && s.node_safe_stops) {
+        line(out, "node: accepted / refused", std::to_string(*s.node_accepted) + " / " +
+                                                  std::to_string(*s.node_refused) + " measurements, " +
+                                                  std::to_string(*s.node_safe_stops) + " safe stops");
+    }
     if (s.collisions) {
         line(out, "collisions", std::to_string(*s.collisions));
     }
@@ -97,15 +114,32 @@ void write_summary_json(const std::string& path, const RunSummary& s)
         {"steps", s.steps},
         {"steps_per_s", s.steps_per_s},
         {"faults", s.faults},
+        {"commands", s.commands},
+        {"drops", s.drops},
+        {"late_commands", s.late_commands},
+        {"lost_answers", s.lost_answers},
+        {"lost_telemetry", s.lost_telemetry},
+        {"link_lost_measurements", s.link_lost_measurements},
+        {"ignored_commands", s.ignored_commands},
+        {"other_session_commands", s.other_session_commands},
+        {"session_restarts", s.session_restarts},
+        {"safe_stop_commands", s.safe_stop_commands},
     };
     const auto put = [&json](const char* key, const std::optional<double>& value) {
         if (value) {
             json[key] = number_or_null(*value);
         }
     };
-    if (s.collisions) {
-        json["collisions"] = *s.collisions;
-    }
+    const auto put_count = [&json](const char* key, const std::optional<std::uint64_t>& value) {
+        if (value) {
+            json[key] = *value;
+        }
+    };
+    put("first_safe_stop_after_loss_s", s.first_safe_stop_after_loss_s);
+    put_count("node_accepted", s.node_accepted);
+    put_count("node_refused", s.node_refused);
+    put_count("node_safe_stops", s.node_safe_stops);
+    put_count("collisions", s.collisions);
     put("min_clearance_m", s.min_clearance_m);
     put("min_distance_m", s.min_distance_m);
     put("min_distance_crossing_m", s.min_distance_crossing_m);
@@ -116,9 +150,7 @@ void write_summary_json(const std::string& path, const RunSummary& s)
     put("initial_violation_frac", s.initial_violation_frac);
     put("time_to_feasible_s", s.time_to_feasible_s);
     put("equality_residual_m", s.equality_residual_m);
-    if (s.regularized_steps) {
-        json["regularized_steps"] = *s.regularized_steps;
-    }
+    put_count("regularized_steps", s.regularized_steps);
     write_json_file(path, json);
 }
 

@@ -21,6 +21,19 @@ struct RunSummary {
     std::uint64_t commands{0};
     std::uint64_t drops{0};
     std::uint64_t late_commands{0};
+    std::uint64_t lost_answers{0};
+    std::uint64_t lost_telemetry{0};
+    std::uint64_t link_lost_measurements{0};
+    std::uint64_t ignored_commands{0};
+    std::uint64_t other_session_commands{0};
+    std::uint64_t session_restarts{0};
+    std::uint64_t safe_stop_commands{0};
+    std::optional<double> first_safe_stop_after_loss_s;  // realtime runs with --link-loss
+
+    // The node's own counters, from the newest telemetry of our session (absent if none came).
+    std::optional<std::uint64_t> node_accepted;
+    std::optional<std::uint64_t> node_refused;
+    std::optional<std::uint64_t> node_safe_stops;
 
     // Where the scenario has them (host/README.md defines each); absent keys do not apply.
     std::optional<std::uint64_t> collisions;
@@ -39,8 +52,9 @@ struct RunSummary {
 
 void print_summary_table(std::ostream& out, const RunSummary& summary, const SimOptions& options);
 
-/// Keys: final_error_m, rms_error_last5s_m, max_abs_omega_radps, steps, steps_per_s, faults, then the
-/// scenario's keys that are set (same names as the fields; a non-finite value is written as null).
+/// Keys: final_error_m, rms_error_last5s_m, max_abs_omega_radps, steps, steps_per_s, faults, commands,
+/// the transport and session counters, then the optional keys that are set (same names as the
+/// fields; a non-finite value is written as null). host/README.md defines each.
 /// std::runtime_error if the file cannot be written.
 void write_summary_json(const std::string& path, const RunSummary& summary);
 

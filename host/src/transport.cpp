@@ -35,9 +35,9 @@ LcmTransport::LcmTransport(const std::string& url, const std::string& log_path)
         throw TransportError("the encode buffer (" + std::to_string(buffer_.size()) + " bytes) is smaller than a " +
                              std::to_string(largest) + "-byte message");
     }
-    lcm_.subscribe(channel::kCommand, &LcmTransport::on_raw, this);
-    lcm_.subscribe(channel::kSessionAck, &LcmTransport::on_raw, this);
-    lcm_.subscribe(channel::kTelemetry, &LcmTransport::on_raw, this);
+    lcm_.subscribe(TVO_CHANNEL_COMMAND, &LcmTransport::on_raw, this);
+    lcm_.subscribe(TVO_CHANNEL_SESSION_ACK, &LcmTransport::on_raw, this);
+    lcm_.subscribe(TVO_CHANNEL_TELEMETRY, &LcmTransport::on_raw, this);
 }
 
 void LcmTransport::log(const std::string& channel, const void* data, std::int32_t size, std::int64_t utime)
@@ -88,15 +88,15 @@ void LcmTransport::on_raw(const lcm::ReceiveBuffer* rbuf, const std::string& cha
         return;
     }
     // Decoding fixed-size messages into members allocates nothing.
-    if (channel == channel::kCommand) {
+    if (channel == TVO_CHANNEL_COMMAND) {
         if (command_.decode(rbuf->data, 0, size) >= 0) {
             listener_->on_command(command_);
         }
-    } else if (channel == channel::kSessionAck) {
+    } else if (channel == TVO_CHANNEL_SESSION_ACK) {
         if (ack_.decode(rbuf->data, 0, size) >= 0) {
             listener_->on_session_ack(ack_);
         }
-    } else if (channel == channel::kTelemetry) {
+    } else if (channel == TVO_CHANNEL_TELEMETRY) {
         if (telemetry_.decode(rbuf->data, 0, size) >= 0) {
             listener_->on_telemetry(telemetry_);
         }

@@ -68,9 +68,9 @@ private:
     tvo_lcm::session_ack_t ack_{};
     tvo_lcm::telemetry_t telemetry_{};
     // Channel names as std::string once, so publishing builds no temporaries.
-    const std::string session_channel_{channel::kSession};
-    const std::string measurement_channel_{channel::kMeasurement};
-    const std::string target_channel_{channel::kTarget};
+    const std::string session_channel_{TVO_CHANNEL_SESSION};
+    const std::string measurement_channel_{TVO_CHANNEL_MEASUREMENT};
+    const std::string target_channel_{TVO_CHANNEL_TARGET};
 };
 
 }  // namespace tvo_host

@@ -62,7 +62,7 @@ static double relaxed_branch(unsigned m, unsigned n, double sigma, double delta)
 static tvo_real_t real_below(tvo_real_t x)
 {
 #if TVO_USE_DOUBLE
-    return nextafter(x, -INFINITY);
+    return nextafter(x, -HUGE_VAL); /* HUGE_VAL is a double: INFINITY is a float and would be promoted */
 #else
     return nextafterf(x, -INFINITY);
 #endif

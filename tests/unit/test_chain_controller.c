@@ -750,6 +750,176 @@ static void test_lifted_matrix_reproduces_the_closed_loop(void)
     }
 }
 
+/* ------------------------------------------------------------------------------------------------
+ * For the edge (issue 9): check, safe stop, refusals that leave no trace
+ * --------------------------------------------------------------------------------------------- */
+
+/* k = 3 with dirty-derivative filters (the state a refusal must not touch), after `steps` periods. */
+static void ch_filtered_running(ch_t *ch, uint32_t steps)
+{
+    ch_config(ch, 3, 10000u, 5000u, 1u, 0u);
+    ch->cfg.filtered_derivatives = 1u;
+    ch->cfg.watchdog_periods = 5u;
+    ASSERT_STATUS(TVO_OK, ch_init(ch));
+    tvo_chain_command_t cmd;
+    for (uint32_t i = 0; i < steps; ++i) {
+        ASSERT_STATUS(TVO_OK, ch_step(ch, &cmd));
+    }
+}
+
+static tvo_chain_controller_t ch_before;
+static tvo_chain_controller_t ch_copy;
+
+static void test_chain_check_changes_nothing_and_says_what_the_step_would(void)
+{
+    for (int filtered = 0; filtered < 2; ++filtered) {
+        ch_t ch;
+        ch_filtered_running(&ch, 8u);
+        ch.ctl.cfg.filtered_derivatives = (uint8_t)filtered; /* measured derivatives are read: NaN counts */
+        double xs[2][3];
+        tvo_chain_measurement_t good;
+        ch_sample(&ch, xs, &good);
+        struct {
+            tvo_chain_measurement_t m;
+            uint32_t apply;
+            int null_meas;
+            tvo_status_t expected;
+        } cases[8];
+        size_t n = 0;
+        cases[n].m = good, cases[n].apply = ch.apply, cases[n].null_meas = 0, cases[n++].expected = TVO_OK;
+        cases[n].m = good, cases[n].m.y.d[0][1] = TEST_NAN, cases[n].apply = ch.apply, cases[n].null_meas = 0;
+        cases[n++].expected = TVO_ERR_NOT_FINITE;
+        cases[n].m = good, cases[n].m.y.d[2][0] = TEST_INF, cases[n].apply = ch.apply, cases[n].null_meas = 0;
+        cases[n++].expected = filtered ? TVO_OK : TVO_ERR_NOT_FINITE; /* y'' is read only when measured */
+        cases[n].m = good, cases[n].m.stamp_tick = ch.apply - ch.cfg.period_ticks - 1u, cases[n].apply = ch.apply;
+        cases[n].null_meas = 0, cases[n++].expected = TVO_ERR_STALE;
+        cases[n].m = good, cases[n].m.stamp_tick = ch.apply + 1u, cases[n].apply = ch.apply;
+        cases[n].null_meas = 0, cases[n++].expected = TVO_ERR_FUTURE_STAMP;
+        cases[n].m = good, cases[n].apply = ch.apply - ch.cfg.period_ticks, cases[n].null_meas = 0;
+        cases[n++].expected = TVO_ERR_OUT_OF_ORDER;
+        cases[n].m = good, cases[n].apply = ch.apply, cases[n].null_meas = 1;
+        cases[n++].expected = TVO_ERR_NO_MEASUREMENT;
+        for (size_t i = 0; i < n; ++i) {
+            const tvo_chain_measurement_t *m = cases[i].null_meas ? NULL : &cases[i].m;
+            memcpy(&ch_before, &ch.ctl, sizeof(ch_before));
+            ASSERT_STATUS(cases[i].expected, tvo_chain_controller_check(&ch.ctl, m, cases[i].apply));
+            TEST_ASSERT_EQUAL_MEMORY(&ch_before, &ch.ctl, sizeof(ch_before));
+            memcpy(&ch_copy, &ch.ctl, sizeof(ch_copy));
+            tvo_chain_command_t cmd;
+            ASSERT_STATUS(cases[i].expected, tvo_chain_controller_step(&ch_copy, m, cases[i].apply, &cmd));
+        }
+    }
+    ASSERT_STATUS(TVO_ERR_NULL, tvo_chain_controller_check(NULL, NULL, 0u));
+    tvo_chain_controller_t blank;
+    memset(&blank, 0, sizeof(blank));
+    tvo_chain_measurement_t m;
+    memset(&m, 0, sizeof(m));
+    ASSERT_STATUS(TVO_ERR_NOT_INITIALIZED, tvo_chain_controller_check(&blank, &m, CH_EPOCH));
+}
+
+static void test_chain_safe_stop_drops_to_rest_without_advancing_the_clock(void)
+{
+    ch_t ch;
+    ch_filtered_running(&ch, 8u);
+    TEST_ASSERT_TRUE(ch.ctl.held.u[0] != TVO_R(0.0));
+    const tvo_sample_clock_t clock_before = ch.ctl.clock;
+    tvo_chain_command_t cmd;
+    memset(&cmd, 0x5A, sizeof(cmd));
+    ASSERT_STATUS(TVO_OK, tvo_chain_controller_safe_stop(&ch.ctl, &cmd));
+    TEST_ASSERT_EQUAL_HEX32(TVO_FLAG_SAFE_STOP, cmd.flags);
+    for (int i = 0; i < TVO_MAX_OUTPUT_DIM; ++i) {
+        ASSERT_NEAR(0.0, cmd.u[i], 0.0);
+        ASSERT_NEAR(0.0, ch.ctl.held.u[i], 0.0);
+    }
+    TEST_ASSERT_EQUAL_UINT8(1u, ch.ctl.clock.stopped);
+    TEST_ASSERT_EQUAL_UINT32(ch.cfg.watchdog_periods, ch.ctl.clock.periods_without_measurement);
+    TEST_ASSERT_EQUAL_HEX32(clock_before.last_apply_tick, ch.ctl.clock.last_apply_tick);
+    TEST_ASSERT_EQUAL_UINT64(clock_before.elapsed_ticks, ch.ctl.clock.elapsed_ticks);
+    /* The plant applies the stop; the next measurement is accepted, the filters restart at rest. */
+    ch.u[0] = ch.u[1] = 0.0;
+    ASSERT_STATUS(TVO_OK, ch_step(&ch, &cmd));
+    ASSERT_FLAG_CLEAR(cmd.flags, TVO_FLAG_SAFE_STOP | TVO_FLAG_HOLDING);
+    TEST_ASSERT_EQUAL_UINT8(0u, ch.ctl.clock.stopped);
+    for (int i = 0; i < 2; ++i) {
+        ASSERT_NEAR(0.0, ch.ctl.filter[0].output[i], 0.0);
+    }
+    ASSERT_STATUS(TVO_ERR_NULL, tvo_chain_controller_safe_stop(&ch.ctl, NULL));
+    memset(&cmd, 0x5A, sizeof(cmd));
+    ASSERT_STATUS(TVO_ERR_NULL, tvo_chain_controller_safe_stop(NULL, &cmd));
+    TEST_ASSERT_EQUAL_HEX32(TVO_FLAG_SAFE_STOP, cmd.flags);
+    tvo_chain_controller_t blank;
+    memset(&blank, 0, sizeof(blank));
+    ASSERT_STATUS(TVO_ERR_NOT_INITIALIZED, tvo_chain_controller_safe_stop(&blank, &cmd));
+    ASSERT_NEAR(0.0, cmd.u[0], 0.0);
+}
+
+/* The filters, the held command and the last stamp: what a refused step must not touch. */
+static void assert_chain_untouched(const tvo_chain_controller_t *before, const tvo_chain_controller_t *after)
+{
+    TEST_ASSERT_EQUAL_MEMORY_MESSAGE(before->filter, after->filter, sizeof(after->filter), "filters");
+    TEST_ASSERT_EQUAL_MEMORY_MESSAGE(before->held.u, after->held.u, sizeof(after->held.u), "held command");
+    TEST_ASSERT_EQUAL_HEX32_MESSAGE(before->clock.last_stamp_tick, after->clock.last_stamp_tick, "last stamp");
+    TEST_ASSERT_EQUAL_UINT8_MESSAGE(before->clock.has_stamp, after->clock.has_stamp, "has stamp");
+}
+
+static void test_chain_refused_measurement_leaves_filters_and_stamp_untouched(void)
+{
+    ch_t ch;
+    ch_filtered_running(&ch, 8u);
+    TEST_ASSERT_EQUAL_UINT8(1u, ch.ctl.filter[0].primed);
+    double xs[2][3];
+    tvo_chain_measurement_t m;
+    tvo_chain_command_t cmd;
+    const tvo_status_t why[] = {TVO_ERR_STALE, TVO_ERR_FUTURE_STAMP};
+    for (int i = 0; i < 2; ++i) {
+        ch_sample(&ch, xs, &m);
+        m.y.d[0][0] += TVO_R(0.25); /* a jump the filters would follow if they saw it */
+        m.stamp_tick = (i == 0) ? ch.apply - ch.cfg.period_ticks - 1u : ch.apply + 1u;
+        memcpy(&ch_before, &ch.ctl, sizeof(ch_before));
+        ASSERT_STATUS(why[i], tvo_chain_controller_step(&ch.ctl, &m, ch.apply, &cmd));
+        assert_chain_untouched(&ch_before, &ch.ctl);
+        ch.apply += ch.cfg.period_ticks;
+    }
+    ch_sample(&ch, xs, &m);
+    m.y.d[0][1] = TEST_NAN;
+    memcpy(&ch_before, &ch.ctl, sizeof(ch_before));
+    ASSERT_STATUS(TVO_ERR_NOT_FINITE, tvo_chain_controller_step(&ch.ctl, &m, ch.apply, &cmd));
+    assert_chain_untouched(&ch_before, &ch.ctl);
+}
+
+static void test_chain_law_failure_after_the_filters_leaves_them_untouched(void)
+{
+    /* A streamed target in place of the polynomial: the filters step (their working copies), then
+     * the law fails because the latest target sample is stamped after the law's time. */
+    ch_t ch;
+    ch_config(&ch, 3, 10000u, 5000u, 1u, 0u);
+    ch.cfg.filtered_derivatives = 1u;
+    ch.cfg.watchdog_periods = 5u;
+    ASSERT_STATUS(TVO_OK, ch_init(&ch));
+    tvo_real_t sample[TVO_STREAM_MAX_DERIV + 1][2];
+    memset(sample, 0, sizeof(sample));
+    sample[0][0] = TVO_R(0.3);
+    sample[1][1] = TVO_R(0.2);
+    ASSERT_STATUS(TVO_OK, tvo_target_init_streamed(&ch.target));
+    ASSERT_STATUS(TVO_OK, tvo_target_stream_update(&ch.target, 0u, TEST_CONST_STREAM(sample)));
+    tvo_chain_command_t cmd;
+    for (int i = 0; i < 8; ++i) {
+        ASSERT_STATUS(TVO_OK, ch_step(&ch, &cmd));
+    }
+    TEST_ASSERT_EQUAL_UINT8(1u, ch.ctl.filter[1].primed);
+    ASSERT_STATUS(TVO_OK, tvo_target_stream_update(&ch.target, 1000000u, TEST_CONST_STREAM(sample)));
+    double xs[2][3];
+    tvo_chain_measurement_t m;
+    ch_sample(&ch, xs, &m);
+    m.y.d[0][0] += TVO_R(0.1);
+    ASSERT_STATUS(TVO_OK, tvo_chain_controller_check(&ch.ctl, &m, ch.apply));
+    memcpy(&ch_before, &ch.ctl, sizeof(ch_before));
+    const tvo_status_t st = tvo_chain_controller_step(&ch.ctl, &m, ch.apply, &cmd);
+    TEST_ASSERT_TRUE(st != TVO_OK);
+    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_HOLDING);
+    assert_chain_untouched(&ch_before, &ch.ctl);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -767,5 +937,9 @@ int main(void)
     RUN_TEST(test_init_names_the_first_bad_parameter);
     RUN_TEST(test_bad_measurements_hold_the_command_then_the_watchdog_stops);
     RUN_TEST(test_lifted_matrix_reproduces_the_closed_loop);
+    RUN_TEST(test_chain_check_changes_nothing_and_says_what_the_step_would);
+    RUN_TEST(test_chain_safe_stop_drops_to_rest_without_advancing_the_clock);
+    RUN_TEST(test_chain_refused_measurement_leaves_filters_and_stamp_untouched);
+    RUN_TEST(test_chain_law_failure_after_the_filters_leaves_them_untouched);
     return UNITY_END();
 }

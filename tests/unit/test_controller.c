@@ -1096,6 +1096,322 @@ static void test_position_only_mode_ignores_heading_and_speed_after_the_first_sa
     }
 }
 
+/* ------------------------------------------------------------------------------------------------
+ * For the edge (issue 9): check, safe stop, refusals that leave no trace, the speed-mismatch flag
+ * --------------------------------------------------------------------------------------------- */
+
+/* The measurement of the next closed-loop step (the plant carried to the sampling instant). */
+static tvo_measurement_t next_sample(const fx_t *fx)
+{
+    tvo_pose_t at_sample[TVO_MAX_ROBOTS];
+    fx_predict_all(fx, &fx->cmd, fx->pose, FX_PERIOD - FX_DELAY, at_sample);
+    tvo_measurement_t m;
+    fx_measure(fx, at_sample, fx->apply - FX_DELAY, &m);
+    return m;
+}
+
+static tvo_controller_t ctl_before;
+static tvo_controller_t ctl_copy;
+
+static void test_check_changes_nothing_and_says_what_the_step_would(void)
+{
+    for (int position_only = 0; position_only < 2; ++position_only) {
+        fx_static_point(&fx_a, 2.0, 1.0);
+        fx_set_pose(&fx_a, 0, 0.0, 0.0, 0.2);
+        fx_a.cfg.velocity_source = position_only ? TVO_VELOCITY_FROM_POSITION : TVO_VELOCITY_FROM_POSE;
+        fx_start(&fx_a, 0);
+        run_ok(&fx_a, 10);
+        const tvo_measurement_t good = next_sample(&fx_a);
+        struct {
+            tvo_measurement_t m;
+            uint32_t apply;
+            int null_meas;
+            tvo_status_t expected;
+        } cases[8];
+        size_t n = 0;
+        cases[n].m = good, cases[n].apply = fx_a.apply, cases[n].null_meas = 0, cases[n++].expected = TVO_OK;
+        cases[n].m = good, cases[n].m.position_m[0][1] = TEST_NAN, cases[n].apply = fx_a.apply;
+        cases[n].null_meas = 0, cases[n++].expected = TVO_ERR_NOT_FINITE;
+        cases[n].m = good, cases[n].m.stamp_tick = fx_a.apply - FX_PERIOD - 1u, cases[n].apply = fx_a.apply;
+        cases[n].null_meas = 0, cases[n++].expected = TVO_ERR_STALE;
+        cases[n].m = good, cases[n].m.stamp_tick = fx_a.apply + 1u, cases[n].apply = fx_a.apply;
+        cases[n].null_meas = 0, cases[n++].expected = TVO_ERR_FUTURE_STAMP;
+        cases[n].m = good, cases[n].apply = fx_a.apply - FX_PERIOD; /* apply does not advance */
+        cases[n].null_meas = 0, cases[n++].expected = TVO_ERR_OUT_OF_ORDER;
+        cases[n].m = good, cases[n].apply = fx_a.apply, cases[n].null_meas = 1;
+        cases[n++].expected = TVO_ERR_NO_MEASUREMENT;
+        cases[n].m = good, cases[n].m.heading_valid = 0, cases[n].apply = fx_a.apply, cases[n].null_meas = 0;
+        cases[n++].expected = position_only ? TVO_OK : TVO_ERR_MISSING_FIELD;
+        for (size_t i = 0; i < n; ++i) {
+            const tvo_measurement_t *m = cases[i].null_meas ? NULL : &cases[i].m;
+            memcpy(&ctl_before, &fx_a.ctl, sizeof(ctl_before));
+            ASSERT_STATUS(cases[i].expected, tvo_controller_check(&fx_a.ctl, m, cases[i].apply));
+            TEST_ASSERT_EQUAL_MEMORY(&ctl_before, &fx_a.ctl, sizeof(ctl_before));
+            /* The step, on a copy, says the same. */
+            memcpy(&ctl_copy, &fx_a.ctl, sizeof(ctl_copy));
+            tvo_command_t cmd;
+            ASSERT_STATUS(cases[i].expected, tvo_controller_step(&ctl_copy, m, cases[i].apply, &cmd));
+        }
+    }
+    ASSERT_STATUS(TVO_ERR_NULL, tvo_controller_check(NULL, NULL, 0u));
+    tvo_controller_t blank;
+    memset(&blank, 0, sizeof(blank));
+    const tvo_measurement_t m = measure_now(&fx_a, 0u);
+    ASSERT_STATUS(TVO_ERR_NOT_INITIALIZED, tvo_controller_check(&blank, &m, FX_PERIOD));
+}
+
+static void test_safe_stop_drops_to_rest_without_advancing_the_clock(void)
+{
+    fx_running(&fx_a);
+    TEST_ASSERT_TRUE(fx_a.ctl.held.speed_mps[0] != TVO_R(0.0)); /* it was moving */
+    const tvo_sample_clock_t clock_before = fx_a.ctl.clock;
+    tvo_command_t cmd;
+    memset(&cmd, 0x5A, sizeof(cmd));
+    ASSERT_STATUS(TVO_OK, tvo_controller_safe_stop(&fx_a.ctl, &cmd));
+    TEST_ASSERT_EQUAL_HEX32(TVO_FLAG_SAFE_STOP, cmd.flags);
+    for (int r = 0; r < TVO_MAX_ROBOTS; ++r) {
+        ASSERT_NEAR(0.0, cmd.speed_mps[r], 0.0);
+        ASSERT_NEAR(0.0, cmd.turn_rate_radps[r], 0.0);
+        ASSERT_NEAR(0.0, fx_a.ctl.held.speed_mps[r], 0.0);
+        ASSERT_NEAR(0.0, fx_a.ctl.held.turn_rate_radps[r], 0.0);
+        ASSERT_NEAR(0.0, fx_a.ctl.speed_state_mps[r], 0.0);
+    }
+    for (int q = 0; q < TVO_MAX_EQUALITIES; ++q) {
+        ASSERT_NEAR(0.0, fx_a.ctl.multiplier_rate[q], 0.0);
+    }
+    TEST_ASSERT_EQUAL_UINT8(1u, fx_a.ctl.clock.stopped);
+    TEST_ASSERT_EQUAL_UINT32(fx_a.cfg.watchdog_periods, fx_a.ctl.clock.periods_without_measurement);
+    TEST_ASSERT_EQUAL_HEX32(clock_before.last_apply_tick, fx_a.ctl.clock.last_apply_tick);
+    TEST_ASSERT_EQUAL_UINT64(clock_before.elapsed_ticks, fx_a.ctl.clock.elapsed_ticks);
+    TEST_ASSERT_EQUAL_HEX32(clock_before.last_stamp_tick, fx_a.ctl.clock.last_stamp_tick);
+    /* The plant stops (it applies the safe stop); the next measurement resumes from rest. */
+    fx_a.cmd = cmd;
+    ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_a, &cmd));
+    ASSERT_FLAG_CLEAR(cmd.flags, TVO_FLAG_SAFE_STOP | TVO_FLAG_HOLDING);
+    assert_command_finite(&cmd, 1);
+    TEST_ASSERT_EQUAL_UINT8(0u, fx_a.ctl.clock.stopped);
+    ASSERT_LE(fabs(test_d(cmd.speed_mps[0])), test_d(fx_a.cfg.accel_max_mps2) * h_s(&fx_a) + TEST_TOL(8, 1.0),
+              "speed after the safe stop");
+    run_ok(&fx_a, 20);
+    /* Arguments. */
+    ASSERT_STATUS(TVO_ERR_NULL, tvo_controller_safe_stop(&fx_a.ctl, NULL));
+    memset(&cmd, 0x5A, sizeof(cmd));
+    ASSERT_STATUS(TVO_ERR_NULL, tvo_controller_safe_stop(NULL, &cmd));
+    TEST_ASSERT_EQUAL_HEX32(TVO_FLAG_SAFE_STOP, cmd.flags);
+    ASSERT_NEAR(0.0, cmd.speed_mps[0], 0.0);
+    tvo_controller_t blank;
+    memset(&blank, 0, sizeof(blank));
+    memset(&cmd, 0x5A, sizeof(cmd));
+    ASSERT_STATUS(TVO_ERR_NOT_INITIALIZED, tvo_controller_safe_stop(&blank, &cmd));
+    TEST_ASSERT_EQUAL_HEX32(TVO_FLAG_SAFE_STOP, cmd.flags);
+}
+
+/* What a refused step must leave as it was. */
+typedef struct {
+    tvo_dirty_derivative_t velocity_filter;
+    tvo_real_t speed_state_mps[TVO_MAX_ROBOTS];
+    tvo_real_t heading_estimate_rad[TVO_MAX_ROBOTS];
+    tvo_real_t multiplier[TVO_MAX_EQUALITIES];
+    tvo_command_t held;
+    uint32_t last_stamp_tick;
+    uint8_t has_stamp;
+    uint32_t speed_mismatch_periods;
+} trace_t;
+
+static void trace_of(const tvo_controller_t *ctl, trace_t *t)
+{
+    memset(t, 0, sizeof(*t));
+    memcpy(&t->velocity_filter, &ctl->velocity_filter, sizeof(t->velocity_filter));
+    memcpy(t->speed_state_mps, ctl->speed_state_mps, sizeof(t->speed_state_mps));
+    memcpy(t->heading_estimate_rad, ctl->heading_estimate_rad, sizeof(t->heading_estimate_rad));
+    memcpy(t->multiplier, ctl->multiplier, sizeof(t->multiplier));
+    memcpy(&t->held, &ctl->held, sizeof(t->held));
+    t->last_stamp_tick = ctl->clock.last_stamp_tick;
+    t->has_stamp = ctl->clock.has_stamp;
+    t->speed_mismatch_periods = ctl->speed_mismatch_periods;
+}
+
+static void assert_no_trace(const trace_t *before, const tvo_controller_t *ctl)
+{
+    trace_t after;
+    trace_of(ctl, &after);
+    TEST_ASSERT_EQUAL_MEMORY_MESSAGE(&before->velocity_filter, &after.velocity_filter, sizeof(after.velocity_filter),
+                                     "velocity filter");
+    TEST_ASSERT_EQUAL_MEMORY_MESSAGE(before->speed_state_mps, after.speed_state_mps, sizeof(after.speed_state_mps),
+                                     "speed state");
+    TEST_ASSERT_EQUAL_MEMORY_MESSAGE(before->heading_estimate_rad, after.heading_estimate_rad,
+                                     sizeof(after.heading_estimate_rad), "heading estimate");
+    TEST_ASSERT_EQUAL_MEMORY_MESSAGE(before->multiplier, after.multiplier, sizeof(after.multiplier), "multipliers");
+    assert_commands_bit_identical(&before->held, &after.held);
+    TEST_ASSERT_EQUAL_HEX32_MESSAGE(before->last_stamp_tick, after.last_stamp_tick, "last stamp");
+    TEST_ASSERT_EQUAL_UINT8_MESSAGE(before->has_stamp, after.has_stamp, "has stamp");
+    TEST_ASSERT_EQUAL_UINT32_MESSAGE(before->speed_mismatch_periods, after.speed_mismatch_periods,
+                                     "speed mismatch count");
+}
+
+static void test_refused_measurement_leaves_filter_speed_state_and_stamp_untouched(void)
+{
+    for (int position_only = 0; position_only < 2; ++position_only) {
+        fx_static_point(&fx_a, 2.0, 1.0);
+        fx_set_pose(&fx_a, 0, 0.0, 0.0, 0.2);
+        fx_a.cfg.velocity_source = position_only ? TVO_VELOCITY_FROM_POSITION : TVO_VELOCITY_FROM_POSE;
+        fx_start(&fx_a, 0);
+        run_ok(&fx_a, 10);
+        if (position_only) {
+            TEST_ASSERT_EQUAL_UINT8(1u, fx_a.ctl.velocity_filter.primed);
+        }
+        trace_t before;
+        tvo_command_t cmd;
+        /* Stale, with a measured speed that would shift the speed state if it were used. */
+        tvo_measurement_t m = next_sample(&fx_a);
+        m.stamp_tick = fx_a.apply - FX_PERIOD - 1u;
+        m.speed_valid = 1;
+        m.speed_mps[0] = TVO_R(1.5);
+        m.position_m[0][0] += TVO_R(0.3);
+        trace_of(&fx_a.ctl, &before);
+        ASSERT_STATUS(TVO_ERR_STALE, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd));
+        assert_no_trace(&before, &fx_a.ctl);
+        /* Not finite, from the future, missing its heading (pose mode). */
+        fx_a.apply += FX_PERIOD;
+        m = next_sample(&fx_a);
+        m.heading_rad[0] = TEST_NAN;
+        trace_of(&fx_a.ctl, &before);
+        ASSERT_STATUS(TVO_ERR_NOT_FINITE, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd));
+        assert_no_trace(&before, &fx_a.ctl);
+        fx_a.apply += FX_PERIOD;
+        m = next_sample(&fx_a);
+        m.stamp_tick = fx_a.apply + 2u;
+        ASSERT_STATUS(TVO_ERR_FUTURE_STAMP, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd));
+        assert_no_trace(&before, &fx_a.ctl);
+    }
+}
+
+static void test_law_failure_after_the_estimate_leaves_the_filter_untouched(void)
+{
+    /* Position-only mode with a streamed target: the estimate steps the filter (its working copy),
+     * then the law fails because the latest target sample is stamped after the law's time. */
+    fx_reset(&fx_a, 1);
+    fx_a.cfg.velocity_source = TVO_VELOCITY_FROM_POSITION;
+    ASSERT_STATUS(TVO_OK, tvo_target_init_streamed(&fx_a.target[0]));
+    tvo_real_t sample[TVO_STREAM_MAX_DERIV + 1][2];
+    memset(sample, 0, sizeof(sample));
+    sample[0][0] = TVO_R(1.0);
+    sample[1][0] = TVO_R(0.3);
+    ASSERT_STATUS(TVO_OK, tvo_target_stream_update(&fx_a.target[0], 0u, TEST_CONST_STREAM(sample)));
+    fx_set_pose(&fx_a, 0, 0.0, 0.0, 0.0);
+    fx_start(&fx_a, 0);
+    run_ok(&fx_a, 10);
+    TEST_ASSERT_EQUAL_UINT8(1u, fx_a.ctl.velocity_filter.primed);
+    ASSERT_STATUS(TVO_OK, tvo_target_stream_update(&fx_a.target[0], 1000000u, TEST_CONST_STREAM(sample)));
+    trace_t before;
+    trace_of(&fx_a.ctl, &before);
+    tvo_measurement_t m = next_sample(&fx_a);
+    m.position_m[0][0] += TVO_R(0.05); /* a sample the filter would react to */
+    ASSERT_STATUS(TVO_OK, tvo_controller_check(&fx_a.ctl, &m, fx_a.apply));
+    tvo_command_t cmd;
+    const tvo_status_t st = tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd);
+    TEST_ASSERT_TRUE(st != TVO_OK);
+    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_HOLDING);
+    assert_no_trace(&before, &fx_a.ctl);
+}
+
+/* One closed-loop period whose measurement reports speed_valid with the given speed (the plant
+ * itself moves with the command in force, as fx_closed_loop_step's does). */
+static tvo_status_t step_reporting_speed(fx_t *fx, double reported_mps, tvo_command_t *out)
+{
+    tvo_pose_t at_sample[TVO_MAX_ROBOTS];
+    fx_predict_all(fx, &fx->cmd, fx->pose, FX_PERIOD - FX_DELAY, at_sample);
+    tvo_measurement_t m;
+    fx_measure(fx, at_sample, fx->apply - FX_DELAY, &m);
+    m.speed_valid = 1;
+    m.speed_mps[0] = test_r(reported_mps);
+    const tvo_status_t st = tvo_controller_step(&fx->ctl, &m, fx->apply, out);
+    fx_predict_all(fx, &fx->cmd, at_sample, FX_DELAY, fx->pose);
+    fx->cmd = *out;
+    fx->apply += FX_PERIOD;
+    fx->steps++;
+    return st;
+}
+
+static void test_speed_mismatch_is_flagged_after_its_periods_in_a_row(void)
+{
+    fx_running(&fx_a); /* speed_max = 2 m/s */
+    tvo_command_t cmd;
+    /* A speed no command could give, reported TVO_SPEED_MISMATCH_PERIODS times in a row. */
+    for (uint32_t k = 1; k <= TVO_SPEED_MISMATCH_PERIODS + 2u; ++k) {
+        ASSERT_STATUS(TVO_OK, step_reporting_speed(&fx_a, 10.0, &cmd));
+        if (k < TVO_SPEED_MISMATCH_PERIODS) {
+            ASSERT_FLAG_CLEAR(cmd.flags, TVO_FLAG_SPEED_MISMATCH);
+        } else {
+            ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_SPEED_MISMATCH);
+        }
+        assert_command_finite(&cmd, 1);
+    }
+    /* One truthful report ends it, and the count starts over. */
+    ASSERT_STATUS(TVO_OK, step_reporting_speed(&fx_a, test_d(fx_a.cmd.speed_mps[0]), &cmd));
+    ASSERT_FLAG_CLEAR(cmd.flags, TVO_FLAG_SPEED_MISMATCH);
+    for (uint32_t k = 1; k < TVO_SPEED_MISMATCH_PERIODS; ++k) {
+        ASSERT_STATUS(TVO_OK, step_reporting_speed(&fx_a, -10.0, &cmd));
+        ASSERT_FLAG_CLEAR(cmd.flags, TVO_FLAG_SPEED_MISMATCH);
+    }
+    /* A refused measurement neither counts nor resets it. */
+    tvo_measurement_t stale = next_sample(&fx_a);
+    stale.stamp_tick = fx_a.apply - FX_PERIOD - 1u;
+    stale.speed_valid = 1;
+    stale.speed_mps[0] = TVO_R(-10.0);
+    ASSERT_STATUS(TVO_ERR_STALE, tvo_controller_step(&fx_a.ctl, &stale, fx_a.apply, &cmd));
+    fx_a.apply += FX_PERIOD;
+    ASSERT_STATUS(TVO_OK, step_reporting_speed(&fx_a, -10.0, &cmd));
+    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_SPEED_MISMATCH);
+}
+
+static void test_speed_mismatch_is_not_flagged_for_a_plant_that_follows(void)
+{
+    fx_reset(&fx_a, 1);
+    fx_circle_target(&fx_a.target[0], 0.0, 0.0, 1.0, 0.8);
+    fx_set_pose(&fx_a, 0, 1.5, -0.5, 1.0);
+    fx_start(&fx_a, 0);
+    tvo_command_t cmd;
+    for (int k = 0; k < 600; ++k) {
+        /* The plant runs at the held speed and says so. */
+        ASSERT_STATUS(TVO_OK, step_reporting_speed(&fx_a, test_d(fx_a.cmd.speed_mps[0]), &cmd));
+        ASSERT_FLAG_CLEAR(cmd.flags, TVO_FLAG_SPEED_MISMATCH);
+    }
+    TEST_ASSERT_EQUAL_UINT32(0u, fx_a.ctl.speed_mismatch_periods);
+    ASSERT_LE(fx_tracking_error(&fx_a, 0), 0.05, "tracking error of the truthful plant");
+}
+
+static void test_speed_mismatch_flags_a_plant_reporting_zero_while_it_falls_behind(void)
+{
+    /* Issue 9: "A plant that sets speed_valid with a constant zero speed drives the node off by
+     * metres with status OK on every command" - the flag is meant for exactly this (stalled wheels,
+     * or a plant that lies). The plant here moves with the command in force and reports 0 m/s;
+     * its target runs away at 1 m/s. Once it is a metre behind, the flag must have been raised. */
+    fx_reset(&fx_a, 1);
+    fx_line_target(&fx_a.target[0], 0.5, 0.0, 1.0, 0.0);
+    fx_set_pose(&fx_a, 0, 0.0, 0.0, 0.0);
+    fx_start(&fx_a, 0);
+    tvo_command_t cmd;
+    uint32_t flagged = 0u;
+    double largest_departure = 0.0;
+    int k = 0;
+    for (; k < 1000 && fx_tracking_error(&fx_a, 0) < 1.0; ++k) {
+        const double held = test_d(fx_a.cmd.speed_mps[0]);
+        largest_departure = fabs(held) > largest_departure ? fabs(held) : largest_departure;
+        ASSERT_STATUS(TVO_OK, step_reporting_speed(&fx_a, 0.0, &cmd));
+        flagged += (cmd.flags & TVO_FLAG_SPEED_MISMATCH) != 0u ? 1u : 0u;
+    }
+    TEST_ASSERT_TRUE_MESSAGE(fx_tracking_error(&fx_a, 0) >= 1.0, "the plant did not fall a metre behind");
+    if (flagged == 0u) {
+        static char text[200];
+        (void)snprintf(text, sizeof(text),
+                       "%.2f m behind after %d periods, status OK throughout, never flagged: the largest "
+                       "|measured - held| was %.3f m/s (threshold %.2f m/s)",
+                       fx_tracking_error(&fx_a, 0), k, largest_departure, test_d(TVO_SPEED_MISMATCH_MPS));
+        TEST_FAIL_MESSAGE(text);
+    }
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -1163,5 +1479,12 @@ int main(void)
     RUN_TEST(test_pose_mode_tracks_circle_and_ellipse_with_two_robots);
     RUN_TEST(test_position_only_mode_tracks_a_circle);
     RUN_TEST(test_position_only_mode_ignores_heading_and_speed_after_the_first_sample);
+    RUN_TEST(test_check_changes_nothing_and_says_what_the_step_would);
+    RUN_TEST(test_safe_stop_drops_to_rest_without_advancing_the_clock);
+    RUN_TEST(test_refused_measurement_leaves_filter_speed_state_and_stamp_untouched);
+    RUN_TEST(test_law_failure_after_the_estimate_leaves_the_filter_untouched);
+    RUN_TEST(test_speed_mismatch_is_flagged_after_its_periods_in_a_row);
+    RUN_TEST(test_speed_mismatch_is_not_flagged_for_a_plant_that_follows);
+    RUN_TEST(test_speed_mismatch_flags_a_plant_reporting_zero_while_it_falls_behind);
     return UNITY_END();
 }

@@ -51,8 +51,8 @@ extern "C" {
 #endif
 
 /** Speed-mismatch flag: departure threshold (m/s), relative part, and periods in a row. */
-#define TVO_SPEED_MISMATCH_MPS TVO_R(0.25)
-#define TVO_SPEED_MISMATCH_FRACTION TVO_R(0.5)
+#define TVO_SPEED_MISMATCH_MPS TVO_R(0.05)
+#define TVO_SPEED_MISMATCH_FRACTION TVO_R(0.25)
 #define TVO_SPEED_MISMATCH_PERIODS 5u
 
 typedef enum {

@@ -57,7 +57,8 @@ typedef enum {
     TVO_PARAM_INITIAL_SPEED = 14,
     TVO_PARAM_EPOCH = 15,
     TVO_PARAM_CLOCK_SOURCE = 16,
-    TVO_PARAM_PLANT_KIND = 17
+    TVO_PARAM_PLANT_KIND = 17,
+    TVO_PARAM_SESSION_ID = 18
 } tvo_param_t;
 
 /* Bits of tvo_command_t.flags: what shaped the command, for telemetry and fault counting. */

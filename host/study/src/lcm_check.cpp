@@ -3,12 +3,14 @@
 // PLANT_CHAIN) — and the two command sequences compared bit for bit.
 //
 // The LCM run replays the in-process run's measurements (same stamps, positions and derivatives as
-// doubles on the wire) and waits for each answer. As long as every command matches bit for bit, the
+// doubles on the wire) and waits for each answer. Session CLOCK_PLANT: step n is sampled at
+// epoch + n h - tau and numbered n, so it serves the node's period n (edge_spec, CLOCK_PLANT). As long as every command matches bit for bit, the
 // plant of a closed LCM loop would see exactly these measurements, so the replay is the closed loop;
 // the first differing command would end that equivalence and is reported.
 //
 // Exit code 0 when every command (and status) is identical, 1 otherwise or on errors, 2 on bad usage.
 #include <unistd.h>
+#include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 
@@ -30,33 +32,59 @@
 #include "tvo_lcm/session_ack_t.hpp"
 #include "tvo_lcm/session_t.hpp"
 
+extern "C" {
+#include "channels.h"
+}
+
 extern char **environ;
 
 namespace {
 
 constexpr int64_t kEpochUs = 1000000;  // chain_sim's epoch tick (1 tick = 1 us)
+// Every wait for the node: its START ack, each answer, the STOP ack and its exit.
+constexpr auto kAnswerTimeout = std::chrono::seconds(2);
+constexpr auto kStartTimeout = std::chrono::seconds(5);
+constexpr int kStartRepeatMs = 100;  // START repeated until acked (the node may not be listening yet)
 
 struct Listener {
     int64_t session_id = 0;
+    int8_t awaited_action = tvo_lcm::session_t::ACTION_START;
     bool acked = false;
     int32_t ack_status = -1;
     int64_t answered = -1;
     tvo_lcm::command_t last{};
     void on_ack(const lcm::ReceiveBuffer *, const std::string &, const tvo_lcm::session_ack_t *ack)
     {
-        if (ack->session_id == session_id && ack->action == tvo_lcm::session_t::ACTION_START) {
+        if (ack->session_id == session_id && ack->action == awaited_action) {
             acked = true;
             ack_status = ack->status;
         }
     }
     void on_command(const lcm::ReceiveBuffer *, const std::string &, const tvo_lcm::command_t *cmd)
     {
-        if (cmd->measurement_sequence > answered) {
+        // Only our session's answers to what we sent (a sequence beyond ours is nobody's answer).
+        if (cmd->session_id == session_id && cmd->measurement_sequence > answered) {
             answered = cmd->measurement_sequence;
             last = *cmd;
         }
     }
 };
+
+/// Waits for the child to exit up to timeout; kills it after that. Its wait status, or -1.
+int reap(pid_t child, std::chrono::steady_clock::duration timeout)
+{
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    int status = 0;
+    while (waitpid(child, &status, WNOHANG) == 0) {
+        if (std::chrono::steady_clock::now() >= deadline) {
+            kill(child, SIGKILL);
+            waitpid(child, &status, 0);
+            return -1;
+        }
+        usleep(10000);
+    }
+    return status;
+}
 
 bool same_bits(float a, float b)
 {
@@ -102,7 +130,8 @@ int main(int argc, char **argv)
         std::fprintf(stderr, "tvo_study_lcm_check: error: cannot create LCM on '%s'\n", url.c_str());
         return 1;
     }
-    std::vector<std::string> child_args = {firmware};
+    // The node ends with us if we die before our STOP reaches it.
+    std::vector<std::string> child_args = {firmware, "--exit-with-parent"};
     if (!url.empty()) {
         child_args.push_back("--lcm-url");
         child_args.push_back(url);
@@ -120,13 +149,14 @@ int main(int argc, char **argv)
 
     Listener listener;
     listener.session_id = static_cast<int64_t>(getpid()) * 1000 + 7;
-    lcm.subscribe("TVO_SESSION_ACK", &Listener::on_ack, &listener);
-    lcm.subscribe("TVO_COMMAND", &Listener::on_command, &listener);
+    lcm.subscribe(TVO_CHANNEL_SESSION_ACK, &Listener::on_ack, &listener);
+    lcm.subscribe(TVO_CHANNEL_COMMAND, &Listener::on_command, &listener);
 
     tvo_lcm::session_t start{};
     start.utime = kEpochUs;
     start.session_id = listener.session_id;
     start.action = tvo_lcm::session_t::ACTION_START;
+    start.clock_source = tvo_lcm::session_t::CLOCK_PLANT;
     start.epoch_utime = kEpochUs;
     start.period_us = cfg.period_ticks;
     start.delay_us = cfg.delay_ticks;
@@ -143,20 +173,19 @@ int main(int argc, char **argv)
     start.chain_input_max = 1e30;  // as the in-process run: the unsaturated loop
     start.watchdog_periods = 10;
     start.robot_count = 1;
-    start.tracking_weight[0][0] = 1.0;
-    start.tracking_weight[0][1] = 1.0;
-    start.target_kind = tvo_lcm::session_t::TARGET_CIRCLE;
-    start.target_params[0] = 0.0;  // centre
-    start.target_params[1] = 0.0;
-    start.target_params[2] = 1.0;  // radius
-    start.target_params[3] = study::paper_omega();
-    start.target_params[4] = 0.0;  // phase
+    tvo_lcm::robot_t &robot = start.robot[0];
+    robot.tracking_weight[0] = 1.0;
+    robot.tracking_weight[1] = 1.0;
+    robot.target.kind = tvo_lcm::path_t::KIND_CIRCLE;  // the unit circle at the study's rate
+    robot.target.semi_axis_m[0] = 1.0;
+    robot.target.semi_axis_m[1] = 1.0;
+    robot.target.omega_radps = study::paper_omega();
 
     int rc = 0;
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+    const auto deadline = std::chrono::steady_clock::now() + kStartTimeout;
     while (!listener.acked && std::chrono::steady_clock::now() < deadline) {
-        lcm.publish("TVO_SESSION", &start);  // repeated until acked (the node may not be listening yet)
-        lcm.handleTimeout(100);
+        lcm.publish(TVO_CHANNEL_SESSION, &start);
+        lcm.handleTimeout(kStartRepeatMs);
     }
     uint64_t identical = 0;
     int64_t first_mismatch = -1;
@@ -168,6 +197,7 @@ int main(int argc, char **argv)
         tvo_lcm::measurement_t m{};
         for (const study::TraceRow &row : trace) {
             m.utime = row.stamp_tick;
+            m.session_id = listener.session_id;
             m.sequence = static_cast<int64_t>(row.step);
             m.robot_count = 1;
             m.derivatives_valid = true;
@@ -176,8 +206,8 @@ int main(int argc, char **argv)
                 m.output_rate_mps[0][i] = row.rate[i];
                 m.output_accel_mps2[0][i] = row.accel[i];
             }
-            lcm.publish("TVO_MEASUREMENT", &m);
-            const auto wait_until = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+            lcm.publish(TVO_CHANNEL_MEASUREMENT, &m);
+            const auto wait_until = std::chrono::steady_clock::now() + kAnswerTimeout;
             while (listener.answered < m.sequence && std::chrono::steady_clock::now() < wait_until) {
                 lcm.handleTimeout(50);
             }
@@ -200,11 +230,19 @@ int main(int argc, char **argv)
             }
         }
     }
+    // STOP (the node exits after it); repeated until acked, since a lost STOP would leave it running.
     tvo_lcm::session_t stop = start;
     stop.action = tvo_lcm::session_t::ACTION_STOP;
-    lcm.publish("TVO_SESSION", &stop);
-    int status = 0;
-    waitpid(child, &status, 0);
+    listener.acked = false;
+    listener.awaited_action = tvo_lcm::session_t::ACTION_STOP;
+    const auto stop_deadline = std::chrono::steady_clock::now() + kAnswerTimeout;
+    while (!listener.acked && std::chrono::steady_clock::now() < stop_deadline) {
+        lcm.publish(TVO_CHANNEL_SESSION, &stop);
+        lcm.handleTimeout(kStartRepeatMs);
+    }
+    if (reap(child, kAnswerTimeout) < 0) {
+        std::fprintf(stderr, "tvo_study_lcm_check: warning: the node did not exit after STOP; killed it\n");
+    }
 
     const bool all_same = rc == 0 && identical == trace.size();
     std::printf("tvo_study_lcm_check: k=%d h=%g tau=%g*h comp=%d zoh=%d: %llu of %zu commands identical bit for bit%s\n",

@@ -1,0 +1,199 @@
+/*
+ * Shared helpers of the edge tests: a valid START message to edit, measurements on a session's
+ * schedule, and a recording publish callback for the node. Header-only (static inline), so each
+ * test stays one translation unit plus the code under test.
+ */
+#ifndef TVO_EDGE_FIXTURE_H
+#define TVO_EDGE_FIXTURE_H
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "unity.h"
+
+#include "node.h"
+#include "session_codec.h"
+#include "step_codec.h"
+#include "tvo/sample_clock.h"
+#include "tvo/status.h"
+
+/* The fixture session: h = 10 ms, tau = h / 2, watchdog 3 periods; its START is sent at EF_UTIME
+ * (plant clock) with the epoch EF_EPOCH_LEAD later. */
+#define EF_PERIOD_US 10000
+#define EF_DELAY_US 5000
+#define EF_WATCHDOG 3
+#define EF_UTIME 5000000
+#define EF_EPOCH_LEAD 300000
+#define EF_EPOCH (EF_UTIME + EF_EPOCH_LEAD)
+#define EF_SESSION_ID 4242
+
+/* Values at and past the ends of the wire ranges. */
+#define EF_TWO_POW_60 ((int64_t)1 << 60)
+
+/* ------------------------------------------------------------------------------------------------
+ * Assertions that name the statuses
+ * --------------------------------------------------------------------------------------------- */
+
+static inline void ef_assert_status(int expected, int actual, int line)
+{
+    if (expected != actual) {
+        static char msg[160];
+        (void)snprintf(msg, sizeof(msg), "expected status %d (%s), got %d (%s)", expected,
+                       tvo_status_str((tvo_status_t)expected), actual, tvo_status_str((tvo_status_t)actual));
+        UNITY_TEST_FAIL(line, msg);
+    }
+}
+#define EF_ASSERT_STATUS(expected, actual) ef_assert_status((int)(expected), (int)(actual), __LINE__)
+
+static inline void ef_assert_param(int expected, int actual, int line)
+{
+    if (expected != actual) {
+        static char msg[160];
+        (void)snprintf(msg, sizeof(msg), "expected bad_param %d (%s), got %d (%s)", expected,
+                       tvo_param_str((tvo_param_t)expected), actual, tvo_param_str((tvo_param_t)actual));
+        UNITY_TEST_FAIL(line, msg);
+    }
+}
+#define EF_ASSERT_PARAM(expected, actual) ef_assert_param((int)(expected), (int)(actual), __LINE__)
+
+/* ------------------------------------------------------------------------------------------------
+ * Messages
+ * --------------------------------------------------------------------------------------------- */
+
+/** A target path y_d(t) = (x0 + vx t, y0). */
+static inline void ef_line_path(tvo_lcm_path_t *path, double x0, double y0, double vx)
+{
+    memset(path, 0, sizeof(*path));
+    path->kind = TVO_LCM_PATH_T_KIND_POLYNOMIAL;
+    path->coeff[0][0] = x0;
+    path->coeff[0][1] = vx;
+    path->coeff[1][0] = y0;
+}
+
+/** A valid START of `robots` unicycles (robot r tracks a line at y = r), PLANT clock, no constraints. */
+static inline void ef_start(tvo_lcm_session_t *m, int64_t session_id, int32_t clock_source, int32_t robots)
+{
+    memset(m, 0, sizeof(*m));
+    m->utime = EF_UTIME;
+    m->session_id = session_id;
+    m->action = TVO_LCM_SESSION_T_ACTION_START;
+    m->clock_source = clock_source;
+    m->epoch_utime = EF_EPOCH;
+    m->period_us = EF_PERIOD_US;
+    m->delay_us = EF_DELAY_US;
+    m->delay_compensation = 1;
+    m->zoh_aware = 0;
+    m->watchdog_periods = EF_WATCHDOG;
+    m->plant_kind = TVO_LCM_SESSION_T_PLANT_UNICYCLE;
+    m->velocity_source = TVO_LCM_SESSION_T_VELOCITY_FROM_POSE;
+    m->filter_tf_s = 0.05;
+    m->gain_kp = 40.0;
+    m->gain_kd = 13.0;
+    m->omega_max_radps = 6.283185307179586;
+    m->accel_max_mps2 = 15.0;
+    m->speed_max_mps = 2.0;
+    m->min_speed_mps = 0.05;
+    m->chain_relative_degree = 2;
+    m->chain_gains[0] = 2.56;
+    m->chain_gains[1] = 3.2;
+    m->chain_input_max = 1000.0;
+    m->robot_count = robots;
+    for (int32_t r = 0; r < robots && r < TVO_LCM_SESSION_T_MAX_ROBOTS; ++r) {
+        m->robot[r].initial_speed_mps = 0.0;
+        m->robot[r].tracking_weight[0] = 1.0;
+        m->robot[r].tracking_weight[1] = 1.0;
+        ef_line_path(&m->robot[r].target, 0.5, (double)r, 0.2);
+    }
+    m->barrier.c0 = 1.0;
+    m->barrier.alpha_c_per_s = 1.0;
+    m->barrier.c_max = 1e4;
+    m->barrier.delta0 = 0.05;
+    m->barrier.alpha_s_per_s = 1.0;
+    m->barrier.slack_margin = 0.1;
+    m->barrier.relaxation_degree = 4;
+    m->robot_radius_m = 0.1;
+}
+
+/** A measurement of `robots` robots at rest at (0, r) heading east, heading valid, speed not. */
+static inline void ef_measurement(tvo_lcm_measurement_t *m, int64_t session_id, int64_t utime, int64_t sequence,
+                                  int32_t robots)
+{
+    memset(m, 0, sizeof(*m));
+    m->utime = utime;
+    m->session_id = session_id;
+    m->sequence = sequence;
+    m->robot_count = robots;
+    for (int32_t r = 0; r < robots && r < TVO_LCM_MEASUREMENT_T_MAX_ROBOTS; ++r) {
+        m->position_m[r][0] = 0.0;
+        m->position_m[r][1] = (double)r;
+        m->heading_rad[r] = 0.0;
+        m->speed_mps[r] = 0.0;
+    }
+    m->heading_valid = 1;
+    m->speed_valid = 0;
+}
+
+/* ------------------------------------------------------------------------------------------------
+ * A recording publish callback
+ * --------------------------------------------------------------------------------------------- */
+
+#define EF_RECORD_CAPACITY 64
+
+typedef struct {
+    int channel;
+    uint32_t length;
+    uint8_t data[TVO_NODE_BUFFER_BYTES];
+} ef_message_t;
+
+typedef struct {
+    ef_message_t message[EF_RECORD_CAPACITY];
+    uint32_t count;      /* since the last ef_record_clear */
+    uint32_t overflow;   /* messages that did not fit (a test bug: clear more often) */
+} ef_record_t;
+
+static inline void ef_record_publish(void *context, int channel, const uint8_t *data, uint32_t length)
+{
+    ef_record_t *rec = (ef_record_t *)context;
+    if (rec->count >= EF_RECORD_CAPACITY || length > TVO_NODE_BUFFER_BYTES) {
+        rec->overflow++;
+        return;
+    }
+    ef_message_t *m = &rec->message[rec->count++];
+    m->channel = channel;
+    m->length = length;
+    memcpy(m->data, data, length);
+}
+
+static inline void ef_record_clear(ef_record_t *rec)
+{
+    rec->count = 0;
+    rec->overflow = 0;
+}
+
+/** Messages published on channel since the last clear. */
+static inline uint32_t ef_record_count(const ef_record_t *rec, int channel)
+{
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < rec->count; ++i) {
+        n += (rec->message[i].channel == channel) ? 1u : 0u;
+    }
+    return n;
+}
+
+/** The k-th (0-based) message on channel since the last clear, or NULL. */
+static inline const ef_message_t *ef_record_nth(const ef_record_t *rec, int channel, uint32_t k)
+{
+    for (uint32_t i = 0; i < rec->count; ++i) {
+        if (rec->message[i].channel == channel) {
+            if (k == 0u) {
+                return &rec->message[i];
+            }
+            --k;
+        }
+    }
+    return NULL;
+}
+
+#endif /* TVO_EDGE_FIXTURE_H */

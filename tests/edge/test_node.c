@@ -1,0 +1,1892 @@
+/*
+ * The node (firmware/edge/node.c) through its raw-bytes entry, as a transport drives it: encoded
+ * messages and the node's clock (a plain int64 passed in) in, encoded acks, commands and telemetry
+ * out through a recording publish callback, decoded with the generated tvo_lcm_*_decode. Covers the
+ * session table, CLOCK_PLANT and CLOCK_NODE timing (the timer included), "nothing from a refused
+ * message is kept" (byte comparison of the running session before and after), telemetry counters,
+ * the slack rule, and one test per integer-from-the-wire site at the int64/int32 extremes (the
+ * test_node_ubsan variant runs them all under UBSan and ASan). The contract: /work/edge_spec.md
+ * (README "Sessions", "Timing").
+ */
+#include "edge_fixture.h"
+
+#include "tvo/target.h"
+
+void setUp(void);
+void tearDown(void);
+
+#define H ((int64_t)EF_PERIOD_US)
+#define TAU ((int64_t)EF_DELAY_US)
+#define W ((int64_t)EF_WATCHDOG)
+#define SEQ0 ((int64_t)1000)            /* the plant's sequence of period 0 */
+#define OTHER_ID ((int64_t)777)
+#define NODE_T0 ((int64_t)7000000)      /* node clock when the CLOCK_NODE START arrives */
+#define OFFSET (NODE_T0 - EF_UTIME)     /* node clock minus plant clock */
+
+static tvo_node_t node;
+static ef_record_t rec;
+static uint8_t wire[8192];
+static tvo_lcm_session_t start;
+static tvo_node_session_t snapshot;
+static tvo_lcm_node_counters_t snapshot_counters;
+static uint8_t snapshot_running;
+static tvo_lcm_telemetry_t last_telemetry;
+
+void setUp(void)
+{
+    ef_record_clear(&rec);
+    tvo_node_init(&node, ef_record_publish, &rec);
+}
+
+void tearDown(void) {}
+
+/* ------------------------------------------------------------------------------------------------
+ * Sending and reading
+ * --------------------------------------------------------------------------------------------- */
+
+static int send_session(const tvo_lcm_session_t *m, int64_t now_us)
+{
+    const int n = tvo_lcm_session_t_encode(wire, 0, (int)sizeof(wire), m);
+    TEST_ASSERT_TRUE(n > 0);
+    return tvo_node_handle(&node, TVO_NODE_CH_SESSION, wire, (uint32_t)n, now_us);
+}
+
+static int send_measurement(const tvo_lcm_measurement_t *m, int64_t now_us)
+{
+    const int n = tvo_lcm_measurement_t_encode(wire, 0, (int)sizeof(wire), m);
+    TEST_ASSERT_TRUE(n > 0);
+    return tvo_node_handle(&node, TVO_NODE_CH_MEASUREMENT, wire, (uint32_t)n, now_us);
+}
+
+static int send_target(const tvo_lcm_target_t *m, int64_t now_us)
+{
+    const int n = tvo_lcm_target_t_encode(wire, 0, (int)sizeof(wire), m);
+    TEST_ASSERT_TRUE(n > 0);
+    return tvo_node_handle(&node, TVO_NODE_CH_TARGET, wire, (uint32_t)n, now_us);
+}
+
+/* The only ack published since the last clear. */
+static tvo_lcm_session_ack_t the_ack(int line)
+{
+    tvo_lcm_session_ack_t ack;
+    memset(&ack, 0, sizeof(ack));
+    UNITY_TEST_ASSERT_EQUAL_UINT32(1u, ef_record_count(&rec, TVO_NODE_CH_SESSION_ACK), line, "acks published");
+    UNITY_TEST_ASSERT_EQUAL_UINT32(0u, ef_record_count(&rec, TVO_NODE_CH_COMMAND), line, "an ack comes alone");
+    const ef_message_t *m = ef_record_nth(&rec, TVO_NODE_CH_SESSION_ACK, 0);
+    if (m == NULL) {
+        UNITY_TEST_FAIL(line, "no ack");
+        return ack;
+    }
+    UNITY_TEST_ASSERT_EQUAL_INT((int)m->length, tvo_lcm_session_ack_t_decode(m->data, 0, (int)m->length, &ack), line,
+                                "ack decodes");
+    return ack;
+}
+#define THE_ACK() the_ack(__LINE__)
+
+/* The only command published since the last clear, and the telemetry that follows it (in
+ * last_telemetry), which must carry the command's stamp fields. */
+static tvo_lcm_command_t the_command(int line)
+{
+    tvo_lcm_command_t cmd;
+    memset(&cmd, 0, sizeof(cmd));
+    UNITY_TEST_ASSERT_EQUAL_UINT32(0u, rec.overflow, line, "recorder overflow");
+    UNITY_TEST_ASSERT_EQUAL_UINT32(1u, ef_record_count(&rec, TVO_NODE_CH_COMMAND), line, "commands published");
+    UNITY_TEST_ASSERT_EQUAL_UINT32(1u, ef_record_count(&rec, TVO_NODE_CH_TELEMETRY), line, "telemetry published");
+    UNITY_TEST_ASSERT_EQUAL_UINT32(2u, rec.count, line, "messages published");
+    UNITY_TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_COMMAND, rec.message[0].channel, line, "the command comes first");
+    const ef_message_t *m = &rec.message[0];
+    UNITY_TEST_ASSERT_EQUAL_INT((int)m->length, tvo_lcm_command_t_decode(m->data, 0, (int)m->length, &cmd), line,
+                                "command decodes");
+    m = &rec.message[1];
+    memset(&last_telemetry, 0, sizeof(last_telemetry));
+    UNITY_TEST_ASSERT_EQUAL_INT((int)m->length, tvo_lcm_telemetry_t_decode(m->data, 0, (int)m->length, &last_telemetry),
+                                line, "telemetry decodes");
+    UNITY_TEST_ASSERT_EQUAL_INT64(cmd.utime, last_telemetry.utime, line, "telemetry utime");
+    UNITY_TEST_ASSERT_EQUAL_INT64(cmd.session_id, last_telemetry.session_id, line, "telemetry session");
+    UNITY_TEST_ASSERT_EQUAL_INT64(cmd.measurement_sequence, last_telemetry.measurement_sequence, line,
+                                  "telemetry sequence");
+    UNITY_TEST_ASSERT_EQUAL_INT(cmd.status, last_telemetry.status, line, "telemetry status");
+    UNITY_TEST_ASSERT_EQUAL_INT(cmd.flags, last_telemetry.flags, line, "telemetry flags");
+    UNITY_TEST_ASSERT_EQUAL_MEMORY(&node.counters, &last_telemetry.counters, sizeof(node.counters), line,
+                                   "telemetry counters are the node's");
+    for (int r = 0; r < TVO_LCM_MEASUREMENT_T_MAX_ROBOTS; ++r) {
+        UNITY_TEST_ASSERT(isfinite(cmd.speed_mps[r]) && isfinite(cmd.turn_rate_radps[r]), line, "finite command");
+    }
+    return cmd;
+}
+#define THE_COMMAND() the_command(__LINE__)
+
+/* The only command published since the last clear, with no telemetry (no session to report). */
+static tvo_lcm_command_t the_sessionless_command(int line)
+{
+    tvo_lcm_command_t cmd;
+    memset(&cmd, 0, sizeof(cmd));
+    UNITY_TEST_ASSERT_EQUAL_UINT32(1u, rec.count, line, "messages published");
+    const ef_message_t *m = ef_record_nth(&rec, TVO_NODE_CH_COMMAND, 0);
+    if (m == NULL) {
+        UNITY_TEST_FAIL(line, "no command");
+        return cmd;
+    }
+    UNITY_TEST_ASSERT_EQUAL_INT((int)m->length, tvo_lcm_command_t_decode(m->data, 0, (int)m->length, &cmd), line,
+                                "command decodes");
+    return cmd;
+}
+#define THE_SESSIONLESS_COMMAND() the_sessionless_command(__LINE__)
+
+static void expect_nothing_published(int line)
+{
+    UNITY_TEST_ASSERT_EQUAL_UINT32(0u, rec.count, line, "nothing should be published");
+}
+#define EXPECT_NOTHING_PUBLISHED() expect_nothing_published(__LINE__)
+
+static void expect_safe_stop(const tvo_lcm_command_t *cmd, int line)
+{
+    UNITY_TEST_ASSERT(((uint32_t)cmd->flags & TVO_FLAG_SAFE_STOP) != 0u, line, "SAFE_STOP flag");
+    for (int r = 0; r < TVO_LCM_MEASUREMENT_T_MAX_ROBOTS; ++r) {
+        UNITY_TEST_ASSERT(cmd->speed_mps[r] == 0.0 && cmd->turn_rate_radps[r] == 0.0, line, "v = omega = 0");
+    }
+}
+#define EXPECT_SAFE_STOP(cmd) expect_safe_stop(&(cmd), __LINE__)
+
+/* ------------------------------------------------------------------------------------------------
+ * "Nothing of a refused message is kept": the running session, byte for byte
+ * --------------------------------------------------------------------------------------------- */
+
+static void take_snapshot(void)
+{
+    const tvo_node_session_t *s = tvo_node_session(&node);
+    TEST_ASSERT_NOT_NULL_MESSAGE(s, "no session to snapshot");
+    memcpy(&snapshot, s, sizeof(snapshot));
+    memcpy(&snapshot_counters, &node.counters, sizeof(snapshot_counters));
+    snapshot_running = node.running;
+}
+
+/* The running session is the snapshot's, byte for byte, but for refused_in_row. */
+static void assert_session_kept(int line)
+{
+    const tvo_node_session_t *s = tvo_node_session(&node);
+    UNITY_TEST_ASSERT_NOT_NULL(s, line, "the session should still run");
+    UNITY_TEST_ASSERT_EQUAL_UINT8(snapshot_running, node.running, line, "running slot");
+    UNITY_TEST_ASSERT_EQUAL_MEMORY(&snapshot.controller, &s->controller, sizeof(s->controller), line,
+                                   "controller changed");
+    UNITY_TEST_ASSERT_EQUAL_MEMORY(&snapshot.problem, &s->problem, sizeof(s->problem), line, "problem changed");
+    UNITY_TEST_ASSERT_EQUAL_MEMORY(&snapshot.timing, &s->timing, sizeof(s->timing), line, "timing changed");
+    UNITY_TEST_ASSERT_EQUAL_INT64(snapshot.last_period, s->last_period, line, "last_period changed");
+    UNITY_TEST_ASSERT_EQUAL_INT64(snapshot.last_sequence, s->last_sequence, line, "last_sequence changed");
+    UNITY_TEST_ASSERT_EQUAL_INT64(snapshot.stop_period, s->stop_period, line, "stop_period changed");
+    UNITY_TEST_ASSERT_EQUAL_INT64(snapshot.offset_us, s->offset_us, line, "offset changed");
+    UNITY_TEST_ASSERT_EQUAL_UINT8(snapshot.has_accepted, s->has_accepted, line, "has_accepted changed");
+    tvo_node_session_t expected;
+    memcpy(&expected, &snapshot, sizeof(expected));
+    expected.refused_in_row = s->refused_in_row;
+    UNITY_TEST_ASSERT_EQUAL_MEMORY(&expected, s, sizeof(expected), line, "session changed");
+}
+#define ASSERT_SESSION_KEPT() assert_session_kept(__LINE__)
+
+/* ... and not even a counter moved (a repeated START, an ignored message). */
+static void assert_session_and_counters_kept(int line)
+{
+    assert_session_kept(line);
+    UNITY_TEST_ASSERT_EQUAL_MEMORY(&snapshot_counters, &node.counters, sizeof(node.counters), line,
+                                   "counters changed");
+}
+#define ASSERT_SESSION_AND_COUNTERS_KEPT() assert_session_and_counters_kept(__LINE__)
+
+/* ------------------------------------------------------------------------------------------------
+ * Sessions and the plant's schedule
+ * --------------------------------------------------------------------------------------------- */
+
+static int64_t plant_apply(int64_t j)
+{
+    return EF_EPOCH + j * H;
+}
+
+/* CLOCK_PLANT: the genuine sample for period j, stamped apply - tau, numbered by period. */
+static void plant_meas(tvo_lcm_measurement_t *m, int64_t j)
+{
+    ef_measurement(m, EF_SESSION_ID, plant_apply(j) - TAU, SEQ0 + j, 1);
+}
+
+/* CLOCK_NODE: period j's apply instant on the node's clock. */
+static int64_t node_apply(int64_t j)
+{
+    return EF_EPOCH + OFFSET + j * H;
+}
+
+/* CLOCK_NODE: a sample for period j arrives 4 ms before A_j, sampled 1 ms before it arrives. */
+static int64_t node_arrival(int64_t j)
+{
+    return node_apply(j) - 4000;
+}
+static void node_meas(tvo_lcm_measurement_t *m, int64_t j, int64_t sequence)
+{
+    ef_measurement(m, EF_SESSION_ID, node_arrival(j) - OFFSET - 1000, sequence, 1);
+}
+
+static void start_session(int64_t id, int32_t clock_source, int64_t now_us)
+{
+    ef_start(&start, id, clock_source, 1);
+    ef_record_clear(&rec);
+    TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_SESSION, send_session(&start, now_us));
+    const tvo_lcm_session_ack_t ack = THE_ACK();
+    EF_ASSERT_STATUS(TVO_OK, ack.status);
+    TEST_ASSERT_EQUAL_INT64(id, ack.running_session_id);
+}
+
+/* Sends a measurement and expects it accepted, answered for apply instant utime. */
+static tvo_lcm_command_t expect_accepted(const tvo_lcm_measurement_t *m, int64_t now_us, int64_t utime, int line)
+{
+    ef_record_clear(&rec);
+    UNITY_TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_MEASUREMENT, send_measurement(m, now_us), line, "handled");
+    const tvo_lcm_command_t cmd = the_command(line);
+    ef_assert_status(TVO_OK, cmd.status, line);
+    UNITY_TEST_ASSERT_EQUAL_INT64(utime, cmd.utime, line, "command utime: the apply instant");
+    UNITY_TEST_ASSERT_EQUAL_INT64(m->sequence, cmd.measurement_sequence, line, "sequence echoed");
+    UNITY_TEST_ASSERT_EQUAL_INT64(m->session_id, cmd.session_id, line, "session echoed");
+    UNITY_TEST_ASSERT(((uint32_t)cmd.flags & (TVO_FLAG_HOLDING | TVO_FLAG_SAFE_STOP)) == 0u, line,
+                      "neither holding nor stopping");
+    return cmd;
+}
+#define EXPECT_ACCEPTED(m, now, utime) expect_accepted(&(m), (now), (utime), __LINE__)
+
+/*
+ * Sends a measurement of the running session and expects it refused for `reason` (holding) or,
+ * when reason is TVO_ERR_WATCHDOG, answered with a safe stop; the running session is kept byte for
+ * byte unless it is a safe stop. The answer's utime is never before the measurement's stamp:
+ * CLOCK_PLANT the stamp itself, CLOCK_NODE the later of the stamp and now (plant clock).
+ */
+static tvo_lcm_command_t expect_refused(const tvo_lcm_measurement_t *m, int64_t now_us, tvo_status_t reason, int line)
+{
+    const tvo_node_session_t *s = tvo_node_session(&node);
+    UNITY_TEST_ASSERT_NOT_NULL(s, line, "no session");
+    const int clock_node = s->timing.clock_source == TVO_LCM_SESSION_T_CLOCK_NODE;
+    const int64_t offset = s->offset_us;
+    take_snapshot();
+    const int32_t refused_before = node.counters.refused[reason == TVO_ERR_WATCHDOG ? 0 : reason];
+    ef_record_clear(&rec);
+    UNITY_TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_MEASUREMENT, send_measurement(m, now_us), line, "handled");
+    const tvo_lcm_command_t cmd = the_command(line);
+    ef_assert_status((int)reason, cmd.status, line);
+    UNITY_TEST_ASSERT_EQUAL_INT64(m->sequence, cmd.measurement_sequence, line, "sequence echoed");
+    UNITY_TEST_ASSERT_EQUAL_INT64(m->session_id, cmd.session_id, line, "session echoed");
+    const int64_t stamp = m->utime < 0 ? 0 : (m->utime > EF_TWO_POW_60 ? EF_TWO_POW_60 : m->utime);
+    if (clock_node) {
+        int64_t now = now_us < 0 ? 0 : (now_us > EF_TWO_POW_60 ? EF_TWO_POW_60 : now_us);
+        now -= offset;
+        now = now < 0 ? 0 : (now > EF_TWO_POW_60 ? EF_TWO_POW_60 : now);
+        UNITY_TEST_ASSERT_EQUAL_INT64(stamp > now ? stamp : now, cmd.utime, line, "refusal utime");
+    } else {
+        UNITY_TEST_ASSERT_EQUAL_INT64(stamp, cmd.utime, line, "refusal utime is the measurement's");
+    }
+    if (reason == TVO_ERR_WATCHDOG) {
+        expect_safe_stop(&cmd, line);
+        return cmd;
+    }
+    UNITY_TEST_ASSERT_EQUAL_HEX32(TVO_FLAG_HOLDING, (uint32_t)cmd.flags, line, "HOLDING, nothing else");
+    UNITY_TEST_ASSERT_EQUAL_INT32(refused_before + 1, node.counters.refused[reason], line, "refusal counted");
+    UNITY_TEST_ASSERT_EQUAL_INT(reason, node.last_refusal, line, "last_refusal");
+    assert_session_kept(line);
+    return cmd;
+}
+#define EXPECT_REFUSED(m, now, reason) expect_refused(&(m), (now), (reason), __LINE__)
+
+/* A fresh node running a CLOCK_PLANT session with periods 1..accepted accepted. */
+static void plant_session_after(int64_t accepted)
+{
+    start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
+    for (int64_t j = 1; j <= accepted; ++j) {
+        tvo_lcm_measurement_t m;
+        plant_meas(&m, j);
+        (void)EXPECT_ACCEPTED(m, 0, plant_apply(j));
+    }
+}
+
+/* A fresh node running a CLOCK_NODE session (START at NODE_T0) with periods 1..accepted accepted. */
+static void node_session_after(int64_t accepted)
+{
+    start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_NODE, NODE_T0);
+    for (int64_t j = 1; j <= accepted; ++j) {
+        tvo_lcm_measurement_t m;
+        node_meas(&m, j, j);
+        (void)EXPECT_ACCEPTED(m, node_arrival(j), node_apply(j) - OFFSET);
+    }
+}
+
+/* ------------------------------------------------------------------------------------------------
+ * The session table
+ * --------------------------------------------------------------------------------------------- */
+
+static void test_start_when_idle_runs_the_session_and_acks_ok(void)
+{
+    TEST_ASSERT_NULL(tvo_node_session(&node));
+    TEST_ASSERT_EQUAL_INT64(TVO_NODE_NO_DEADLINE, tvo_node_poll(&node, 0));
+    ef_start(&start, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+    TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_SESSION, send_session(&start, 0));
+    const tvo_lcm_session_ack_t ack = THE_ACK();
+    EF_ASSERT_STATUS(TVO_OK, ack.status);
+    TEST_ASSERT_EQUAL_INT64(EF_UTIME, ack.utime);
+    TEST_ASSERT_EQUAL_INT64(EF_SESSION_ID, ack.session_id);
+    TEST_ASSERT_EQUAL_INT8(TVO_LCM_SESSION_T_ACTION_START, ack.action);
+    TEST_ASSERT_EQUAL_INT32(0, ack.bad_param);
+    TEST_ASSERT_EQUAL_INT32(TVO_LCM_SESSION_ACK_T_PART_NONE, ack.bad_part);
+    TEST_ASSERT_EQUAL_INT32(-1, ack.bad_index);
+    TEST_ASSERT_EQUAL_INT64(EF_SESSION_ID, ack.running_session_id);
+    const tvo_node_session_t *s = tvo_node_session(&node);
+    TEST_ASSERT_NOT_NULL(s);
+    TEST_ASSERT_EQUAL_INT64(EF_SESSION_ID, s->session_id);
+    TEST_ASSERT_EQUAL_INT64(0, s->offset_us); /* CLOCK_PLANT: the plant's clock is the schedule's */
+    TEST_ASSERT_EQUAL_UINT32(1u, node.acks);
+    TEST_ASSERT_EQUAL_UINT8(0u, node.stop_requested);
+    TEST_ASSERT_EQUAL_INT64(TVO_NODE_NO_DEADLINE, tvo_node_poll(&node, 0)); /* CLOCK_PLANT has no timer */
+}
+
+static void test_start_with_a_new_id_replaces_the_running_session(void)
+{
+    plant_session_after(2);
+    TEST_ASSERT_EQUAL_INT32(2, node.counters.accepted);
+    ef_start(&start, OTHER_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+    start.period_us = 2 * H; /* another schedule */
+    ef_record_clear(&rec);
+    (void)send_session(&start, 0);
+    const tvo_lcm_session_ack_t ack = THE_ACK();
+    EF_ASSERT_STATUS(TVO_OK, ack.status);
+    TEST_ASSERT_EQUAL_INT64(OTHER_ID, ack.running_session_id);
+    TEST_ASSERT_EQUAL_INT64(OTHER_ID, tvo_node_session(&node)->session_id);
+    TEST_ASSERT_EQUAL_INT32(0, node.counters.accepted); /* counters are the new session's */
+    /* The old one's measurements are another session's now. */
+    tvo_lcm_measurement_t m;
+    plant_meas(&m, 3);
+    ef_record_clear(&rec);
+    (void)send_measurement(&m, 0);
+    EXPECT_NOTHING_PUBLISHED();
+    TEST_ASSERT_EQUAL_INT32(1, node.counters.other_session);
+    /* The new session starts its own schedule: period 1 of h = 20 ms. */
+    ef_measurement(&m, OTHER_ID, EF_EPOCH + 2 * H - TAU, 5, 1);
+    (void)EXPECT_ACCEPTED(m, 0, EF_EPOCH + 2 * H);
+}
+
+/* Edits of a START that make it invalid, with the ack they must get. */
+typedef struct {
+    const char *what;
+    tvo_status_t status;
+    tvo_param_t param;
+    int32_t part;
+    int32_t index;
+} refusal_t;
+
+static void make_invalid(tvo_lcm_session_t *m, int which)
+{
+    switch (which) {
+    case 0: m->period_us = 0; break;
+    case 1: m->gain_kp = -1.0; break;
+    case 2: m->epoch_utime = m->utime + (int64_t)TVO_MAX_TICK_SPAN + 1; break;
+    case 3:
+        m->distance_count = 1;
+        m->distance[0].robot_b = 5;
+        break;
+    case 4:
+        m->halfspace_count = 1;
+        m->barrier.relaxation_degree = 1; /* below k + 1: the core's barrier refuses it */
+        break;
+    default: m->robot[0].target.kind = 9; break;
+    }
+}
+
+static const refusal_t invalid_starts[] = {
+    {"period 0", TVO_ERR_PARAM, TVO_PARAM_PERIOD, TVO_LCM_SESSION_ACK_T_PART_NONE, -1},
+    {"negative gain", TVO_ERR_PARAM, TVO_PARAM_GAINS, TVO_LCM_SESSION_ACK_T_PART_NONE, -1},
+    {"epoch beyond the span", TVO_ERR_PARAM, TVO_PARAM_EPOCH, TVO_LCM_SESSION_ACK_T_PART_NONE, -1},
+    {"distance robot 5", TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_DISTANCE, 0},
+    {"relaxation degree 1", TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_BARRIER, -1},
+    {"target kind 9", TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 0},
+};
+
+static void test_refused_start_while_running_changes_nothing(void)
+{
+    for (int which = 0; which < (int)(sizeof(invalid_starts) / sizeof(invalid_starts[0])); ++which) {
+        for (int same_id = 0; same_id < 2; ++same_id) {
+            setUp();
+            plant_session_after(2);
+            take_snapshot();
+            const uint8_t stop_requested = node.stop_requested;
+            ef_start(&start, same_id ? EF_SESSION_ID : OTHER_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+            make_invalid(&start, which);
+            ef_record_clear(&rec);
+            (void)send_session(&start, 0);
+            const tvo_lcm_session_ack_t ack = THE_ACK();
+            const refusal_t *r = &invalid_starts[which];
+            /* The running id with other (here: invalid) content is a conflict before it is invalid. */
+            TEST_ASSERT_EQUAL_INT_MESSAGE(same_id ? TVO_ERR_SESSION_CONFLICT : r->status, ack.status, r->what);
+            if (!same_id) {
+                EF_ASSERT_PARAM(r->param, ack.bad_param);
+                TEST_ASSERT_EQUAL_INT32(r->part, ack.bad_part);
+                TEST_ASSERT_EQUAL_INT32(r->index, ack.bad_index);
+            }
+            TEST_ASSERT_EQUAL_INT64(start.session_id, ack.session_id);
+            TEST_ASSERT_EQUAL_INT64(EF_SESSION_ID, ack.running_session_id);
+            ASSERT_SESSION_AND_COUNTERS_KEPT();
+            TEST_ASSERT_EQUAL_UINT8(stop_requested, node.stop_requested);
+            /* The old session answers on, on its own schedule. */
+            tvo_lcm_measurement_t m;
+            plant_meas(&m, 3);
+            (void)EXPECT_ACCEPTED(m, 0, plant_apply(3));
+        }
+    }
+}
+
+static void test_refused_start_when_idle_leaves_the_node_idle(void)
+{
+    for (int which = 0; which < (int)(sizeof(invalid_starts) / sizeof(invalid_starts[0])); ++which) {
+        setUp();
+        ef_start(&start, OTHER_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+        make_invalid(&start, which);
+        (void)send_session(&start, 0);
+        const tvo_lcm_session_ack_t ack = THE_ACK();
+        EF_ASSERT_STATUS(invalid_starts[which].status, ack.status);
+        EF_ASSERT_PARAM(invalid_starts[which].param, ack.bad_param);
+        TEST_ASSERT_EQUAL_INT64(-1, ack.running_session_id);
+        TEST_ASSERT_NULL(tvo_node_session(&node));
+    }
+}
+
+static void test_repeated_start_is_acked_again_without_a_restart(void)
+{
+    for (int clock = TVO_LCM_SESSION_T_CLOCK_PLANT; clock <= TVO_LCM_SESSION_T_CLOCK_NODE; ++clock) {
+        setUp();
+        if (clock == TVO_LCM_SESSION_T_CLOCK_PLANT) {
+            plant_session_after(2);
+        } else {
+            node_session_after(2);
+        }
+        const tvo_lcm_session_ack_t first = node.last_ack;
+        take_snapshot();
+        ef_start(&start, EF_SESSION_ID, clock, 1);
+        start.utime = EF_UTIME + 150000; /* sent again later: only the utime differs */
+        ef_record_clear(&rec);
+        (void)send_session(&start, NODE_T0 + 999999);
+        const tvo_lcm_session_ack_t ack = THE_ACK();
+        EF_ASSERT_STATUS(first.status, ack.status);
+        TEST_ASSERT_EQUAL_INT64(start.utime, ack.utime); /* echoes the repeat */
+        TEST_ASSERT_EQUAL_INT64(EF_SESSION_ID, ack.running_session_id);
+        TEST_ASSERT_EQUAL_INT32(first.bad_param, ack.bad_param);
+        TEST_ASSERT_EQUAL_INT32(first.bad_part, ack.bad_part);
+        TEST_ASSERT_EQUAL_INT32(first.bad_index, ack.bad_index);
+        ASSERT_SESSION_AND_COUNTERS_KEPT(); /* no restart: schedule, offset, controller, counters */
+    }
+}
+
+static void test_start_of_the_running_id_with_other_content_is_a_conflict(void)
+{
+    plant_session_after(2);
+    take_snapshot();
+    ef_start(&start, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+    start.gain_kp = 41.0;
+    ef_record_clear(&rec);
+    (void)send_session(&start, 0);
+    const tvo_lcm_session_ack_t ack = THE_ACK();
+    EF_ASSERT_STATUS(TVO_ERR_SESSION_CONFLICT, ack.status);
+    TEST_ASSERT_EQUAL_INT64(EF_SESSION_ID, ack.running_session_id);
+    ASSERT_SESSION_AND_COUNTERS_KEPT();
+    tvo_lcm_measurement_t m;
+    plant_meas(&m, 3);
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(3));
+}
+
+static void stop_message(tvo_lcm_session_t *m, int64_t id)
+{
+    memset(m, 0, sizeof(*m));
+    m->utime = EF_UTIME + 1000000;
+    m->session_id = id;
+    m->action = TVO_LCM_SESSION_T_ACTION_STOP;
+}
+
+static void test_stop_of_the_running_session_ends_it_and_a_start_begins_anew(void)
+{
+    plant_session_after(2);
+    tvo_lcm_session_t stop;
+    stop_message(&stop, EF_SESSION_ID);
+    ef_record_clear(&rec);
+    (void)send_session(&stop, 0);
+    const tvo_lcm_session_ack_t ack = THE_ACK();
+    EF_ASSERT_STATUS(TVO_OK, ack.status);
+    TEST_ASSERT_EQUAL_INT8(TVO_LCM_SESSION_T_ACTION_STOP, ack.action);
+    TEST_ASSERT_EQUAL_INT64(EF_SESSION_ID, ack.session_id);
+    TEST_ASSERT_EQUAL_INT64(-1, ack.running_session_id);
+    TEST_ASSERT_NULL(tvo_node_session(&node));
+    TEST_ASSERT_EQUAL_UINT8(1u, node.stop_requested);
+    /* Its measurements now get the safe stop that asks for a START. */
+    tvo_lcm_measurement_t m;
+    plant_meas(&m, 3);
+    ef_record_clear(&rec);
+    (void)send_measurement(&m, 0);
+    EF_ASSERT_STATUS(TVO_ERR_NO_SESSION, THE_SESSIONLESS_COMMAND().status);
+    /* The same START again (a plant that re-sends it) starts afresh. */
+    start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
+    TEST_ASSERT_EQUAL_UINT8(0u, node.stop_requested);
+    TEST_ASSERT_EQUAL_UINT8(0u, tvo_node_session(&node)->has_accepted);
+    plant_meas(&m, 5);
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(5));
+}
+
+static void test_stop_of_another_id_is_refused_and_the_session_runs_on(void)
+{
+    plant_session_after(2);
+    take_snapshot();
+    tvo_lcm_session_t stop;
+    stop_message(&stop, OTHER_ID);
+    ef_record_clear(&rec);
+    (void)send_session(&stop, 0);
+    tvo_lcm_session_ack_t ack = THE_ACK();
+    EF_ASSERT_STATUS(TVO_ERR_NO_SESSION, ack.status);
+    TEST_ASSERT_EQUAL_INT64(OTHER_ID, ack.session_id);
+    TEST_ASSERT_EQUAL_INT64(EF_SESSION_ID, ack.running_session_id);
+    TEST_ASSERT_EQUAL_UINT8(0u, node.stop_requested);
+    ASSERT_SESSION_AND_COUNTERS_KEPT();
+    /* When idle: refused too, and nothing runs. */
+    setUp();
+    (void)send_session(&stop, 0);
+    ack = THE_ACK();
+    EF_ASSERT_STATUS(TVO_ERR_NO_SESSION, ack.status);
+    TEST_ASSERT_EQUAL_INT64(-1, ack.running_session_id);
+    TEST_ASSERT_EQUAL_UINT8(0u, node.stop_requested);
+}
+
+static void test_unknown_actions_are_refused_and_change_nothing(void)
+{
+    const int8_t bad[] = {INT8_MIN, -1, 0, TVO_LCM_SESSION_T_ACTION_STOP + 1, INT8_MAX};
+    for (size_t i = 0; i < sizeof(bad) / sizeof(bad[0]); ++i) {
+        for (int running = 0; running < 2; ++running) {
+            setUp();
+            if (running) {
+                plant_session_after(1);
+                take_snapshot();
+            }
+            ef_start(&start, running ? EF_SESSION_ID : OTHER_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+            start.action = bad[i];
+            ef_record_clear(&rec);
+            (void)send_session(&start, 0);
+            const tvo_lcm_session_ack_t ack = THE_ACK();
+            EF_ASSERT_STATUS(TVO_ERR_PARAM, ack.status);
+            TEST_ASSERT_EQUAL_INT8(bad[i], ack.action);
+            TEST_ASSERT_EQUAL_INT64(running ? EF_SESSION_ID : -1, ack.running_session_id);
+            if (running) {
+                ASSERT_SESSION_AND_COUNTERS_KEPT();
+            } else {
+                TEST_ASSERT_NULL(tvo_node_session(&node));
+            }
+        }
+    }
+}
+
+static void test_measurement_without_a_session_is_answered_with_a_safe_stop(void)
+{
+    tvo_lcm_measurement_t m;
+    ef_measurement(&m, 31337, 123456, 17, 2);
+    TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_MEASUREMENT, send_measurement(&m, 0));
+    const tvo_lcm_command_t cmd = THE_SESSIONLESS_COMMAND();
+    EF_ASSERT_STATUS(TVO_ERR_NO_SESSION, cmd.status);
+    TEST_ASSERT_EQUAL_HEX32(TVO_FLAG_SAFE_STOP, (uint32_t)cmd.flags);
+    EXPECT_SAFE_STOP(cmd);
+    TEST_ASSERT_EQUAL_INT64(31337, cmd.session_id);
+    TEST_ASSERT_EQUAL_INT64(17, cmd.measurement_sequence);
+    TEST_ASSERT_EQUAL_INT64(123456, cmd.utime);
+    TEST_ASSERT_EQUAL_INT32(2, cmd.robot_count);
+    TEST_ASSERT_EQUAL_INT32(1, node.counters.refused[TVO_ERR_NO_SESSION]);
+    TEST_ASSERT_NULL(tvo_node_session(&node));
+}
+
+static void test_messages_of_another_session_are_ignored_and_counted(void)
+{
+    plant_session_after(2);
+    take_snapshot();
+    tvo_lcm_measurement_t m;
+    plant_meas(&m, 3);
+    m.session_id = OTHER_ID;
+    ef_record_clear(&rec);
+    TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_MEASUREMENT, send_measurement(&m, 0));
+    EXPECT_NOTHING_PUBLISHED();
+    TEST_ASSERT_EQUAL_INT32(1, node.counters.other_session);
+    tvo_lcm_target_t t;
+    memset(&t, 0, sizeof(t));
+    t.utime = plant_apply(2);
+    t.session_id = OTHER_ID;
+    t.robot_count = 1;
+    TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_TARGET, send_target(&t, 0));
+    EXPECT_NOTHING_PUBLISHED();
+    TEST_ASSERT_EQUAL_INT32(2, node.counters.other_session);
+    TEST_ASSERT_EQUAL_INT32(0, node.counters.targets_refused);
+    ASSERT_SESSION_KEPT();
+    /* The genuine stream goes on; the telemetry reports what was ignored. */
+    m.session_id = EF_SESSION_ID;
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(3));
+    TEST_ASSERT_EQUAL_INT32(2, last_telemetry.counters.other_session);
+}
+
+/* ------------------------------------------------------------------------------------------------
+ * CLOCK_PLANT timing
+ * --------------------------------------------------------------------------------------------- */
+
+static void test_plant_period_is_the_apply_instant_nearest_stamp_plus_tau(void)
+{
+    const int64_t jitters[] = {-H / 2, -2000, 0, 2000, H / 2 - 1};
+    for (size_t i = 0; i < sizeof(jitters) / sizeof(jitters[0]); ++i) {
+        setUp();
+        start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
+        tvo_lcm_measurement_t m;
+        plant_meas(&m, 3);
+        m.utime += jitters[i];
+        (void)EXPECT_ACCEPTED(m, 0, plant_apply(3));
+        const tvo_node_session_t *s = tvo_node_session(&node);
+        TEST_ASSERT_EQUAL_INT64(3, s->last_period);
+        TEST_ASSERT_EQUAL_INT64(SEQ0 + 3, s->last_sequence);
+        plant_meas(&m, 4);
+        (void)EXPECT_ACCEPTED(m, 0, plant_apply(4));
+    }
+    /* Half a period later than the nominal stamp: the next period (and its sequence must say so). */
+    setUp();
+    start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
+    tvo_lcm_measurement_t m;
+    plant_meas(&m, 3);
+    m.utime += H / 2;
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(4));
+}
+
+static void test_plant_age_outside_zero_to_h_is_refused_by_the_controller(void)
+{
+    /* tau = 0: a stamp after its apply instant (nearest grid point) is from the future. */
+    ef_start(&start, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+    start.delay_us = 0;
+    (void)send_session(&start, 0);
+    tvo_lcm_measurement_t m;
+    ef_measurement(&m, EF_SESSION_ID, plant_apply(3) + 3000, SEQ0 + 3, 1);
+    (void)EXPECT_REFUSED(m, 0, TVO_ERR_FUTURE_STAMP);
+    ef_measurement(&m, EF_SESSION_ID, plant_apply(3), SEQ0 + 3, 1);
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(3));
+    /* tau = h: a stamp more than a period before its apply instant is stale. */
+    setUp();
+    ef_start(&start, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+    start.delay_us = H;
+    (void)send_session(&start, 0);
+    ef_measurement(&m, EF_SESSION_ID, plant_apply(3) - H - 4000, SEQ0 + 3, 1);
+    (void)EXPECT_REFUSED(m, 0, TVO_ERR_STALE);
+    ef_measurement(&m, EF_SESSION_ID, plant_apply(3) - H, SEQ0 + 3, 1);
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(3));
+}
+
+static void test_plant_duplicates_and_reordering_are_out_of_order(void)
+{
+    plant_session_after(1);
+    tvo_lcm_measurement_t m;
+    plant_meas(&m, 1);
+    (void)EXPECT_REFUSED(m, 0, TVO_ERR_OUT_OF_ORDER); /* duplicate */
+    plant_meas(&m, 3);
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(3)); /* a lost period: consistent stamp and sequence */
+    plant_meas(&m, 2);
+    (void)EXPECT_REFUSED(m, 0, TVO_ERR_OUT_OF_ORDER); /* arrives late */
+    plant_meas(&m, 0);
+    (void)EXPECT_REFUSED(m, 0, TVO_ERR_OUT_OF_ORDER);
+    plant_meas(&m, 4);
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(4));
+}
+
+/* Field by field (a struct's padding is not part of it). */
+static void assert_same_command(const tvo_lcm_command_t *a, const tvo_lcm_command_t *b)
+{
+    TEST_ASSERT_EQUAL_INT64(a->utime, b->utime);
+    TEST_ASSERT_EQUAL_INT64(a->session_id, b->session_id);
+    TEST_ASSERT_EQUAL_INT64(a->measurement_sequence, b->measurement_sequence);
+    TEST_ASSERT_EQUAL_INT32(a->robot_count, b->robot_count);
+    TEST_ASSERT_EQUAL_MEMORY(a->speed_mps, b->speed_mps, sizeof(a->speed_mps));
+    TEST_ASSERT_EQUAL_MEMORY(a->turn_rate_radps, b->turn_rate_radps, sizeof(a->turn_rate_radps));
+    TEST_ASSERT_EQUAL_MEMORY(a->input, b->input, sizeof(a->input));
+    TEST_ASSERT_EQUAL_INT32(a->status, b->status);
+    TEST_ASSERT_EQUAL_INT32(a->flags, b->flags);
+}
+
+static void test_plant_stray_stamps_cost_the_genuine_stream_nothing(void)
+{
+    /* A reference node sees the genuine stream only. */
+    static tvo_lcm_command_t reference[6];
+    plant_session_after(0);
+    for (int64_t j = 1; j <= 5; ++j) {
+        tvo_lcm_measurement_t m;
+        plant_meas(&m, j);
+        reference[j] = EXPECT_ACCEPTED(m, 0, plant_apply(j));
+    }
+    /* This one sees a stray after each genuine sample. */
+    setUp();
+    plant_session_after(0);
+    for (int64_t j = 1; j <= 5; ++j) {
+        tvo_lcm_measurement_t m;
+        plant_meas(&m, j);
+        const tvo_lcm_command_t cmd = EXPECT_ACCEPTED(m, 0, plant_apply(j));
+        assert_same_command(&reference[j], &cmd);
+        tvo_lcm_measurement_t stray;
+        switch (j) {
+        case 1: /* a stamp 20 s ahead with the next sequence */
+            ef_measurement(&stray, EF_SESSION_ID, plant_apply(2000), SEQ0 + j + 1, 1);
+            (void)EXPECT_REFUSED(stray, 0, TVO_ERR_IMPLAUSIBLE_STAMP);
+            break;
+        case 2: /* a stamp in the past */
+            ef_measurement(&stray, EF_SESSION_ID, plant_apply(0) - TAU, SEQ0 + j + 1, 1);
+            (void)EXPECT_REFUSED(stray, 0, TVO_ERR_OUT_OF_ORDER);
+            break;
+        case 3: /* before the epoch */
+            ef_measurement(&stray, EF_SESSION_ID, EF_EPOCH - 10 * H, SEQ0 + j + 1, 1);
+            (void)EXPECT_REFUSED(stray, 0, TVO_ERR_IMPLAUSIBLE_STAMP);
+            break;
+        case 4: /* the right stamp, a wild sequence */
+            plant_meas(&stray, j + 1);
+            stray.sequence = SEQ0 + ((int64_t)1 << 40);
+            (void)EXPECT_REFUSED(stray, 0, TVO_ERR_IMPLAUSIBLE_STAMP);
+            break;
+        default: /* garbage values of the right fingerprint */
+            plant_meas(&stray, j + 1);
+            stray.position_m[0][0] = (double)NAN;
+            (void)EXPECT_REFUSED(stray, 0, TVO_ERR_NOT_FINITE);
+            break;
+        }
+    }
+}
+
+static void test_plant_huge_sequences_are_refused(void)
+{
+    plant_session_after(1);
+    const int64_t bad[] = {SEQ0 + 2 + 1, SEQ0 + ((int64_t)1 << 40), EF_TWO_POW_60, EF_TWO_POW_60 + 1, INT64_MAX};
+    for (size_t i = 0; i < sizeof(bad) / sizeof(bad[0]); ++i) {
+        const int64_t j = 2 + (int64_t)i;
+        tvo_lcm_measurement_t m;
+        plant_meas(&m, j);
+        m.sequence = bad[i];
+        (void)EXPECT_REFUSED(m, 0, TVO_ERR_IMPLAUSIBLE_STAMP);
+        /* A watchdog's worth of refusals would stop: keep below it with the genuine sample. */
+        plant_meas(&m, j);
+        (void)EXPECT_ACCEPTED(m, 0, plant_apply(j));
+    }
+}
+
+static void test_plant_gap_with_consistent_sequence_is_accepted(void)
+{
+    plant_session_after(1);
+    tvo_lcm_measurement_t m;
+    plant_meas(&m, 1 + 7);
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(8));
+    /* A gap beyond the controller's tick span is stale: the plant must START anew. */
+    const int64_t beyond = 8 + (int64_t)TVO_MAX_TICK_SPAN / H + 1;
+    plant_meas(&m, beyond);
+    (void)EXPECT_REFUSED(m, 0, TVO_ERR_STALE);
+    plant_meas(&m, beyond - 1);
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(beyond - 1));
+}
+
+static void test_plant_watchdog_refusals_in_a_row_give_a_safe_stop_until_one_is_accepted(void)
+{
+    plant_session_after(2);
+    tvo_lcm_measurement_t dup;
+    plant_meas(&dup, 2);
+    for (int64_t k = 1; k < W; ++k) {
+        (void)EXPECT_REFUSED(dup, 0, TVO_ERR_OUT_OF_ORDER);
+    }
+    TEST_ASSERT_EQUAL_INT32(0, node.counters.safe_stops);
+    tvo_lcm_command_t cmd = EXPECT_REFUSED(dup, 0, TVO_ERR_WATCHDOG);
+    TEST_ASSERT_EQUAL_INT64(SEQ0 + 2, cmd.measurement_sequence);
+    TEST_ASSERT_EQUAL_INT32(1, node.counters.safe_stops);
+    cmd = EXPECT_REFUSED(dup, 0, TVO_ERR_WATCHDOG); /* and on, until one is accepted */
+    TEST_ASSERT_EQUAL_INT32(2, node.counters.safe_stops);
+    TEST_ASSERT_EQUAL_INT32(W + 1, node.counters.refused[TVO_ERR_OUT_OF_ORDER]);
+    /* The controller dropped to rest: it holds zero until a measurement is accepted. */
+    const tvo_node_session_t *s = tvo_node_session(&node);
+    TEST_ASSERT_TRUE(s->controller.u.unicycle.held.speed_mps[0] == TVO_R(0.0));
+    TEST_ASSERT_TRUE(s->controller.u.unicycle.speed_state_mps[0] == TVO_R(0.0));
+    tvo_lcm_measurement_t m;
+    plant_meas(&m, 3);
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(3));
+    TEST_ASSERT_EQUAL_UINT32(0u, tvo_node_session(&node)->refused_in_row);
+    plant_meas(&dup, 3);
+    (void)EXPECT_REFUSED(dup, 0, TVO_ERR_OUT_OF_ORDER); /* the count restarted */
+}
+
+static void test_plant_wrong_robot_count_and_non_finite_values_are_refused(void)
+{
+    plant_session_after(1);
+    tvo_lcm_measurement_t m;
+    plant_meas(&m, 2);
+    m.robot_count = 2;
+    (void)EXPECT_REFUSED(m, 0, TVO_ERR_DIMENSION);
+    plant_meas(&m, 2);
+    m.heading_rad[0] = (double)INFINITY;
+    (void)EXPECT_REFUSED(m, 0, TVO_ERR_NOT_FINITE);
+    plant_meas(&m, 2);
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(2));
+}
+
+/* ------------------------------------------------------------------------------------------------
+ * CLOCK_NODE timing and the timer
+ * --------------------------------------------------------------------------------------------- */
+
+static void test_node_clock_offset_comes_from_the_start_and_commands_are_in_plant_time(void)
+{
+    start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_NODE, NODE_T0);
+    const tvo_node_session_t *s = tvo_node_session(&node);
+    TEST_ASSERT_EQUAL_INT64(OFFSET, s->offset_us);
+    TEST_ASSERT_EQUAL_INT64(EF_EPOCH + OFFSET, s->epoch_schedule_us);
+    /* Arriving 3 ms after A_0: serves period 1. */
+    tvo_lcm_measurement_t m;
+    const int64_t now = node_apply(0) + 3000;
+    ef_measurement(&m, EF_SESSION_ID, now - OFFSET - 1000, 42, 1);
+    (void)EXPECT_ACCEPTED(m, now, node_apply(1) - OFFSET);
+    TEST_ASSERT_EQUAL_INT64(now, last_telemetry.node_time_us);
+    /* Before the epoch: period 0 (if the sample is young enough for it). */
+    setUp();
+    start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_NODE, NODE_T0);
+    const int64_t early = node_apply(0) - 6000;
+    ef_measurement(&m, EF_SESSION_ID, early - OFFSET - 1000, 7, 1);
+    (void)EXPECT_ACCEPTED(m, early, node_apply(0) - OFFSET);
+    /* A second sample before A_0 serves the next period, not the one already served (its stamp,
+     * 1 ms ahead of the node's clock, is young enough for A_1). */
+    const int64_t soon = node_apply(0) - 1000;
+    ef_measurement(&m, EF_SESSION_ID, node_apply(0) - OFFSET, 8, 1);
+    (void)EXPECT_ACCEPTED(m, soon, node_apply(1) - OFFSET);
+}
+
+static void test_node_clock_sequence_is_only_echoed(void)
+{
+    node_session_after(1);
+    tvo_lcm_measurement_t m;
+    node_meas(&m, 2, 123456789); /* any sequence in range */
+    (void)EXPECT_ACCEPTED(m, node_arrival(2), node_apply(2) - OFFSET);
+    node_meas(&m, 3, 5);         /* even going back */
+    (void)EXPECT_ACCEPTED(m, node_arrival(3), node_apply(3) - OFFSET);
+}
+
+static void test_node_clock_stamp_more_than_half_a_period_ahead_is_implausible(void)
+{
+    node_session_after(1);
+    tvo_lcm_measurement_t m;
+    const int64_t now = node_apply(1) + 1000;
+    ef_measurement(&m, EF_SESSION_ID, now - OFFSET + H / 2 + 1, 2, 1);
+    (void)EXPECT_REFUSED(m, now, TVO_ERR_IMPLAUSIBLE_STAMP);
+    ef_measurement(&m, EF_SESSION_ID, now - OFFSET + 20000000, 2, 1); /* 20 s ahead */
+    (void)EXPECT_REFUSED(m, now, TVO_ERR_IMPLAUSIBLE_STAMP);
+    /* Exactly h/2 ahead: within the tolerance; A_2 = now + 9 ms is after it. */
+    ef_measurement(&m, EF_SESSION_ID, now - OFFSET + H / 2, 2, 1);
+    (void)EXPECT_ACCEPTED(m, now, node_apply(2) - OFFSET);
+    /* The genuine stream is not locked out by the stray. */
+    node_meas(&m, 3, 3);
+    (void)EXPECT_ACCEPTED(m, node_arrival(3), node_apply(3) - OFFSET);
+}
+
+static void test_node_clock_stale_and_repeated_stamps_are_refused(void)
+{
+    node_session_after(1);
+    tvo_lcm_measurement_t m;
+    /* Arriving at A_1 + 2 ms: serves A_2; sampled 1 ms after A_0 is 19 ms old there. */
+    const int64_t now = node_apply(1) + 2000;
+    ef_measurement(&m, EF_SESSION_ID, node_apply(0) + 1000 - OFFSET, 2, 1);
+    (void)EXPECT_REFUSED(m, now, TVO_ERR_STALE);
+    /* A sample stamped at A_2 itself (1 ms ahead of the node's clock) serves A_2 with age 0; the
+     * same stamp again serves A_3 with age h, but is not newer than the last accepted one. */
+    ef_measurement(&m, EF_SESSION_ID, node_apply(2) - OFFSET, 2, 1);
+    (void)EXPECT_ACCEPTED(m, node_apply(2) - 1000, node_apply(2) - OFFSET);
+    (void)EXPECT_REFUSED(m, node_apply(2) - 500, TVO_ERR_OUT_OF_ORDER);
+    node_meas(&m, 3, 3);
+    (void)EXPECT_ACCEPTED(m, node_arrival(3), node_apply(3) - OFFSET);
+}
+
+static void test_node_timer_has_no_deadline_before_the_first_accepted_measurement(void)
+{
+    start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_NODE, NODE_T0);
+    const int64_t times[] = {0, NODE_T0, node_apply(0), node_apply(100), EF_TWO_POW_60, INT64_MAX, INT64_MIN};
+    for (size_t i = 0; i < sizeof(times) / sizeof(times[0]); ++i) {
+        TEST_ASSERT_EQUAL_INT64(TVO_NODE_NO_DEADLINE, tvo_node_poll(&node, times[i]));
+    }
+    tvo_lcm_measurement_t m;
+    node_meas(&m, 1, 1);
+    m.position_m[0][1] = (double)NAN;
+    (void)EXPECT_REFUSED(m, node_arrival(1), TVO_ERR_NOT_FINITE); /* a refusal does not arm it */
+    ef_record_clear(&rec);
+    TEST_ASSERT_EQUAL_INT64(TVO_NODE_NO_DEADLINE, tvo_node_poll(&node, node_apply(50)));
+    EXPECT_NOTHING_PUBLISHED();
+}
+
+static void expect_timer_stop(int64_t now, int64_t next_deadline, int line)
+{
+    ef_record_clear(&rec);
+    const int64_t deadline = tvo_node_poll(&node, now);
+    const tvo_lcm_command_t cmd = the_command(line);
+    ef_assert_status(TVO_ERR_WATCHDOG, cmd.status, line);
+    UNITY_TEST_ASSERT_EQUAL_HEX32(TVO_FLAG_SAFE_STOP, (uint32_t)cmd.flags, line, "flags");
+    expect_safe_stop(&cmd, line);
+    UNITY_TEST_ASSERT_EQUAL_INT64(-1, cmd.measurement_sequence, line, "the node's own stop answers nothing");
+    UNITY_TEST_ASSERT_EQUAL_INT64(now - OFFSET, cmd.utime, line, "stamped now, in plant time");
+    UNITY_TEST_ASSERT_EQUAL_INT64(EF_SESSION_ID, cmd.session_id, line, "session");
+    UNITY_TEST_ASSERT_EQUAL_INT64(now, last_telemetry.node_time_us, line, "node time");
+    UNITY_TEST_ASSERT_EQUAL_INT64(next_deadline, deadline, line, "next deadline");
+}
+#define EXPECT_TIMER_STOP(now, next) expect_timer_stop((now), (next), __LINE__)
+
+static void expect_timer_quiet(int64_t now, int64_t deadline, int line)
+{
+    ef_record_clear(&rec);
+    UNITY_TEST_ASSERT_EQUAL_INT64(deadline, tvo_node_poll(&node, now), line, "deadline");
+    expect_nothing_published(line);
+}
+#define EXPECT_TIMER_QUIET(now, deadline) expect_timer_quiet((now), (deadline), __LINE__)
+
+static void test_node_timer_stops_at_last_apply_plus_watchdog_periods_then_every_period(void)
+{
+    node_session_after(2); /* last apply: A_2 */
+    const int64_t due = node_apply(2 + W);
+    EXPECT_TIMER_QUIET(node_arrival(2), due);
+    EXPECT_TIMER_QUIET(node_apply(3), due);
+    EXPECT_TIMER_QUIET(due - 1, due);
+    TEST_ASSERT_EQUAL_INT32(0, node.counters.safe_stops);
+    EXPECT_TIMER_STOP(due, node_apply(3 + W));
+    TEST_ASSERT_EQUAL_INT32(1, node.counters.safe_stops);
+    EXPECT_TIMER_QUIET(due, node_apply(3 + W)); /* polled again at once: nothing more */
+    EXPECT_TIMER_QUIET(node_apply(3 + W) - 1, node_apply(3 + W));
+    EXPECT_TIMER_STOP(node_apply(3 + W), node_apply(4 + W));
+    /* Polled late (the transport slept long): one stop, stamped now, the next deadline after now. */
+    const int64_t late = node_apply(9 + W) + 1234;
+    EXPECT_TIMER_STOP(late, node_apply(10 + W));
+    TEST_ASSERT_EQUAL_INT32(3, node.counters.safe_stops);
+    /* The controller is at rest; a refused measurement holds zero. */
+    const tvo_node_session_t *s = tvo_node_session(&node);
+    TEST_ASSERT_TRUE(s->controller.u.unicycle.held.speed_mps[0] == TVO_R(0.0));
+    /* Tracking resumes with the next accepted measurement, and the timer restarts from it. */
+    tvo_lcm_measurement_t m;
+    const int64_t j = 10 + W;
+    node_meas(&m, j, 99);
+    const tvo_lcm_command_t cmd = EXPECT_ACCEPTED(m, node_arrival(j), node_apply(j) - OFFSET);
+    TEST_ASSERT_TRUE(cmd.speed_mps[0] != 0.0 || cmd.turn_rate_radps[0] != 0.0);
+    EXPECT_TIMER_QUIET(node_arrival(j), node_apply(j + W));
+    EXPECT_TIMER_STOP(node_apply(j + W), node_apply(j + W + 1));
+}
+
+static void test_node_timer_is_not_moved_by_refused_measurements(void)
+{
+    node_session_after(2);
+    const int64_t due = node_apply(2 + W);
+    tvo_lcm_measurement_t m;
+    node_meas(&m, 3, 3);
+    m.robot_count = 3;
+    (void)EXPECT_REFUSED(m, node_arrival(3), TVO_ERR_DIMENSION);
+    node_meas(&m, 4, 4);
+    m.position_m[0][0] = (double)NAN;
+    (void)EXPECT_REFUSED(m, node_arrival(4), TVO_ERR_NOT_FINITE);
+    EXPECT_TIMER_QUIET(due - 1, due);
+    EXPECT_TIMER_STOP(due, node_apply(3 + W));
+}
+
+static void test_plant_clock_sessions_have_no_timer(void)
+{
+    plant_session_after(2);
+    const int64_t times[] = {0, plant_apply(3), plant_apply(1000), EF_TWO_POW_60};
+    for (size_t i = 0; i < sizeof(times) / sizeof(times[0]); ++i) {
+        EXPECT_TIMER_QUIET(times[i], TVO_NODE_NO_DEADLINE);
+    }
+}
+
+static void test_stop_disarms_the_timer(void)
+{
+    node_session_after(2);
+    tvo_lcm_session_t stop;
+    stop_message(&stop, EF_SESSION_ID);
+    (void)send_session(&stop, node_apply(3));
+    EXPECT_TIMER_QUIET(node_apply(2 + W), TVO_NODE_NO_DEADLINE);
+    EXPECT_TIMER_QUIET(node_apply(100), TVO_NODE_NO_DEADLINE);
+}
+
+/* ------------------------------------------------------------------------------------------------
+ * Telemetry counters, undecodable input, the slack rule
+ * --------------------------------------------------------------------------------------------- */
+
+static void test_telemetry_counts_every_kind_of_event(void)
+{
+    plant_session_after(2);
+    tvo_lcm_measurement_t m;
+    plant_meas(&m, 2);
+    (void)EXPECT_REFUSED(m, 0, TVO_ERR_OUT_OF_ORDER);
+    plant_meas(&m, 3);
+    m.position_m[0][0] = (double)NAN;
+    (void)EXPECT_REFUSED(m, 0, TVO_ERR_NOT_FINITE);
+    plant_meas(&m, 3);
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(3));
+    /* Undecodable: garbage, truncated, empty, NULL on the node's input channels. */
+    static const uint8_t garbage[16] = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16};
+    plant_meas(&m, 3);
+    const int n = tvo_lcm_measurement_t_encode(wire, 0, (int)sizeof(wire), &m);
+    ef_record_clear(&rec);
+    TEST_ASSERT_EQUAL_INT(0, tvo_node_handle(&node, TVO_NODE_CH_MEASUREMENT, garbage, sizeof(garbage), 0));
+    TEST_ASSERT_EQUAL_INT(0, tvo_node_handle(&node, TVO_NODE_CH_MEASUREMENT, wire, (uint32_t)n - 1u, 0));
+    TEST_ASSERT_EQUAL_INT(0, tvo_node_handle(&node, TVO_NODE_CH_SESSION, garbage, sizeof(garbage), 0));
+    TEST_ASSERT_EQUAL_INT(0, tvo_node_handle(&node, TVO_NODE_CH_TARGET, wire, 0u, 0));
+    TEST_ASSERT_EQUAL_INT(0, tvo_node_handle(&node, TVO_NODE_CH_MEASUREMENT, NULL, 100u, 0));
+    TEST_ASSERT_EQUAL_INT(0, tvo_node_handle(&node, TVO_NODE_CH_MEASUREMENT, wire, UINT32_MAX, 0));
+    EXPECT_NOTHING_PUBLISHED();
+    TEST_ASSERT_EQUAL_INT32(6, node.counters.undecodable);
+    /* Not the node's channels (its own outputs, unknown numbers): not taken, not counted. */
+    const int others[] = {TVO_NODE_CH_COMMAND, TVO_NODE_CH_TELEMETRY, TVO_NODE_CH_SESSION_ACK, 0, -1, 99, INT32_MIN};
+    for (size_t i = 0; i < sizeof(others) / sizeof(others[0]); ++i) {
+        TEST_ASSERT_EQUAL_INT(0, tvo_node_handle(&node, others[i], wire, (uint32_t)n, 0));
+    }
+    EXPECT_NOTHING_PUBLISHED();
+    TEST_ASSERT_EQUAL_INT32(6, node.counters.undecodable);
+    /* Another session's; a target the session cannot take (its target is not streamed). */
+    m.session_id = OTHER_ID;
+    (void)send_measurement(&m, 0);
+    tvo_lcm_target_t t;
+    memset(&t, 0, sizeof(t));
+    t.utime = plant_apply(2);
+    t.session_id = EF_SESSION_ID;
+    t.robot_count = 1;
+    (void)send_target(&t, 0);
+    TEST_ASSERT_EQUAL_INT32(1, node.counters.targets_refused);
+    EF_ASSERT_STATUS(TVO_ERR_PARAM, node.last_target_status);
+    /* A safe stop: watchdog_periods refusals in a row. */
+    plant_meas(&m, 3);
+    for (int64_t k = 0; k < W; ++k) {
+        ef_record_clear(&rec);
+        (void)send_measurement(&m, 0);
+    }
+    plant_meas(&m, 4);
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(4));
+    const tvo_lcm_node_counters_t *c = &last_telemetry.counters;
+    TEST_ASSERT_EQUAL_INT32(4, c->accepted);
+    TEST_ASSERT_EQUAL_INT32(1 + (int32_t)W, c->refused[TVO_ERR_OUT_OF_ORDER]);
+    TEST_ASSERT_EQUAL_INT32(1, c->refused[TVO_ERR_NOT_FINITE]);
+    TEST_ASSERT_EQUAL_INT32(6, c->undecodable);
+    TEST_ASSERT_EQUAL_INT32(1, c->other_session);
+    TEST_ASSERT_EQUAL_INT32(1, c->safe_stops);
+    TEST_ASSERT_EQUAL_INT32(1, c->targets_refused);
+    TEST_ASSERT_EQUAL_INT32(0, c->speed_mismatch);
+    TEST_ASSERT_EQUAL_INT64(0, last_telemetry.node_time_us); /* CLOCK_PLANT */
+    int32_t refused = 0;
+    for (int i = 0; i < TVO_LCM_NODE_COUNTERS_T_STATUS_SLOTS; ++i) {
+        refused += c->refused[i];
+    }
+    TEST_ASSERT_EQUAL_INT32(2 + (int32_t)W, refused);
+}
+
+static void test_telemetry_counts_speed_mismatch_steps(void)
+{
+    /* A plant that reports a speed beyond anything it was commanded (|v| <= speed_max = 2). */
+    plant_session_after(0);
+    for (int64_t j = 1; j <= (int64_t)TVO_SPEED_MISMATCH_PERIODS + 1; ++j) {
+        tvo_lcm_measurement_t m;
+        plant_meas(&m, j);
+        m.speed_valid = 1;
+        m.speed_mps[0] = 10.0;
+        const tvo_lcm_command_t cmd = EXPECT_ACCEPTED(m, 0, plant_apply(j));
+        const int flagged = ((uint32_t)cmd.flags & TVO_FLAG_SPEED_MISMATCH) != 0u;
+        TEST_ASSERT_EQUAL_INT(j >= (int64_t)TVO_SPEED_MISMATCH_PERIODS, flagged);
+    }
+    TEST_ASSERT_EQUAL_INT32(2, node.counters.speed_mismatch);
+    TEST_ASSERT_EQUAL_INT32(2, last_telemetry.counters.speed_mismatch);
+}
+
+/* A START whose robot 0 streams its target and must stay in x <= 0.5 (a half-space). */
+static void streamed_constrained_start(tvo_lcm_session_t *m)
+{
+    ef_start(m, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+    m->robot[0].target.kind = TVO_LCM_PATH_T_KIND_STREAMED;
+    m->halfspace_count = 1;
+    m->halfspace[0].robot = 0;
+    m->halfspace[0].normal[0] = 1.0;
+    m->halfspace[0].bound_m = 0.5;
+}
+
+static void target_at_epoch(tvo_lcm_target_t *t)
+{
+    memset(t, 0, sizeof(*t));
+    t->utime = EF_EPOCH;
+    t->session_id = EF_SESSION_ID;
+    t->robot_count = 1;
+    t->position_m[0][0] = 0.2;
+}
+
+static void test_slack_rule_is_undone_when_the_first_step_fails(void)
+{
+    tvo_lcm_target_t t;
+    target_at_epoch(&t);
+    /* Reference: the target, then the first sample at x = 1 (violating x <= 0.5 by 0.5). */
+    streamed_constrained_start(&start);
+    (void)send_session(&start, 0);
+    TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_TARGET, send_target(&t, 0));
+    EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
+    tvo_lcm_measurement_t m;
+    plant_meas(&m, 2);
+    m.position_m[0][0] = 1.0;
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(2));
+    const tvo_real_t reference_slack = tvo_node_session(&node)->problem.barrier.slack0;
+    TEST_ASSERT_TRUE(reference_slack > TVO_R(0.0));
+
+    /* Now a first sample at x = 2 whose step fails (no target sample yet), then as above. */
+    setUp();
+    (void)send_session(&start, 0);
+    tvo_lcm_measurement_t first;
+    plant_meas(&first, 1);
+    first.position_m[0][0] = 2.0;
+    ef_record_clear(&rec);
+    (void)send_measurement(&first, 0);
+    const tvo_lcm_command_t cmd = THE_COMMAND();
+    EF_ASSERT_STATUS(TVO_ERR_TARGET_NOT_READY, cmd.status);
+    TEST_ASSERT_TRUE(cmd.utime >= first.utime);
+    TEST_ASSERT_TRUE(((uint32_t)cmd.flags & (TVO_FLAG_HOLDING | TVO_FLAG_SAFE_STOP)) != 0u);
+    TEST_ASSERT_EQUAL_INT32(1, node.counters.refused[TVO_ERR_TARGET_NOT_READY]);
+    TEST_ASSERT_EQUAL_INT32(0, node.counters.accepted);
+    const tvo_node_session_t *s = tvo_node_session(&node);
+    TEST_ASSERT_EQUAL_UINT8(0u, s->problem.slack_chosen);
+    TEST_ASSERT_EQUAL_UINT8(0u, s->has_accepted);
+    (void)send_target(&t, 0);
+    EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(2));
+    TEST_ASSERT_EQUAL_UINT8(1u, s->problem.slack_chosen);
+    TEST_ASSERT_TRUE(s->problem.barrier.slack0 == reference_slack); /* chosen from x = 1, not x = 2 */
+}
+
+/* A session whose single robot streams its target (no constraints). */
+static void streamed_session(int32_t clock_source, int64_t now_us)
+{
+    ef_start(&start, EF_SESSION_ID, clock_source, 1);
+    start.robot[0].target.kind = TVO_LCM_PATH_T_KIND_STREAMED;
+    ef_record_clear(&rec);
+    (void)send_session(&start, now_us);
+    EF_ASSERT_STATUS(TVO_OK, THE_ACK().status);
+}
+
+/* ------------------------------------------------------------------------------------------------
+ * More timing: the tick span, chain sessions, refusals by the controller's step
+ * --------------------------------------------------------------------------------------------- */
+
+static void test_plant_first_measurement_beyond_the_tick_span_is_implausible(void)
+{
+    /* Issue 9: an epoch 20 min before the first measurement. Every measurement says why, and after
+     * watchdog_periods of them the answer is a safe stop. */
+    start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
+    const int64_t twenty_minutes = (int64_t)20 * 60 * 1000000;
+    for (int64_t k = 0; k < W + 1; ++k) {
+        tvo_lcm_measurement_t m;
+        ef_measurement(&m, EF_SESSION_ID, EF_EPOCH + twenty_minutes + k * H - TAU, k, 1);
+        (void)EXPECT_REFUSED(m, 0, k + 1 < W ? TVO_ERR_IMPLAUSIBLE_STAMP : TVO_ERR_WATCHDOG);
+    }
+    TEST_ASSERT_EQUAL_INT32((int32_t)W + 1, node.counters.refused[TVO_ERR_IMPLAUSIBLE_STAMP]);
+    /* The last period the controller's clock reaches from the epoch is still served. */
+    const int64_t last = (int64_t)TVO_MAX_TICK_SPAN / H;
+    tvo_lcm_measurement_t m;
+    plant_meas(&m, last);
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(last));
+}
+
+static void test_chain_session_runs_through_the_node(void)
+{
+    for (int clock = TVO_LCM_SESSION_T_CLOCK_PLANT; clock <= TVO_LCM_SESSION_T_CLOCK_NODE; ++clock) {
+        setUp();
+        ef_start(&start, EF_SESSION_ID, clock, 1);
+        start.plant_kind = TVO_LCM_SESSION_T_PLANT_CHAIN;
+        (void)send_session(&start, NODE_T0);
+        EF_ASSERT_STATUS(TVO_OK, THE_ACK().status);
+        const int node_clock = clock == TVO_LCM_SESSION_T_CLOCK_NODE;
+        tvo_lcm_command_t cmd;
+        for (int64_t j = 1; j <= 3; ++j) {
+            tvo_lcm_measurement_t m;
+            if (node_clock) {
+                node_meas(&m, j, j);
+            } else {
+                plant_meas(&m, j);
+            }
+            m.derivatives_valid = 1;
+            cmd = EXPECT_ACCEPTED(m, node_clock ? node_arrival(j) : 0,
+                                  node_clock ? node_apply(j) - OFFSET : plant_apply(j));
+            TEST_ASSERT_TRUE(cmd.input[0] != 0.0);       /* the chain's u, x and y */
+            TEST_ASSERT_TRUE(cmd.speed_mps[0] == 0.0);   /* no unicycle command */
+        }
+        if (node_clock) {
+            EXPECT_TIMER_QUIET(node_arrival(3), node_apply(3 + W));
+            ef_record_clear(&rec);
+            (void)tvo_node_poll(&node, node_apply(3 + W));
+            cmd = THE_COMMAND();
+        } else {
+            tvo_lcm_measurement_t dup;
+            plant_meas(&dup, 3);
+            for (int64_t k = 1; k < W; ++k) {
+                cmd = EXPECT_REFUSED(dup, 0, TVO_ERR_OUT_OF_ORDER);
+                TEST_ASSERT_TRUE(cmd.input[0] != 0.0); /* the chain's held u */
+            }
+            cmd = EXPECT_REFUSED(dup, 0, TVO_ERR_WATCHDOG);
+        }
+        EF_ASSERT_STATUS(TVO_ERR_WATCHDOG, cmd.status);
+        TEST_ASSERT_EQUAL_HEX32(TVO_FLAG_SAFE_STOP, (uint32_t)cmd.flags);
+        for (int i = 0; i < 8; ++i) {
+            TEST_ASSERT_TRUE(cmd.input[i] == 0.0);
+        }
+        TEST_ASSERT_TRUE(tvo_node_session(&node)->controller.u.chain.held.u[0] == TVO_R(0.0));
+    }
+}
+
+/* An uncompensated streamed-target session after periods 1 and 2, whose next target sample is
+ * stamped at period 3's apply instant (the latest the node takes): the controller's check passes
+ * measurement 3, its law (evaluated at the sample, tau before) then fails: the sample is its future. */
+static void session_whose_law_fails_next(void)
+{
+    ef_start(&start, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+    start.delay_compensation = 0;
+    start.robot[0].target.kind = TVO_LCM_PATH_T_KIND_STREAMED;
+    ef_record_clear(&rec);
+    (void)send_session(&start, 0);
+    EF_ASSERT_STATUS(TVO_OK, THE_ACK().status);
+    tvo_lcm_target_t t;
+    target_at_epoch(&t);
+    (void)send_target(&t, 0);
+    for (int64_t j = 1; j <= 2; ++j) {
+        tvo_lcm_measurement_t m;
+        plant_meas(&m, j);
+        (void)EXPECT_ACCEPTED(m, 0, plant_apply(j));
+    }
+    t.utime = plant_apply(3);
+    (void)send_target(&t, 0);
+    EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
+}
+
+static void test_plant_target_beyond_the_next_period_is_refused(void)
+{
+    /* A stray sample 10 s ahead would hold back every genuine sample after it: refused, and the
+     * genuine stream goes on. */
+    streamed_session(TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
+    tvo_lcm_target_t t;
+    target_at_epoch(&t);
+    (void)send_target(&t, 0);
+    EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
+    tvo_lcm_measurement_t m;
+    plant_meas(&m, 1);
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(1));
+    tvo_lcm_target_t stray = t;
+    stray.utime = EF_EPOCH + 10000000;
+    (void)send_target(&stray, 0);
+    EF_ASSERT_STATUS(TVO_ERR_IMPLAUSIBLE_STAMP, node.last_target_status);
+    TEST_ASSERT_EQUAL_INT32(1, node.counters.targets_refused);
+    t.utime = plant_apply(2) - TAU;
+    (void)send_target(&t, 0);
+    EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
+    plant_meas(&m, 2);
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(2));
+}
+
+static void test_plant_refusal_by_the_step_keeps_nothing(void)
+{
+    session_whose_law_fails_next();
+    take_snapshot();
+    tvo_lcm_measurement_t m;
+    plant_meas(&m, 3);
+    ef_record_clear(&rec);
+    (void)send_measurement(&m, 0);
+    const tvo_lcm_command_t cmd = THE_COMMAND();
+    TEST_ASSERT_TRUE(cmd.status != TVO_OK);
+    TEST_ASSERT_EQUAL_HEX32(TVO_FLAG_HOLDING, (uint32_t)cmd.flags);
+    TEST_ASSERT_TRUE(cmd.utime >= m.utime);
+    const tvo_node_session_t *s = tvo_node_session(&node);
+    const tvo_sample_clock_t *before = &snapshot.controller.u.unicycle.clock;
+    const tvo_sample_clock_t *after = &s->controller.u.unicycle.clock;
+    if (before->last_apply_tick != after->last_apply_tick || before->elapsed_ticks != after->elapsed_ticks ||
+        before->periods_without_measurement != after->periods_without_measurement) {
+        static char text[240];
+        (void)snprintf(text, sizeof(text),
+                       "refused (status %d) yet the controller's clock moved: last_apply_tick %u -> %u, "
+                       "elapsed %llu -> %llu, periods_without_measurement %u -> %u",
+                       (int)cmd.status, (unsigned)before->last_apply_tick, (unsigned)after->last_apply_tick,
+                       (unsigned long long)before->elapsed_ticks, (unsigned long long)after->elapsed_ticks,
+                       (unsigned)before->periods_without_measurement, (unsigned)after->periods_without_measurement);
+        TEST_FAIL_MESSAGE(text);
+    }
+    ASSERT_SESSION_KEPT();
+}
+
+static void test_plant_step_refusals_count_toward_the_watchdog(void)
+{
+    /* A refusal by the controller's step (the law) and refusals of the node's own checks (duplicates)
+     * in a row: watchdog_periods of them must end in a safe stop. */
+    session_whose_law_fails_next();
+    tvo_lcm_measurement_t m;
+    plant_meas(&m, 3);
+    ef_record_clear(&rec);
+    (void)send_measurement(&m, 0);
+    tvo_lcm_command_t cmd = THE_COMMAND();
+    EF_ASSERT_STATUS(TVO_ERR_FUTURE_STAMP, cmd.status);
+    TEST_ASSERT_EQUAL_UINT32(1u, tvo_node_session(&node)->refused_in_row);
+    tvo_lcm_measurement_t dup;
+    plant_meas(&dup, 2);
+    for (int64_t refusals = 1; refusals < W; ++refusals) {
+        ef_record_clear(&rec);
+        (void)send_measurement(&dup, 0);
+        cmd = THE_COMMAND();
+    }
+    EF_ASSERT_STATUS(TVO_ERR_WATCHDOG, cmd.status);
+    TEST_ASSERT_TRUE(((uint32_t)cmd.flags & TVO_FLAG_SAFE_STOP) != 0u);
+}
+
+/* ------------------------------------------------------------------------------------------------
+ * Integers from the wire at their extremes: START
+ * --------------------------------------------------------------------------------------------- */
+
+typedef void (*start_edit_fn)(tvo_lcm_session_t *m, int64_t value);
+
+/*
+ * For each value: a START (robot_count 2) edited with it is refused with the given ack, both on an
+ * idle node and while a session runs (which runs on, byte for byte). index < -1: the robot or
+ * entry index is the edited entry's (given as -index - 2).
+ */
+static void expect_start_site(start_edit_fn edit, const int64_t *values, size_t count, tvo_status_t status,
+                              tvo_param_t param, int32_t part, int32_t index, int line)
+{
+    for (size_t i = 0; i < count; ++i) {
+        for (int running = 0; running < 2; ++running) {
+            setUp();
+            if (running) {
+                plant_session_after(1);
+                take_snapshot();
+            }
+            ef_start(&start, OTHER_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 2);
+            edit(&start, values[i]);
+            ef_record_clear(&rec);
+            UNITY_TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_SESSION, send_session(&start, NODE_T0), line, "handled");
+            const tvo_lcm_session_ack_t ack = the_ack(line);
+            if (ack.status != (int32_t)status || ack.bad_param != (int32_t)param || ack.bad_part != part ||
+                ack.bad_index != index) {
+                static char text[240];
+                (void)snprintf(text, sizeof(text),
+                               "value %lld (%s): expected %s/%s part %d index %d, got %d (%s)/%s part %d index %d",
+                               (long long)values[i], running ? "running" : "idle", tvo_status_str(status),
+                               tvo_param_str(param), (int)part, (int)index, (int)ack.status,
+                               tvo_status_str((tvo_status_t)ack.status), tvo_param_str((tvo_param_t)ack.bad_param),
+                               (int)ack.bad_part, (int)ack.bad_index);
+                UNITY_TEST_FAIL(line, text);
+            }
+            UNITY_TEST_ASSERT_EQUAL_INT64(OTHER_ID, ack.session_id, line, "ack session");
+            UNITY_TEST_ASSERT_EQUAL_INT64(running ? EF_SESSION_ID : -1, ack.running_session_id, line, "running id");
+            if (running) {
+                assert_session_and_counters_kept(line);
+            } else {
+                UNITY_TEST_ASSERT_NULL(tvo_node_session(&node), line, "still idle");
+            }
+        }
+    }
+}
+#define EXPECT_START_SITE(edit, values, status, param, part, index)                                              \
+    expect_start_site((edit), (values), sizeof(values) / sizeof((values)[0]), (status), (param), (part), (index), \
+                      __LINE__)
+
+static const int64_t time_extremes[] = {INT64_MIN, -1, EF_TWO_POW_60 + 1, INT64_MAX};
+static const int64_t kind32_extremes[] = {INT32_MIN, -1, 2, INT32_MAX};
+static const int64_t robot_index_extremes[] = {INT32_MIN, -1, 2, INT32_MAX}; /* START robot_count is 2 */
+
+static int32_t as_int32(int64_t value)
+{
+    return (int32_t)value; /* every value given is an int32 */
+}
+
+static void edit_utime(tvo_lcm_session_t *m, int64_t v) { m->utime = v; }
+static void edit_epoch(tvo_lcm_session_t *m, int64_t v) { m->epoch_utime = v; }
+static void edit_period(tvo_lcm_session_t *m, int64_t v) { m->period_us = v; }
+static void edit_delay(tvo_lcm_session_t *m, int64_t v) { m->delay_us = v; }
+static void edit_watchdog(tvo_lcm_session_t *m, int64_t v) { m->watchdog_periods = as_int32(v); }
+static void edit_robot_count(tvo_lcm_session_t *m, int64_t v) { m->robot_count = as_int32(v); }
+static void edit_clock_source(tvo_lcm_session_t *m, int64_t v) { m->clock_source = as_int32(v); }
+static void edit_plant_kind(tvo_lcm_session_t *m, int64_t v) { m->plant_kind = as_int32(v); }
+static void edit_velocity_source(tvo_lcm_session_t *m, int64_t v) { m->velocity_source = as_int32(v); }
+static void edit_chain_degree(tvo_lcm_session_t *m, int64_t v)
+{
+    m->plant_kind = TVO_LCM_SESSION_T_PLANT_CHAIN;
+    m->robot_count = 1;
+    m->chain_relative_degree = as_int32(v);
+}
+static void edit_relaxation_degree(tvo_lcm_session_t *m, int64_t v) { m->barrier.relaxation_degree = as_int32(v); }
+static void edit_distance_count(tvo_lcm_session_t *m, int64_t v) { m->distance_count = as_int32(v); }
+static void edit_halfspace_count(tvo_lcm_session_t *m, int64_t v) { m->halfspace_count = as_int32(v); }
+static void edit_obstacle_count(tvo_lcm_session_t *m, int64_t v) { m->obstacle_count = as_int32(v); }
+static void edit_offset_count(tvo_lcm_session_t *m, int64_t v) { m->offset_count = as_int32(v); }
+static void one_distance(tvo_lcm_session_t *m)
+{
+    m->distance_count = 1;
+    m->distance[0].robot_a = 0;
+    m->distance[0].robot_b = 1;
+    m->distance[0].min_m = 0.2;
+}
+static void edit_distance_robot_a(tvo_lcm_session_t *m, int64_t v)
+{
+    one_distance(m);
+    m->distance[0].robot_a = as_int32(v);
+}
+static void edit_distance_robot_b(tvo_lcm_session_t *m, int64_t v)
+{
+    one_distance(m);
+    m->distance[0].robot_b = as_int32(v);
+}
+static void edit_halfspace_robot(tvo_lcm_session_t *m, int64_t v)
+{
+    m->halfspace_count = 1;
+    m->halfspace[0].normal[0] = 1.0;
+    m->halfspace[0].bound_m = 5.0;
+    m->halfspace[0].robot = as_int32(v);
+}
+static void one_offset(tvo_lcm_session_t *m)
+{
+    m->offset_count = 1;
+    m->offset[0].robot_a = 0;
+    m->offset[0].robot_b = 1;
+    ef_line_path(&m->offset[0].offset, 0.0, 1.0, 0.0);
+}
+static void edit_offset_robot_a(tvo_lcm_session_t *m, int64_t v)
+{
+    one_offset(m);
+    m->offset[0].robot_a = as_int32(v);
+}
+static void edit_offset_robot_b(tvo_lcm_session_t *m, int64_t v)
+{
+    one_offset(m);
+    m->offset[0].robot_b = as_int32(v);
+}
+static void edit_target_kind(tvo_lcm_session_t *m, int64_t v) { m->robot[1].target.kind = as_int32(v); }
+static void edit_offset_kind(tvo_lcm_session_t *m, int64_t v)
+{
+    one_offset(m);
+    m->offset[0].offset.kind = as_int32(v);
+}
+
+static void test_start_utime_extremes(void)
+{
+    EXPECT_START_SITE(edit_utime, time_extremes, TVO_ERR_PARAM, TVO_PARAM_EPOCH, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+}
+
+static void test_start_epoch_extremes(void)
+{
+    EXPECT_START_SITE(edit_epoch, time_extremes, TVO_ERR_PARAM, TVO_PARAM_EPOCH, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+    const int64_t far[] = {EF_UTIME + (int64_t)TVO_MAX_TICK_SPAN + 1, EF_TWO_POW_60};
+    EXPECT_START_SITE(edit_epoch, far, TVO_ERR_PARAM, TVO_PARAM_EPOCH, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+}
+
+static void test_start_period_extremes(void)
+{
+    const int64_t bad[] = {INT64_MIN, -1, 0, (int64_t)TVO_MAX_TICK_SPAN + 1, EF_TWO_POW_60 + 1, INT64_MAX};
+    EXPECT_START_SITE(edit_period, bad, TVO_ERR_PARAM, TVO_PARAM_PERIOD, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+}
+
+static void test_start_delay_extremes(void)
+{
+    const int64_t bad[] = {INT64_MIN, -1, H + 1, EF_TWO_POW_60 + 1, INT64_MAX};
+    EXPECT_START_SITE(edit_delay, bad, TVO_ERR_PARAM, TVO_PARAM_DELAY, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+}
+
+static void test_start_watchdog_extremes(void)
+{
+    const int64_t bad[] = {INT32_MIN, -1, 0, (int64_t)(TVO_MAX_TICK_SPAN / (uint32_t)EF_PERIOD_US) + 1, INT32_MAX};
+    EXPECT_START_SITE(edit_watchdog, bad, TVO_ERR_PARAM, TVO_PARAM_WATCHDOG, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+}
+
+static void test_start_robot_count_extremes(void)
+{
+    const int64_t bad[] = {INT32_MIN, -1, 0, TVO_MAX_ROBOTS + 1, INT32_MAX};
+    EXPECT_START_SITE(edit_robot_count, bad, TVO_ERR_PARAM, TVO_PARAM_ROBOT_COUNT, TVO_LCM_SESSION_ACK_T_PART_NONE,
+                      -1);
+}
+
+static void test_start_clock_source_extremes(void)
+{
+    EXPECT_START_SITE(edit_clock_source, kind32_extremes, TVO_ERR_PARAM, TVO_PARAM_CLOCK_SOURCE,
+                      TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+}
+
+static void test_start_plant_kind_extremes(void)
+{
+    EXPECT_START_SITE(edit_plant_kind, kind32_extremes, TVO_ERR_PARAM, TVO_PARAM_PLANT_KIND,
+                      TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+}
+
+static void test_start_velocity_source_extremes(void)
+{
+    EXPECT_START_SITE(edit_velocity_source, kind32_extremes, TVO_ERR_PARAM, TVO_PARAM_VELOCITY_SOURCE,
+                      TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+}
+
+static void test_start_chain_relative_degree_extremes(void)
+{
+    const int64_t bad[] = {INT32_MIN, -1, 0, TVO_MAX_RELATIVE_DEGREE + 1, INT32_MAX};
+    EXPECT_START_SITE(edit_chain_degree, bad, TVO_ERR_PARAM, TVO_PARAM_GAINS, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+}
+
+static void test_start_relaxation_degree_extremes(void)
+{
+    const int64_t bad[] = {INT32_MIN, -1, (int64_t)UINT8_MAX + 1, INT32_MAX};
+    EXPECT_START_SITE(edit_relaxation_degree, bad, TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE,
+                      TVO_LCM_SESSION_ACK_T_PART_BARRIER, -1);
+}
+
+static void test_start_count_extremes(void)
+{
+    const int64_t distance[] = {INT32_MIN, -1, TVO_LCM_SESSION_T_MAX_DISTANCE_BOUNDS + 1, INT32_MAX};
+    EXPECT_START_SITE(edit_distance_count, distance, TVO_ERR_CAPACITY, TVO_PARAM_OBJECTIVE,
+                      TVO_LCM_SESSION_ACK_T_PART_DISTANCE, -1);
+    const int64_t halfspace[] = {INT32_MIN, -1, TVO_LCM_SESSION_T_MAX_HALFSPACES + 1, INT32_MAX};
+    EXPECT_START_SITE(edit_halfspace_count, halfspace, TVO_ERR_CAPACITY, TVO_PARAM_OBJECTIVE,
+                      TVO_LCM_SESSION_ACK_T_PART_HALFSPACE, -1);
+    const int64_t obstacles[] = {INT32_MIN, -1, TVO_LCM_SESSION_T_MAX_OBSTACLES + 1, INT32_MAX};
+    EXPECT_START_SITE(edit_obstacle_count, obstacles, TVO_ERR_CAPACITY, TVO_PARAM_OBJECTIVE,
+                      TVO_LCM_SESSION_ACK_T_PART_OBSTACLES, -1);
+    const int64_t offsets[] = {INT32_MIN, -1, TVO_LCM_SESSION_T_MAX_OFFSETS + 1, INT32_MAX};
+    EXPECT_START_SITE(edit_offset_count, offsets, TVO_ERR_CAPACITY, TVO_PARAM_OBJECTIVE,
+                      TVO_LCM_SESSION_ACK_T_PART_OFFSETS, -1);
+}
+
+static void test_start_robot_index_extremes(void)
+{
+    EXPECT_START_SITE(edit_distance_robot_a, robot_index_extremes, TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE,
+                      TVO_LCM_SESSION_ACK_T_PART_DISTANCE, 0);
+    EXPECT_START_SITE(edit_distance_robot_b, robot_index_extremes, TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE,
+                      TVO_LCM_SESSION_ACK_T_PART_DISTANCE, 0);
+    EXPECT_START_SITE(edit_halfspace_robot, robot_index_extremes, TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE,
+                      TVO_LCM_SESSION_ACK_T_PART_HALFSPACE, 0);
+    EXPECT_START_SITE(edit_offset_robot_a, robot_index_extremes, TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE,
+                      TVO_LCM_SESSION_ACK_T_PART_OFFSETS, 0);
+    EXPECT_START_SITE(edit_offset_robot_b, robot_index_extremes, TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE,
+                      TVO_LCM_SESSION_ACK_T_PART_OFFSETS, 0);
+}
+
+static void test_start_path_kind_extremes(void)
+{
+    const int64_t bad[] = {INT32_MIN, -1, TVO_LCM_PATH_T_KIND_STREAMED + 1, INT32_MAX};
+    EXPECT_START_SITE(edit_target_kind, bad, TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 1);
+    EXPECT_START_SITE(edit_offset_kind, bad, TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_OFFSETS, 0);
+}
+
+static void test_start_session_id_extremes(void)
+{
+    /* Any id >= 0 is an id like any other; a negative one is refused (-1 means "none" in acks). */
+    const int64_t ids[] = {0, INT64_MAX};
+    for (size_t i = 0; i < sizeof(ids) / sizeof(ids[0]); ++i) {
+        setUp();
+        start_session(ids[i], TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
+        tvo_lcm_measurement_t m;
+        plant_meas(&m, 1);
+        m.session_id = ids[i];
+        (void)EXPECT_ACCEPTED(m, 0, plant_apply(1));
+        tvo_lcm_session_t stop;
+        stop_message(&stop, ids[i]);
+        ef_record_clear(&rec);
+        (void)send_session(&stop, 0);
+        EF_ASSERT_STATUS(TVO_OK, THE_ACK().status);
+        TEST_ASSERT_NULL(tvo_node_session(&node));
+    }
+    const int64_t negative[] = {INT64_MIN, -1};
+    for (size_t i = 0; i < sizeof(negative) / sizeof(negative[0]); ++i) {
+        setUp();
+        tvo_lcm_session_t bad;
+        ef_start(&bad, negative[i], TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+        ef_record_clear(&rec);
+        (void)send_session(&bad, 0);
+        EF_ASSERT_STATUS(TVO_ERR_PARAM, THE_ACK().status);
+        TEST_ASSERT_EQUAL_INT32(TVO_PARAM_SESSION_ID, THE_ACK().bad_param);
+        TEST_ASSERT_NULL(tvo_node_session(&node));
+    }
+}
+
+/* ------------------------------------------------------------------------------------------------
+ * Integers from the wire at their extremes: measurements, targets, the clock
+ * --------------------------------------------------------------------------------------------- */
+
+static void test_measurement_utime_extremes(void)
+{
+    for (int anchored = 0; anchored < 2; ++anchored) {
+        for (size_t i = 0; i < sizeof(time_extremes) / sizeof(time_extremes[0]); ++i) {
+            setUp();
+            plant_session_after(anchored);
+            tvo_lcm_measurement_t m;
+            plant_meas(&m, anchored + 1);
+            m.utime = time_extremes[i];
+            (void)EXPECT_REFUSED(m, 0, TVO_ERR_IMPLAUSIBLE_STAMP);
+            setUp();
+            node_session_after(anchored);
+            node_meas(&m, anchored + 1, anchored + 1);
+            m.utime = time_extremes[i];
+            (void)EXPECT_REFUSED(m, node_arrival(anchored + 1), TVO_ERR_IMPLAUSIBLE_STAMP);
+        }
+    }
+}
+
+static void test_measurement_sequence_extremes(void)
+{
+    for (int anchored = 0; anchored < 2; ++anchored) {
+        for (size_t i = 0; i < sizeof(time_extremes) / sizeof(time_extremes[0]); ++i) {
+            setUp();
+            plant_session_after(anchored);
+            tvo_lcm_measurement_t m;
+            plant_meas(&m, anchored + 1);
+            m.sequence = time_extremes[i];
+            (void)EXPECT_REFUSED(m, 0, TVO_ERR_IMPLAUSIBLE_STAMP);
+            setUp();
+            node_session_after(anchored);
+            node_meas(&m, anchored + 1, time_extremes[i]);
+            (void)EXPECT_REFUSED(m, node_arrival(anchored + 1), TVO_ERR_IMPLAUSIBLE_STAMP);
+        }
+    }
+    /* The ends of the range are sequences like any other. */
+    setUp();
+    start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
+    tvo_lcm_measurement_t m;
+    plant_meas(&m, 1);
+    m.sequence = EF_TWO_POW_60 - 1;
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(1));
+    plant_meas(&m, 2);
+    m.sequence = EF_TWO_POW_60;
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(2));
+}
+
+static void test_measurement_robot_count_extremes(void)
+{
+    const int64_t bad[] = {INT32_MIN, -1, 0, 2, TVO_LCM_MEASUREMENT_T_MAX_ROBOTS + 1, INT32_MAX};
+    for (size_t i = 0; i < sizeof(bad) / sizeof(bad[0]); ++i) {
+        setUp();
+        plant_session_after(1);
+        tvo_lcm_measurement_t m;
+        plant_meas(&m, 2);
+        m.robot_count = as_int32(bad[i]);
+        (void)EXPECT_REFUSED(m, 0, TVO_ERR_DIMENSION);
+        /* Without a session: the safe stop carries a robot count only if it is one. */
+        setUp();
+        ef_record_clear(&rec);
+        (void)send_measurement(&m, 0);
+        const tvo_lcm_command_t cmd = THE_SESSIONLESS_COMMAND();
+        TEST_ASSERT_TRUE(cmd.robot_count >= 0 && cmd.robot_count <= TVO_MAX_ROBOTS);
+        EF_ASSERT_STATUS(TVO_ERR_NO_SESSION, cmd.status);
+    }
+}
+
+static void test_measurement_session_id_extremes(void)
+{
+    const int64_t ids[] = {INT64_MIN, -1, INT64_MAX};
+    for (size_t i = 0; i < sizeof(ids) / sizeof(ids[0]); ++i) {
+        setUp();
+        plant_session_after(1);
+        take_snapshot();
+        tvo_lcm_measurement_t m;
+        plant_meas(&m, 2);
+        m.session_id = ids[i];
+        ef_record_clear(&rec);
+        (void)send_measurement(&m, 0);
+        EXPECT_NOTHING_PUBLISHED();
+        TEST_ASSERT_EQUAL_INT32(1, node.counters.other_session);
+        ASSERT_SESSION_KEPT();
+        /* Idle: the safe stop echoes whatever id and time it was given, clamped to the wire range. */
+        setUp();
+        m.utime = (i == 0) ? INT64_MIN : INT64_MAX;
+        m.sequence = ids[i];
+        (void)send_measurement(&m, 0);
+        const tvo_lcm_command_t cmd = THE_SESSIONLESS_COMMAND();
+        TEST_ASSERT_EQUAL_INT64(ids[i], cmd.session_id);
+        TEST_ASSERT_EQUAL_INT64(ids[i], cmd.measurement_sequence);
+        TEST_ASSERT_EQUAL_INT64(i == 0 ? 0 : EF_TWO_POW_60, cmd.utime);
+    }
+}
+
+static void test_target_utime_robot_count_and_session_extremes(void)
+{
+    for (int clock = TVO_LCM_SESSION_T_CLOCK_PLANT; clock <= TVO_LCM_SESSION_T_CLOCK_NODE; ++clock) {
+        setUp();
+        streamed_session(clock, NODE_T0);
+        take_snapshot();
+        /* The node's clock at the epoch: a sample stamped there is neither early nor late. */
+        const int64_t now = NODE_T0 + EF_EPOCH_LEAD;
+        tvo_lcm_target_t t;
+        target_at_epoch(&t);
+        int32_t refused = 0;
+        for (size_t i = 0; i < sizeof(time_extremes) / sizeof(time_extremes[0]); ++i) {
+            t.utime = time_extremes[i];
+            ef_record_clear(&rec);
+            TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_TARGET, send_target(&t, now));
+            EXPECT_NOTHING_PUBLISHED();
+            EF_ASSERT_STATUS(TVO_ERR_IMPLAUSIBLE_STAMP, node.last_target_status);
+            TEST_ASSERT_EQUAL_INT32(++refused, node.counters.targets_refused);
+        }
+        t.utime = EF_EPOCH;
+        const int64_t counts[] = {INT32_MIN, -1, 0, 2, INT32_MAX};
+        for (size_t i = 0; i < sizeof(counts) / sizeof(counts[0]); ++i) {
+            t.robot_count = as_int32(counts[i]);
+            (void)send_target(&t, now);
+            EF_ASSERT_STATUS(TVO_ERR_DIMENSION, node.last_target_status);
+            TEST_ASSERT_EQUAL_INT32(++refused, node.counters.targets_refused);
+        }
+        t.robot_count = 1;
+        const int64_t ids[] = {INT64_MIN, -1, INT64_MAX};
+        for (size_t i = 0; i < sizeof(ids) / sizeof(ids[0]); ++i) {
+            t.session_id = ids[i];
+            (void)send_target(&t, now);
+            TEST_ASSERT_EQUAL_INT32((int32_t)i + 1, node.counters.other_session);
+        }
+        ASSERT_SESSION_KEPT(); /* no target stream was touched */
+        /* The sequence is not read: its extremes are harmless. */
+        t.session_id = EF_SESSION_ID;
+        t.sequence = INT64_MIN;
+        (void)send_target(&t, now);
+        EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
+        TEST_ASSERT_EQUAL_UINT8(1u, tvo_node_session(&node)->problem.target[0].u.streamed.has_sample);
+    }
+    /* Without a session: ignored. */
+    setUp();
+    tvo_lcm_target_t t;
+    target_at_epoch(&t);
+    t.utime = INT64_MIN;
+    TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_TARGET, send_target(&t, INT64_MAX));
+    EXPECT_NOTHING_PUBLISHED();
+}
+
+static void test_node_clock_extremes(void)
+{
+    const int64_t nows[] = {INT64_MIN, -1, 0, EF_TWO_POW_60, EF_TWO_POW_60 + 1, INT64_MAX};
+    for (size_t i = 0; i < sizeof(nows) / sizeof(nows[0]); ++i) {
+        /* START at an extreme node time: the offset uses the clamped clock. */
+        setUp();
+        start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_NODE, nows[i]);
+        const int64_t clamped = nows[i] < 0 ? 0 : (nows[i] > EF_TWO_POW_60 ? EF_TWO_POW_60 : nows[i]);
+        TEST_ASSERT_EQUAL_INT64(clamped - EF_UTIME, tvo_node_session(&node)->offset_us);
+        /* Measurements, polls and a STOP at every extreme: answers stay within the wire range. */
+        for (size_t k = 0; k < sizeof(nows) / sizeof(nows[0]); ++k) {
+            tvo_lcm_measurement_t m;
+            ef_measurement(&m, EF_SESSION_ID, EF_EPOCH + (int64_t)k * H, (int64_t)k, 1);
+            ef_record_clear(&rec);
+            (void)send_measurement(&m, nows[k]);
+            const tvo_lcm_command_t cmd = THE_COMMAND();
+            TEST_ASSERT_TRUE(cmd.utime >= 0 && cmd.utime <= EF_TWO_POW_60);
+            const int64_t deadline = tvo_node_poll(&node, nows[k]);
+            TEST_ASSERT_TRUE(deadline == TVO_NODE_NO_DEADLINE || (deadline >= 0 && deadline <= 3 * EF_TWO_POW_60));
+        }
+        tvo_lcm_session_t stop;
+        stop_message(&stop, EF_SESSION_ID);
+        ef_record_clear(&rec);
+        (void)send_session(&stop, nows[i]);
+        EF_ASSERT_STATUS(TVO_OK, THE_ACK().status);
+    }
+    /* The plant's START at the ends of the wire range against the node clock's ends. */
+    const int64_t utimes[] = {0, EF_TWO_POW_60};
+    for (size_t u = 0; u < 2; ++u) {
+        for (size_t i = 0; i < sizeof(nows) / sizeof(nows[0]); ++i) {
+            setUp();
+            ef_start(&start, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_NODE, 1);
+            start.utime = utimes[u];
+            start.epoch_utime = utimes[u];
+            (void)send_session(&start, nows[i]);
+            EF_ASSERT_STATUS(TVO_OK, THE_ACK().status);
+            tvo_lcm_measurement_t m;
+            ef_measurement(&m, EF_SESSION_ID, utimes[u], 1, 1);
+            ef_record_clear(&rec);
+            (void)send_measurement(&m, nows[i]);
+            (void)THE_COMMAND();
+            for (size_t k = 0; k < sizeof(nows) / sizeof(nows[0]); ++k) {
+                ef_record_clear(&rec);
+                (void)tvo_node_poll(&node, nows[k]);
+                TEST_ASSERT_TRUE(rec.count == 0u || rec.count == 2u);
+            }
+        }
+    }
+    /* NULL node: nothing, no crash. */
+    TEST_ASSERT_EQUAL_INT(0, tvo_node_handle(NULL, TVO_NODE_CH_MEASUREMENT, wire, 10u, 0));
+    TEST_ASSERT_EQUAL_INT64(TVO_NODE_NO_DEADLINE, tvo_node_poll(NULL, 0));
+    TEST_ASSERT_NULL(tvo_node_session(NULL));
+}
+
+/* Every time the node publishes lies in the wire range [0, 2^60] (edge_spec "Wire ranges"), also
+ * for a session whose epoch is at the end of that range. */
+static void test_commands_stay_within_the_wire_time_range(void)
+{
+    static char text[240];
+    text[0] = '\0';
+    for (int clock = TVO_LCM_SESSION_T_CLOCK_PLANT; clock <= TVO_LCM_SESSION_T_CLOCK_NODE; ++clock) {
+        setUp();
+        ef_start(&start, EF_SESSION_ID, clock, 1);
+        start.utime = EF_TWO_POW_60;
+        start.epoch_utime = EF_TWO_POW_60;
+        (void)send_session(&start, EF_TWO_POW_60);
+        EF_ASSERT_STATUS(TVO_OK, THE_ACK().status);
+        tvo_lcm_measurement_t m;
+        ef_measurement(&m, EF_SESSION_ID, EF_TWO_POW_60, 1, 1); /* the latest stamp the wire allows */
+        ef_record_clear(&rec);
+        (void)send_measurement(&m, EF_TWO_POW_60);
+        const tvo_lcm_command_t cmd = THE_COMMAND();
+        if (cmd.utime < 0 || cmd.utime > EF_TWO_POW_60) {
+            const size_t used = strlen(text);
+            (void)snprintf(text + used, sizeof(text) - used, "%s: command utime 2^60 + %lld (status %d); ",
+                           clock == TVO_LCM_SESSION_T_CLOCK_PLANT ? "CLOCK_PLANT" : "CLOCK_NODE",
+                           (long long)(cmd.utime - EF_TWO_POW_60), (int)cmd.status);
+        }
+    }
+    if (text[0] != '\0') {
+        TEST_FAIL_MESSAGE(text); /* outside the wire range */
+    }
+}
+
+static void test_encode_buffer_holds_every_message(void)
+{
+    TEST_ASSERT_EQUAL_INT(0, tvo_node_check_buffer());
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_start_when_idle_runs_the_session_and_acks_ok);
+    RUN_TEST(test_start_with_a_new_id_replaces_the_running_session);
+    RUN_TEST(test_refused_start_while_running_changes_nothing);
+    RUN_TEST(test_refused_start_when_idle_leaves_the_node_idle);
+    RUN_TEST(test_repeated_start_is_acked_again_without_a_restart);
+    RUN_TEST(test_start_of_the_running_id_with_other_content_is_a_conflict);
+    RUN_TEST(test_stop_of_the_running_session_ends_it_and_a_start_begins_anew);
+    RUN_TEST(test_stop_of_another_id_is_refused_and_the_session_runs_on);
+    RUN_TEST(test_unknown_actions_are_refused_and_change_nothing);
+    RUN_TEST(test_measurement_without_a_session_is_answered_with_a_safe_stop);
+    RUN_TEST(test_messages_of_another_session_are_ignored_and_counted);
+    RUN_TEST(test_plant_period_is_the_apply_instant_nearest_stamp_plus_tau);
+    RUN_TEST(test_plant_age_outside_zero_to_h_is_refused_by_the_controller);
+    RUN_TEST(test_plant_duplicates_and_reordering_are_out_of_order);
+    RUN_TEST(test_plant_stray_stamps_cost_the_genuine_stream_nothing);
+    RUN_TEST(test_plant_huge_sequences_are_refused);
+    RUN_TEST(test_plant_gap_with_consistent_sequence_is_accepted);
+    RUN_TEST(test_plant_watchdog_refusals_in_a_row_give_a_safe_stop_until_one_is_accepted);
+    RUN_TEST(test_plant_wrong_robot_count_and_non_finite_values_are_refused);
+    RUN_TEST(test_node_clock_offset_comes_from_the_start_and_commands_are_in_plant_time);
+    RUN_TEST(test_node_clock_sequence_is_only_echoed);
+    RUN_TEST(test_node_clock_stamp_more_than_half_a_period_ahead_is_implausible);
+    RUN_TEST(test_node_clock_stale_and_repeated_stamps_are_refused);
+    RUN_TEST(test_node_timer_has_no_deadline_before_the_first_accepted_measurement);
+    RUN_TEST(test_node_timer_stops_at_last_apply_plus_watchdog_periods_then_every_period);
+    RUN_TEST(test_node_timer_is_not_moved_by_refused_measurements);
+    RUN_TEST(test_plant_clock_sessions_have_no_timer);
+    RUN_TEST(test_stop_disarms_the_timer);
+    RUN_TEST(test_telemetry_counts_every_kind_of_event);
+    RUN_TEST(test_telemetry_counts_speed_mismatch_steps);
+    RUN_TEST(test_slack_rule_is_undone_when_the_first_step_fails);
+    RUN_TEST(test_plant_first_measurement_beyond_the_tick_span_is_implausible);
+    RUN_TEST(test_chain_session_runs_through_the_node);
+    RUN_TEST(test_plant_refusal_by_the_step_keeps_nothing);
+    RUN_TEST(test_plant_target_beyond_the_next_period_is_refused);
+    RUN_TEST(test_plant_step_refusals_count_toward_the_watchdog);
+    RUN_TEST(test_start_utime_extremes);
+    RUN_TEST(test_start_epoch_extremes);
+    RUN_TEST(test_start_period_extremes);
+    RUN_TEST(test_start_delay_extremes);
+    RUN_TEST(test_start_watchdog_extremes);
+    RUN_TEST(test_start_robot_count_extremes);
+    RUN_TEST(test_start_clock_source_extremes);
+    RUN_TEST(test_start_plant_kind_extremes);
+    RUN_TEST(test_start_velocity_source_extremes);
+    RUN_TEST(test_start_chain_relative_degree_extremes);
+    RUN_TEST(test_start_relaxation_degree_extremes);
+    RUN_TEST(test_start_count_extremes);
+    RUN_TEST(test_start_robot_index_extremes);
+    RUN_TEST(test_start_path_kind_extremes);
+    RUN_TEST(test_start_session_id_extremes);
+    RUN_TEST(test_measurement_utime_extremes);
+    RUN_TEST(test_measurement_sequence_extremes);
+    RUN_TEST(test_measurement_robot_count_extremes);
+    RUN_TEST(test_measurement_session_id_extremes);
+    RUN_TEST(test_target_utime_robot_count_and_session_extremes);
+    RUN_TEST(test_node_clock_extremes);
+    RUN_TEST(test_commands_stay_within_the_wire_time_range);
+    RUN_TEST(test_encode_buffer_holds_every_message);
+    return UNITY_END();
+}

@@ -1,0 +1,100 @@
+/*
+ * The unicycle controller's step with fuzzed measurements (values, flags and stamps from the input).
+ * Invariants: every command finite and within the limits, a safe stop all zero, status OK only on a
+ * computed command; a measurement tvo_controller_check refuses leaves the velocity filter, the speed
+ * state and the last stamp as they were.
+ * Record format: stamp step (2 bytes, ticks), apply lead (2 bytes, ticks), flags (1 byte),
+ * position x, y, heading, speed (4 x 4-byte floats).
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "tvo/controller.h"
+#include "tvo/problem.h"
+
+#define RECORD_BYTES 21
+
+static void fail(const char *what)
+{
+    fprintf(stderr, "fuzz invariant broken: %s\n", what);
+    abort();
+}
+
+static float read_float(const uint8_t *p)
+{
+    float v;
+    memcpy(&v, p, sizeof(v));
+    return v;
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    static tvo_problem_t problem;
+    static tvo_controller_t ctl;
+    tvo_problem_desc_t desc;
+    tvo_controller_config_t cfg;
+    uint8_t part = 0;
+    if (tvo_problem_desc_default(&desc) != TVO_OK || tvo_controller_config_default(&cfg) != TVO_OK) {
+        fail("defaults");
+    }
+    desc.robot_count = 1;
+    desc.tracking_weight[0][0] = TVO_R(1.0);
+    desc.tracking_weight[0][1] = TVO_R(1.0);
+    const tvo_target_ellipse_t ellipse = {{TVO_R(0.0), TVO_R(0.0)}, {TVO_R(3.0), TVO_R(1.5)}, TVO_R(0.6283), TVO_R(0.0),
+                                          TVO_R(0.0)};
+    if (tvo_target_init_ellipse(&desc.target[0], &ellipse) != TVO_OK ||
+        tvo_problem_init(&problem, &desc, 2u, &part) != TVO_OK) {
+        fail("reference problem");
+    }
+    cfg.velocity_source = (size > 0 && (data[0] & 1u)) ? TVO_VELOCITY_FROM_POSITION : TVO_VELOCITY_FROM_POSE;
+    if (tvo_controller_init(&ctl, &cfg, &problem.objective, 0u, NULL) != TVO_OK) {
+        fail("reference controller");
+    }
+    uint32_t stamp = 0u;
+    for (size_t i = 1; i + RECORD_BYTES <= size; i += RECORD_BYTES) {
+        const uint8_t *p = data + i;
+        tvo_measurement_t meas;
+        memset(&meas, 0, sizeof(meas));
+        stamp += (uint32_t)p[0] | ((uint32_t)p[1] << 8);
+        const uint32_t apply = stamp + ((uint32_t)p[2] | ((uint32_t)p[3] << 8));
+        meas.stamp_tick = stamp;
+        meas.heading_valid = (p[4] & 1u) ? 1u : 0u;
+        meas.speed_valid = (p[4] & 2u) ? 1u : 0u;
+        meas.position_m[0][0] = read_float(p + 5);
+        meas.position_m[0][1] = read_float(p + 9);
+        meas.heading_rad[0] = read_float(p + 13);
+        meas.speed_mps[0] = read_float(p + 17);
+        const tvo_measurement_t *given = (p[4] & 4u) ? NULL : &meas;
+        const tvo_status_t verdict = tvo_controller_check(&ctl, given, apply);
+        const tvo_dirty_derivative_t filter = ctl.velocity_filter;
+        const tvo_real_t speed = ctl.speed_state_mps[0];
+        const uint32_t last_stamp = ctl.clock.last_stamp_tick;
+        tvo_command_t cmd;
+        const tvo_status_t st = tvo_controller_step(&ctl, given, apply, &cmd);
+        if (!isfinite(cmd.speed_mps[0]) || !isfinite(cmd.turn_rate_radps[0])) {
+            fail("command not finite");
+        }
+        if (TVO_FABS(cmd.turn_rate_radps[0]) > cfg.omega_max_radps || TVO_FABS(cmd.speed_mps[0]) > cfg.speed_max_mps) {
+            fail("command beyond its limits");
+        }
+        if ((cmd.flags & TVO_FLAG_SAFE_STOP) && (cmd.speed_mps[0] != TVO_R(0.0) || cmd.turn_rate_radps[0] != TVO_R(0.0))) {
+            fail("safe stop not all zero");
+        }
+        if (st == TVO_OK && (cmd.flags & (TVO_FLAG_HOLDING | TVO_FLAG_SAFE_STOP))) {
+            fail("status OK on a holding or stop command");
+        }
+        if (verdict != TVO_OK && st == TVO_OK) {
+            fail("the step used a measurement its check refused");
+        }
+        if (verdict != TVO_OK && st != TVO_ERR_WATCHDOG &&
+            (memcmp(&filter, &ctl.velocity_filter, sizeof(filter)) != 0 || speed != ctl.speed_state_mps[0] ||
+             last_stamp != ctl.clock.last_stamp_tick)) {
+            fail("a refused measurement changed the filter, the speed state or the last stamp");
+        }
+    }
+    return 0;
+}

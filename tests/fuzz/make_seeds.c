@@ -1,0 +1,121 @@
+/*
+ * Writes the seed corpus of each harness into the folder given (tests/fuzz/corpus): genuine
+ * traffic of the reference sessions, so the fuzzer starts from messages that decode and steps
+ * that run. Run by hand after a change of the wire format: fuzz_make_seeds tests/fuzz/corpus
+ */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "fuzz_support.h"
+#include "serial_frame.h"
+
+static uint8_t out[65536];
+static size_t out_length;
+
+static void put(const void *data, size_t length)
+{
+    if (out_length + length <= sizeof(out)) {
+        memcpy(out + out_length, data, length);
+        out_length += length;
+    }
+}
+
+static int save(const char *dir, const char *harness, const char *name)
+{
+    char path[512];
+    snprintf(path, sizeof(path), "%s/%s/%s", dir, harness, name);
+    FILE *f = fopen(path, "wb");
+    if (f == NULL) {
+        fprintf(stderr, "fuzz_make_seeds: cannot write %s (create the folder first)\n", path);
+        return 1;
+    }
+    fwrite(out, 1, out_length, f);
+    fclose(f);
+    out_length = 0;
+    return 0;
+}
+
+/* A node record: channel selector, length, clock step (x 500 us), message. */
+static void node_record(int channel, const uint8_t *message, int length, uint8_t clock_step)
+{
+    const uint8_t header[4] = {(uint8_t)(channel - 1), (uint8_t)length, (uint8_t)(length >> 8), clock_step};
+    put(header, sizeof(header));
+    put(message, (size_t)length);
+}
+
+static int node_seed(const char *dir, uint8_t variant, const char *name)
+{
+    static uint8_t message[8192];
+    tvo_lcm_session_t s;
+    fuzz_session(&s, variant);
+    put(&variant, 1);
+    for (int n = 0; n < 40; ++n) {
+        tvo_lcm_measurement_t m;
+        memset(&m, 0, sizeof(m));
+        m.session_id = s.session_id;
+        m.sequence = n;
+        m.utime = s.epoch_utime + (n + 1) * s.period_us - s.delay_us;
+        m.robot_count = s.robot_count;
+        for (int r = 0; r < s.robot_count; ++r) {
+            m.position_m[r][0] = -1.0 + 3.0 * r + 0.01 * n;
+            m.position_m[r][1] = -2.0;
+            m.speed_mps[r] = 0.01 * n;
+        }
+        m.heading_valid = 1;
+        m.speed_valid = 1;
+        m.derivatives_valid = 1;
+        const int length = tvo_lcm_measurement_t_encode(message, 0, sizeof(message), &m);
+        node_record(TVO_NODE_CH_MEASUREMENT, message, length, 20);
+        if (n == 20) {
+            tvo_lcm_session_t stop = s;
+            stop.action = TVO_LCM_SESSION_T_ACTION_STOP;
+            stop.session_id = 7; /* another session's STOP: ignored */
+            const int stop_length = tvo_lcm_session_t_encode(message, 0, sizeof(message), &stop);
+            node_record(TVO_NODE_CH_SESSION, message, stop_length, 0);
+        }
+    }
+    return save(dir, "node", name);
+}
+
+int main(int argc, char **argv)
+{
+    if (argc != 2) {
+        fprintf(stderr, "usage: fuzz_make_seeds CORPUS_DIR (with subfolders node, session, frame, controller)\n");
+        return 2;
+    }
+    const char *dir = argv[1];
+    int failed = 0;
+    failed |= node_seed(dir, 0, "plant_clock_unicycle");
+    failed |= node_seed(dir, 1, "node_clock_unicycle");
+    failed |= node_seed(dir, 2, "plant_clock_chain");
+    failed |= node_seed(dir, 4 | 8 | 16, "position_only_two_robots_distance");
+    failed |= node_seed(dir, 32, "obstacle");
+
+    for (uint8_t variant = 0; variant < 64; variant = (uint8_t)(variant + 9)) {
+        char name[32];
+        snprintf(name, sizeof(name), "variant_%u", (unsigned)variant);
+        put(&variant, 1); /* the rest empty: the variant's START unchanged, accepted */
+        failed |= save(dir, "session", name);
+    }
+
+    static uint8_t frame[TVO_FRAME_MAX_ENCODED];
+    size_t frame_length = 0;
+    const uint8_t body[] = {1, 2, 3, 0, 0, 255, 254, 0, 9};
+    if (tvo_frame_encode(TVO_NODE_CH_MEASUREMENT, body, sizeof(body), frame, sizeof(frame), &frame_length) == TVO_FRAME_OK) {
+        put(frame, frame_length);
+        put(frame, frame_length);
+        failed |= save(dir, "frame", "two_frames");
+    }
+
+    const uint8_t mode = 0;
+    put(&mode, 1);
+    for (int n = 0; n < 40; ++n) {
+        const uint8_t timing[5] = {0x10, 0x27, 0x88, 0x13, 3}; /* +10000 ticks, apply +5000, pose + speed */
+        const float pose[4] = {-1.0f + 0.01f * (float)n, -2.0f, 0.0f, 0.01f * (float)n};
+        put(timing, sizeof(timing));
+        put(pose, sizeof(pose));
+    }
+    failed |= save(dir, "controller", "steady");
+    return failed;
+}
