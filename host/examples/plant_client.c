@@ -106,9 +106,9 @@ int main(int argc, char **argv)
     if (lcm == NULL || steps < 1) return fprintf(stderr, "usage: plant_client [LCM_URL [DURATION_S]]\n"), 2;
     plant_t p = {.session_id = (int64_t)time(NULL) * 1000 + getpid() % 1000, .sent = -1, .in_force = -1};
     robot_t r = {.x = -1.0, .y = -2.0, .now_us = EPOCH_US, .applied_us = EPOCH_US}; /* at rest */
-    tvo_lcm_command_t_subscribe(lcm, TVO_CHANNEL_COMMAND, on_command, &p);
-    tvo_lcm_session_ack_t_subscribe(lcm, TVO_CHANNEL_SESSION_ACK, on_ack, &p);
-
+    tvo_lcm_command_t_subscription_t *cmds = tvo_lcm_command_t_subscribe(lcm, TVO_CHANNEL_COMMAND, on_command, &p);
+    tvo_lcm_session_ack_t_subscription_t *acks =
+        tvo_lcm_session_ack_t_subscribe(lcm, TVO_CHANNEL_SESSION_ACK, on_ack, &p);
     tvo_lcm_session_t s = {.session_id = p.session_id, .clock_source = TVO_LCM_SESSION_T_CLOCK_PLANT,
         .epoch_utime = EPOCH_US, .period_us = PERIOD_US, .delay_us = DELAY_US, .delay_compensation = 1,
         .watchdog_periods = WATCHDOG_PERIODS, .plant_kind = TVO_LCM_SESSION_T_PLANT_UNICYCLE,
@@ -128,8 +128,7 @@ int main(int argc, char **argv)
         tvo_lcm_measurement_t m = {.utime = r.now_us, .session_id = p.session_id, .sequence = n, .robot_count = 1,
             .position_m = {{r.x, r.y}}, .heading_rad = {r.heading}, .speed_mps = {r.v}, .heading_valid = 1,
             .speed_valid = 1};
-        p.sent = n;
-        p.answered = 0;
+        p.sent = n, p.answered = 0;
         tvo_lcm_measurement_t_publish(lcm, TVO_CHANNEL_MEASUREMENT, &m);
         for (int waited_ms = 0; !p.answered && waited_ms < 1000; waited_ms += 10) {
             lcm_handle_timeout(lcm, 10); /* no answer within 1 s: hold, as for a lost sample */
@@ -144,6 +143,8 @@ int main(int argc, char **argv)
     const double phase = e->omega_radps * (double)(r.now_us - EPOCH_US) * 1e-6;
     printf("final_error_m=%.6g\n", hypot(r.x - e->semi_axis_m[0] * cos(phase), r.y - e->semi_axis_m[1] * sin(phase)));
     request(lcm, &p, &s, TVO_LCM_SESSION_T_ACTION_STOP, r.now_us);
+    tvo_lcm_command_t_unsubscribe(lcm, cmds);
+    tvo_lcm_session_ack_t_unsubscribe(lcm, acks);
     lcm_destroy(lcm);
     return 0;
 }

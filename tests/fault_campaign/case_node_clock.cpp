@@ -271,7 +271,8 @@ void case_link_loss_node_clock(Context& ctx)
         repeats << (repeats.tellp() > 0 ? "; " : "") << sl.stops.size() << " spaced " << fmt(ms(min_gap)) << ".."
                 << fmt(ms(max_gap)) << " ms";
     }
-    const std::string window = "[" + std::to_string(wd * h / 1000) + ", " + std::to_string((wd + 1) * h / 1000) + "] ms";
+    const std::string window =
+        "[" + std::to_string(wd * h / 1000) + ", " + std::to_string((wd + 1) * h / 1000) + "] ms";
     report.check(never_early, "1 s without samples: never a safe stop before watchdog_periods*h (every silence)",
                  "first safe stop after the last accepted command's apply time: " + deltas.str() + " ms");
     report.check(one_in_time,
@@ -313,7 +314,8 @@ void case_link_loss_node_clock(Context& ctx)
     report.note("samples refused (a loaded machine may delay some past their period)",
                 refusals.empty() ? "none" : refusals);
     report.note("commands applied late (arrived after their utime, applied on arrival)", std::to_string(late_commands));
-    const bool resumed = std::all_of(silences.begin(), silences.end(), [](const Silence& sl) { return sl.first_resumed >= 0; });
+    const bool resumed =
+        std::all_of(silences.begin(), silences.end(), [](const Silence& sl) { return sl.first_resumed >= 0; });
     report.check(resumed && accepted_after > 0, "samples are accepted again after each silence",
                  std::to_string(accepted_after) + " accepted after the first silence");
     double before_silence = 0.0;

@@ -332,7 +332,8 @@ void case_garbage(Context& ctx)
             const auto bytes = session_garbage(tvo_lcm::session_t::ACTION_STOP, false);
             const auto ack = raw_request(ctx, bytes);
             check_refused_start(ctx.report, decoded<tvo_lcm::session_t>(bytes), ack, ours, TVO_ERR_NO_SESSION, -1, -1,
-                                -2, "a STOP with a random body (another id): acked TVO_ERR_NO_SESSION, session runs on");
+                                -2,
+                                "a STOP with a random body (another id): acked TVO_ERR_NO_SESSION, session runs on");
         } else if (n == 355) {
             const auto bytes = session_garbage(tvo_lcm::session_t::ACTION_START, true);
             const auto ack = raw_request(ctx, bytes);
@@ -361,8 +362,8 @@ void case_garbage(Context& ctx)
             // A burst, for the node's stderr: its lines are rate-limited, not one per message. Paced
             // in tens, as a burst of hundreds overflows a socket's receive buffer (seen: the genuine
             // sample behind it lost); the genuine sample is sent again until answered.
-            const std::vector<std::uint8_t> truncated(genuine_bytes.begin(),
-                                                      genuine_bytes.begin() + static_cast<long>(genuine_bytes.size() / 2));
+            const auto half = static_cast<long>(genuine_bytes.size() / 2);
+            const std::vector<std::uint8_t> truncated(genuine_bytes.begin(), genuine_bytes.begin() + half);
             for (int i = 0; i < 200; ++i) {
                 ctx.bus.publish_raw(TVO_CHANNEL_MEASUREMENT, truncated);
                 if (i % 10 == 9) {
@@ -416,7 +417,8 @@ void case_huge_sequence(Context& ctx)
             r.send_stray(resequenced(m, kWireMax), TVO_ERR_IMPLAUSIBLE_STAMP,
                          "sequence 2^60 (the wire's maximum): refused, implausible");
         } else if (n == 550) {
-            r.send_stray(resequenced(m, kWireMax + 1), kAny, "sequence 2^60 + 1 (out of the wire range): refused", true);
+            r.send_stray(resequenced(m, kWireMax + 1), kAny, "sequence 2^60 + 1 (out of the wire range): refused",
+                         true);
         }
         r.send_genuine(m);
         if (n == 600) {
@@ -805,8 +807,8 @@ void case_plant_restart(Context& ctx)
 
 void case_speed_mismatch(Context& ctx)
 {
-    const std::int32_t mismatch = static_cast<std::int32_t>(TVO_FLAG_SPEED_MISMATCH);
-    auto flagged = [mismatch](const LockstepRun& run, std::int64_t from, std::int64_t to) {
+    auto flagged = [](const LockstepRun& run, std::int64_t from, std::int64_t to) {
+        const auto mismatch = static_cast<std::int32_t>(TVO_FLAG_SPEED_MISMATCH);
         long count = 0;
         std::int64_t first = -1;
         for (const auto& [seq, answer] : run.genuine_answers()) {
@@ -819,7 +821,8 @@ void case_speed_mismatch(Context& ctx)
     };
     const auto ref = run_reference(ctx);
     const auto [false_alarms, first_false] = flagged(*ref, 0, 1000);
-    ctx.report.check(false_alarms == 0, "no speed mismatch flagged in the run without faults (start from rest included)",
+    ctx.report.check(false_alarms == 0,
+                     "no speed mismatch flagged in the run without faults (start from rest included)",
                      std::to_string(false_alarms) + " flagged" +
                          (first_false >= 0 ? ", first at sample " + std::to_string(first_false) : ""));
     const std::int64_t from = 300;

@@ -431,10 +431,12 @@ void LockstepRun::verify(const Expect& e, const tvo_lcm::command_t& cmd)
         const long watchdog_at = config_.timing.watchdog_periods;
         const bool watchdog = safe_stop && cmd.status == TVO_ERR_WATCHDOG && consecutive_refusals_ >= watchdog_at;
         const bool watchdog_due = consecutive_refusals_ > watchdog_at;
-        const bool status_ok = watchdog || (cmd.status != 0 && (e.status == Expect::kAnyStatus || cmd.status == e.status));
+        const bool status_ok =
+            watchdog || (cmd.status != 0 && (e.status == Expect::kAnyStatus || cmd.status == e.status));
         const bool flags_ok = watchdog || (holding && !safe_stop);
         const bool values_ok = watchdog ? is_zero(cmd)
-                                        : (cmd.speed_mps[0] == held_.speed_mps && cmd.turn_rate_radps[0] == held_.turn_rate_radps);
+                                        : (cmd.speed_mps[0] == held_.speed_mps &&
+                                           cmd.turn_rate_radps[0] == held_.turn_rate_radps);
         const bool utime_ok = e.match_by_order || cmd.utime == e.utime;
         const bool ok = status_ok && flags_ok && values_ok && utime_ok && (watchdog || !watchdog_due);
         if (e.genuine) {
