@@ -699,6 +699,13 @@ void case_implausible_epoch(Context& ctx)
         }
     });
     run.stop();
+    const auto& answers = run.genuine_answers();
+    const auto first = answers.find(config.first_sequence);
+    ctx.report.check(first != answers.end() && first->second.status == 0,
+                     "the first sample after that START (stamped " +
+                         std::to_string(run.sample_utime(config.first_sequence) - start_utime) +
+                         " us after it) is accepted: an epoch the START accepts is one the session can serve",
+                     first == answers.end() ? "no answer" : status_text(first->second.status));
     // The robot starts 4.5 m from its target here too; tracked after 6 s as in every case.
     finish(ctx, run, {config.first_sequence + 200}, nullptr);
 }
