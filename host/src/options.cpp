@@ -54,6 +54,9 @@ constexpr double kMaxBarrierScale = 1e6;     // c0, c_max
 constexpr double kMaxBarrierRatePerS = 1e3;  // alpha_c, alpha_s
 constexpr double kMaxBarrierLength = 100.0;  // delta0, slack margin (units of the constraint functions)
 constexpr double kMaxExtraDelayS = 10.0;
+// Commands held back by --extra-delay-s wait in the plant's queue, one per period (sim_loop.cpp
+// reserves 1024): at most this many periods of delay.
+constexpr std::int64_t kMaxDelayedPeriods = 1000;
 constexpr double kMaxDisturbance = 10.0;     // m/s, rad/s
 constexpr std::uint64_t kMaxOutputMib = 65536;
 // Realtime stamps go on past the last period (the START handshake, stalls, the STOP): an hour of slack.
@@ -138,6 +141,11 @@ int validate(SimOptions* o, bool delay_given, bool duration_given, bool robots_g
                                               " fit the node's watchdog span (2^30 - 1 us)");
     }
     o->extra_delay_us = static_cast<std::int64_t>(std::llround(o->extra_delay_s * kUsPerS));
+    if (o->extra_delay_us > kMaxDelayedPeriods * o->period_us) {
+        return fail("--extra-delay-s", "got " + number(o->extra_delay_s) + ", at most " +
+                                           std::to_string(kMaxDelayedPeriods) + " periods of --period-s " +
+                                           number(o->period_s) + " (commands queue in the plant, one per period)");
+    }
     if (link_loss_given) {
         if (o->link_loss_start_s + o->link_loss_duration_s > kMaxDurationS) {
             return fail("--link-loss", "S + D must be at most " + number(kMaxDurationS) + " s, got " +
