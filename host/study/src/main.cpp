@@ -101,6 +101,10 @@ bool parse_trace_config(const std::string &text, study::SimConfig &cfg, std::str
         }
         v[name] = value;
     }
+    if (!text.empty() && text.back() == ',') {
+        err = "an empty item at the end";
+        return false;
+    }
     double h_s = 0.0, tau = 0.0, tf_s = 0.0, sigma_m = 0.0;
     int k = 0, comp = 0, zoh = 0, filtered = 0;
     uint64_t seed = 0;
