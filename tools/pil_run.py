@@ -6,8 +6,9 @@ Cortex-M4F), tvo_pil_bridge between its serial port and LCM, and tvo_sim as the 
                    [--lcm-url URL] -- [tvo_sim options...]
 
 tvo_sim runs without --firmware: the node it talks to is the microcontroller. The exit code is
-tvo_sim's (non-zero also when QEMU or the bridge fail). Writes <out-dir>/pil.json with the target's
-frame counts (received, dropped, undecodable, sent) and the bridge's.
+tvo_sim's (non-zero also when QEMU or the bridge fail). Writes <out-dir>/pil.json with the counts the
+target printed on its console at the end (target_<key>: frames, node counters, its clock) and the
+bridge's (bridge_<key>), both as key=value lines, and the run's wall time (wall_s).
 """
 import argparse
 import json
@@ -17,8 +18,14 @@ import socket
 import subprocess
 import sys
 import tempfile
+import time
 
 END_TIMEOUT_S = 20
+# The plant starts once the target's program runs: a START sent before it waits in QEMU's serial
+# socket, and in CLOCK_NODE that wait would count as the START's transit (edge_spec.md) for the whole
+# session. Booting takes well under a second; the bound only ends a run whose target never came up.
+READY_TIMEOUT_S = 60
+READY_LINE = "PIL ready"
 
 
 def free_port():
@@ -36,6 +43,27 @@ def option_value(args, name, default):
     return default
 
 
+def counts_after(prefix, text):
+    """The integer key=value pairs on the last line starting with prefix, or {}."""
+    lines = [line for line in text.splitlines() if line.startswith(prefix)]
+    if not lines:
+        return {}
+    return {key: int(value) for key, value in re.findall(r"(\w+)=(-?\d+)", lines[-1])}
+
+
+def wait_ready(log, processes):
+    """True once the target printed READY_LINE; False if a process ended or READY_TIMEOUT_S passed."""
+    deadline = time.monotonic() + READY_TIMEOUT_S
+    while time.monotonic() < deadline:
+        log.seek(0)
+        if READY_LINE in log.read():
+            return True
+        if any(proc.poll() is not None for proc in processes):
+            return False
+        time.sleep(0.01)
+    return False
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--elf", required=True)
@@ -47,6 +75,7 @@ def main():
     parser.add_argument("sim_args", nargs="*")
     args = parser.parse_args()
 
+    started = time.monotonic()
     port = free_port()
     out_dir = option_value(args.sim_args, "--out-dir", "runs/demo")
     os.makedirs(out_dir, exist_ok=True)
@@ -62,7 +91,15 @@ def main():
         [args.bridge, "--connect", f"127.0.0.1:{port}", "--corrupt-every", str(args.corrupt_every)] + lcm,
         stdin=subprocess.DEVNULL, stdout=bridge_log, stderr=subprocess.STDOUT)
     try:
-        sim_rc = subprocess.call([args.sim] + lcm + args.sim_args)
+        if wait_ready(qemu_log, (qemu, bridge)):
+            sim_rc = subprocess.call([args.sim] + lcm + args.sim_args)
+        else:
+            print(f"pil: the target did not print '{READY_LINE}' within {READY_TIMEOUT_S} s "
+                  "(or QEMU or the bridge ended)", file=sys.stderr)
+            sim_rc = 1
+            for proc in (qemu, bridge):
+                if proc.poll() is None:
+                    proc.terminate()
     except KeyboardInterrupt:
         sim_rc = 130
     rc = sim_rc
@@ -84,19 +121,13 @@ def main():
     shown = [line for line in target_text.splitlines() if line.strip() and "waiting for connection" not in line]
     sys.stderr.write("".join(f"pil target: {line}\n" for line in shown))
     sys.stderr.write("".join(f"pil bridge: {line}\n" for line in bridge_text.splitlines() if line.strip()))
-    counts = {}
-    m = re.search(r"PIL frames received (\d+) dropped (\d+) undecodable (\d+) sent (\d+)", target_text)
-    if m:
-        counts = {"target_frames_received": int(m.group(1)), "target_frames_dropped": int(m.group(2)),
-                  "target_undecodable": int(m.group(3)), "target_frames_sent": int(m.group(4))}
-    elif rc == 0:
-        print("pil: the target printed no frame counts (did its program end on STOP?)", file=sys.stderr)
+    target = counts_after("PIL ", target_text)
+    if not target and rc == 0:
+        print("pil: the target printed no counts (did its program end on STOP?)", file=sys.stderr)
         rc = 1
-    m = re.search(r"frames to target (\d+) \((\d+) corrupted on purpose\), from target (\d+) ok, (\d+) dropped",
-                  bridge_text)
-    if m:
-        counts.update({"bridge_frames_to_target": int(m.group(1)), "bridge_frames_corrupted": int(m.group(2)),
-                       "bridge_frames_from_target": int(m.group(3)), "bridge_frames_dropped": int(m.group(4))})
+    counts = {f"target_{key}": value for key, value in target.items()}
+    counts.update({f"bridge_{key}": value for key, value in counts_after("tvo_pil_bridge: frames ", bridge_text).items()})
+    counts["wall_s"] = round(time.monotonic() - started, 3)
     with open(os.path.join(out_dir, "pil.json"), "w") as f:
         json.dump(counts, f, indent=2)
         f.write("\n")

@@ -89,7 +89,7 @@ static void unicycle_telemetry_to_lcm(const tvo_edge_controller_t *ctl, const tv
     tvo_step_telemetry_to_lcm(&ctl->u.unicycle, problem, msg);
 }
 
-static const tvo_sample_clock_t *unicycle_clock(const tvo_edge_controller_t *ctl)
+static tvo_sample_clock_t *unicycle_clock(tvo_edge_controller_t *ctl)
 {
     return &ctl->u.unicycle.clock;
 }
@@ -193,7 +193,7 @@ static void chain_telemetry_to_lcm(const tvo_edge_controller_t *ctl, const tvo_p
     (void)msg;
 }
 
-static const tvo_sample_clock_t *chain_clock(const tvo_edge_controller_t *ctl)
+static tvo_sample_clock_t *chain_clock(tvo_edge_controller_t *ctl)
 {
     return &ctl->u.chain.clock;
 }

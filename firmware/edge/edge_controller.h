@@ -55,7 +55,7 @@ typedef struct {
     void (*command_to_lcm)(const tvo_edge_command_t *cmd, const tvo_step_stamp_t *stamp, tvo_lcm_command_t *msg);
     /** The controller's part of the telemetry (its last good step). */
     void (*telemetry_to_lcm)(const tvo_edge_controller_t *ctl, const tvo_problem_t *problem, tvo_lcm_telemetry_t *msg);
-    const tvo_sample_clock_t *(*clock)(const tvo_edge_controller_t *ctl);
+    tvo_sample_clock_t *(*clock)(tvo_edge_controller_t *ctl);
 } tvo_edge_controller_ops_t;
 
 struct tvo_edge_controller {

@@ -9,6 +9,10 @@ _Static_assert(TVO_STATUS_COUNT <= TVO_LCM_NODE_COUNTERS_T_STATUS_SLOTS, "node_c
 
 /* CLOCK_NODE: a stamp may lead the node's clock by at most half a period (clock offset, jitter). */
 #define NODE_FUTURE_TOLERANCE_DIVISOR 2
+/* CLOCK_NODE, before the first accepted measurement: this many refused measurements in a row that
+ * agree (within a quarter period) on the plant's clock re-anchor the offset the START gave. */
+#define NODE_ANCHOR_VOTES 3u
+#define NODE_ANCHOR_AGREEMENT_DIVISOR 4
 
 int tvo_node_check_buffer(void)
 {
@@ -292,6 +296,69 @@ static void answer_without_session(tvo_node_t *node, const tvo_lcm_measurement_t
     publish_encoded(node, TVO_NODE_CH_COMMAND, tvo_lcm_command_t_encode(node->buffer, 0, TVO_NODE_BUFFER_BYTES, &out));
 }
 
+/*
+ * CLOCK_NODE: the START's transit is taken as the offset's error, but a START can be much slower than
+ * a measurement (2 kB against 0.4 kB on a serial link), which makes every measurement look early
+ * (or, the other way, stale) for the whole session. Before the first measurement is accepted, refused
+ * measurements whose own transit, taken as zero, agree on one offset re-anchor the schedule to it:
+ * a lone stray cannot (it needs NODE_ANCHOR_VOTES in a row), and once tracking started the offset is
+ * fixed (the objective's time is counting). Returns 1 if it re-anchored.
+ */
+static int reanchor(tvo_node_session_t *s, const tvo_lcm_measurement_t *msg, tvo_status_t refusal, int64_t now_us)
+{
+    if (s->timing.clock_source != TVO_LCM_SESSION_T_CLOCK_NODE || s->has_accepted || !wire_time_ok(msg->utime) ||
+        !wire_time_ok(msg->sequence) || msg->robot_count != (int32_t)s->timing.robot_count ||
+        (refusal != TVO_ERR_IMPLAUSIBLE_STAMP && refusal != TVO_ERR_STALE && refusal != TVO_ERR_FUTURE_STAMP)) {
+        s->anchor_votes = 0;
+        return 0;
+    }
+    const int64_t implied = now_us - msg->utime;
+    const int64_t tolerance = s->timing.period_us / NODE_ANCHOR_AGREEMENT_DIVISOR;
+    const int64_t gap = implied - s->anchor_candidate_us;
+    if (s->anchor_votes == 0u || gap > tolerance || gap < -tolerance) {
+        s->anchor_candidate_us = implied;
+        s->anchor_votes = 1u;
+        return 0;
+    }
+    if (++s->anchor_votes < NODE_ANCHOR_VOTES) {
+        return 0;
+    }
+    const int64_t epoch_schedule = s->timing.epoch_utime + implied;
+    if (tvo_sample_clock_rebase(s->controller.ops->clock(&s->controller), schedule_tick(epoch_schedule)) != TVO_OK) {
+        return 0;
+    }
+    s->offset_us = implied;
+    s->epoch_schedule_us = epoch_schedule;
+    s->anchor_votes = 0u;
+    return 1;
+}
+
+/* Everything the node checks of a measurement before the step: its period, stamp and apply instant
+ * on the schedule's clock, the core measurement, and the controller's own check. */
+static tvo_status_t vet_measurement(tvo_node_session_t *s, const tvo_lcm_measurement_t *msg, int64_t now_us,
+                                    int64_t *period, int64_t *apply_us, tvo_edge_measurement_t *meas)
+{
+    const tvo_edge_controller_ops_t *ops = s->controller.ops;
+    int64_t stamp_us = 0;
+    *apply_us = 0;
+    tvo_status_t st = (msg->robot_count == (int32_t)s->timing.robot_count) ? TVO_OK : TVO_ERR_DIMENSION;
+    if (st == TVO_OK) {
+        st = schedule_measurement(s, msg, now_us, period, &stamp_us);
+    }
+    if (st != TVO_OK) {
+        return st;
+    }
+    *apply_us = apply_instant(s, *period);
+    if (!wire_time_ok(*apply_us - s->offset_us)) {
+        return TVO_ERR_IMPLAUSIBLE_STAMP; /* its command could not be stamped on the wire */
+    }
+    if (s->has_accepted && (*period - s->last_period) > (int64_t)TVO_MAX_TICK_SPAN / s->timing.period_us) {
+        return TVO_ERR_STALE; /* a silence longer than the clock spans: START a new session */
+    }
+    st = ops->measurement(msg, s->timing.robot_count, schedule_tick(stamp_us), meas);
+    return (st == TVO_OK) ? ops->check(&s->controller, meas, schedule_tick(*apply_us)) : st;
+}
+
 static void on_measurement(tvo_node_t *node, const tvo_lcm_measurement_t *msg, int64_t now_us)
 {
     tvo_node_session_t *s = running_session(node);
@@ -305,25 +372,11 @@ static void on_measurement(tvo_node_t *node, const tvo_lcm_measurement_t *msg, i
     }
     const tvo_edge_controller_ops_t *ops = s->controller.ops;
     int64_t period = 0;
-    int64_t stamp_us = 0;
+    int64_t apply_us = 0;
     tvo_edge_measurement_t meas;
-    tvo_status_t st = (msg->robot_count == (int32_t)s->timing.robot_count) ? TVO_OK : TVO_ERR_DIMENSION;
-    if (st == TVO_OK) {
-        st = schedule_measurement(s, msg, now_us, &period, &stamp_us);
-    }
-    const int64_t apply_us = (st == TVO_OK) ? apply_instant(s, period) : 0;
-    if (st == TVO_OK && !wire_time_ok(apply_us - s->offset_us)) {
-        st = TVO_ERR_IMPLAUSIBLE_STAMP; /* its command could not be stamped on the wire */
-    }
-    if (st == TVO_OK && s->has_accepted &&
-        (period - s->last_period) > (int64_t)TVO_MAX_TICK_SPAN / s->timing.period_us) {
-        st = TVO_ERR_STALE; /* a silence longer than the clock spans: START a new session */
-    }
-    if (st == TVO_OK) {
-        st = ops->measurement(msg, s->timing.robot_count, schedule_tick(stamp_us), &meas);
-    }
-    if (st == TVO_OK) {
-        st = ops->check(&s->controller, &meas, schedule_tick(apply_us));
+    tvo_status_t st = vet_measurement(s, msg, now_us, &period, &apply_us, &meas);
+    if (st != TVO_OK && reanchor(s, msg, st, now_us)) {
+        st = vet_measurement(s, msg, now_us, &period, &apply_us, &meas); /* on the corrected clock */
     }
     if (st != TVO_OK) {
         refuse_measurement(node, s, msg, st, now_us);

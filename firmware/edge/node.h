@@ -54,6 +54,8 @@ typedef struct {
     int64_t last_sequence;             /* its sequence */
     uint32_t refused_in_row;           /* CLOCK_PLANT: refusals since the last accepted measurement */
     int64_t stop_period;               /* CLOCK_NODE: period at whose apply instant the next safe stop is due */
+    int64_t anchor_candidate_us;       /* CLOCK_NODE, before the first accepted measurement: the offset */
+    uint8_t anchor_votes;              /*   that refused measurements agree on, and how many in a row */
 } tvo_node_session_t;
 
 typedef struct {

@@ -1,15 +1,19 @@
 /*
  * tvo_pil_bridge: joins LCM and the serial link of a processor-in-the-loop target (QEMU's -serial
- * socket). Messages on TVO_SESSION, TVO_MEASUREMENT and TVO_TARGET go to the target as frames
- * (serial_frame.h: COBS + CRC-32, tagged with node.h's channel numbers); frames from the target
- * (TVO_SESSION_ACK, TVO_COMMAND, TVO_TELEMETRY) are republished on LCM unchanged. The bridge decodes
- * nothing: it moves LCM's encoded bytes, so the target sees exactly what tvo_firmware_node would.
+ * socket). Messages on the node's input channels (session, measurement, target: channels.h) go to
+ * the target as frames (serial_frame.h: COBS + CRC-32, tagged with channels.h's numbers); frames from
+ * the target (session ack, command, telemetry) are republished on LCM unchanged. The bridge decodes
+ * no message: it moves LCM's encoded bytes, so the target sees exactly what tvo_firmware_node would.
  *
  * Usage: tvo_pil_bridge --connect HOST:PORT [--lcm-url URL] [--corrupt-every N] [--connect-timeout-s S]
- *   --corrupt-every N   flip one bit in every N-th frame sent to the target (a test of the framing:
- *                       the target must drop those frames, which then look like lost messages)
+ *   --corrupt-every N   flip one bit in every N-th measurement frame sent to the target and in every
+ *                       N-th command frame coming from it (a test of the framing: each end must drop
+ *                       those frames, which then look like lost messages). Counted per channel, so
+ *                       which messages are hit does not depend on timing (how often the plant repeated
+ *                       its START); session frames are never hit (a lost STOP would leave the target
+ *                       running).
  * Ends when the target closes the link (its program ended), on SIGINT/SIGTERM, or on an error;
- * prints the frame counts. Exit code 0, or 1 on errors, 2 on bad arguments.
+ * prints the frame counts as key=value pairs. Exit code 0, or 1 on errors, 2 on bad arguments.
  */
 #define _POSIX_C_SOURCE 200809L
 
@@ -39,14 +43,22 @@ static volatile sig_atomic_t g_stop_signal = 0;
 typedef struct {
     lcm_t *lcm;
     int socket_fd;
-    long corrupt_every;
+    unsigned long corrupt_every;
     unsigned long frames_to_target;
-    unsigned long frames_corrupted;
-    unsigned long frames_from_target;
+    unsigned long measurements_to_target;
+    unsigned long measurements_corrupted;
+    unsigned long frames_from_target;         /* passed the checks and republished */
+    unsigned long commands_from_target;       /* intact as sent, before any corruption */
+    unsigned long commands_corrupted;
     int failed;
     tvo_frame_decoder_t decoder;
+    tvo_frame_decoder_t peek;                 /* reads a frame's channel before it may be corrupted */
     uint8_t frame[TVO_FRAME_MAX_ENCODED];
     uint8_t payload[TVO_FRAME_MAX_PAYLOAD];
+    /* The frame from the target being collected, delimiter excluded; one byte more than the decoder
+     * holds, so an overlong frame still overflows the decoder and is dropped there. */
+    uint8_t raw[TVO_FRAME_MAX_ENCODED + 1u];
+    size_t raw_length;
 } bridge_t;
 
 static void on_signal(int signo)
@@ -71,24 +83,39 @@ static int write_all(int fd, const uint8_t *data, size_t length)
     return 0;
 }
 
+/* 1 if this is the N-th frame of its kind (count already advanced) and corruption is on. */
+static int is_nth(const bridge_t *b, unsigned long count)
+{
+    return b->corrupt_every > 0u && count % b->corrupt_every == 0u;
+}
+
+/* Flips one bit in the middle of an encoded frame (never its delimiter); a byte that would become
+ * 0x00 becomes 0x10 instead, since a zero would split the frame in two rather than corrupt it. */
+static void corrupt(uint8_t *frame, size_t length)
+{
+    uint8_t *byte = &frame[length / 2u];
+    *byte ^= 0x10u;
+    if (*byte == 0u) {
+        *byte = 0x10u;
+    }
+}
+
 static void to_target(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
 {
     bridge_t *b = (bridge_t *)user;
+    const int number = tvo_node_channel_of(channel);
     size_t length = 0u;
-    const tvo_frame_status_t st = tvo_frame_encode((uint8_t)tvo_node_channel_of(channel), (const uint8_t *)rbuf->data,
-                                                   rbuf->data_size, b->frame, sizeof(b->frame), &length);
+    const tvo_frame_status_t st = tvo_frame_encode((uint8_t)number, (const uint8_t *)rbuf->data, rbuf->data_size,
+                                                   b->frame, sizeof(b->frame), &length);
     if (st != TVO_FRAME_OK) {
         fprintf(stderr, "tvo_pil_bridge: a %u-byte message on %s does not fit a frame (dropped)\n",
                 rbuf->data_size, channel);
         return;
     }
     ++b->frames_to_target;
-    if (b->corrupt_every > 0 && b->frames_to_target % (unsigned long)b->corrupt_every == 0u && length > 2u) {
-        b->frame[length / 2u] ^= 0x10u; /* one bit in the middle of the frame (never the delimiter) */
-        if (b->frame[length / 2u] == 0u) {
-            b->frame[length / 2u] = 0x10u; /* keep framing intact: a zero would split the frame */
-        }
-        ++b->frames_corrupted;
+    if (number == TVO_NODE_CH_MEASUREMENT && is_nth(b, ++b->measurements_to_target) && length > 2u) {
+        corrupt(b->frame, length - 1u); /* length - 1: the delimiter stays */
+        ++b->measurements_corrupted;
     }
     if (write_all(b->socket_fd, b->frame, length) != 0) {
         fprintf(stderr, "tvo_pil_bridge: error: writing to the target failed: %s\n", strerror(errno));
@@ -137,21 +164,52 @@ static int connect_to(const char *host_port, double timeout_s)
     return fd;
 }
 
+/* The channel of a collected frame from the target if it passes the checks, else 0. */
+static int peek_channel(bridge_t *b)
+{
+    tvo_frame_decoder_init(&b->peek);
+    uint8_t channel = 0u;
+    size_t length = 0u;
+    for (size_t i = 0; i < b->raw_length; ++i) {
+        (void)tvo_frame_decoder_push(&b->peek, b->raw[i], &channel, b->payload, &length);
+    }
+    return tvo_frame_decoder_push(&b->peek, 0u, &channel, b->payload, &length) == TVO_FRAME_OK ? channel : 0;
+}
+
+/* A frame from the target is complete: maybe corrupt it, then decode it (a corrupted or broken frame
+ * is dropped and counted by the decoder) and republish it. */
+static void frame_from_target(bridge_t *b)
+{
+    if (peek_channel(b) == TVO_NODE_CH_COMMAND && is_nth(b, ++b->commands_from_target)) {
+        corrupt(b->raw, b->raw_length);
+        ++b->commands_corrupted;
+    }
+    uint8_t channel = 0u;
+    size_t length = 0u;
+    for (size_t i = 0; i < b->raw_length; ++i) {
+        (void)tvo_frame_decoder_push(&b->decoder, b->raw[i], &channel, b->payload, &length);
+    }
+    b->raw_length = 0u;
+    if (tvo_frame_decoder_push(&b->decoder, 0u, &channel, b->payload, &length) != TVO_FRAME_OK) {
+        return;
+    }
+    const char *name = tvo_node_channel_name(channel);
+    if (name == NULL) {
+        fprintf(stderr, "tvo_pil_bridge: frame on unknown channel %u (dropped)\n", (unsigned)channel);
+        return;
+    }
+    ++b->frames_from_target;
+    lcm_publish(b->lcm, name, b->payload, (unsigned)length);
+}
+
 static void from_target(bridge_t *b, const uint8_t *bytes, size_t n)
 {
     for (size_t i = 0; i < n; ++i) {
-        uint8_t channel = 0u;
-        size_t length = 0u;
-        if (tvo_frame_decoder_push(&b->decoder, bytes[i], &channel, b->payload, &length) != TVO_FRAME_OK) {
-            continue;
+        if (bytes[i] == 0u) {
+            frame_from_target(b);
+        } else if (b->raw_length < sizeof(b->raw)) {
+            b->raw[b->raw_length++] = bytes[i];
         }
-        const char *name = tvo_node_channel_name(channel);
-        if (name == NULL) {
-            fprintf(stderr, "tvo_pil_bridge: frame on unknown channel %u (dropped)\n", (unsigned)channel);
-            continue;
-        }
-        ++b->frames_from_target;
-        lcm_publish(b->lcm, name, b->payload, (unsigned)length);
     }
 }
 
@@ -167,7 +225,7 @@ int main(int argc, char **argv)
 {
     const char *connect_arg = NULL;
     const char *url = NULL;
-    long corrupt_every = 0;
+    unsigned long corrupt_every = 0u;
     double timeout_s = 10.0;
     for (int i = 1; i < argc; ++i) {
         const char *arg = argv[i];
@@ -182,11 +240,12 @@ int main(int argc, char **argv)
             url = value;
             ++i;
         } else if (strcmp(arg, "--corrupt-every") == 0 && value != NULL) {
-            corrupt_every = strtol(value, &end, 10);
-            if (*end != '\0' || corrupt_every < 0) {
+            const long parsed = strtol(value, &end, 10);
+            if (end == value || *end != '\0' || parsed < 0) {
                 fprintf(stderr, "tvo_pil_bridge: error: --corrupt-every: expected N >= 0, got '%s'\n", value);
                 return 2;
             }
+            corrupt_every = (unsigned long)parsed;
             ++i;
         } else if (strcmp(arg, "--connect-timeout-s") == 0 && value != NULL) {
             timeout_s = strtod(value, &end);
@@ -259,8 +318,10 @@ int main(int argc, char **argv)
         }
     }
     fprintf(stderr,
-            "tvo_pil_bridge: frames to target %lu (%lu corrupted on purpose), from target %lu ok, %lu dropped\n",
-            b.frames_to_target, b.frames_corrupted, b.frames_from_target, (unsigned long)b.decoder.frames_dropped);
+            "tvo_pil_bridge: frames to_target=%lu measurements_to_target=%lu measurements_corrupted=%lu "
+            "from_target_ok=%lu from_target_dropped=%lu commands_from_target=%lu commands_corrupted=%lu\n",
+            b.frames_to_target, b.measurements_to_target, b.measurements_corrupted, b.frames_from_target,
+            (unsigned long)b.decoder.frames_dropped, b.commands_from_target, b.commands_corrupted);
     lcm_destroy(b.lcm);
     close(b.socket_fd);
     return b.failed ? 1 : 0;

@@ -115,6 +115,18 @@ tvo_status_t tvo_sample_clock_good(tvo_sample_clock_t *clock, uint32_t apply_tic
     return TVO_OK;
 }
 
+tvo_status_t tvo_sample_clock_rebase(tvo_sample_clock_t *clock, uint32_t epoch_tick)
+{
+    if (clock == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (clock->started) {
+        return TVO_ERR_OUT_OF_ORDER;
+    }
+    clock->epoch_tick = epoch_tick;
+    return TVO_OK;
+}
+
 tvo_status_t tvo_sample_clock_expire(tvo_sample_clock_t *clock)
 {
     if (clock == NULL) {

@@ -179,6 +179,10 @@ static void assert_session_kept(int line)
     tvo_node_session_t expected;
     memcpy(&expected, &snapshot, sizeof(expected));
     expected.refused_in_row = s->refused_in_row;
+    /* The one thing a refused measurement may leave (README "Timing"): a CLOCK_NODE vote on the
+     * plant's clock before the first accepted measurement. */
+    expected.anchor_candidate_us = s->anchor_candidate_us;
+    expected.anchor_votes = s->anchor_votes;
     UNITY_TEST_ASSERT_EQUAL_MEMORY(&expected, s, sizeof(expected), line, "session changed");
 }
 #define ASSERT_SESSION_KEPT() assert_session_kept(__LINE__)
@@ -1248,6 +1252,39 @@ static void session_whose_law_fails_next(void)
     EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
 }
 
+/* A START that took 150 ms longer than the measurements (a slow serial link): every measurement
+ * looks early by that much. NODE_ANCHOR_VOTES (3) of them in a row agree on the plant's clock, the
+ * schedule re-anchors, and the third is accepted; a lone stray before them re-anchors nothing. */
+static void test_node_clock_reanchors_on_agreeing_measurements_before_tracking(void)
+{
+    const int64_t start_delay = 150000;
+    const int64_t offset = NODE_T0 - EF_UTIME; /* the true node-minus-plant clock offset */
+    const int64_t latency = 100;
+    start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_NODE, NODE_T0 + start_delay);
+    tvo_lcm_measurement_t stray;
+    ef_measurement(&stray, EF_SESSION_ID, EF_EPOCH + 40 * H, 1000, 1);
+    ef_record_clear(&rec);
+    (void)send_measurement(&stray, EF_EPOCH + offset + 40 * H - 500000);
+    EF_ASSERT_STATUS(TVO_ERR_IMPLAUSIBLE_STAMP, THE_COMMAND().status);
+    for (int64_t k = 0; k < 6; ++k) {
+        const int64_t sample = EF_EPOCH + (k + 1) * H - TAU;
+        tvo_lcm_measurement_t m;
+        ef_measurement(&m, EF_SESSION_ID, sample, k, 1);
+        ef_record_clear(&rec);
+        (void)send_measurement(&m, sample + offset + latency);
+        const tvo_lcm_command_t cmd = THE_COMMAND();
+        if (k < 2) {
+            EF_ASSERT_STATUS(TVO_ERR_IMPLAUSIBLE_STAMP, cmd.status);
+        } else {
+            EF_ASSERT_STATUS(TVO_OK, cmd.status);
+            /* Applied at the period's instant on the plant's clock, as if the START had been on time
+             * (to the measurement's own transit). */
+            TEST_ASSERT_INT64_WITHIN(latency, sample + TAU, cmd.utime);
+        }
+    }
+    TEST_ASSERT_INT64_WITHIN(latency, offset, tvo_node_session(&node)->offset_us);
+}
+
 static void test_plant_target_beyond_the_next_period_is_refused(void)
 {
     /* A stray sample 10 s ahead would hold back every genuine sample after it: refused, and the
@@ -1864,6 +1901,7 @@ int main(void)
     RUN_TEST(test_chain_session_runs_through_the_node);
     RUN_TEST(test_plant_refusal_by_the_step_keeps_nothing);
     RUN_TEST(test_plant_target_beyond_the_next_period_is_refused);
+    RUN_TEST(test_node_clock_reanchors_on_agreeing_measurements_before_tracking);
     RUN_TEST(test_plant_step_refusals_count_toward_the_watchdog);
     RUN_TEST(test_start_utime_extremes);
     RUN_TEST(test_start_epoch_extremes);

@@ -26,27 +26,25 @@ foreach(source IN LISTS tvo_target_sources)
 endforeach()
 
 # Processor in the loop: the PIL program (built by target_build with the tests) in QEMU, the bridge,
-# and the plant simulator over LCM; one clean run compared with the host build, one with frames
-# corrupted on the link.
+# and the plant simulator over LCM (tests/target/pil_check.py says what each variant proves): a clean
+# lockstep run compared with the host build, a lockstep run with frames corrupted on the link, and a
+# realtime run on the board's own clock through a link outage.
+set(TVO_PIL_LCM_PORT 7760 CACHE STRING "First of the six LCM multicast ports the PIL tests use")
 if(TARGET tvo_sim AND TARGET tvo_pil_bridge AND TARGET tvo_firmware_node)
   set(tvo_pil_elf ${tvo_target_bin}/firmware/apps/pil/tvo_pil.elf)
-  foreach(variant IN ITEMS clean corrupted)
-    if(variant STREQUAL "clean")
-      set(extra "")
-      set(port 7760)
-    else()
-      set(extra --corrupt-every 20 --duration-s 6)
-      set(port 7762)
-    endif()
-    add_test(NAME target_pil_${variant}
-      COMMAND /usr/bin/python3 ${CMAKE_CURRENT_LIST_DIR}/pil_check.py --tools ${PROJECT_SOURCE_DIR}/tools
-              --elf ${tvo_pil_elf} --bridge $<TARGET_FILE:tvo_pil_bridge> --sim $<TARGET_FILE:tvo_sim>
-              --firmware $<TARGET_FILE:tvo_firmware_node> --out ${CMAKE_BINARY_DIR}/pil_${variant}
-              --port ${port} ${extra})
+  set(port ${TVO_PIL_LCM_PORT})
+  foreach(variant IN ITEMS clean corrupted node-clock)
+    string(REPLACE "-" "_" name ${variant})
+    add_test(NAME target_pil_${name}
+      COMMAND /usr/bin/python3 ${CMAKE_CURRENT_LIST_DIR}/pil_check.py --variant ${variant}
+              --tools ${PROJECT_SOURCE_DIR}/tools --elf ${tvo_pil_elf} --bridge $<TARGET_FILE:tvo_pil_bridge>
+              --sim $<TARGET_FILE:tvo_sim> --firmware $<TARGET_FILE:tvo_firmware_node>
+              --out ${CMAKE_BINARY_DIR}/pil_${name} --port ${port})
     # One PIL run at a time: each picks a free TCP port for QEMU's serial socket, and two starting
     # together can be handed the same one (then the bridges cross); QEMU also needs the CPU.
-    set_tests_properties(target_pil_${variant} PROPERTIES FIXTURES_REQUIRED tvo_target_elfs LABELS "target;pil"
+    set_tests_properties(target_pil_${name} PROPERTIES FIXTURES_REQUIRED tvo_target_elfs LABELS "target;pil"
       TIMEOUT 300 RESOURCE_LOCK tvo_qemu_pil)
+    math(EXPR port "${port} + 2")
   endforeach()
 endif()
 

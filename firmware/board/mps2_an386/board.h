@@ -1,6 +1,7 @@
 /*
  * Board support for QEMU's mps2-an386 (Cortex-M4F): console output and exit code through ARM
- * semihosting, and SysTick as a cycle counter. Board code only; the control core never sees it.
+ * semihosting, SysTick as a monotonic microsecond clock or as a cycle counter, and UART0. Board
+ * code only; the control core never sees it.
  *
  * Under `qemu-system-arm -icount shift=0` one instruction takes 1 ns of virtual time and SysTick
  * (25 MHz on this board) advances once per 40 instructions, deterministically.
@@ -17,10 +18,26 @@ void tvo_board_putc(char c);
 void tvo_board_puts(const char *s);
 /** Decimal, without stdio. */
 void tvo_board_put_u32(uint32_t value);
+void tvo_board_put_u64(uint64_t value);
 void tvo_board_put_i32(int32_t value);
 
 /** Ends the program; QEMU exits with this code (semihosting SYS_EXIT_EXTENDED). */
 void tvo_board_exit(int code) __attribute__((noreturn));
+
+/**
+ * Starts the monotonic clock: SysTick on the 25 MHz core clock, its wraps counted by the SysTick
+ * interrupt. 0, or -1 if the counter does not run. SysTick is then the clock's: a program uses the
+ * clock or the cycle counter below, not both.
+ */
+int tvo_board_clock_start(void);
+/**
+ * Microseconds since tvo_board_clock_start (64 bits: no wrap in practice), never decreasing; -1 if
+ * the clock is not running. From main code, with interrupts enabled (the SysTick interrupt counts
+ * the wraps), not from an interrupt handler.
+ */
+int64_t tvo_board_now_us(void);
+/** The SysTick interrupt (the vector table's entry; counts the clock's wraps). */
+void tvo_board_systick_handler(void);
 
 /** Starts SysTick free-running from its 24-bit reload value, counting down on the CPU clock. */
 void tvo_board_cycle_counter_start(void);

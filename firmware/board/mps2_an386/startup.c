@@ -44,7 +44,7 @@ void tvo_fault_handler(void)
 
 typedef void (*tvo_vector_t)(void);
 
-/* Initial stack pointer, then the 15 system exception vectors (SysTick is polled, not used). */
+/* Initial stack pointer, then the 15 system exception vectors. */
 __attribute__((section(".vectors"), used)) static const tvo_vector_t vector_table[16] = {
     (tvo_vector_t)(uintptr_t)__stack_top__,
     tvo_reset_handler,
@@ -58,5 +58,5 @@ __attribute__((section(".vectors"), used)) static const tvo_vector_t vector_tabl
     tvo_fault_handler, /* DebugMonitor */
     0,
     tvo_fault_handler, /* PendSV */
-    tvo_fault_handler, /* SysTick (never enabled as an interrupt) */
+    tvo_board_systick_handler, /* the monotonic clock's wraps (tvo_board_clock_start) */
 };

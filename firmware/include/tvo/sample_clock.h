@@ -72,6 +72,12 @@ tvo_status_t tvo_sample_clock_good(tvo_sample_clock_t *clock, uint32_t apply_tic
  */
 tvo_status_t tvo_sample_clock_objective_ticks(const tvo_sample_clock_t *clock, uint32_t tick, uint64_t *objective_ticks);
 
+/**
+ * Moves the epoch before the first period has ended (an edge that learned the plant's clock better);
+ * TVO_ERR_OUT_OF_ORDER once a period has ended, when the objective's time is already counting.
+ */
+tvo_status_t tvo_sample_clock_rebase(tvo_sample_clock_t *clock, uint32_t epoch_tick);
+
 /** Expires the watchdog now (a safe stop ordered from outside the step, e.g. the edge's timer). */
 tvo_status_t tvo_sample_clock_expire(tvo_sample_clock_t *clock);
 
