@@ -224,7 +224,6 @@ int parse_options(int argc, char** argv, SimOptions* o)
     std::string target = "ellipse";
     std::string on_missing_answer = "fail";
     const Interval period{kMinPeriodS, kMaxPeriodS, "s"};
-    const Interval rate_per_s{0.0, kMaxBarrierRatePerS, "1/s", End::Open};
 
     app.add_option("--period-s", o->period_s, "sampling period h, seconds (whole microseconds)")
         ->check(real_in(period))
@@ -294,7 +293,7 @@ int parse_options(int argc, char** argv, SimOptions* o)
     app.add_option("--barrier-delta0", o->barrier.delta0, "barrier: delta(t) = delta0 / c(t)")
         ->check(real_in({0.0, kMaxBarrierLength, "", End::Open}));
     app.add_option("--barrier-alpha-s", o->barrier.alpha_s_per_s, "barrier: decay rate of the slack s(t), 1/s")
-        ->check(real_in(rate_per_s));
+        ->check(real_in({0.0, kMaxBarrierRatePerS, "1/s", End::Open}));
     app.add_option("--barrier-slack-margin", o->barrier.slack_margin, "barrier: epsilon_s of the slack rule")
         ->check(real_in({0.0, kMaxBarrierLength, "", End::Open}));
     app.add_option("--barrier-degree", o->barrier.relaxation_degree,
