@@ -1,0 +1,216 @@
+// One session of the campaign's own plant in lockstep (CLOCK_PLANT): an exact unicycle tracking the
+// default ellipse, sampling period n at a_{n+1} - tau with sequence n and waiting for the answers.
+// A case adds its faults through a hook per period; every message sent carries its expected
+// answer, and every command that arrives is matched to one in arrival order (the node answers in
+// the order it receives), so the run knows which answer is genuine and checks each.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "plant.hpp"
+#include "support.hpp"
+
+namespace campaign {
+
+/// What the node must do with one message the plant sent.
+struct Expect {
+    enum class Kind {
+        Accepted,   // a genuine sample: stepped, status 0, applied at a_j
+        Refused,    // answered with the held command, HOLDING (or a watchdog safe stop), a status
+        NoSession,  // answered with a safe stop, TVO_ERR_NO_SESSION
+        Ignored,    // no answer at all (another session's message, undecodable bytes)
+        Optional    // may be answered or not (the spec leaves it open): reported, not judged
+    };
+    static constexpr std::int32_t kAnyStatus = -1;
+
+    Kind kind{Kind::Accepted};
+    bool genuine{false};          // the plant's own sample (counts as a period of holding if refused)
+    bool match_by_order{false};   // its answer cannot echo its fields (they are out of the wire range)
+    std::int64_t session_id{0};
+    std::int64_t sequence{0};
+    std::int64_t utime{0};
+    std::int64_t apply_utime{0};  // Accepted: a_j
+    std::int32_t status{kAnyStatus};
+    std::string label;            // non-empty: the outcome is printed as a check of its own
+};
+
+struct LockstepConfig {
+    Timing timing;
+    std::int64_t session_id{1};
+    std::int64_t epoch_utime_us{1000000};
+    std::int64_t start_utime_us{1000000};
+    std::int64_t first_sequence{0};   // sequence n serves period n + 1 (sampled at a_{n+1} - tau)
+    std::int64_t periods{1000};
+    tvo_host::UnicycleState start_pose;
+    bool spawn_node{true};            // start a node for this run (when the campaign has a path)
+    bool keep_running{false};         // pass --keep-running to it
+    std::string node_stderr_path;     // non-empty: the node's stderr goes to this file
+};
+
+/// Shared by the runs of a case.
+struct Context {
+    Bus& bus;
+    Report& report;
+    CommandAudit& audit;
+    std::string node_path;            // empty: a node is already running on the URL (--keep-running)
+    std::string lcm_url;
+    std::int64_t next_session_id{1};
+
+    /// A fresh session id per run (the plant rule).
+    std::int64_t new_session_id() { return next_session_id++; }
+};
+
+class LockstepRun {
+public:
+    LockstepRun(Context& ctx, const LockstepConfig& config);
+    ~LockstepRun();
+
+    using Hook = std::function<void(LockstepRun& run, std::int64_t n)>;
+
+    /// Starts the node (if configured) and empties the bus; start() does it when not done before.
+    void prepare();
+    /// Starts the node (if configured) and sends START until it is acknowledged; checks status 0.
+    void start();
+    /// Runs periods [first_sequence, first_sequence + periods); the hook (default: the genuine sample)
+    /// sends what period n sends.
+    void run(const Hook& hook = {});
+    /// One period.
+    void step(std::int64_t n, const Hook& hook = {});
+    /// Sends STOP, checks its ack (status 0) and, for a node this run started, that it exits with 0.
+    void stop();
+
+    // ---- What a hook uses.
+    /// The genuine sample of period n at the current plant time.
+    tvo_lcm::measurement_t measure(std::int64_t n) const;
+    void send_genuine(const tvo_lcm::measurement_t& m);
+    /// A genuine sample the node must refuse (a late or repeated one).
+    void send_genuine_refused(const tvo_lcm::measurement_t& m, std::int32_t status, const std::string& label);
+    void send_stray(const tvo_lcm::measurement_t& m, std::int32_t status, const std::string& label,
+                    bool match_by_order = false);
+    void send_expecting(const tvo_lcm::measurement_t& m, Expect::Kind kind, const std::string& label);
+    void send_raw(const char* channel, const std::vector<std::uint8_t>& bytes, Expect expect);
+    /// Publishes a session message (again every `repeat` until acked) and waits for its ack (10 s);
+    /// throws if none comes.
+    tvo_lcm::session_ack_t request(const tvo_lcm::session_t& msg,
+                                   std::chrono::milliseconds repeat = std::chrono::milliseconds(1000));
+    /// Publishes m again every 200 ms until a command arrives (a node that is starting up, or one
+    /// whose socket a burst overflowed); a second answer, if any, is optional.
+    void send_until_answered(const tvo_lcm::measurement_t& m, Expect::Kind kind, const std::string& label);
+    void send_genuine_until_answered(const tvo_lcm::measurement_t& m);
+    /// Waits until every message sent so far has its answer (or is known to get none).
+    void settle();
+    /// Restarts the node: SIGKILL, then a fresh process.
+    void crash_node_and_restart();
+    /// Stalled wheels: while set, the robot stands still whatever it is commanded.
+    void set_stalled(bool stalled) { stalled_ = stalled; }
+    /// Sends START (same id and content) until acknowledged: what a plant does after NO_SESSION.
+    void restart_session();
+
+    Context& context() { return ctx_; }
+    NodeProcess* node() { return node_.get(); }
+    const tvo_host::UnicycleState& robot() const { return plant_.state(0); }
+    const tvo_lcm::session_ack_t& start_ack() const { return start_ack_; }
+    const tvo_lcm::session_t& session() const { return session_; }
+    std::int64_t now_us() const { return now_us_; }
+    std::int64_t apply_utime(std::int64_t n) const;
+    std::int64_t sample_utime(std::int64_t n) const;
+
+    // ---- Results.
+    struct Answer {
+        double speed_mps;
+        double turn_rate_radps;
+        std::int64_t utime;
+        std::int32_t status;
+        std::int32_t flags;
+        bool operator==(const Answer& o) const;
+    };
+    struct Outcome {
+        std::string label;
+        bool ok;
+        std::string figure;
+        std::int32_t status;
+        std::int32_t flags;
+    };
+    const std::map<std::int64_t, Answer>& genuine_answers() const { return genuine_answers_; }
+    const std::vector<Outcome>& outcomes() const { return outcomes_; }
+    /// Largest position error over the last `periods` periods, metres.
+    double max_error_last(std::int64_t periods) const;
+    double max_error_between(std::int64_t from_utime, std::int64_t to_utime) const;
+    const tvo_lcm::telemetry_t* last_telemetry() const;
+
+    long genuine_sent{0};
+    long genuine_accepted{0};
+    long genuine_held{0};          // genuine samples answered with HOLDING or a non-zero status
+    std::vector<std::int64_t> held_steps;   // the period (step n) in which each of those was answered
+    long genuine_wrong{0};         // genuine samples whose answer broke the rules of Accepted
+    long unexpected_answers{0};    // commands that answer nothing sent, or an ignored message
+    long stamped_before_measurement{0};   // answers stamped before the measurement they answer
+    long literal_plant_diffs{0};   // commands a plant applying the spec's rule literally treats otherwise
+    long plant_watchdog_stops{0};
+    long refusal_answers{0};       // answers with a non-zero status to this session's measurements
+    long safe_stop_answers{0};     // commands of this session flagged SAFE_STOP
+    std::vector<std::string> problems;   // first descriptions of what went wrong
+
+private:
+    struct Pending {
+        std::int64_t apply_us;
+        tvo_host::UnicycleInput input;
+    };
+    void advance_to(std::int64_t t_us);
+    void process(const ReceivedCommand& received);
+    void verify(const Expect& e, const tvo_lcm::command_t& cmd);
+    void apply(const tvo_lcm::command_t& cmd, std::int64_t at_us, bool answers_own_sample);
+    void shadow_literal_plant(const tvo_lcm::command_t& cmd, bool applied);
+    void problem(const std::string& text);
+    void publish_expect(const tvo_lcm::measurement_t& m, Expect e);
+    void resend_until_answered(const tvo_lcm::measurement_t& m, std::size_t commands_before, const std::string& label);
+
+    Context& ctx_;
+    LockstepConfig config_;
+    tvo_lcm::session_t session_;
+    std::unique_ptr<NodeProcess> node_;
+    tvo_host::UnicyclePlant plant_;
+    std::int64_t now_us_;
+    std::vector<Pending> pending_;
+    std::int64_t in_force_sequence_{-1};
+    std::int64_t last_applied_us_;
+    Answer held_{0.0, 0.0, 0, 0, 0};
+    std::deque<Expect> expected_;
+    std::size_t processed_{0};      // bus.commands handled so far
+    std::set<std::int64_t> sent_sequences_;
+    std::int64_t literal_in_force_{-1};
+    long consecutive_refusals_{0};
+    std::int64_t current_step_{0};
+    bool prepared_{false};
+    bool stalled_{false};
+    bool applied_safe_stop_for_own_{false};   // the command being processed answers the plant's own sample
+    tvo_lcm::session_ack_t start_ack_{};
+    std::map<std::int64_t, Answer> genuine_answers_;
+    std::vector<Outcome> outcomes_;
+    std::vector<std::pair<std::int64_t, double>> errors_;   // (utime, metres) at each a_j
+};
+
+// ---- Checks shared by the cases.
+/// The loop tracks: the error over the last second below the bound (justified in cases.cpp).
+void check_tracking(Report& report, const LockstepRun& run, const std::string& what);
+/// Genuine samples: each meant to be accepted is; at most one period of holding after each bad message
+/// (fault_steps: the periods where one is injected; none: no holding at all); no unexpected answer.
+void check_genuine(Report& report, const LockstepRun& run, const std::vector<std::int64_t>& fault_steps,
+                   long expected_accepted = -1);
+/// Every genuine answer bit for bit as in a run without the faults: nothing was kept from them.
+void check_same_as_reference(Report& report, const LockstepRun& reference, const LockstepRun& run);
+/// The labelled outcomes as checks.
+void check_outcomes(Report& report, const LockstepRun& run);
+/// The node's telemetry counters agree with what the plant saw: accepted, refused, safe stops.
+void check_counters(Report& report, const LockstepRun& run);
+/// Lines the node wrote to its stderr file.
+long count_lines(const std::string& path);
+
+}  // namespace campaign

@@ -1,0 +1,152 @@
+// The fault campaign's plumbing: printed checks, the LCM bus as the plant sees it, the node as a
+// child process, and the START message of the default ellipse session.
+#pragma once
+
+#include <sys/types.h>
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <lcm/lcm-cpp.hpp>
+
+#include "tvo_lcm/command_t.hpp"
+#include "tvo_lcm/measurement_t.hpp"
+#include "tvo_lcm/session_ack_t.hpp"
+#include "tvo_lcm/session_t.hpp"
+#include "tvo_lcm/target_t.hpp"
+#include "tvo_lcm/telemetry_t.hpp"
+
+extern "C" {
+#include "channels.h"
+#include "tvo/status.h"
+}
+
+namespace campaign {
+
+/// One line per check, "PASS|FAIL <case>: <what> (<measured figure>)"; counts the failures.
+class Report {
+public:
+    void begin_case(const std::string& name);
+    bool check(bool ok, const std::string& what, const std::string& figure);
+    /// A measured figure that is not a pass/fail criterion.
+    void note(const std::string& what, const std::string& figure);
+    int failures() const { return failures_; }
+    int checks() const { return checks_; }
+
+private:
+    std::string case_;
+    int failures_{0};
+    int checks_{0};
+};
+
+/// "status 16 (implausible stamp)".
+std::string status_text(std::int32_t status);
+std::string fmt(double value, int precision = 3);
+
+/// Plant-side monotonic clock in microseconds (CLOCK_MONOTONIC).
+std::int64_t monotonic_us();
+
+struct ReceivedCommand {
+    tvo_lcm::command_t msg;
+    std::int64_t arrival_mono_us{0};
+};
+
+/// The plant's LCM endpoint: publishes on the protocol's channels, keeps every command, telemetry
+/// and ack in arrival order.
+class Bus {
+public:
+    explicit Bus(const std::string& url);
+
+    void publish(const tvo_lcm::measurement_t& msg);
+    void publish(const tvo_lcm::session_t& msg);
+    void publish(const tvo_lcm::target_t& msg);
+    void publish_raw(const char* channel, const std::vector<std::uint8_t>& bytes);
+
+    /// Handles messages until done() holds (true) or timeout passes (false).
+    bool wait_until(const std::function<bool()>& done, std::chrono::microseconds timeout);
+    /// Handles messages for `duration`.
+    void pump(std::chrono::microseconds duration);
+    /// Forgets everything received (after draining what is in flight).
+    void clear();
+
+    std::vector<ReceivedCommand> commands;
+    std::vector<tvo_lcm::telemetry_t> telemetry;
+    std::vector<tvo_lcm::session_ack_t> acks;
+
+private:
+    void on_command(const lcm::ReceiveBuffer*, const std::string&, const tvo_lcm::command_t* msg);
+    void on_telemetry(const lcm::ReceiveBuffer*, const std::string&, const tvo_lcm::telemetry_t* msg);
+    void on_ack(const lcm::ReceiveBuffer*, const std::string&, const tvo_lcm::session_ack_t* msg);
+
+    lcm::LCM lcm_;
+};
+
+/// tvo_firmware_node as a child: `path --lcm-url URL --exit-with-parent [--keep-running]`.
+class NodeProcess {
+public:
+    NodeProcess(std::string path, std::string url);
+    NodeProcess(const NodeProcess&) = delete;
+    NodeProcess& operator=(const NodeProcess&) = delete;
+    ~NodeProcess();
+
+    /// stderr_path non-empty: the node's stderr is appended to that file.
+    void spawn(bool keep_running, const std::string& stderr_path = "");
+    bool running();
+    void kill_now();   // SIGKILL and reap: a crash
+    /// Waits for the child to exit; its exit code (128 + signal if killed), or -1 on timeout.
+    int wait_exit(std::chrono::milliseconds timeout);
+    void terminate();
+
+private:
+    std::string path_;
+    std::string url_;
+    pid_t pid_{-1};
+    int exit_code_{-1};
+};
+
+/// Timing of a session.
+struct Timing {
+    std::int32_t clock_source{tvo_lcm::session_t::CLOCK_PLANT};
+    std::int64_t period_us{10000};
+    std::int64_t delay_us{5000};
+    std::int32_t watchdog_periods{10};
+};
+
+/// The START the simulator sends for its default run: one unicycle, gains (40, 13), the ellipse
+/// (centre 0, semi-axes 3 and 1.5 m, period 10 s), its limits, stamped start_utime.
+tvo_lcm::session_t demo_session(std::int64_t session_id, std::int64_t start_utime_us, std::int64_t epoch_utime_us,
+                                const Timing& timing);
+
+/// The target of demo_session at plant time utime (objective time (utime - epoch) s).
+void demo_target(const tvo_lcm::session_t& session, std::int64_t utime_us, double* x_m, double* y_m);
+
+/// Encoded bytes of any generated message.
+template <class M>
+std::vector<std::uint8_t> encode(const M& msg)
+{
+    std::vector<std::uint8_t> bytes(static_cast<std::size_t>(msg.getEncodedSize()));
+    msg.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+    return bytes;
+}
+
+/// Every command of a case passes through this: no non-finite value, no value beyond a limit,
+/// a safe stop exactly zero.
+struct CommandAudit {
+    double omega_max_radps{0.0};
+    double speed_max_mps{0.0};
+    long commands{0};
+    long non_finite{0};
+    long beyond_limit{0};
+    long safe_stop_not_zero{0};
+    long safe_stops{0};
+    double max_abs_omega{0.0};
+    double max_abs_speed{0.0};
+
+    void add(const tvo_lcm::command_t& cmd);
+    void report(Report& report) const;
+};
+
+}  // namespace campaign
