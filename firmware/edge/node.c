@@ -508,19 +508,19 @@ int tvo_node_handle(tvo_node_t *node, int channel, const uint8_t *data, uint32_t
     const int size = (int)length;
     switch (channel) {
     case TVO_NODE_CH_SESSION:
-        if (tvo_lcm_session_t_decode(data, 0, size, &node->rx.session) < 0) {
-            break;
+        if (tvo_lcm_session_t_decode(data, 0, size, &node->rx.session) != size) {
+            break; /* malformed, or bytes past the message: not what a sender of this message sends */
         }
         on_session(node, &node->rx.session, tvo_session_content_hash(data, length), now_us);
         return channel;
     case TVO_NODE_CH_MEASUREMENT:
-        if (tvo_lcm_measurement_t_decode(data, 0, size, &node->rx.measurement) < 0) {
+        if (tvo_lcm_measurement_t_decode(data, 0, size, &node->rx.measurement) != size) {
             break;
         }
         on_measurement(node, &node->rx.measurement, now_us);
         return channel;
     case TVO_NODE_CH_TARGET:
-        if (tvo_lcm_target_t_decode(data, 0, size, &node->rx.target) < 0) {
+        if (tvo_lcm_target_t_decode(data, 0, size, &node->rx.target) != size) {
             break;
         }
         on_target(node, &node->rx.target, now_us);
