@@ -415,8 +415,22 @@ static void on_measurement(tvo_node_t *node, const tvo_lcm_measurement_t *msg, i
     int64_t apply_us = 0;
     tvo_edge_measurement_t meas;
     tvo_status_t st = vet_measurement(s, msg, now_us, &period, &apply_us, &meas);
-    if (st != TVO_OK && reanchor(s, msg, st, now_us)) {
-        st = vet_measurement(s, msg, now_us, &period, &apply_us, &meas); /* on the corrected clock */
+    if (st != TVO_OK) {
+        /* A re-anchor stands only if the measurement that completed the vote is then served: one that
+         * is refused for another reason too (not finite, say) must leave the anchor as it was. */
+        const int64_t offset = s->offset_us;
+        const int64_t epoch_schedule = s->epoch_schedule_us;
+        const int64_t last_sequence = s->last_sequence;
+        const uint32_t epoch_tick = schedule_tick(epoch_schedule);
+        if (reanchor(s, msg, st, now_us)) {
+            st = vet_measurement(s, msg, now_us, &period, &apply_us, &meas); /* on the corrected anchor */
+            if (st != TVO_OK) {
+                s->offset_us = offset;
+                s->epoch_schedule_us = epoch_schedule;
+                s->last_sequence = last_sequence;
+                (void)tvo_sample_clock_rebase(ops->clock(&s->controller), epoch_tick);
+            }
+        }
     }
     if (st != TVO_OK) {
         refuse_measurement(node, s, msg, st, now_us);
