@@ -359,9 +359,12 @@ static int reanchor(tvo_node_session_t *s, const tvo_lcm_measurement_t *msg, tvo
         s->epoch_schedule_us = epoch_schedule;
         return 1;
     }
-    const int64_t to_apply = msg->utime + s->timing.delay_us - s->epoch_schedule_us + h / 2;
-    if (!in_range || !s->has_accepted || refusal != TVO_ERR_IMPLAUSIBLE_STAMP || to_apply < 0 ||
-        to_apply / h <= s->last_period) {
+    if (!in_range || !s->has_accepted || refusal != TVO_ERR_IMPLAUSIBLE_STAMP) {
+        s->anchor_votes = 0u;
+        return 0;
+    }
+    const int64_t to_apply = msg->utime + s->timing.delay_us - s->epoch_schedule_us + h / 2; /* in range: no overflow */
+    if (to_apply < 0 || to_apply / h <= s->last_period) {
         s->anchor_votes = 0u;
         return 0;
     }
