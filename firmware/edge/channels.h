@@ -16,6 +16,13 @@ extern "C" {
 /** Every time and sequence on the wire lies in [0, TVO_WIRE_TIME_MAX_US]: sums of two never overflow int64. */
 #define TVO_WIRE_TIME_MAX_US ((int64_t)1 << 60)
 
+/**
+ * How far a session's epoch may lie from its START's utime, either way: half the controller's clock
+ * span (TVO_MAX_TICK_SPAN / 2 us, 8.9 min; checked in session_codec.c), so that a first sample up to
+ * another as much after the START is still served.
+ */
+#define TVO_SESSION_EPOCH_SPAN_US ((int64_t)536870911)
+
 /* LCM channels of the protocol (the host uses the same names). */
 #define TVO_CHANNEL_SESSION "TVO_SESSION"
 #define TVO_CHANNEL_SESSION_ACK "TVO_SESSION_ACK"

@@ -12,6 +12,9 @@ _Static_assert(TVO_STATUS_COUNT <= TVO_LCM_NODE_COUNTERS_T_STATUS_SLOTS, "node_c
 /* CLOCK_NODE, before the first accepted measurement: this many refused measurements in a row that
  * agree (within a quarter period) on the plant's clock re-anchor the offset the START gave. */
 #define NODE_ANCHOR_VOTES 3u
+/* CLOCK_PLANT: the first sample must be stamped within this long after the START (or within
+ * watchdog_periods periods, if longer). */
+#define NODE_FIRST_SAMPLE_WINDOW_US 1000000
 #define NODE_ANCHOR_AGREEMENT_DIVISOR 4
 
 int tvo_node_check_buffer(void)
@@ -116,7 +119,7 @@ static void publish_step(tvo_node_t *node, tvo_node_session_t *s, const tvo_edge
 /* ---- sessions ---------------------------------------------------------------------------------- */
 
 /* Builds a session from a START into `s` (the spare slot); the running one is not touched. */
-static tvo_status_t build_session(tvo_node_session_t *s, const tvo_lcm_session_t *msg, uint32_t content_hash,
+static tvo_status_t build_session(tvo_node_session_t *s, const tvo_lcm_session_t *msg, uint64_t content_hash,
                                   int64_t now_us, tvo_session_reject_t *why)
 {
     memset(s, 0, sizeof(*s));
@@ -156,10 +159,11 @@ static tvo_status_t build_session(tvo_node_session_t *s, const tvo_lcm_session_t
     }
     s->session_id = msg->session_id;
     s->content_hash = content_hash;
+    s->start_utime = msg->utime;
     return TVO_OK;
 }
 
-static void on_start(tvo_node_t *node, const tvo_lcm_session_t *msg, uint32_t content_hash, int64_t now_us)
+static void on_start(tvo_node_t *node, const tvo_lcm_session_t *msg, uint64_t content_hash, int64_t now_us)
 {
     tvo_session_reject_t why = {TVO_OK, TVO_PARAM_NONE, TVO_LCM_SESSION_ACK_T_PART_NONE, -1};
     const tvo_node_session_t *running = tvo_node_session(node);
@@ -182,7 +186,7 @@ static void on_start(tvo_node_t *node, const tvo_lcm_session_t *msg, uint32_t co
     publish_ack(node, msg, &why);
 }
 
-static void on_session(tvo_node_t *node, const tvo_lcm_session_t *msg, uint32_t content_hash, int64_t now_us)
+static void on_session(tvo_node_t *node, const tvo_lcm_session_t *msg, uint64_t content_hash, int64_t now_us)
 {
     tvo_session_reject_t why = {TVO_OK, TVO_PARAM_NONE, TVO_LCM_SESSION_ACK_T_PART_NONE, -1};
     if (msg->action == TVO_LCM_SESSION_T_ACTION_START) {
@@ -244,7 +248,14 @@ static tvo_status_t schedule_measurement(const tvo_node_session_t *s, const tvo_
     }
     *period = to_apply / h;
     if (!s->has_accepted) {
-        return (*period * h <= (int64_t)TVO_MAX_TICK_SPAN) ? TVO_OK : TVO_ERR_IMPLAUSIBLE_STAMP;
+        /* The first sample anchors the sequence: it must follow the START closely (a stray from far
+         * ahead would otherwise anchor it), and its period lie within the controller's clock span. */
+        const int64_t window = (int64_t)s->timing.watchdog_periods * h > NODE_FIRST_SAMPLE_WINDOW_US
+                                   ? (int64_t)s->timing.watchdog_periods * h
+                                   : NODE_FIRST_SAMPLE_WINDOW_US;
+        return (*stamp_us <= s->start_utime + window && *period * h <= (int64_t)TVO_MAX_TICK_SPAN)
+                   ? TVO_OK
+                   : TVO_ERR_IMPLAUSIBLE_STAMP;
     }
     if (*period <= s->last_period) {
         return TVO_ERR_OUT_OF_ORDER; /* a duplicate, or older than the last accepted */
@@ -296,24 +307,10 @@ static void answer_without_session(tvo_node_t *node, const tvo_lcm_measurement_t
     publish_encoded(node, TVO_NODE_CH_COMMAND, tvo_lcm_command_t_encode(node->buffer, 0, TVO_NODE_BUFFER_BYTES, &out));
 }
 
-/*
- * CLOCK_NODE: the START's transit is taken as the offset's error, but a START can be much slower than
- * a measurement (2 kB against 0.4 kB on a serial link), which makes every measurement look early
- * (or, the other way, stale) for the whole session. Before the first measurement is accepted, refused
- * measurements whose own transit, taken as zero, agree on one offset re-anchor the schedule to it:
- * a lone stray cannot (it needs NODE_ANCHOR_VOTES in a row), and once tracking started the offset is
- * fixed (the objective's time is counting). Returns 1 if it re-anchored.
- */
-static int reanchor(tvo_node_session_t *s, const tvo_lcm_measurement_t *msg, tvo_status_t refusal, int64_t now_us)
+/* One vote of a refused measurement for `implied` (agreeing within `tolerance` with the ones before);
+ * 1 once NODE_ANCHOR_VOTES in a row agree. */
+static int vote(tvo_node_session_t *s, int64_t implied, int64_t tolerance)
 {
-    if (s->timing.clock_source != TVO_LCM_SESSION_T_CLOCK_NODE || s->has_accepted || !wire_time_ok(msg->utime) ||
-        !wire_time_ok(msg->sequence) || msg->robot_count != (int32_t)s->timing.robot_count ||
-        (refusal != TVO_ERR_IMPLAUSIBLE_STAMP && refusal != TVO_ERR_STALE && refusal != TVO_ERR_FUTURE_STAMP)) {
-        s->anchor_votes = 0;
-        return 0;
-    }
-    const int64_t implied = now_us - msg->utime;
-    const int64_t tolerance = s->timing.period_us / NODE_ANCHOR_AGREEMENT_DIVISOR;
     const int64_t gap = implied - s->anchor_candidate_us;
     if (s->anchor_votes == 0u || gap > tolerance || gap < -tolerance) {
         s->anchor_candidate_us = implied;
@@ -323,13 +320,59 @@ static int reanchor(tvo_node_session_t *s, const tvo_lcm_measurement_t *msg, tvo
     if (++s->anchor_votes < NODE_ANCHOR_VOTES) {
         return 0;
     }
-    const int64_t epoch_schedule = s->timing.epoch_utime + implied;
-    if (tvo_sample_clock_rebase(s->controller.ops->clock(&s->controller), schedule_tick(epoch_schedule)) != TVO_OK) {
+    s->anchor_votes = 0u;
+    return 1;
+}
+
+/*
+ * Recovery from a wrong anchor, by measurements that agree with each other (a lone stray cannot do
+ * it: it takes NODE_ANCHOR_VOTES in a row). Returns 1 if it re-anchored.
+ * CLOCK_NODE, before tracking starts: the START's transit is taken as the offset's error, but a START
+ * can be much slower than a measurement (2 kB against 0.4 kB on a serial link), which makes every
+ * measurement look early (or stale) for the whole session; refused measurements whose own transit,
+ * taken as zero, agree on one offset re-anchor the schedule to it. Once tracking started the offset is
+ * fixed (the objective's time is counting).
+ * CLOCK_PLANT, while tracking: if a stray was taken as the anchor of the sequence numbering (it came
+ * first, or its stamp and sequence happened to agree), the genuine samples disagree with it ever
+ * after; samples ahead of the last served period that agree on their own numbering adopt it.
+ */
+static int reanchor(tvo_node_session_t *s, const tvo_lcm_measurement_t *msg, tvo_status_t refusal, int64_t now_us)
+{
+    const int in_range = wire_time_ok(msg->utime) && wire_time_ok(msg->sequence) &&
+                         msg->robot_count == (int32_t)s->timing.robot_count;
+    const int64_t h = s->timing.period_us;
+    if (s->timing.clock_source == TVO_LCM_SESSION_T_CLOCK_NODE) {
+        if (!in_range || s->has_accepted ||
+            (refusal != TVO_ERR_IMPLAUSIBLE_STAMP && refusal != TVO_ERR_STALE && refusal != TVO_ERR_FUTURE_STAMP)) {
+            s->anchor_votes = 0u;
+            return 0;
+        }
+        const int64_t implied = now_us - msg->utime;
+        if (!vote(s, implied, h / NODE_ANCHOR_AGREEMENT_DIVISOR)) {
+            return 0;
+        }
+        const int64_t epoch_schedule = s->timing.epoch_utime + implied;
+        if (tvo_sample_clock_rebase(s->controller.ops->clock(&s->controller), schedule_tick(epoch_schedule)) != TVO_OK) {
+            return 0;
+        }
+        s->offset_us = implied;
+        s->epoch_schedule_us = epoch_schedule;
+        return 1;
+    }
+    if (!in_range || !s->has_accepted || refusal != TVO_ERR_IMPLAUSIBLE_STAMP) {
+        s->anchor_votes = 0u;
         return 0;
     }
-    s->offset_us = implied;
-    s->epoch_schedule_us = epoch_schedule;
-    s->anchor_votes = 0u;
+    const int64_t to_apply = msg->utime + s->timing.delay_us - s->epoch_schedule_us + h / 2; /* in range: no overflow */
+    if (to_apply < 0 || to_apply / h <= s->last_period) {
+        s->anchor_votes = 0u;
+        return 0;
+    }
+    const int64_t period = to_apply / h;
+    if (!vote(s, msg->sequence - period, 0)) {
+        return 0;
+    }
+    s->last_sequence = msg->sequence - (period - s->last_period); /* the samples' own numbering */
     return 1;
 }
 
@@ -375,8 +418,22 @@ static void on_measurement(tvo_node_t *node, const tvo_lcm_measurement_t *msg, i
     int64_t apply_us = 0;
     tvo_edge_measurement_t meas;
     tvo_status_t st = vet_measurement(s, msg, now_us, &period, &apply_us, &meas);
-    if (st != TVO_OK && reanchor(s, msg, st, now_us)) {
-        st = vet_measurement(s, msg, now_us, &period, &apply_us, &meas); /* on the corrected clock */
+    if (st != TVO_OK) {
+        /* A re-anchor stands only if the measurement that completed the vote is then served: one that
+         * is refused for another reason too (not finite, say) must leave the anchor as it was. */
+        const int64_t offset = s->offset_us;
+        const int64_t epoch_schedule = s->epoch_schedule_us;
+        const int64_t last_sequence = s->last_sequence;
+        const uint32_t epoch_tick = schedule_tick(epoch_schedule);
+        if (reanchor(s, msg, st, now_us)) {
+            st = vet_measurement(s, msg, now_us, &period, &apply_us, &meas); /* on the corrected anchor */
+            if (st != TVO_OK) {
+                s->offset_us = offset;
+                s->epoch_schedule_us = epoch_schedule;
+                s->last_sequence = last_sequence;
+                (void)tvo_sample_clock_rebase(ops->clock(&s->controller), epoch_tick);
+            }
+        }
     }
     if (st != TVO_OK) {
         refuse_measurement(node, s, msg, st, now_us);
@@ -468,19 +525,19 @@ int tvo_node_handle(tvo_node_t *node, int channel, const uint8_t *data, uint32_t
     const int size = (int)length;
     switch (channel) {
     case TVO_NODE_CH_SESSION:
-        if (tvo_lcm_session_t_decode(data, 0, size, &node->rx.session) < 0) {
-            break;
+        if (tvo_lcm_session_t_decode(data, 0, size, &node->rx.session) != size) {
+            break; /* malformed, or bytes past the message: not what a sender of this message sends */
         }
         on_session(node, &node->rx.session, tvo_session_content_hash(data, length), now_us);
         return channel;
     case TVO_NODE_CH_MEASUREMENT:
-        if (tvo_lcm_measurement_t_decode(data, 0, size, &node->rx.measurement) < 0) {
+        if (tvo_lcm_measurement_t_decode(data, 0, size, &node->rx.measurement) != size) {
             break;
         }
         on_measurement(node, &node->rx.measurement, now_us);
         return channel;
     case TVO_NODE_CH_TARGET:
-        if (tvo_lcm_target_t_decode(data, 0, size, &node->rx.target) < 0) {
+        if (tvo_lcm_target_t_decode(data, 0, size, &node->rx.target) != size) {
             break;
         }
         on_target(node, &node->rx.target, now_us);

@@ -46,7 +46,8 @@ typedef struct {
     tvo_problem_t problem;             /* objective, targets and constraint terms the controller points into */
     tvo_session_timing_t timing;
     int64_t session_id;
-    uint32_t content_hash;             /* of the START past its utime: a repeat is recognised */
+    uint64_t content_hash;             /* of the START past its utime: a repeat is recognised */
+    int64_t start_utime;               /* the plant's clock when it sent the START (CLOCK_PLANT's first sample follows) */
     int64_t offset_us;                 /* schedule clock minus plant clock: 0 in CLOCK_PLANT */
     int64_t epoch_schedule_us;         /* the epoch on the schedule's clock */
     uint8_t has_accepted;              /* a measurement was accepted (anchors sequence and watchdog) */
@@ -54,8 +55,8 @@ typedef struct {
     int64_t last_sequence;             /* its sequence */
     uint32_t refused_in_row;           /* CLOCK_PLANT: refusals since the last accepted measurement */
     int64_t stop_period;               /* CLOCK_NODE: period at whose apply instant the next safe stop is due */
-    int64_t anchor_candidate_us;       /* CLOCK_NODE, before the first accepted measurement: the offset */
-    uint8_t anchor_votes;              /*   that refused measurements agree on, and how many in a row */
+    int64_t anchor_candidate_us;       /* what refused measurements agree on, and how many in a row: */
+    uint8_t anchor_votes;              /*   CLOCK_NODE the clock offset, CLOCK_PLANT the sequence numbering */
 } tvo_node_session_t;
 
 typedef struct {

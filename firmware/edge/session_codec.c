@@ -10,6 +10,7 @@
 /* The wire's fixed arrays must hold what the core can use (the reverse is checked per count). */
 _Static_assert(TVO_LCM_PATH_T_MAX_COEFFS >= TVO_POLY_MAX_DEGREE + 1, "path_t.coeff holds the core's polynomials");
 _Static_assert(TVO_LCM_SESSION_T_MAX_ROBOTS >= TVO_MAX_ROBOTS, "session_t.robot holds every robot");
+_Static_assert(TVO_SESSION_EPOCH_SPAN_US == (int64_t)(TVO_MAX_TICK_SPAN / 2u), "the epoch span is half the clock span");
 
 static tvo_status_t reject(tvo_session_reject_t *why, tvo_status_t status, tvo_param_t param, int32_t part,
                            int32_t index)
@@ -52,9 +53,10 @@ tvo_status_t tvo_session_decode_timing(const tvo_lcm_session_t *msg, tvo_session
     if (!wire_time_ok(msg->utime) || !wire_time_ok(msg->epoch_utime)) {
         return reject_param(why, TVO_PARAM_EPOCH);
     }
-    /* The controller's clock reaches 2^30-1 ticks from the epoch on its first step. */
+    /* The controller's clock reaches 2^30-1 ticks from the epoch on its first step: half of that for
+     * the epoch's distance from the START, half for the plant's first sample after it. */
     const int64_t epoch_lead = msg->epoch_utime - msg->utime;
-    if (epoch_lead < -(int64_t)TVO_MAX_TICK_SPAN || epoch_lead > (int64_t)TVO_MAX_TICK_SPAN) {
+    if (epoch_lead < -TVO_SESSION_EPOCH_SPAN_US || epoch_lead > TVO_SESSION_EPOCH_SPAN_US) {
         return reject_param(why, TVO_PARAM_EPOCH);
     }
     if (msg->clock_source != TVO_LCM_SESSION_T_CLOCK_PLANT && msg->clock_source != TVO_LCM_SESSION_T_CLOCK_NODE) {
@@ -380,13 +382,14 @@ int32_t tvo_session_part_from_problem(uint8_t problem_part)
     return problem_part < sizeof(parts) / sizeof(parts[0]) ? parts[problem_part] : TVO_LCM_SESSION_ACK_T_PART_NONE;
 }
 
-uint32_t tvo_session_content_hash(const uint8_t *data, uint32_t length)
+uint64_t tvo_session_content_hash(const uint8_t *data, uint32_t length)
 {
-    /* Encoded session_t: 8-byte fingerprint, then utime (8 bytes), then the content. */
+    /* Encoded session_t: 8-byte fingerprint, then utime (8 bytes), then the content. 64-bit FNV-1a:
+     * two different STARTs of one id colliding is not a practical concern. */
     const uint32_t skip = 16u;
-    uint32_t hash = 2166136261u;
+    uint64_t hash = 14695981039346656037u;
     for (uint32_t i = skip; data != NULL && i < length; ++i) {
-        hash = (hash ^ data[i]) * 16777619u;
+        hash = (hash ^ data[i]) * 1099511628211u;
     }
     return hash;
 }

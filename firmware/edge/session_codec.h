@@ -11,6 +11,7 @@
 #include "tvo/chain_controller.h"
 #include "tvo/controller.h"
 #include "tvo/problem.h"
+#include "tvo/sample_clock.h"
 
 #include "channels.h"
 #include "tvo_lcm_session_ack_t.h"
@@ -44,7 +45,7 @@ typedef struct {
 
 /**
  * The wire checks of a START that need no core: action, times within TVO_WIRE_TIME_MAX_US, the
- * epoch within 2^30-1 us of the message's own utime, timing ranges, robot count, plant kind,
+ * epoch within TVO_SESSION_EPOCH_SPAN_US of the message's own utime, timing ranges, robot count, plant kind,
  * clock source. TVO_OK or TVO_ERR_PARAM with *why naming the parameter.
  */
 tvo_status_t tvo_session_decode_timing(const tvo_lcm_session_t *msg, tvo_session_timing_t *timing,
@@ -76,7 +77,7 @@ int32_t tvo_session_part_from_problem(uint8_t problem_part);
  * FNV-1a hash of an encoded session message past its fingerprint and utime: two STARTs with the
  * same hash differ at most in when they were sent (a repeat).
  */
-uint32_t tvo_session_content_hash(const uint8_t *data, uint32_t length);
+uint64_t tvo_session_content_hash(const uint8_t *data, uint32_t length);
 
 /** The ack of a session message. running_session_id is -1 when no session runs. */
 void tvo_session_ack(const tvo_lcm_session_t *msg, const tvo_session_reject_t *why, int64_t running_session_id,

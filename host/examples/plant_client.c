@@ -71,11 +71,11 @@ static void on_command(const lcm_recv_buf_t *rb, const char *ch, const tvo_lcm_c
     const int safe_stop = ((uint32_t)c->flags & TVO_FLAG_SAFE_STOP) != 0u;
     p->answered |= c->measurement_sequence == p->sent;
     p->restart |= c->status == TVO_ERR_NO_SESSION; /* the node restarted: START again */
-    /* Apply an answer to a sequence we sent, newer than the command in force, or any safe stop. */
-    if ((c->measurement_sequence <= p->sent && c->measurement_sequence > p->in_force) || safe_stop) {
+    /* Apply a computed answer (status 0) to a newer sequence we sent, or a safe stop at once. */
+    if ((c->status == 0 && c->measurement_sequence <= p->sent && c->measurement_sequence > p->in_force) || safe_stop) {
         p->in_force = c->measurement_sequence > p->in_force ? c->measurement_sequence : p->in_force;
-        p->next = *c;
-        p->has_next = 1;
+        p->next = *c, p->has_next = 1;
+        p->next.utime = safe_stop ? 0 : c->utime; /* never put off stopping */
     }
 }
 

@@ -1,30 +1,66 @@
-// tvo_sim's command line; see options.hpp.
+// tvo_sim's command line; see options.hpp. Why each range is what it is: host/README.md, "Options".
 #include "options.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
-#include <optional>
-#include <sstream>
+#include <limits>
+#include <system_error>
 #include <utility>
 
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
 
+#include "lcm_messages.hpp"  // TVO_WIRE_TIME_MAX_US
+#include "option_ranges.hpp"
+#include "run_recorder.hpp"
+#include "sim_loop.hpp"      // kNodeClockEpochLeadUs
+
+extern "C" {
+#include "tvo/config.h"        // TVO_BARRIER_MAX_DEGREE
+#include "tvo/sample_clock.h"  // TVO_MAX_TICK_SPAN, tvo_sample_clock_watchdog_ok
+}
+
 namespace tvo_host {
 
 namespace {
 
+using tvo_options::End;
+using tvo_options::Interval;
+using tvo_options::number;
+using tvo_options::real_in;
+using tvo_options::whole_in;
+
 constexpr double kUsPerS = 1e6;
 // A period must be whole microseconds (the wire's clock); allow float round-off of the decimal input.
 constexpr double kWholeUsTolerance = 1e-3;
-// Upper bound on the injected latency: beyond it the plant would queue many periods of commands.
+
+// The ranges (host/README.md, "Options", says why each is what it is).
+constexpr double kMinPeriodS = 1e-6;                                  // the node's tick
+constexpr double kMaxPeriodS = static_cast<double>(TVO_MAX_TICK_SPAN) / kUsPerS;  // the node's tick span
+constexpr double kMaxDurationS = 86400.0;                             // a day: the soak of issue 11
+constexpr double kMinAnswerTimeoutS = 1e-3;
+constexpr double kMaxAnswerTimeoutS = 600.0;
+constexpr double kMaxSigma = 1.0;            // m, rad, m/s
+constexpr double kMaxFilterTfS = 10.0;
+constexpr double kMaxGain = 1e6;             // |KP| (1/s^2), |KD| (1/s)
+constexpr double kMaxTurnRateRadps = 100.0;
+constexpr double kMaxAccelMps2 = 100.0;
+constexpr double kMaxSpeedMps = 100.0;
+constexpr double kMaxBarrierScale = 1e6;     // c0, c_max
+constexpr double kMaxBarrierRatePerS = 1e3;  // alpha_c, alpha_s
+constexpr double kMaxBarrierLength = 100.0;  // delta0, slack margin (units of the constraint functions)
 constexpr double kMaxExtraDelayS = 10.0;
-// --link-loss ends within a day of plant time: keeps its microseconds far from int64 overflow.
-constexpr double kMaxLinkLossEndS = 86400.0;
+// Commands held back by --extra-delay-s wait in the plant's queue, one per period (sim_loop.cpp
+// reserves 1024): at most this many periods of delay.
+constexpr std::int64_t kMaxDelayedPeriods = 1000;
+constexpr double kMaxDisturbance = 10.0;     // m/s, rad/s
+constexpr std::uint64_t kMaxOutputMib = 65536;
+// Realtime stamps go on past the last period (the START handshake, stalls, the STOP): an hour of slack.
+constexpr std::int64_t kRealtimeWireSlackUs = 3600LL * 1000000LL;
 
 int fail(const std::string& option, const std::string& why)
 {
@@ -43,31 +79,23 @@ std::string one_line(std::string text)
     return text;
 }
 
-/// "A,B" -> two finite numbers.
-bool parse_pair(const std::string& text, double* first, double* second)
+std::string mib(std::uint64_t bytes)
 {
-    const std::size_t comma = text.find(',');
-    if (comma == std::string::npos) {
-        return false;
+    return number(std::ceil(static_cast<double>(bytes) / static_cast<double>(1 << 20) * 10.0) / 10.0) + " MiB";
+}
+
+/// The nearest existing folder at or above path (where its files would land).
+std::filesystem::path existing_folder(const std::filesystem::path& path)
+{
+    std::error_code error;
+    std::filesystem::path folder = std::filesystem::absolute(path, error);
+    while (!folder.empty() && !std::filesystem::is_directory(folder, error) && folder != folder.parent_path()) {
+        folder = folder.parent_path();
     }
-    const std::string a = text.substr(0, comma);
-    const std::string b = text.substr(comma + 1);
-    char* end_a = nullptr;
-    char* end_b = nullptr;
-    *first = std::strtod(a.c_str(), &end_a);
-    *second = std::strtod(b.c_str(), &end_b);
-    return !a.empty() && !b.empty() && *end_a == '\0' && *end_b == '\0' && std::isfinite(*first) &&
-           std::isfinite(*second);
+    return folder;
 }
 
-std::string number(double value)
-{
-    std::ostringstream out;
-    out << value;
-    return out.str();
-}
-
-/// Cross-field checks and derived microsecond timing; returns -1 or 2.
+/// Cross-option checks, derived microsecond timing and the bound on the files; returns -1 or 2.
 int validate(SimOptions* o, bool delay_given, bool duration_given, bool robots_given, bool target_given,
              bool link_loss_given)
 {
@@ -81,87 +109,99 @@ int validate(SimOptions* o, bool delay_given, bool duration_given, bool robots_g
         if (target_given && o->target != TargetKind::Streamed) {
             return fail("--target", "scenario " + o->scenario + " has its own targets (only 'streamed' applies)");
         }
-        if (!duration_given) {
-            o->duration_s = make_scenario(o->scenario, 1, TargetKind::Ellipse).duration_s;
-        }
     }
-    const auto& b = o->barrier;
-    for (const auto& [name, value] : {std::pair<const char*, std::optional<double>>{"--barrier-c0", b.c0},
-                                      {"--barrier-alpha-c", b.alpha_c_per_s},
-                                      {"--barrier-c-max", b.c_max},
-                                      {"--barrier-delta0", b.delta0},
-                                      {"--barrier-alpha-s", b.alpha_s_per_s},
-                                      {"--barrier-slack-margin", b.slack_margin}}) {
-        // Ranges are the firmware's to judge (it names the part it rejects); here only numbers.
-        if (value && !std::isfinite(*value)) {
-            return fail(name, "must be a finite number");
-        }
-    }
-    if (!std::isfinite(o->period_s) || !(o->period_s > 0.0)) {
-        return fail("--period-s", "must be > 0, got " + number(o->period_s));
+    const Scenario scenario = make_scenario(o->scenario, o->robots, o->target);
+    if (!duration_given) {
+        o->duration_s = scenario.duration_s;
     }
     const double period_us = o->period_s * kUsPerS;
     o->period_us = static_cast<std::int64_t>(std::llround(period_us));
-    if (o->period_us < 1 || std::abs(period_us - static_cast<double>(o->period_us)) > kWholeUsTolerance) {
+    if (std::abs(period_us - static_cast<double>(o->period_us)) > kWholeUsTolerance) {
         return fail("--period-s", "must be a whole number of microseconds, got " + number(o->period_s));
     }
     if (!delay_given) {
         o->delay_s = o->period_s / 2.0;
     }
-    if (!std::isfinite(o->delay_s) || o->delay_s < 0.0 || o->delay_s > o->period_s) {
+    if (o->delay_s > o->period_s) {
         return fail("--delay-s", "must be within 0 .. --period-s (" + number(o->period_s) + "), got " +
                                      number(o->delay_s));
     }
     o->delay_us = std::min<std::int64_t>(o->period_us, std::llround(o->delay_s * kUsPerS));
-    if (!std::isfinite(o->duration_s) || !(o->duration_s > 0.0)) {
-        return fail("--duration-s", "must be > 0, got " + number(o->duration_s));
-    }
+    // duration <= kMaxDurationS and period >= kMinPeriodS: at most 8.64e10 steps, no overflow.
     o->steps = static_cast<std::int64_t>(std::llround(o->duration_s / o->period_s));
     if (o->steps < 1) {
-        return fail("--duration-s", "must cover at least one period");
+        return fail("--duration-s", "must cover at least one period (--period-s " + number(o->period_s) + "), got " +
+                                        number(o->duration_s));
     }
-    if (!std::isfinite(o->sigma) || o->sigma < 0.0) {
-        return fail("--sigma", "must be >= 0, got " + number(o->sigma));
-    }
-    if (!std::isfinite(o->filter_tf_s)) {
-        return fail("--filter-tf-s", "must be a finite number");
-    }
-    if (!std::isfinite(o->drop_prob) || o->drop_prob < 0.0 || o->drop_prob > 1.0) {
-        return fail("--drop-prob", "must be within 0 .. 1, got " + number(o->drop_prob));
-    }
-    if (!std::isfinite(o->extra_delay_s) || o->extra_delay_s < 0.0 || o->extra_delay_s > kMaxExtraDelayS) {
-        return fail("--extra-delay-s", "must be within 0 .. 10, got " + number(o->extra_delay_s));
+    if (tvo_sample_clock_watchdog_ok(static_cast<std::uint32_t>(o->period_us),
+                                     static_cast<std::uint32_t>(o->watchdog_periods)) == 0) {
+        return fail("--watchdog-periods", "got " + std::to_string(o->watchdog_periods) + ", at most " +
+                                              std::to_string(TVO_MAX_TICK_SPAN / static_cast<std::uint64_t>(o->period_us)) +
+                                              " periods of --period-s " + number(o->period_s) +
+                                              " fit the node's watchdog span (2^30 - 1 us)");
     }
     o->extra_delay_us = static_cast<std::int64_t>(std::llround(o->extra_delay_s * kUsPerS));
-    if (link_loss_given && (o->link_loss_start_s < 0.0 || !(o->link_loss_duration_s > 0.0) ||
-                            o->link_loss_start_s + o->link_loss_duration_s > kMaxLinkLossEndS)) {
-        return fail("--link-loss", "expected S >= 0 and D > 0 (seconds of plant time), got " +
-                                       number(o->link_loss_start_s) + "," + number(o->link_loss_duration_s));
+    if (o->extra_delay_us > kMaxDelayedPeriods * o->period_us) {
+        return fail("--extra-delay-s", "got " + number(o->extra_delay_s) + ", at most " +
+                                           std::to_string(kMaxDelayedPeriods) + " periods of --period-s " +
+                                           number(o->period_s) + " (commands queue in the plant, one per period)");
     }
     if (link_loss_given) {
+        if (o->link_loss_start_s + o->link_loss_duration_s > kMaxDurationS) {
+            return fail("--link-loss", "S + D must be at most " + number(kMaxDurationS) + " s, got " +
+                                           number(o->link_loss_start_s) + "," + number(o->link_loss_duration_s));
+        }
         o->link_loss_start_us = std::llround(o->link_loss_start_s * kUsPerS);
         o->link_loss_end_us = std::llround((o->link_loss_start_s + o->link_loss_duration_s) * kUsPerS);
     }
-    if (o->disturbance_speed_mps < 0.0 || o->disturbance_turn_radps < 0.0) {
-        return fail("--disturbance", "sigmas must be >= 0");
+    // Every stamp of the run on the wire stays within TVO_WIRE_TIME_MAX_US (the node refuses the rest).
+    const std::int64_t run_us =
+        o->steps * o->period_us + (o->realtime ? kNodeClockEpochLeadUs + kRealtimeWireSlackUs : 0);
+    const std::int64_t last_start_utime_us = TVO_WIRE_TIME_MAX_US - run_us;
+    if (o->start_utime_us > last_start_utime_us) {
+        return fail("--start-utime-us",
+                    "got " + std::to_string(o->start_utime_us) + ", at most " + std::to_string(last_start_utime_us) +
+                        " for this run: its wire times reach start + " + std::to_string(run_us) +
+                        " us (--duration-s" + (o->realtime ? ", the realtime slack" : "") +
+                        ") and must stay within 2^60 us (TVO_WIRE_TIME_MAX_US)");
     }
-    if (o->robots < 1 || o->robots > kMaxRobots) {
-        return fail("--robots", "must be 1 .. 4, got " + std::to_string(o->robots));
-    }
-    if (!std::isfinite(o->answer_timeout_s) || !(o->answer_timeout_s > 0.0)) {
-        return fail("--answer-timeout-s", "must be > 0, got " + number(o->answer_timeout_s));
-    }
-    if (o->start_utime_us < 0) {
-        return fail("--start-utime-us", "must be >= 0");
+    const OutputBound bound =
+        bound_outputs(o->steps, o->period_us, scenario.robot_count, scenario.streamed, o->realtime);
+    const std::uint64_t limit_bytes = o->max_output_mib << 20;
+    if (bound.total_bytes() > limit_bytes) {
+        return fail("--duration-s", "a run of " + number(o->duration_s) + " s at --period-s " + number(o->period_s) +
+                                        " (" + std::to_string(o->steps) + " periods, " +
+                                        std::to_string(scenario.robot_count) + " robot(s)) could write up to " +
+                                        mib(bound.total_bytes()) + " (run.csv " + mib(bound.csv_bytes) +
+                                        ", run.lcmlog " + mib(bound.lcm_log_bytes) + "), more than --max-output-mib " +
+                                        std::to_string(o->max_output_mib) +
+                                        ": shorten --duration-s, lengthen --period-s or raise --max-output-mib");
     }
     if (o->out_dir.empty()) {
         return fail("--out-dir", "must not be empty");
+    }
+    std::error_code space_error;
+    const std::filesystem::path folder = existing_folder(o->out_dir);
+    const std::filesystem::space_info space = std::filesystem::space(folder, space_error);
+    if (!space_error && bound.total_bytes() > space.available) {
+        return fail("--out-dir", "the run could write up to " + mib(bound.total_bytes()) + " but " + folder.string() +
+                                     " has " + mib(space.available) + " free");
     }
     if (!o->firmware.empty() && access(o->firmware.c_str(), X_OK) != 0) {
         return fail("--firmware", "cannot execute '" + o->firmware + "'");
     }
     if (o->summary_json.empty()) {
         o->summary_json = o->out_dir + "/summary.json";
+    }
+    if (o->dry_run) {
+        std::cout << "tvo_sim: dry run: scenario " << o->scenario << ", " << scenario.robot_count << " robot(s), "
+                  << (o->realtime ? "realtime" : "lockstep") << ", h = " << o->period_us << " us, " << o->steps
+                  << " periods (" << number(static_cast<double>(o->steps * o->period_us) / kUsPerS)
+                  << " s); wire times from " << o->start_utime_us << " us to at most " << o->start_utime_us + run_us
+                  << " us; files in " << o->out_dir << " at most " << bound.total_bytes() << " bytes (run.csv "
+                  << bound.csv_bytes << ", run.lcmlog " << bound.lcm_log_bytes << ", JSON " << bound.json_bytes
+                  << "); nothing was run\n";
+        return 0;
     }
     return -1;
 }
@@ -175,70 +215,126 @@ int parse_options(int argc, char** argv, SimOptions* o)
                  "summary to --out-dir and prints a summary table.",
                  "tvo_sim"};
     app.get_formatter()->column_width(36);
-    std::string gains = "40,13";
-    std::string disturbance = "0,0";
+    app.footer("Every number is checked against the range shown ('(' or ')': that end excluded) and the rules "
+               "between options before anything runs; a bad value exits with code 2 and names the option. "
+               "host/README.md (\"Options\") says why each range is what it is.");
+    std::pair<double, double> gains{o->gain_kp, o->gain_kd};
+    std::pair<double, double> disturbance{o->disturbance_speed_mps, o->disturbance_turn_radps};
+    std::pair<double, double> link_loss{0.0, 0.0};
     std::string target = "ellipse";
-    std::string link_loss;
     std::string on_missing_answer = "fail";
+    const Interval period{kMinPeriodS, kMaxPeriodS, "s"};
 
     app.add_option("--period-s", o->period_s, "sampling period h, seconds (whole microseconds)")
+        ->check(real_in(period))
         ->capture_default_str();
     CLI::Option* delay = app.add_option("--delay-s", o->delay_s,
                                         "computation delay tau, 0 .. h: the pose is sampled at t_{n+1} - tau and "
-                                        "the command applied at t_{n+1} [default: h/2]");
+                                        "the command applied at t_{n+1} [default: h/2]")
+                             ->check(real_in({0.0, kMaxPeriodS, "s"}));
     app.add_flag("--no-compensation", "do not predict the pose over tau in the controller");
     app.add_flag("--zoh-aware", "evaluate the law at the middle of each held interval (tracking error second "
                  "order in h instead of first)");
     app.add_option("--sigma", o->sigma,
                    "measurement noise sigma: position (m, per axis), heading (rad) and speed (m/s)")
+        ->check(real_in({0.0, kMaxSigma, ""}))
         ->capture_default_str();
-    app.add_option("--seed", o->seed, "seed of the noise, drop and disturbance streams")->capture_default_str();
-    app.add_option("--duration-s", o->duration_s, "simulated time T, seconds")->capture_default_str();
+    app.add_option("--seed", o->seed, "seed of the noise, drop and disturbance streams (any 64-bit unsigned)")
+        ->check(whole_in<std::uint64_t>(0, std::numeric_limits<std::uint64_t>::max()))
+        ->capture_default_str();
+    app.add_option("--duration-s", o->duration_s, "simulated time T, seconds [default: the scenario's]")
+        ->check(real_in({0.0, kMaxDurationS, "s", End::Open}));
     app.add_flag("--position-only",
                  "measure positions only (the first sample also carries the initial heading); the controller "
                  "derives y' with its dirty-derivative filter");
     app.add_option("--filter-tf-s", o->filter_tf_s, "dirty-derivative time constant T_f, seconds")
+        ->check(real_in({0.0, kMaxFilterTfS, "s", End::Open}))
         ->capture_default_str();
-    app.add_option("--gains", gains, "KP,KD of s^2 + KD s + KP")->capture_default_str();
-    app.add_option("--omega-max-radps", o->omega_max_radps, "turn-rate limit")->capture_default_str();
-    app.add_option("--accel-max-mps2", o->accel_max_mps2, "acceleration limit")->capture_default_str();
-    app.add_option("--speed-max-mps", o->speed_max_mps, "speed limit")->capture_default_str();
-    app.add_option("--min-speed-mps", o->min_speed_mps, "1/v regularisation floor")->capture_default_str();
+    app.add_option("--gains", gains, "KP,KD of s^2 + KD s + KP (the firmware refuses a pair that is not Hurwitz)")
+        ->delimiter(',')
+        ->check(real_in({-kMaxGain, kMaxGain, "1/s^2"}, "KP").application_index(0))
+        ->check(real_in({-kMaxGain, kMaxGain, "1/s"}, "KD").application_index(1))
+        ->capture_default_str();
+    app.add_option("--omega-max-radps", o->omega_max_radps, "turn-rate limit")
+        ->check(real_in({0.0, kMaxTurnRateRadps, "rad/s", End::Open}))
+        ->capture_default_str();
+    app.add_option("--accel-max-mps2", o->accel_max_mps2, "acceleration limit")
+        ->check(real_in({0.0, kMaxAccelMps2, "m/s^2", End::Open}))
+        ->capture_default_str();
+    app.add_option("--speed-max-mps", o->speed_max_mps, "speed limit")
+        ->check(real_in({0.0, kMaxSpeedMps, "m/s", End::Open}))
+        ->capture_default_str();
+    app.add_option("--min-speed-mps", o->min_speed_mps, "1/v regularisation floor (the firmware also wants it "
+                   "below --speed-max-mps)")
+        ->check(real_in({0.0, kMaxSpeedMps, "m/s", End::Open}))
+        ->capture_default_str();
     app.add_option("--watchdog-periods", o->watchdog_periods, "safe stop after this many periods without a "
-                   "valid measurement")->capture_default_str();
+                   "valid measurement (at most (2^30 - 1) us / h: the node's watchdog span)")
+        ->check(whole_in<std::int32_t>(1, static_cast<std::int32_t>(TVO_MAX_TICK_SPAN)))
+        ->capture_default_str();
     app.add_option("--scenario", o->scenario, "what to run: demo, formation-max, formation-bilateral, obstacles, "
                    "obstacles-infeasible-target, infeasible-start, formation-equality (--list-scenarios)")
         ->capture_default_str();
     app.add_flag("--list-scenarios", o->list_scenarios, "list the scenarios with one line each and exit");
-    app.add_option("--robots", o->robots, "demo: number of unicycles, 1 .. 4 (the demo picture turned per robot)")
+    app.add_option("--robots", o->robots, "demo: number of unicycles (the demo picture turned per robot)")
+        ->check(whole_in<std::size_t>(1, kMaxRobots))
         ->capture_default_str();
     app.add_option("--target", target, "demo: ellipse | circle (on-board targets); any scenario: streamed (the "
-                   "targets sent on TVO_TARGET every period)")->capture_default_str();
-    app.add_option("--barrier-c0", o->barrier.c0, "barrier: c(0) [default: the scenario's, else the firmware's]");
-    app.add_option("--barrier-alpha-c", o->barrier.alpha_c_per_s, "barrier: growth rate of c(t), 1/s");
-    app.add_option("--barrier-c-max", o->barrier.c_max, "barrier: cap of c(t)");
-    app.add_option("--barrier-delta0", o->barrier.delta0, "barrier: delta(t) = delta0 / c(t)");
-    app.add_option("--barrier-alpha-s", o->barrier.alpha_s_per_s, "barrier: decay rate of the slack s(t), 1/s");
-    app.add_option("--barrier-slack-margin", o->barrier.slack_margin, "barrier: epsilon_s of the slack rule");
-    app.add_option("--barrier-degree", o->barrier.relaxation_degree, "barrier: relaxation degree m_r (>= 3)");
+                   "targets sent on TVO_TARGET every period)")
+        ->check(CLI::IsMember({"ellipse", "circle", "streamed"}))
+        ->capture_default_str();
+    // The barrier's finer rules (c_max >= c0, m_r >= k + 1) are the firmware's: it names the part it refuses.
+    app.add_option("--barrier-c0", o->barrier.c0, "barrier: c(0) [default: the scenario's, else the firmware's]")
+        ->check(real_in({0.0, kMaxBarrierScale, "", End::Open}));
+    app.add_option("--barrier-alpha-c", o->barrier.alpha_c_per_s, "barrier: growth rate of c(t), 1/s")
+        ->check(real_in({0.0, kMaxBarrierRatePerS, "1/s"}));
+    app.add_option("--barrier-c-max", o->barrier.c_max, "barrier: cap of c(t)")
+        ->check(real_in({0.0, kMaxBarrierScale, "", End::Open}));
+    app.add_option("--barrier-delta0", o->barrier.delta0, "barrier: delta(t) = delta0 / c(t)")
+        ->check(real_in({0.0, kMaxBarrierLength, "", End::Open}));
+    app.add_option("--barrier-alpha-s", o->barrier.alpha_s_per_s, "barrier: decay rate of the slack s(t), 1/s")
+        ->check(real_in({0.0, kMaxBarrierRatePerS, "1/s", End::Open}));
+    app.add_option("--barrier-slack-margin", o->barrier.slack_margin, "barrier: epsilon_s of the slack rule")
+        ->check(real_in({0.0, kMaxBarrierLength, "", End::Open}));
+    app.add_option("--barrier-degree", o->barrier.relaxation_degree,
+                   "barrier: relaxation degree m_r (the firmware wants at least k + 1 = 3)")
+        ->check(whole_in<int>(1, TVO_BARRIER_MAX_DEGREE));
     app.add_flag("--realtime", "run on the monotonic clock at 1/h with the node keeping the schedule on its own "
                  "clock (session CLOCK_NODE; commands applied at their utime, or on arrival if late) instead of "
                  "lockstep");
     app.add_option("--answer-timeout-s", o->answer_timeout_s, "lockstep: longest wait for the firmware's answer")
+        ->check(real_in({kMinAnswerTimeoutS, kMaxAnswerTimeoutS, "s"}))
         ->capture_default_str();
     app.add_option("--on-missing-answer", on_missing_answer, "lockstep: when no answer comes within "
                    "--answer-timeout-s, fail (exit code 1) or hold (count it as lost, the plant holds its "
-                   "command, the run goes on)")->capture_default_str();
+                   "command, the run goes on)")
+        ->check(CLI::IsMember({"fail", "hold"}))
+        ->capture_default_str();
     app.add_option("--drop-prob", o->drop_prob, "probability that a measurement is lost (never published; the "
-                   "plant holds the last command)")->capture_default_str();
+                   "plant holds the last command)")
+        ->check(real_in({0.0, 1.0, "", End::Closed, End::Open}))
+        ->capture_default_str();
     app.add_option("--extra-delay-s", o->extra_delay_s, "extra latency: each command takes effect this long "
-                   "after its utime (unknown to the controller)")->capture_default_str();
-    app.add_option("--link-loss", link_loss, "S,D: no measurement is sent for sample times in [S, S + D) "
-                   "seconds of plant time (a link outage; the node's answers still arrive)");
+                   "after its utime (unknown to the controller)")
+        ->check(real_in({0.0, kMaxExtraDelayS, "s"}))
+        ->capture_default_str();
+    CLI::Option* loss = app.add_option("--link-loss", link_loss, "S,D: no measurement is sent for sample times in "
+                                       "[S, S + D) seconds of plant time (a link outage; the node's answers still "
+                                       "arrive); S + D at most a day")
+                            ->delimiter(',')
+                            ->check(real_in({0.0, kMaxDurationS, "s"}, "S").application_index(0))
+                            ->check(real_in({0.0, kMaxDurationS, "s", End::Open}, "D").application_index(1));
     app.add_option("--disturbance", disturbance, "SV,SW: sigma of a random speed (m/s) and turn-rate (rad/s) "
-                   "perturbation drawn per applied command")->capture_default_str();
+                   "perturbation drawn per applied command")
+        ->delimiter(',')
+        ->check(real_in({0.0, kMaxDisturbance, "m/s"}, "SV").application_index(0))
+        ->check(real_in({0.0, kMaxDisturbance, "rad/s"}, "SW").application_index(1))
+        ->capture_default_str();
     app.add_option("--start-utime-us", o->start_utime_us, "lockstep: wire time (us) of plant time 0, the "
-                   "session's epoch; realtime: the plant clock's reading at start")->capture_default_str();
+                   "session's epoch; realtime: the plant clock's reading at start. The whole run's wire times "
+                   "(start + duration) stay within 2^60 us")
+        ->check(whole_in<std::int64_t>(0, TVO_WIRE_TIME_MAX_US, "us"))
+        ->capture_default_str();
     app.add_option("--lcm-url", o->lcm_url, "LCM URL for this run and the spawned firmware [default: "
                    "$LCM_DEFAULT_URL or LCM's udpm default]");
     app.add_option("--firmware", o->firmware, "tvo_firmware_node to spawn as a child process; without it one "
@@ -246,6 +342,12 @@ int parse_options(int argc, char** argv, SimOptions* o)
     app.add_option("--out-dir", o->out_dir, "directory for run.csv, run.lcmlog (and the demo's run.png)")
         ->capture_default_str();
     app.add_option("--summary-json", o->summary_json, "JSON summary path [default: <out-dir>/summary.json]");
+    app.add_option("--max-output-mib", o->max_output_mib, "refuse a run whose files (run.csv, run.lcmlog, JSON) "
+                   "could exceed this many MiB, computed before it starts")
+        ->check(whole_in<std::uint64_t>(1, kMaxOutputMib, "MiB"))
+        ->capture_default_str();
+    app.add_flag("--dry-run", o->dry_run, "check the options, print what the run would do and write, and exit "
+                 "without running");
 
     try {
         app.parse(argc, argv);
@@ -263,23 +365,13 @@ int parse_options(int argc, char** argv, SimOptions* o)
     o->zoh_aware = app.count("--zoh-aware") > 0;
     o->position_only = app.count("--position-only") > 0;
     o->realtime = app.count("--realtime") > 0;
-    if (!parse_pair(gains, &o->gain_kp, &o->gain_kd)) {
-        return fail("--gains", "expected KP,KD (two numbers), got '" + gains + "'");
-    }
-    if (!parse_pair(disturbance, &o->disturbance_speed_mps, &o->disturbance_turn_radps)) {
-        return fail("--disturbance", "expected SV,SW (two numbers), got '" + disturbance + "'");
-    }
-    const bool link_loss_given = app.count("--link-loss") > 0;
-    if (link_loss_given && !parse_pair(link_loss, &o->link_loss_start_s, &o->link_loss_duration_s)) {
-        return fail("--link-loss", "expected S,D (two numbers, seconds), got '" + link_loss + "'");
-    }
-    if (on_missing_answer == "fail") {
-        o->on_missing_answer = MissingAnswer::Fail;
-    } else if (on_missing_answer == "hold") {
-        o->on_missing_answer = MissingAnswer::Hold;
-    } else {
-        return fail("--on-missing-answer", "expected fail or hold, got '" + on_missing_answer + "'");
-    }
+    o->gain_kp = gains.first;
+    o->gain_kd = gains.second;
+    o->disturbance_speed_mps = disturbance.first;
+    o->disturbance_turn_radps = disturbance.second;
+    o->link_loss_start_s = link_loss.first;
+    o->link_loss_duration_s = link_loss.second;
+    o->on_missing_answer = on_missing_answer == "hold" ? MissingAnswer::Hold : MissingAnswer::Fail;
     if (!parse_target_kind(target, &o->target)) {
         return fail("--target", "expected ellipse, circle or streamed, got '" + target + "'");
     }
@@ -288,7 +380,7 @@ int parse_options(int argc, char** argv, SimOptions* o)
         return 0;
     }
     return validate(o, delay->count() > 0, app.count("--duration-s") > 0, app.count("--robots") > 0,
-                    app.count("--target") > 0, link_loss_given);
+                    app.count("--target") > 0, loss->count() > 0);
 }
 
 void print_scenario_list(std::ostream& out)

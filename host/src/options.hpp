@@ -1,4 +1,6 @@
-// Command line of tvo_sim (CLI11), validated into whole-microsecond timing.
+// Command line of tvo_sim (CLI11): every numeric option has a range (shown by --help, the reasons in
+// host/README.md, "Options"), checked with the cross-option rules before any work; validated into
+// whole-microsecond timing.
 #pragma once
 
 #include <cstdint>
@@ -64,6 +66,8 @@ struct SimOptions {
     std::string firmware;           // tvo_firmware_node to spawn; empty: one is already running
     std::string out_dir{"runs/demo"};
     std::string summary_json;       // empty: <out-dir>/summary.json
+    std::uint64_t max_output_mib{1024};  // refuse a run whose files could exceed this (MiB)
+    bool dry_run{false};            // check the options, print what the run would do, run nothing
 
     // Derived.
     std::int64_t period_us{10000};
@@ -85,7 +89,7 @@ struct SimOptions {
 void print_scenario_list(std::ostream& out);
 
 /// Parses and validates argv. Returns -1 to run, or the exit code to leave with: 0 after --help,
-/// 2 after a one-line error naming the offending option.
+/// --list-scenarios or --dry-run, 2 after a one-line error naming the offending option and its range.
 int parse_options(int argc, char** argv, SimOptions* options);
 
 }  // namespace tvo_host

@@ -1,4 +1,5 @@
-// The run as CSV, one row per robot per control period (long format, easy to plot and filter).
+// The run as CSV, one row per robot per control period (long format, easy to plot and filter), and
+// the bound on everything a run writes, known before it starts.
 #pragma once
 
 #include <cstdint>
@@ -35,9 +36,28 @@ public:
     /// Flushes and closes; false if anything failed to write.
     bool close();
 
+    /// Largest size of the CSV of a run whose last row is at t_max_s with robots robots (rows at
+    /// t = 0 and after each of the steps periods), from the row's format.
+    static std::uint64_t max_bytes(std::int64_t steps, std::size_t robots, double t_max_s);
+
 private:
     std::FILE* file_{nullptr};
     bool ok_{true};
 };
+
+/// Upper bounds on the files of one run (host/README.md, "Outputs").
+struct OutputBound {
+    std::uint64_t csv_bytes{0};
+    std::uint64_t lcm_log_bytes{0};
+    std::uint64_t json_bytes{0};  // summary.json and scenario.json
+    std::uint64_t total_bytes() const { return csv_bytes + lcm_log_bytes + json_bytes; }
+};
+
+/// What a run of steps periods of period_us writes at most: the CSV, the LCM log (per period a
+/// measurement, a streamed target when streamed, the command and telemetry answering it, and in
+/// realtime one more command and telemetry for the node's watchdog; the session handshake besides)
+/// and the JSON files. Messages of other sessions on the same LCM URL are logged too and not counted.
+OutputBound bound_outputs(std::int64_t steps, std::int64_t period_us, std::size_t robots, bool streamed,
+                          bool realtime);
 
 }  // namespace tvo_host

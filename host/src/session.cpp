@@ -244,9 +244,9 @@ bool SessionClient::await_ack(std::int8_t action, std::chrono::steady_clock::tim
     return true;
 }
 
-void SessionClient::send_start_again()
+void SessionClient::send_start_again(std::optional<std::int64_t> utime)
 {
-    session_.utime = stamp_();
+    session_.utime = utime.value_or(stamp_());
     transport_.set_log_utime(session_.utime);
     transport_.publish(session_);
 }

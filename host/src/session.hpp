@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "options.hpp"
@@ -44,7 +45,7 @@ public:
 
     /// Publishes START once more, stamped now (same id and content: the node accepts it as new
     /// after a restart, or repeats its ack if it still runs the session). Does not wait.
-    void send_start_again();
+    void send_start_again(std::optional<std::int64_t> utime = std::nullopt);
     /// True if `ack` answers our START.
     bool is_start_ack(const tvo_lcm::session_ack_t& ack) const;
 

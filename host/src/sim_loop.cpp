@@ -111,8 +111,11 @@ void SimLoop::on_command(const tvo_lcm::command_t& command)
         answered_status_ = command.status;
     }
     const bool safe_stop = is_safe_stop(command.flags);
-    // Only the newest answer (or a safe stop) may actuate: a repeat, an older answer or a sequence we
-    // never sent (a stray message) would move the plant back in time or hijack it.
+    if (usable && answers_ours && command.status != TVO_OK && !safe_stop) {
+        return; // a refusal only repeats the command in force: nothing to apply (README, plant rules)
+    }
+    // Only the newest computed answer (or a safe stop) may actuate: a repeat, an older answer or a
+    // sequence we never sent (a stray message) would move the plant back in time or hijack it.
     if (!usable || !((answers_ours && command.measurement_sequence > last_queued_sequence_) || safe_stop)) {
         ++counts_.ignored_commands;
         return;
@@ -136,6 +139,9 @@ void SimLoop::on_command(const tvo_lcm::command_t& command)
     pending.flags = command.flags;
     for (std::size_t r = 0; r < robots; ++r) {
         pending.input[r] = UnicycleInput{command.speed_mps[r], command.turn_rate_radps[r]};
+    }
+    if (safe_stop) {
+        pending.apply_us = arrival_us; // stopping is never put off (nor taken back to the past)
     }
     if (pending.apply_us < arrival_us) {
         // The node's own safe stops are stamped when published: they always act on arrival.
@@ -319,7 +325,9 @@ void SimLoop::service_restart()
     }
     const auto now = std::chrono::steady_clock::now();
     if (!restart_sent_at_ || now - *restart_sent_at_ >= kStartRepeat) {
-        session_.send_start_again();
+        // Stamped with the plant's clock now (lockstep: its simulated time): the node's first sample
+        // of a session must follow its START closely.
+        session_.send_start_again(options_.realtime ? std::nullopt : std::optional<std::int64_t>(epoch_utime_ + now_us_));
         restart_sent_at_ = now;
     }
 }

@@ -1175,9 +1175,14 @@ static void test_plant_first_measurement_beyond_the_tick_span_is_implausible(voi
         (void)EXPECT_REFUSED(m, 0, k + 1 < W ? TVO_ERR_IMPLAUSIBLE_STAMP : TVO_ERR_WATCHDOG);
     }
     TEST_ASSERT_EQUAL_INT32((int32_t)W + 1, node.counters.refused[TVO_ERR_IMPLAUSIBLE_STAMP]);
-    /* The last period the controller's clock reaches from the epoch is still served. */
-    const int64_t last = (int64_t)TVO_MAX_TICK_SPAN / H;
+    /* The first sample anchors the sequence, so it must follow the START within a second (or
+     * watchdog_periods periods if longer): the last period inside that window is served, the next
+     * one is not. */
+    const int64_t window = (W * H > 1000000) ? W * H : 1000000;
+    const int64_t last = (EF_UTIME + window - EF_EPOCH + TAU) / H;
     tvo_lcm_measurement_t m;
+    plant_meas(&m, last + 1);
+    (void)EXPECT_REFUSED(m, 0, TVO_ERR_WATCHDOG);
     plant_meas(&m, last);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(last));
 }

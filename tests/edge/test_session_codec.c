@@ -146,7 +146,8 @@ static void test_epoch_lead_is_limited_to_the_controllers_tick_span(void)
 {
     tvo_session_timing_t timing;
     tvo_session_reject_t why;
-    const int64_t span = (int64_t)TVO_MAX_TICK_SPAN;
+    /* Half the controller's clock span: the other half is left for the first sample after START. */
+    const int64_t span = TVO_SESSION_EPOCH_SPAN_US;
     const int64_t base = (int64_t)1 << 40;
     const int64_t leads_ok[] = {-span, -1, 0, 1, span};
     for (size_t i = 0; i < sizeof(leads_ok) / sizeof(leads_ok[0]); ++i) {
@@ -715,16 +716,16 @@ static void test_content_hash_ignores_only_the_utime(void)
     ef_start(&msg, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 2);
     const int n = tvo_lcm_session_t_encode(encoded_a, 0, (int)sizeof(encoded_a), &msg);
     TEST_ASSERT_TRUE(n > 16);
-    const uint32_t hash = tvo_session_content_hash(encoded_a, (uint32_t)n);
+    const uint64_t hash = tvo_session_content_hash(encoded_a, (uint32_t)n);
 
     /* Another utime (bytes 8..15 after the 8-byte fingerprint): the same content. */
     msg.utime = EF_UTIME + 100000;
     TEST_ASSERT_EQUAL_INT(n, tvo_lcm_session_t_encode(encoded_b, 0, (int)sizeof(encoded_b), &msg));
-    TEST_ASSERT_EQUAL_HEX32(hash, tvo_session_content_hash(encoded_b, (uint32_t)n));
+    TEST_ASSERT_EQUAL_HEX64(hash, tvo_session_content_hash(encoded_b, (uint32_t)n));
     for (int i = 8; i < 16; ++i) {
         memcpy(encoded_b, encoded_a, (size_t)n);
         encoded_b[i] ^= 0xFFu;
-        TEST_ASSERT_EQUAL_HEX32(hash, tvo_session_content_hash(encoded_b, (uint32_t)n));
+        TEST_ASSERT_EQUAL_HEX64(hash, tvo_session_content_hash(encoded_b, (uint32_t)n));
     }
     /* Every other byte of the content counts. */
     for (int i = 16; i < n; ++i) {

@@ -16,7 +16,7 @@ namespace campaign {
 namespace {
 constexpr std::int64_t kUsPerS = 1000000;
 constexpr std::int64_t kWireMax = std::int64_t{1} << 60;   // TVO_WIRE_TIME_MAX_US, the sequence limit
-constexpr std::int64_t kEpochLimitUs = (std::int64_t{1} << 30) - 1;   // |epoch - start.utime| at most
+constexpr std::int64_t kEpochLimitUs = TVO_SESSION_EPOCH_SPAN_US;   // |epoch - start.utime| at most
 constexpr std::int64_t kInt64Max = std::numeric_limits<std::int64_t>::max();
 constexpr std::int64_t kInt64Min = std::numeric_limits<std::int64_t>::min();
 constexpr std::int32_t kAny = Expect::kAnyStatus;
@@ -684,9 +684,9 @@ void case_implausible_epoch(Context& ctx)
     refused_epoch(start_utime + 20 * 60 * kUsPerS, -1,
                   "no session: a START whose epoch is 20 min after it: refused naming the epoch");
     refused_epoch(start_utime - kEpochLimitUs - 1, -1,
-                  "no session: a START whose epoch is 2^30 us before it (1 us too far): refused naming the epoch");
+                  "no session: a START whose epoch is 1 us further before it than TVO_SESSION_EPOCH_SPAN_US: refused naming the epoch");
     run.start();
-    ctx.report.check(true, "a START whose epoch is 2^30 - 1 us before it (the limit): acked OK",
+    ctx.report.check(true, "a START whose epoch is TVO_SESSION_EPOCH_SPAN_US before it (the limit): acked OK",
                      "epoch " + std::to_string(config.epoch_utime_us) + ", START utime " + std::to_string(start_utime));
     const std::int64_t ours = run.session().session_id;
     run.run([&](LockstepRun& r, std::int64_t n) {

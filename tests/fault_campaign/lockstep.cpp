@@ -380,10 +380,10 @@ void LockstepRun::process(const ReceivedCommand& received)
         ++unexpected_answers;
         problem("a command answering nothing sent: " + describe(cmd));
     }
-    // The plant's rule: any safe stop for its session, whatever it answers, takes effect (now if stamped earlier).
+    // The plant's rule: any safe stop for its session, whatever it answers, takes effect on arrival.
     if (cmd.session_id == session_.session_id && (cmd.flags & kSafeStop) != 0) {
         ++safe_stop_answers;
-        apply(cmd, std::max(cmd.utime, now_us_), applied_safe_stop_for_own_);
+        apply(cmd, now_us_, applied_safe_stop_for_own_);
     }
     const bool applied = pending_.size() != pending_before || in_force_sequence_ != in_force_before;
     shadow_literal_plant(cmd, applied);
@@ -398,10 +398,11 @@ void LockstepRun::verify(const Expect& e, const tvo_lcm::command_t& cmd)
         problem("answer stamped before its measurement (" + std::to_string(e.utime) + "): " + describe(cmd));
     }
     const Answer answer{cmd.speed_mps[0], cmd.turn_rate_radps[0], cmd.utime, cmd.status, cmd.flags};
-    // The plant's rule: its own sample's answer (it knows which message that is), newer than the
-    // command in force; safe stops: process().
+    // The plant's rule: its own sample's computed answer (status 0; it knows which message that is),
+    // newer than the command in force; a refusal only repeats the command in force; safe stops: process().
     const bool own_session = cmd.session_id == session_.session_id;
-    const bool plant_applies = own_session && e.genuine && cmd.measurement_sequence > in_force_sequence_ && !safe_stop;
+    const bool plant_applies = own_session && e.genuine && cmd.status == 0 &&
+                               cmd.measurement_sequence > in_force_sequence_ && !safe_stop;
     if (own_session && cmd.status != 0 && e.kind != Expect::Kind::NoSession) {
         ++refusal_answers;
     }

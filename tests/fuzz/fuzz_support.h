@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "node.h"
+#include "wire_real.h"
 
 #define FUZZ_SESSION_ID 42
 #define FUZZ_EPOCH_US 1000000
@@ -84,20 +85,27 @@ static inline void fuzz_session(tvo_lcm_session_t *s, uint8_t variant)
     }
 }
 
+/* A limit as the core holds it: the wire's double rounded to the core's scalar (tiny limits become
+ * subnormal floats, whose relative rounding is far coarser than the slack below). */
+static inline double fuzz_core_limit(double wire)
+{
+    return (double)tvo_wire_real(wire);
+}
+
 /* Every command the node publishes: finite, within the session's limits, a safe stop all zero, and
  * status 0 only with a computed command. */
 static inline void fuzz_check_command(const tvo_lcm_command_t *m, const tvo_lcm_session_t *s)
 {
-    const double slack = 1e-6; /* float32 rounding of the limits */
+    const double slack = 1e-6; /* the command's own float rounding against the limit */
     for (int r = 0; r < 4; ++r) {
         if (!isfinite(m->speed_mps[r]) || !isfinite(m->turn_rate_radps[r])) {
             fuzz_fail("command not finite");
         }
         if (s != NULL && s->plant_kind == TVO_LCM_SESSION_T_PLANT_UNICYCLE) {
-            if (fabs(m->turn_rate_radps[r]) > s->omega_max_radps * (1.0 + slack)) {
+            if (fabs(m->turn_rate_radps[r]) > fuzz_core_limit(s->omega_max_radps) * (1.0 + slack)) {
                 fuzz_fail("|omega| beyond omega_max");
             }
-            if (fabs(m->speed_mps[r]) > s->speed_max_mps * (1.0 + slack)) {
+            if (fabs(m->speed_mps[r]) > fuzz_core_limit(s->speed_max_mps) * (1.0 + slack)) {
                 fuzz_fail("|v| beyond speed_max");
             }
         }
@@ -110,7 +118,7 @@ static inline void fuzz_check_command(const tvo_lcm_command_t *m, const tvo_lcm_
             fuzz_fail("chain input not finite");
         }
         if (s != NULL && s->plant_kind == TVO_LCM_SESSION_T_PLANT_CHAIN &&
-            fabs(m->input[i]) > s->chain_input_max * (1.0 + slack)) {
+            fabs(m->input[i]) > fuzz_core_limit(s->chain_input_max) * (1.0 + slack)) {
             fuzz_fail("|u| beyond chain_input_max");
         }
         if ((m->flags & (int32_t)TVO_FLAG_SAFE_STOP) && m->input[i] != 0.0) {

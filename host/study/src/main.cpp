@@ -3,18 +3,23 @@
 // and (--json) writes the full tables plus the headline figures.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <map>
+#include <set>
 #include <sstream>
 #include <thread>
 
 #include <nlohmann/json.hpp>
 
 #include "chain_sim.hpp"
+// The ranges of numeric options, shared with tvo_sim (host/study builds without host/src on its include path).
+#include "../../src/option_ranges.hpp"
 #include "studies.hpp"
 
 extern "C" {
@@ -23,41 +28,128 @@ extern "C" {
 
 namespace {
 
-// "k=2,h=0.01,tau=0.5,comp=0,zoh=0,filtered=0,tf=0.05,sigma=0,seed=1" -> SimConfig (tau as a fraction of h).
+using tvo_options::End;
+using tvo_options::real_in;
+using tvo_options::whole_in;
+
+// The trace's configuration is 20 s of the testbed (SimConfig::duration_s); h >= 0.1 ms keeps its CSV
+// within 200,000 rows (25 MB measured). Noise, filter and budget bounds: host/README.md, "Options".
+constexpr double kMinTraceH = 1e-4;
+constexpr double kMaxTraceH = 1.0;
+constexpr double kMaxFilterTfS = 10.0;
+constexpr double kMaxSigmaM = 1.0;
+constexpr double kMaxUBudget = 1000.0;
+constexpr unsigned kMaxThreads = 64;
+
+// One key of --trace-config: its type and range as --help shows them, and its default.
+struct TraceKey {
+    const char *name;
+    const char *type;
+    CLI::Validator check;
+    const char *note;
+    const char *default_value;
+};
+
+const std::vector<TraceKey> &trace_keys()
+{
+    static const std::vector<TraceKey> keys{
+        {"k", "INT", whole_in<int>(1, 3), "relative degree", "2"},
+        {"h", "FLOAT", real_in({kMinTraceH, kMaxTraceH, "s"}), "whole, even microseconds", "0.01"},
+        {"tau", "FLOAT", real_in({0.0, 1.0, ""}), "fraction of h", "0.5"},
+        {"comp", "INT", whole_in<int>(0, 1), "delay compensation", "0"},
+        {"zoh", "INT", whole_in<int>(0, 1), "ZOH-aware", "0"},
+        {"filtered", "INT", whole_in<int>(0, 1), "derivatives filtered", "0"},
+        {"tf", "FLOAT", real_in({0.0, kMaxFilterTfS, "s", End::Open}), "filter T_f", "0.05"},
+        {"sigma", "FLOAT", real_in({0.0, kMaxSigmaM, "m"}), "position noise", "0"},
+        {"seed", "UINT", whole_in<uint64_t>(0, std::numeric_limits<uint64_t>::max()), "noise seed", "1"}};
+    return keys;
+}
+
+std::string trace_keys_help()
+{
+    std::string out;
+    for (const TraceKey &key : trace_keys()) {
+        out += std::string(out.empty() ? "" : ", ") + key.name + "=" + key.type + " " + key.check.get_description() +
+               " (" + key.note + ")";
+    }
+    return out;
+}
+
+// "k=2,h=0.01,tau=0.5,comp=0,zoh=0,filtered=0,tf=0.05,sigma=0,seed=1" (any subset, any order) -> SimConfig.
 bool parse_trace_config(const std::string &text, study::SimConfig &cfg, std::string &err)
 {
-    std::map<std::string, double> v{{"k", 2},        {"h", 0.01},   {"tau", 0.5}, {"comp", 0}, {"zoh", 0},
-                                    {"filtered", 0}, {"tf", 0.05}, {"sigma", 0}, {"seed", 1}};
+    std::map<std::string, std::string> v;
+    for (const TraceKey &key : trace_keys()) {
+        v[key.name] = key.default_value;
+    }
     std::stringstream ss(text);
     std::string item;
-    while (std::getline(ss, item, ',')) {
+    while (!text.empty() && std::getline(ss, item, ',')) {
         const size_t eq = item.find('=');
-        if (eq == std::string::npos || v.find(item.substr(0, eq)) == v.end()) {
-            err = "bad --trace-config item '" + item + "'";
+        const std::string name = item.substr(0, eq);
+        const auto key = std::find_if(trace_keys().begin(), trace_keys().end(),
+                                      [&name](const TraceKey &k) { return name == k.name; });
+        if (eq == std::string::npos || key == trace_keys().end()) {
+            err = "item '" + item + "' is not KEY=VALUE with a key of: " + trace_keys_help();
             return false;
         }
-        try {
-            v[item.substr(0, eq)] = std::stod(item.substr(eq + 1));
-        } catch (const std::exception &) {
-            err = "bad number in --trace-config item '" + item + "'";
+        std::string value = item.substr(eq + 1);
+        const std::string why = key->check(value);
+        if (!why.empty()) {
+            err = "item '" + item + "': " + why;
             return false;
         }
+        v[name] = value;
     }
-    if (!(v["k"] >= 1 && v["k"] <= 3) || !(v["h"] > 0 && v["h"] <= 1) || !(v["tau"] >= 0 && v["tau"] <= 1)) {
-        err = "--trace-config needs k in 1..3, 0 < h <= 1, 0 <= tau <= 1 (fraction of h)";
+    if (!text.empty() && text.back() == ',') {
+        err = "an empty item at the end";
         return false;
     }
-    cfg.k = static_cast<int>(v["k"]);
-    const double half = std::round(v["h"] * 1e6 / 2.0);
-    cfg.period_ticks = static_cast<uint32_t>(std::max(1.0, half) * 2.0);
-    cfg.delay_ticks = static_cast<uint32_t>(std::llround(static_cast<double>(cfg.period_ticks) * v["tau"]));
-    cfg.compensation = v["comp"] != 0;
-    cfg.zoh_aware = v["zoh"] != 0;
-    cfg.filtered = v["filtered"] != 0;
-    cfg.filter_tf_s = v["tf"];
-    cfg.sigma_m = v["sigma"];
-    cfg.seed = static_cast<uint64_t>(v["seed"]);
+    double h_s = 0.0, tau = 0.0, tf_s = 0.0, sigma_m = 0.0;
+    int k = 0, comp = 0, zoh = 0, filtered = 0;
+    uint64_t seed = 0;
+    // Checked above (or defaults): these conversions succeed.
+    tvo_options::read_real(v["h"], &h_s);
+    tvo_options::read_real(v["tau"], &tau);
+    tvo_options::read_real(v["tf"], &tf_s);
+    tvo_options::read_real(v["sigma"], &sigma_m);
+    tvo_options::read_whole(v["k"], &k);
+    tvo_options::read_whole(v["comp"], &comp);
+    tvo_options::read_whole(v["zoh"], &zoh);
+    tvo_options::read_whole(v["filtered"], &filtered);
+    tvo_options::read_whole(v["seed"], &seed);
+    // Even ticks (1 tick = 1 us) so that tau = h/2 lands on a tick.
+    const double h_us = h_s * static_cast<double>(cfg.tick_hz);
+    const long long h_ticks = std::llround(h_us);
+    if (std::fabs(h_us - static_cast<double>(h_ticks)) > 1e-3 || h_ticks % 2 != 0) {
+        err = "item 'h=" + v["h"] + "': must be a whole, even number of microseconds";
+        return false;
+    }
+    cfg.k = k;
+    cfg.period_ticks = static_cast<uint32_t>(h_ticks);
+    cfg.delay_ticks = static_cast<uint32_t>(std::llround(static_cast<double>(cfg.period_ticks) * tau));
+    cfg.compensation = comp != 0;
+    cfg.zoh_aware = zoh != 0;
+    cfg.filtered = filtered != 0;
+    cfg.filter_tf_s = tf_s;
+    cfg.sigma_m = sigma_m;
+    cfg.seed = seed;
     return true;
+}
+
+// --studies: a comma-separated subset of 1, 2, 3; empty runs none.
+bool parse_studies(const std::string &text, std::set<int> &chosen)
+{
+    chosen.clear();
+    std::stringstream ss(text);
+    std::string item;
+    while (!text.empty() && std::getline(ss, item, ',')) {
+        if (item != "1" && item != "2" && item != "3") {
+            return false;
+        }
+        chosen.insert(item[0] - '0');
+    }
+    return text.empty() || text.back() != ',';
 }
 
 int write_trace(const std::string &path, const std::string &config_text)
@@ -96,33 +188,63 @@ int main(int argc, char **argv)
 {
     CLI::App app{"tvo_study: sampled-data fidelity of the TV-O chain controller (issue 4): error vs h, "
                  "stability edges, noise"};
+    app.footer("Every number is checked against the range shown ('(' or ')': that end excluded) before anything "
+               "runs; a bad value exits with code 2 and names the option. host/README.md (\"Options\") says why.");
     study::StudyOptions opt;
     std::string json_path, trace_path, trace_config = "k=2,h=0.01,tau=0.5,comp=0,zoh=0";
     std::string studies = "1,2,3";
-    opt.threads = std::max(1u, std::thread::hardware_concurrency());
+    opt.threads = std::min(kMaxThreads, std::max(1u, std::thread::hardware_concurrency()));
     app.add_option("--json", json_path, "write the full tables and headline figures as JSON to this file");
     app.add_flag("--quick", opt.quick, "fewer h / sigma / T_f values and a coarser edge sweep (seconds)");
-    app.add_option("--threads", opt.threads, "worker threads (results do not depend on it)")->check(CLI::Range(1u, 64u));
-    app.add_option("--seed", opt.seed, "noise seed (std::mt19937_64)");
+    app.add_option("--threads", opt.threads, "worker threads (results do not depend on it)")
+        ->check(whole_in<unsigned>(1, kMaxThreads));
+    app.add_option("--seed", opt.seed, "noise seed (std::mt19937_64)")
+        ->check(whole_in<uint64_t>(0, std::numeric_limits<uint64_t>::max()))
+        ->capture_default_str();
     app.add_option("--subsamples", opt.subsamples, "dense error points per held interval (study 1)")
-        ->check(CLI::Range(1, 1000));
+        ->check(whole_in<int>(1, 1000))
+        ->capture_default_str();
     app.add_option("--u-budget", opt.u_budget,
                    "command-noise budget (RMS |u - y_d''|, m/s^2) for the constrained noise-aware T_f")
-        ->check(CLI::PositiveNumber);
-    app.add_option("--studies", studies, "which studies to run, e.g. 1,3 (2 needs 1); empty: none");
+        ->check(real_in({0.0, kMaxUBudget, "m/s^2", End::Open}))
+        ->capture_default_str();
+    app.add_option("--studies", studies, "which studies to run, e.g. 1,3 (2 needs 1); empty: none")
+        ->check(CLI::Validator(
+            [](std::string &text) {
+                std::set<int> chosen;
+                return parse_studies(text, chosen) ? std::string()
+                                                   : "got '" + text + "', expected a comma-separated list of 1, 2, 3";
+            },
+            "subset of 1,2,3"))
+        ->capture_default_str();
     app.add_option("--trace", trace_path, "also write the command sequence of one configuration (CSV, hex floats)");
-    app.add_option("--trace-config", trace_config,
-                   "that configuration: k=,h=,tau= (fraction of h),comp=,zoh=,filtered=,tf=,sigma=,seed=");
+    app.add_option("--trace-config", trace_config, "that configuration, KEY=VALUE items: " + trace_keys_help())
+        ->check(CLI::Validator(
+            [](std::string &text) {
+                study::SimConfig cfg;
+                std::string err;
+                return parse_trace_config(text, cfg, err) ? std::string() : err;
+            },
+            "KEY=VALUE,..."))
+        ->capture_default_str();
     try {
         app.parse(argc, argv);
+    } catch (const CLI::CallForHelp &) {
+        std::cout << app.help();
+        return 0;
     } catch (const CLI::ParseError &e) {
-        return app.exit(e);
+        std::string line = e.what();
+        std::replace(line.begin(), line.end(), '\n', ' ');
+        std::fprintf(stderr, "tvo_study: error: %s (see --help)\n", line.c_str());
+        return 2;
     }
-    const bool s1 = studies.find('1') != std::string::npos;
-    const bool s2 = studies.find('2') != std::string::npos;
-    const bool s3 = studies.find('3') != std::string::npos;
+    std::set<int> chosen;
+    parse_studies(studies, chosen);
+    const bool s1 = chosen.count(1) > 0;
+    const bool s2 = chosen.count(2) > 0;
+    const bool s3 = chosen.count(3) > 0;
     if (s2 && !s1) {
-        std::fprintf(stderr, "tvo_study: study 2 needs study 1 (--studies 1,2)\n");
+        std::fprintf(stderr, "tvo_study: error: --studies: study 2 needs study 1 (--studies 1,2)\n");
         return 2;
     }
     const auto t0 = std::chrono::steady_clock::now();
