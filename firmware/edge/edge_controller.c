@@ -47,18 +47,10 @@ static tvo_status_t unicycle_check(const tvo_edge_controller_t *ctl, const tvo_e
     return tvo_controller_check(&ctl->u.unicycle, &meas->unicycle, apply_tick);
 }
 
-/* A step that fails after the check passed (the law) leaves only the clock changed (a missed period
- * for a controller on its own); restoring the clock keeps nothing of it (tvo/controller.h). The one
- * exception is the watchdog's: a failed step after watchdog_periods of silence stops the robots. */
-static tvo_status_t unicycle_step_or_keep(tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas,
-                                          uint32_t apply_tick, tvo_edge_command_t *cmd)
+static tvo_status_t unicycle_step(tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas, uint32_t apply_tick,
+                                  tvo_edge_command_t *cmd)
 {
-    const tvo_sample_clock_t clock = ctl->u.unicycle.clock;
-    const tvo_status_t st = tvo_controller_step(&ctl->u.unicycle, &meas->unicycle, apply_tick, &cmd->unicycle);
-    if (st != TVO_OK && st != TVO_ERR_WATCHDOG) {
-        ctl->u.unicycle.clock = clock;
-    }
-    return st;
+    return tvo_controller_step(&ctl->u.unicycle, &meas->unicycle, apply_tick, &cmd->unicycle);
 }
 
 static tvo_status_t unicycle_safe_stop(tvo_edge_controller_t *ctl, tvo_edge_command_t *cmd)
@@ -101,7 +93,7 @@ static const tvo_edge_controller_ops_t unicycle_ops = {
     .measurement = unicycle_measurement,
     .positions = unicycle_positions,
     .check = unicycle_check,
-    .step_or_keep = unicycle_step_or_keep,
+    .step = unicycle_step,
     .safe_stop = unicycle_safe_stop,
     .holding = unicycle_holding,
     .flags = unicycle_flags,
@@ -153,15 +145,10 @@ static tvo_status_t chain_check(const tvo_edge_controller_t *ctl, const tvo_edge
     return tvo_chain_controller_check(&ctl->u.chain, &meas->chain, apply_tick);
 }
 
-static tvo_status_t chain_step_or_keep(tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas,
-                                       uint32_t apply_tick, tvo_edge_command_t *cmd)
+static tvo_status_t chain_step(tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas, uint32_t apply_tick,
+                               tvo_edge_command_t *cmd)
 {
-    const tvo_sample_clock_t clock = ctl->u.chain.clock;
-    const tvo_status_t st = tvo_chain_controller_step(&ctl->u.chain, &meas->chain, apply_tick, &cmd->chain);
-    if (st != TVO_OK && st != TVO_ERR_WATCHDOG) {
-        ctl->u.chain.clock = clock;
-    }
-    return st;
+    return tvo_chain_controller_step(&ctl->u.chain, &meas->chain, apply_tick, &cmd->chain);
 }
 
 static tvo_status_t chain_safe_stop(tvo_edge_controller_t *ctl, tvo_edge_command_t *cmd)
@@ -205,13 +192,31 @@ static const tvo_edge_controller_ops_t chain_ops = {
     .measurement = chain_measurement,
     .positions = chain_positions,
     .check = chain_check,
-    .step_or_keep = chain_step_or_keep,
+    .step = chain_step,
     .safe_stop = chain_safe_stop,
     .holding = chain_holding,
     .flags = chain_flags,
     .command_to_lcm = chain_command_to_lcm,
     .telemetry_to_lcm = chain_telemetry_to_lcm,
     .clock = chain_clock};
+
+tvo_status_t tvo_edge_controller_step_or_keep(tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas,
+                                              uint32_t apply_tick, tvo_edge_command_t *cmd)
+{
+    if (ctl == NULL || ctl->ops == NULL || meas == NULL || cmd == NULL) {
+        return TVO_ERR_NULL;
+    }
+    /* A step that fails after the check passed (the law) leaves only the clock changed (a missed
+     * period for a controller on its own); restoring the clock keeps nothing of it. The one
+     * exception is the watchdog's: a failed step after watchdog_periods of silence stops the robots. */
+    tvo_sample_clock_t *clock = ctl->ops->clock(ctl);
+    const tvo_sample_clock_t before = *clock;
+    const tvo_status_t st = ctl->ops->step(ctl, meas, apply_tick, cmd);
+    if (st != TVO_OK && st != TVO_ERR_WATCHDOG) {
+        *clock = before;
+    }
+    return st;
+}
 
 const tvo_edge_controller_ops_t *tvo_edge_controller_ops(int32_t plant_kind)
 {

@@ -44,10 +44,8 @@ typedef struct {
     void (*positions)(const tvo_edge_measurement_t *meas, uint8_t robot_count, tvo_real_t *y);
     /** What the step would refuse, changing nothing. */
     tvo_status_t (*check)(const tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas, uint32_t apply_tick);
-    /** The step; if it fails, the controller is left exactly as before (its clock included), so the
-        edge can treat a failed step as a refused message. */
-    tvo_status_t (*step_or_keep)(tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas, uint32_t apply_tick,
-                                 tvo_edge_command_t *cmd);
+    tvo_status_t (*step)(tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas, uint32_t apply_tick,
+                         tvo_edge_command_t *cmd);
     tvo_status_t (*safe_stop)(tvo_edge_controller_t *ctl, tvo_edge_command_t *cmd);
     /** The command in force, flagged TVO_FLAG_HOLDING. */
     void (*holding)(const tvo_edge_controller_t *ctl, tvo_edge_command_t *cmd);
@@ -65,6 +63,13 @@ struct tvo_edge_controller {
         tvo_chain_controller_t chain;
     } u;
 };
+
+/**
+ * The controller's step; if it fails, the controller is left exactly as before (its clock included),
+ * so the edge can treat a failed step as a refused message.
+ */
+tvo_status_t tvo_edge_controller_step_or_keep(tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas,
+                                              uint32_t apply_tick, tvo_edge_command_t *cmd);
 
 /** The operations for a session's plant kind (session_t.PLANT_*), NULL if there are none. */
 const tvo_edge_controller_ops_t *tvo_edge_controller_ops(int32_t plant_kind);

@@ -449,7 +449,7 @@ static void on_measurement(tvo_node_t *node, const tvo_lcm_measurement_t *msg, i
         (void)tvo_problem_choose_slack(&s->problem, y, TVO_R(0.0));
     }
     tvo_edge_command_t cmd;
-    st = ops->step_or_keep(&s->controller, &meas, schedule_tick(apply_us), &cmd);
+    st = tvo_edge_controller_step_or_keep(&s->controller, &meas, schedule_tick(apply_us), &cmd);
     if (st != TVO_OK) {
         /* The law could not use the sample (e.g. a streamed target ahead of it): a refusal like any
          * other, which keeps nothing and counts toward the watchdog. */
