@@ -49,6 +49,12 @@ int tvo_node_channel_of(const char *name);
 /** Short name of a problem part named by a session ack (session_ack_t.PART_*), for logs. */
 const char *tvo_protocol_part_str(int32_t part);
 
+/**
+ * The session_t field(s) a session ack's bad_param (a tvo_param_t) stands for, as a plant writes
+ * them: "epoch_utime", "period_us", ... (the core's own names are tick-based: tvo_param_str).
+ */
+const char *tvo_protocol_param_str(int32_t param);
+
 #ifdef __cplusplus
 }
 #endif

@@ -129,7 +129,7 @@ static void log_ack(lcm_node_t *self)
     } else {
         snprintf(line, sizeof(line), "%s of session %lld refused: %s (parameter %s, part %s, entry %d; running: %lld)",
                  action, (long long)ack->session_id, tvo_status_str((tvo_status_t)ack->status),
-                 tvo_param_str((tvo_param_t)ack->bad_param), tvo_protocol_part_str(ack->bad_part), (int)ack->bad_index,
+                 tvo_protocol_param_str(ack->bad_param), tvo_protocol_part_str(ack->bad_part), (int)ack->bad_index,
                  (long long)ack->running_session_id);
     }
     const int key = ack->action == TVO_LCM_SESSION_T_ACTION_START ? (ack->status == TVO_OK ? LOG_START_DONE : LOG_START_REFUSED)

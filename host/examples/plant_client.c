@@ -120,7 +120,7 @@ int main(int argc, char **argv)
     if (!request(lcm, &p, &s, TVO_LCM_SESSION_T_ACTION_START, r.now_us) || p.ack.status != 0) {
         fprintf(stderr, "plant_client: START %s: %s, parameter %s, part %s, index %d\n",
                 p.acked ? "refused" : "not acknowledged", tvo_status_str((tvo_status_t)p.ack.status),
-                tvo_param_str((tvo_param_t)p.ack.bad_param), tvo_protocol_part_str(p.ack.bad_part), p.ack.bad_index);
+                tvo_protocol_param_str(p.ack.bad_param), tvo_protocol_part_str(p.ack.bad_part), p.ack.bad_index);
         return 1;
     }
     for (int64_t n = 0; n < steps; ++n) {

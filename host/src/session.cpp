@@ -189,7 +189,7 @@ std::string describe_rejection(const tvo_lcm::session_ack_t& ack, const SimOptio
     std::ostringstream out;
     out << "the firmware rejected the session (" << tvo_status_str(static_cast<tvo_status_t>(ack.status)) << ")";
     if (ack.bad_param != TVO_PARAM_NONE) {
-        out << ": parameter " << tvo_param_str(static_cast<tvo_param_t>(ack.bad_param));
+        out << ": parameter " << tvo_protocol_param_str(ack.bad_param);
         const std::string option = option_for(ack.bad_param, options);
         if (!option.empty()) {
             out << " (" << option << ")";
