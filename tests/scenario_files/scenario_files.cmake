@@ -86,3 +86,9 @@ tvo_scenario_message(NAME scenario_file_no_robots_variant EXIT 2 ARGS --scenario
   STDERR "--robots: scenario formation-max has its own robots (its file has no variants.robots)")
 tvo_scenario_message(NAME scenario_file_demo_variants EXIT 0 ARGS --scenario demo --robots 3 --target circle --dry-run
   STDOUT "dry run: scenario demo, 3 robot(s)")
+
+# README.md's complete example is a scenario file that loads as written.
+add_test(NAME scenario_file_readme_example
+  COMMAND ${CMAKE_COMMAND} -DSIM=$<TARGET_FILE:tvo_sim> -DREADME=${PROJECT_SOURCE_DIR}/README.md
+    -DOUT_DIR=${CMAKE_CURRENT_BINARY_DIR}/scenario_file_readme_example -P ${tvo_sf_dir}/readme_example.cmake)
+set_tests_properties(scenario_file_readme_example PROPERTIES LABELS "closed_loop;host" TIMEOUT 60)
