@@ -46,12 +46,12 @@ endfunction()
 
 # Configures, builds and installs the standalone core from FIRMWARE_DIR into the prefix.
 function(install_standalone_core)
-  set(toolchain "")
+  set(build_args -DCMAKE_BUILD_TYPE=Release)
   if(TOOLCHAIN_FILE)
-    set(toolchain -DCMAKE_TOOLCHAIN_FILE=${TOOLCHAIN_FILE})
+    set(build_args -DCMAKE_BUILD_TYPE=MinSizeRel -DCMAKE_TOOLCHAIN_FILE=${TOOLCHAIN_FILE})   # as the presets
   endif()
   run("configure the core" ${CMAKE_COMMAND} -S ${FIRMWARE_DIR} -B ${WORK}/core -G ${GENERATOR}
-      -DCMAKE_BUILD_TYPE=Release ${toolchain} -DTVO_DOUBLE=${TVO_DOUBLE} "-DTVO_LIMITS=${LIMITS}")
+      ${build_args} -DTVO_DOUBLE=${TVO_DOUBLE} "-DTVO_LIMITS=${LIMITS}")
   run("build the core" ${CMAKE_COMMAND} --build ${WORK}/core --target tvo_core --parallel 2)
   run("install the core" ${CMAKE_COMMAND} --install ${WORK}/core --prefix ${prefix})
 endfunction()
@@ -89,7 +89,7 @@ elseif(MODE STREQUAL "cross")
     # A list in an initial cache file: run()'s arguments would split it.
     file(WRITE ${WORK}/main_loop_${name}.cmake "set(BOARD_SOURCES \"${board_dir}/startup.c;${board_dir}/board.c;${extra_source}\" CACHE STRING \"\")\n")
     run("configure the main loop (${name})" ${CMAKE_COMMAND} -C ${WORK}/main_loop_${name}.cmake
-        -S ${EXAMPLE_DIR} -B ${bin} -G ${GENERATOR} -DCMAKE_BUILD_TYPE=Release
+        -S ${EXAMPLE_DIR} -B ${bin} -G ${GENERATOR} -DCMAKE_BUILD_TYPE=MinSizeRel
         -DCMAKE_TOOLCHAIN_FILE=${TOOLCHAIN_FILE} -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_COMPILE_WARNING_AS_ERROR=ON)
     run("build the main loop (${name})" ${CMAKE_COMMAND} --build ${bin} --parallel 2)
     tvo_find_allocator_symbols(found ${core_CMAKE_NM} ${bin}/main_loop.elf)
