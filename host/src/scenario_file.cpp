@@ -67,11 +67,14 @@ class Reader {
 public:
     explicit Reader(std::string file) : file_(std::move(file)) {}
 
+    /// The top-level key came from another file (a base): its errors name that file.
+    void set_origin(const std::string& top_key, const std::string& file) { origins_.emplace_back(top_key, file); }
+
     [[noreturn]] void fail(const YAML::Mark& mark, const std::string& field, const std::string& why) const
     {
         const int line = mark.is_null() ? 1 : mark.line + 1;
         const int column = mark.is_null() ? 1 : mark.column + 1;
-        throw ScenarioFileError(file_ + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " +
+        throw ScenarioFileError(origin(field) + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " +
                                 (field.empty() ? "" : field + ": ") + why);
     }
     [[noreturn]] void fail(const YAML::Node& node, const std::string& field, const std::string& why) const
@@ -239,7 +242,19 @@ private:
         return "nothing";
     }
 
+    const std::string& origin(const std::string& field) const
+    {
+        const std::string top_key = field.substr(0, field.find_first_of(".["));
+        for (const auto& [key, file] : origins_) {
+            if (key == top_key) {
+                return file;
+            }
+        }
+        return file_;
+    }
+
     std::string file_;
+    std::vector<std::pair<std::string, std::string>> origins_;
 };
 
 // ---- targets ---------------------------------------------------------------------------------
@@ -618,11 +633,9 @@ bool has_yaml_extension(const std::string& name)
     return ext == ".yaml" || ext == ".yml";
 }
 
-}  // namespace
 
-ScenarioFile load_scenario_file(const std::string& path)
+YAML::Node parse_yaml(const Reader& in, const std::string& path)
 {
-    const Reader in(path);
     std::ifstream stream(path);
     if (!stream) {
         throw ScenarioFileError(path + ": cannot read the file");
@@ -636,9 +649,42 @@ ScenarioFile load_scenario_file(const std::string& path)
     if (root.IsNull()) {
         in.fail(YAML::Mark::null_mark(), "", "the file is empty; a scenario is a YAML map (description, robots, ...)");
     }
-    const Map top = in.map(root, "", {"description", "duration_s", "robots", "streamed", "robot_radius_m",
-                                      "obstacles", "distance_bounds", "halfspaces", "offsets", "barrier", "report",
-                                      "variants", "timing", "sensing", "controller", "faults"});
+    return root;
+}
+
+Map top_level(const Reader& in, const YAML::Node& root)
+{
+    return in.map(root, "", {"base", "description", "duration_s", "robots", "streamed", "robot_radius_m", "obstacles",
+                             "distance_bounds", "halfspaces", "offsets", "barrier", "report", "variants", "timing",
+                             "sensing", "controller", "faults"});
+}
+
+}  // namespace
+
+ScenarioFile load_scenario_file(const std::string& path)
+{
+    Reader in(path);
+    Map top = top_level(in, parse_yaml(in, path));
+    // base: a scenario file (beside this one) whose top-level keys this file keeps unless it gives them.
+    if (const YAML::Node* base = top.find("base")) {
+        const std::string base_path =
+            (std::filesystem::path(path).parent_path() / in.text(*base, "base")).string();
+        if (!std::filesystem::is_regular_file(base_path)) {
+            in.fail(*base, "base", "no file " + base_path);
+        }
+        const Reader base_in(base_path);
+        const Map base_top = top_level(base_in, parse_yaml(base_in, base_path));
+        if (const YAML::Node* nested = base_top.find("base")) {
+            base_in.fail(*nested, "base", "a base file cannot have a base itself");
+        }
+        load_scenario_file(base_path);  // the base is a scenario on its own: its own errors name it
+        for (const auto& [key, value] : base_top.entries) {
+            if (top.find(key) == nullptr) {
+                top.entries.emplace_back(key, value);
+                in.set_origin(key, base_path);
+            }
+        }
+    }
     ScenarioFile file;
     file.path = path;
     file.description = in.text(in.required(top, "description"), "description");

@@ -66,6 +66,9 @@ tvo_scenario_message(NAME scenario_file_missing_key EXIT 2 ARGS --scenario ${tvo
   STDERR "${tvo_broken}/missing_robots.yaml:2:1: robots: missing (required)")
 tvo_scenario_message(NAME scenario_file_bad_robot EXIT 2 ARGS --scenario ${tvo_broken}/bad_robot_index.yaml
   STDERR "${tvo_broken}/bad_robot_index.yaml:9:18: distance_bounds[0].robots[1]: must be in [0, 1] (got 2)")
+# A key kept from a base file is that file's: its error names the base, at the key's line.
+tvo_scenario_message(NAME scenario_file_base_error EXIT 2 ARGS --scenario ${tvo_broken}/base_one_robot.yaml
+  STDERR "${tvo_broken}/../warehouse.yaml:26:18: distance_bounds[0].robots[1]: must be in [0, 0] (got 1)")
 # The ranges of tvo_sim's settings are the options' own: sigma as --sigma's [0, 1].
 tvo_scenario_message(NAME scenario_file_option_range EXIT 2 ARGS --scenario ${tvo_broken}/option_range.yaml
   STDERR "${tvo_broken}/option_range.yaml:8:10: sensing.sigma: must be in [0, 1] (got 2)")
