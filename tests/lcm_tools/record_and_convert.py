@@ -11,9 +11,12 @@ Checks (none depends on the machine's speed):
   - the rows' times are the session's sample instants (epoch + (n + 1) h - tau) and increase
   - Java and C++ decode the same positions; the reference column is robot 0's target as Java read
     it from the START's nested robot_t / path_t
-  - the error column agrees with the simulator's: lockstep with tau = 0 and no noise, row for row
-    with the simulator's CSV; realtime, the final error with summary.json's within ERROR_TOLERANCE_M
+  - lockstep with tau = 0 and no noise (a scenario with obstacles, so the barrier's telemetry is not
+    0): every column but the heading equals the simulator's CSV row for row; realtime: the final
+    error agrees with summary.json's within ERROR_TOLERANCE_M
   - plot_run.py writes its figure
+  - with --xvfb-run: lcm-spy's own window, started before the run (SpyProbe.java), found every type
+    and matched and decoded every channel the recording holds with the same class, without error
 """
 import argparse
 import csv
@@ -26,6 +29,7 @@ import socket
 import struct
 import subprocess
 import sys
+import threading
 import time
 
 # lcm-logger listens on UDP: under load a few datagrams may be lost; the run must still be there.
@@ -36,6 +40,7 @@ ERROR_TOLERANCE_M = 0.02
 REL_TOL = 1e-8
 LOGGER_START_TIMEOUT_S = 30.0
 LOGGER_STOP_TIMEOUT_S = 30.0
+SPY_START_TIMEOUT_S = 120.0  # a JVM and Xvfb on a loaded machine: generous, only a ceiling
 PROBE_CHANNEL = "TVO_TELEMETRY"  # one of firmware/edge/channels.h's; the test checks log2csv counts it
 PROBE_PAYLOAD = b"bad"           # shorter than a fingerprint: undecodable
 LCM_SELF_TEST_CHANNEL = "LCM_SELF_TEST"  # LCM's own start-up datagrams: no type of ours
@@ -99,6 +104,60 @@ def stop_logger(proc):
     print(out, end="")
 
 
+def start_spy(args):
+    """SpyProbe (lcm-spy's window) under xvfb-run, once lcm-spy has subscribed."""
+    cmd = [args.xvfb_run, "-a", args.java, "-cp", args.classpath, "SpyProbe", args.lcm_url]
+    print("+", " ".join(cmd), flush=True)
+    proc = subprocess.Popen(cmd, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    lines = []
+    ready = threading.Event()
+
+    def read():
+        for line in proc.stdout:
+            lines.append(line)
+            if line.strip() == "spy ready":
+                ready.set()
+        ready.set()  # ended: the caller sees whether "spy ready" came
+
+    reader = threading.Thread(target=read, daemon=True)
+    reader.start()
+    if not ready.wait(SPY_START_TIMEOUT_S) or "spy ready\n" not in lines:
+        proc.kill()
+        fail(f"lcm-spy did not start under xvfb-run: {''.join(lines)}")
+    return proc, reader, lines
+
+
+def stop_spy(spy):
+    proc, reader, lines = spy
+    proc.stdin.close()
+    try:
+        proc.wait(timeout=SPY_START_TIMEOUT_S)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        fail("lcm-spy did not print its table")
+    reader.join()
+    text = "".join(lines)
+    print(text, end="")
+    if proc.returncode != 0:
+        fail(f"SpyProbe exited {proc.returncode}")
+    return text
+
+
+def check_spy(text, decoded, types):
+    """lcm-spy found every type and decoded, live, every channel the recording holds."""
+    found = re.search(r"^Found (\d+) LCM types$", text, re.M)
+    if not found or int(found.group(1)) != len(types):
+        fail(f"lcm-spy found {found and found.group(1)} LCM types, the project has {len(types)}")
+    live = {m[0]: m[1:] for m in re.findall(r"^live (\S+) (\S+) received=(\d+) errors=(\d+) decoded=(\w+)$", text, re.M)}
+    for channel, cls in decoded.items():
+        if channel not in live:
+            fail(f"lcm-spy saw nothing on {channel}")
+        live_cls, received, errors, ok = live[channel]
+        if live_cls != cls or int(received) == 0 or int(errors) != 0 or ok != "true":
+            fail(f"lcm-spy on {channel}: class {live_cls} (log: {cls}), {received} received, {errors} errors, decoded {ok}")
+    print(f"OK: lcm-spy decoded {sorted(decoded)} live")
+
+
 def java_decode(args, log_path, out_dir):
     measurements = os.path.join(out_dir, "java_measurements.csv")
     cmd = [args.java, "-cp", args.classpath, "SpyDecode", log_path, measurements, args.package] + args.types
@@ -119,18 +178,20 @@ def java_decode(args, log_path, out_dir):
         fail("no START in the recording")
     start = dict(kv.split("=", 1) for kv in start_line.group(1).split())
     _, rows = read_csv(measurements)
-    return start, rows, probes
+    decoded = dict(re.findall(r"^decoded (\S+) (\S+) \d+$", result.stdout, re.M))
+    return start, rows, probes, decoded
 
 
 def target_position(start, t_s):
-    """Robot 0's target at t_s from the START's path_t, as Java decoded it (circle or ellipse)."""
+    """Robot 0's target at t_s from the START's path_t as Java decoded it (path_t.lcm's kinds)."""
     kind = int(start["target.kind"])
+    if kind == 0:  # KIND_POLYNOMIAL: sum_j coeff[axis][j] t^j
+        return tuple(sum(c * t_s ** j for j, c in enumerate(axis)) for axis in json.loads(start["target.coeff"]))
+    if kind not in (1, 2):
+        fail(f"the check evaluates on-board paths only, the START has kind {kind}")
     center = json.loads(start["target.center_m"])
     a, b = json.loads(start["target.semi_axis_m"])
-    if kind == 1:  # KIND_CIRCLE: radius in semi_axis_m[0]
-        b = a
-    elif kind != 2:
-        fail(f"the check evaluates circles and ellipses only, the START has kind {kind}")
+    b = a if kind == 1 else b  # KIND_CIRCLE: radius in semi_axis_m[0]
     phi = float(start["target.omega_radps"]) * t_s + float(start["target.phase_rad"])
     rot = float(start["target.rotation_rad"]) if kind == 2 else 0.0
     x, y = a * math.cos(phi), b * math.sin(phi)
@@ -151,6 +212,8 @@ def main():
     p.add_argument("--lcm-url", required=True)
     p.add_argument("--out-dir", required=True)
     p.add_argument("--duration-s", default="3")
+    p.add_argument("--scenario", default="demo")
+    p.add_argument("--xvfb-run", help="also watch the run with lcm-spy's window under this xvfb-run")
     p.add_argument("types", nargs="+")
     args = p.parse_args()
 
@@ -165,14 +228,18 @@ def main():
 
     lockstep = args.mode == "lockstep"
     sim_args = [args.sim, "--firmware", args.firmware, "--lcm-url", args.lcm_url, "--out-dir", sim_dir,
-                "--duration-s", args.duration_s, "--sigma", "0"]
+                "--duration-s", args.duration_s, "--sigma", "0", "--scenario", args.scenario]
     # Lockstep with tau = 0: the sample of period n is the plant's state at the simulator's row n + 1.
     sim_args += ["--delay-s", "0"] if lockstep else ["--realtime"]
     logger = start_logger(args.logger, args.lcm_url, log_path)
+    spy, spy_text = None, ""
     try:
+        spy = start_spy(args) if args.xvfb_run else None  # after the probes: they are not messages
         sim = run(sim_args)
     finally:
         stop_logger(logger)
+        if spy:
+            spy_text = stop_spy(spy)
     if sim.returncode != 0:
         fail(f"tvo_sim exited {sim.returncode}")
     with open(os.path.join(sim_dir, "summary.json")) as f:
@@ -197,7 +264,9 @@ def main():
         if not all(math.isfinite(float(v)) for v in row.values()):
             fail(f"row {i} has a value that is not finite: {row}")
 
-    start, java_rows, probes = java_decode(args, log_path, out)
+    start, java_rows, probes, decoded = java_decode(args, log_path, out)
+    if spy:
+        check_spy(spy_text, decoded, args.types)
     if f"did not decode (skipped): {PROBE_CHANNEL} {probes}" not in conv.stdout:
         fail(f"log2csv did not report the {probes} undecodable probes on {PROBE_CHANNEL}")
     robots = int(start["robot_count"])
@@ -233,6 +302,8 @@ def main():
             for key in header:
                 if key != "heading_rad" and not close(float(row[key]), float(twin[key])):
                     fail(f"t = {row['t_s']}: {key} is {row[key]} from the log, {twin[key]} in the simulator's CSV")
+        if args.scenario != "demo" and not any(float(r["barrier_c"]) > 0.0 for r in rows):
+            fail("the barrier's c(t) is 0 in every row: the telemetry columns were not filled")
     final = max(float(r["error_m"]) for r in rows if r["t_s"] == rows[-1]["t_s"])
     if abs(final - summary["final_error_m"]) > (1e-9 if lockstep else ERROR_TOLERANCE_M):
         fail(f"final error {final} m from the log, {summary['final_error_m']} m in summary.json")
