@@ -198,6 +198,29 @@ def target_position(start, t_s):
     return (center[0] + math.cos(rot) * x - math.sin(rot) * y, center[1] + math.sin(rot) * x + math.cos(rot) * y)
 
 
+def check_through_java(args, log_path, out, rows, reported, spy_text):
+    """The recording as lcm-spy decodes it (and, live, lcm-spy's window) against log2csv's CSV."""
+    start, java_rows, probes, decoded = java_decode(args, log_path, out)
+    if spy_text is not None:
+        check_spy(spy_text, decoded, args.types)
+    if int(reported.group(1)) != probes:
+        fail(f"log2csv reported {reported.group(1)} undecodable probes, Java found {probes}")
+    if len(rows) != len(java_rows):
+        fail(f"log2csv wrote {len(rows)} rows, the log holds {len(java_rows)} robot samples (Java)")
+    period_us, delay_us = int(start["period_us"]), int(start["delay_us"])
+    for row, java in zip(rows, java_rows):
+        t_s = float(row["t_s"])
+        sample_us = round(t_s * 1e6) + delay_us
+        if sample_us % period_us != 0 or abs(t_s * 1e6 - round(t_s * 1e6)) > 1e-3:
+            fail(f"row at t = {t_s} s is not a sample instant (epoch + (n + 1) h - tau)")
+        if not (close(float(row["x_m"]), float(java["x_m"])) and close(float(row["y_m"]), float(java["y_m"]))):
+            fail(f"position at t = {t_s}: CSV ({row['x_m']}, {row['y_m']}), Java ({java['x_m']}, {java['y_m']})")
+        if row["robot"] == "0":
+            tx, ty = target_position(start, t_s)
+            if not (close(float(row["target_x_m"]), tx, 1e-8) and close(float(row["target_y_m"]), ty, 1e-8)):
+                fail(f"reference at t = {t_s}: CSV ({row['target_x_m']}, {row['target_y_m']}), START ({tx}, {ty})")
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--mode", choices=("realtime", "lockstep"), required=True)
@@ -206,16 +229,21 @@ def main():
     p.add_argument("--log2csv", required=True)
     p.add_argument("--plot", required=True)
     p.add_argument("--logger", required=True)
-    p.add_argument("--java", required=True)
-    p.add_argument("--classpath", required=True, help="lcm.jar, the types' jar and SpyDecode's classes")
-    p.add_argument("--package", required=True)
+    # Without Java (TVO_LCM_JAVA off) the checks through lcm-spy's decoding are left out.
+    p.add_argument("--java", help="java, for the checks through lcm-spy's decoding (SpyDecode, SpyProbe)")
+    p.add_argument("--classpath", help="lcm.jar, the types' jar and SpyDecode's classes")
+    p.add_argument("--package")
     p.add_argument("--lcm-url", required=True)
     p.add_argument("--out-dir", required=True)
     p.add_argument("--duration-s", default="3")
     p.add_argument("--scenario", default="demo")
     p.add_argument("--xvfb-run", help="also watch the run with lcm-spy's window under this xvfb-run")
-    p.add_argument("types", nargs="+")
+    p.add_argument("types", nargs="*")
     args = p.parse_args()
+    if args.java and not (args.classpath and args.package and args.types):
+        p.error("--java needs --classpath, --package and the types")
+    if args.xvfb_run and not args.java:
+        p.error("--xvfb-run needs --java")
 
     out = os.path.abspath(args.out_dir)
     sim_dir, conv_dir = os.path.join(out, "sim"), os.path.join(out, "log2csv")
@@ -264,33 +292,24 @@ def main():
         if not all(math.isfinite(float(v)) for v in row.values()):
             fail(f"row {i} has a value that is not finite: {row}")
 
-    start, java_rows, probes, decoded = java_decode(args, log_path, out)
-    if spy:
-        check_spy(spy_text, decoded, args.types)
-    if f"did not decode (skipped): {PROBE_CHANNEL} {probes}" not in conv.stdout:
-        fail(f"log2csv did not report the {probes} undecodable probes on {PROBE_CHANNEL}")
-    robots = int(start["robot_count"])
+    with open(os.path.join(sim_dir, "scenario.json")) as f:
+        robots = int(json.load(f)["robot_count"])
     steps = int(summary["steps"])
-    if len(rows) != len(java_rows):
-        fail(f"log2csv wrote {len(rows)} rows, the log holds {len(java_rows)} robot samples (Java)")
+    reported = re.search(rf"did not decode \(skipped\): {PROBE_CHANNEL} (\d+)", conv.stdout)
+    if not reported or int(reported.group(1)) == 0:
+        fail(f"log2csv did not report the undecodable probes on {PROBE_CHANNEL}")
+    previous_t = -math.inf
+    for row in rows:
+        if float(row["t_s"]) < previous_t:
+            fail(f"rows out of time order at t = {row['t_s']}")
+        previous_t = float(row["t_s"])
+    if args.java:
+        check_through_java(args, log_path, out, rows, reported, spy_text if spy else None)
+    else:
+        print("lcm-spy's decoding not checked: no --java (TVO_LCM_JAVA off)")
     minimum = robots * steps if lockstep else math.ceil(MIN_RECORDED_FRACTION * robots * steps)
     if not minimum <= len(rows) <= robots * steps:
         fail(f"{len(rows)} rows for a run of {steps} steps and {robots} robots (expected {minimum} .. {robots * steps})")
-
-    period_us, delay_us = int(start["period_us"]), int(start["delay_us"])
-    previous_t = -math.inf
-    for row, java in zip(rows, java_rows):
-        t_s = float(row["t_s"])
-        sample_us = round(t_s * 1e6) + delay_us
-        if sample_us % period_us != 0 or abs(t_s * 1e6 - round(t_s * 1e6)) > 1e-3 or t_s < previous_t:
-            fail(f"row at t = {t_s} s is not a sample instant (epoch + (n + 1) h - tau) in order")
-        previous_t = t_s
-        if not (close(float(row["x_m"]), float(java["x_m"])) and close(float(row["y_m"]), float(java["y_m"]))):
-            fail(f"position at t = {t_s}: CSV ({row['x_m']}, {row['y_m']}), Java ({java['x_m']}, {java['y_m']})")
-        if row["robot"] == "0":
-            tx, ty = target_position(start, t_s)
-            if not (close(float(row["target_x_m"]), tx, 1e-8) and close(float(row["target_y_m"]), ty, 1e-8)):
-                fail(f"reference at t = {t_s}: CSV ({row['target_x_m']}, {row['target_y_m']}), START ({tx}, {ty})")
 
     if lockstep:
         # The simulator's row n + 1 (t = (n + 1) h) is the state our row n sampled, with the same answer.
