@@ -383,7 +383,7 @@ std::string session_list(const std::map<std::int64_t, SessionInfo>& sessions)
 {
     std::ostringstream out;
     for (const auto& [id, info] : sessions) {
-        out << "\n  " << id << ": " << info.measurements << " measurements" << (info.start ? "" : ", no START");
+        out << "\n  " << id << ": " << info.measurements << " measurement messages" << (info.start ? "" : ", no START");
     }
     return out.str();
 }
@@ -488,7 +488,7 @@ int main(int argc, char** argv)
     }
 
     std::cout << "log2csv: session " << session_id << ": " << counts.rows << " rows (" << info.measurements
-              << " measurements) -> " << csv_path << '\n';
+              << " measurement messages) -> " << csv_path << '\n';
     if (!info.start) {
         std::cout << "log2csv: no START of the session in the log: time counts from the first sample and the "
                      "reference is the streamed target where there is one, else nan\n";

@@ -71,8 +71,9 @@ public class SpyDecode {
                     int robots = cls.getField("robot_count").getInt(msg);
                     double[][] position = (double[][]) cls.getField("position_m").get(msg);
                     for (int r = 0; r < robots; r++) {
-                        measurements.println(cls.getField("session_id").getLong(msg) + "," + cls.getField("sequence").getLong(msg)
-                                + "," + r + "," + position[r][0] + "," + position[r][1]);
+                        measurements.println(cls.getField("session_id").getLong(msg) + ","
+                                             + cls.getField("sequence").getLong(msg) + "," + r + ","
+                                             + position[r][0] + "," + position[r][1]);
                     }
                 } else if (cls.getSimpleName().equals("session_t") && !startPrinted
                            && cls.getField("action").getByte(msg) == cls.getField("ACTION_START").getByte(null)) {
