@@ -108,7 +108,14 @@ std::size_t clamp_count(std::int32_t count, std::size_t capacity)
     return count < 0 ? 0 : std::min(static_cast<std::size_t>(count), capacity);
 }
 
+bool has_robots(const tvo_host::Scenario& sc, std::int32_t a, std::int32_t b)
+{
+    const auto valid = [&sc](std::int32_t r) { return r >= 0 && static_cast<std::size_t>(r) < sc.robot_count; };
+    return valid(a) && valid(b) && a != b;
+}
+
 /// The problem a START describes, as a Scenario: what the references and the plot's geometry need.
+/// Entries naming a robot the session does not have are left out (the node refuses such a START).
 tvo_host::Scenario scenario_of(const tvo_lcm::session_t& s)
 {
     tvo_host::Scenario sc;
@@ -124,6 +131,9 @@ tvo_host::Scenario scenario_of(const tvo_lcm::session_t& s)
     }
     for (std::size_t i = 0; i < clamp_count(s.distance_count, tvo_lcm::session_t::MAX_DISTANCE_BOUNDS); ++i) {
         const tvo_lcm::distance_bound_t& w = s.distance[i];
+        if (!has_robots(sc, w.robot_a, w.robot_b)) {
+            continue;
+        }
         sc.distances.push_back({static_cast<std::size_t>(w.robot_a), static_cast<std::size_t>(w.robot_b), w.min_m,
                                 w.min_rate_mps, w.max_m, w.max_rate_mps});
     }
@@ -133,6 +143,9 @@ tvo_host::Scenario scenario_of(const tvo_lcm::session_t& s)
     }
     for (std::size_t i = 0; i < clamp_count(s.offset_count, tvo_lcm::session_t::MAX_OFFSETS); ++i) {
         const tvo_lcm::offset_t& w = s.offset[i];
+        if (!has_robots(sc, w.robot_a, w.robot_b)) {
+            continue;
+        }
         tvo_host::OffsetEquality offset;
         offset.robot_a = static_cast<std::size_t>(w.robot_a);
         offset.robot_b = static_cast<std::size_t>(w.robot_b);

@@ -1,7 +1,8 @@
 // tvo_log2csv on logs written here, message by message, with what a recording of a real robot can hold:
 // two sessions, a measurement the node did not answer, a refusal then a computed answer, a refusal
-// alone, a duplicate measurement, a message that does not decode, a channel of someone else, and a
-// log without the session's START (streamed targets). Plain checks (no framework): exit 0 = pass.
+// alone, a duplicate measurement, a message that does not decode, a channel of someone else, a START
+// and a measurement naming robots that are not there, and a log without the session's START
+// (streamed targets). Plain checks (no framework): exit 0 = pass.
 //
 // Usage: tvo_log2csv_cases TVO_LOG2CSV WORK_DIR
 #include <sys/wait.h>
@@ -171,12 +172,19 @@ void two_sessions(const std::string& program, const std::string& dir)
         LogWriter log(path);
         check(log.good(), "the test log can be written");
         log.put(TVO_CHANNEL_SESSION, start(kSession, 1.0, 2.0));
-        log.put(TVO_CHANNEL_SESSION, start(kOtherSession, 0.0, 0.0));
+        tvo_lcm::session_t other = start(kOtherSession, 0.0, 0.0);
+        other.offset_count = 1;  // names a robot the session lacks: left out (used, it would index past
+                                 // the reference's KKT matrix: silent in Release, an ASan finding)
+        other.offset[0].robot_b = 5;
+        log.put(TVO_CHANNEL_SESSION, other);
         log.raw("SOMEONE_ELSE", {'x'});
         log.put(TVO_CHANNEL_MEASUREMENT, measurement(kSession, 0));
         log.put(TVO_CHANNEL_COMMAND, command(0, 1.0, TVO_OK));
         log.put(TVO_CHANNEL_MEASUREMENT, measurement(kSession, 1));  // never answered
         log.put(TVO_CHANNEL_MEASUREMENT, measurement(kOtherSession, 0));
+        tvo_lcm::measurement_t too_many = measurement(kOtherSession, 1);
+        too_many.robot_count = tvo_lcm::measurement_t::MAX_ROBOTS + 1;
+        log.put(TVO_CHANNEL_MEASUREMENT, too_many);
         log.put(TVO_CHANNEL_MEASUREMENT, measurement(kSession, 2));
         log.put(TVO_CHANNEL_COMMAND, command(2, 9.0, kRefusal));
         log.put(TVO_CHANNEL_COMMAND, command(2, 3.0, TVO_OK));     // the computed answer wins
@@ -187,7 +195,7 @@ void two_sessions(const std::string& program, const std::string& dir)
     }
     const Run several = log2csv(program, "'" + path + "' -o '" + dir + "/none.csv'", dir);
     check(several.exit_code == 2 && contains(several.output, "--session") &&
-              contains(several.output, "\n  7: 5 measurement messages") && contains(several.output, "\n  8: 1"),
+              contains(several.output, "\n  7: 5 measurement messages") && contains(several.output, "\n  8: 2"),
           "two sessions without --session: exit 2, both listed with their measurement messages");
 
     const std::string csv = dir + "/session7.csv";
@@ -216,7 +224,9 @@ void two_sessions(const std::string& program, const std::string& dir)
           "unanswered, duplicate, undecodable and foreign messages are counted and reported");
 
     const Run other = log2csv(program, "'" + path + "' --session 8 -o '" + dir + "/session8.csv'", dir);
-    check(other.exit_code == 0 && read_csv(dir + "/session8.csv").size() == 1, "--session 8 picks the other one");
+    check(other.exit_code == 0 && read_csv(dir + "/session8.csv").size() == 1 &&
+              contains(other.output, "1 measurements with a robot count out of range"),
+          "--session 8 picks the other one (its bad offset left out, its bad robot count skipped)");
     const Run missing = log2csv(program, "'" + path + "' --session 9", dir);
     check(missing.exit_code == 2 && contains(missing.output, "--session 9"), "an absent session: exit 2, named");
 }
