@@ -212,9 +212,9 @@ void two_sessions(const std::string& program, const std::string& dir)
               std::abs(num(rows[2], "error_m") - std::sqrt(5.0)) < 1e-8,
           "pose as measured, reference from the START's path, error between them");
     check(num(rows[0], "cmd_speed_mps") == 1.0 && num(rows[1], "cmd_speed_mps") == 1.0 &&
-              num(rows[1], "status") == TVO_OK,
+              num(rows[1], "status") == static_cast<double>(TVO_OK),
           "a measurement without an answer keeps the previous command");
-    check(num(rows[2], "cmd_speed_mps") == 3.0 && num(rows[2], "status") == TVO_OK,
+    check(num(rows[2], "cmd_speed_mps") == 3.0 && num(rows[2], "status") == static_cast<double>(TVO_OK),
           "a computed answer wins over a refusal");
     check(num(rows[3], "cmd_speed_mps") == 4.0 && num(rows[3], "status") == kRefusal,
           "a refusal alone is shown with its status");
