@@ -15,9 +15,6 @@
 #include "board.h"
 #include "tvo/chain_controller.h"
 
-#ifndef BENCH_STEPS
-#define BENCH_STEPS 400u /* steps per problem; a smoke build sets fewer (TVO_BENCH_STEPS) */
-#endif
 #define BENCH_PI 3.14159265358979f
 
 #if defined(TVO_BENCH_HOST)

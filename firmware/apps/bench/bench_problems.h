@@ -9,6 +9,7 @@
  * A loop runs the unicycle controller against an exact-arc plant in lockstep: bench_loop_advance
  * moves the plant to period n's sampling instant and then to its apply instant, filling meas and
  * apply_tick; the caller then steps the controller (so a measurement brackets only the step).
+ * BENCH_STEPS (steps per problem, CMake's TVO_BENCH_STEPS) comes with the library.
  */
 #ifndef TVO_BENCH_PROBLEMS_H
 #define TVO_BENCH_PROBLEMS_H
