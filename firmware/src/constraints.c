@@ -57,10 +57,12 @@ static tvo_real_t distance_sign(const tvo_distance_term_t *self)
     return (self->kind == TVO_DISTANCE_MAX) ? TVO_R(1.0) : TVO_R(-1.0);
 }
 
-tvo_status_t tvo_distance_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
-                                       uint8_t order, tvo_jet_t *grad)
+/* The distance bound's gradient jets, and with hessian its closed-form Hessian
+ * H += (dw/df) grad f grad f^T + w hess f, grad f = 2 sign (D, -D), hess f = 2 sign [I -I; -I I]. */
+static tvo_status_t distance_sum(const tvo_distance_term_t *self, const tvo_jet_t *z, uint8_t dim,
+                                 const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
+                                 tvo_real_t (*hessian)[TVO_MAX_Z_DIM])
 {
-    const tvo_distance_term_t *self = (const tvo_distance_term_t *)term;
     if (self == NULL || z == NULL || t == NULL || grad == NULL) {
         return TVO_ERR_NULL;
     }
@@ -83,8 +85,13 @@ tvo_status_t tvo_distance_gradient_jet(const void *term, const tvo_jet_t *z, uin
         tvo_jet_mul(&diff[axis], &diff[axis], order, &square);
         tvo_jet_axpy(sign, &square, order, &f);
     }
+    tvo_barrier_schedule_jet_t schedule;
+    tvo_status_t st = tvo_barrier_schedule_jet(self->barrier, t, order, &schedule);
     tvo_jet_t w;
-    const tvo_status_t st = tvo_barrier_weight_jet(self->barrier, &f, t, order, &w);
+    tvo_real_t dw_df = TVO_R(0.0);
+    if (st == TVO_OK) {
+        st = tvo_barrier_weight_on_schedule(self->barrier, &schedule, &f, order, &w, hessian != NULL ? &dw_df : NULL);
+    }
     if (st != TVO_OK) {
         return st;
     }
@@ -96,7 +103,38 @@ tvo_status_t tvo_distance_gradient_jet(const void *term, const tvo_jet_t *z, uin
         tvo_jet_scale(&df, TVO_R(-1.0), order, &df);
         add_weighted(grad, (uint8_t)(self->offset_b + axis), &w, &df, order);
     }
+    if (hessian != NULL) {
+        const uint8_t index[4] = {self->offset_a, (uint8_t)(self->offset_a + 1u), self->offset_b,
+                                  (uint8_t)(self->offset_b + 1u)};
+        const tvo_real_t d0 = TVO_R(2.0) * sign * diff[0].c[0];
+        const tvo_real_t d1 = TVO_R(2.0) * sign * diff[1].c[0];
+        const tvo_real_t df[4] = {d0, d1, -d0, -d1};
+        const tvo_real_t curvature = TVO_R(2.0) * sign * w.c[0];
+        for (uint8_t i = 0; i < 4u; ++i) {
+            for (uint8_t j = 0; j < 4u; ++j) {
+                /* hess f pairs each axis with itself: + within a robot, - across the two. */
+                const tvo_real_t hess_f = ((i & 1u) != (j & 1u)) ? TVO_R(0.0)
+                                          : ((i < 2u) == (j < 2u)) ? curvature : -curvature;
+                hessian[index[i]][index[j]] += dw_df * df[i] * df[j] + hess_f;
+            }
+        }
+    }
     return TVO_OK;
+}
+
+tvo_status_t tvo_distance_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
+                                       uint8_t order, tvo_jet_t *grad)
+{
+    return distance_sum((const tvo_distance_term_t *)term, z, dim, t, order, grad, NULL);
+}
+
+tvo_status_t tvo_distance_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
+                                           uint8_t order, tvo_jet_t *grad, tvo_real_t (*hessian)[TVO_MAX_Z_DIM])
+{
+    if (hessian == NULL) {
+        return TVO_ERR_NULL;
+    }
+    return distance_sum((const tvo_distance_term_t *)term, z, dim, t, order, grad, hessian);
 }
 
 tvo_status_t tvo_distance_constraint_max(const void *term, const tvo_real_t *y, uint8_t primal_dim, tvo_real_t t_s,
@@ -145,10 +183,11 @@ tvo_status_t tvo_halfspace_term_init(tvo_halfspace_term_t *term, const tvo_barri
     return TVO_OK;
 }
 
-tvo_status_t tvo_halfspace_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
-                                        uint8_t order, tvo_jet_t *grad)
+/* The half-space's gradient jets, and with hessian its closed form H += (dw/df) a a^T (f is affine). */
+static tvo_status_t halfspace_sum(const tvo_halfspace_term_t *self, const tvo_jet_t *z, uint8_t dim,
+                                  const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
+                                  tvo_real_t (*hessian)[TVO_MAX_Z_DIM])
 {
-    const tvo_halfspace_term_t *self = (const tvo_halfspace_term_t *)term;
     if (self == NULL || z == NULL || t == NULL || grad == NULL) {
         return TVO_ERR_NULL;
     }
@@ -164,15 +203,43 @@ tvo_status_t tvo_halfspace_gradient_jet(const void *term, const tvo_jet_t *z, ui
         tvo_jet_mul(&normal[axis], &z[self->offset + axis], order, &product);
         tvo_jet_add(&f, &product, order, &f);
     }
+    tvo_barrier_schedule_jet_t schedule;
+    tvo_status_t st = tvo_barrier_schedule_jet(self->barrier, t, order, &schedule);
     tvo_jet_t w;
-    const tvo_status_t st = tvo_barrier_weight_jet(self->barrier, &f, t, order, &w);
+    tvo_real_t dw_df = TVO_R(0.0);
+    if (st == TVO_OK) {
+        st = tvo_barrier_weight_on_schedule(self->barrier, &schedule, &f, order, &w, hessian != NULL ? &dw_df : NULL);
+    }
     if (st != TVO_OK) {
         return st;
     }
     for (uint8_t axis = 0; axis < 2u; ++axis) {
         add_weighted(grad, (uint8_t)(self->offset + axis), &w, &normal[axis], order);
     }
+    if (hessian != NULL) {
+        for (uint8_t i = 0; i < 2u; ++i) {
+            for (uint8_t j = 0; j < 2u; ++j) {
+                hessian[self->offset + i][self->offset + j] += dw_df * normal[i].c[0] * normal[j].c[0];
+            }
+        }
+    }
     return TVO_OK;
+}
+
+tvo_status_t tvo_halfspace_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
+                                        uint8_t order, tvo_jet_t *grad)
+{
+    return halfspace_sum((const tvo_halfspace_term_t *)term, z, dim, t, order, grad, NULL);
+}
+
+tvo_status_t tvo_halfspace_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim,
+                                            const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
+                                            tvo_real_t (*hessian)[TVO_MAX_Z_DIM])
+{
+    if (hessian == NULL) {
+        return TVO_ERR_NULL;
+    }
+    return halfspace_sum((const tvo_halfspace_term_t *)term, z, dim, t, order, grad, hessian);
 }
 
 tvo_status_t tvo_halfspace_constraint_max(const void *term, const tvo_real_t *y, uint8_t primal_dim, tvo_real_t t_s,
@@ -268,38 +335,69 @@ static tvo_status_t free_space_plane(const tvo_free_space_term_t *self, uint8_t 
     return TVO_OK;
 }
 
-tvo_status_t tvo_free_space_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
-                                         uint8_t order, tvo_jet_t *grad)
+/* The free space's gradient jets, and with hessian its closed form H += sum_i (dw_i/df) a_i a_i^T
+ * (the planes are frozen at y_c: affine in y). The schedules are shared by every plane. */
+static tvo_status_t free_space_sum(const tvo_free_space_term_t *self, const tvo_jet_t *z, uint8_t dim,
+                                   const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
+                                   tvo_real_t (*hessian)[TVO_MAX_Z_DIM])
 {
-    const tvo_free_space_term_t *self = (const tvo_free_space_term_t *)term;
     if (self == NULL || z == NULL || t == NULL || grad == NULL) {
         return TVO_ERR_NULL;
     }
     if ((unsigned)self->offset + 2u > dim) {
         return TVO_ERR_DIMENSION;
     }
+    tvo_barrier_schedule_jet_t schedule;
+    tvo_status_t st = tvo_barrier_schedule_jet(self->barrier, t, order, &schedule);
+    if (st != TVO_OK) {
+        return st;
+    }
     /* y_c frozen at the current output: the planes do not move along the jet (see the header). */
-    const tvo_real_t y_c[2] = {z[self->offset].c[0], z[self->offset + 1u].c[0]};
+    const uint8_t o = self->offset;
+    const tvo_real_t y_c[2] = {z[o].c[0], z[o + 1u].c[0]};
     for (uint8_t i = 0; i < self->obstacle_count && i < TVO_MAX_OBSTACLES; ++i) {
         tvo_real_t normal[2];
         tvo_real_t bound;
-        tvo_status_t st = free_space_plane(self, i, y_c, normal, &bound);
+        st = free_space_plane(self, i, y_c, normal, &bound);
         if (st != TVO_OK) {
             return st;
         }
         tvo_jet_t f;
         tvo_jet_constant(-bound, &f);
-        tvo_jet_axpy(normal[0], &z[self->offset], order, &f);
-        tvo_jet_axpy(normal[1], &z[self->offset + 1u], order, &f);
+        tvo_jet_axpy(normal[0], &z[o], order, &f);
+        tvo_jet_axpy(normal[1], &z[o + 1u], order, &f);
         tvo_jet_t w;
-        st = tvo_barrier_weight_jet(self->barrier, &f, t, order, &w);
+        tvo_real_t dw_df = TVO_R(0.0);
+        st = tvo_barrier_weight_on_schedule(self->barrier, &schedule, &f, order, &w, hessian != NULL ? &dw_df : NULL);
         if (st != TVO_OK) {
             return st;
         }
-        tvo_jet_axpy(normal[0], &w, order, &grad[self->offset]);
-        tvo_jet_axpy(normal[1], &w, order, &grad[self->offset + 1u]);
+        tvo_jet_axpy(normal[0], &w, order, &grad[o]);
+        tvo_jet_axpy(normal[1], &w, order, &grad[o + 1u]);
+        if (hessian != NULL) {
+            hessian[o][o] += dw_df * normal[0] * normal[0];
+            hessian[o][o + 1u] += dw_df * normal[0] * normal[1];
+            hessian[o + 1u][o] += dw_df * normal[1] * normal[0];
+            hessian[o + 1u][o + 1u] += dw_df * normal[1] * normal[1];
+        }
     }
     return TVO_OK;
+}
+
+tvo_status_t tvo_free_space_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
+                                         uint8_t order, tvo_jet_t *grad)
+{
+    return free_space_sum((const tvo_free_space_term_t *)term, z, dim, t, order, grad, NULL);
+}
+
+tvo_status_t tvo_free_space_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim,
+                                             const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
+                                             tvo_real_t (*hessian)[TVO_MAX_Z_DIM])
+{
+    if (hessian == NULL) {
+        return TVO_ERR_NULL;
+    }
+    return free_space_sum((const tvo_free_space_term_t *)term, z, dim, t, order, grad, hessian);
 }
 
 tvo_status_t tvo_free_space_constraint_max(const void *term, const tvo_real_t *y, uint8_t primal_dim, tvo_real_t t_s,

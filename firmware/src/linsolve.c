@@ -13,53 +13,54 @@
  * make the soft directions look singular (a floor relative to the largest diagonal would). */
 #define AT(a, stride, i, j) ((a)[(size_t)(i) * (stride) + (j)])
 
-static int cholesky_factor(tvo_real_t *a, uint8_t stride, uint8_t n)
+static int cholesky_factor(tvo_real_t *a, unsigned stride, unsigned n)
 {
-    for (uint8_t j = 0; j < n; ++j) {
+    for (unsigned j = 0; j < n; ++j) {
         const tvo_real_t diagonal = AT(a, stride, j, j);
         tvo_real_t d = diagonal;
-        for (uint8_t k = 0; k < j; ++k) {
+        for (unsigned k = 0; k < j; ++k) {
             d -= AT(a, stride, j, k) * AT(a, stride, j, k);
         }
         if (!(diagonal > TVO_R(0.0)) || !(d > TVO_R(64.0) * TVO_EPSILON * diagonal)) {
             return 0;
         }
         const tvo_real_t l_jj = TVO_SQRT(d);
+        const tvo_real_t inv_l_jj = TVO_R(1.0) / l_jj;
         AT(a, stride, j, j) = l_jj;
-        for (uint8_t i = (uint8_t)(j + 1u); i < n; ++i) {
+        for (unsigned i = j + 1u; i < n; ++i) {
             tvo_real_t s = AT(a, stride, i, j);
-            for (uint8_t k = 0; k < j; ++k) {
+            for (unsigned k = 0; k < j; ++k) {
                 s -= AT(a, stride, i, k) * AT(a, stride, j, k);
             }
-            AT(a, stride, i, j) = s / l_jj;
+            AT(a, stride, i, j) = s * inv_l_jj;
         }
     }
     return 1;
 }
 
 /* x = (L L^T)^-1 b with the factor in the lower triangle; x may alias b. */
-static void cholesky_substitute(const tvo_real_t *l, uint8_t stride, uint8_t n, const tvo_real_t *b, tvo_real_t *x)
+static void cholesky_substitute(const tvo_real_t *l, unsigned stride, unsigned n, const tvo_real_t *b, tvo_real_t *x)
 {
-    for (uint8_t i = 0; i < n; ++i) {
+    for (unsigned i = 0; i < n; ++i) {
         tvo_real_t s = b[i];
-        for (uint8_t k = 0; k < i; ++k) {
+        for (unsigned k = 0; k < i; ++k) {
             s -= AT(l, stride, i, k) * x[k];
         }
         x[i] = s / AT(l, stride, i, i);
     }
-    for (uint8_t ii = n; ii > 0u; --ii) {
-        const uint8_t i = (uint8_t)(ii - 1u);
+    for (unsigned ii = n; ii > 0u; --ii) {
+        const unsigned i = ii - 1u;
         tvo_real_t s = x[i];
-        for (uint8_t k = (uint8_t)(i + 1u); k < n; ++k) {
+        for (unsigned k = i + 1u; k < n; ++k) {
             s -= AT(l, stride, k, i) * x[k];
         }
         x[i] = s / AT(l, stride, i, i);
     }
 }
 
-static int all_finite(const tvo_real_t *v, uint8_t n)
+static int all_finite(const tvo_real_t *v, unsigned n)
 {
-    for (uint8_t i = 0; i < n; ++i) {
+    for (unsigned i = 0; i < n; ++i) {
         if (!isfinite(v[i])) {
             return 0;
         }
@@ -95,11 +96,9 @@ static tvo_status_t regularized_factor(tvo_matrix_t a, uint8_t n, tvo_real_t *sh
     tvo_real_t diag[TVO_MAX_Z_DIM];
     for (uint8_t i = 0; i < n; ++i) {
         diag[i] = a[i][i];
-        for (uint8_t j = 0; j < i; ++j) {
-            a[i][j] = a[j][i];
-        }
     }
     *shift = TVO_R(0.0);
+    /* The factor reads the lower triangle: the upper one (symmetric input) stays as the copy. */
     if (cholesky_factor(&a[0][0], TVO_MAX_Z_DIM, n)) {
         return TVO_OK; /* the usual case: positive definite, no shift */
     }

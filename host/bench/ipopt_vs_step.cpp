@@ -306,10 +306,10 @@ int main(int argc, char** argv)
             }
 
             // The problem frozen at the apply instant, where the plant now is.
-            const tvo_time_jet_t at = {bench_loop_apply_time_s(loop.get()), TVO_R(1.0), loop->apply_tick,
-                                       loop->cfg.tick_hz};
+            tvo_time_jet_t at;
             tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2];
-            if (tvo_target_derivatives(tvo_problem_target(&loop->problem, 0u), &at, 0u, deriv) != TVO_OK) {
+            if (tvo_time_jet_at_ticks(loop->apply_tick, loop->cfg.tick_hz, TVO_R(1.0), &at) != TVO_OK ||
+                tvo_target_derivatives(tvo_problem_target(&loop->problem, 0u), &at, 0u, deriv) != TVO_OK) {
                 std::fprintf(stderr, "ipopt_bench: the target failed at period %u\n", unsigned(n));
                 return 1;
             }

@@ -25,7 +25,7 @@ const char *bench_problem_name(bench_unicycle_problem_t which)
 static void unicycle_desc(tvo_problem_desc_t *desc, tvo_pose_t *start)
 {
     const tvo_target_ellipse_t ellipse = {{TVO_R(0.0), TVO_R(0.0)}, {TVO_R(3.0), TVO_R(1.5)},
-                                          2.0f * BENCH_PI / 10.0f, TVO_R(0.0), TVO_R(0.0)};
+                                          2.0f * BENCH_PI / 10.0f, TVO_R(0.0), TVO_R(0.0), 0u};
     (void)tvo_target_init_ellipse(&desc->target[0], &ellipse);
     const tvo_pose_t pose = {{TVO_R(-1.0), TVO_R(-2.0)}, TVO_R(0.0)};
     start[0] = pose;
@@ -159,9 +159,4 @@ tvo_status_t bench_loop_advance(bench_loop_t *loop)
     loop->apply_tick = (n + 1u) * period_ticks;
     loop->period = n + 1u;
     return st;
-}
-
-tvo_real_t bench_loop_apply_time_s(const bench_loop_t *loop)
-{
-    return (loop == NULL) ? TVO_R(0.0) : tvo_ticks_to_seconds(loop->apply_tick, loop->cfg.tick_hz);
 }

@@ -52,9 +52,6 @@ tvo_status_t bench_loop_init(bench_loop_t *loop, bench_unicycle_problem_t which)
 /** Moves the plant through period n under the last command and fills meas and apply_tick. */
 tvo_status_t bench_loop_advance(bench_loop_t *loop);
 
-/** Objective time of the apply instant of the period last advanced, in seconds. */
-tvo_real_t bench_loop_apply_time_s(const bench_loop_t *loop);
-
 #ifdef __cplusplus
 }
 #endif

@@ -11,7 +11,7 @@
 
 #include <stdint.h>
 
-#include "semihosting_console.h"
+#include "../common/semihosting_console.h" /* by path: a user's build needs no extra include folder */
 
 /** Instructions per TIMER0 count under -icount shift=0: NUM / DEN = 62.5. */
 #define TVO_BOARD_INSTRUCTIONS_PER_TICK_NUM 125u

@@ -11,7 +11,7 @@
 
 #include <stdint.h>
 
-#include "semihosting_console.h"
+#include "../common/semihosting_console.h" /* by path: a user's build needs no extra include folder */
 
 /** Instructions per SysTick count under -icount shift=0 on mps2-an386: NUM / DEN. */
 #define TVO_BOARD_INSTRUCTIONS_PER_TICK_NUM 40u
