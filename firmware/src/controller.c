@@ -316,10 +316,10 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
 
     /* State the law sees: at the sample (no compensation), the application instant, or mid-interval. */
     tvo_output_derivs_t y;
-    tvo_real_t heading[TVO_MAX_ROBOTS];
+    tvo_real_t heading[TVO_MAX_ROBOTS] = {TVO_R(0.0)};
     tvo_real_t heading_cs[TVO_MAX_ROBOTS][2];    /* cos, sin of heading[]: trigonometry once per robot */
-    tvo_real_t speed[TVO_MAX_ROBOTS];            /* dynamic-extension speed where the law is evaluated */
-    tvo_real_t speed_state[TVO_MAX_ROBOTS];      /* the step's copy of the extension's state */
+    tvo_real_t speed[TVO_MAX_ROBOTS] = {TVO_R(0.0)}; /* dynamic-extension speed where the law is evaluated */
+    tvo_real_t speed_state[TVO_MAX_ROBOTS] = {TVO_R(0.0)}; /* the step's copy of the extension's state */
     int speed_contradicted = 0;
     for (uint8_t r = 0; r < n && st == TVO_OK; ++r) {
         speed_state[r] = ctl->speed_state_mps[r];
@@ -387,8 +387,8 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     if (st == TVO_OK && report.regularization > TVO_R(0.0)) {
         flags |= TVO_FLAG_REGULARIZED;
     }
-    tvo_real_t speed_next[TVO_MAX_ROBOTS];
-    tvo_real_t accel[TVO_MAX_ROBOTS];
+    tvo_real_t speed_next[TVO_MAX_ROBOTS] = {TVO_R(0.0)};
+    tvo_real_t accel[TVO_MAX_ROBOTS] = {TVO_R(0.0)};
     for (uint8_t r = 0; r < n && st == TVO_OK; ++r) {
         uint8_t low_speed = 0;
         tvo_real_t turn_rate;
