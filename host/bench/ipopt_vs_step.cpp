@@ -22,7 +22,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
+#include <cstdlib>
 #include <memory>
 #include <string>
 #include <vector>
@@ -87,7 +87,7 @@ public:
         return true;
     }
 
-    bool get_starting_point(Index, bool init_x, Number* x, bool init_z, Number* z_l, Number* z_u, Index m,
+    bool get_starting_point(Index, bool init_x, Number* x, bool init_z, Number* z_l, Number* z_u, Index,
                             bool init_lambda, Number* lambda) override
     {
         if (init_x) {
@@ -99,7 +99,6 @@ public:
         }
         if (init_lambda) {
             std::copy(lambda_.begin(), lambda_.end(), lambda);
-            (void)m;
         }
         return true;
     }
