@@ -61,7 +61,7 @@ static tvo_real_t distance_sign(const tvo_distance_term_t *self)
  * H += (dw/df) grad f grad f^T + w hess f, grad f = 2 sign (D, -D), hess f = 2 sign [I -I; -I I]. */
 static tvo_status_t distance_sum(const tvo_distance_term_t *self, const tvo_jet_t *z, uint8_t dim,
                                  const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
-                                 tvo_real_t (*hessian)[TVO_MAX_Z_DIM])
+                                 tvo_hessian_t *hessian)
 {
     if (self == NULL || z == NULL || t == NULL || grad == NULL) {
         return TVO_ERR_NULL;
@@ -95,29 +95,50 @@ static tvo_status_t distance_sum(const tvo_distance_term_t *self, const tvo_jet_
     if (st != TVO_OK) {
         return st;
     }
-    for (uint8_t axis = 0; axis < 2u; ++axis) {
-        /* grad_{y_a} f = 2 sign D, grad_{y_b} f = -2 sign D. */
-        tvo_jet_t df;
-        tvo_jet_scale(&diff[axis], TVO_R(2.0) * sign, order, &df);
-        add_weighted(grad, (uint8_t)(self->offset_a + axis), &w, &df, order);
-        tvo_jet_scale(&df, TVO_R(-1.0), order, &df);
-        add_weighted(grad, (uint8_t)(self->offset_b + axis), &w, &df, order);
-    }
-    if (hessian != NULL) {
-        const uint8_t index[4] = {self->offset_a, (uint8_t)(self->offset_a + 1u), self->offset_b,
-                                  (uint8_t)(self->offset_b + 1u)};
-        const tvo_real_t d0 = TVO_R(2.0) * sign * diff[0].c[0];
-        const tvo_real_t d1 = TVO_R(2.0) * sign * diff[1].c[0];
-        const tvo_real_t df[4] = {d0, d1, -d0, -d1};
-        const tvo_real_t curvature = TVO_R(2.0) * sign * w.c[0];
-        for (uint8_t i = 0; i < 4u; ++i) {
-            for (uint8_t j = 0; j < 4u; ++j) {
-                /* hess f pairs each axis with itself: + within a robot, - across the two. */
-                const tvo_real_t hess_f = ((i & 1u) != (j & 1u)) ? TVO_R(0.0)
-                                          : ((i < 2u) == (j < 2u)) ? curvature : -curvature;
-                hessian[index[i]][index[j]] += dw_df * df[i] * df[j] + hess_f;
-            }
+    if (hessian == NULL) {
+        for (uint8_t axis = 0; axis < 2u; ++axis) {
+            /* grad_{y_a} f = 2 sign D, grad_{y_b} f = -2 sign D. */
+            tvo_jet_t df;
+            tvo_jet_scale(&diff[axis], TVO_R(2.0) * sign, order, &df);
+            add_weighted(grad, (uint8_t)(self->offset_a + axis), &w, &df, order);
+            tvo_jet_scale(&df, TVO_R(-1.0), order, &df);
+            add_weighted(grad, (uint8_t)(self->offset_b + axis), &w, &df, order);
         }
+        return TVO_OK;
+    }
+    /* Closed form: everything lives on the relative coordinates y_a - y_b. With v(e) = (e, -e) and
+     * D = |D| d at tau = 0, the Hessian is (4 |D|^2 dw/df + 2 sign w) v(d) v(d)^T
+     * + 2 sign w v(d_perp) v(d_perp)^T, and the gradient 2 sign w(tau) (alpha(tau) v(d) +
+     * beta(tau) v(d_perp)) with alpha = d . D(tau), beta = d_perp . D(tau): two parts along
+     * orthogonal directions, which a stiff maximum bound keeps apart (tvo/linsolve.h). */
+    const tvo_real_t norm_sq = diff[0].c[0] * diff[0].c[0] + diff[1].c[0] * diff[1].c[0];
+    tvo_real_t along[2] = {TVO_R(1.0), TVO_R(0.0)};
+    if (norm_sq > TVO_R(0.0)) {
+        const tvo_real_t inv_norm = TVO_R(1.0) / TVO_SQRT(norm_sq);
+        along[0] = diff[0].c[0] * inv_norm;
+        along[1] = diff[1].c[0] * inv_norm;
+    }
+    const tvo_real_t curvature = TVO_R(2.0) * sign * w.c[0];
+    tvo_rank_one_t part;
+    part.count = 4u;
+    part.index[0] = self->offset_a;
+    part.index[1] = (uint8_t)(self->offset_a + 1u);
+    part.index[2] = self->offset_b;
+    part.index[3] = (uint8_t)(self->offset_b + 1u);
+    for (unsigned k = 0; k < 2u; ++k) {
+        /* k = 0: along d; k = 1: across, d_perp = (-d_y, d_x). */
+        const tvo_real_t e[2] = {k == 0u ? along[0] : -along[1], k == 0u ? along[1] : along[0]};
+        part.value[0] = e[0];
+        part.value[1] = e[1];
+        part.value[2] = -e[0];
+        part.value[3] = -e[1];
+        part.weight = (k == 0u ? TVO_R(4.0) * norm_sq * dw_df : TVO_R(0.0)) + curvature;
+        tvo_jet_t coordinate;
+        tvo_jet_scale(&diff[0], e[0], order, &coordinate);
+        tvo_jet_axpy(e[1], &diff[1], order, &coordinate);
+        tvo_jet_mul(&w, &coordinate, order, &part.gradient);
+        tvo_jet_scale(&part.gradient, TVO_R(2.0) * sign, order, &part.gradient);
+        tvo_hessian_add_part(hessian, &part, grad, order);
     }
     return TVO_OK;
 }
@@ -129,7 +150,7 @@ tvo_status_t tvo_distance_gradient_jet(const void *term, const tvo_jet_t *z, uin
 }
 
 tvo_status_t tvo_distance_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
-                                           uint8_t order, tvo_jet_t *grad, tvo_real_t (*hessian)[TVO_MAX_Z_DIM])
+                                           uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian)
 {
     if (hessian == NULL) {
         return TVO_ERR_NULL;
@@ -186,7 +207,7 @@ tvo_status_t tvo_halfspace_term_init(tvo_halfspace_term_t *term, const tvo_barri
 /* The half-space's gradient jets, and with hessian its closed form H += (dw/df) a a^T (f is affine). */
 static tvo_status_t halfspace_sum(const tvo_halfspace_term_t *self, const tvo_jet_t *z, uint8_t dim,
                                   const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
-                                  tvo_real_t (*hessian)[TVO_MAX_Z_DIM])
+                                  tvo_hessian_t *hessian)
 {
     if (self == NULL || z == NULL || t == NULL || grad == NULL) {
         return TVO_ERR_NULL;
@@ -213,16 +234,28 @@ static tvo_status_t halfspace_sum(const tvo_halfspace_term_t *self, const tvo_je
     if (st != TVO_OK) {
         return st;
     }
-    for (uint8_t axis = 0; axis < 2u; ++axis) {
-        add_weighted(grad, (uint8_t)(self->offset + axis), &w, &normal[axis], order);
-    }
-    if (hessian != NULL) {
-        for (uint8_t i = 0; i < 2u; ++i) {
-            for (uint8_t j = 0; j < 2u; ++j) {
-                hessian[self->offset + i][self->offset + j] += dw_df * normal[i].c[0] * normal[j].c[0];
-            }
+    if (hessian == NULL) {
+        for (uint8_t axis = 0; axis < 2u; ++axis) {
+            add_weighted(grad, (uint8_t)(self->offset + axis), &w, &normal[axis], order);
         }
+        return TVO_OK;
     }
+    /* Closed form: the part along a = a(t) carries curvature dw/df a a^T and gradient w(tau) a; the
+     * normal's own motion, w(tau) (a(tau) - a), goes into the gradient as it is. */
+    tvo_rank_one_t part;
+    part.weight = dw_df;
+    part.count = 2u;
+    part.index[0] = self->offset;
+    part.index[1] = (uint8_t)(self->offset + 1u);
+    part.value[0] = normal[0].c[0];
+    part.value[1] = normal[1].c[0];
+    part.gradient = w;
+    for (uint8_t axis = 0; axis < 2u; ++axis) {
+        tvo_jet_t motion = normal[axis];
+        motion.c[0] = TVO_R(0.0);
+        add_weighted(grad, (uint8_t)(self->offset + axis), &w, &motion, order);
+    }
+    tvo_hessian_add_part(hessian, &part, grad, order);
     return TVO_OK;
 }
 
@@ -234,7 +267,7 @@ tvo_status_t tvo_halfspace_gradient_jet(const void *term, const tvo_jet_t *z, ui
 
 tvo_status_t tvo_halfspace_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim,
                                             const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
-                                            tvo_real_t (*hessian)[TVO_MAX_Z_DIM])
+                                            tvo_hessian_t *hessian)
 {
     if (hessian == NULL) {
         return TVO_ERR_NULL;
@@ -339,7 +372,7 @@ static tvo_status_t free_space_plane(const tvo_free_space_term_t *self, uint8_t 
  * (the planes are frozen at y_c: affine in y). The schedules are shared by every plane. */
 static tvo_status_t free_space_sum(const tvo_free_space_term_t *self, const tvo_jet_t *z, uint8_t dim,
                                    const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
-                                   tvo_real_t (*hessian)[TVO_MAX_Z_DIM])
+                                   tvo_hessian_t *hessian)
 {
     if (self == NULL || z == NULL || t == NULL || grad == NULL) {
         return TVO_ERR_NULL;
@@ -372,14 +405,21 @@ static tvo_status_t free_space_sum(const tvo_free_space_term_t *self, const tvo_
         if (st != TVO_OK) {
             return st;
         }
-        tvo_jet_axpy(normal[0], &w, order, &grad[o]);
-        tvo_jet_axpy(normal[1], &w, order, &grad[o + 1u]);
-        if (hessian != NULL) {
-            hessian[o][o] += dw_df * normal[0] * normal[0];
-            hessian[o][o + 1u] += dw_df * normal[0] * normal[1];
-            hessian[o + 1u][o] += dw_df * normal[1] * normal[0];
-            hessian[o + 1u][o + 1u] += dw_df * normal[1] * normal[1];
+        if (hessian == NULL) {
+            tvo_jet_axpy(normal[0], &w, order, &grad[o]);
+            tvo_jet_axpy(normal[1], &w, order, &grad[o + 1u]);
+            continue;
         }
+        /* Closed form: the plane's part, curvature dw/df n n^T and gradient w(tau) n. */
+        tvo_rank_one_t part;
+        part.weight = dw_df;
+        part.gradient = w;
+        part.count = 2u;
+        part.index[0] = o;
+        part.index[1] = (uint8_t)(o + 1u);
+        part.value[0] = normal[0];
+        part.value[1] = normal[1];
+        tvo_hessian_add_part(hessian, &part, grad, order);
     }
     return TVO_OK;
 }
@@ -392,7 +432,7 @@ tvo_status_t tvo_free_space_gradient_jet(const void *term, const tvo_jet_t *z, u
 
 tvo_status_t tvo_free_space_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim,
                                              const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
-                                             tvo_real_t (*hessian)[TVO_MAX_Z_DIM])
+                                             tvo_hessian_t *hessian)
 {
     if (hessian == NULL) {
         return TVO_ERR_NULL;

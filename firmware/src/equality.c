@@ -64,7 +64,7 @@ tvo_status_t tvo_offset_equality_gradient_jet(const void *term, const tvo_jet_t 
 
 tvo_status_t tvo_offset_equality_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim,
                                                   const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
-                                                  tvo_real_t (*hessian)[TVO_MAX_Z_DIM])
+                                                  tvo_hessian_t *hessian)
 {
     if (hessian == NULL) {
         return TVO_ERR_NULL;
@@ -79,10 +79,10 @@ tvo_status_t tvo_offset_equality_gradient_hessian(const void *term, const tvo_je
         const uint8_t nu = (uint8_t)(self->multiplier_index + axis);
         const uint8_t a = (uint8_t)(self->offset_a + axis);
         const uint8_t b = (uint8_t)(self->offset_b + axis);
-        hessian[a][nu] += TVO_R(1.0);
-        hessian[nu][a] += TVO_R(1.0);
-        hessian[b][nu] -= TVO_R(1.0);
-        hessian[nu][b] -= TVO_R(1.0);
+        hessian->matrix[a][nu] += TVO_R(1.0);
+        hessian->matrix[nu][a] += TVO_R(1.0);
+        hessian->matrix[b][nu] -= TVO_R(1.0);
+        hessian->matrix[nu][b] -= TVO_R(1.0);
     }
     return TVO_OK;
 }

@@ -131,7 +131,9 @@ static tvo_status_t evaluate(const tvo_law_t *law, const tvo_objective_t *object
                                                                     TVO_R(1.0) / TVO_R(6.0)};
     tvo_jet_t y_jet[TVO_MAX_Z_DIM];
     tvo_jet_t g_jet[TVO_MAX_Z_DIM];
-    tvo_matrix_t h;
+    tvo_hessian_t hessian;
+    tvo_real_t(*h)[TVO_MAX_Z_DIM] = hessian.matrix;
+    hessian.rank_one_count = 0u;
     for (unsigned i = 0; i < m; ++i) {
         for (unsigned j = 0; j <= TVO_JET_MAX_ORDER; ++j) {
             const tvo_real_t value = (j < k) ? y->d[j][i] : TVO_R(0.0);
@@ -148,31 +150,58 @@ static tvo_status_t evaluate(const tvo_law_t *law, const tvo_objective_t *object
     along.rate = TVO_R(1.0);
     /* One pass: every term's gradient jets; the closed forms add their Hessian on the way. */
     uint8_t jet_terms = 0u;
-    tvo_status_t st = tvo_objective_gradient_hessian(objective, y_jet, &along, k, g_jet, h, &jet_terms);
+    tvo_status_t st = tvo_objective_gradient_hessian(objective, y_jet, &along, k, g_jet, &hessian, &jet_terms);
     if (st != TVO_OK) {
         return st;
     }
 
-    /* grad^(j) = j! c_j; rhs = r + sum_{j<k} a_j grad^(j) with r = k! c_k. The solve overwrites rhs
-     * with the step (it may alias). */
+    /* Barrier parts that are not stiff join the matrix and the gradient; the stiff ones stay apart. */
+    tvo_hessian_settle(&hessian, objective->primal_dim, objective->dual_dim, g_jet, k);
+
+    /* grad^(j) = j! c_j; rhs = r + sum_{j<k} a_j grad^(j) with r = k! c_k, for the gradient jets and
+     * (gamma) for each part kept apart, whose gradient is a multiple of its direction. */
     static const tvo_real_t factorial[4] = {TVO_R(1.0), TVO_R(1.0), TVO_R(2.0), TVO_R(6.0)};
     tvo_real_t rhs[TVO_MAX_Z_DIM];
+    tvo_real_t gamma[TVO_MAX_RANK_ONE_PARTS];
     for (unsigned i = 0; i < m; ++i) {
         tvo_real_t sum = g_jet[i].c[k] * factorial[k];
         for (unsigned j = 0; j < k; ++j) {
-            const tvo_real_t grad = g_jet[i].c[j] * factorial[j];
-            sum += law->gain[j] * grad;
-            if (grad_rows != NULL && grad_rows[j] != NULL && i < grad_count) {
-                grad_rows[j][i] = grad;
-            }
-        }
-        if (grad_rows != NULL && grad_rows[k] != NULL && i < grad_count) {
-            grad_rows[k][i] = g_jet[i].c[k] * factorial[k];
+            sum += law->gain[j] * (g_jet[i].c[j] * factorial[j]);
         }
         if (!isfinite(sum)) {
             return TVO_ERR_NUMERIC; /* a gradient coefficient was not finite */
         }
         rhs[i] = sum;
+    }
+    for (unsigned p = 0; p < hessian.rank_one_count; ++p) {
+        const tvo_jet_t *g = &hessian.rank_one[p].gradient;
+        tvo_real_t sum = g->c[k] * factorial[k];
+        for (unsigned j = 0; j < k; ++j) {
+            sum += law->gain[j] * (g->c[j] * factorial[j]);
+        }
+        if (!isfinite(sum)) {
+            return TVO_ERR_NUMERIC;
+        }
+        gamma[p] = sum;
+    }
+    if (grad_rows != NULL) {
+        /* The gradient and its derivatives as one vector each (the parts added in: for telemetry). */
+        for (unsigned j = 0; j <= k; ++j) {
+            if (grad_rows[j] == NULL) {
+                continue;
+            }
+            for (unsigned i = 0; i < m && i < grad_count; ++i) {
+                grad_rows[j][i] = g_jet[i].c[j] * factorial[j];
+            }
+            for (unsigned p = 0; p < hessian.rank_one_count; ++p) {
+                const tvo_rank_one_t *part = &hessian.rank_one[p];
+                for (unsigned e = 0; e < part->count; ++e) {
+                    if (part->index[e] < grad_count) {
+                        grad_rows[j][part->index[e]] += part->gradient.c[j] * factorial[j] * part->value[e];
+                    }
+                }
+            }
+        }
     }
 
     if (jet_terms > 0u) {
@@ -190,14 +219,23 @@ static tvo_status_t evaluate(const tvo_law_t *law, const tvo_objective_t *object
         }
     }
     if (hessian_out != NULL) {
-        for (uint8_t i = 0; i < m; ++i) {
-            for (uint8_t j = 0; j < m; ++j) {
+        /* The whole Hessian, rank-one parts included, for tests and tools. */
+        for (unsigned i = 0; i < m; ++i) {
+            for (unsigned j = 0; j < m; ++j) {
                 hessian_out[i][j] = h[i][j];
+            }
+        }
+        for (unsigned p = 0; p < hessian.rank_one_count; ++p) {
+            const tvo_rank_one_t *part = &hessian.rank_one[p];
+            for (unsigned i = 0; i < part->count; ++i) {
+                for (unsigned j = 0; j < part->count; ++j) {
+                    hessian_out[part->index[i]][part->index[j]] += part->weight * part->value[i] * part->value[j];
+                }
             }
         }
     }
 
-    st = tvo_saddle_solve(h, objective->primal_dim, objective->dual_dim, rhs, rhs, shift);
+    st = tvo_saddle_solve_split(&hessian, objective->primal_dim, objective->dual_dim, rhs, gamma, rhs, shift);
     if (st != TVO_OK) {
         return st;
     }

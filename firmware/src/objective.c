@@ -97,7 +97,7 @@ static int uses_closed_form(const tvo_objective_t *objective, const tvo_term_t *
 }
 
 static tvo_status_t sum_terms(const tvo_objective_t *objective, const tvo_jet_t *z, const tvo_time_jet_t *t,
-                              uint8_t order, tvo_jet_t *grad, tvo_real_t (*hessian)[TVO_MAX_Z_DIM], sum_mode_t mode,
+                              uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian, sum_mode_t mode,
                               uint8_t *jet_terms)
 {
     if (objective == NULL || z == NULL || t == NULL || grad == NULL) {
@@ -147,7 +147,7 @@ tvo_status_t tvo_objective_gradient_jet(const tvo_objective_t *objective, const 
 
 tvo_status_t tvo_objective_gradient_hessian(const tvo_objective_t *objective, const tvo_jet_t *z,
                                             const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
-                                            tvo_real_t (*hessian)[TVO_MAX_Z_DIM], uint8_t *jet_terms)
+                                            tvo_hessian_t *hessian, uint8_t *jet_terms)
 {
     if (hessian == NULL || jet_terms == NULL) {
         return TVO_ERR_NULL;

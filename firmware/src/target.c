@@ -29,6 +29,13 @@ tvo_status_t tvo_target_init_polynomial(tvo_target_t *target,
     memset(target, 0, sizeof(*target));
     target->kind = TVO_TARGET_POLYNOMIAL;
     memcpy(target->u.polynomial.coeff, coeff, sizeof(target->u.polynomial.coeff));
+    /* The highest power in use: evaluation skips the zero coefficients above it. */
+    target->poly_degree = 0u;
+    for (uint8_t j = 1; j <= TVO_POLY_MAX_DEGREE; ++j) {
+        if (coeff[0][j] != TVO_R(0.0) || coeff[1][j] != TVO_R(0.0)) {
+            target->poly_degree = j;
+        }
+    }
     return TVO_OK;
 }
 
@@ -141,21 +148,26 @@ tvo_status_t tvo_target_stream_update(tvo_target_t *target, uint64_t stamp_ticks
     return TVO_OK;
 }
 
-static void polynomial_derivatives(const tvo_target_polynomial_t *p, tvo_real_t t_s, uint8_t order,
+static void polynomial_derivatives(const tvo_target_polynomial_t *p, uint8_t degree, tvo_real_t t_s, uint8_t order,
                                    tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2])
 {
-    for (uint8_t j = 0; j <= order; ++j) {
-        for (uint8_t axis = 0; axis < 2u; ++axis) {
-            /* Horner on the j-th derivative: sum_{i>=j} A_i i!/(i-j)! t^(i-j). */
-            tvo_real_t acc = TVO_R(0.0);
-            for (int i = TVO_POLY_MAX_DEGREE; i >= (int)j; --i) {
-                tvo_real_t falling = TVO_R(1.0);
-                for (int m = 0; m < (int)j; ++m) {
-                    falling *= (tvo_real_t)(i - m);
-                }
-                acc = acc * t_s + p->coeff[axis][i] * falling;
+    /* Taylor shift by repeated synthetic division: after pass j, b[j] = p^(j)(t) / j!, in
+     * (order + 1) * degree multiply-adds over the coefficients actually used. */
+    static const tvo_real_t factorial[4] = {TVO_R(1.0), TVO_R(1.0), TVO_R(2.0), TVO_R(6.0)};
+    for (unsigned axis = 0; axis < 2u; ++axis) {
+        tvo_real_t b[TVO_POLY_MAX_DEGREE + 1];
+        for (unsigned i = 0; i <= degree; ++i) {
+            b[i] = p->coeff[axis][i];
+        }
+        for (unsigned j = 0; j <= order; ++j) {
+            if (j > degree) {
+                deriv[j][axis] = TVO_R(0.0);
+                continue;
             }
-            deriv[j][axis] = acc;
+            for (unsigned i = degree; i > j; --i) {
+                b[i - 1u] += t_s * b[i];
+            }
+            deriv[j][axis] = b[j] * factorial[j];
         }
     }
 }
@@ -227,7 +239,7 @@ tvo_status_t tvo_target_derivatives(const tvo_target_t *target, const tvo_time_j
     }
     switch (target->kind) {
     case TVO_TARGET_POLYNOMIAL:
-        polynomial_derivatives(&target->u.polynomial, t->t_s, order, deriv);
+        polynomial_derivatives(&target->u.polynomial, target->poly_degree, t->t_s, order, deriv);
         return TVO_OK;
     case TVO_TARGET_CIRCLE:
     case TVO_TARGET_ELLIPSE:

@@ -48,7 +48,7 @@ tvo_status_t tvo_tracking_gradient_jet(const void *term, const tvo_jet_t *y, uin
 }
 
 tvo_status_t tvo_tracking_gradient_hessian(const void *term, const tvo_jet_t *y, uint8_t dim, const tvo_time_jet_t *t,
-                                           uint8_t order, tvo_jet_t *grad, tvo_real_t (*hessian)[TVO_MAX_Z_DIM])
+                                           uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian)
 {
     const tvo_tracking_term_t *self = (const tvo_tracking_term_t *)term;
     if (self == NULL || y == NULL || t == NULL || grad == NULL || hessian == NULL) {
@@ -73,7 +73,7 @@ tvo_status_t tvo_tracking_gradient_hessian(const void *term, const tvo_jet_t *y,
         for (unsigned j = 0; j <= order && j <= TVO_JET_MAX_ORDER; ++j) {
             grad[i].c[j] += w * (y[i].c[j] - deriv[j][axis] * scale[j]);
         }
-        hessian[i][i] += w;
+        hessian->matrix[i][i] += w;
     }
     return TVO_OK;
 }

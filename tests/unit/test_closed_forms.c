@@ -161,11 +161,26 @@ static void compare_paths(const tvo_output_derivs_t *y, const tvo_time_jet_t *t,
             assert_agree(test_d(jet_eval.hessian[i][j]), test_d(closed_eval.hessian[i][j]), h_scale, "Hessian", i, j);
         }
     }
-    ASSERT_NEAR(test_d(jet_eval.regularization), test_d(closed_eval.regularization),
-                AGREEMENT_ULPS * TEST_EPS * (1.0 + h_scale));
-    /* The solve amplifies rounding by the Hessian's conditioning, so the law's outputs are compared
-     * by what they solve: the closed-form output must satisfy the jet path's own system
-     * (H + shift I_primal) y'' = -(r + a0 g + a1 g') to rounding of its terms (backward error). */
+    /* The law's outputs are compared by what they solve: the closed-form output must satisfy the jet
+     * path's own system (H + shift I_primal) y'' = -(r + a0 g + a1 g') to rounding of its terms
+     * (backward error). Only where the Hessian's diagonal spans less than TVO_STIFF_RATIO and both
+     * solves used the same shift: otherwise the stiff barrier parts were solved apart
+     * (tvo_saddle_solve_split), which the plain system's residual cannot judge in this precision
+     * (tests/unit/test_saddle.c checks that solve); the Hessians themselves agree above. */
+    double diag_min = INFINITY;
+    double diag_max = 0.0;
+    for (unsigned i = 0; i < problem.objective.primal_dim; ++i) {
+        diag_min = fmin(diag_min, fabs(test_d(jet_eval.hessian[i][i])));
+        diag_max = fmax(diag_max, fabs(test_d(jet_eval.hessian[i][i])));
+    }
+    /* Split apart, a stiff system never needs more regularisation than the plain one. */
+    ASSERT_LE(test_d(closed_eval.regularization), test_d(jet_eval.regularization) * (1.0 + AGREEMENT_ULPS * TEST_EPS),
+              "regularisation");
+    const int same_shift = fabs(test_d(jet_eval.regularization) - test_d(closed_eval.regularization)) <=
+                           AGREEMENT_ULPS * TEST_EPS * (1.0 + h_scale);
+    if (!(diag_max < test_d(TVO_STIFF_RATIO) * diag_min) || !same_shift) {
+        return;
+    }
     for (unsigned i = 0; i < m; ++i) {
         const double rhs = test_d(jet_eval.grad[2][i]) + 40.0 * test_d(jet_eval.grad[0][i]) +
                            13.0 * test_d(jet_eval.grad[1][i]);
@@ -212,8 +227,8 @@ static void run_trials(int offsets)
         }
         compare_paths(&y, &t, &compared);
     }
-    /* Refusals are allowed, but the comparison must have happened for most draws. */
-    ASSERT_LE(TRIALS / 2u, compared, "trials compared");
+    /* Refusals and stiff draws are allowed, but the whole comparison must have happened for many. */
+    ASSERT_LE(TRIALS / 4u, compared, "trials compared in full");
 }
 
 static void test_closed_forms_match_jets_without_equalities(void)
@@ -232,18 +247,18 @@ static void test_every_built_in_term_has_a_closed_form(void)
     random_problem(1);
     tvo_jet_t z[TVO_MAX_Z_DIM];
     tvo_jet_t grad[TVO_MAX_Z_DIM];
-    static tvo_real_t h[TVO_MAX_Z_DIM][TVO_MAX_Z_DIM];
+    static tvo_hessian_t h;
     for (unsigned i = 0; i < TVO_MAX_Z_DIM; ++i) {
         tvo_jet_constant(test_r(0.3 * (double)i - 1.0), &z[i]);
     }
     tvo_time_jet_t t;
     ASSERT_STATUS(TVO_OK, tvo_time_jet_at_ticks(1500000u, 1000000u, TVO_R(1.0), &t));
     uint8_t jet_terms = 99u;
-    memset(h, 0, sizeof(h));
-    ASSERT_STATUS(TVO_OK, tvo_objective_gradient_hessian(&problem.objective, z, &t, 2u, grad, h, &jet_terms));
+    tvo_hessian_clear(&h, TVO_MAX_Z_DIM);
+    ASSERT_STATUS(TVO_OK, tvo_objective_gradient_hessian(&problem.objective, z, &t, 2u, grad, &h, &jet_terms));
     TEST_ASSERT_EQUAL_UINT8(0u, jet_terms);
     problem.objective.jets_only = 1u;
-    ASSERT_STATUS(TVO_OK, tvo_objective_gradient_hessian(&problem.objective, z, &t, 2u, grad, h, &jet_terms));
+    ASSERT_STATUS(TVO_OK, tvo_objective_gradient_hessian(&problem.objective, z, &t, 2u, grad, &h, &jet_terms));
     TEST_ASSERT_EQUAL_UINT8(problem.objective.term_count, jet_terms);
 }
 

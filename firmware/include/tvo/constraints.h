@@ -55,7 +55,7 @@ tvo_status_t tvo_distance_gradient_jet(const void *term, const tvo_jet_t *z, uin
                                        uint8_t order, tvo_jet_t *grad);
 /** Closed form of tvo_distance_gradient_jet: the same gradient jets plus the Hessian (see tvo_term_t). */
 tvo_status_t tvo_distance_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
-                                   uint8_t order, tvo_jet_t *grad, tvo_real_t (*hessian)[TVO_MAX_Z_DIM]);
+                                   uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian);
 tvo_status_t tvo_distance_constraint_max(const void *term, const tvo_real_t *y, uint8_t primal_dim, tvo_real_t t_s,
                                          tvo_real_t *max_value);
 
@@ -76,7 +76,7 @@ tvo_status_t tvo_halfspace_gradient_jet(const void *term, const tvo_jet_t *z, ui
                                         uint8_t order, tvo_jet_t *grad);
 /** Closed form of tvo_halfspace_gradient_jet: the same gradient jets plus the Hessian (see tvo_term_t). */
 tvo_status_t tvo_halfspace_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
-                                   uint8_t order, tvo_jet_t *grad, tvo_real_t (*hessian)[TVO_MAX_Z_DIM]);
+                                   uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian);
 tvo_status_t tvo_halfspace_constraint_max(const void *term, const tvo_real_t *y, uint8_t primal_dim, tvo_real_t t_s,
                                           tvo_real_t *max_value);
 
@@ -103,7 +103,7 @@ tvo_status_t tvo_free_space_gradient_jet(const void *term, const tvo_jet_t *z, u
                                          uint8_t order, tvo_jet_t *grad);
 /** Closed form of tvo_free_space_gradient_jet: the same gradient jets plus the Hessian (see tvo_term_t). */
 tvo_status_t tvo_free_space_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
-                                   uint8_t order, tvo_jet_t *grad, tvo_real_t (*hessian)[TVO_MAX_Z_DIM]);
+                                   uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian);
 tvo_status_t tvo_free_space_constraint_max(const void *term, const tvo_real_t *y, uint8_t primal_dim, tvo_real_t t_s,
                                            tvo_real_t *max_value);
 

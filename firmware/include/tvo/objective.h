@@ -19,6 +19,7 @@
 
 #include "tvo/config.h"
 #include "tvo/jet.h"
+#include "tvo/linsolve.h"
 #include "tvo/sample_clock.h"
 #include "tvo/status.h"
 
@@ -60,13 +61,14 @@ typedef tvo_status_t (*tvo_constraint_max_fn)(const void *term, const tvo_real_t
 
 /**
  * A term's closed form (optional): adds its gradient jets along z, as gradient_jet would, and its
- * Hessian at z's constant coefficients with time frozen (hessian[i][j] += d grad_i / d z_j), so the
+ * Hessian at z's constant coefficients with time frozen (into hessian->matrix, or as a rank-one part
+ * through tvo_hessian_add_rank_one: a barrier's curvature along its constraint's gradient), so the
  * law needs no Hessian passes over jets for it. It must agree with gradient_jet to rounding; the
  * differential test (tests/unit/test_closed_forms.c) holds every closed form to that.
  */
 typedef tvo_status_t (*tvo_gradient_hessian_fn)(const void *term, const tvo_jet_t *z, uint8_t dim,
                                                 const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
-                                                tvo_real_t (*hessian)[TVO_MAX_Z_DIM]);
+                                                tvo_hessian_t *hessian);
 
 typedef struct {
     tvo_gradient_jet_fn gradient_jet;         /* required: the general mechanism and the reference */
@@ -114,13 +116,13 @@ tvo_status_t tvo_objective_gradient_jet(const tvo_objective_t *objective, const 
 
 /**
  * The law's pass: grad[0..dim-1] = sum of every term's gradient jets at (z, t); terms with a closed
- * form (unless jets_only) also add their Hessian into hessian (which the caller zeroes).
+ * form (unless jets_only) also add their Hessian into hessian (which the caller clears).
  * *jet_terms = how many terms contributed no Hessian (the law differentiates those by jets).
  * Unlike tvo_objective_gradient_jet it does not check the sum for finiteness: the caller does.
  */
 tvo_status_t tvo_objective_gradient_hessian(const tvo_objective_t *objective, const tvo_jet_t *z,
                                             const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
-                                            tvo_real_t (*hessian)[TVO_MAX_Z_DIM], uint8_t *jet_terms);
+                                            tvo_hessian_t *hessian, uint8_t *jet_terms);
 
 /** grad = the sum of the gradient jets of only the terms tvo_objective_gradient_hessian left to jets. */
 tvo_status_t tvo_objective_gradient_jet_of_jet_terms(const tvo_objective_t *objective, const tvo_jet_t *z,

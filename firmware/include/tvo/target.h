@@ -56,6 +56,7 @@ typedef struct {
     tvo_real_t axis_m[2][2];    /* ellipse: the rotated semi-axes R (a, 0) and R (0, b), by init */
     uint64_t phase0_q64;        /* ellipse: phase at t = 0 in turns, Q0.64 */
     uint64_t rate_q64;          /* ellipse: fractional turns per second, Q0.64 */
+    uint8_t poly_degree;        /* polynomial: the highest power with a non-zero coefficient */
 } tvo_target_t;
 
 /** Polynomial target; coeff[axis][j] multiplies t^j, degree <= TVO_POLY_MAX_DEGREE. */
