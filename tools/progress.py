@@ -14,7 +14,8 @@ From Python:
             ...
 From bash (a command whose length in seconds is known, e.g. a fuzzer with -max_total_time):
     tools/progress.py run --label fuzz --what frame --seconds 600 -- CMD ARGS...
-    (runs CMD, passes its exit code through; the estimate is the time left of --seconds)
+    (runs CMD, passes its exit code through; the estimate is the time left of --seconds; on a
+    terminal CMD's output goes through pipes, line by line, so it never lands on the progress line)
 """
 import argparse
 import os
@@ -102,8 +103,38 @@ class Progress:
             line += f", {format_duration(elapsed)} elapsed"
             left = elapsed / self.done * (self.total - self.done) if self.total and self.done > 0 else None
         if left is not None:
-            line += f", ~{format_duration(left)} left" if left > 0 else ", finishing"
+            line += f", ~{format_duration(left)} left" if left >= 0.5 else ", finishing"
         return line
+
+    def echo(self, text, stream):
+        """Writes text (a command's output) to stream without mixing it into the progress line."""
+        with self._lock:
+            if self.enabled:
+                self.stream.write(CLEAR_LINE)
+                self.stream.flush()
+            stream.write(text)
+            stream.flush()
+            self._last_draw = 0.0
+        self._draw(force=False)
+
+    def call(self, command):
+        """subprocess.call(command); on a terminal its output goes through echo(), line by line."""
+        if not self.enabled:
+            return subprocess.call(command)
+        with subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                              errors="replace") as proc:
+            pumps = [threading.Thread(target=self._pump, args=(pipe, out), daemon=True)
+                     for pipe, out in ((proc.stdout, sys.stdout), (proc.stderr, sys.stderr))]
+            for pump in pumps:
+                pump.start()
+            rc = proc.wait()
+            for pump in pumps:
+                pump.join()
+        return rc
+
+    def _pump(self, pipe, out):
+        for line in pipe:
+            self.echo(line, out)
 
     def close(self):
         """Stops the ticker and clears the line."""
@@ -135,11 +166,11 @@ class Progress:
 
 
 def run_command(label, what, seconds, command):
-    """Runs command (its output untouched) with a time-based progress line; returns its exit code."""
+    """Runs command with a time-based progress line (its output kept apart); returns its exit code."""
     with Progress(label, seconds=seconds) as progress:
         progress.update(0, what)
         try:
-            return subprocess.call(command)
+            return progress.call(command)
         except KeyboardInterrupt:
             return 130
         except OSError as err:
