@@ -13,7 +13,7 @@ From Python:
             progress.update(i, step.name)    # i steps done, step.name running
             ...
 From bash (a command whose length in seconds is known, e.g. a fuzzer with -max_total_time):
-    tools/progress.py run --label fuzz --what frame --seconds 600 -- CMD ARGS...
+    tools/progress.py run --label fuzz --what frame --seconds 600 [--output LOG] -- CMD ARGS...
     (runs CMD, passes its exit code through; the estimate is the time left of --seconds; on a
     terminal CMD's output goes through pipes, line by line, so it never lands on the progress line)
 """
@@ -57,11 +57,13 @@ class Progress:
     """A progress line for `total` steps; update(done, what) says how many are done and what runs.
 
     The estimate of the time left is linear in the steps done (elapsed / done * left), or, when
-    `seconds` is given instead of `total`, the time left of that many seconds."""
+    `seconds` is given instead of `total`, the time left of that many seconds; estimate=False for
+    steps of very different lengths (phases), where a linear estimate would mislead."""
 
-    def __init__(self, label, total=None, seconds=None, stream=None):
+    def __init__(self, label, total=None, seconds=None, stream=None, estimate=True):
         self.label = label
         self.total = total
+        self.estimate = estimate
         self.seconds = seconds
         self.stream = stream if stream is not None else sys.stderr
         self.enabled = wanted(self.stream)
@@ -101,7 +103,9 @@ class Progress:
             if self.total:
                 line += f" [{min(self.done + 1, self.total)}/{self.total}]"
             line += f", {format_duration(elapsed)} elapsed"
-            left = elapsed / self.done * (self.total - self.done) if self.total and self.done > 0 else None
+            left = None
+            if self.estimate and self.total and self.done > 0:
+                left = elapsed / self.done * (self.total - self.done)
         if left is not None:
             line += f", ~{format_duration(left)} left" if left >= 0.5 else ", finishing"
         return line
@@ -165,11 +169,15 @@ class Progress:
             self.stream.flush()
 
 
-def run_command(label, what, seconds, command):
-    """Runs command with a time-based progress line (its output kept apart); returns its exit code."""
+def run_command(label, what, seconds, command, output=None):
+    """Runs command with a time-based progress line (its output kept apart, or all of it into the
+    file output); returns its exit code."""
     with Progress(label, seconds=seconds) as progress:
         progress.update(0, what)
         try:
+            if output is not None:
+                with open(output, "w") as out:
+                    return subprocess.call(command, stdout=out, stderr=subprocess.STDOUT)
             return progress.call(command)
         except KeyboardInterrupt:
             return 130
@@ -186,6 +194,7 @@ def main():
     run.add_argument("--label", required=True, help="the tool's name, e.g. fuzz")
     run.add_argument("--what", default="", help="what runs, e.g. the harness")
     run.add_argument("--seconds", type=float, required=True, help="how long the command is expected to run")
+    run.add_argument("--output", help="write the command's stdout and stderr to this file")
     run.add_argument("command", nargs=argparse.REMAINDER, help="-- CMD ARGS...")
     args = parser.parse_args()
     command = args.command[1:] if args.command[:1] == ["--"] else args.command
@@ -193,7 +202,7 @@ def main():
         parser.error("run needs a command after --")
     if args.seconds <= 0:
         parser.error("--seconds must be positive")
-    return run_command(args.label, args.what, args.seconds, command)
+    return run_command(args.label, args.what, args.seconds, command, args.output)
 
 
 if __name__ == "__main__":
