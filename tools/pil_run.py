@@ -81,7 +81,9 @@ def main():
     port = free_port()
     out_dir = option_value(args.sim_args, "--out-dir", "runs/demo")
     os.makedirs(out_dir, exist_ok=True)
-    lcm = ["--lcm-url", args.lcm_url] if args.lcm_url else []
+    # A --lcm-url among the simulator's options (tools/demo --pil passes them all) is the bridge's too.
+    lcm_url = args.lcm_url or option_value(args.sim_args, "--lcm-url", "")
+    lcm = ["--lcm-url", lcm_url] if lcm_url else []
     qemu_log = tempfile.TemporaryFile(mode="w+")
     bridge_log = tempfile.TemporaryFile(mode="w+")
     qemu = subprocess.Popen(
@@ -99,7 +101,8 @@ def main():
     try:
         if wait_ready(qemu_log, (qemu, bridge)):
             progress.update(1, "closed loop (tvo_sim)")
-            sim_rc = progress.call([args.sim] + lcm + args.sim_args)
+            sim_lcm = [] if option_value(args.sim_args, "--lcm-url", "") else lcm
+            sim_rc = progress.call([args.sim] + sim_lcm + args.sim_args)
             progress.update(2, "QEMU and the bridge ending")
         else:
             progress.close()
