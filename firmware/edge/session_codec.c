@@ -186,21 +186,25 @@ tvo_status_t tvo_session_decode_path(const tvo_lcm_path_t *path, tvo_target_t *t
         /* C11 does not convert T (*)[n] to const T (*)[n] implicitly: the cast only adds const. */
         return tvo_target_init_polynomial(target, (const tvo_real_t(*)[TVO_POLY_MAX_DEGREE + 1])coeff);
     }
-    case TVO_LCM_PATH_T_KIND_CIRCLE: {
-        const tvo_real_t center_m[2] = {tvo_wire_real(path->center_m[0]), tvo_wire_real(path->center_m[1])};
-        return tvo_target_init_circle(target, center_m, tvo_wire_real(path->semi_axis_m[0]),
-                                      tvo_wire_real(path->omega_radps), tvo_wire_real(path->phase_rad));
-    }
+    case TVO_LCM_PATH_T_KIND_CIRCLE:
     case TVO_LCM_PATH_T_KIND_ELLIPSE: {
+        /* A circle is an ellipse with equal semi-axes (radius in semi_axis_m[0]) and no rotation. */
+        const int circle = path->kind == TVO_LCM_PATH_T_KIND_CIRCLE;
         tvo_target_ellipse_t ellipse;
         for (size_t axis = 0; axis < 2; ++axis) {
             ellipse.center_m[axis] = tvo_wire_real(path->center_m[axis]);
-            ellipse.semi_axis_m[axis] = tvo_wire_real(path->semi_axis_m[axis]);
+            ellipse.semi_axis_m[axis] = tvo_wire_real(path->semi_axis_m[circle ? 0 : axis]);
         }
         ellipse.omega_radps = tvo_wire_real(path->omega_radps);
         ellipse.phase_rad = tvo_wire_real(path->phase_rad);
-        ellipse.rotation_rad = tvo_wire_real(path->rotation_rad);
-        return tvo_target_init_ellipse(target, &ellipse);
+        ellipse.rotation_rad = circle ? TVO_R(0.0) : tvo_wire_real(path->rotation_rad);
+        /* omega multiplies hours of time: its phase rate keeps the wire's double precision. */
+        ellipse.rate_turns_q64 = tvo_target_turns_q64(path->omega_radps);
+        const tvo_status_t st = tvo_target_init_ellipse(target, &ellipse);
+        if (st == TVO_OK && circle) {
+            target->kind = TVO_TARGET_CIRCLE;
+        }
+        return st;
     }
     case TVO_LCM_PATH_T_KIND_STREAMED:
         return tvo_target_init_streamed(target);

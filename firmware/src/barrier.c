@@ -142,10 +142,10 @@ tvo_status_t tvo_barrier_derivatives(uint8_t relaxation_degree, tvo_real_t sigma
     return TVO_OK;
 }
 
-tvo_status_t tvo_barrier_weight_jet(const tvo_barrier_t *barrier, const tvo_jet_t *f_jet, const tvo_time_jet_t *t,
-                                    uint8_t order, tvo_jet_t *w_jet)
+tvo_status_t tvo_barrier_schedule_jet(const tvo_barrier_t *barrier, const tvo_time_jet_t *t, uint8_t order,
+                                      tvo_barrier_schedule_jet_t *schedule)
 {
-    if (barrier == NULL || f_jet == NULL || t == NULL || w_jet == NULL) {
+    if (barrier == NULL || t == NULL || schedule == NULL) {
         return TVO_ERR_NULL;
     }
     if (!barrier->initialized) {
@@ -158,39 +158,80 @@ tvo_status_t tvo_barrier_weight_jet(const tvo_barrier_t *barrier, const tvo_jet_
     int growing = 0;
     const tvo_real_t c_now = barrier_c(barrier, t->t_s, &growing);
     const tvo_real_t c_rate = growing ? barrier->cfg.alpha_c_per_s * t->rate : TVO_R(0.0);
-    const tvo_real_t s_now = barrier->slack0 * TVO_EXP(-barrier->cfg.alpha_s_per_s * t->t_s);
+    /* A feasible start has no slack: no exponential to evaluate. */
+    const tvo_real_t s_now = (barrier->slack0 == TVO_R(0.0))
+                                 ? TVO_R(0.0)
+                                 : barrier->slack0 * TVO_EXP(-barrier->cfg.alpha_s_per_s * t->t_s);
     const tvo_real_t s_rate = -barrier->cfg.alpha_s_per_s * t->rate;
-    tvo_jet_t c_jet;
-    tvo_jet_t sigma;
-    tvo_jet_constant(TVO_R(0.0), &c_jet);
-    tvo_jet_constant(TVO_R(0.0), &sigma);
+    tvo_jet_constant(TVO_R(0.0), &schedule->c);
+    tvo_jet_constant(TVO_R(0.0), &schedule->slack);
     tvo_real_t c_term = c_now;
     tvo_real_t s_term = s_now;
     for (uint8_t j = 0; j <= order; ++j) {
-        c_jet.c[j] = c_term;
-        sigma.c[j] = s_term - f_jet->c[j];
+        schedule->c.c[j] = c_term;
+        schedule->slack.c[j] = s_term;
         c_term *= c_rate / (tvo_real_t)(j + 1u);
         s_term *= s_rate / (tvo_real_t)(j + 1u);
     }
+    return TVO_OK;
+}
+
+tvo_status_t tvo_barrier_weight_on_schedule(const tvo_barrier_t *barrier, const tvo_barrier_schedule_jet_t *schedule,
+                                            const tvo_jet_t *f_jet, uint8_t order, tvo_jet_t *w_jet,
+                                            tvo_real_t *dw_df)
+{
+    if (barrier == NULL || schedule == NULL || f_jet == NULL || w_jet == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (order > TVO_JET_MAX_ORDER) {
+        return TVO_ERR_PARAM;
+    }
+    tvo_jet_t sigma;
+    tvo_jet_sub(&schedule->slack, f_jet, order, &sigma);
     /* c sigma / delta0 = 1 + x: the branch is the logarithm when it is >= 1 at tau = 0. */
     tvo_jet_t c_sigma;
-    tvo_jet_mul(&c_jet, &sigma, order, &c_sigma);
-    if (c_sigma.c[0] >= barrier->cfg.delta0) {
+    tvo_jet_mul(&schedule->c, &sigma, order, &c_sigma);
+    const tvo_real_t c0 = schedule->c.c[0];
+    const tvo_real_t delta0 = barrier->cfg.delta0;
+    tvo_real_t slope = TVO_R(0.0);
+    if (c_sigma.c[0] >= delta0) {
         tvo_jet_t one;
         tvo_jet_constant(TVO_R(1.0), &one);
         tvo_jet_div(&one, &c_sigma, order, w_jet); /* w = 1 / (c sigma) */
+        slope = c0 * w_jet->c[0] * w_jet->c[0];  /* dw/df = -dw/dsigma = c w^2 */
     } else {
-        /* w = (1/delta0) sum_{j<m_r} u^j with u = -x = 1 - c sigma / delta0, by Horner. */
+        /* w = (1/delta0) P(u), P(u) = sum_{j<m_r} u^j, u = -x = 1 - c sigma / delta0, by Horner;
+         * dw/df = (c / delta0^2) P'(u), also by Horner. */
         tvo_jet_t u;
-        tvo_jet_scale(&c_sigma, TVO_R(-1.0) / barrier->cfg.delta0, order, &u);
+        tvo_jet_scale(&c_sigma, TVO_R(-1.0) / delta0, order, &u);
         u.c[0] += TVO_R(1.0);
         tvo_jet_t acc;
         tvo_jet_constant(TVO_R(1.0), &acc);
+        tvo_real_t derivative = TVO_R(0.0);
         for (uint8_t j = 1; j < barrier->cfg.relaxation_degree && j < TVO_BARRIER_MAX_DEGREE; ++j) {
+            derivative = derivative * u.c[0] + acc.c[0]; /* P_j' = P_{j-1} + u P_{j-1}' */
             tvo_jet_mul(&acc, &u, order, &acc);
             acc.c[0] += TVO_R(1.0);
         }
-        tvo_jet_scale(&acc, TVO_R(1.0) / barrier->cfg.delta0, order, w_jet);
+        tvo_jet_scale(&acc, TVO_R(1.0) / delta0, order, w_jet);
+        slope = c0 * derivative / (delta0 * delta0);
     }
-    return tvo_jet_is_finite(w_jet, order) ? TVO_OK : TVO_ERR_NUMERIC;
+    if (dw_df != NULL) {
+        *dw_df = slope;
+    }
+    return (tvo_jet_is_finite(w_jet, order) && isfinite(slope)) ? TVO_OK : TVO_ERR_NUMERIC;
+}
+
+tvo_status_t tvo_barrier_weight_jet(const tvo_barrier_t *barrier, const tvo_jet_t *f_jet, const tvo_time_jet_t *t,
+                                    uint8_t order, tvo_jet_t *w_jet)
+{
+    if (barrier == NULL || f_jet == NULL || t == NULL || w_jet == NULL) {
+        return TVO_ERR_NULL;
+    }
+    tvo_barrier_schedule_jet_t schedule;
+    const tvo_status_t st = tvo_barrier_schedule_jet(barrier, t, order, &schedule);
+    if (st != TVO_OK) {
+        return st;
+    }
+    return tvo_barrier_weight_on_schedule(barrier, &schedule, f_jet, order, w_jet, NULL);
 }

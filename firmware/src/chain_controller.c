@@ -62,7 +62,7 @@ tvo_status_t tvo_chain_controller_init(tvo_chain_controller_t *ctl, const tvo_ch
         st = tvo_law_init(&ctl->law, cfg->relative_degree, objective->primal_dim, cfg->gain);
         bad = (st == TVO_OK) ? TVO_PARAM_NONE : TVO_PARAM_GAINS;
     }
-    ctl->period_s = tvo_ticks_to_seconds(cfg->period_ticks, cfg->tick_hz);
+    ctl->period_s = tvo_ticks_to_seconds32(cfg->period_ticks, cfg->tick_hz);
     for (uint8_t j = 0; bad == TVO_PARAM_NONE && j + 1u < cfg->relative_degree; ++j) {
         st = tvo_dirty_derivative_init(&ctl->filter[j], objective->primal_dim,
                                        cfg->filtered_derivatives ? cfg->filter_tf_s : TVO_R(1.0), ctl->period_s);
@@ -125,7 +125,7 @@ static tvo_status_t derivatives_at_sample(const tvo_chain_controller_t *ctl, tvo
     }
     tvo_status_t st = TVO_OK;
     const int primed = filter[0].primed;
-    const tvo_real_t dt_s = primed ? tvo_ticks_to_seconds(meas->stamp_tick - ctl->clock.last_stamp_tick, ctl->cfg.tick_hz)
+    const tvo_real_t dt_s = primed ? tvo_ticks_to_seconds32(meas->stamp_tick - ctl->clock.last_stamp_tick, ctl->cfg.tick_hz)
                                    : TVO_R(0.0);
     for (uint8_t j = 0; st == TVO_OK && j + 1u < k; ++j) {
         if (!primed || !filter[j].primed) {
@@ -155,10 +155,10 @@ static tvo_status_t check_finite(const tvo_chain_controller_t *ctl, const tvo_ch
     return TVO_OK;
 }
 
-static tvo_status_t hold_or_stop(tvo_chain_controller_t *ctl, uint32_t apply_tick, uint64_t elapsed, uint32_t periods,
-                                 tvo_status_t reason, tvo_chain_command_t *cmd)
+static tvo_status_t hold_or_stop(tvo_chain_controller_t *ctl, const tvo_period_t *period, tvo_status_t reason,
+                                 tvo_chain_command_t *cmd)
 {
-    if (tvo_sample_clock_missed(&ctl->clock, apply_tick, elapsed, periods)) {
+    if (tvo_sample_clock_end(&ctl->clock, period, 0, 0u)) {
         memset(&ctl->held, 0, sizeof(ctl->held));
         memset(cmd, 0, sizeof(*cmd));
         cmd->flags = TVO_FLAG_SAFE_STOP;
@@ -213,9 +213,8 @@ tvo_status_t tvo_chain_controller_step(tvo_chain_controller_t *ctl, const tvo_ch
         cmd->flags = TVO_FLAG_SAFE_STOP;
         return (ctl == NULL) ? TVO_ERR_NULL : TVO_ERR_NOT_INITIALIZED;
     }
-    uint64_t elapsed = 0u;
-    uint32_t periods = 1u;
-    if (tvo_sample_clock_schedule(&ctl->clock, apply_tick, &elapsed, &periods) != TVO_OK) {
+    tvo_period_t period;
+    if (tvo_sample_clock_begin(&ctl->clock, apply_tick, &period) != TVO_OK) {
         *cmd = ctl->held;
         cmd->flags = TVO_FLAG_HOLDING;
         return TVO_ERR_OUT_OF_ORDER;
@@ -236,57 +235,42 @@ tvo_status_t tvo_chain_controller_step(tvo_chain_controller_t *ctl, const tvo_ch
         st = derivatives_at_sample(ctl, filter, meas, &x);
     }
     if (st != TVO_OK) {
-        return hold_or_stop(ctl, apply_tick, elapsed, periods, st, cmd);
+        return hold_or_stop(ctl, &period, st, cmd);
     }
 
     const uint8_t k = ctl->cfg.relative_degree;
     const uint8_t m = ctl->objective->primal_dim;
-    const uint32_t age_ticks = apply_tick - meas->stamp_tick;
-    uint32_t flags = 0u;
-    /* Where the law is evaluated: the sample (uncompensated), the application instant, or the
-     * middle of the held interval (ZOH-aware); the state is carried there with the held command. */
-    uint64_t law_ticks = (elapsed >= age_ticks) ? elapsed - age_ticks : 0u;
-    tvo_real_t carry_s = TVO_R(0.0);
-    if (ctl->cfg.delay_compensation) {
-        law_ticks = elapsed;
-        carry_s = tvo_ticks_to_seconds(age_ticks, ctl->cfg.tick_hz);
-        flags |= (age_ticks > 0u) ? TVO_FLAG_PREDICTED : 0u;
-    }
-    if (ctl->cfg.zoh_aware) {
-        law_ticks += ctl->cfg.period_ticks / 2u;
-        carry_s += TVO_R(0.5) * ctl->period_s;
-        flags |= TVO_FLAG_PREDICTED;
-    }
-    if (carry_s > TVO_R(0.0)) {
-        st = tvo_chain_predict(k, m, &x, ctl->held.u, carry_s, &x);
+    /* Where the law is evaluated (the sample, the application instant, or the middle of the held
+     * interval); the state is carried there with the held command. */
+    (void)tvo_sample_clock_locate(&ctl->clock, &period, meas->stamp_tick, ctl->cfg.delay_compensation,
+                                  ctl->cfg.zoh_aware);
+    const uint32_t flags = (period.carry_s > TVO_R(0.0)) ? TVO_FLAG_PREDICTED : 0u;
+    if (period.carry_s > TVO_R(0.0)) {
+        st = tvo_chain_predict(k, m, &x, ctl->held.u, period.carry_s, &x);
     }
     tvo_time_jet_t t;
-    t.ticks = law_ticks;
-    t.tick_hz = ctl->cfg.tick_hz;
-    t.t_s = tvo_ticks_to_seconds(law_ticks, ctl->cfg.tick_hz);
-    t.rate = TVO_R(1.0);
+    (void)tvo_time_jet_at(&period.law_time, ctl->cfg.tick_hz, TVO_R(1.0), &t); /* the clock's times are valid */
     tvo_real_t u[TVO_MAX_Z_DIM];
     if (st == TVO_OK) {
         st = tvo_law_evaluate(&ctl->law, ctl->objective, &x, &t, u, NULL);
     }
     if (st != TVO_OK) {
-        return hold_or_stop(ctl, apply_tick, elapsed, periods, st, cmd);
+        return hold_or_stop(ctl, &period, st, cmd);
     }
     tvo_chain_command_t next;
     memset(&next, 0, sizeof(next));
+    next.flags = flags;
     for (uint8_t i = 0; i < m; ++i) {
         next.u[i] = u[i];
         if (next.u[i] > ctl->cfg.input_max) {
             next.u[i] = ctl->cfg.input_max;
-            flags |= TVO_FLAG_ACCEL_SATURATED;
+            next.flags |= TVO_FLAG_ACCEL_SATURATED;
         } else if (next.u[i] < -ctl->cfg.input_max) {
             next.u[i] = -ctl->cfg.input_max;
-            flags |= TVO_FLAG_ACCEL_SATURATED;
+            next.flags |= TVO_FLAG_ACCEL_SATURATED;
         }
     }
-    next.flags = flags;
-    (void)tvo_sample_clock_accept_stamp(&ctl->clock, meas->stamp_tick);
-    (void)tvo_sample_clock_good(&ctl->clock, apply_tick, elapsed);
+    (void)tvo_sample_clock_end(&ctl->clock, &period, 1, meas->stamp_tick);
     for (uint8_t j = 0; j + 1u < TVO_MAX_RELATIVE_DEGREE; ++j) {
         ctl->filter[j] = filter[j];
     }

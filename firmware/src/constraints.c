@@ -57,10 +57,12 @@ static tvo_real_t distance_sign(const tvo_distance_term_t *self)
     return (self->kind == TVO_DISTANCE_MAX) ? TVO_R(1.0) : TVO_R(-1.0);
 }
 
-tvo_status_t tvo_distance_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
-                                       uint8_t order, tvo_jet_t *grad)
+/* The distance bound's gradient jets, and with hessian its closed-form Hessian
+ * H += (dw/df) grad f grad f^T + w hess f, grad f = 2 sign (D, -D), hess f = 2 sign [I -I; -I I]. */
+static tvo_status_t distance_sum(const tvo_distance_term_t *self, const tvo_jet_t *z, uint8_t dim,
+                                 const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
+                                 tvo_hessian_t *hessian)
 {
-    const tvo_distance_term_t *self = (const tvo_distance_term_t *)term;
     if (self == NULL || z == NULL || t == NULL || grad == NULL) {
         return TVO_ERR_NULL;
     }
@@ -83,20 +85,77 @@ tvo_status_t tvo_distance_gradient_jet(const void *term, const tvo_jet_t *z, uin
         tvo_jet_mul(&diff[axis], &diff[axis], order, &square);
         tvo_jet_axpy(sign, &square, order, &f);
     }
+    tvo_barrier_schedule_jet_t schedule;
+    tvo_status_t st = tvo_barrier_schedule_jet(self->barrier, t, order, &schedule);
     tvo_jet_t w;
-    const tvo_status_t st = tvo_barrier_weight_jet(self->barrier, &f, t, order, &w);
+    tvo_real_t dw_df = TVO_R(0.0);
+    if (st == TVO_OK) {
+        st = tvo_barrier_weight_on_schedule(self->barrier, &schedule, &f, order, &w, hessian != NULL ? &dw_df : NULL);
+    }
     if (st != TVO_OK) {
         return st;
     }
-    for (uint8_t axis = 0; axis < 2u; ++axis) {
-        /* grad_{y_a} f = 2 sign D, grad_{y_b} f = -2 sign D. */
-        tvo_jet_t df;
-        tvo_jet_scale(&diff[axis], TVO_R(2.0) * sign, order, &df);
-        add_weighted(grad, (uint8_t)(self->offset_a + axis), &w, &df, order);
-        tvo_jet_scale(&df, TVO_R(-1.0), order, &df);
-        add_weighted(grad, (uint8_t)(self->offset_b + axis), &w, &df, order);
+    if (hessian == NULL) {
+        for (uint8_t axis = 0; axis < 2u; ++axis) {
+            /* grad_{y_a} f = 2 sign D, grad_{y_b} f = -2 sign D. */
+            tvo_jet_t df;
+            tvo_jet_scale(&diff[axis], TVO_R(2.0) * sign, order, &df);
+            add_weighted(grad, (uint8_t)(self->offset_a + axis), &w, &df, order);
+            tvo_jet_scale(&df, TVO_R(-1.0), order, &df);
+            add_weighted(grad, (uint8_t)(self->offset_b + axis), &w, &df, order);
+        }
+        return TVO_OK;
+    }
+    /* Closed form: everything lives on the relative coordinates y_a - y_b. With v(e) = (e, -e) and
+     * D = |D| d at tau = 0, the Hessian is (4 |D|^2 dw/df + 2 sign w) v(d) v(d)^T
+     * + 2 sign w v(d_perp) v(d_perp)^T, and the gradient 2 sign w(tau) (alpha(tau) v(d) +
+     * beta(tau) v(d_perp)) with alpha = d . D(tau), beta = d_perp . D(tau): two parts along
+     * orthogonal directions, which a stiff maximum bound keeps apart (tvo/linsolve.h). */
+    const tvo_real_t norm_sq = diff[0].c[0] * diff[0].c[0] + diff[1].c[0] * diff[1].c[0];
+    tvo_real_t along[2] = {TVO_R(1.0), TVO_R(0.0)};
+    if (norm_sq > TVO_R(0.0)) {
+        const tvo_real_t inv_norm = TVO_R(1.0) / TVO_SQRT(norm_sq);
+        along[0] = diff[0].c[0] * inv_norm;
+        along[1] = diff[1].c[0] * inv_norm;
+    }
+    const tvo_real_t curvature = TVO_R(2.0) * sign * w.c[0];
+    tvo_rank_one_t part;
+    part.count = 4u;
+    part.index[0] = self->offset_a;
+    part.index[1] = (uint8_t)(self->offset_a + 1u);
+    part.index[2] = self->offset_b;
+    part.index[3] = (uint8_t)(self->offset_b + 1u);
+    for (unsigned k = 0; k < 2u; ++k) {
+        /* k = 0: along d; k = 1: across, d_perp = (-d_y, d_x). */
+        const tvo_real_t e[2] = {k == 0u ? along[0] : -along[1], k == 0u ? along[1] : along[0]};
+        part.value[0] = e[0];
+        part.value[1] = e[1];
+        part.value[2] = -e[0];
+        part.value[3] = -e[1];
+        part.weight = (k == 0u ? TVO_R(4.0) * norm_sq * dw_df : TVO_R(0.0)) + curvature;
+        tvo_jet_t coordinate;
+        tvo_jet_scale(&diff[0], e[0], order, &coordinate);
+        tvo_jet_axpy(e[1], &diff[1], order, &coordinate);
+        tvo_jet_mul(&w, &coordinate, order, &part.gradient);
+        tvo_jet_scale(&part.gradient, TVO_R(2.0) * sign, order, &part.gradient);
+        tvo_hessian_add_part(hessian, &part, grad, order);
     }
     return TVO_OK;
+}
+
+tvo_status_t tvo_distance_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
+                                       uint8_t order, tvo_jet_t *grad)
+{
+    return distance_sum((const tvo_distance_term_t *)term, z, dim, t, order, grad, NULL);
+}
+
+tvo_status_t tvo_distance_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
+                                           uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian)
+{
+    if (hessian == NULL) {
+        return TVO_ERR_NULL;
+    }
+    return distance_sum((const tvo_distance_term_t *)term, z, dim, t, order, grad, hessian);
 }
 
 tvo_status_t tvo_distance_constraint_max(const void *term, const tvo_real_t *y, uint8_t primal_dim, tvo_real_t t_s,
@@ -145,10 +204,11 @@ tvo_status_t tvo_halfspace_term_init(tvo_halfspace_term_t *term, const tvo_barri
     return TVO_OK;
 }
 
-tvo_status_t tvo_halfspace_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
-                                        uint8_t order, tvo_jet_t *grad)
+/* The half-space's gradient jets, and with hessian its closed form H += (dw/df) a a^T (f is affine). */
+static tvo_status_t halfspace_sum(const tvo_halfspace_term_t *self, const tvo_jet_t *z, uint8_t dim,
+                                  const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
+                                  tvo_hessian_t *hessian)
 {
-    const tvo_halfspace_term_t *self = (const tvo_halfspace_term_t *)term;
     if (self == NULL || z == NULL || t == NULL || grad == NULL) {
         return TVO_ERR_NULL;
     }
@@ -164,15 +224,55 @@ tvo_status_t tvo_halfspace_gradient_jet(const void *term, const tvo_jet_t *z, ui
         tvo_jet_mul(&normal[axis], &z[self->offset + axis], order, &product);
         tvo_jet_add(&f, &product, order, &f);
     }
+    tvo_barrier_schedule_jet_t schedule;
+    tvo_status_t st = tvo_barrier_schedule_jet(self->barrier, t, order, &schedule);
     tvo_jet_t w;
-    const tvo_status_t st = tvo_barrier_weight_jet(self->barrier, &f, t, order, &w);
+    tvo_real_t dw_df = TVO_R(0.0);
+    if (st == TVO_OK) {
+        st = tvo_barrier_weight_on_schedule(self->barrier, &schedule, &f, order, &w, hessian != NULL ? &dw_df : NULL);
+    }
     if (st != TVO_OK) {
         return st;
     }
-    for (uint8_t axis = 0; axis < 2u; ++axis) {
-        add_weighted(grad, (uint8_t)(self->offset + axis), &w, &normal[axis], order);
+    if (hessian == NULL) {
+        for (uint8_t axis = 0; axis < 2u; ++axis) {
+            add_weighted(grad, (uint8_t)(self->offset + axis), &w, &normal[axis], order);
+        }
+        return TVO_OK;
     }
+    /* Closed form: the part along a = a(t) carries curvature dw/df a a^T and gradient w(tau) a; the
+     * normal's own motion, w(tau) (a(tau) - a), goes into the gradient as it is. */
+    tvo_rank_one_t part;
+    part.weight = dw_df;
+    part.count = 2u;
+    part.index[0] = self->offset;
+    part.index[1] = (uint8_t)(self->offset + 1u);
+    part.value[0] = normal[0].c[0];
+    part.value[1] = normal[1].c[0];
+    part.gradient = w;
+    for (uint8_t axis = 0; axis < 2u; ++axis) {
+        tvo_jet_t motion = normal[axis];
+        motion.c[0] = TVO_R(0.0);
+        add_weighted(grad, (uint8_t)(self->offset + axis), &w, &motion, order);
+    }
+    tvo_hessian_add_part(hessian, &part, grad, order);
     return TVO_OK;
+}
+
+tvo_status_t tvo_halfspace_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
+                                        uint8_t order, tvo_jet_t *grad)
+{
+    return halfspace_sum((const tvo_halfspace_term_t *)term, z, dim, t, order, grad, NULL);
+}
+
+tvo_status_t tvo_halfspace_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim,
+                                            const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
+                                            tvo_hessian_t *hessian)
+{
+    if (hessian == NULL) {
+        return TVO_ERR_NULL;
+    }
+    return halfspace_sum((const tvo_halfspace_term_t *)term, z, dim, t, order, grad, hessian);
 }
 
 tvo_status_t tvo_halfspace_constraint_max(const void *term, const tvo_real_t *y, uint8_t primal_dim, tvo_real_t t_s,
@@ -268,38 +368,76 @@ static tvo_status_t free_space_plane(const tvo_free_space_term_t *self, uint8_t 
     return TVO_OK;
 }
 
-tvo_status_t tvo_free_space_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
-                                         uint8_t order, tvo_jet_t *grad)
+/* The free space's gradient jets, and with hessian its closed form H += sum_i (dw_i/df) a_i a_i^T
+ * (the planes are frozen at y_c: affine in y). The schedules are shared by every plane. */
+static tvo_status_t free_space_sum(const tvo_free_space_term_t *self, const tvo_jet_t *z, uint8_t dim,
+                                   const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
+                                   tvo_hessian_t *hessian)
 {
-    const tvo_free_space_term_t *self = (const tvo_free_space_term_t *)term;
     if (self == NULL || z == NULL || t == NULL || grad == NULL) {
         return TVO_ERR_NULL;
     }
     if ((unsigned)self->offset + 2u > dim) {
         return TVO_ERR_DIMENSION;
     }
+    tvo_barrier_schedule_jet_t schedule;
+    tvo_status_t st = tvo_barrier_schedule_jet(self->barrier, t, order, &schedule);
+    if (st != TVO_OK) {
+        return st;
+    }
     /* y_c frozen at the current output: the planes do not move along the jet (see the header). */
-    const tvo_real_t y_c[2] = {z[self->offset].c[0], z[self->offset + 1u].c[0]};
+    const uint8_t o = self->offset;
+    const tvo_real_t y_c[2] = {z[o].c[0], z[o + 1u].c[0]};
     for (uint8_t i = 0; i < self->obstacle_count && i < TVO_MAX_OBSTACLES; ++i) {
         tvo_real_t normal[2];
         tvo_real_t bound;
-        tvo_status_t st = free_space_plane(self, i, y_c, normal, &bound);
+        st = free_space_plane(self, i, y_c, normal, &bound);
         if (st != TVO_OK) {
             return st;
         }
         tvo_jet_t f;
         tvo_jet_constant(-bound, &f);
-        tvo_jet_axpy(normal[0], &z[self->offset], order, &f);
-        tvo_jet_axpy(normal[1], &z[self->offset + 1u], order, &f);
+        tvo_jet_axpy(normal[0], &z[o], order, &f);
+        tvo_jet_axpy(normal[1], &z[o + 1u], order, &f);
         tvo_jet_t w;
-        st = tvo_barrier_weight_jet(self->barrier, &f, t, order, &w);
+        tvo_real_t dw_df = TVO_R(0.0);
+        st = tvo_barrier_weight_on_schedule(self->barrier, &schedule, &f, order, &w, hessian != NULL ? &dw_df : NULL);
         if (st != TVO_OK) {
             return st;
         }
-        tvo_jet_axpy(normal[0], &w, order, &grad[self->offset]);
-        tvo_jet_axpy(normal[1], &w, order, &grad[self->offset + 1u]);
+        if (hessian == NULL) {
+            tvo_jet_axpy(normal[0], &w, order, &grad[o]);
+            tvo_jet_axpy(normal[1], &w, order, &grad[o + 1u]);
+            continue;
+        }
+        /* Closed form: the plane's part, curvature dw/df n n^T and gradient w(tau) n. */
+        tvo_rank_one_t part;
+        part.weight = dw_df;
+        part.gradient = w;
+        part.count = 2u;
+        part.index[0] = o;
+        part.index[1] = (uint8_t)(o + 1u);
+        part.value[0] = normal[0];
+        part.value[1] = normal[1];
+        tvo_hessian_add_part(hessian, &part, grad, order);
     }
     return TVO_OK;
+}
+
+tvo_status_t tvo_free_space_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
+                                         uint8_t order, tvo_jet_t *grad)
+{
+    return free_space_sum((const tvo_free_space_term_t *)term, z, dim, t, order, grad, NULL);
+}
+
+tvo_status_t tvo_free_space_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim,
+                                             const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
+                                             tvo_hessian_t *hessian)
+{
+    if (hessian == NULL) {
+        return TVO_ERR_NULL;
+    }
+    return free_space_sum((const tvo_free_space_term_t *)term, z, dim, t, order, grad, hessian);
 }
 
 tvo_status_t tvo_free_space_constraint_max(const void *term, const tvo_real_t *y, uint8_t primal_dim, tvo_real_t t_s,

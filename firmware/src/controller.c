@@ -9,6 +9,8 @@
 
 #include <string.h>
 
+#include "tvo/trig.h"
+
 #define TVO_PI TVO_R(3.14159265358979323846)
 /* Position-only heading: the velocity direction corrects dead reckoning with this many T_f. */
 #define TVO_HEADING_CORRECTION_TF_MULTIPLE TVO_R(10.0)
@@ -109,7 +111,7 @@ tvo_status_t tvo_controller_init(tvo_controller_t *ctl, const tvo_controller_con
     }
     ctl->cfg = *cfg;
     ctl->objective = objective;
-    ctl->period_s = tvo_ticks_to_seconds(cfg->period_ticks, cfg->tick_hz);
+    ctl->period_s = tvo_ticks_to_seconds32(cfg->period_ticks, cfg->tick_hz);
     const tvo_real_t gains[2] = {cfg->gain_kp, cfg->gain_kd};
     tvo_status_t st = tvo_law_init(&ctl->law, 2u, objective->dim, gains);
     if (st == TVO_OK) {
@@ -189,10 +191,10 @@ static void drop_to_rest(tvo_controller_t *ctl, tvo_command_t *cmd)
 }
 
 /* A period without a usable measurement (or law result): hold, or stop once the watchdog expires. */
-static tvo_status_t hold_or_stop(tvo_controller_t *ctl, uint32_t apply_tick, uint64_t elapsed, uint32_t periods,
-                                 tvo_status_t reason, tvo_command_t *cmd)
+static tvo_status_t hold_or_stop(tvo_controller_t *ctl, const tvo_period_t *period, tvo_status_t reason,
+                                 tvo_command_t *cmd)
 {
-    if (tvo_sample_clock_missed(&ctl->clock, apply_tick, elapsed, periods)) {
+    if (tvo_sample_clock_end(&ctl->clock, period, 0, 0u)) {
         drop_to_rest(ctl, cmd);
         return TVO_ERR_WATCHDOG;
     }
@@ -219,8 +221,11 @@ static tvo_status_t position_only_estimate(const tvo_controller_t *ctl, tvo_dirt
         tvo_real_t rate0[TVO_MAX_OUTPUT_DIM] = {TVO_R(0.0)};
         for (uint8_t r = 0; r < n; ++r) {
             heading_at_sample[r] = meas->heading_valid ? meas->heading_rad[r] : ctl->heading_estimate_rad[r];
-            rate0[2u * r] = ctl->speed_state_mps[r] * TVO_COS(heading_at_sample[r]);
-            rate0[2u * r + 1u] = ctl->speed_state_mps[r] * TVO_SIN(heading_at_sample[r]);
+            tvo_real_t sin_heading;
+            tvo_real_t cos_heading;
+            tvo_sincos(heading_at_sample[r], &sin_heading, &cos_heading);
+            rate0[2u * r] = ctl->speed_state_mps[r] * cos_heading;
+            rate0[2u * r + 1u] = ctl->speed_state_mps[r] * sin_heading;
         }
         st = tvo_dirty_derivative_reset(filter, position, rate0);
         for (uint8_t i = 0; i < 2u * n; ++i) {
@@ -228,7 +233,7 @@ static tvo_status_t position_only_estimate(const tvo_controller_t *ctl, tvo_dirt
         }
         return st;
     }
-    const tvo_real_t dt_s = tvo_ticks_to_seconds(meas->stamp_tick - ctl->clock.last_stamp_tick, ctl->cfg.tick_hz);
+    const tvo_real_t dt_s = tvo_ticks_to_seconds32(meas->stamp_tick - ctl->clock.last_stamp_tick, ctl->cfg.tick_hz);
     st = tvo_dirty_derivative_step(filter, position, dt_s, rate_at_sample);
     if (st != TVO_OK) {
         return st;
@@ -272,10 +277,9 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     const tvo_controller_config_t *cfg = &ctl->cfg;
     const uint8_t n = cfg->robot_count;
 
-    /* Schedule: apply ticks must advance; elapsed time is kept in 64 bits and never wraps. */
-    uint64_t elapsed = 0u;
-    uint32_t periods = 1u;
-    if (tvo_sample_clock_schedule(&ctl->clock, apply_tick, &elapsed, &periods) != TVO_OK) {
+    /* The period's timing: apply ticks must advance; elapsed time never wraps. */
+    tvo_period_t period;
+    if (tvo_sample_clock_begin(&ctl->clock, apply_tick, &period) != TVO_OK) {
         *cmd = ctl->held;
         cmd->flags = TVO_FLAG_HOLDING;
         return TVO_ERR_OUT_OF_ORDER;
@@ -300,26 +304,24 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
         }
     }
     if (st != TVO_OK) {
-        return hold_or_stop(ctl, apply_tick, elapsed, periods, st, cmd);
+        return hold_or_stop(ctl, &period, st, cmd);
     }
 
-    const uint32_t age_ticks = apply_tick - meas->stamp_tick;
-    const tvo_real_t age_s = tvo_ticks_to_seconds(age_ticks, cfg->tick_hz);
-    const int compensate = cfg->delay_compensation != 0u;
+    /* Where the law is evaluated and how far the sampled state is carried there (the age to the
+     * application instant with compensation, half a period on when ZOH-aware). */
+    (void)tvo_sample_clock_locate(&ctl->clock, &period, meas->stamp_tick, cfg->delay_compensation, cfg->zoh_aware);
     const int zoh_aware = cfg->zoh_aware != 0u;
-    /* How far the sampled state is carried with the held command: over the measurement's age to the
-     * application instant (compensation), then half a period on (ZOH-aware: mid-interval). */
-    const tvo_real_t carry_s = (compensate ? age_s : TVO_R(0.0)) + (zoh_aware ? TVO_R(0.5) * ctl->period_s : TVO_R(0.0));
+    const tvo_real_t carry_s = period.carry_s;
     uint32_t flags = (carry_s > TVO_R(0.0)) ? TVO_FLAG_PREDICTED : 0u;
 
     /* State the law sees: at the sample (no compensation), the application instant, or mid-interval. */
     tvo_output_derivs_t y;
-    memset(&y, 0, sizeof(y));
     tvo_real_t heading[TVO_MAX_ROBOTS] = {TVO_R(0.0)};
+    tvo_real_t heading_cs[TVO_MAX_ROBOTS][2];    /* cos, sin of heading[]: trigonometry once per robot */
     tvo_real_t speed[TVO_MAX_ROBOTS] = {TVO_R(0.0)}; /* dynamic-extension speed where the law is evaluated */
     tvo_real_t speed_state[TVO_MAX_ROBOTS] = {TVO_R(0.0)}; /* the step's copy of the extension's state */
     int speed_contradicted = 0;
-    for (uint8_t r = 0; r < n; ++r) {
+    for (uint8_t r = 0; r < n && st == TVO_OK; ++r) {
         speed_state[r] = ctl->speed_state_mps[r];
         if (cfg->velocity_source == TVO_VELOCITY_FROM_POSE && meas->speed_valid) {
             /* Re-sync the extension with what the plant actually does (slip, disturbance): the plant
@@ -337,10 +339,10 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
         pose.position_m[1] = meas->position_m[r][1];
         pose.heading_rad = heading_at_sample[r];
         if (carry_s > TVO_R(0.0)) {
-            st = tvo_unicycle_predict(&pose, ctl->held.speed_mps[r], ctl->held.turn_rate_radps[r], carry_s, &pose);
-            if (st != TVO_OK) {
-                break;
-            }
+            st = tvo_unicycle_predict_cs(&pose, ctl->held.speed_mps[r], ctl->held.turn_rate_radps[r], carry_s, &pose,
+                                         heading_cs[r]);
+        } else {
+            tvo_sincos(pose.heading_rad, &heading_cs[r][1], &heading_cs[r][0]);
         }
         heading[r] = pose.heading_rad;
         /* Mid-interval speed: the state plus half a period of the last acceleration (O(h^2)). */
@@ -348,28 +350,22 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
                    (zoh_aware ? TVO_R(0.5) * ctl->period_s * ctl->telemetry.accel_mps2[r] : TVO_R(0.0));
         y.d[0][2u * r] = pose.position_m[0];
         y.d[0][2u * r + 1u] = pose.position_m[1];
-        if (cfg->velocity_source == TVO_VELOCITY_FROM_POSITION) {
+        if (position_only) {
             /* The held turn rate rotates the velocity over the age, like the heading. */
-            const tvo_real_t turn = ctl->held.turn_rate_radps[r] * carry_s;
-            const tvo_real_t c = TVO_COS(turn);
-            const tvo_real_t s = TVO_SIN(turn);
+            tvo_real_t s;
+            tvo_real_t c;
+            tvo_sincos(ctl->held.turn_rate_radps[r] * carry_s, &s, &c);
             y.d[1][2u * r] = c * rate_filtered[2u * r] - s * rate_filtered[2u * r + 1u];
             y.d[1][2u * r + 1u] = s * rate_filtered[2u * r] + c * rate_filtered[2u * r + 1u];
         } else {
-            /* Mid-interval speed: the state plus half a period of the last acceleration (O(h^2)). */
-            y.d[1][2u * r] = speed[r] * TVO_COS(pose.heading_rad);
-            y.d[1][2u * r + 1u] = speed[r] * TVO_SIN(pose.heading_rad);
+            y.d[1][2u * r] = speed[r] * heading_cs[r][0];
+            y.d[1][2u * r + 1u] = speed[r] * heading_cs[r][1];
         }
     }
 
+    /* The objective's time, from the period's exact elapsed time (no 64-bit division). */
     tvo_time_jet_t t;
-    t.ticks = compensate ? elapsed : (elapsed >= age_ticks ? elapsed - age_ticks : 0u);
-    if (zoh_aware) {
-        t.ticks += cfg->period_ticks / 2u;
-    }
-    t.tick_hz = cfg->tick_hz;
-    t.t_s = tvo_ticks_to_seconds(t.ticks, cfg->tick_hz);
-    t.rate = TVO_R(1.0);
+    (void)tvo_time_jet_at(&period.law_time, cfg->tick_hz, TVO_R(1.0), &t); /* the clock's times are valid */
 
     /* Multipliers (equality constraints) and their rates: controller states living at apply times. */
     const uint8_t primal = ctl->objective->primal_dim;
@@ -380,13 +376,15 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     }
 
     tvo_real_t y_accel[TVO_MAX_Z_DIM];
-    tvo_law_eval_t eval;
+    tvo_real_t gradient[TVO_MAX_OUTPUT_DIM];
+    tvo_real_t gradient_rate[TVO_MAX_OUTPUT_DIM];
+    tvo_law_report_t report = {gradient, gradient_rate, primal, TVO_R(0.0)};
     if (st == TVO_OK) {
-        st = tvo_law_evaluate(&ctl->law, ctl->objective, &y, &t, y_accel, &eval);
+        st = tvo_law_evaluate_report(&ctl->law, ctl->objective, &y, &t, y_accel, &report);
     }
     tvo_command_t next;
-    memset(&next, 0, sizeof(next));
-    if (st == TVO_OK && eval.regularization > TVO_R(0.0)) {
+    memset(&next, 0, sizeof(next)); /* robots beyond n hold zeros */
+    if (st == TVO_OK && report.regularization > TVO_R(0.0)) {
         flags |= TVO_FLAG_REGULARIZED;
     }
     tvo_real_t speed_next[TVO_MAX_ROBOTS] = {TVO_R(0.0)};
@@ -394,8 +392,8 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     for (uint8_t r = 0; r < n && st == TVO_OK; ++r) {
         uint8_t low_speed = 0;
         tvo_real_t turn_rate;
-        st = tvo_unicycle_flat_map(heading[r], speed[r], &y_accel[2u * r], cfg->min_speed_mps,
-                                   &accel[r], &turn_rate, &low_speed);
+        st = tvo_unicycle_flat_map_cs(heading_cs[r], speed[r], &y_accel[2u * r], cfg->min_speed_mps, &accel[r],
+                                      &turn_rate, &low_speed);
         if (low_speed) {
             flags |= TVO_FLAG_LOW_SPEED;
         }
@@ -413,11 +411,10 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     }
 
     if (st != TVO_OK) {
-        return hold_or_stop(ctl, apply_tick, elapsed, periods, st, cmd);
+        return hold_or_stop(ctl, &period, st, cmd);
     }
     /* The step succeeded: from here on its working copies become the controller's state. */
-    (void)tvo_sample_clock_accept_stamp(&ctl->clock, meas->stamp_tick);
-    (void)tvo_sample_clock_good(&ctl->clock, apply_tick, elapsed);
+    (void)tvo_sample_clock_end(&ctl->clock, &period, 1, meas->stamp_tick);
     if (position_only) {
         ctl->velocity_filter = filter;
     }
@@ -426,38 +423,34 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
         ctl->speed_mismatch_periods = TVO_SPEED_MISMATCH_PERIODS; /* saturate: no wrap in a long stall */
         flags |= TVO_FLAG_SPEED_MISMATCH;
     }
+    tvo_controller_telemetry_t *tm = &ctl->telemetry;
     for (uint8_t q = 0; q < dual && q < TVO_MAX_EQUALITIES; ++q) {
         /* Exact for the constant nu'' the law asked for over the period. */
         const tvo_real_t accel_q = y_accel[primal + q];
         ctl->multiplier[q] += (ctl->multiplier_rate[q] + TVO_R(0.5) * accel_q * ctl->period_s) * ctl->period_s;
         ctl->multiplier_rate[q] += accel_q * ctl->period_s;
+        tm->multiplier[q] = ctl->multiplier[q];
     }
     for (uint8_t r = 0; r < n; ++r) {
         ctl->speed_state_mps[r] = speed_next[r];
         /* The estimate lives at the application instant; the next sample dead-reckons from here. */
-        ctl->heading_estimate_rad[r] = tvo_wrap_angle(heading[r] + ctl->held.turn_rate_radps[r] * (age_s - carry_s));
+        ctl->heading_estimate_rad[r] = tvo_wrap_angle(heading[r] + ctl->held.turn_rate_radps[r] * (period.age_s - carry_s));
+        tm->accel_mps2[r] = accel[r];
     }
     next.flags = flags;
     ctl->held = next;
     *cmd = next;
 
-    tvo_controller_telemetry_t *tm = &ctl->telemetry;
-    memset(tm, 0, sizeof(*tm));
+    /* Telemetry of the entries this problem uses (the rest stay zero from init). */
     tm->objective_time_s = t.t_s;
     for (uint8_t i = 0; i < 2u * n; ++i) {
         tm->output_m[i] = y.d[0][i];
         tm->output_rate_mps[i] = y.d[1][i];
         tm->output_accel_mps2[i] = y_accel[i];
-        tm->gradient[i] = eval.grad[0][i];
-        tm->gradient_rate[i] = eval.grad[1][i];
+        tm->gradient[i] = gradient[i];
+        tm->gradient_rate[i] = gradient_rate[i];
     }
-    for (uint8_t r = 0; r < n; ++r) {
-        tm->accel_mps2[r] = accel[r];
-    }
-    for (uint8_t q = 0; q < dual && q < TVO_MAX_EQUALITIES; ++q) {
-        tm->multiplier[q] = ctl->multiplier[q];
-    }
-    tm->regularization = eval.regularization;
+    tm->regularization = report.regularization;
     return TVO_OK;
 }
 

@@ -23,7 +23,8 @@ tvo_status_t tvo_offset_equality_add(tvo_offset_equality_term_t *term, tvo_objec
     term->offset_a = (uint8_t)(2u * robot_a);
     term->offset_b = (uint8_t)(2u * robot_b);
     term->multiplier_index = first;
-    st = tvo_objective_add_term(objective, tvo_offset_equality_gradient_jet, term);
+    const tvo_term_t spec = {tvo_offset_equality_gradient_jet, tvo_offset_equality_gradient_hessian, NULL, term};
+    st = tvo_objective_add(objective, &spec);
     if (st != TVO_OK) {
         /* Give the multipliers back, so a failed add leaves the objective as it was. */
         objective->dual_dim = (uint8_t)(objective->dual_dim - 2u);
@@ -57,6 +58,31 @@ tvo_status_t tvo_offset_equality_gradient_jet(const void *term, const tvo_jet_t 
         tvo_jet_sub(&z[self->offset_a + axis], &z[self->offset_b + axis], order, &residual);
         tvo_jet_sub(&residual, &offset[axis], order, &residual);
         tvo_jet_add(&grad[nu], &residual, order, &grad[nu]);
+    }
+    return TVO_OK;
+}
+
+tvo_status_t tvo_offset_equality_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim,
+                                                  const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
+                                                  tvo_hessian_t *hessian)
+{
+    if (hessian == NULL) {
+        return TVO_ERR_NULL;
+    }
+    const tvo_status_t st = tvo_offset_equality_gradient_jet(term, z, dim, t, order, grad);
+    if (st != TVO_OK) {
+        return st;
+    }
+    /* L = nu^T (y_a - y_b - d(t)) is bilinear: the constraint Jacobian [I, -I] and its transpose. */
+    const tvo_offset_equality_term_t *self = (const tvo_offset_equality_term_t *)term;
+    for (uint8_t axis = 0; axis < 2u; ++axis) {
+        const uint8_t nu = (uint8_t)(self->multiplier_index + axis);
+        const uint8_t a = (uint8_t)(self->offset_a + axis);
+        const uint8_t b = (uint8_t)(self->offset_b + axis);
+        hessian->matrix[a][nu] += TVO_R(1.0);
+        hessian->matrix[nu][a] += TVO_R(1.0);
+        hessian->matrix[b][nu] -= TVO_R(1.0);
+        hessian->matrix[nu][b] -= TVO_R(1.0);
     }
     return TVO_OK;
 }

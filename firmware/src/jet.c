@@ -2,86 +2,24 @@
  * automatic differentiation (Griewank & Walther, ch. 13). */
 #include "tvo/jet.h"
 
-static uint8_t clamp_order(uint8_t order)
+static unsigned clamp_order(uint8_t order)
 {
-    return order > TVO_JET_MAX_ORDER ? (uint8_t)TVO_JET_MAX_ORDER : order;
-}
-
-void tvo_jet_constant(tvo_real_t value, tvo_jet_t *out)
-{
-    for (uint8_t j = 0; j <= TVO_JET_MAX_ORDER; ++j) {
-        out->c[j] = TVO_R(0.0);
-    }
-    out->c[0] = value;
-}
-
-void tvo_jet_variable(tvo_real_t value, tvo_real_t slope, tvo_jet_t *out)
-{
-    tvo_jet_constant(value, out);
-    out->c[1] = slope;
-}
-
-void tvo_jet_add(const tvo_jet_t *a, const tvo_jet_t *b, uint8_t order, tvo_jet_t *out)
-{
-    const uint8_t n = clamp_order(order);
-    for (uint8_t j = 0; j <= n; ++j) {
-        out->c[j] = a->c[j] + b->c[j];
-    }
-}
-
-void tvo_jet_sub(const tvo_jet_t *a, const tvo_jet_t *b, uint8_t order, tvo_jet_t *out)
-{
-    const uint8_t n = clamp_order(order);
-    for (uint8_t j = 0; j <= n; ++j) {
-        out->c[j] = a->c[j] - b->c[j];
-    }
-}
-
-void tvo_jet_scale(const tvo_jet_t *a, tvo_real_t s, uint8_t order, tvo_jet_t *out)
-{
-    const uint8_t n = clamp_order(order);
-    for (uint8_t j = 0; j <= n; ++j) {
-        out->c[j] = s * a->c[j];
-    }
-}
-
-void tvo_jet_axpy(tvo_real_t s, const tvo_jet_t *a, uint8_t order, tvo_jet_t *out)
-{
-    const uint8_t n = clamp_order(order);
-    for (uint8_t j = 0; j <= n; ++j) {
-        out->c[j] += s * a->c[j];
-    }
-}
-
-void tvo_jet_mul(const tvo_jet_t *a, const tvo_jet_t *b, uint8_t order, tvo_jet_t *out)
-{
-    const uint8_t n = clamp_order(order);
-    tvo_jet_t r;
-    for (uint8_t j = 0; j <= n; ++j) {
-        tvo_real_t acc = TVO_R(0.0);
-        for (uint8_t i = 0; i <= j; ++i) {
-            acc += a->c[i] * b->c[j - i];
-        }
-        r.c[j] = acc;
-    }
-    for (uint8_t j = 0; j <= n; ++j) {
-        out->c[j] = r.c[j];
-    }
+    return tvo_jet_order_clamp(order);
 }
 
 void tvo_jet_div(const tvo_jet_t *a, const tvo_jet_t *b, uint8_t order, tvo_jet_t *out)
 {
     /* q = a / b  <=>  q_j = (a_j - sum_{i<j} q_i b_{j-i}) / b_0 */
-    const uint8_t n = clamp_order(order);
+    const unsigned n = clamp_order(order);
     tvo_jet_t q;
-    for (uint8_t j = 0; j <= n; ++j) {
+    for (unsigned j = 0; j <= n; ++j) {
         tvo_real_t acc = a->c[j];
-        for (uint8_t i = 0; i < j; ++i) {
+        for (unsigned i = 0; i < j; ++i) {
             acc -= q.c[i] * b->c[j - i];
         }
         q.c[j] = acc / b->c[0];
     }
-    for (uint8_t j = 0; j <= n; ++j) {
+    for (unsigned j = 0; j <= n; ++j) {
         out->c[j] = q.c[j];
     }
 }
@@ -89,17 +27,17 @@ void tvo_jet_div(const tvo_jet_t *a, const tvo_jet_t *b, uint8_t order, tvo_jet_
 void tvo_jet_sqrt(const tvo_jet_t *a, uint8_t order, tvo_jet_t *out)
 {
     /* s^2 = a  <=>  s_j = (a_j - sum_{0<i<j} s_i s_{j-i}) / (2 s_0) */
-    const uint8_t n = clamp_order(order);
+    const unsigned n = clamp_order(order);
     tvo_jet_t s;
     s.c[0] = TVO_SQRT(a->c[0]);
-    for (uint8_t j = 1; j <= n; ++j) {
+    for (unsigned j = 1; j <= n; ++j) {
         tvo_real_t acc = a->c[j];
-        for (uint8_t i = 1; i < j; ++i) {
+        for (unsigned i = 1; i < j; ++i) {
             acc -= s.c[i] * s.c[j - i];
         }
         s.c[j] = acc / (TVO_R(2.0) * s.c[0]);
     }
-    for (uint8_t j = 0; j <= n; ++j) {
+    for (unsigned j = 0; j <= n; ++j) {
         out->c[j] = s.c[j];
     }
 }
@@ -107,17 +45,17 @@ void tvo_jet_sqrt(const tvo_jet_t *a, uint8_t order, tvo_jet_t *out)
 void tvo_jet_log(const tvo_jet_t *a, uint8_t order, tvo_jet_t *out)
 {
     /* l' = a'/a  <=>  j l_j = (j a_j - sum_{0<i<j} i l_i a_{j-i}) / a_0 */
-    const uint8_t n = clamp_order(order);
+    const unsigned n = clamp_order(order);
     tvo_jet_t l;
     l.c[0] = TVO_LOG(a->c[0]);
-    for (uint8_t j = 1; j <= n; ++j) {
+    for (unsigned j = 1; j <= n; ++j) {
         tvo_real_t acc = (tvo_real_t)j * a->c[j];
-        for (uint8_t i = 1; i < j; ++i) {
+        for (unsigned i = 1; i < j; ++i) {
             acc -= (tvo_real_t)i * l.c[i] * a->c[j - i];
         }
         l.c[j] = acc / ((tvo_real_t)j * a->c[0]);
     }
-    for (uint8_t j = 0; j <= n; ++j) {
+    for (unsigned j = 0; j <= n; ++j) {
         out->c[j] = l.c[j];
     }
 }
@@ -125,25 +63,25 @@ void tvo_jet_log(const tvo_jet_t *a, uint8_t order, tvo_jet_t *out)
 void tvo_jet_exp(const tvo_jet_t *a, uint8_t order, tvo_jet_t *out)
 {
     /* e' = a' e  <=>  j e_j = sum_{0<i<=j} i a_i e_{j-i} */
-    const uint8_t n = clamp_order(order);
+    const unsigned n = clamp_order(order);
     tvo_jet_t e;
     e.c[0] = TVO_EXP(a->c[0]);
-    for (uint8_t j = 1; j <= n; ++j) {
+    for (unsigned j = 1; j <= n; ++j) {
         tvo_real_t acc = TVO_R(0.0);
-        for (uint8_t i = 1; i <= j; ++i) {
+        for (unsigned i = 1; i <= j; ++i) {
             acc += (tvo_real_t)i * a->c[i] * e.c[j - i];
         }
         e.c[j] = acc / (tvo_real_t)j;
     }
-    for (uint8_t j = 0; j <= n; ++j) {
+    for (unsigned j = 0; j <= n; ++j) {
         out->c[j] = e.c[j];
     }
 }
 
 int tvo_jet_is_finite(const tvo_jet_t *a, uint8_t order)
 {
-    const uint8_t n = clamp_order(order);
-    for (uint8_t j = 0; j <= n; ++j) {
+    const unsigned n = clamp_order(order);
+    for (unsigned j = 0; j <= n; ++j) {
         if (!isfinite(a->c[j])) {
             return 0;
         }

@@ -56,6 +56,7 @@ static void zero_output(tvo_real_t *y_k, uint8_t dim)
 }
 
 /*
+ * The Hessian of the terms without a closed form, added into h.
  * Hessian columns H[:, col] = d/dtau grad(y + e_col tau, t) with time frozen, two columns per
  * gradient evaluation: direction a is seeded at tau^2 and direction b at tau^3 of an order-3 jet.
  * Any product of two seeded terms is O(tau^4) and truncated, so
@@ -74,8 +75,8 @@ static const uint8_t hessian_seed_power[HESSIAN_COLUMNS_PER_PASS] = {2u, 3u};
 static const uint8_t hessian_seed_power[HESSIAN_COLUMNS_PER_PASS] = {1u};
 #endif
 
-static tvo_status_t hessian(const tvo_objective_t *objective, const tvo_output_derivs_t *y,
-                            const tvo_time_jet_t *t, tvo_jet_t *y_jet, tvo_jet_t *g_jet, tvo_matrix_t h)
+static tvo_status_t add_jet_hessian(const tvo_objective_t *objective, const tvo_output_derivs_t *y,
+                                    const tvo_time_jet_t *t, tvo_jet_t *y_jet, tvo_jet_t *g_jet, tvo_matrix_t h)
 {
     const uint8_t m = objective->dim;
     tvo_time_jet_t frozen = *t;
@@ -87,7 +88,7 @@ static tvo_status_t hessian(const tvo_objective_t *objective, const tvo_output_d
         for (uint8_t d = 0; d < HESSIAN_COLUMNS_PER_PASS && first + d < m; ++d) {
             y_jet[first + d].c[hessian_seed_power[d]] = TVO_R(1.0);
         }
-        const tvo_status_t st = tvo_objective_gradient_jet(objective, y_jet, &frozen, HESSIAN_ORDER, g_jet);
+        const tvo_status_t st = tvo_objective_gradient_jet_of_jet_terms(objective, y_jet, &frozen, HESSIAN_ORDER, g_jet);
         for (uint8_t d = 0; d < HESSIAN_COLUMNS_PER_PASS && first + d < m; ++d) {
             y_jet[first + d].c[hessian_seed_power[d]] = TVO_R(0.0);
         }
@@ -96,24 +97,18 @@ static tvo_status_t hessian(const tvo_objective_t *objective, const tvo_output_d
         }
         for (uint8_t d = 0; d < HESSIAN_COLUMNS_PER_PASS && first + d < m; ++d) {
             for (uint8_t i = 0; i < m; ++i) {
-                h[i][first + d] = g_jet[i].c[hessian_seed_power[d]];
+                h[i][first + d] += g_jet[i].c[hessian_seed_power[d]];
             }
-        }
-    }
-    /* Symmetrise: the exact Hessian is symmetric; rounding should not make the solve see otherwise. */
-    for (uint8_t i = 0; i < m; ++i) {
-        for (uint8_t j = (uint8_t)(i + 1u); j < m; ++j) {
-            const tvo_real_t s = TVO_R(0.5) * (h[i][j] + h[j][i]);
-            h[i][j] = s;
-            h[j][i] = s;
         }
     }
     return TVO_OK;
 }
 
-tvo_status_t tvo_law_evaluate(const tvo_law_t *law, const tvo_objective_t *objective,
-                              const tvo_output_derivs_t *y, const tvo_time_jet_t *t,
-                              tvo_real_t *y_k, tvo_law_eval_t *eval)
+/* The evaluation; each output is optional: grad_rows[j] receives grad^(j) (j <= k, grad_count
+ * entries), hessian_out the Hessian, *shift the solve's regularisation. */
+static tvo_status_t evaluate(const tvo_law_t *law, const tvo_objective_t *objective, const tvo_output_derivs_t *y,
+                             const tvo_time_jet_t *t, tvo_real_t *y_k, tvo_real_t *const *grad_rows,
+                             uint8_t grad_count, tvo_real_t (*hessian_out)[TVO_MAX_Z_DIM], tvo_real_t *shift)
 {
     if (law == NULL || objective == NULL || y == NULL || t == NULL || y_k == NULL) {
         return TVO_ERR_NULL;
@@ -131,69 +126,116 @@ tvo_status_t tvo_law_evaluate(const tvo_law_t *law, const tvo_objective_t *objec
     if (!isfinite(t->t_s) || !isfinite(t->rate)) {
         return TVO_ERR_NOT_FINITE;
     }
-    for (uint8_t j = 0; j < k; ++j) {
-        for (uint8_t i = 0; i < m; ++i) {
-            if (!isfinite(y->d[j][i])) {
-                return TVO_ERR_NOT_FINITE;
-            }
-        }
-    }
-    if (eval != NULL) {
-        memset(eval, 0, sizeof(*eval));
-    }
-
     /* Trajectory jets y(tau) = sum_{j<k} y^(j) tau^j / j!, with y^(k) = 0 on this curve. */
+    static const tvo_real_t inv_factorial[4] = {TVO_R(1.0), TVO_R(1.0), TVO_R(0.5),
+                                                                    TVO_R(1.0) / TVO_R(6.0)};
     tvo_jet_t y_jet[TVO_MAX_Z_DIM];
     tvo_jet_t g_jet[TVO_MAX_Z_DIM];
-    for (uint8_t i = 0; i < m; ++i) {
-        tvo_jet_constant(TVO_R(0.0), &y_jet[i]);
-        tvo_real_t inv_factorial = TVO_R(1.0);
-        for (uint8_t j = 0; j < k; ++j) {
-            y_jet[i].c[j] = y->d[j][i] * inv_factorial;
-            inv_factorial /= (tvo_real_t)(j + 1u);
+    tvo_hessian_t hessian;
+    tvo_real_t(*h)[TVO_MAX_Z_DIM] = hessian.matrix;
+    hessian.rank_one_count = 0u;
+    for (unsigned i = 0; i < m; ++i) {
+        for (unsigned j = 0; j <= TVO_JET_MAX_ORDER; ++j) {
+            const tvo_real_t value = (j < k) ? y->d[j][i] : TVO_R(0.0);
+            if (!isfinite(value)) {
+                return TVO_ERR_NOT_FINITE;
+            }
+            y_jet[i].c[j] = value * inv_factorial[j];
+        }
+        for (unsigned j = 0; j < m; ++j) {
+            h[i][j] = TVO_R(0.0);
         }
     }
     tvo_time_jet_t along = *t;
     along.rate = TVO_R(1.0);
-    tvo_status_t st = tvo_objective_gradient_jet(objective, y_jet, &along, k, g_jet);
+    /* One pass: every term's gradient jets; the closed forms add their Hessian on the way. */
+    uint8_t jet_terms = 0u;
+    tvo_status_t st = tvo_objective_gradient_hessian(objective, y_jet, &along, k, g_jet, &hessian, &jet_terms);
     if (st != TVO_OK) {
         return st;
     }
 
-    /* grad^(j) = j! c_j; rhs = r + sum_{j<k} a_j grad^(j) with r = k! c_k. The solve overwrites rhs
-     * with the step (it may alias). */
+    /* Barrier parts that are not stiff join the matrix and the gradient; the stiff ones stay apart. */
+    tvo_hessian_settle(&hessian, objective->primal_dim, objective->dual_dim, g_jet, k);
+
+    /* grad^(j) = j! c_j; rhs = r + sum_{j<k} a_j grad^(j) with r = k! c_k, for the gradient jets and
+     * (gamma) for each part kept apart, whose gradient is a multiple of its direction. */
+    static const tvo_real_t factorial[4] = {TVO_R(1.0), TVO_R(1.0), TVO_R(2.0), TVO_R(6.0)};
     tvo_real_t rhs[TVO_MAX_Z_DIM];
-    for (uint8_t i = 0; i < m; ++i) {
-        tvo_real_t factorial = TVO_R(1.0);
-        rhs[i] = TVO_R(0.0);
-        for (uint8_t j = 0; j <= k; ++j) {
-            const tvo_real_t grad = g_jet[i].c[j] * factorial;
-            factorial *= (tvo_real_t)(j + 1u);
-            rhs[i] += (j < k) ? law->gain[j] * grad : grad;
-            if (eval != NULL) {
-                eval->grad[j][i] = grad;
+    tvo_real_t gamma[TVO_MAX_RANK_ONE_PARTS];
+    for (unsigned i = 0; i < m; ++i) {
+        tvo_real_t sum = g_jet[i].c[k] * factorial[k];
+        for (unsigned j = 0; j < k; ++j) {
+            sum += law->gain[j] * (g_jet[i].c[j] * factorial[j]);
+        }
+        if (!isfinite(sum)) {
+            return TVO_ERR_NUMERIC; /* a gradient coefficient was not finite */
+        }
+        rhs[i] = sum;
+    }
+    for (unsigned p = 0; p < hessian.rank_one_count; ++p) {
+        const tvo_jet_t *g = &hessian.rank_one[p].gradient;
+        tvo_real_t sum = g->c[k] * factorial[k];
+        for (unsigned j = 0; j < k; ++j) {
+            sum += law->gain[j] * (g->c[j] * factorial[j]);
+        }
+        if (!isfinite(sum)) {
+            return TVO_ERR_NUMERIC;
+        }
+        gamma[p] = sum;
+    }
+    if (grad_rows != NULL) {
+        /* The gradient and its derivatives as one vector each (the parts added in: for telemetry). */
+        for (unsigned j = 0; j <= k; ++j) {
+            if (grad_rows[j] == NULL) {
+                continue;
+            }
+            for (unsigned i = 0; i < m && i < grad_count; ++i) {
+                grad_rows[j][i] = g_jet[i].c[j] * factorial[j];
+            }
+            for (unsigned p = 0; p < hessian.rank_one_count; ++p) {
+                const tvo_rank_one_t *part = &hessian.rank_one[p];
+                for (unsigned e = 0; e < part->count; ++e) {
+                    if (part->index[e] < grad_count) {
+                        grad_rows[j][part->index[e]] += part->gradient.c[j] * factorial[j] * part->value[e];
+                    }
+                }
             }
         }
     }
 
-    tvo_matrix_t h;
-    st = hessian(objective, y, t, y_jet, g_jet, h);
-    if (st != TVO_OK) {
-        return st;
+    if (jet_terms > 0u) {
+        st = add_jet_hessian(objective, y, t, y_jet, g_jet, h);
+        if (st != TVO_OK) {
+            return st;
+        }
     }
-    if (eval != NULL) {
-        for (uint8_t i = 0; i < m; ++i) {
-            for (uint8_t j = 0; j < m; ++j) {
-                eval->hessian[i][j] = h[i][j];
+    /* Symmetrise: the exact Hessian is symmetric; rounding should not make the solve see otherwise. */
+    for (unsigned i = 0; i < m; ++i) {
+        for (unsigned j = i + 1u; j < m; ++j) {
+            const tvo_real_t sym = TVO_R(0.5) * (h[i][j] + h[j][i]);
+            h[i][j] = sym;
+            h[j][i] = sym;
+        }
+    }
+    if (hessian_out != NULL) {
+        /* The whole Hessian, rank-one parts included, for tests and tools. */
+        for (unsigned i = 0; i < m; ++i) {
+            for (unsigned j = 0; j < m; ++j) {
+                hessian_out[i][j] = h[i][j];
+            }
+        }
+        for (unsigned p = 0; p < hessian.rank_one_count; ++p) {
+            const tvo_rank_one_t *part = &hessian.rank_one[p];
+            for (unsigned i = 0; i < part->count; ++i) {
+                for (unsigned j = 0; j < part->count; ++j) {
+                    hessian_out[part->index[i]][part->index[j]] += part->weight * part->value[i] * part->value[j];
+                }
             }
         }
     }
 
-    tvo_real_t shift = TVO_R(0.0);
-    st = tvo_saddle_solve(h, objective->primal_dim, objective->dual_dim, rhs, rhs, &shift);
-    if (eval != NULL) {
-        eval->regularization = shift;
-    }
+    st = tvo_saddle_solve_split(&hessian, objective->primal_dim, objective->dual_dim, rhs, gamma, rhs, shift);
     if (st != TVO_OK) {
         return st;
     }
@@ -201,4 +243,33 @@ tvo_status_t tvo_law_evaluate(const tvo_law_t *law, const tvo_objective_t *objec
         y_k[i] = -rhs[i];
     }
     return TVO_OK;
+}
+
+tvo_status_t tvo_law_evaluate(const tvo_law_t *law, const tvo_objective_t *objective,
+                              const tvo_output_derivs_t *y, const tvo_time_jet_t *t,
+                              tvo_real_t *y_k, tvo_law_eval_t *eval)
+{
+    if (eval == NULL) {
+        return evaluate(law, objective, y, t, y_k, NULL, 0u, NULL, NULL);
+    }
+    memset(eval, 0, sizeof(*eval));
+    tvo_real_t *rows[TVO_MAX_RELATIVE_DEGREE + 1];
+    for (uint8_t j = 0; j <= TVO_MAX_RELATIVE_DEGREE; ++j) {
+        rows[j] = eval->grad[j];
+    }
+    return evaluate(law, objective, y, t, y_k, rows, TVO_MAX_Z_DIM, eval->hessian, &eval->regularization);
+}
+
+tvo_status_t tvo_law_evaluate_report(const tvo_law_t *law, const tvo_objective_t *objective,
+                                     const tvo_output_derivs_t *y, const tvo_time_jet_t *t, tvo_real_t *y_k,
+                                     tvo_law_report_t *report)
+{
+    if (report == NULL) {
+        return TVO_ERR_NULL;
+    }
+    report->regularization = TVO_R(0.0);
+    tvo_real_t *rows[TVO_MAX_RELATIVE_DEGREE + 1] = {NULL};
+    rows[0] = report->gradient;
+    rows[1] = report->gradient_rate;
+    return evaluate(law, objective, y, t, y_k, rows, report->count, NULL, &report->regularization);
 }

@@ -13,53 +13,54 @@
  * make the soft directions look singular (a floor relative to the largest diagonal would). */
 #define AT(a, stride, i, j) ((a)[(size_t)(i) * (stride) + (j)])
 
-static int cholesky_factor(tvo_real_t *a, uint8_t stride, uint8_t n)
+static int cholesky_factor(tvo_real_t *a, unsigned stride, unsigned n)
 {
-    for (uint8_t j = 0; j < n; ++j) {
+    for (unsigned j = 0; j < n; ++j) {
         const tvo_real_t diagonal = AT(a, stride, j, j);
         tvo_real_t d = diagonal;
-        for (uint8_t k = 0; k < j; ++k) {
+        for (unsigned k = 0; k < j; ++k) {
             d -= AT(a, stride, j, k) * AT(a, stride, j, k);
         }
         if (!(diagonal > TVO_R(0.0)) || !(d > TVO_R(64.0) * TVO_EPSILON * diagonal)) {
             return 0;
         }
         const tvo_real_t l_jj = TVO_SQRT(d);
+        const tvo_real_t inv_l_jj = TVO_R(1.0) / l_jj;
         AT(a, stride, j, j) = l_jj;
-        for (uint8_t i = (uint8_t)(j + 1u); i < n; ++i) {
+        for (unsigned i = j + 1u; i < n; ++i) {
             tvo_real_t s = AT(a, stride, i, j);
-            for (uint8_t k = 0; k < j; ++k) {
+            for (unsigned k = 0; k < j; ++k) {
                 s -= AT(a, stride, i, k) * AT(a, stride, j, k);
             }
-            AT(a, stride, i, j) = s / l_jj;
+            AT(a, stride, i, j) = s * inv_l_jj;
         }
     }
     return 1;
 }
 
 /* x = (L L^T)^-1 b with the factor in the lower triangle; x may alias b. */
-static void cholesky_substitute(const tvo_real_t *l, uint8_t stride, uint8_t n, const tvo_real_t *b, tvo_real_t *x)
+static void cholesky_substitute(const tvo_real_t *l, unsigned stride, unsigned n, const tvo_real_t *b, tvo_real_t *x)
 {
-    for (uint8_t i = 0; i < n; ++i) {
+    for (unsigned i = 0; i < n; ++i) {
         tvo_real_t s = b[i];
-        for (uint8_t k = 0; k < i; ++k) {
+        for (unsigned k = 0; k < i; ++k) {
             s -= AT(l, stride, i, k) * x[k];
         }
         x[i] = s / AT(l, stride, i, i);
     }
-    for (uint8_t ii = n; ii > 0u; --ii) {
-        const uint8_t i = (uint8_t)(ii - 1u);
+    for (unsigned ii = n; ii > 0u; --ii) {
+        const unsigned i = ii - 1u;
         tvo_real_t s = x[i];
-        for (uint8_t k = (uint8_t)(i + 1u); k < n; ++k) {
+        for (unsigned k = i + 1u; k < n; ++k) {
             s -= AT(l, stride, k, i) * x[k];
         }
         x[i] = s / AT(l, stride, i, i);
     }
 }
 
-static int all_finite(const tvo_real_t *v, uint8_t n)
+static int all_finite(const tvo_real_t *v, unsigned n)
 {
-    for (uint8_t i = 0; i < n; ++i) {
+    for (unsigned i = 0; i < n; ++i) {
         if (!isfinite(v[i])) {
             return 0;
         }
@@ -88,18 +89,16 @@ tvo_status_t tvo_cholesky_solve(tvo_matrix_t a, uint8_t n, const tvo_real_t *b, 
 }
 
 /* Factors P + mu I in place (p = the primal block of a), smallest workable mu first. */
-static tvo_status_t regularized_factor(tvo_matrix_t a, uint8_t n, tvo_real_t *shift)
+static tvo_status_t regularized_factor(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t n, tvo_real_t *shift)
 {
     /* The factor overwrites the lower triangle and the diagonal: keep the diagonal, and let the strict
      * upper triangle (never written) be the pristine copy the retries restore from. */
     tvo_real_t diag[TVO_MAX_Z_DIM];
     for (uint8_t i = 0; i < n; ++i) {
         diag[i] = a[i][i];
-        for (uint8_t j = 0; j < i; ++j) {
-            a[i][j] = a[j][i];
-        }
     }
     *shift = TVO_R(0.0);
+    /* The factor reads the lower triangle: the upper one (symmetric input) stays as the copy. */
     if (cholesky_factor(&a[0][0], TVO_MAX_Z_DIM, n)) {
         return TVO_OK; /* the usual case: positive definite, no shift */
     }
@@ -142,8 +141,17 @@ static tvo_status_t regularized_factor(tvo_matrix_t a, uint8_t n, tvo_real_t *sh
     return TVO_ERR_NOT_POSITIVE_DEFINITE;
 }
 
+static tvo_status_t saddle_solve(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t primal_n, uint8_t dual_n, const tvo_real_t *b,
+                                 tvo_real_t *x, tvo_real_t *shift);
+
 tvo_status_t tvo_saddle_solve(tvo_matrix_t a, uint8_t primal_n, uint8_t dual_n, const tvo_real_t *b, tvo_real_t *x,
                               tvo_real_t *shift)
+{
+    return saddle_solve(a, primal_n, dual_n, b, x, shift);
+}
+
+static tvo_status_t saddle_solve(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t primal_n, uint8_t dual_n, const tvo_real_t *b,
+                                 tvo_real_t *x, tvo_real_t *shift)
 {
     if (a == NULL || b == NULL || x == NULL) {
         return TVO_ERR_NULL;
@@ -220,6 +228,217 @@ tvo_status_t tvo_saddle_solve(tvo_matrix_t a, uint8_t primal_n, uint8_t dual_n, 
         for (uint8_t i = 0; i < primal_n; ++i) {
             x[i] = u[i];
         }
+    }
+    return all_finite(x, n) ? TVO_OK : TVO_ERR_NUMERIC;
+}
+
+void tvo_hessian_clear(tvo_hessian_t *h, uint8_t n)
+{
+    for (unsigned i = 0; i < n && i < TVO_MAX_Z_DIM; ++i) {
+        for (unsigned j = 0; j < n && j < TVO_MAX_Z_DIM; ++j) {
+            h->matrix[i][j] = TVO_R(0.0);
+        }
+    }
+    h->rank_one_count = 0u;
+}
+
+/* The part's curvature into the matrix and its gradient jets into grad. */
+static void add_into_matrix(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_t *grad, uint8_t order)
+{
+    for (unsigned i = 0; i < part->count; ++i) {
+        const tvo_real_t wi = part->weight * part->value[i];
+        for (unsigned j = 0; j < part->count; ++j) {
+            h->matrix[part->index[i]][part->index[j]] += wi * part->value[j];
+        }
+        if (grad != NULL) {
+            tvo_jet_axpy(part->value[i], &part->gradient, order, &grad[part->index[i]]);
+        }
+    }
+}
+
+static tvo_real_t rank_one_size(const tvo_rank_one_t *part)
+{
+    tvo_real_t norm_sq = TVO_R(0.0);
+    for (unsigned i = 0; i < part->count; ++i) {
+        norm_sq += part->value[i] * part->value[i];
+    }
+    return part->weight * norm_sq;
+}
+
+void tvo_hessian_add_part(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_t *grad, uint8_t order)
+{
+    if (h == NULL || part == NULL || part->count > TVO_RANK_ONE_MAX_ENTRIES) {
+        return;
+    }
+    if (!(part->weight > TVO_R(0.0))) {
+        add_into_matrix(h, part, grad, order); /* only positive curvature can be solved apart */
+        return;
+    }
+    if (h->rank_one_count < TVO_MAX_RANK_ONE_PARTS) {
+        h->rank_one[h->rank_one_count++] = *part;
+        return;
+    }
+    /* Full: the smallest of the kept parts and the new one goes into the matrix. */
+    unsigned smallest = 0u;
+    for (unsigned k = 1u; k < TVO_MAX_RANK_ONE_PARTS; ++k) {
+        if (rank_one_size(&h->rank_one[k]) < rank_one_size(&h->rank_one[smallest])) {
+            smallest = k;
+        }
+    }
+    if (rank_one_size(part) > rank_one_size(&h->rank_one[smallest])) {
+        add_into_matrix(h, &h->rank_one[smallest], grad, order);
+        h->rank_one[smallest] = *part;
+    } else {
+        add_into_matrix(h, part, grad, order);
+    }
+}
+
+void tvo_hessian_settle(tvo_hessian_t *h, uint8_t n, uint8_t dual_n, tvo_jet_t *grad, uint8_t order)
+{
+    if (h == NULL || h->rank_one_count == 0u) {
+        return;
+    }
+    tvo_real_t scale = TVO_R(1.0);
+    for (unsigned i = 0; i < n && i < TVO_MAX_Z_DIM; ++i) {
+        if (TVO_FABS(h->matrix[i][i]) > scale) {
+            scale = TVO_FABS(h->matrix[i][i]);
+        }
+    }
+    unsigned kept = 0u;
+    for (unsigned k = 0; k < h->rank_one_count && k < TVO_MAX_RANK_ONE_PARTS; ++k) {
+        const tvo_rank_one_t *part = &h->rank_one[k];
+        if (dual_n == 0u && rank_one_size(part) > TVO_STIFF_RATIO * scale) {
+            if (kept != k) {
+                h->rank_one[kept] = *part;
+            }
+            kept++;
+        } else {
+            add_into_matrix(h, part, grad, order);
+        }
+    }
+    h->rank_one_count = (uint8_t)kept;
+}
+
+/* y = A^-1 u for a sparse u, with A's factor in the lower triangle. */
+static void substitute_sparse(const tvo_real_t *factor, unsigned n, const tvo_rank_one_t *part, tvo_real_t *y)
+{
+    tvo_real_t dense[TVO_MAX_Z_DIM];
+    for (unsigned i = 0; i < n; ++i) {
+        dense[i] = TVO_R(0.0);
+    }
+    for (unsigned i = 0; i < part->count; ++i) {
+        dense[part->index[i]] += part->value[i];
+    }
+    cholesky_substitute(factor, TVO_MAX_Z_DIM, n, dense, y);
+}
+
+static tvo_real_t dot_sparse(const tvo_rank_one_t *part, const tvo_real_t *v)
+{
+    tvo_real_t sum = TVO_R(0.0);
+    for (unsigned i = 0; i < part->count; ++i) {
+        sum += part->value[i] * v[part->index[i]];
+    }
+    return sum;
+}
+
+/* The matrix restored from its upper triangle and diag (a factor overwrote it), the parts and their
+ * right-hand sides added in, and the sum solved as tvo_saddle_solve does. */
+static tvo_status_t solve_parts_added(tvo_hessian_t *h, const tvo_real_t *diag, uint8_t primal_n, uint8_t dual_n,
+                                      const tvo_real_t *b, const tvo_real_t *gamma, tvo_real_t *x, tvo_real_t *shift)
+{
+    const unsigned n = primal_n;
+    tvo_real_t dense_b[TVO_MAX_Z_DIM];
+    for (unsigned i = 0; i < n; ++i) {
+        h->matrix[i][i] = diag[i];
+        dense_b[i] = b[i];
+        for (unsigned j = 0; j < i; ++j) {
+            h->matrix[i][j] = h->matrix[j][i];
+        }
+    }
+    for (unsigned k = 0; k < h->rank_one_count && k < TVO_MAX_RANK_ONE_PARTS; ++k) {
+        const tvo_rank_one_t *part = &h->rank_one[k];
+        add_into_matrix(h, part, NULL, 0u);
+        for (unsigned i = 0; i < part->count; ++i) {
+            dense_b[part->index[i]] += gamma[k] * part->value[i];
+        }
+    }
+    h->rank_one_count = 0u;
+    return saddle_solve(h->matrix, primal_n, dual_n, dense_b, x, shift);
+}
+
+tvo_status_t tvo_saddle_solve_split(tvo_hessian_t *h, uint8_t primal_n, uint8_t dual_n, const tvo_real_t *b,
+                                    const tvo_real_t *gamma, tvo_real_t *x, tvo_real_t *shift)
+{
+    if (h == NULL || b == NULL || x == NULL) {
+        return TVO_ERR_NULL;
+    }
+    const unsigned parts = h->rank_one_count;
+    if (primal_n == 0u || (unsigned)primal_n + dual_n > TVO_MAX_Z_DIM || parts > TVO_MAX_RANK_ONE_PARTS ||
+        (parts > 0u && (gamma == NULL || dual_n > 0u))) {
+        return parts > 0u && gamma == NULL ? TVO_ERR_NULL : TVO_ERR_DIMENSION;
+    }
+    if (parts == 0u) {
+        return saddle_solve(h->matrix, primal_n, dual_n, b, x, shift);
+    }
+    const unsigned n = primal_n;
+    for (unsigned i = 0; i < n; ++i) {
+        if (!all_finite(h->matrix[i], n) || !isfinite(b[i])) {
+            return TVO_ERR_NOT_FINITE;
+        }
+    }
+    if (!all_finite(gamma, parts)) {
+        return TVO_ERR_NOT_FINITE;
+    }
+    /* The soft part alone: if it is positive definite the stiff parts are solved apart, exactly. */
+    tvo_real_t diag[TVO_MAX_Z_DIM];
+    for (unsigned i = 0; i < n; ++i) {
+        diag[i] = h->matrix[i][i];
+    }
+    if (!cholesky_factor(&h->matrix[0][0], TVO_MAX_Z_DIM, n)) {
+        return solve_parts_added(h, diag, primal_n, dual_n, b, gamma, x, shift);
+    }
+    if (shift != NULL) {
+        *shift = TVO_R(0.0);
+    }
+    /* With z = A^-1 b, Y = A^-1 U and C = S^-1 + U^T Y (S = diag(weights)):
+     *   x = z + Y C^-1 (S^-1 gamma - U^T z),
+     * (Woodbury for b, push-through for U gamma) where every term is of the solution's own size:
+     * the stiff right-hand sides enter divided by their weights, never next to the soft ones. */
+    tvo_real_t z[TVO_MAX_Z_DIM];
+    tvo_real_t y_cols[TVO_MAX_RANK_ONE_PARTS][TVO_MAX_Z_DIM];
+    tvo_real_t capacitance[TVO_MAX_RANK_ONE_PARTS][TVO_MAX_RANK_ONE_PARTS];
+    tvo_real_t rhs[TVO_MAX_RANK_ONE_PARTS];
+    tvo_real_t w[TVO_MAX_RANK_ONE_PARTS];
+    cholesky_substitute(&h->matrix[0][0], TVO_MAX_Z_DIM, n, b, z);
+    for (unsigned k = 0; k < parts; ++k) {
+        substitute_sparse(&h->matrix[0][0], n, &h->rank_one[k], y_cols[k]);
+    }
+    for (unsigned k = 0; k < parts; ++k) {
+        const tvo_real_t inv_weight = TVO_R(1.0) / h->rank_one[k].weight;
+        rhs[k] = gamma[k] * inv_weight - dot_sparse(&h->rank_one[k], z);
+        for (unsigned l = 0; l < parts; ++l) {
+            capacitance[k][l] = dot_sparse(&h->rank_one[k], y_cols[l]);
+        }
+        capacitance[k][k] += inv_weight;
+    }
+    for (unsigned k = 0; k < parts; ++k) {
+        for (unsigned l = 0; l < k; ++l) {
+            const tvo_real_t avg = TVO_R(0.5) * (capacitance[k][l] + capacitance[l][k]);
+            capacitance[k][l] = avg;
+            capacitance[l][k] = avg;
+        }
+    }
+    if (!cholesky_factor(&capacitance[0][0], TVO_MAX_RANK_ONE_PARTS, parts)) {
+        /* Nearly dependent directions (three planes of one robot in the plane): solve the sum. */
+        return solve_parts_added(h, diag, primal_n, dual_n, b, gamma, x, shift);
+    }
+    cholesky_substitute(&capacitance[0][0], TVO_MAX_RANK_ONE_PARTS, parts, rhs, w);
+    for (unsigned i = 0; i < n; ++i) {
+        tvo_real_t sum = z[i];
+        for (unsigned k = 0; k < parts; ++k) {
+            sum += y_cols[k][i] * w[k];
+        }
+        x[i] = sum;
     }
     return all_finite(x, n) ? TVO_OK : TVO_ERR_NUMERIC;
 }

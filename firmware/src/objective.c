@@ -10,6 +10,7 @@ tvo_status_t tvo_objective_init(tvo_objective_t *objective, uint8_t primal_dim)
     objective->primal_dim = 0;
     objective->dual_dim = 0;
     objective->dim = 0;
+    objective->jets_only = 0;
     if (primal_dim == 0u || primal_dim > TVO_MAX_OUTPUT_DIM) {
         return TVO_ERR_DIMENSION;
     }
@@ -19,7 +20,8 @@ tvo_status_t tvo_objective_init(tvo_objective_t *objective, uint8_t primal_dim)
 }
 
 static tvo_status_t append_term(tvo_objective_t *objective, tvo_gradient_jet_fn gradient_jet,
-                                tvo_constraint_max_fn constraint_max, const void *term)
+                                tvo_gradient_hessian_fn gradient_hessian, tvo_constraint_max_fn constraint_max,
+                                const void *term)
 {
     if (objective->dim == 0u) {
         return TVO_ERR_NOT_INITIALIZED;
@@ -29,6 +31,7 @@ static tvo_status_t append_term(tvo_objective_t *objective, tvo_gradient_jet_fn 
     }
     tvo_term_t *slot = &objective->terms[objective->term_count];
     slot->gradient_jet = gradient_jet;
+    slot->gradient_hessian = gradient_hessian;
     slot->constraint_max = constraint_max;
     slot->term = term;
     objective->term_count++;
@@ -41,7 +44,7 @@ tvo_status_t tvo_objective_add_term(tvo_objective_t *objective, tvo_gradient_jet
     if (objective == NULL || gradient_jet == NULL || term == NULL) {
         return TVO_ERR_NULL;
     }
-    return append_term(objective, gradient_jet, NULL, term);
+    return append_term(objective, gradient_jet, NULL, NULL, term);
 }
 
 tvo_status_t tvo_objective_add_constraint(tvo_objective_t *objective, tvo_gradient_jet_fn gradient_jet,
@@ -50,7 +53,15 @@ tvo_status_t tvo_objective_add_constraint(tvo_objective_t *objective, tvo_gradie
     if (objective == NULL || gradient_jet == NULL || constraint_max == NULL || term == NULL) {
         return TVO_ERR_NULL;
     }
-    return append_term(objective, gradient_jet, constraint_max, term);
+    return append_term(objective, gradient_jet, NULL, constraint_max, term);
+}
+
+tvo_status_t tvo_objective_add(tvo_objective_t *objective, const tvo_term_t *term)
+{
+    if (objective == NULL || term == NULL || term->gradient_jet == NULL || term->term == NULL) {
+        return TVO_ERR_NULL;
+    }
+    return append_term(objective, term->gradient_jet, term->gradient_hessian, term->constraint_max, term->term);
 }
 
 tvo_status_t tvo_objective_reserve_multipliers(tvo_objective_t *objective, uint8_t count, uint8_t *first_index)
@@ -73,8 +84,21 @@ tvo_status_t tvo_objective_reserve_multipliers(tvo_objective_t *objective, uint8
     return TVO_OK;
 }
 
-tvo_status_t tvo_objective_gradient_jet(const tvo_objective_t *objective, const tvo_jet_t *z,
-                                        const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad)
+/* Which terms a pass sums, and how. */
+typedef enum {
+    SUM_ALL_BY_JETS = 0,  /* gradient jets of every term (the reference) */
+    SUM_CLOSED_FORMS = 1, /* closed forms add gradient and Hessian; the rest gradient jets */
+    SUM_JET_TERMS = 2     /* gradient jets of the terms SUM_CLOSED_FORMS leaves to jets */
+} sum_mode_t;
+
+static int uses_closed_form(const tvo_objective_t *objective, const tvo_term_t *term)
+{
+    return term->gradient_hessian != NULL && !objective->jets_only;
+}
+
+static tvo_status_t sum_terms(const tvo_objective_t *objective, const tvo_jet_t *z, const tvo_time_jet_t *t,
+                              uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian, sum_mode_t mode,
+                              uint8_t *jet_terms)
 {
     if (objective == NULL || z == NULL || t == NULL || grad == NULL) {
         return TVO_ERR_NULL;
@@ -88,19 +112,53 @@ tvo_status_t tvo_objective_gradient_jet(const tvo_objective_t *objective, const 
     for (uint8_t i = 0; i < objective->dim; ++i) {
         tvo_jet_constant(TVO_R(0.0), &grad[i]);
     }
+    uint8_t left_to_jets = 0u;
     for (uint8_t k = 0; k < objective->term_count && k < TVO_MAX_TERMS; ++k) {
         const tvo_term_t *term = &objective->terms[k];
-        const tvo_status_t st = term->gradient_jet(term->term, z, objective->dim, t, order, grad);
+        const int closed = (mode != SUM_ALL_BY_JETS) && uses_closed_form(objective, term);
+        tvo_status_t st = TVO_OK;
+        if (mode == SUM_CLOSED_FORMS && closed) {
+            st = term->gradient_hessian(term->term, z, objective->dim, t, order, grad, hessian);
+        } else if (!(mode == SUM_JET_TERMS && closed)) {
+            st = term->gradient_jet(term->term, z, objective->dim, t, order, grad);
+            left_to_jets++;
+        }
         if (st != TVO_OK) {
             return st;
         }
     }
-    for (uint8_t i = 0; i < objective->dim; ++i) {
+    /* The law's pass leaves this check to the law, which checks the one vector it combines them into. */
+    for (uint8_t i = 0; mode != SUM_CLOSED_FORMS && i < objective->dim; ++i) {
         if (!tvo_jet_is_finite(&grad[i], order)) {
             return TVO_ERR_NUMERIC;
         }
     }
+    if (jet_terms != NULL) {
+        *jet_terms = left_to_jets;
+    }
     return TVO_OK;
+}
+
+tvo_status_t tvo_objective_gradient_jet(const tvo_objective_t *objective, const tvo_jet_t *z,
+                                        const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad)
+{
+    return sum_terms(objective, z, t, order, grad, NULL, SUM_ALL_BY_JETS, NULL);
+}
+
+tvo_status_t tvo_objective_gradient_hessian(const tvo_objective_t *objective, const tvo_jet_t *z,
+                                            const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
+                                            tvo_hessian_t *hessian, uint8_t *jet_terms)
+{
+    if (hessian == NULL || jet_terms == NULL) {
+        return TVO_ERR_NULL;
+    }
+    return sum_terms(objective, z, t, order, grad, hessian, SUM_CLOSED_FORMS, jet_terms);
+}
+
+tvo_status_t tvo_objective_gradient_jet_of_jet_terms(const tvo_objective_t *objective, const tvo_jet_t *z,
+                                                     const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad)
+{
+    return sum_terms(objective, z, t, order, grad, NULL, SUM_JET_TERMS, NULL);
 }
 
 tvo_status_t tvo_objective_constraint_max(const tvo_objective_t *objective, const tvo_real_t *y, tvo_real_t t_s,
@@ -152,4 +210,33 @@ tvo_real_t tvo_ticks_to_seconds(uint64_t ticks, uint32_t tick_hz)
     const uint64_t whole_s = ticks / tick_hz;
     const uint64_t frac_ticks = ticks % tick_hz;
     return (tvo_real_t)whole_s + (tvo_real_t)frac_ticks / (tvo_real_t)tick_hz;
+}
+
+tvo_status_t tvo_time_jet_at(const tvo_tick_time_t *time, uint32_t tick_hz, tvo_real_t rate, tvo_time_jet_t *t)
+{
+    if (time == NULL || t == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (tick_hz == 0u || time->frac_ticks >= tick_hz) {
+        return TVO_ERR_PARAM;
+    }
+    t->ticks = time->ticks;
+    t->tick_hz = tick_hz;
+    t->whole_s = time->whole_s;
+    t->frac_ticks = time->frac_ticks;
+    t->t_s = tvo_tick_time_seconds(time, tick_hz);
+    t->rate = rate;
+    return TVO_OK;
+}
+
+tvo_status_t tvo_time_jet_at_ticks(uint64_t ticks, uint32_t tick_hz, tvo_real_t rate, tvo_time_jet_t *t)
+{
+    if (t == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (tick_hz == 0u || ticks / tick_hz > UINT32_MAX) {
+        return TVO_ERR_PARAM;
+    }
+    const tvo_tick_time_t time = {ticks, (uint32_t)(ticks / tick_hz), (uint32_t)(ticks % tick_hz)};
+    return tvo_time_jet_at(&time, tick_hz, rate, t);
 }

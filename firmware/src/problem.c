@@ -34,8 +34,9 @@ static tvo_status_t add_distance(tvo_problem_t *problem, tvo_distance_kind_t kin
     tvo_distance_term_t *term = &problem->distance[problem->distance_term_count];
     tvo_status_t st = tvo_distance_term_init(term, &problem->barrier, kind, d->robot_a, d->robot_b, bound_m, rate_mps);
     if (st == TVO_OK) {
-        st = tvo_objective_add_constraint(&problem->objective, tvo_distance_gradient_jet, tvo_distance_constraint_max,
-                                          term);
+        const tvo_term_t spec = {tvo_distance_gradient_jet, tvo_distance_gradient_hessian, tvo_distance_constraint_max,
+                                 term};
+        st = tvo_objective_add(&problem->objective, &spec);
     }
     if (st == TVO_OK) {
         problem->distance_term_count++;
@@ -80,8 +81,9 @@ static tvo_status_t build_constraints(tvo_problem_t *problem, const tvo_problem_
         st = tvo_halfspace_term_init(&problem->halfspace[i], &problem->barrier, h->robot, h->normal, h->normal_rate,
                                      h->bound_m, h->bound_rate_mps);
         if (st == TVO_OK) {
-            st = tvo_objective_add_constraint(&problem->objective, tvo_halfspace_gradient_jet,
-                                              tvo_halfspace_constraint_max, &problem->halfspace[i]);
+            const tvo_term_t spec = {tvo_halfspace_gradient_jet, tvo_halfspace_gradient_hessian,
+                                     tvo_halfspace_constraint_max, &problem->halfspace[i]};
+            st = tvo_objective_add(&problem->objective, &spec);
         }
     }
     if (st != TVO_OK) {
@@ -95,8 +97,9 @@ static tvo_status_t build_constraints(tvo_problem_t *problem, const tvo_problem_
         st = tvo_free_space_term_init(&problem->free_space[r], &problem->barrier, r, desc->robot_radius_m,
                                       desc->obstacle, desc->obstacle_count);
         if (st == TVO_OK) {
-            st = tvo_objective_add_constraint(&problem->objective, tvo_free_space_gradient_jet,
-                                              tvo_free_space_constraint_max, &problem->free_space[r]);
+            const tvo_term_t spec = {tvo_free_space_gradient_jet, tvo_free_space_gradient_hessian,
+                                     tvo_free_space_constraint_max, &problem->free_space[r]};
+            st = tvo_objective_add(&problem->objective, &spec);
         }
     }
     return st;
@@ -122,7 +125,8 @@ tvo_status_t tvo_problem_init(tvo_problem_t *problem, const tvo_problem_desc_t *
         problem->target[r] = desc->target[r];
         st = tvo_tracking_init(&problem->tracking[r], &problem->target[r], desc->tracking_weight[r], (uint8_t)(2u * r));
         if (st == TVO_OK) {
-            st = tvo_objective_add_term(&problem->objective, tvo_tracking_gradient_jet, &problem->tracking[r]);
+            const tvo_term_t spec = {tvo_tracking_gradient_jet, tvo_tracking_gradient_hessian, NULL, &problem->tracking[r]};
+            st = tvo_objective_add(&problem->objective, &spec);
         }
     }
     const uint8_t any_inequality = (uint8_t)(desc->distance_count > 0u || desc->halfspace_count > 0u ||

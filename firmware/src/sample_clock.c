@@ -40,30 +40,109 @@ tvo_status_t tvo_sample_clock_init(tvo_sample_clock_t *clock, uint32_t tick_hz, 
     return TVO_OK;
 }
 
-tvo_status_t tvo_sample_clock_schedule(const tvo_sample_clock_t *clock, uint32_t apply_tick, uint64_t *elapsed_ticks,
-                                       uint32_t *periods)
+tvo_tick_time_t tvo_tick_time_after(const tvo_tick_time_t *t, uint32_t delta_ticks, uint32_t tick_hz)
 {
-    if (clock == NULL || elapsed_ticks == NULL || periods == NULL) {
+    tvo_tick_time_t out = *t;
+    out.ticks += delta_ticks;
+    out.whole_s += delta_ticks / tick_hz;
+    out.frac_ticks += delta_ticks % tick_hz;
+    if (out.frac_ticks >= tick_hz) {
+        out.frac_ticks -= tick_hz;
+        out.whole_s += 1u;
+    }
+    return out;
+}
+
+tvo_tick_time_t tvo_tick_time_before(const tvo_tick_time_t *t, uint32_t delta_ticks, uint32_t tick_hz)
+{
+    tvo_tick_time_t out = {0u, 0u, 0u};
+    if ((uint64_t)delta_ticks >= t->ticks) {
+        return out;
+    }
+    out.ticks = t->ticks - delta_ticks;
+    const uint32_t whole = delta_ticks / tick_hz;
+    const uint32_t frac = delta_ticks % tick_hz;
+    out.whole_s = t->whole_s - whole;
+    if (t->frac_ticks >= frac) {
+        out.frac_ticks = t->frac_ticks - frac;
+    } else {
+        out.frac_ticks = t->frac_ticks + (tick_hz - frac);
+        out.whole_s -= 1u; /* cannot go below 0: ticks > delta */
+    }
+    return out;
+}
+
+tvo_real_t tvo_tick_time_seconds(const tvo_tick_time_t *t, uint32_t tick_hz)
+{
+    return (tvo_real_t)t->whole_s + (tvo_real_t)t->frac_ticks / (tvo_real_t)tick_hz;
+}
+
+tvo_real_t tvo_ticks_to_seconds32(uint32_t ticks, uint32_t tick_hz)
+{
+    if (tick_hz == 0u) {
+        return TVO_R(0.0);
+    }
+    /* Whole seconds and the rest separately, so only the final sum rounds. */
+    return (tvo_real_t)(ticks / tick_hz) + (tvo_real_t)(ticks % tick_hz) / (tvo_real_t)tick_hz;
+}
+
+tvo_status_t tvo_sample_clock_begin(const tvo_sample_clock_t *clock, uint32_t apply_tick, tvo_period_t *period)
+{
+    if (clock == NULL || period == NULL) {
         return TVO_ERR_NULL;
     }
-    *periods = 1u;
+    period->apply_tick = apply_tick;
+    period->periods = 1u;
     if (!clock->started) {
         const uint32_t since_epoch = apply_tick - clock->epoch_tick;
         if (since_epoch > TVO_MAX_TICK_SPAN) {
             return TVO_ERR_OUT_OF_ORDER; /* first application before the epoch */
         }
-        *elapsed_ticks = since_epoch;
+        const tvo_tick_time_t epoch = {0u, 0u, 0u};
+        period->elapsed = tvo_tick_time_after(&epoch, since_epoch, clock->tick_hz);
         return TVO_OK;
     }
     const uint32_t advance = apply_tick - clock->last_apply_tick;
     if (advance == 0u || advance > TVO_MAX_TICK_SPAN) {
         return TVO_ERR_OUT_OF_ORDER;
     }
-    *elapsed_ticks = clock->elapsed_ticks + advance;
-    if (clock->period_ticks > 0u && advance / clock->period_ticks > 1u) {
-        *periods = advance / clock->period_ticks;
+    period->elapsed = tvo_tick_time_after(&clock->elapsed, advance, clock->tick_hz);
+    if (advance / clock->period_ticks > 1u) {
+        period->periods = advance / clock->period_ticks;
     }
     return TVO_OK;
+}
+
+tvo_status_t tvo_sample_clock_locate(const tvo_sample_clock_t *clock, tvo_period_t *period, uint32_t stamp_tick,
+                                     uint8_t delay_compensation, uint8_t zoh_aware)
+{
+    if (clock == NULL || period == NULL) {
+        return TVO_ERR_NULL;
+    }
+    const uint32_t hz = clock->tick_hz;
+    period->age_ticks = period->apply_tick - stamp_tick;
+    period->age_s = tvo_ticks_to_seconds32(period->age_ticks, hz);
+    const tvo_real_t half_period_s = TVO_R(0.5) * tvo_ticks_to_seconds32(clock->period_ticks, hz);
+    period->law_time = delay_compensation ? period->elapsed : tvo_tick_time_before(&period->elapsed, period->age_ticks, hz);
+    period->carry_s = delay_compensation ? period->age_s : TVO_R(0.0);
+    if (zoh_aware) {
+        period->law_time = tvo_tick_time_after(&period->law_time, clock->period_ticks / 2u, hz);
+        period->carry_s += half_period_s;
+    }
+    return TVO_OK;
+}
+
+tvo_status_t tvo_sample_clock_schedule(const tvo_sample_clock_t *clock, uint32_t apply_tick, uint64_t *elapsed_ticks,
+                                       uint32_t *periods)
+{
+    if (clock == NULL || elapsed_ticks == NULL || periods == NULL) {
+        return TVO_ERR_NULL;
+    }
+    tvo_period_t period;
+    const tvo_status_t st = tvo_sample_clock_begin(clock, apply_tick, &period);
+    *periods = period.periods;
+    *elapsed_ticks = (st == TVO_OK) ? period.elapsed.ticks : 0u;
+    return st;
 }
 
 tvo_status_t tvo_sample_clock_check_stamp(const tvo_sample_clock_t *clock, uint32_t stamp_tick, uint32_t apply_tick)
@@ -99,9 +178,33 @@ tvo_status_t tvo_sample_clock_accept_stamp(tvo_sample_clock_t *clock, uint32_t s
 
 static void end_period(tvo_sample_clock_t *clock, uint32_t apply_tick, uint64_t elapsed_ticks)
 {
+    /* The seconds split follows the tick count forward (the schedule's advances are < 2^30). */
+    const uint64_t from = clock->started ? clock->elapsed.ticks : 0u;
+    const tvo_tick_time_t epoch = {0u, 0u, 0u};
+    const tvo_tick_time_t *base = clock->started ? &clock->elapsed : &epoch;
+    clock->elapsed = tvo_tick_time_after(base, (uint32_t)(elapsed_ticks - from), clock->tick_hz);
     clock->started = 1;
     clock->last_apply_tick = apply_tick;
     clock->elapsed_ticks = elapsed_ticks;
+}
+
+int tvo_sample_clock_end(tvo_sample_clock_t *clock, const tvo_period_t *period, int good, uint32_t stamp_tick)
+{
+    if (clock == NULL || period == NULL) {
+        return 1;
+    }
+    if (!good) {
+        return tvo_sample_clock_missed(clock, period->apply_tick, period->elapsed.ticks, period->periods);
+    }
+    clock->last_stamp_tick = stamp_tick;
+    clock->has_stamp = 1;
+    clock->elapsed = period->elapsed;
+    clock->started = 1;
+    clock->last_apply_tick = period->apply_tick;
+    clock->elapsed_ticks = period->elapsed.ticks;
+    clock->periods_without_measurement = 0;
+    clock->stopped = 0;
+    return 0;
 }
 
 tvo_status_t tvo_sample_clock_good(tvo_sample_clock_t *clock, uint32_t apply_tick, uint64_t elapsed_ticks)

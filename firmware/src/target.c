@@ -3,6 +3,10 @@
 
 #include <string.h>
 
+#include "tvo/trig.h"
+
+#define TARGET_INV_TWO_PI TVO_R(0.159154943091895335768883763372514362)
+
 static int all_finite(const tvo_real_t *v, size_t n)
 {
     for (size_t i = 0; i < n; ++i) {
@@ -25,7 +29,38 @@ tvo_status_t tvo_target_init_polynomial(tvo_target_t *target,
     memset(target, 0, sizeof(*target));
     target->kind = TVO_TARGET_POLYNOMIAL;
     memcpy(target->u.polynomial.coeff, coeff, sizeof(target->u.polynomial.coeff));
+    /* The highest power in use: evaluation skips the zero coefficients above it. */
+    target->poly_degree = 0u;
+    for (uint8_t j = 1; j <= TVO_POLY_MAX_DEGREE; ++j) {
+        if (coeff[0][j] != TVO_R(0.0) || coeff[1][j] != TVO_R(0.0)) {
+            target->poly_degree = j;
+        }
+    }
     return TVO_OK;
+}
+
+uint64_t tvo_target_turns_q64(double omega_radps)
+{
+    if (!isfinite(omega_radps)) {
+        return 0u;
+    }
+    const double turns = omega_radps * 0.159154943091895335768883763372514362;
+    const double frac = ldexp(turns - floor(turns), 64);
+    return (frac >= 18446744073709551616.0 || !(frac >= 0.0)) ? 0u : (uint64_t)frac;
+}
+
+/* The fractional turns of an angle in Q0.64, at tvo_real_t's precision. */
+static uint64_t turns_q64_of(tvo_real_t angle_rad)
+{
+    const tvo_real_t turns = angle_rad * TARGET_INV_TWO_PI;
+    const tvo_real_t frac = turns - TVO_FLOOR(turns);
+#if TVO_USE_DOUBLE
+    const double scaled = ldexp(frac, 64);
+    return (scaled >= 18446744073709551616.0 || !(scaled >= 0.0)) ? 0u : (uint64_t)scaled;
+#else
+    const float scaled = frac * 4294967296.0f;
+    return (scaled >= 4294967296.0f || !(scaled >= 0.0f)) ? 0u : (uint64_t)(uint32_t)scaled << 32;
+#endif
 }
 
 tvo_status_t tvo_target_init_ellipse(tvo_target_t *target, const tvo_target_ellipse_t *ellipse)
@@ -48,6 +83,13 @@ tvo_status_t tvo_target_init_ellipse(tvo_target_t *target, const tvo_target_elli
     /* The rotation is fixed: its cosine and sine once here, not at every evaluation. */
     target->rotation_cs[0] = TVO_COS(ellipse->rotation_rad);
     target->rotation_cs[1] = TVO_SIN(ellipse->rotation_rad);
+    target->axis_m[0][0] = ellipse->semi_axis_m[0] * target->rotation_cs[0];
+    target->axis_m[0][1] = ellipse->semi_axis_m[0] * target->rotation_cs[1];
+    target->axis_m[1][0] = -ellipse->semi_axis_m[1] * target->rotation_cs[1];
+    target->axis_m[1][1] = ellipse->semi_axis_m[1] * target->rotation_cs[0];
+    /* The phase runs in fixed point from whole seconds: exact after hours (see ellipse_derivatives). */
+    target->phase0_q64 = turns_q64_of(ellipse->phase_rad);
+    target->rate_q64 = (ellipse->rate_turns_q64 != 0u) ? ellipse->rate_turns_q64 : turns_q64_of(ellipse->omega_radps);
     return TVO_OK;
 }
 
@@ -65,6 +107,7 @@ tvo_status_t tvo_target_init_circle(tvo_target_t *target, const tvo_real_t cente
     e.omega_radps = omega_radps;
     e.phase_rad = phase_rad;
     e.rotation_rad = TVO_R(0.0);
+    e.rate_turns_q64 = 0u;
     const tvo_status_t st = tvo_target_init_ellipse(target, &e);
     if (st == TVO_OK) {
         target->kind = TVO_TARGET_CIRCLE;
@@ -105,42 +148,51 @@ tvo_status_t tvo_target_stream_update(tvo_target_t *target, uint64_t stamp_ticks
     return TVO_OK;
 }
 
-static void polynomial_derivatives(const tvo_target_polynomial_t *p, tvo_real_t t_s, uint8_t order,
+static void polynomial_derivatives(const tvo_target_polynomial_t *p, uint8_t degree, tvo_real_t t_s, uint8_t order,
                                    tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2])
 {
-    for (uint8_t j = 0; j <= order; ++j) {
-        for (uint8_t axis = 0; axis < 2u; ++axis) {
-            /* Horner on the j-th derivative: sum_{i>=j} A_i i!/(i-j)! t^(i-j). */
-            tvo_real_t acc = TVO_R(0.0);
-            for (int i = TVO_POLY_MAX_DEGREE; i >= (int)j; --i) {
-                tvo_real_t falling = TVO_R(1.0);
-                for (int m = 0; m < (int)j; ++m) {
-                    falling *= (tvo_real_t)(i - m);
-                }
-                acc = acc * t_s + p->coeff[axis][i] * falling;
+    /* Taylor shift by repeated synthetic division: after pass j, b[j] = p^(j)(t) / j!, in
+     * (order + 1) * degree multiply-adds over the coefficients actually used. */
+    static const tvo_real_t factorial[4] = {TVO_R(1.0), TVO_R(1.0), TVO_R(2.0), TVO_R(6.0)};
+    for (unsigned axis = 0; axis < 2u; ++axis) {
+        tvo_real_t b[TVO_POLY_MAX_DEGREE + 1];
+        for (unsigned i = 0; i <= degree; ++i) {
+            b[i] = p->coeff[axis][i];
+        }
+        for (unsigned j = 0; j <= order; ++j) {
+            if (j > degree) {
+                deriv[j][axis] = TVO_R(0.0);
+                continue;
             }
-            deriv[j][axis] = acc;
+            for (unsigned i = degree; i > j; --i) {
+                b[i - 1u] += t_s * b[i];
+            }
+            deriv[j][axis] = b[j] * factorial[j];
         }
     }
 }
 
-static void ellipse_derivatives(const tvo_target_ellipse_t *e, const tvo_real_t rotation_cs[2], tvo_real_t t_s,
-                                uint8_t order, tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2])
+static void ellipse_derivatives(const tvo_target_t *target, const tvo_time_jet_t *t, uint8_t order,
+                                tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2])
 {
-    const tvo_real_t phi = e->omega_radps * t_s + e->phase_rad;
-    const tvo_real_t c = TVO_COS(phi);
-    const tvo_real_t s = TVO_SIN(phi);
-    /* d^j/dphi^j of (cos, sin) cycles with period 4. */
+    const tvo_target_ellipse_t *e = &target->u.ellipse;
+    /* phi = phase + omega t: whole seconds advance the Q0.64 phase exactly (wrapping is whole
+     * turns), the fraction of a second adds a small angle in tvo_real_t. */
+    const uint64_t turns = target->phase0_q64 + target->rate_q64 * (uint64_t)t->whole_s;
+    const tvo_real_t frac_s = (tvo_real_t)t->frac_ticks / (tvo_real_t)t->tick_hz;
+    tvo_real_t s;
+    tvo_real_t c;
+    tvo_sincos_turns(turns, e->omega_radps * frac_s, &s, &c);
+    /* y_d = centre + A cos phi + B sin phi with the rotated semi-axes A, B (from init); the
+     * derivatives of (cos, sin) cycle with period 4 and scale by omega^j. */
     const tvo_real_t dcos[4] = {c, -s, -c, s};
     const tvo_real_t dsin[4] = {s, c, -s, -c};
-    const tvo_real_t cr = rotation_cs[0];
-    const tvo_real_t sr = rotation_cs[1];
     tvo_real_t omega_pow = TVO_R(1.0);
-    for (uint8_t j = 0; j <= order; ++j) {
-        const tvo_real_t u = e->semi_axis_m[0] * dcos[j & 3u] * omega_pow;
-        const tvo_real_t v = e->semi_axis_m[1] * dsin[j & 3u] * omega_pow;
-        deriv[j][0] = cr * u - sr * v;
-        deriv[j][1] = sr * u + cr * v;
+    for (unsigned j = 0; j <= order; ++j) {
+        const tvo_real_t u = dcos[j & 3u] * omega_pow;
+        const tvo_real_t v = dsin[j & 3u] * omega_pow;
+        deriv[j][0] = target->axis_m[0][0] * u + target->axis_m[1][0] * v;
+        deriv[j][1] = target->axis_m[0][1] * u + target->axis_m[1][1] * v;
         omega_pow *= e->omega_radps;
     }
     deriv[0][0] += e->center_m[0];
@@ -156,8 +208,10 @@ static tvo_status_t streamed_derivatives(const tvo_target_streamed_t *s, const t
     if (t->ticks < s->stamp_ticks) {
         return TVO_ERR_FUTURE_STAMP;
     }
-    /* Exact age from integer ticks: no loss however long the run. */
-    const tvo_real_t age_s = tvo_ticks_to_seconds(t->ticks - s->stamp_ticks, t->tick_hz);
+    /* Exact age from integer ticks: no loss however long the run (and no 64-bit division when short). */
+    const uint64_t age_ticks = t->ticks - s->stamp_ticks;
+    const tvo_real_t age_s = (age_ticks <= UINT32_MAX) ? tvo_ticks_to_seconds32((uint32_t)age_ticks, t->tick_hz)
+                                                       : tvo_ticks_to_seconds(age_ticks, t->tick_hz);
     for (uint8_t j = 0; j <= order; ++j) {
         for (uint8_t axis = 0; axis < 2u; ++axis) {
             /* Taylor polynomial of the j-th derivative: sum_{i>=j} d_i age^(i-j) / (i-j)!, by Horner. */
@@ -185,11 +239,14 @@ tvo_status_t tvo_target_derivatives(const tvo_target_t *target, const tvo_time_j
     }
     switch (target->kind) {
     case TVO_TARGET_POLYNOMIAL:
-        polynomial_derivatives(&target->u.polynomial, t->t_s, order, deriv);
+        polynomial_derivatives(&target->u.polynomial, target->poly_degree, t->t_s, order, deriv);
         return TVO_OK;
     case TVO_TARGET_CIRCLE:
     case TVO_TARGET_ELLIPSE:
-        ellipse_derivatives(&target->u.ellipse, target->rotation_cs, t->t_s, order, deriv);
+        if (t->tick_hz == 0u || t->frac_ticks >= t->tick_hz) {
+            return TVO_ERR_PARAM; /* the phase needs the exact split of tvo_time_jet_at */
+        }
+        ellipse_derivatives(target, t, order, deriv);
         return TVO_OK;
     case TVO_TARGET_STREAMED:
         return streamed_derivatives(&target->u.streamed, t, order, deriv);

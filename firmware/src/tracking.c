@@ -46,3 +46,34 @@ tvo_status_t tvo_tracking_gradient_jet(const void *term, const tvo_jet_t *y, uin
     }
     return TVO_OK;
 }
+
+tvo_status_t tvo_tracking_gradient_hessian(const void *term, const tvo_jet_t *y, uint8_t dim, const tvo_time_jet_t *t,
+                                           uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian)
+{
+    const tvo_tracking_term_t *self = (const tvo_tracking_term_t *)term;
+    if (self == NULL || y == NULL || t == NULL || grad == NULL || hessian == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if ((unsigned)self->offset + 2u > dim) {
+        return TVO_ERR_DIMENSION;
+    }
+    /* grad = W (y - y_d(t)) coefficient by coefficient, y_d's j-th coefficient being
+     * y_d^(j) rate^j / j!; the Hessian is the constant W. */
+    tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2];
+    const tvo_status_t st = tvo_target_derivatives(self->target, t, order, deriv);
+    if (st != TVO_OK) {
+        return st;
+    }
+    /* rate^j / j! (rate is 1 along the trajectory, 0 for frozen time). */
+    const tvo_real_t rate = t->rate;
+    const tvo_real_t scale[4] = {TVO_R(1.0), rate, TVO_R(0.5) * rate * rate, rate * rate * rate / TVO_R(6.0)};
+    for (unsigned axis = 0; axis < 2u; ++axis) {
+        const unsigned i = self->offset + axis;
+        const tvo_real_t w = self->weight[axis];
+        for (unsigned j = 0; j <= order && j <= TVO_JET_MAX_ORDER; ++j) {
+            grad[i].c[j] += w * (y[i].c[j] - deriv[j][axis] * scale[j]);
+        }
+        hessian->matrix[i][i] += w;
+    }
+    return TVO_OK;
+}

@@ -16,7 +16,9 @@
 
 #include "lcm_messages.hpp"  // TVO_WIRE_TIME_MAX_US
 #include "option_ranges.hpp"
+#include "sim_ranges.hpp"
 #include "run_recorder.hpp"
+#include "scenario_file.hpp"
 #include "sim_loop.hpp"      // kNodeClockEpochLeadUs
 
 extern "C" {
@@ -33,31 +35,17 @@ using tvo_options::Interval;
 using tvo_options::number;
 using tvo_options::real_in;
 using tvo_options::whole_in;
+using namespace sim_ranges;
 
-constexpr double kUsPerS = 1e6;
 // A period must be whole microseconds (the wire's clock); allow float round-off of the decimal input.
 constexpr double kWholeUsTolerance = 1e-3;
 
-// The ranges (host/README.md, "Options", says why each is what it is).
-constexpr double kMinPeriodS = 1e-6;                                  // the node's tick
-constexpr double kMaxPeriodS = static_cast<double>(TVO_MAX_TICK_SPAN) / kUsPerS;  // the node's tick span
-constexpr double kMaxDurationS = 86400.0;                             // a day: the soak of issue 11
+// The ranges shared with scenario files are in sim_ranges.hpp; these are the command line's own.
 constexpr double kMinAnswerTimeoutS = 1e-3;
 constexpr double kMaxAnswerTimeoutS = 600.0;
-constexpr double kMaxSigma = 1.0;            // m, rad, m/s
-constexpr double kMaxFilterTfS = 10.0;
-constexpr double kMaxGain = 1e6;             // |KP| (1/s^2), |KD| (1/s)
-constexpr double kMaxTurnRateRadps = 100.0;
-constexpr double kMaxAccelMps2 = 100.0;
-constexpr double kMaxSpeedMps = 100.0;
-constexpr double kMaxBarrierScale = 1e6;     // c0, c_max
-constexpr double kMaxBarrierRatePerS = 1e3;  // alpha_c, alpha_s
-constexpr double kMaxBarrierLength = 100.0;  // delta0, slack margin (units of the constraint functions)
-constexpr double kMaxExtraDelayS = 10.0;
 // Commands held back by --extra-delay-s wait in the plant's queue, one per period (sim_loop.cpp
 // reserves 1024): at most this many periods of delay.
 constexpr std::int64_t kMaxDelayedPeriods = 1000;
-constexpr double kMaxDisturbance = 10.0;     // m/s, rad/s
 constexpr std::uint64_t kMaxOutputMib = 65536;
 // Realtime stamps go on past the last period (the START handshake, stalls, the STOP): an hour of slack.
 constexpr std::int64_t kRealtimeWireSlackUs = 3600LL * 1000000LL;
@@ -96,21 +84,16 @@ std::filesystem::path existing_folder(const std::filesystem::path& path)
 }
 
 /// Cross-option checks, derived microsecond timing and the bound on the files; returns -1 or 2.
-int validate(SimOptions* o, bool delay_given, bool duration_given, bool robots_given, bool target_given,
-             bool link_loss_given)
+int validate(SimOptions* o, const ScenarioFile& file, bool delay_given, bool duration_given, bool robots_given,
+             bool target_given, bool link_loss_given)
 {
-    if (!scenario_exists(o->scenario)) {
-        return fail("--scenario", "unknown scenario '" + o->scenario + "' (--list-scenarios lists them)");
+    if (robots_given && !file.variants.robots_turned) {
+        return fail("--robots", "scenario " + o->scenario + " has its own robots (its file has no variants.robots)");
     }
-    if (o->scenario != "demo") {
-        if (robots_given) {
-            return fail("--robots", "only the demo takes a robot count (scenario " + o->scenario + " has its own)");
-        }
-        if (target_given && o->target != TargetKind::Streamed) {
-            return fail("--target", "scenario " + o->scenario + " has its own targets (only 'streamed' applies)");
-        }
+    if (target_given && o->target != TargetKind::Streamed && !file.variants.circle_radius_m) {
+        return fail("--target", "scenario " + o->scenario + " has its own targets (only 'streamed' applies)");
     }
-    const Scenario scenario = make_scenario(o->scenario, o->robots, o->target);
+    const Scenario scenario = instantiate_scenario(file, o->robots, o->target);
     if (!duration_given) {
         o->duration_s = scenario.duration_s;
     }
@@ -223,60 +206,60 @@ int parse_options(int argc, char** argv, SimOptions* o)
     std::pair<double, double> link_loss{0.0, 0.0};
     std::string target = "ellipse";
     std::string on_missing_answer = "fail";
-    const Interval period{kMinPeriodS, kMaxPeriodS, "s"};
 
     app.add_option("--period-s", o->period_s, "sampling period h, seconds (whole microseconds)")
-        ->check(real_in(period))
+        ->check(real_in(kPeriod))
         ->capture_default_str();
     CLI::Option* delay = app.add_option("--delay-s", o->delay_s,
                                         "computation delay tau, 0 .. h: the pose is sampled at t_{n+1} - tau and "
                                         "the command applied at t_{n+1} [default: h/2]")
-                             ->check(real_in({0.0, kMaxPeriodS, "s"}));
+                             ->check(real_in(kDelay));
     app.add_flag("--no-compensation", "do not predict the pose over tau in the controller");
     app.add_flag("--zoh-aware", "evaluate the law at the middle of each held interval (tracking error second "
                  "order in h instead of first)");
     app.add_option("--sigma", o->sigma,
                    "measurement noise sigma: position (m, per axis), heading (rad) and speed (m/s)")
-        ->check(real_in({0.0, kMaxSigma, ""}))
+        ->check(real_in(kSigma))
         ->capture_default_str();
     app.add_option("--seed", o->seed, "seed of the noise, drop and disturbance streams (any 64-bit unsigned)")
         ->check(whole_in<std::uint64_t>(0, std::numeric_limits<std::uint64_t>::max()))
         ->capture_default_str();
     app.add_option("--duration-s", o->duration_s, "simulated time T, seconds [default: the scenario's]")
-        ->check(real_in({0.0, kMaxDurationS, "s", End::Open}));
+        ->check(real_in(kDuration));
     app.add_flag("--position-only",
                  "measure positions only (the first sample also carries the initial heading); the controller "
                  "derives y' with its dirty-derivative filter");
     app.add_option("--filter-tf-s", o->filter_tf_s, "dirty-derivative time constant T_f, seconds")
-        ->check(real_in({0.0, kMaxFilterTfS, "s", End::Open}))
+        ->check(real_in(kFilterTf))
         ->capture_default_str();
     app.add_option("--gains", gains, "KP,KD of s^2 + KD s + KP (the firmware refuses a pair that is not Hurwitz)")
         ->delimiter(',')
-        ->check(real_in({-kMaxGain, kMaxGain, "1/s^2"}, "KP").application_index(0))
-        ->check(real_in({-kMaxGain, kMaxGain, "1/s"}, "KD").application_index(1))
+        ->check(real_in(kGainKp, "KP").application_index(0))
+        ->check(real_in(kGainKd, "KD").application_index(1))
         ->capture_default_str();
     app.add_option("--omega-max-radps", o->omega_max_radps, "turn-rate limit")
-        ->check(real_in({0.0, kMaxTurnRateRadps, "rad/s", End::Open}))
+        ->check(real_in(kOmegaMax))
         ->capture_default_str();
     app.add_option("--accel-max-mps2", o->accel_max_mps2, "acceleration limit")
-        ->check(real_in({0.0, kMaxAccelMps2, "m/s^2", End::Open}))
+        ->check(real_in(kAccelMax))
         ->capture_default_str();
     app.add_option("--speed-max-mps", o->speed_max_mps, "speed limit")
-        ->check(real_in({0.0, kMaxSpeedMps, "m/s", End::Open}))
+        ->check(real_in(kSpeedMax))
         ->capture_default_str();
     app.add_option("--min-speed-mps", o->min_speed_mps, "1/v regularisation floor (the firmware also wants it "
                    "below --speed-max-mps)")
-        ->check(real_in({0.0, kMaxSpeedMps, "m/s", End::Open}))
+        ->check(real_in(kMinSpeed))
         ->capture_default_str();
     app.add_option("--watchdog-periods", o->watchdog_periods, "safe stop after this many periods without a "
                    "valid measurement (at most (2^30 - 1) us / h: the node's watchdog span)")
-        ->check(whole_in<std::int32_t>(1, static_cast<std::int32_t>(TVO_MAX_TICK_SPAN)))
+        ->check(whole_in<std::int32_t>(kMinWatchdogPeriods, kMaxWatchdogPeriods))
         ->capture_default_str();
-    app.add_option("--scenario", o->scenario, "what to run: demo, formation-max, formation-bilateral, obstacles, "
-                   "obstacles-infeasible-target, infeasible-start, formation-equality (--list-scenarios)")
+    app.add_option("--scenario", o->scenario, "what to run: a scenario file FILE.yaml, or a built-in scenario's name "
+                   "(--list-scenarios lists them)")
         ->capture_default_str();
     app.add_flag("--list-scenarios", o->list_scenarios, "list the scenarios with one line each and exit");
-    app.add_option("--robots", o->robots, "demo: number of unicycles (the demo picture turned per robot)")
+    app.add_option("--robots", o->robots, "demo (a file with variants.robots): number of unicycles, the picture "
+                   "turned per robot")
         ->check(whole_in<std::size_t>(1, kMaxRobots))
         ->capture_default_str();
     app.add_option("--target", target, "demo: ellipse | circle (on-board targets); any scenario: streamed (the "
@@ -285,20 +268,20 @@ int parse_options(int argc, char** argv, SimOptions* o)
         ->capture_default_str();
     // The barrier's finer rules (c_max >= c0, m_r >= k + 1) are the firmware's: it names the part it refuses.
     app.add_option("--barrier-c0", o->barrier.c0, "barrier: c(0) [default: the scenario's, else the firmware's]")
-        ->check(real_in({0.0, kMaxBarrierScale, "", End::Open}));
+        ->check(real_in(kBarrierC0));
     app.add_option("--barrier-alpha-c", o->barrier.alpha_c_per_s, "barrier: growth rate of c(t), 1/s")
-        ->check(real_in({0.0, kMaxBarrierRatePerS, "1/s"}));
+        ->check(real_in(kBarrierAlphaC));
     app.add_option("--barrier-c-max", o->barrier.c_max, "barrier: cap of c(t)")
-        ->check(real_in({0.0, kMaxBarrierScale, "", End::Open}));
+        ->check(real_in(kBarrierCMax));
     app.add_option("--barrier-delta0", o->barrier.delta0, "barrier: delta(t) = delta0 / c(t)")
-        ->check(real_in({0.0, kMaxBarrierLength, "", End::Open}));
+        ->check(real_in(kBarrierDelta0));
     app.add_option("--barrier-alpha-s", o->barrier.alpha_s_per_s, "barrier: decay rate of the slack s(t), 1/s")
-        ->check(real_in({0.0, kMaxBarrierRatePerS, "1/s", End::Open}));
+        ->check(real_in(kBarrierAlphaS));
     app.add_option("--barrier-slack-margin", o->barrier.slack_margin, "barrier: epsilon_s of the slack rule")
-        ->check(real_in({0.0, kMaxBarrierLength, "", End::Open}));
+        ->check(real_in(kBarrierSlackMargin));
     app.add_option("--barrier-degree", o->barrier.relaxation_degree,
                    "barrier: relaxation degree m_r (the firmware wants at least k + 1 = 3)")
-        ->check(whole_in<int>(1, TVO_BARRIER_MAX_DEGREE));
+        ->check(whole_in<int>(kMinBarrierDegree, kMaxBarrierDegree));
     app.add_flag("--realtime", "run on the monotonic clock at 1/h with the node keeping the schedule on its own "
                  "clock (session CLOCK_NODE; commands applied at their utime, or on arrival if late) instead of "
                  "lockstep");
@@ -312,23 +295,23 @@ int parse_options(int argc, char** argv, SimOptions* o)
         ->capture_default_str();
     app.add_option("--drop-prob", o->drop_prob, "probability that a measurement is lost (never published; the "
                    "plant holds the last command)")
-        ->check(real_in({0.0, 1.0, "", End::Closed, End::Open}))
+        ->check(real_in(kDropProb))
         ->capture_default_str();
     app.add_option("--extra-delay-s", o->extra_delay_s, "extra latency: each command takes effect this long "
                    "after its utime (unknown to the controller)")
-        ->check(real_in({0.0, kMaxExtraDelayS, "s"}))
+        ->check(real_in(kExtraDelay))
         ->capture_default_str();
     CLI::Option* loss = app.add_option("--link-loss", link_loss, "S,D: no measurement is sent for sample times in "
                                        "[S, S + D) seconds of plant time (a link outage; the node's answers still "
                                        "arrive); S + D at most a day")
                             ->delimiter(',')
-                            ->check(real_in({0.0, kMaxDurationS, "s"}, "S").application_index(0))
-                            ->check(real_in({0.0, kMaxDurationS, "s", End::Open}, "D").application_index(1));
+                            ->check(real_in(kLinkLossStart, "S").application_index(0))
+                            ->check(real_in(kLinkLossDuration, "D").application_index(1));
     app.add_option("--disturbance", disturbance, "SV,SW: sigma of a random speed (m/s) and turn-rate (rad/s) "
                    "perturbation drawn per applied command")
         ->delimiter(',')
-        ->check(real_in({0.0, kMaxDisturbance, "m/s"}, "SV").application_index(0))
-        ->check(real_in({0.0, kMaxDisturbance, "rad/s"}, "SW").application_index(1))
+        ->check(real_in(kDisturbanceSpeed, "SV").application_index(0))
+        ->check(real_in(kDisturbanceTurn, "SW").application_index(1))
         ->capture_default_str();
     app.add_option("--start-utime-us", o->start_utime_us, "lockstep: wire time (us) of plant time 0, the "
                    "session's epoch; realtime: the plant clock's reading at start. The whole run's wire times "
@@ -361,9 +344,50 @@ int parse_options(int argc, char** argv, SimOptions* o)
         std::cerr << "tvo_sim: error: " << one_line(e.what()) << " (see --help)\n";
         return 2;
     }
-    o->delay_compensation = app.count("--no-compensation") == 0;
-    o->zoh_aware = app.count("--zoh-aware") > 0;
-    o->position_only = app.count("--position-only") > 0;
+    o->on_missing_answer = on_missing_answer == "hold" ? MissingAnswer::Hold : MissingAnswer::Fail;
+    if (!parse_target_kind(target, &o->target)) {
+        return fail("--target", "expected ellipse, circle or streamed, got '" + target + "'");
+    }
+    if (o->list_scenarios) {
+        return print_scenario_list(std::cout, std::cerr);
+    }
+    if (!scenario_exists(o->scenario)) {
+        return fail("--scenario", "no scenario '" + o->scenario + "': no file " + scenario_path(o->scenario) +
+                                      " (--list-scenarios lists the built-in ones)");
+    }
+    ScenarioFile file;
+    try {
+        file = load_scenario_file(scenario_path(o->scenario));
+    } catch (const ScenarioFileError& e) {
+        std::cerr << "tvo_sim: error: " << e.what() << '\n';
+        return 2;
+    }
+    // The file's settings replace tvo_sim's defaults; an option given on the command line replaces both.
+    const RunSettings& run = file.run;
+    const auto unless_given = [&app](const char* option, const auto& from_file, auto* field) {
+        if (from_file && app.count(option) == 0) {
+            *field = *from_file;
+        }
+    };
+    unless_given("--period-s", run.period_s, &o->period_s);
+    unless_given("--delay-s", run.delay_s, &o->delay_s);
+    unless_given("--sigma", run.sigma, &o->sigma);
+    unless_given("--filter-tf-s", run.filter_tf_s, &o->filter_tf_s);
+    unless_given("--seed", run.seed, &o->seed);
+    unless_given("--gains", run.gains, &gains);
+    unless_given("--omega-max-radps", run.omega_max_radps, &o->omega_max_radps);
+    unless_given("--accel-max-mps2", run.accel_max_mps2, &o->accel_max_mps2);
+    unless_given("--speed-max-mps", run.speed_max_mps, &o->speed_max_mps);
+    unless_given("--min-speed-mps", run.min_speed_mps, &o->min_speed_mps);
+    unless_given("--watchdog-periods", run.watchdog_periods, &o->watchdog_periods);
+    unless_given("--drop-prob", run.drop_prob, &o->drop_prob);
+    unless_given("--extra-delay-s", run.extra_delay_s, &o->extra_delay_s);
+    unless_given("--disturbance", run.disturbance, &disturbance);
+    unless_given("--link-loss", run.link_loss, &link_loss);
+    // Flags only switch away from the default: the file's value stands unless the flag is given.
+    o->delay_compensation = app.count("--no-compensation") == 0 && run.compensation.value_or(true);
+    o->zoh_aware = app.count("--zoh-aware") > 0 || run.zoh_aware.value_or(false);
+    o->position_only = app.count("--position-only") > 0 || run.position_only.value_or(false);
     o->realtime = app.count("--realtime") > 0;
     o->gain_kp = gains.first;
     o->gain_kd = gains.second;
@@ -371,23 +395,24 @@ int parse_options(int argc, char** argv, SimOptions* o)
     o->disturbance_turn_radps = disturbance.second;
     o->link_loss_start_s = link_loss.first;
     o->link_loss_duration_s = link_loss.second;
-    o->on_missing_answer = on_missing_answer == "hold" ? MissingAnswer::Hold : MissingAnswer::Fail;
-    if (!parse_target_kind(target, &o->target)) {
-        return fail("--target", "expected ellipse, circle or streamed, got '" + target + "'");
-    }
-    if (o->list_scenarios) {
-        print_scenario_list(std::cout);
-        return 0;
-    }
-    return validate(o, delay->count() > 0, app.count("--duration-s") > 0, app.count("--robots") > 0,
-                    app.count("--target") > 0, loss->count() > 0);
+    return validate(o, file, delay->count() > 0 || run.delay_s.has_value(), app.count("--duration-s") > 0,
+                    app.count("--robots") > 0, app.count("--target") > 0,
+                    loss->count() > 0 || run.link_loss.has_value());
 }
 
-void print_scenario_list(std::ostream& out)
+int print_scenario_list(std::ostream& out, std::ostream& err)
 {
-    for (const ScenarioInfo& info : scenario_catalog()) {
-        out << std::left << std::setw(30) << info.name << info.summary << '\n';
+    int status = 0;
+    for (const std::string& path : scenario_folder_files()) {
+        try {
+            const ScenarioFile file = load_scenario_file(path);
+            out << std::left << std::setw(30) << file.scenario.name << file.description << '\n';
+        } catch (const ScenarioFileError& e) {
+            err << "tvo_sim: error: " << e.what() << '\n';
+            status = 2;
+        }
     }
+    return status;
 }
 
 }  // namespace tvo_host

@@ -85,8 +85,9 @@ struct SimOptions {
     }
 };
 
-/// Prints each scenario's name and one line about it.
-void print_scenario_list(std::ostream& out);
+/// Prints each file of the scenario folder: its name and its description, one line each. A file that
+/// does not load is named on err; returns 0, or 2 if one did not load.
+int print_scenario_list(std::ostream& out, std::ostream& err);
 
 /// Parses and validates argv. Returns -1 to run, or the exit code to leave with: 0 after --help,
 /// --list-scenarios or --dry-run, 2 after a one-line error naming the offending option and its range.

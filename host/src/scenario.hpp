@@ -3,14 +3,9 @@
 // offsets, barrier settings). The session message is filled from it (session.cpp) and the metrics
 // judge the run against it (constraint_metrics.cpp), so a scenario is written down exactly once.
 //
-// Scenarios (scenario_catalog() lists them with one line each):
-//   demo                         one or more unicycles on an ellipse (the paper's Fig. 2 setting)
-//   formation-max                two robots, |y1 - y2| <= 3, targets approach, cross and separate
-//   formation-bilateral          the same with 1 <= |y1 - y2| <= 3
-//   obstacles                    a disk robot among four disk obstacles, target in free space
-//   obstacles-infeasible-target  the same, the target's path crosses an obstacle
-//   infeasible-start             two robots starting 4.5 m apart with |y1 - y2| <= 3
-//   formation-equality           both robots track a midpoint target with y1 - y2 = d(t)
+// The scenarios are YAML files (host/scenarios/*.yaml, or a user's; scenario_file.hpp reads them):
+//   demo, formation-max, formation-bilateral, obstacles, obstacles-infeasible-target,
+//   infeasible-start, formation-equality (tools/scenario --list prints each file's description).
 #pragma once
 
 #include <array>
@@ -118,21 +113,17 @@ struct Scenario {
     std::optional<std::array<std::size_t, 2>> reported_pair() const;
 };
 
-struct ScenarioInfo {
-    const char* name;
-    const char* summary;
-};
+/// Defined in scenario_file.cpp (tvo_sim_lib), from the files:
 
-/// Every scenario, in the order `tools/scenario --list` prints them.
-const std::vector<ScenarioInfo>& scenario_catalog();
-bool scenario_exists(const std::string& name);
+/// True if name_or_path names a scenario file (scenario_path(): a path, or NAME in the scenario folder).
+bool scenario_exists(const std::string& name_or_path);
 
-/// The scenario called name (std::invalid_argument if unknown). robots and kind shape the demo only;
-/// kind == Streamed streams any scenario's targets.
-Scenario make_scenario(const std::string& name, std::size_t robots, TargetKind kind);
+/// The scenario of a name or file (ScenarioFileError if it cannot be read or is malformed). robots and kind
+/// apply the file's variants (the demo's); kind == Streamed streams any scenario's targets.
+Scenario make_scenario(const std::string& name_or_path, std::size_t robots, TargetKind kind);
 
-/// The demo: ellipse centre (0, 0), semi-axes (3, 1.5), omega 2 pi / 10 rad/s; robot 0 starts at
-/// (-1, -2) heading 0 at rest. Further robots are the same picture turned by 2 pi r / N.
+/// The demo (host/scenarios/demo.yaml): an ellipse centre (0, 0), semi-axes (3, 1.5), period 10 s;
+/// robot 0 starts at (-1, -2) heading 0 at rest. Further robots are the same picture turned by 2 pi r / N.
 /// A circle scenario uses radius 2 with the same rate.
 Scenario make_demo_scenario(std::size_t robot_count, TargetKind kind);
 

@@ -49,7 +49,7 @@ static void setup_targets(void)
     static const tvo_real_t coeff[2][TVO_POLY_MAX_DEGREE + 1] = {
         {TVO_R(0.0), TVO_R(1.0)}, {TVO_R(0.5), TVO_R(0.0), TVO_R(0.1)}};
     static const tvo_target_ellipse_t ellipse = {
-        {TVO_R(0.0), TVO_R(0.0)}, {TVO_R(2.0), TVO_R(1.0)}, TVO_R(0.5), TVO_R(0.0), TVO_R(0.3)};
+        {TVO_R(0.0), TVO_R(0.0)}, {TVO_R(2.0), TVO_R(1.0)}, TVO_R(0.5), TVO_R(0.0), TVO_R(0.3), 0u};
     const tvo_real_t center[2] = {TVO_R(1.0), TVO_R(-1.0)};
     const tvo_real_t deriv[TVO_STREAM_MAX_DERIV + 1][2] = {{(tvo_real_t)input_position, TVO_R(0.0)}};
     check(tvo_target_init_polynomial(&targets[0], coeff));

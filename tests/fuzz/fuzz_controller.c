@@ -45,7 +45,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     desc.tracking_weight[0][0] = TVO_R(1.0);
     desc.tracking_weight[0][1] = TVO_R(1.0);
     const tvo_target_ellipse_t ellipse = {{TVO_R(0.0), TVO_R(0.0)}, {TVO_R(3.0), TVO_R(1.5)}, TVO_R(0.6283), TVO_R(0.0),
-                                          TVO_R(0.0)};
+                                          TVO_R(0.0), 0u};
     if (tvo_target_init_ellipse(&desc.target[0], &ellipse) != TVO_OK ||
         tvo_problem_init(&problem, &desc, 2u, &part) != TVO_OK) {
         fail("reference problem");

@@ -963,6 +963,7 @@ static void fx_ellipse_target(tvo_target_t *target)
     el.omega_radps = TVO_R(0.5);
     el.phase_rad = TVO_R(0.0);
     el.rotation_rad = TVO_R(0.4);
+    el.rate_turns_q64 = 0u;
     ASSERT_STATUS(TVO_OK, tvo_target_init_ellipse(target, &el));
 }
 

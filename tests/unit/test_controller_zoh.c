@@ -27,7 +27,7 @@ static void setup(double period_s, uint8_t zoh_aware)
     ASSERT_STATUS(TVO_OK, tvo_problem_desc_default(&desc));
     desc.robot_count = 1u;
     const tvo_target_ellipse_t ellipse = {{TVO_R(0.0), TVO_R(0.0)}, {TVO_R(3.0), TVO_R(1.5)},
-                                          test_r(2.0 * TEST_PI / 10.0), TVO_R(0.0), TVO_R(0.0)};
+                                          test_r(2.0 * TEST_PI / 10.0), TVO_R(0.0), TVO_R(0.0), 0u};
     ASSERT_STATUS(TVO_OK, tvo_target_init_ellipse(&desc.target[0], &ellipse));
     ASSERT_STATUS(TVO_OK, tvo_problem_init(&problem, &desc, 2u, &part));
     tvo_controller_config_t cfg;

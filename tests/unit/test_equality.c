@@ -19,6 +19,17 @@ static tvo_time_jet_t time_at(double t_s)
     t.rate = TVO_R(1.0);
     t.tick_hz = 1000000u;
     t.ticks = (uint64_t)llround(t_s * 1e6);
+    /* the exact split of the ticks (t_s stays as given: finite differences step below a tick) */
+    {
+        tvo_time_jet_t exact;
+        if (tvo_time_jet_at_ticks(t.ticks, t.tick_hz, t.rate, &exact) == TVO_OK) {
+            t.whole_s = exact.whole_s;
+            t.frac_ticks = exact.frac_ticks;
+        } else {
+            t.whole_s = 0u;
+            t.frac_ticks = 0u;
+        }
+    }
     return t;
 }
 

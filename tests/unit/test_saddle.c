@@ -250,6 +250,119 @@ static void test_non_finite_input_and_bad_sizes_are_rejected(void)
     ASSERT_STATUS(TVO_ERR_NULL, tvo_saddle_solve(a, 2, 1, b, NULL, NULL));
 }
 
+/* ---- stiff parts solved apart (tvo_saddle_solve_split) ---- */
+
+/* Two robots' relative coordinates, v_x = (1, 0, -1, 0) and v_y = (0, 1, 0, -1), stiff by `weight`. */
+static void pair_parts(tvo_hessian_t *h, double weight_x, double weight_y)
+{
+    tvo_hessian_clear(h, 4u);
+    for (unsigned i = 0; i < 4u; ++i) {
+        h->matrix[i][i] = TVO_R(1.0);
+    }
+    const double weights[2] = {weight_x, weight_y};
+    for (unsigned k = 0; k < 2u; ++k) {
+        tvo_rank_one_t part;
+        memset(&part, 0, sizeof(part));
+        part.weight = test_r(weights[k]);
+        part.count = 2u;
+        part.index[0] = (uint8_t)k;
+        part.index[1] = (uint8_t)(2u + k);
+        part.value[0] = TVO_R(1.0);
+        part.value[1] = TVO_R(-1.0);
+        tvo_hessian_add_part(h, &part, NULL, 0u);
+    }
+}
+
+/* (I + w_x v_x v_x^T + w_y v_y v_y^T) x = b + g_x v_x + g_y v_y, exactly: along v the factor is 1 + 2 w. */
+static void pair_expected(const double b[4], double wx, double wy, double gx, double gy, double x[4])
+{
+    const double w[2] = {wx, wy};
+    const double g[2] = {gx, gy};
+    for (unsigned k = 0; k < 2u; ++k) {
+        const double common = 0.5 * (b[k] + b[2u + k]);
+        const double relative = 0.5 * (b[k] - b[2u + k]) + g[k];
+        const double along = relative / (1.0 + 2.0 * w[k]);
+        x[k] = common + along;
+        x[2u + k] = common - along;
+    }
+}
+
+static void test_stiff_parts_keep_the_soft_directions_in_float32(void)
+{
+    /* The infeasible-start case: relative directions 1e7 stiffer, their right-hand side 1e9. */
+    static tvo_hessian_t h;
+    pair_parts(&h, 4.0e7, 3.0e3);
+    const double b[4] = {0.75, -1.5, 0.25, 2.0};
+    const double gamma_d[2] = {1.3e9, -2.0e5};
+    const tvo_real_t bb[4] = {test_r(b[0]), test_r(b[1]), test_r(b[2]), test_r(b[3])};
+    const tvo_real_t gamma[2] = {test_r(gamma_d[0]), test_r(gamma_d[1])};
+    tvo_real_t x[4];
+    tvo_real_t shift = TVO_R(-1.0);
+    tvo_hessian_settle(&h, 4u, 0u, NULL, 0u);
+    TEST_ASSERT_EQUAL_UINT8(2u, h.rank_one_count); /* both dominate the unit matrix by > 1e3 */
+    ASSERT_STATUS(TVO_OK, tvo_saddle_solve_split(&h, 4u, 0u, bb, gamma, x, &shift));
+    ASSERT_NEAR(0.0, shift, 0.0);
+    double expected[4];
+    pair_expected(b, 4.0e7, 3.0e3, gamma_d[0], gamma_d[1], expected);
+    for (unsigned i = 0; i < 4u; ++i) {
+        /* Every component to its own size: the common (soft) ones included, which adding the stiff
+         * right-hand side into b would have lost entirely (ulp(1.3e9) = 128 in float32). */
+        ASSERT_NEAR(expected[i], x[i], TEST_TOL(64, expected[i]));
+    }
+}
+
+static void test_parts_that_are_not_stiff_join_the_matrix(void)
+{
+    static tvo_hessian_t h;
+    pair_parts(&h, 10.0, 20.0);
+    tvo_jet_t grad[4];
+    for (unsigned i = 0; i < 4u; ++i) {
+        tvo_jet_constant(TVO_R(0.0), &grad[i]);
+    }
+    h.rank_one[0].gradient.c[0] = TVO_R(3.0);
+    tvo_hessian_settle(&h, 4u, 0u, grad, 2u);
+    TEST_ASSERT_EQUAL_UINT8(0u, h.rank_one_count);
+    ASSERT_NEAR(11.0, h.matrix[0][0], 0.0);
+    ASSERT_NEAR(-10.0, h.matrix[0][2], 0.0);
+    ASSERT_NEAR(21.0, h.matrix[3][3], 0.0);
+    ASSERT_NEAR(3.0, grad[0].c[0], 0.0); /* the folded part's gradient, 3 v_x */
+    ASSERT_NEAR(-3.0, grad[2].c[0], 0.0);
+}
+
+static void test_split_falls_back_to_the_sum_when_the_rest_is_indefinite(void)
+{
+    /* The rest alone is indefinite (-1 on the common x direction): the parts are added in and the
+     * sum regularised, exactly as tvo_saddle_solve does with the sum. */
+    static tvo_hessian_t h;
+    pair_parts(&h, 1.0e5, 1.0e5);
+    h.matrix[0][0] = TVO_R(-1.0);
+    static tvo_matrix_t sum;
+    for (unsigned i = 0; i < 4u; ++i) {
+        for (unsigned j = 0; j < 4u; ++j) {
+            sum[i][j] = h.matrix[i][j];
+        }
+    }
+    for (unsigned k = 0; k < 2u; ++k) {
+        sum[k][k] += TVO_R(1.0e5);
+        sum[k + 2u][k + 2u] += TVO_R(1.0e5);
+        sum[k][k + 2u] -= TVO_R(1.0e5);
+        sum[k + 2u][k] -= TVO_R(1.0e5);
+    }
+    const tvo_real_t b[4] = {TVO_R(1.0), TVO_R(2.0), TVO_R(3.0), TVO_R(4.0)};
+    const tvo_real_t gamma[2] = {TVO_R(0.0), TVO_R(0.0)};
+    tvo_real_t x_split[4];
+    tvo_real_t x_sum[4];
+    tvo_real_t shift_split = TVO_R(0.0);
+    tvo_real_t shift_sum = TVO_R(0.0);
+    ASSERT_STATUS(TVO_OK, tvo_saddle_solve_split(&h, 4u, 0u, b, gamma, x_split, &shift_split));
+    ASSERT_STATUS(TVO_OK, tvo_saddle_solve(sum, 4u, 0u, b, x_sum, &shift_sum));
+    TEST_ASSERT_TRUE(shift_split > TVO_R(0.0));
+    ASSERT_NEAR(shift_sum, shift_split, 0.0);
+    for (unsigned i = 0; i < 4u; ++i) {
+        ASSERT_NEAR(x_sum[i], x_split[i], TEST_TOL(16, x_sum[i]));
+    }
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -262,5 +375,8 @@ int main(void)
     RUN_TEST(test_gershgorin_fallback_when_the_ladder_is_not_enough);
     RUN_TEST(test_gershgorin_fallback_when_the_bound_is_tight);
     RUN_TEST(test_non_finite_input_and_bad_sizes_are_rejected);
+    RUN_TEST(test_stiff_parts_keep_the_soft_directions_in_float32);
+    RUN_TEST(test_parts_that_are_not_stiff_join_the_matrix);
+    RUN_TEST(test_split_falls_back_to_the_sum_when_the_rest_is_indefinite);
     return UNITY_END();
 }

@@ -244,6 +244,17 @@ static inline void fx_target_position(const fx_t *fx, uint8_t r, double t_s, dou
     t.rate = TVO_R(1.0);
     t.tick_hz = fx->cfg.tick_hz;
     t.ticks = (uint64_t)llround(t_s * (double)fx->cfg.tick_hz);
+    /* the exact split of the ticks (t_s stays as given: finite differences step below a tick) */
+    {
+        tvo_time_jet_t exact;
+        if (tvo_time_jet_at_ticks(t.ticks, t.tick_hz, t.rate, &exact) == TVO_OK) {
+            t.whole_s = exact.whole_s;
+            t.frac_ticks = exact.frac_ticks;
+        } else {
+            t.whole_s = 0u;
+            t.frac_ticks = 0u;
+        }
+    }
     tvo_real_t d[TVO_JET_MAX_ORDER + 1][2];
     ASSERT_STATUS(TVO_OK, tvo_target_derivatives(&fx->target[r], &t, 0, d));
     out[0] = test_d(d[0][0]);

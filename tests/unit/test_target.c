@@ -19,6 +19,17 @@ static tvo_time_jet_t time_at(double t_s, double rate)
     t.rate = test_r(rate);
     t.tick_hz = 1000u;
     t.ticks = (uint64_t)llround(t_s * 1000.0);
+    /* the exact split of the ticks (t_s stays as given: finite differences step below a tick) */
+    {
+        tvo_time_jet_t exact;
+        if (tvo_time_jet_at_ticks(t.ticks, t.tick_hz, t.rate, &exact) == TVO_OK) {
+            t.whole_s = exact.whole_s;
+            t.frac_ticks = exact.frac_ticks;
+        } else {
+            t.whole_s = 0u;
+            t.frac_ticks = 0u;
+        }
+    }
     return t;
 }
 
@@ -229,6 +240,7 @@ static tvo_target_ellipse_t ellipse_params(void)
     el.omega_radps = TVO_R(1.3);
     el.phase_rad = TVO_R(-0.4);
     el.rotation_rad = TVO_R(0.6);
+    el.rate_turns_q64 = 0u;
     return el;
 }
 
@@ -384,6 +396,17 @@ static tvo_time_jet_t ticks_time(uint64_t ticks, uint32_t hz)
     t.tick_hz = hz;
     t.t_s = tvo_ticks_to_seconds(ticks, hz);
     t.rate = TVO_R(1.0);
+    /* the exact split of the ticks (t_s stays as given: finite differences step below a tick) */
+    {
+        tvo_time_jet_t exact;
+        if (tvo_time_jet_at_ticks(t.ticks, t.tick_hz, t.rate, &exact) == TVO_OK) {
+            t.whole_s = exact.whole_s;
+            t.frac_ticks = exact.frac_ticks;
+        } else {
+            t.whole_s = 0u;
+            t.frac_ticks = 0u;
+        }
+    }
     return t;
 }
 

@@ -145,7 +145,7 @@ static tvo_status_t bench_unicycle(void)
     (void)tvo_problem_desc_default(&desc);
     desc.robot_count = 1u;
     const tvo_target_ellipse_t ellipse = {{TVO_R(0.0), TVO_R(0.0)}, {TVO_R(3.0), TVO_R(1.5)},
-                                          2.0f * BENCH_PI / 10.0f, TVO_R(0.0), TVO_R(0.0)};
+                                          2.0f * BENCH_PI / 10.0f, TVO_R(0.0), TVO_R(0.0), 0u};
     (void)tvo_target_init_ellipse(&desc.target[0], &ellipse);
     tvo_status_t st = tvo_problem_init(&problem, &desc, 2u, &part);
     const tvo_pose_t start = {{TVO_R(-1.0), TVO_R(-2.0)}, TVO_R(0.0)};

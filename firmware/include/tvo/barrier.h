@@ -73,6 +73,24 @@ tvo_status_t tvo_barrier_schedule(const tvo_barrier_t *barrier, tvo_real_t t_s, 
 tvo_status_t tvo_barrier_derivatives(uint8_t relaxation_degree, tvo_real_t sigma, tvo_real_t delta, uint8_t order,
                                      tvo_real_t *derivs);
 
+/** c(t) and s(t) along a time jet: computed once per evaluation, shared by a term's constraints. */
+typedef struct {
+    tvo_jet_t c;
+    tvo_jet_t slack;
+} tvo_barrier_schedule_jet_t;
+
+/** The schedules c(t + rate tau), s(t + rate tau) to the given order. */
+tvo_status_t tvo_barrier_schedule_jet(const tvo_barrier_t *barrier, const tvo_time_jet_t *t, uint8_t order,
+                                      tvo_barrier_schedule_jet_t *schedule);
+
+/**
+ * w_jet = w(tau) for f_jet on the schedule, and, if dw_df is not NULL, dw/df at tau = 0 with time
+ * frozen (the barrier's curvature along grad f, for closed-form Hessians).
+ */
+tvo_status_t tvo_barrier_weight_on_schedule(const tvo_barrier_t *barrier, const tvo_barrier_schedule_jet_t *schedule,
+                                            const tvo_jet_t *f_jet, uint8_t order, tvo_jet_t *w_jet,
+                                            tvo_real_t *dw_df);
+
 /**
  * The barrier weight w = -(1/c) B'_delta(s - f) along a jet: f_jet is f_i(y(tau), t(tau)), t the
  * time jet (rate 0 freezes the schedules, as in Hessian columns). w_jet receives w(tau).

@@ -53,6 +53,9 @@ tvo_status_t tvo_distance_term_init(tvo_distance_term_t *term, const tvo_barrier
                                     uint8_t robot_a, uint8_t robot_b, tvo_real_t bound_m, tvo_real_t bound_rate_mps);
 tvo_status_t tvo_distance_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
                                        uint8_t order, tvo_jet_t *grad);
+/** Closed form of tvo_distance_gradient_jet: the same gradient jets plus the Hessian (see tvo_term_t). */
+tvo_status_t tvo_distance_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
+                                   uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian);
 tvo_status_t tvo_distance_constraint_max(const void *term, const tvo_real_t *y, uint8_t primal_dim, tvo_real_t t_s,
                                          tvo_real_t *max_value);
 
@@ -71,6 +74,9 @@ tvo_status_t tvo_halfspace_term_init(tvo_halfspace_term_t *term, const tvo_barri
                                      tvo_real_t bound_rate_mps);
 tvo_status_t tvo_halfspace_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
                                         uint8_t order, tvo_jet_t *grad);
+/** Closed form of tvo_halfspace_gradient_jet: the same gradient jets plus the Hessian (see tvo_term_t). */
+tvo_status_t tvo_halfspace_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
+                                   uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian);
 tvo_status_t tvo_halfspace_constraint_max(const void *term, const tvo_real_t *y, uint8_t primal_dim, tvo_real_t t_s,
                                           tvo_real_t *max_value);
 
@@ -95,6 +101,9 @@ tvo_status_t tvo_free_space_term_init(tvo_free_space_term_t *term, const tvo_bar
                                       tvo_real_t robot_radius_m, const tvo_disk_t *obstacles, uint8_t count);
 tvo_status_t tvo_free_space_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
                                          uint8_t order, tvo_jet_t *grad);
+/** Closed form of tvo_free_space_gradient_jet: the same gradient jets plus the Hessian (see tvo_term_t). */
+tvo_status_t tvo_free_space_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
+                                   uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian);
 tvo_status_t tvo_free_space_constraint_max(const void *term, const tvo_real_t *y, uint8_t primal_dim, tvo_real_t t_s,
                                            tvo_real_t *max_value);
 

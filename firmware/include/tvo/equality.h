@@ -33,6 +33,11 @@ tvo_status_t tvo_offset_equality_add(tvo_offset_equality_term_t *term, tvo_objec
 tvo_status_t tvo_offset_equality_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim,
                                               const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad);
 
+/** Closed form of tvo_offset_equality_gradient_jet: the same gradient jets plus the KKT coupling. */
+tvo_status_t tvo_offset_equality_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim,
+                                                  const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
+                                                  tvo_hessian_t *hessian);
+
 #ifdef __cplusplus
 }
 #endif

@@ -39,6 +39,14 @@ typedef struct {
     tvo_real_t regularization;  /* shift mu added to the primal Hessian block (0: none needed) */
 } tvo_law_eval_t;
 
+/** What a controller keeps of an evaluation, written in place (no record to clear or copy). */
+typedef struct {
+    tvo_real_t *gradient;       /* receives grad^(0), count entries; NULL: not wanted */
+    tvo_real_t *gradient_rate;  /* receives grad^(1), count entries; NULL: not wanted */
+    uint8_t count;
+    tvo_real_t regularization;  /* set by the evaluation */
+} tvo_law_report_t;
+
 /**
  * Validates k in 1..TVO_MAX_RELATIVE_DEGREE (TVO_ERR_PARAM), 1 <= dim <= TVO_MAX_Z_DIM
  * (TVO_ERR_DIMENSION) and that the gains make s^k + a_{k-1}s^{k-1} + ... + a_0 Hurwitz
@@ -55,6 +63,11 @@ tvo_status_t tvo_law_init(tvo_law_t *law, uint8_t relative_degree, uint8_t dim, 
 tvo_status_t tvo_law_evaluate(const tvo_law_t *law, const tvo_objective_t *objective,
                               const tvo_output_derivs_t *y, const tvo_time_jet_t *t,
                               tvo_real_t *y_k, tvo_law_eval_t *eval);
+
+/** The same evaluation for the step: only the report's outputs are written. */
+tvo_status_t tvo_law_evaluate_report(const tvo_law_t *law, const tvo_objective_t *objective,
+                                     const tvo_output_derivs_t *y, const tvo_time_jet_t *t, tvo_real_t *y_k,
+                                     tvo_law_report_t *report);
 
 #ifdef __cplusplus
 }

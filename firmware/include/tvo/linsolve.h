@@ -19,6 +19,7 @@
 #define TVO_LINSOLVE_H
 
 #include "tvo/config.h"
+#include "tvo/jet.h"
 #include "tvo/status.h"
 
 #ifdef __cplusplus
@@ -26,6 +27,38 @@ extern "C" {
 #endif
 
 typedef tvo_real_t tvo_matrix_t[TVO_MAX_Z_DIM][TVO_MAX_Z_DIM];
+
+/** Most rank-one parts a Hessian keeps apart (the stiffest; the rest are added into the matrix). */
+#define TVO_MAX_RANK_ONE_PARTS 4
+/** Entries of a rank-one part's vector (a constraint's gradient touches at most two robots). */
+#define TVO_RANK_ONE_MAX_ENTRIES 4
+
+/**
+ * A barrier's part of the objective along one direction u (sparse): curvature weight u u^T in the
+ * Hessian and gradient(tau) u in the gradient jets.
+ */
+typedef struct {
+    tvo_real_t weight;
+    tvo_jet_t gradient;
+    uint8_t count;
+    uint8_t index[TVO_RANK_ONE_MAX_ENTRIES];
+    tvo_real_t value[TVO_RANK_ONE_MAX_ENTRIES];
+} tvo_rank_one_t;
+
+/**
+ * A Hessian as a matrix plus rank-one parts kept apart, with their gradients: a barrier's curvature
+ * along its constraint's gradient can be 1e7 times the rest, and float32 can neither factor the sum
+ * (the soft directions are lost to cancellation) nor add its gradient to the soft ones (their
+ * digits are lost to rounding). tvo_saddle_solve_split solves with such parts apart.
+ */
+typedef struct {
+    tvo_matrix_t matrix;
+    uint8_t rank_one_count;
+    tvo_rank_one_t rank_one[TVO_MAX_RANK_ONE_PARTS];
+} tvo_hessian_t;
+
+/** Zeroes the leading n x n block and drops every rank-one part. */
+void tvo_hessian_clear(tvo_hessian_t *h, uint8_t n);
 
 /**
  * Solves A x = b for symmetric A (lower triangle read) of size n <= TVO_MAX_Z_DIM.
@@ -40,6 +73,33 @@ tvo_status_t tvo_cholesky_solve(tvo_matrix_t a, uint8_t n, const tvo_real_t *b, 
  */
 tvo_status_t tvo_saddle_solve(tvo_matrix_t a, uint8_t primal_n, uint8_t dual_n, const tvo_real_t *b, tvo_real_t *x,
                               tvo_real_t *shift);
+
+/**
+ * Adds a part (count <= TVO_RANK_ONE_MAX_ENTRIES). A part with positive weight is kept apart while
+ * there is room; otherwise (or for the smallest, by weight |u|^2, when full) it is added into the
+ * matrix and its gradient jets into grad (to order).
+ */
+void tvo_hessian_add_part(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_t *grad, uint8_t order);
+
+/**
+ * Keeps apart only the parts that are stiff (weight |u|^2 above TVO_STIFF_RATIO times the matrix's
+ * largest diagonal entry), and none with equalities (dual_n > 0); the others go into the matrix and
+ * grad as in tvo_hessian_add_part.
+ */
+void tvo_hessian_settle(tvo_hessian_t *h, uint8_t n, uint8_t dual_n, tvo_jet_t *grad, uint8_t order);
+
+/**
+ * Solves (matrix + sum_k w_k u_k u_k^T) x = b + sum_k gamma_k u_k for the parts kept apart
+ * (gamma: one entry per part; may be NULL without parts), as tvo_saddle_solve does: by
+ * Sherman-Morrison-Woodbury on the matrix's Cholesky factor when the matrix alone is positive
+ * definite and there are no equalities (no digit of the soft directions is lost), else by adding
+ * the parts in. h is overwritten. x may alias b.
+ */
+tvo_status_t tvo_saddle_solve_split(tvo_hessian_t *h, uint8_t primal_n, uint8_t dual_n, const tvo_real_t *b,
+                                    const tvo_real_t *gamma, tvo_real_t *x, tvo_real_t *shift);
+
+/** A rank-one part is stiff when weight |u|^2 exceeds this times the matrix's largest diagonal entry. */
+#define TVO_STIFF_RATIO TVO_R(1e3)
 
 #ifdef __cplusplus
 }

@@ -19,6 +19,8 @@
 
 #include "tvo/config.h"
 #include "tvo/jet.h"
+#include "tvo/linsolve.h"
+#include "tvo/sample_clock.h"
 #include "tvo/status.h"
 
 #ifdef __cplusplus
@@ -28,14 +30,23 @@ extern "C" {
 /**
  * Time along a jet: t(tau) = t_s + rate * tau. rate is 1 along the trajectory and 0 for Hessian
  * columns. ticks is the same instant as an exact tick count since the objective's epoch, for
- * terms that need exact time differences (a streamed target's age).
+ * terms that need exact time differences (a streamed target's age), and whole_s + frac_ticks the
+ * same split into seconds, for terms that need exact phases after hours (periodic targets).
  */
 typedef struct {
     tvo_real_t t_s;
     tvo_real_t rate;
     uint64_t ticks;
     uint32_t tick_hz;
+    uint32_t whole_s;
+    uint32_t frac_ticks;
 } tvo_time_jet_t;
+
+/** The time jet at an exact instant (the step's way: no division beyond one in tvo_real_t). */
+tvo_status_t tvo_time_jet_at(const tvo_tick_time_t *time, uint32_t tick_hz, tvo_real_t rate, tvo_time_jet_t *t);
+
+/** The time jet at a tick count since the epoch (64-bit division: for tools and tests). */
+tvo_status_t tvo_time_jet_at_ticks(uint64_t ticks, uint32_t tick_hz, tvo_real_t rate, tvo_time_jet_t *t);
 
 /**
  * Adds a term's gradient jets into grad[0..dim-1] (dim = the objective's z dimension). Returns
@@ -48,9 +59,21 @@ typedef tvo_status_t (*tvo_gradient_jet_fn)(const void *term, const tvo_jet_t *z
 typedef tvo_status_t (*tvo_constraint_max_fn)(const void *term, const tvo_real_t *y, uint8_t primal_dim,
                                               tvo_real_t t_s, tvo_real_t *max_value);
 
+/**
+ * A term's closed form (optional): adds its gradient jets along z, as gradient_jet would, and its
+ * Hessian at z's constant coefficients with time frozen (into hessian->matrix, or as a rank-one part
+ * through tvo_hessian_add_rank_one: a barrier's curvature along its constraint's gradient), so the
+ * law needs no Hessian passes over jets for it. It must agree with gradient_jet to rounding; the
+ * differential test (tests/unit/test_closed_forms.c) holds every closed form to that.
+ */
+typedef tvo_status_t (*tvo_gradient_hessian_fn)(const void *term, const tvo_jet_t *z, uint8_t dim,
+                                                const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
+                                                tvo_hessian_t *hessian);
+
 typedef struct {
-    tvo_gradient_jet_fn gradient_jet;
-    tvo_constraint_max_fn constraint_max;   /* NULL for terms without inequality constraints */
+    tvo_gradient_jet_fn gradient_jet;         /* required: the general mechanism and the reference */
+    tvo_gradient_hessian_fn gradient_hessian; /* NULL: the Hessian comes from jets */
+    tvo_constraint_max_fn constraint_max;     /* NULL for terms without inequality constraints */
     const void *term;
 } tvo_term_t;
 
@@ -60,6 +83,7 @@ typedef struct {
     uint8_t primal_dim;  /* flat-output dimension m (2 per robot) */
     uint8_t dual_dim;    /* equality multipliers q, reserved by tvo_objective_reserve_multipliers */
     uint8_t dim;         /* m + q: the size of z, of the gradient and of the law's solve */
+    uint8_t jets_only;   /* 1: closed forms ignored, every term through jets (the reference path) */
 } tvo_objective_t;
 
 /** Empty objective over y in R^primal_dim, 1 <= primal_dim <= TVO_MAX_OUTPUT_DIM, no multipliers. */
@@ -72,6 +96,9 @@ tvo_status_t tvo_objective_add_term(tvo_objective_t *objective, tvo_gradient_jet
 /** Appends an inequality-constraint term (constraint_max must not be NULL). */
 tvo_status_t tvo_objective_add_constraint(tvo_objective_t *objective, tvo_gradient_jet_fn gradient_jet,
                                           tvo_constraint_max_fn constraint_max, const void *term);
+
+/** Appends a term described in full (gradient_jet and term required; the rest may be NULL). */
+tvo_status_t tvo_objective_add(tvo_objective_t *objective, const tvo_term_t *term);
 
 /**
  * Reserves count Lagrange multipliers; *first_index is the z index of the first one. Total at most
@@ -86,6 +113,20 @@ tvo_status_t tvo_objective_reserve_multipliers(tvo_objective_t *objective, uint8
  */
 tvo_status_t tvo_objective_gradient_jet(const tvo_objective_t *objective, const tvo_jet_t *z,
                                         const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad);
+
+/**
+ * The law's pass: grad[0..dim-1] = sum of every term's gradient jets at (z, t); terms with a closed
+ * form (unless jets_only) also add their Hessian into hessian (which the caller clears).
+ * *jet_terms = how many terms contributed no Hessian (the law differentiates those by jets).
+ * Unlike tvo_objective_gradient_jet it does not check the sum for finiteness: the caller does.
+ */
+tvo_status_t tvo_objective_gradient_hessian(const tvo_objective_t *objective, const tvo_jet_t *z,
+                                            const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
+                                            tvo_hessian_t *hessian, uint8_t *jet_terms);
+
+/** grad = the sum of the gradient jets of only the terms tvo_objective_gradient_hessian left to jets. */
+tvo_status_t tvo_objective_gradient_jet_of_jet_terms(const tvo_objective_t *objective, const tvo_jet_t *z,
+                                                     const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad);
 
 /**
  * *max_value = max over all inequality constraints of f_i(y, t) (y: primal_dim values);

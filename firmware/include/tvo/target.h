@@ -34,6 +34,9 @@ typedef struct {
     tvo_real_t omega_radps;     /* angular rate of the parameter, may be negative */
     tvo_real_t phase_rad;
     tvo_real_t rotation_rad;    /* rotation of the ellipse's axes */
+    /* omega as fractional turns per second in Q0.64 (tvo_target_turns_q64 of the double value), so
+     * the phase stays exact over hours in float32; 0: derived from omega_radps at its precision. */
+    uint64_t rate_turns_q64;
 } tvo_target_ellipse_t;
 
 typedef struct {
@@ -50,6 +53,10 @@ typedef struct {
         tvo_target_streamed_t streamed;
     } u;
     tvo_real_t rotation_cs[2];  /* ellipse: cos, sin of its fixed rotation, computed by init */
+    tvo_real_t axis_m[2][2];    /* ellipse: the rotated semi-axes R (a, 0) and R (0, b), by init */
+    uint64_t phase0_q64;        /* ellipse: phase at t = 0 in turns, Q0.64 */
+    uint64_t rate_q64;          /* ellipse: fractional turns per second, Q0.64 */
+    uint8_t poly_degree;        /* polynomial: the highest power with a non-zero coefficient */
 } tvo_target_t;
 
 /** Polynomial target; coeff[axis][j] multiplies t^j, degree <= TVO_POLY_MAX_DEGREE. */
@@ -60,6 +67,12 @@ tvo_status_t tvo_target_init_circle(tvo_target_t *target, const tvo_real_t cente
                                     tvo_real_t radius_m, tvo_real_t omega_radps, tvo_real_t phase_rad);
 /** Ellipse: centre + R(rotation) (a cos, b sin) of (omega t + phase). a, b > 0. */
 tvo_status_t tvo_target_init_ellipse(tvo_target_t *target, const tvo_target_ellipse_t *ellipse);
+/**
+ * The fractional part of omega / (2 pi) in Q0.64 turns per second, from a double (an edge that
+ * receives omega in double keeps its precision this way; see tvo_target_ellipse_t). 0 if not finite.
+ */
+uint64_t tvo_target_turns_q64(double omega_radps);
+
 /** Streamed target with no sample yet (evaluation reports TVO_ERR_TARGET_NOT_READY). */
 tvo_status_t tvo_target_init_streamed(tvo_target_t *target);
 

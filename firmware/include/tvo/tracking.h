@@ -26,6 +26,10 @@ tvo_status_t tvo_tracking_init(tvo_tracking_term_t *term, const tvo_target_t *ta
 tvo_status_t tvo_tracking_gradient_jet(const void *term, const tvo_jet_t *y, uint8_t dim,
                                        const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad);
 
+/** Closed form of tvo_tracking_gradient_jet: the same gradient jets plus the Hessian W. */
+tvo_status_t tvo_tracking_gradient_hessian(const void *term, const tvo_jet_t *y, uint8_t dim, const tvo_time_jet_t *t,
+                                           uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian);
+
 #ifdef __cplusplus
 }
 #endif

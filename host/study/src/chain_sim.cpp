@@ -91,17 +91,24 @@ SimResult run_chain(const SimConfig &cfg, std::vector<TraceRow> *trace)
     const double omega = (cfg.omega_radps > 0.0) ? cfg.omega_radps : paper_omega();
 
     // --- objective and controller (firmware code, tvo_real_t) ---
+    // The unit circle, built as the node builds a session's circle (tvo_session_decode_path): the
+    // phase rate keeps omega's double precision, so in-process and over-LCM runs agree bit for bit.
     tvo_target_t target;
-    const tvo_real_t center[2] = {static_cast<tvo_real_t>(0.0), static_cast<tvo_real_t>(0.0)};
-    if (tvo_target_init_circle(&target, center, static_cast<tvo_real_t>(1.0), static_cast<tvo_real_t>(omega),
-                               static_cast<tvo_real_t>(0.0)) != TVO_OK) {
+    tvo_target_ellipse_t circle{};
+    circle.semi_axis_m[0] = static_cast<tvo_real_t>(1.0);
+    circle.semi_axis_m[1] = static_cast<tvo_real_t>(1.0);
+    circle.omega_radps = static_cast<tvo_real_t>(omega);
+    circle.rate_turns_q64 = tvo_target_turns_q64(omega);
+    if (tvo_target_init_ellipse(&target, &circle) != TVO_OK) {
         throw std::runtime_error("target init failed");
     }
+    target.kind = TVO_TARGET_CIRCLE;
     tvo_tracking_term_t term;
     const tvo_real_t weight[2] = {static_cast<tvo_real_t>(1.0), static_cast<tvo_real_t>(1.0)};
+    const tvo_term_t tracking = {tvo_tracking_gradient_jet, tvo_tracking_gradient_hessian, nullptr, &term};
     tvo_objective_t objective;
     if (tvo_tracking_init(&term, &target, weight, 0u) != TVO_OK || tvo_objective_init(&objective, kDim) != TVO_OK ||
-        tvo_objective_add_term(&objective, tvo_tracking_gradient_jet, &term) != TVO_OK) {
+        tvo_objective_add(&objective, &tracking) != TVO_OK) {
         throw std::runtime_error("objective init failed");
     }
     tvo_chain_config_t cc;

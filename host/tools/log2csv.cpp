@@ -1,0 +1,529 @@
+// tvo_log2csv: an LCM event log (.lcmlog; tvo_sim's run.lcmlog, or lcm-logger's from a real robot) as
+// the run CSV that tools/plot_run.py reads, written by the simulator's own RunRecorder (one header).
+//
+// One row per robot per measurement of the session, in sequence order:
+//   t_s        the sample's time from the session's epoch (session_t.epoch_utime of its START)
+//   pose       as measured (heading nan when the sample carries none)
+//   target     the session's target at t_s (on-board path from its START, or the streamed sample of
+//              the same sequence); with formation offsets the constrained minimiser, as tvo_sim
+//   command    the node's answer to this measurement (same session and sequence); a sample the node
+//              did not answer keeps the previous answer (what the plant holds) and is counted
+//   telemetry  of the step that answered it, else the previous one
+// Messages that do not decode, duplicates and other sessions are counted and reported, not fatal.
+//
+// Exit codes: 0 done; 1 the output cannot be written or the session has no measurement;
+// 2 bad command line, or a log that is missing, unreadable or holds no LCM event.
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <type_traits>
+
+#include <CLI/CLI.hpp>
+#include <lcm/lcm-cpp.hpp>
+
+#include "lcm_messages.hpp"
+#include "run_recorder.hpp"
+#include "scenario.hpp"
+#include "summary.hpp"
+
+namespace {
+
+using tvo_host::kMaxRobots;
+
+constexpr double kSPerUs = 1e-6;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// A measurement waits this many later samples for its command and telemetry before its rows are
+// written: answers arrive within a period or two; the window keeps memory bounded on day-long logs.
+constexpr std::int64_t kAnswerWindow = 256;
+
+int usage_error(const std::string& what)
+{
+    std::cerr << "log2csv: error: " << what << '\n';
+    return 2;
+}
+
+/// What the first pass learns about one session.
+struct SessionInfo {
+    std::uint64_t measurements{0};
+    std::optional<tvo_lcm::session_t> start;  // its first START
+};
+
+struct Counts {
+    std::map<std::string, std::uint64_t> undecodable;     // by channel
+    std::map<std::string, std::uint64_t> other_channels;  // not the protocol's
+    std::uint64_t events{0};
+    std::uint64_t other_session{0};
+    std::uint64_t bad_robot_count{0};
+    std::uint64_t duplicates{0};
+    std::uint64_t unanswered{0};
+    std::uint64_t late_answers{0};  // answers to rows already written
+    std::uint64_t safe_stops{0};
+    std::uint64_t rows{0};
+};
+
+template <class Msg>
+bool decode(const lcm::LogEvent& event, Msg* msg)
+{
+    return msg->decode(event.data, 0, event.datalen) >= 0;
+}
+
+/// A wire path_t as the host's TargetPath (the inverse of session.cpp's wire_path).
+tvo_host::TargetPath host_path(const tvo_lcm::path_t& wire)
+{
+    if (wire.kind == tvo_lcm::path_t::KIND_POLYNOMIAL) {
+        tvo_host::PolyCoeffs coeff{};
+        for (std::size_t axis = 0; axis < 2; ++axis) {
+            for (std::size_t j = 0; j < tvo_host::kPolyCoeffs; ++j) {
+                coeff[axis][j] = wire.coeff[axis][j];
+            }
+        }
+        return tvo_host::TargetPath::polynomial(coeff);
+    }
+    if (wire.kind == tvo_lcm::path_t::KIND_CIRCLE) {
+        return tvo_host::TargetPath::circle({wire.center_m[0], wire.center_m[1]}, wire.semi_axis_m[0],
+                                            wire.omega_radps, wire.phase_rad);
+    }
+    tvo_host::EllipseTarget e;
+    e.center_m = {wire.center_m[0], wire.center_m[1]};
+    e.semi_axis_m = {wire.semi_axis_m[0], wire.semi_axis_m[1]};
+    e.omega_radps = wire.omega_radps;
+    e.phase_rad = wire.phase_rad;
+    e.rotation_rad = wire.rotation_rad;
+    return tvo_host::TargetPath::ellipse(e);
+}
+
+std::size_t clamp_count(std::int32_t count, std::size_t capacity)
+{
+    return count < 0 ? 0 : std::min(static_cast<std::size_t>(count), capacity);
+}
+
+bool has_robots(const tvo_host::Scenario& sc, std::int32_t a, std::int32_t b)
+{
+    const auto valid = [&sc](std::int32_t r) { return r >= 0 && static_cast<std::size_t>(r) < sc.robot_count; };
+    return valid(a) && valid(b) && a != b;
+}
+
+/// The problem a START describes, as a Scenario: what the references and the plot's geometry need.
+/// Entries naming a robot the session does not have are left out (the node refuses such a START).
+tvo_host::Scenario scenario_of(const tvo_lcm::session_t& s)
+{
+    tvo_host::Scenario sc;
+    sc.name = "session " + std::to_string(s.session_id);
+    sc.robot_count = std::max<std::size_t>(1, clamp_count(s.robot_count, kMaxRobots));
+    for (std::size_t r = 0; r < sc.robot_count; ++r) {
+        const tvo_lcm::robot_t& robot = s.robot[r];
+        sc.streamed = sc.streamed || robot.target.kind == tvo_lcm::path_t::KIND_STREAMED;
+        if (robot.target.kind != tvo_lcm::path_t::KIND_STREAMED) {
+            sc.targets[r] = host_path(robot.target);
+        }
+        sc.weights[r] = {robot.tracking_weight[0], robot.tracking_weight[1]};
+    }
+    for (std::size_t i = 0; i < clamp_count(s.distance_count, tvo_lcm::session_t::MAX_DISTANCE_BOUNDS); ++i) {
+        const tvo_lcm::distance_bound_t& w = s.distance[i];
+        if (!has_robots(sc, w.robot_a, w.robot_b)) {
+            continue;
+        }
+        sc.distances.push_back({static_cast<std::size_t>(w.robot_a), static_cast<std::size_t>(w.robot_b), w.min_m,
+                                w.min_rate_mps, w.max_m, w.max_rate_mps});
+    }
+    sc.robot_radius_m = s.robot_radius_m;
+    for (std::size_t i = 0; i < clamp_count(s.obstacle_count, tvo_lcm::session_t::MAX_OBSTACLES); ++i) {
+        sc.obstacles.push_back({{s.obstacle[i].center_m[0], s.obstacle[i].center_m[1]}, s.obstacle[i].radius_m});
+    }
+    for (std::size_t i = 0; i < clamp_count(s.offset_count, tvo_lcm::session_t::MAX_OFFSETS); ++i) {
+        const tvo_lcm::offset_t& w = s.offset[i];
+        if (!has_robots(sc, w.robot_a, w.robot_b)) {
+            continue;
+        }
+        tvo_host::OffsetEquality offset;
+        offset.robot_a = static_cast<std::size_t>(w.robot_a);
+        offset.robot_b = static_cast<std::size_t>(w.robot_b);
+        offset.offset = host_path(w.offset);
+        sc.offsets.push_back(offset);
+    }
+    return sc;
+}
+
+/// True if the event decodes as the message type of its protocol channel.
+bool decodes(int channel, const lcm::LogEvent& event)
+{
+    switch (channel) {
+    case TVO_NODE_CH_SESSION_ACK: { tvo_lcm::session_ack_t m{}; return decode(event, &m); }
+    case TVO_NODE_CH_TARGET: { tvo_lcm::target_t m{}; return decode(event, &m); }
+    case TVO_NODE_CH_COMMAND: { tvo_lcm::command_t m{}; return decode(event, &m); }
+    case TVO_NODE_CH_TELEMETRY: { tvo_lcm::telemetry_t m{}; return decode(event, &m); }
+    default: return true;  // measurement and session: decoded by the caller
+    }
+}
+
+/// First pass: the sessions in the log (by their measurements and STARTs) and what does not decode.
+std::map<std::int64_t, SessionInfo> scan_sessions(lcm::LogFile& log, Counts* counts)
+{
+    std::map<std::int64_t, SessionInfo> sessions;
+    for (const lcm::LogEvent* event = log.readNextEvent(); event != nullptr; event = log.readNextEvent()) {
+        ++counts->events;
+        const int channel = tvo_node_channel_of(event->channel.c_str());
+        bool ok = decodes(channel, *event);
+        if (channel == TVO_NODE_CH_MEASUREMENT) {
+            tvo_lcm::measurement_t m{};
+            ok = decode(*event, &m);
+            if (ok) {
+                ++sessions[m.session_id].measurements;
+            }
+        } else if (channel == TVO_NODE_CH_SESSION) {
+            tvo_lcm::session_t s{};
+            ok = decode(*event, &s);
+            if (ok && s.action == tvo_lcm::session_t::ACTION_START && !sessions[s.session_id].start) {
+                sessions[s.session_id].start = s;
+            }
+        } else if (channel == 0) {
+            ++counts->other_channels[event->channel];
+        }
+        if (!ok) {
+            ++counts->undecodable[event->channel];
+        }
+    }
+    return sessions;
+}
+
+/// One measurement waiting for its answer.
+struct PendingRow {
+    tvo_lcm::measurement_t measurement;
+    std::optional<tvo_lcm::command_t> command;
+    std::optional<tvo_host::StepTelemetry> telemetry;
+    std::optional<tvo_lcm::target_t> target;
+};
+
+/// Second pass: the rows of one session, written through RunRecorder.
+class Converter {
+public:
+    Converter(std::int64_t session_id, const std::optional<tvo_lcm::session_t>& start, tvo_host::RunRecorder& out,
+              Counts& counts)
+        : session_id_(session_id), start_(start), out_(out), counts_(counts)
+    {
+        if (start_) {
+            scenario_ = scenario_of(*start_);
+            epoch_utime_ = start_->epoch_utime;
+        }
+    }
+
+    void on_event(const lcm::LogEvent& event)
+    {
+        switch (tvo_node_channel_of(event.channel.c_str())) {
+        case TVO_NODE_CH_MEASUREMENT: {
+            tvo_lcm::measurement_t m{};
+            if (decode(event, &m) && m.session_id == session_id_) {
+                on_measurement(m);
+            }
+            break;
+        }
+        case TVO_NODE_CH_COMMAND: on_answer<tvo_lcm::command_t>(event); break;
+        case TVO_NODE_CH_TELEMETRY: on_answer<tvo_lcm::telemetry_t>(event); break;
+        case TVO_NODE_CH_TARGET: {
+            tvo_lcm::target_t t{};
+            if (decode(event, &t) && t.session_id == session_id_) {
+                pending_target_[t.sequence] = t;
+                while (pending_target_.size() > static_cast<std::size_t>(kAnswerWindow)) {
+                    pending_target_.erase(pending_target_.begin());
+                }
+            }
+            break;
+        }
+        default: break;
+        }
+    }
+
+    void finish() { flush_through(std::numeric_limits<std::int64_t>::max()); }
+    double last_t_s() const { return last_t_s_; }
+
+private:
+    void on_measurement(const tvo_lcm::measurement_t& m)
+    {
+        if (m.robot_count < 1 || m.robot_count > tvo_lcm::measurement_t::MAX_ROBOTS) {
+            ++counts_.bad_robot_count;
+            return;
+        }
+        if (m.sequence <= written_through_ || pending_.count(m.sequence) != 0) {
+            ++counts_.duplicates;
+            return;
+        }
+        if (!epoch_utime_) {
+            epoch_utime_ = m.utime;  // no START in the log: time from the first sample
+        }
+        PendingRow& row = pending_[m.sequence];
+        row.measurement = m;
+        const auto target = pending_target_.find(m.sequence);
+        if (target != pending_target_.end()) {
+            row.target = target->second;
+        }
+        flush_through(m.sequence - kAnswerWindow);
+    }
+
+    template <class Msg>
+    void on_answer(const lcm::LogEvent& event)
+    {
+        Msg msg{};
+        if (!decode(event, &msg)) {
+            return;  // counted by the first pass
+        }
+        if (msg.session_id != session_id_) {
+            ++counts_.other_session;
+            return;
+        }
+        if (msg.measurement_sequence < 0) {
+            counts_.safe_stops += std::is_same<Msg, tvo_lcm::command_t>::value ? 1u : 0u;
+            return;
+        }
+        const auto row = pending_.find(msg.measurement_sequence);
+        if (row == pending_.end()) {
+            counts_.late_answers += msg.measurement_sequence <= written_through_ ? 1u : 0u;
+            return;
+        }
+        attach(msg, &row->second);
+    }
+
+    // The first computed answer wins over a refusal; a refusal is kept only if nothing else came.
+    static void attach(const tvo_lcm::command_t& c, PendingRow* row)
+    {
+        if (!row->command || (row->command->status != 0 && c.status == 0)) {
+            row->command = c;
+        }
+    }
+    static void attach(const tvo_lcm::telemetry_t& t, PendingRow* row)
+    {
+        if (!row->telemetry) {
+            row->telemetry = tvo_host::StepTelemetry{t.barrier_c, t.barrier_slack, t.regularization};
+        }
+    }
+
+    /// The reference of each robot at t_s: the START's paths, or the streamed sample held constant.
+    std::array<Eigen::Vector2d, kMaxRobots> references(double t_s, const PendingRow& row, std::size_t robots)
+    {
+        std::array<Eigen::Vector2d, kMaxRobots> none;
+        none.fill(Eigen::Vector2d::Constant(kNaN));
+        if (scenario_.streamed || !start_) {
+            if (!row.target) {
+                return none;
+            }
+            for (std::size_t r = 0; r < robots; ++r) {
+                tvo_host::PolyCoeffs constant{};
+                constant[0][0] = row.target->position_m[r][0];
+                constant[1][0] = row.target->position_m[r][1];
+                scenario_.targets[r] = tvo_host::TargetPath::polynomial(constant);
+            }
+            if (!start_) {
+                scenario_.robot_count = robots;
+                scenario_.weights.fill(Eigen::Vector2d::Ones());
+            }
+        }
+        auto refs = scenario_.references(t_s);
+        for (std::size_t r = scenario_.robot_count; r < robots; ++r) {
+            refs[r] = none[r];  // more robots measured than the START describes
+        }
+        return refs;
+    }
+
+    void flush_through(std::int64_t sequence)
+    {
+        while (!pending_.empty() && pending_.begin()->first <= sequence) {
+            write(pending_.begin()->second);
+            written_through_ = pending_.begin()->first;
+            pending_.erase(pending_.begin());
+        }
+    }
+
+    void write(const PendingRow& row)
+    {
+        const tvo_lcm::measurement_t& m = row.measurement;
+        if (row.command) {
+            held_ = *row.command;
+        } else {
+            ++counts_.unanswered;
+        }
+        if (row.telemetry) {
+            telemetry_ = *row.telemetry;
+        }
+        const auto robots = static_cast<std::size_t>(m.robot_count);
+        const double t_s = static_cast<double>(m.utime - *epoch_utime_) * kSPerUs;
+        last_t_s_ = t_s;
+        const auto refs = references(t_s, row, robots);
+        for (std::size_t r = 0; r < robots; ++r) {
+            tvo_host::UnicycleState pose;
+            pose.position_m = {m.position_m[r][0], m.position_m[r][1]};
+            pose.heading_rad = m.heading_valid ? m.heading_rad[r] : kNaN;
+            const tvo_host::UnicycleInput command{held_.speed_mps[r], held_.turn_rate_radps[r]};
+            out_.row(t_s, r, pose, refs[r], (pose.position_m - refs[r]).norm(), command, held_.status, held_.flags,
+                     telemetry_);
+        }
+        counts_.rows += robots;
+    }
+
+    std::int64_t session_id_;
+    std::optional<tvo_lcm::session_t> start_;
+    tvo_host::Scenario scenario_;
+    std::optional<std::int64_t> epoch_utime_;
+    tvo_host::RunRecorder& out_;
+    Counts& counts_;
+    std::map<std::int64_t, PendingRow> pending_;
+    std::map<std::int64_t, tvo_lcm::target_t> pending_target_;
+    std::int64_t written_through_{-1};
+    tvo_lcm::command_t held_{};  // before the first answer: zero command, status 0
+    tvo_host::StepTelemetry telemetry_{};
+    double last_t_s_{0.0};
+};
+
+std::string join(const std::map<std::string, std::uint64_t>& by_channel)
+{
+    std::ostringstream out;
+    for (const auto& [channel, n] : by_channel) {
+        out << (out.tellp() > 0 ? ", " : "") << channel << ' ' << n;
+    }
+    return out.str();
+}
+
+std::string session_list(const std::map<std::int64_t, SessionInfo>& sessions)
+{
+    std::ostringstream out;
+    for (const auto& [id, info] : sessions) {
+        out << "\n  " << id << ": " << info.measurements << " measurement messages" << (info.start ? "" : ", no START");
+    }
+    return out.str();
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+    std::string log_path;
+    std::string csv_path;
+    std::string scenario_json;
+    std::int64_t session_id = 0;
+    CLI::App app{"Turns an LCM event log (tvo_sim's run.lcmlog, or lcm-logger's recording of a robot) into the "
+                 "run CSV that tools/plot_run.py plots: one row per robot per measurement of the session, paired "
+                 "with the node's command and telemetry by session and sequence.",
+                 "log2csv"};
+    app.add_option("log", log_path, "the .lcmlog to read")->required();
+    app.add_option("-o,--output", csv_path, "CSV to write [default: <log>.csv]");
+    CLI::Option* session = app.add_option("--session", session_id, "the session to convert when the log holds "
+                                          "several (the error message lists them)");
+    app.add_option("--scenario-json", scenario_json, "also write the session's geometry (obstacles, bounds, "
+                   "offsets, from its START) here; name it scenario.json next to the CSV for plot_run.py");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp&) {
+        std::cout << app.help();
+        return 0;
+    } catch (const CLI::ParseError& e) {
+        return usage_error(std::string(e.what()) + " (see --help)");
+    }
+    if (csv_path.empty()) {
+        csv_path = log_path + ".csv";
+    }
+
+    // lcm_eventlog_create does not say why it failed: look first, so the message can.
+    std::error_code error;
+    if (std::filesystem::is_directory(log_path, error)) {
+        return usage_error(log_path + " is a folder, not an LCM log");
+    }
+    std::FILE* probe = std::fopen(log_path.c_str(), "rb");
+    if (probe == nullptr) {
+        return usage_error("cannot read " + log_path + ": " + std::strerror(errno));
+    }
+    std::fclose(probe);
+
+    Counts counts;
+    std::map<std::int64_t, SessionInfo> sessions;
+    {
+        lcm::LogFile log(log_path, "r");
+        if (!log.good()) {
+            return usage_error("cannot open " + log_path + " as an LCM log");
+        }
+        sessions = scan_sessions(log, &counts);
+    }
+    if (counts.events == 0) {
+        return usage_error(log_path + " holds no LCM event (not an LCM event log, or empty)");
+    }
+    for (auto it = sessions.begin(); it != sessions.end();) {  // a START alone is not a run
+        it = it->second.measurements == 0 ? sessions.erase(it) : std::next(it);
+    }
+    if (session->count() > 0 && sessions.count(session_id) == 0) {
+        return usage_error("--session " + std::to_string(session_id) + ": no measurement of it in " + log_path +
+                           "; sessions with measurements:" + (sessions.empty() ? " none" : session_list(sessions)));
+    }
+    if (session->count() == 0) {
+        if (sessions.empty()) {
+            std::cerr << "log2csv: error: " << log_path << " holds no decodable measurement on "
+                      << TVO_CHANNEL_MEASUREMENT << " (" << counts.events << " events)\n";
+            return 1;
+        }
+        if (sessions.size() > 1) {
+            return usage_error(log_path + " holds " + std::to_string(sessions.size()) +
+                               " sessions: pick one with --session ID" + session_list(sessions));
+        }
+        session_id = sessions.begin()->first;
+    }
+    const SessionInfo& info = sessions.at(session_id);
+
+    try {
+        tvo_host::RunRecorder out(csv_path);
+        Converter converter(session_id, info.start, out, counts);
+        lcm::LogFile log(log_path, "r");
+        for (const lcm::LogEvent* event = log.readNextEvent(); event != nullptr; event = log.readNextEvent()) {
+            converter.on_event(*event);
+        }
+        converter.finish();
+        if (!out.close()) {
+            std::cerr << "log2csv: error: writing " << csv_path << " failed\n";
+            return 1;
+        }
+        if (!scenario_json.empty()) {
+            if (!info.start) {
+                std::cerr << "log2csv: error: --scenario-json: the log holds no START of session " << session_id
+                          << " (start lcm-logger before the session)\n";
+                return 1;
+            }
+            tvo_host::write_scenario_json(scenario_json, scenario_of(*info.start), converter.last_t_s());
+        }
+    } catch (const std::exception& e) {
+        std::cerr << "log2csv: error: " << e.what() << '\n';
+        return 1;
+    }
+
+    std::cout << "log2csv: session " << session_id << ": " << counts.rows << " rows (" << info.measurements
+              << " measurement messages) -> " << csv_path << '\n';
+    if (!info.start) {
+        std::cout << "log2csv: no START of the session in the log: time counts from the first sample and the "
+                     "reference is the streamed target where there is one, else nan\n";
+    }
+    const std::pair<const char*, std::uint64_t> notes[] = {
+        {"measurements without an answer (previous command kept)", counts.unanswered},
+        {"answers that came after their row was written", counts.late_answers},
+        {"duplicate measurements (ignored)", counts.duplicates},
+        {"measurements with a robot count out of range (ignored)", counts.bad_robot_count},
+        {"commands and telemetry of other sessions (ignored)", counts.other_session},
+        {"safe stops of the node", counts.safe_stops},
+    };
+    for (const auto& [what, n] : notes) {
+        if (n > 0) {
+            std::cout << "log2csv: " << n << ' ' << what << '\n';
+        }
+    }
+    if (!counts.undecodable.empty()) {
+        std::cout << "log2csv: messages that did not decode (skipped): " << join(counts.undecodable) << '\n';
+    }
+    if (!counts.other_channels.empty()) {
+        std::cout << "log2csv: events on other channels (skipped): " << join(counts.other_channels) << '\n';
+    }
+    return 0;
+}

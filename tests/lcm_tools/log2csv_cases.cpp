@@ -1,0 +1,296 @@
+// tvo_log2csv on logs written here, message by message, with what a recording of a real robot can hold:
+// two sessions, a measurement the node did not answer, a refusal then a computed answer, a refusal
+// alone, a duplicate measurement, a message that does not decode, a channel of someone else, a START
+// and a measurement naming robots that are not there, and a log without the session's START
+// (streamed targets). Plain checks (no framework): exit 0 = pass.
+//
+// Usage: tvo_log2csv_cases TVO_LOG2CSV WORK_DIR
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <lcm/lcm-cpp.hpp>
+
+#include "lcm_messages.hpp"
+
+namespace {
+
+int g_failures = 0;
+
+void check(bool ok, const std::string& what)
+{
+    std::cout << (ok ? "ok   " : "FAIL ") << what << '\n';
+    g_failures += ok ? 0 : 1;
+}
+
+constexpr std::int64_t kEpochUs = 5000000;
+constexpr std::int64_t kPeriodUs = 10000;
+constexpr std::int64_t kSession = 7;
+constexpr std::int64_t kOtherSession = 8;
+constexpr std::int32_t kRefusal = TVO_ERR_STALE;
+
+class LogWriter {
+public:
+    explicit LogWriter(const std::string& path) : log_(path, "w") {}
+    bool good() const { return log_.good(); }
+
+    template <class Msg>
+    void put(const char* channel, const Msg& msg)
+    {
+        std::vector<char> data(static_cast<std::size_t>(msg.getEncodedSize()));
+        msg.encode(data.data(), 0, static_cast<int>(data.size()));
+        raw(channel, data);
+    }
+    void raw(const char* channel, std::vector<char> data)
+    {
+        lcm::LogEvent event{};
+        event.timestamp = ++clock_;
+        event.channel = channel;
+        event.datalen = static_cast<std::int32_t>(data.size());
+        event.data = data.data();
+        log_.writeEvent(&event);
+    }
+
+private:
+    lcm::LogFile log_;
+    std::int64_t clock_{0};
+};
+
+tvo_lcm::session_t start(std::int64_t id, double target_x, double target_y)
+{
+    tvo_lcm::session_t s{};
+    s.session_id = id;
+    s.action = tvo_lcm::session_t::ACTION_START;
+    s.epoch_utime = kEpochUs;
+    s.period_us = kPeriodUs;
+    s.robot_count = 1;
+    s.robot[0].tracking_weight[0] = 1.0;
+    s.robot[0].tracking_weight[1] = 1.0;
+    s.robot[0].target.kind = tvo_lcm::path_t::KIND_POLYNOMIAL;
+    s.robot[0].target.coeff[0][0] = target_x;  // a fixed point
+    s.robot[0].target.coeff[1][0] = target_y;
+    return s;
+}
+
+tvo_lcm::measurement_t measurement(std::int64_t session, std::int64_t sequence)
+{
+    tvo_lcm::measurement_t m{};
+    m.utime = kEpochUs + (sequence + 1) * kPeriodUs;
+    m.session_id = session;
+    m.sequence = sequence;
+    m.robot_count = 1;
+    m.position_m[0][0] = static_cast<double>(sequence);
+    m.heading_valid = true;
+    return m;
+}
+
+tvo_lcm::command_t command(std::int64_t sequence, double speed, std::int32_t status)
+{
+    tvo_lcm::command_t c{};
+    c.session_id = kSession;
+    c.measurement_sequence = sequence;
+    c.robot_count = 1;
+    c.speed_mps[0] = speed;
+    c.status = status;
+    return c;
+}
+
+struct Run {
+    int exit_code{-1};
+    std::string output;  // stdout and stderr
+};
+
+Run log2csv(const std::string& program, const std::string& args, const std::string& work_dir)
+{
+    const std::string out = work_dir + "/output.txt";
+    const std::string cmd = "'" + program + "' " + args + " > '" + out + "' 2>&1";
+    const int status = std::system(cmd.c_str());
+    Run run;
+    run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::ifstream in(out);
+    std::stringstream text;
+    text << in.rdbuf();
+    run.output = text.str();
+    std::cout << "$ log2csv " << args << "  -> exit " << run.exit_code << '\n' << run.output;
+    return run;
+}
+
+using Row = std::map<std::string, std::string>;  // by the header's column names
+
+std::vector<std::string> split(const std::string& line)
+{
+    std::vector<std::string> cells;
+    std::stringstream fields(line);
+    for (std::string cell; std::getline(fields, cell, ',');) {
+        cells.push_back(cell);
+    }
+    return cells;
+}
+
+std::vector<Row> read_csv(const std::string& path)
+{
+    std::vector<Row> rows;
+    std::ifstream in(path);
+    std::string line;
+    std::getline(in, line);
+    const std::vector<std::string> header = split(line);
+    while (std::getline(in, line)) {
+        const std::vector<std::string> cells = split(line);
+        Row row;
+        for (std::size_t i = 0; i < header.size() && i < cells.size(); ++i) {
+            row[header[i]] = cells[i];
+        }
+        rows.push_back(row);
+    }
+    return rows;
+}
+
+double num(const Row& row, const char* column)
+{
+    const auto cell = row.find(column);
+    return cell == row.end() ? std::nan("") : std::stod(cell->second);
+}
+
+bool contains(const std::string& text, const std::string& what)
+{
+    return text.find(what) != std::string::npos;
+}
+
+void two_sessions(const std::string& program, const std::string& dir)
+{
+    const std::string path = dir + "/two_sessions.lcmlog";
+    {
+        LogWriter log(path);
+        check(log.good(), "the test log can be written");
+        log.put(TVO_CHANNEL_SESSION, start(kSession, 1.0, 2.0));
+        tvo_lcm::session_t other = start(kOtherSession, 0.0, 0.0);
+        other.offset_count = 1;  // names a robot the session lacks: left out (used, it would index past
+                                 // the reference's KKT matrix: silent in Release, an ASan finding)
+        other.offset[0].robot_b = 5;
+        log.put(TVO_CHANNEL_SESSION, other);
+        log.raw("SOMEONE_ELSE", {'x'});
+        log.put(TVO_CHANNEL_MEASUREMENT, measurement(kSession, 0));
+        log.put(TVO_CHANNEL_COMMAND, command(0, 1.0, TVO_OK));
+        log.put(TVO_CHANNEL_MEASUREMENT, measurement(kSession, 1));  // never answered
+        log.put(TVO_CHANNEL_MEASUREMENT, measurement(kOtherSession, 0));
+        tvo_lcm::measurement_t too_many = measurement(kOtherSession, 1);
+        too_many.robot_count = tvo_lcm::measurement_t::MAX_ROBOTS + 1;
+        log.put(TVO_CHANNEL_MEASUREMENT, too_many);
+        log.put(TVO_CHANNEL_MEASUREMENT, measurement(kSession, 2));
+        log.put(TVO_CHANNEL_COMMAND, command(2, 9.0, kRefusal));
+        log.put(TVO_CHANNEL_COMMAND, command(2, 3.0, TVO_OK));     // the computed answer wins
+        log.put(TVO_CHANNEL_MEASUREMENT, measurement(kSession, 2));  // duplicate
+        log.put(TVO_CHANNEL_MEASUREMENT, measurement(kSession, 3));
+        log.put(TVO_CHANNEL_COMMAND, command(3, 4.0, kRefusal));   // a refusal alone is kept
+        log.raw(TVO_CHANNEL_COMMAND, {'b', 'a', 'd'});              // does not decode
+    }
+    const Run several = log2csv(program, "'" + path + "' -o '" + dir + "/none.csv'", dir);
+    check(several.exit_code == 2 && contains(several.output, "--session") &&
+              contains(several.output, "\n  7: 5 measurement messages") && contains(several.output, "\n  8: 2"),
+          "two sessions without --session: exit 2, both listed with their measurement messages");
+
+    const std::string csv = dir + "/session7.csv";
+    const Run run = log2csv(program, "'" + path + "' --session 7 -o '" + csv + "'", dir);
+    check(run.exit_code == 0, "--session 7 converts");
+    const auto rows = read_csv(csv);
+    check(rows.size() == 4, "one row per distinct measurement of session 7 (4 of 4, the duplicate dropped)");
+    if (rows.size() != 4) {
+        return;
+    }
+    check(std::abs(num(rows[0], "t_s") - 0.01) < 1e-9 && std::abs(num(rows[3], "t_s") - 0.04) < 1e-9,
+          "t_s is the sample's time from the START's epoch");
+    check(num(rows[2], "x_m") == 2.0 && num(rows[2], "target_x_m") == 1.0 && num(rows[2], "target_y_m") == 2.0 &&
+              std::abs(num(rows[2], "error_m") - std::sqrt(5.0)) < 1e-8,
+          "pose as measured, reference from the START's path, error between them");
+    check(num(rows[0], "cmd_speed_mps") == 1.0 && num(rows[1], "cmd_speed_mps") == 1.0 &&
+              num(rows[1], "status") == static_cast<double>(TVO_OK),
+          "a measurement without an answer keeps the previous command");
+    check(num(rows[2], "cmd_speed_mps") == 3.0 && num(rows[2], "status") == static_cast<double>(TVO_OK),
+          "a computed answer wins over a refusal");
+    check(num(rows[3], "cmd_speed_mps") == 4.0 && num(rows[3], "status") == kRefusal,
+          "a refusal alone is shown with its status");
+    check(contains(run.output, "1 measurements without an answer") && contains(run.output, "1 duplicate") &&
+              contains(run.output, "did not decode (skipped): TVO_COMMAND 1") &&
+              contains(run.output, "other channels (skipped): SOMEONE_ELSE 1"),
+          "unanswered, duplicate, undecodable and foreign messages are counted and reported");
+
+    const Run other = log2csv(program, "'" + path + "' --session 8 -o '" + dir + "/session8.csv'", dir);
+    check(other.exit_code == 0 && read_csv(dir + "/session8.csv").size() == 1 &&
+              contains(other.output, "1 measurements with a robot count out of range"),
+          "--session 8 picks the other one (its bad offset left out, its bad robot count skipped)");
+    const Run missing = log2csv(program, "'" + path + "' --session 9", dir);
+    check(missing.exit_code == 2 && contains(missing.output, "--session 9"), "an absent session: exit 2, named");
+}
+
+void without_start(const std::string& program, const std::string& dir)
+{
+    const std::string path = dir + "/no_start.lcmlog";
+    {
+        LogWriter log(path);
+        for (std::int64_t seq = 0; seq < 2; ++seq) {
+            if (seq == 0) {  // streamed only for the first sample
+                tvo_lcm::target_t t{};
+                t.session_id = kSession;
+                t.sequence = seq;
+                t.robot_count = 1;
+                t.position_m[0][0] = 3.0;
+                t.position_m[0][1] = 4.0;
+                log.put(TVO_CHANNEL_TARGET, t);
+            }
+            log.put(TVO_CHANNEL_MEASUREMENT, measurement(kSession, seq));
+            log.put(TVO_CHANNEL_COMMAND, command(seq, 1.0, TVO_OK));
+        }
+    }
+    const std::string csv = dir + "/no_start.csv";
+    const Run run = log2csv(program, "'" + path + "' -o '" + csv + "'", dir);
+    const auto rows = read_csv(csv);
+    check(run.exit_code == 0 && rows.size() == 2 && contains(run.output, "no START"), "a log without START converts");
+    if (rows.size() == 2) {
+        check(num(rows[0], "t_s") == 0.0 && std::abs(num(rows[1], "t_s") - 0.01) < 1e-9, "time from the first sample");
+        check(num(rows[0], "target_x_m") == 3.0 && num(rows[0], "target_y_m") == 4.0 && num(rows[0], "error_m") == 5.0,
+              "the streamed target is the reference");
+        check(std::isnan(num(rows[1], "target_x_m")) && std::isnan(num(rows[1], "error_m")),
+              "no target: reference and error are nan");
+    }
+}
+
+void bad_files(const std::string& program, const std::string& dir)
+{
+    const Run absent = log2csv(program, "'" + dir + "/absent.lcmlog'", dir);
+    check(absent.exit_code == 2 && contains(absent.output, "absent.lcmlog") && contains(absent.output, "No such file"),
+          "a missing log: exit 2, named with the reason");
+    const std::string text = dir + "/not_a_log.txt";
+    std::ofstream(text) << "not an LCM log\n";
+    const Run junk = log2csv(program, "'" + text + "'", dir);
+    check(junk.exit_code == 2 && contains(junk.output, "no LCM event"), "a file that is not a log: exit 2");
+    const Run folder = log2csv(program, "'" + dir + "'", dir);
+    check(folder.exit_code == 2 && contains(folder.output, "folder"), "a folder: exit 2");
+    const Run option = log2csv(program, "--no-such-option", dir);
+    check(option.exit_code == 2, "an unknown option: exit 2");
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+    if (argc != 3) {
+        std::cerr << "usage: tvo_log2csv_cases TVO_LOG2CSV WORK_DIR\n";
+        return 2;
+    }
+    std::error_code error;
+    std::filesystem::create_directories(argv[2], error);
+    two_sessions(argv[1], argv[2]);
+    without_start(argv[1], argv[2]);
+    bad_files(argv[1], argv[2]);
+    std::cout << (g_failures == 0 ? "all passed\n" : std::to_string(g_failures) + " failed\n");
+    return g_failures == 0 ? 0 : 1;
+}

@@ -1,0 +1,39 @@
+# Every built-in scenario file loads: `tvo_sim --scenario NAME --dry-run` accepts each file of the
+# folder by its name, and `--list-scenarios` prints one line per file, its name then its
+# description (cmake -P script).
+#
+#   -DSIM=<tvo_sim> -DSCENARIO_DIR=<host/scenarios>
+if(NOT SIM OR NOT SCENARIO_DIR)
+  message(FATAL_ERROR "builtins_load: SIM and SCENARIO_DIR are required")
+endif()
+file(GLOB files ${SCENARIO_DIR}/*.yaml)
+list(LENGTH files count)
+if(count LESS 7)
+  message(FATAL_ERROR "expected the seven built-in runs in ${SCENARIO_DIR}, found ${count} files")
+endif()
+execute_process(COMMAND ${SIM} --list-scenarios RESULT_VARIABLE rc OUTPUT_VARIABLE listing ERROR_VARIABLE err)
+if(NOT rc STREQUAL "0")
+  message(FATAL_ERROR "--list-scenarios exited with '${rc}': ${err}")
+endif()
+string(REGEX MATCHALL "\n" newlines "${listing}")   # not a list of the lines: a description may hold ';'
+list(LENGTH newlines line_count)
+if(NOT line_count EQUAL count)
+  message(FATAL_ERROR "--list-scenarios printed ${line_count} lines for ${count} files:\n${listing}")
+endif()
+foreach(file IN LISTS files)
+  get_filename_component(name ${file} NAME_WE)
+  file(READ ${file} text)
+  string(REGEX MATCH "\ndescription: \"([^\"\n]*)\"" line "${text}")
+  set(description "${CMAKE_MATCH_1}")
+  string(FIND "${listing}" "${name}" at)
+  string(FIND "${listing}" "${description}" described)
+  if(at EQUAL -1 OR described EQUAL -1 OR description STREQUAL "")
+    message(FATAL_ERROR "--list-scenarios lacks '${name}' or its description '${description}':\n${listing}")
+  endif()
+  execute_process(COMMAND ${SIM} --scenario ${name} --dry-run --lcm-url memq://
+    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc STREQUAL "0" OR NOT out MATCHES "dry run: scenario ${name},")
+    message(FATAL_ERROR "${name}: exit code '${rc}'\n${out}${err}")
+  endif()
+  message(STATUS "ok: ${name}: ${description}")
+endforeach()

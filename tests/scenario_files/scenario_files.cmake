@@ -1,0 +1,97 @@
+# Scenario files (README.md, "Your own scenario"); included by tests/closed_loop/CMakeLists.txt,
+# whose port counter (tvo_cl_port) it continues. The built-in runs' figures are checked by the
+# closed-loop scenario tests there, which load the same files by name.
+set(tvo_sf_dir ${PROJECT_SOURCE_DIR}/tests/scenario_files)
+
+# Each built-in file loads by its name, and --list-scenarios lists them all with their descriptions.
+add_test(NAME scenario_files_builtins_load
+  COMMAND ${CMAKE_COMMAND} -DSIM=$<TARGET_FILE:tvo_sim> -DSCENARIO_DIR=${PROJECT_SOURCE_DIR}/host/scenarios
+    -P ${tvo_sf_dir}/builtins_load.cmake)
+set_tests_properties(scenario_files_builtins_load PROPERTIES LABELS "closed_loop;host" TIMEOUT 60)
+
+# tvo_scenario_file_run(NAME <name> FILE <file> [BUILTIN <name>] [CHECKS ...])
+function(tvo_scenario_file_run)
+  cmake_parse_arguments(T "" "NAME;FILE;BUILTIN" "CHECKS" ${ARGN})
+  set(port ${tvo_cl_port})
+  math(EXPR next "${tvo_cl_port} + 1")
+  set(tvo_cl_port ${next} PARENT_SCOPE)
+  string(REPLACE ";" "|" checks "${T_CHECKS}")
+  add_test(NAME ${T_NAME}
+    COMMAND ${CMAKE_COMMAND}
+      -DSCENARIO_TOOL=${PROJECT_SOURCE_DIR}/tools/scenario -DBUILD_DIR=${PROJECT_BINARY_DIR}
+      -DSIM=$<TARGET_FILE:tvo_sim> -DFIRMWARE=$<TARGET_FILE:tvo_firmware_node>
+      "-DLCM_URL=udpm://239.255.76.67:${port}?ttl=0" -DOUT_DIR=${CMAKE_CURRENT_BINARY_DIR}/${T_NAME}
+      -DFILE=${T_FILE} "-DBUILTIN=${T_BUILTIN}" "-DCHECKS=${checks}"
+      -P ${tvo_sf_dir}/file_like_builtin.cmake)
+  set_tests_properties(${T_NAME} PROPERTIES LABELS closed_loop TIMEOUT 240)
+endfunction()
+
+# A user's file (two robots, three new obstacles, a waypoint target and a circle, a distance bound,
+# its own h and noise) runs through tools/scenario and gives what the same file gives as a built-in.
+# Measured: no contact, 0.62 m min clearance, 4.0e-3 m final error (sigma = 1 mm), 3.6 m min
+# distance; the bounds leave room for noise but not for a robot that hits a pillar or stops.
+tvo_scenario_file_run(NAME scenario_file_user_runs FILE ${tvo_sf_dir}/warehouse.yaml
+  CHECKS "steps==800" "collisions==0" "min_clearance_m>0.3" "final_error_m<0.02" "max_violation_frac<=0.01"
+         "faults==0")
+# A built-in's file given as a path runs exactly as the built-in given by name.
+tvo_scenario_file_run(NAME scenario_file_builtin_as_path FILE ${PROJECT_SOURCE_DIR}/host/scenarios/obstacles.yaml
+  BUILTIN obstacles CHECKS "collisions==0" "final_error_m<1e-2")
+
+# tvo_scenario_message(NAME <name> EXIT <code> ARGS ... [STDERR <text>] [STDOUT <text>])
+function(tvo_scenario_message)
+  cmake_parse_arguments(T "" "NAME;EXIT;STDERR;STDOUT" "ARGS" ${ARGN})
+  string(REPLACE ";" "|" args "${T_ARGS}")
+  set(defs -DSIM=$<TARGET_FILE:tvo_sim> "-DSIM_ARGS=${args}" -DEXPECT_EXIT=${T_EXIT})
+  if(DEFINED T_STDERR)
+    list(APPEND defs "-DEXPECT_STDERR=${T_STDERR}")
+  endif()
+  if(DEFINED T_STDOUT)
+    list(APPEND defs "-DEXPECT_STDOUT=${T_STDOUT}")
+  endif()
+  add_test(NAME ${T_NAME} COMMAND ${CMAKE_COMMAND} ${defs} -P ${tvo_sf_dir}/check_message.cmake)
+  set_tests_properties(${T_NAME} PROPERTIES LABELS "closed_loop;host" TIMEOUT 60)
+endfunction()
+
+# A broken file exits 2 naming the file, line, column and field; the text is asserted as a whole.
+set(tvo_broken ${tvo_sf_dir}/broken)
+tvo_scenario_message(NAME scenario_file_bad_value EXIT 2 ARGS --scenario ${tvo_broken}/bad_value.yaml
+  STDERR "${tvo_broken}/bad_value.yaml:10:15: obstacles[1].radius_m: must be > 0 (got -1)")
+tvo_scenario_message(NAME scenario_file_unknown_key EXIT 2 ARGS --scenario ${tvo_broken}/unknown_key.yaml
+  STDERR "${tvo_broken}/unknown_key.yaml:8:24: obstacles[0].raduis_m: unknown key (obstacles[0] takes center_m, radius_m)")
+tvo_scenario_message(NAME scenario_file_wrong_type EXIT 2 ARGS --scenario ${tvo_broken}/wrong_type.yaml
+  STDERR "${tvo_broken}/wrong_type.yaml:8:13: timing.period_s: expected a finite number (got 'fast')")
+tvo_scenario_message(NAME scenario_file_syntax_error EXIT 2 ARGS --scenario ${tvo_broken}/syntax_error.yaml
+  STDERR "${tvo_broken}/syntax_error.yaml:4:30: not valid YAML: illegal flow end")
+tvo_scenario_message(NAME scenario_file_missing_key EXIT 2 ARGS --scenario ${tvo_broken}/missing_robots.yaml
+  STDERR "${tvo_broken}/missing_robots.yaml:2:1: robots: missing (required)")
+tvo_scenario_message(NAME scenario_file_bad_robot EXIT 2 ARGS --scenario ${tvo_broken}/bad_robot_index.yaml
+  STDERR "${tvo_broken}/bad_robot_index.yaml:9:18: distance_bounds[0].robots[1]: must be in [0, 1] (got 2)")
+# A key kept from a base file is that file's: its error names the base, at the key's line.
+tvo_scenario_message(NAME scenario_file_base_error EXIT 2 ARGS --scenario ${tvo_broken}/base_one_robot.yaml
+  STDERR "${tvo_broken}/../warehouse.yaml:26:18: distance_bounds[0].robots[1]: must be in [0, 0] (got 1)")
+# The ranges of tvo_sim's settings are the options' own: sigma as --sigma's [0, 1].
+tvo_scenario_message(NAME scenario_file_option_range EXIT 2 ARGS --scenario ${tvo_broken}/option_range.yaml
+  STDERR "${tvo_broken}/option_range.yaml:8:10: sensing.sigma: must be in [0, 1] (got 2)")
+tvo_scenario_message(NAME scenario_file_option_range_cli EXIT 2 ARGS --scenario demo --sigma 2
+  STDERR "--sigma: got '2', expected a number in [0, 1]")
+tvo_scenario_message(NAME scenario_file_unknown_name EXIT 2 ARGS --scenario no-such-scenario
+  STDERR "--scenario: no scenario 'no-such-scenario'")
+
+# The command line overrides the file: warehouse.yaml's h = 20 ms (800 periods of its 16 s) gives
+# way to --period-s 0.01 (1600) and its duration to --duration-s 4.
+tvo_scenario_message(NAME scenario_file_own_timing EXIT 0
+  ARGS --scenario ${tvo_sf_dir}/warehouse.yaml --dry-run STDOUT "h = 20000 us, 800 periods (16 s)")
+tvo_scenario_message(NAME scenario_file_option_overrides EXIT 0
+  ARGS --scenario ${tvo_sf_dir}/warehouse.yaml --dry-run --period-s 0.01 --duration-s 4
+  STDOUT "h = 10000 us, 400 periods (4 s)")
+# Variants: --robots and --target circle apply only to a file that offers them (the demo).
+tvo_scenario_message(NAME scenario_file_no_robots_variant EXIT 2 ARGS --scenario formation-max --robots 2
+  STDERR "--robots: scenario formation-max has its own robots (its file has no variants.robots)")
+tvo_scenario_message(NAME scenario_file_demo_variants EXIT 0 ARGS --scenario demo --robots 3 --target circle --dry-run
+  STDOUT "dry run: scenario demo, 3 robot(s)")
+
+# README.md's complete example is a scenario file that loads as written.
+add_test(NAME scenario_file_readme_example
+  COMMAND ${CMAKE_COMMAND} -DSIM=$<TARGET_FILE:tvo_sim> -DREADME=${PROJECT_SOURCE_DIR}/README.md
+    -DOUT_DIR=${CMAKE_CURRENT_BINARY_DIR}/scenario_file_readme_example -P ${tvo_sf_dir}/readme_example.cmake)
+set_tests_properties(scenario_file_readme_example PROPERTIES LABELS "closed_loop;host" TIMEOUT 60)

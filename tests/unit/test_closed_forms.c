@@ -1,0 +1,272 @@
+/*
+ * Differential test of the closed forms (tvo_term_t.gradient_hessian) against the jet path.
+ *
+ * Every term kind with a closed form (tracking on each target kind, distance minimum and maximum,
+ * half-space, obstacle free space, formation-offset equality) is evaluated by the law twice on
+ * random problems, states, times and barrier branches: once through its closed form and once with
+ * the objective's jets_only switch (every gradient and Hessian from jets, the reference). The
+ * gradient rows, the Hessian and the law's output must agree to a few units of rounding of their
+ * own magnitude, in float32 and double, on the host and on the Cortex-M4F (tests/target).
+ */
+#include "test_support.h"
+
+#include "tvo/law.h"
+#include "tvo/problem.h"
+
+void setUp(void) {}
+void tearDown(void) {}
+
+#define TRIALS 60u
+/* Closed forms and jets round differently: allow this many ulps of each row's largest entry. */
+#define AGREEMENT_ULPS 512.0
+
+static tvo_problem_t problem; /* large: static */
+static uint32_t rng_state = 0x2545F491u;
+
+static double uniform(double lo, double hi)
+{
+    rng_state = rng_state * 1664525u + 1013904223u;
+    return lo + (hi - lo) * (double)(rng_state >> 8) / 16777216.0;
+}
+
+/* Random target of a random kind for a robot near (cx, cy). */
+static void random_target(tvo_target_t *target, double cx, double cy)
+{
+    const double kind = uniform(0.0, 3.0);
+    if (kind < 1.0) {
+        tvo_real_t coeff[2][TVO_POLY_MAX_DEGREE + 1];
+        memset(coeff, 0, sizeof(coeff));
+        coeff[0][0] = test_r(cx);
+        coeff[1][0] = test_r(cy);
+        for (int j = 1; j <= 3 && j <= TVO_POLY_MAX_DEGREE; ++j) {
+            coeff[0][j] = test_r(uniform(-0.5, 0.5));
+            coeff[1][j] = test_r(uniform(-0.5, 0.5));
+        }
+        ASSERT_STATUS(TVO_OK, tvo_target_init_polynomial(target, TEST_CONST_POLY(coeff)));
+    } else if (kind < 2.0) {
+        const tvo_real_t center[2] = {test_r(cx), test_r(cy)};
+        ASSERT_STATUS(TVO_OK, tvo_target_init_circle(target, center, test_r(uniform(0.3, 2.0)),
+                                                     test_r(uniform(-1.5, 1.5)), test_r(uniform(-3.0, 3.0))));
+    } else {
+        tvo_target_ellipse_t el;
+        el.center_m[0] = test_r(cx);
+        el.center_m[1] = test_r(cy);
+        el.semi_axis_m[0] = test_r(uniform(0.3, 3.0));
+        el.semi_axis_m[1] = test_r(uniform(0.3, 3.0));
+        el.omega_radps = test_r(uniform(-1.5, 1.5));
+        el.phase_rad = test_r(uniform(-3.0, 3.0));
+        el.rotation_rad = test_r(uniform(-3.0, 3.0));
+        el.rate_turns_q64 = 0u;
+        ASSERT_STATUS(TVO_OK, tvo_target_init_ellipse(target, &el));
+    }
+}
+
+/* Two robots, every constraint kind present, an offset equality when offsets is set. */
+static void random_problem(int offsets)
+{
+    tvo_problem_desc_t desc;
+    ASSERT_STATUS(TVO_OK, tvo_problem_desc_default(&desc));
+    desc.robot_count = 2u;
+    random_target(&desc.target[0], -1.5, 0.0);
+    random_target(&desc.target[1], 1.5, 0.0);
+    for (uint8_t r = 0; r < 2u; ++r) {
+        desc.tracking_weight[r][0] = test_r(uniform(0.5, 3.0));
+        desc.tracking_weight[r][1] = test_r(uniform(0.5, 3.0));
+    }
+    desc.barrier.c0 = test_r(uniform(0.5, 5.0));
+    desc.barrier.alpha_c_per_s = test_r(uniform(0.0, 2.0));
+    desc.barrier.relaxation_degree = (uint8_t)(3u + (rng_state >> 28) % 4u);
+    desc.distance_count = 1u;
+    desc.distance[0].robot_a = 0u;
+    desc.distance[0].robot_b = 1u;
+    desc.distance[0].min_m = test_r(uniform(0.5, 1.5));
+    desc.distance[0].min_rate_mps = test_r(uniform(-0.05, 0.05));
+    desc.distance[0].max_m = test_r(uniform(3.5, 5.0));
+    desc.distance[0].max_rate_mps = test_r(uniform(-0.05, 0.05));
+    desc.halfspace_count = 1u;
+    desc.halfspace[0].robot = 1u;
+    desc.halfspace[0].normal[0] = test_r(uniform(-1.0, 1.0));
+    desc.halfspace[0].normal[1] = test_r(uniform(0.5, 1.0));
+    desc.halfspace[0].normal_rate[0] = test_r(uniform(-0.1, 0.1));
+    desc.halfspace[0].normal_rate[1] = test_r(uniform(-0.1, 0.1));
+    desc.halfspace[0].bound_m = test_r(uniform(1.0, 3.0));
+    desc.halfspace[0].bound_rate_mps = test_r(uniform(-0.2, 0.2));
+    desc.obstacle_count = 2u;
+    desc.robot_radius_m = test_r(uniform(0.0, 0.3));
+    desc.obstacle[0].center_m[0] = test_r(uniform(-1.0, 1.0));
+    desc.obstacle[0].center_m[1] = test_r(uniform(2.0, 3.0));
+    desc.obstacle[0].radius_m = test_r(uniform(0.2, 0.6));
+    desc.obstacle[1].center_m[0] = test_r(uniform(-1.0, 1.0));
+    desc.obstacle[1].center_m[1] = test_r(uniform(-3.0, -2.0));
+    desc.obstacle[1].radius_m = test_r(uniform(0.2, 0.6));
+    desc.offset_count = offsets ? 1u : 0u;
+    if (offsets) {
+        desc.offset[0].robot_a = 0u;
+        desc.offset[0].robot_b = 1u;
+        random_target(&desc.offset[0].offset, -3.0, 0.0);
+    }
+    uint8_t part = 0u;
+    ASSERT_STATUS(TVO_OK, tvo_problem_init(&problem, &desc, 2u, &part));
+}
+
+/* |a - b| within AGREEMENT_ULPS of scale, with the place named. */
+static void assert_agree(double reference, double closed_form, double scale, const char *what, unsigned i, unsigned j)
+{
+    const double tol = AGREEMENT_ULPS * TEST_EPS * (1.0 + scale);
+    if (!(fabs(reference - closed_form) <= tol)) {
+        static char msg[160];
+        (void)snprintf(msg, sizeof(msg), "%s [%u][%u]: jets %.9g, closed form %.9g (tol %.3g)", what, i, j, reference,
+                       closed_form, tol);
+        TEST_FAIL_MESSAGE(msg);
+    }
+}
+
+/* The law through closed forms and through jets on the same input: same status, same numbers. */
+static void compare_paths(const tvo_output_derivs_t *y, const tvo_time_jet_t *t, unsigned *compared)
+{
+    const tvo_real_t gains[2] = {TVO_R(40.0), TVO_R(13.0)};
+    tvo_law_t law;
+    ASSERT_STATUS(TVO_OK, tvo_law_init(&law, 2u, problem.objective.dim, gains));
+    static tvo_objective_t by_jets;
+    by_jets = problem.objective;
+    by_jets.jets_only = 1u;
+    static tvo_law_eval_t closed_eval;
+    static tvo_law_eval_t jet_eval;
+    tvo_real_t closed_out[TVO_MAX_Z_DIM];
+    tvo_real_t jet_out[TVO_MAX_Z_DIM];
+    const tvo_status_t st_closed = tvo_law_evaluate(&law, &problem.objective, y, t, closed_out, &closed_eval);
+    const tvo_status_t st_jets = tvo_law_evaluate(&law, &by_jets, y, t, jet_out, &jet_eval);
+    ASSERT_STATUS(st_jets, st_closed);
+    if (st_jets != TVO_OK) {
+        return; /* the same refusal (e.g. an obstacle centre under the robot) */
+    }
+    const unsigned m = problem.objective.dim;
+    for (unsigned row = 0; row <= 2u; ++row) {
+        double scale = 0.0;
+        for (unsigned i = 0; i < m; ++i) {
+            scale = fmax(scale, fabs(test_d(jet_eval.grad[row][i])));
+        }
+        for (unsigned i = 0; i < m; ++i) {
+            assert_agree(test_d(jet_eval.grad[row][i]), test_d(closed_eval.grad[row][i]), scale, "gradient row", row, i);
+        }
+    }
+    double h_scale = 0.0;
+    for (unsigned i = 0; i < m; ++i) {
+        for (unsigned j = 0; j < m; ++j) {
+            h_scale = fmax(h_scale, fabs(test_d(jet_eval.hessian[i][j])));
+        }
+    }
+    for (unsigned i = 0; i < m; ++i) {
+        for (unsigned j = 0; j < m; ++j) {
+            assert_agree(test_d(jet_eval.hessian[i][j]), test_d(closed_eval.hessian[i][j]), h_scale, "Hessian", i, j);
+        }
+    }
+    /* The law's outputs are compared by what they solve: the closed-form output must satisfy the jet
+     * path's own system (H + shift I_primal) y'' = -(r + a0 g + a1 g') to rounding of its terms
+     * (backward error). Only where the Hessian's diagonal spans less than TVO_STIFF_RATIO and both
+     * solves used the same shift: otherwise the stiff barrier parts were solved apart
+     * (tvo_saddle_solve_split), which the plain system's residual cannot judge in this precision
+     * (tests/unit/test_saddle.c checks that solve); the Hessians themselves agree above. */
+    double diag_min = INFINITY;
+    double diag_max = 0.0;
+    for (unsigned i = 0; i < problem.objective.primal_dim; ++i) {
+        diag_min = fmin(diag_min, fabs(test_d(jet_eval.hessian[i][i])));
+        diag_max = fmax(diag_max, fabs(test_d(jet_eval.hessian[i][i])));
+    }
+    /* Split apart, a stiff system never needs more regularisation than the plain one. */
+    ASSERT_LE(test_d(closed_eval.regularization), test_d(jet_eval.regularization) * (1.0 + AGREEMENT_ULPS * TEST_EPS),
+              "regularisation");
+    const int same_shift = fabs(test_d(jet_eval.regularization) - test_d(closed_eval.regularization)) <=
+                           AGREEMENT_ULPS * TEST_EPS * (1.0 + h_scale);
+    if (!(diag_max < test_d(TVO_STIFF_RATIO) * diag_min) || !same_shift) {
+        return;
+    }
+    for (unsigned i = 0; i < m; ++i) {
+        const double rhs = test_d(jet_eval.grad[2][i]) + 40.0 * test_d(jet_eval.grad[0][i]) +
+                           13.0 * test_d(jet_eval.grad[1][i]);
+        double residual = rhs;
+        double magnitude = fabs(rhs);
+        for (unsigned j = 0; j < m; ++j) {
+            const double term = test_d(jet_eval.hessian[i][j]) * test_d(closed_out[j]);
+            residual += term;
+            magnitude += fabs(term);
+        }
+        if (i < problem.objective.primal_dim) {
+            residual += test_d(jet_eval.regularization) * test_d(closed_out[i]);
+            magnitude += fabs(test_d(jet_eval.regularization) * test_d(closed_out[i]));
+        }
+        assert_agree(0.0, residual, magnitude, "residual of the closed-form output in the jet system", i, 0u);
+    }
+    (*compared)++;
+}
+
+/* Random states near the targets, at random times on both sides of the barrier's cap. */
+static void run_trials(int offsets)
+{
+    unsigned compared = 0u;
+    for (unsigned trial = 0; trial < TRIALS; ++trial) {
+        random_problem(offsets);
+        tvo_output_derivs_t y;
+        memset(&y, 0, sizeof(y));
+        y.d[0][0] = test_r(uniform(-2.5, -0.5));
+        y.d[0][1] = test_r(uniform(-1.5, 1.5));
+        y.d[0][2] = test_r(uniform(0.5, 2.5));
+        y.d[0][3] = test_r(uniform(-1.5, 1.5));
+        for (unsigned i = 0; i < problem.objective.dim; ++i) {
+            if (i >= 4u) {
+                y.d[0][i] = test_r(uniform(-1.0, 1.0)); /* multipliers */
+            }
+            y.d[1][i] = test_r(uniform(-1.0, 1.0));
+        }
+        const double t_s = uniform(0.0, 12.0);
+        tvo_time_jet_t t;
+        ASSERT_STATUS(TVO_OK, tvo_time_jet_at_ticks((uint64_t)llround(t_s * 1e6), 1000000u, TVO_R(1.0), &t));
+        /* The slack from the state itself (a violated start relaxes), or none (both branches). */
+        if (trial % 2u == 0u) {
+            ASSERT_STATUS(TVO_OK, tvo_problem_choose_slack(&problem, y.d[0], t.t_s));
+        }
+        compare_paths(&y, &t, &compared);
+    }
+    /* Refusals and stiff draws are allowed, but the whole comparison must have happened for many. */
+    ASSERT_LE(TRIALS / 4u, compared, "trials compared in full");
+}
+
+static void test_closed_forms_match_jets_without_equalities(void)
+{
+    run_trials(0);
+}
+
+static void test_closed_forms_match_jets_with_an_offset_equality(void)
+{
+    run_trials(1);
+}
+
+/* The law's pass uses the closed forms (no term left to jets) unless jets_only asks otherwise. */
+static void test_every_built_in_term_has_a_closed_form(void)
+{
+    random_problem(1);
+    tvo_jet_t z[TVO_MAX_Z_DIM];
+    tvo_jet_t grad[TVO_MAX_Z_DIM];
+    static tvo_hessian_t h;
+    for (unsigned i = 0; i < TVO_MAX_Z_DIM; ++i) {
+        tvo_jet_constant(test_r(0.3 * (double)i - 1.0), &z[i]);
+    }
+    tvo_time_jet_t t;
+    ASSERT_STATUS(TVO_OK, tvo_time_jet_at_ticks(1500000u, 1000000u, TVO_R(1.0), &t));
+    uint8_t jet_terms = 99u;
+    tvo_hessian_clear(&h, TVO_MAX_Z_DIM);
+    ASSERT_STATUS(TVO_OK, tvo_objective_gradient_hessian(&problem.objective, z, &t, 2u, grad, &h, &jet_terms));
+    TEST_ASSERT_EQUAL_UINT8(0u, jet_terms);
+    problem.objective.jets_only = 1u;
+    ASSERT_STATUS(TVO_OK, tvo_objective_gradient_hessian(&problem.objective, z, &t, 2u, grad, &h, &jet_terms));
+    TEST_ASSERT_EQUAL_UINT8(problem.objective.term_count, jet_terms);
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_closed_forms_match_jets_without_equalities);
+    RUN_TEST(test_closed_forms_match_jets_with_an_offset_equality);
+    RUN_TEST(test_every_built_in_term_has_a_closed_form);
+    return UNITY_END();
+}
