@@ -97,7 +97,7 @@ class Progress:
         elapsed = (now if now is not None else time.monotonic()) - self.started
         line = f"{self.label}: {self.what}" if self.what else f"{self.label}:"
         if self.seconds:
-            line += f" {format_duration(elapsed)} of {format_duration(self.seconds)}"
+            line += f" {format_duration(min(elapsed, self.seconds))} of {format_duration(self.seconds)}"
             left = self.seconds - elapsed
         else:
             if self.total:
