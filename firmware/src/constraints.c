@@ -138,7 +138,7 @@ static tvo_status_t distance_sum(const tvo_distance_term_t *self, const tvo_jet_
         tvo_jet_axpy(e[1], &diff[1], order, &coordinate);
         tvo_jet_mul(&w, &coordinate, order, &part.gradient);
         tvo_jet_scale(&part.gradient, TVO_R(2.0) * sign, order, &part.gradient);
-        tvo_hessian_add_part(hessian, &part, grad, order);
+        tvo_hessian_add(hessian, &part, grad, order);
     }
     return TVO_OK;
 }
@@ -255,7 +255,7 @@ static tvo_status_t halfspace_sum(const tvo_halfspace_term_t *self, const tvo_je
         motion.c[0] = TVO_R(0.0);
         add_weighted(grad, (uint8_t)(self->offset + axis), &w, &motion, order);
     }
-    tvo_hessian_add_part(hessian, &part, grad, order);
+    tvo_hessian_add(hessian, &part, grad, order);
     return TVO_OK;
 }
 
@@ -419,7 +419,7 @@ static tvo_status_t free_space_sum(const tvo_free_space_term_t *self, const tvo_
         part.index[1] = (uint8_t)(o + 1u);
         part.value[0] = normal[0];
         part.value[1] = normal[1];
-        tvo_hessian_add_part(hessian, &part, grad, order);
+        tvo_hessian_add(hessian, &part, grad, order);
     }
     return TVO_OK;
 }

@@ -383,7 +383,10 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
         st = tvo_law_evaluate_report(&ctl->law, ctl->objective, &y, &t, y_accel, &report);
     }
     tvo_command_t next;
-    memset(&next, 0, sizeof(next)); /* robots beyond n hold zeros */
+    for (unsigned r = n; r < TVO_MAX_ROBOTS; ++r) {
+        next.speed_mps[r] = TVO_R(0.0); /* robots beyond n hold zeros */
+        next.turn_rate_radps[r] = TVO_R(0.0);
+    }
     if (st == TVO_OK && report.regularization > TVO_R(0.0)) {
         flags |= TVO_FLAG_REGULARIZED;
     }

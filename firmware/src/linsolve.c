@@ -293,6 +293,23 @@ void tvo_hessian_add_part(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_
     }
 }
 
+void tvo_hessian_add(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_t *grad, uint8_t order)
+{
+    if (h == NULL || part == NULL || part->count > TVO_RANK_ONE_MAX_ENTRIES) {
+        return;
+    }
+    tvo_real_t scale = TVO_R(1.0);
+    for (unsigned i = 0; i < part->count; ++i) {
+        const tvo_real_t d = TVO_FABS(h->matrix[part->index[i]][part->index[i]]);
+        scale = d > scale ? d : scale;
+    }
+    if (rank_one_size(part) > TVO_STIFF_RATIO * scale) {
+        tvo_hessian_add_part(h, part, grad, order);
+    } else {
+        add_into_matrix(h, part, grad, order);
+    }
+}
+
 void tvo_hessian_settle(tvo_hessian_t *h, uint8_t n, uint8_t dual_n, tvo_jet_t *grad, uint8_t order)
 {
     if (h == NULL || h->rank_one_count == 0u) {

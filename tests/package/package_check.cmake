@@ -87,7 +87,7 @@ elseif(MODE STREQUAL "cross")
     list(POP_FRONT variants name extra_source)
     set(bin ${WORK}/main_loop_${name})
     # A list in an initial cache file: run()'s arguments would split it.
-    file(WRITE ${WORK}/main_loop_${name}.cmake "set(BOARD_SOURCES \"${board_dir}/startup.c;${board_dir}/board.c;${extra_source}\" CACHE STRING \"\")\n")
+    file(WRITE ${WORK}/main_loop_${name}.cmake "set(BOARD_SOURCES \"${board_dir}/startup.c;${board_dir}/board.c;${board_dir}/../common/semihosting_console.c;${extra_source}\" CACHE STRING \"\")\n")
     run("configure the main loop (${name})" ${CMAKE_COMMAND} -C ${WORK}/main_loop_${name}.cmake
         -S ${EXAMPLE_DIR} -B ${bin} -G ${GENERATOR} -DCMAKE_BUILD_TYPE=MinSizeRel
         -DCMAKE_TOOLCHAIN_FILE=${TOOLCHAIN_FILE} -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_COMPILE_WARNING_AS_ERROR=ON)

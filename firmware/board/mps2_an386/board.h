@@ -11,18 +11,11 @@
 
 #include <stdint.h>
 
-/** Instructions per SysTick count under -icount shift=0 on mps2-an386. */
-#define TVO_BOARD_INSTRUCTIONS_PER_TICK 40u
+#include "../common/semihosting_console.h" /* by path: a user's build needs no extra include folder */
 
-void tvo_board_putc(char c);
-void tvo_board_puts(const char *s);
-/** Decimal, without stdio. */
-void tvo_board_put_u32(uint32_t value);
-void tvo_board_put_u64(uint64_t value);
-void tvo_board_put_i32(int32_t value);
-
-/** Ends the program; QEMU exits with this code (semihosting SYS_EXIT_EXTENDED). */
-void tvo_board_exit(int code) __attribute__((noreturn));
+/** Instructions per SysTick count under -icount shift=0 on mps2-an386: NUM / DEN. */
+#define TVO_BOARD_INSTRUCTIONS_PER_TICK_NUM 40u
+#define TVO_BOARD_INSTRUCTIONS_PER_TICK_DEN 1u
 
 /**
  * Starts the monotonic clock: SysTick on the 25 MHz core clock, its wraps counted by the SysTick

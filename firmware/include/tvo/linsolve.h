@@ -28,8 +28,9 @@ extern "C" {
 
 typedef tvo_real_t tvo_matrix_t[TVO_MAX_Z_DIM][TVO_MAX_Z_DIM];
 
-/** Most rank-one parts a Hessian keeps apart (the stiffest; the rest are added into the matrix). */
-#define TVO_MAX_RANK_ONE_PARTS 4
+/** Most rank-one parts a Hessian keeps apart (the stiffest; the rest are added into the matrix):
+ *  independent directions, so no more than the outputs, and 4 at most. */
+#define TVO_MAX_RANK_ONE_PARTS (TVO_MAX_OUTPUT_DIM < 4 ? TVO_MAX_OUTPUT_DIM : 4)
 /** Entries of a rank-one part's vector (a constraint's gradient touches at most two robots). */
 #define TVO_RANK_ONE_MAX_ENTRIES 4
 
@@ -80,6 +81,13 @@ tvo_status_t tvo_saddle_solve(tvo_matrix_t a, uint8_t primal_n, uint8_t dual_n, 
  * matrix and its gradient jets into grad (to order).
  */
 void tvo_hessian_add_part(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_t *grad, uint8_t order);
+
+/**
+ * tvo_hessian_add_part for a part that may well not be stiff: one that does not dominate the
+ * matrix's diagonal entries at its own indices (by TVO_STIFF_RATIO) goes straight into the matrix
+ * and grad, without being kept (tvo_hessian_settle would add it in anyway).
+ */
+void tvo_hessian_add(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_t *grad, uint8_t order);
 
 /**
  * Keeps apart only the parts that are stiff (weight |u|^2 above TVO_STIFF_RATIO times the matrix's

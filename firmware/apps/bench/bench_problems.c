@@ -1,0 +1,162 @@
+/* The bench's closed-loop problems; see bench_problems.h. */
+#include "bench_problems.h"
+
+#include <string.h>
+
+#define BENCH_PI 3.14159265358979f
+
+static void polynomial_target(tvo_target_t *target, float x0, float vx, float y0, float vy)
+{
+    tvo_real_t coeff[2][TVO_POLY_MAX_DEGREE + 1];
+    memset(coeff, 0, sizeof(coeff));
+    coeff[0][0] = x0;
+    coeff[0][1] = vx;
+    coeff[1][0] = y0;
+    coeff[1][1] = vy;
+    (void)tvo_target_init_polynomial(target, (const tvo_real_t(*)[TVO_POLY_MAX_DEGREE + 1])coeff);
+}
+
+const char *bench_problem_name(bench_unicycle_problem_t which)
+{
+    static const char *const names[BENCH_UNICYCLE_PROBLEM_COUNT] = {"unicycle", "obstacles4", "formation2"};
+    return ((unsigned)which < (unsigned)BENCH_UNICYCLE_PROBLEM_COUNT) ? names[which] : NULL;
+}
+
+static void unicycle_desc(tvo_problem_desc_t *desc, tvo_pose_t *start)
+{
+    const tvo_target_ellipse_t ellipse = {{TVO_R(0.0), TVO_R(0.0)}, {TVO_R(3.0), TVO_R(1.5)},
+                                          2.0f * BENCH_PI / 10.0f, TVO_R(0.0), TVO_R(0.0), 0u};
+    (void)tvo_target_init_ellipse(&desc->target[0], &ellipse);
+    const tvo_pose_t pose = {{TVO_R(-1.0), TVO_R(-2.0)}, TVO_R(0.0)};
+    start[0] = pose;
+}
+
+static void obstacles4_desc(tvo_problem_desc_t *desc, tvo_pose_t *start)
+{
+    polynomial_target(&desc->target[0], -5.0f, 0.8f, -5.0f, 0.6f);
+    desc->obstacle_count = 4u;
+    desc->robot_radius_m = TVO_R(0.2);
+    const float centers[4][2] = {{-3.0f, -3.5f}, {-1.0f, -1.0f}, {1.5f, -2.5f}, {2.0f, 1.0f}};
+    const float radii[4] = {0.6f, 1.0f, 0.8f, 0.7f};
+    for (uint8_t i = 0; i < 4u; ++i) {
+        desc->obstacle[i].center_m[0] = centers[i][0];
+        desc->obstacle[i].center_m[1] = centers[i][1];
+        desc->obstacle[i].radius_m = radii[i];
+    }
+    const tvo_pose_t pose = {{TVO_R(-6.0), TVO_R(-4.2)}, TVO_R(-10.0)};
+    start[0] = pose;
+}
+
+static tvo_status_t formation2_desc(tvo_problem_desc_t *desc, tvo_pose_t *start)
+{
+#if TVO_MAX_ROBOTS >= 2
+    polynomial_target(&desc->target[0], -5.0f, 1.0f, -3.0f, 0.0f);
+    polynomial_target(&desc->target[1], -2.0f, 0.2f, -3.0f, 0.0f);
+    desc->distance_count = 1u;
+    desc->distance[0].robot_b = 1u;
+    desc->distance[0].min_m = TVO_R(1.0);
+    desc->distance[0].max_m = TVO_R(3.0);
+    const tvo_pose_t poses[2] = {{{TVO_R(-4.9), TVO_R(-4.2)}, TVO_R(0.5)}, {{TVO_R(-2.1), TVO_R(-4.3)}, TVO_R(-0.5)}};
+    start[0] = poses[0];
+    start[1] = poses[1];
+    return TVO_OK;
+#else
+    (void)desc;
+    (void)start;
+    return TVO_ERR_DIMENSION; /* built for one robot */
+#endif
+}
+
+tvo_status_t bench_problem_desc(bench_unicycle_problem_t which, tvo_problem_desc_t *desc, tvo_pose_t *start,
+                                uint8_t *robots)
+{
+    if (desc == NULL || start == NULL || robots == NULL) {
+        return TVO_ERR_NULL;
+    }
+    tvo_status_t st = tvo_problem_desc_default(desc);
+    if (st != TVO_OK) {
+        return st;
+    }
+    *robots = 1u;
+    switch (which) {
+    case BENCH_UNICYCLE:
+        unicycle_desc(desc, start);
+        break;
+    case BENCH_OBSTACLES4:
+        obstacles4_desc(desc, start);
+        break;
+    case BENCH_FORMATION2:
+        *robots = 2u;
+        st = formation2_desc(desc, start);
+        break;
+    case BENCH_UNICYCLE_PROBLEM_COUNT:
+    default:
+        st = TVO_ERR_PARAM;
+        break;
+    }
+    desc->robot_count = *robots;
+    return st;
+}
+
+tvo_status_t bench_loop_init(bench_loop_t *loop, bench_unicycle_problem_t which)
+{
+    if (loop == NULL) {
+        return TVO_ERR_NULL;
+    }
+    memset(loop, 0, sizeof(*loop));
+    tvo_problem_desc_t desc;
+    uint8_t part = 0u;
+    tvo_param_t bad = TVO_PARAM_NONE;
+    tvo_status_t st = bench_problem_desc(which, &desc, loop->pose, &loop->robots);
+    if (st == TVO_OK) {
+        st = tvo_problem_init(&loop->problem, &desc, 2u, &part);
+    }
+    if (st == TVO_OK) {
+        st = tvo_controller_config_default(&loop->cfg);
+    }
+    if (st == TVO_OK) {
+        loop->cfg.robot_count = loop->robots;
+        st = tvo_controller_init(&loop->controller, &loop->cfg, &loop->problem.objective, 0u, &bad);
+    }
+    loop->half_period_s = TVO_R(0.5) * tvo_ticks_to_seconds(loop->cfg.period_ticks, loop->cfg.tick_hz);
+    return st;
+}
+
+static void plant_half_period(bench_loop_t *loop)
+{
+    for (uint8_t r = 0; r < loop->robots && r < TVO_MAX_ROBOTS; ++r) {
+        (void)tvo_unicycle_predict(&loop->pose[r], loop->cmd.speed_mps[r], loop->cmd.turn_rate_radps[r],
+                                   loop->half_period_s, &loop->pose[r]);
+    }
+}
+
+tvo_status_t bench_loop_advance(bench_loop_t *loop)
+{
+    if (loop == NULL) {
+        return TVO_ERR_NULL;
+    }
+    const uint32_t n = loop->period;
+    const uint32_t period_ticks = loop->cfg.period_ticks;
+    plant_half_period(loop);
+    memset(&loop->meas, 0, sizeof(loop->meas));
+    for (uint8_t r = 0; r < loop->robots && r < TVO_MAX_ROBOTS; ++r) {
+        loop->meas.position_m[r][0] = loop->pose[r].position_m[0];
+        loop->meas.position_m[r][1] = loop->pose[r].position_m[1];
+        loop->meas.heading_rad[r] = loop->pose[r].heading_rad;
+    }
+    loop->meas.heading_valid = 1u;
+    loop->meas.stamp_tick = n * period_ticks + period_ticks - loop->cfg.delay_ticks;
+    tvo_status_t st = TVO_OK;
+    if (n == 0u) {
+        tvo_real_t y[TVO_MAX_OUTPUT_DIM] = {TVO_R(0.0)};
+        for (uint8_t r = 0; r < loop->robots && r < TVO_MAX_ROBOTS; ++r) {
+            y[2u * r] = loop->pose[r].position_m[0];
+            y[2u * r + 1u] = loop->pose[r].position_m[1];
+        }
+        st = tvo_problem_choose_slack(&loop->problem, y, TVO_R(0.0));
+    }
+    plant_half_period(loop);
+    loop->apply_tick = (n + 1u) * period_ticks;
+    loop->period = n + 1u;
+    return st;
+}

@@ -1,0 +1,59 @@
+/*
+ * The bench's closed-loop problems, shared by bench.c (the step on a board or under callgrind) and
+ * host/bench (the step against Ipopt on the same loop):
+ *
+ *   unicycle    one unicycle tracking an ellipse (the demo's problem)
+ *   obstacles4  one disk unicycle among four disk obstacles (relaxed barrier, local free space)
+ *   formation2  two unicycles with 1 <= |y1 - y2| <= 3 (4x4 Hessian, nonconvex bound)
+ *
+ * A loop runs the unicycle controller against an exact-arc plant in lockstep: bench_loop_advance
+ * moves the plant to period n's sampling instant and then to its apply instant, filling meas and
+ * apply_tick; the caller then steps the controller (so a measurement brackets only the step).
+ * BENCH_STEPS (steps per problem, CMake's TVO_BENCH_STEPS) comes with the library.
+ */
+#ifndef TVO_BENCH_PROBLEMS_H
+#define TVO_BENCH_PROBLEMS_H
+
+#include "tvo/controller.h"
+#include "tvo/problem.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum { BENCH_UNICYCLE = 0, BENCH_OBSTACLES4, BENCH_FORMATION2, BENCH_UNICYCLE_PROBLEM_COUNT } bench_unicycle_problem_t;
+
+typedef struct {
+    tvo_problem_t problem;
+    tvo_controller_t controller;
+    tvo_controller_config_t cfg;
+    tvo_pose_t pose[TVO_MAX_ROBOTS];      /* the plant */
+    tvo_command_t cmd;                    /* the controller's output, applied by the plant */
+    tvo_measurement_t meas;               /* period n's measurement (bench_loop_advance) */
+    uint32_t apply_tick;                  /* period n's apply instant */
+    uint32_t period;                      /* n: periods advanced so far */
+    tvo_real_t half_period_s;
+    uint8_t robots;
+} bench_loop_t;
+
+/** The problem's name ("unicycle", ...), or NULL for an unknown one. */
+const char *bench_problem_name(bench_unicycle_problem_t which);
+
+/** Fills desc and the robots' start poses (start: TVO_MAX_ROBOTS entries); *robots the count. */
+tvo_status_t bench_problem_desc(bench_unicycle_problem_t which, tvo_problem_desc_t *desc, tvo_pose_t *start,
+                                uint8_t *robots);
+
+/**
+ * Builds the problem and a controller with default settings, the plant at its start.
+ * TVO_ERR_DIMENSION when the build's limits cannot hold the problem (formation2 on one robot).
+ */
+tvo_status_t bench_loop_init(bench_loop_t *loop, bench_unicycle_problem_t which);
+
+/** Moves the plant through period n under the last command and fills meas and apply_tick. */
+tvo_status_t bench_loop_advance(bench_loop_t *loop);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* TVO_BENCH_PROBLEMS_H */
