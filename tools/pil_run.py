@@ -20,6 +20,8 @@ import sys
 import tempfile
 import time
 
+from progress import Progress
+
 END_TIMEOUT_S = 20
 # The plant starts once the target's program runs: a START sent before it waits in QEMU's serial
 # socket, and in CLOCK_NODE that wait would count as the START's transit (edge_spec.md) for the whole
@@ -79,7 +81,9 @@ def main():
     port = free_port()
     out_dir = option_value(args.sim_args, "--out-dir", "runs/demo")
     os.makedirs(out_dir, exist_ok=True)
-    lcm = ["--lcm-url", args.lcm_url] if args.lcm_url else []
+    # A --lcm-url among the simulator's options (tools/demo --pil passes them all) is the bridge's too.
+    lcm_url = args.lcm_url or option_value(args.sim_args, "--lcm-url", "")
+    lcm = ["--lcm-url", lcm_url] if lcm_url else []
     qemu_log = tempfile.TemporaryFile(mode="w+")
     bridge_log = tempfile.TemporaryFile(mode="w+")
     qemu = subprocess.Popen(
@@ -90,10 +94,18 @@ def main():
     bridge = subprocess.Popen(
         [args.bridge, "--connect", f"127.0.0.1:{port}", "--corrupt-every", str(args.corrupt_every)] + lcm,
         stdin=subprocess.DEVNULL, stdout=bridge_log, stderr=subprocess.STDOUT)
+    # Three phases: the target boots, the closed loop runs (tvo_sim), QEMU and the bridge end. No
+    # estimate: the loop's length in lockstep depends on how fast QEMU runs here.
+    progress = Progress("pil", total=3, estimate=False)
+    progress.update(0, "booting the target in QEMU")
     try:
         if wait_ready(qemu_log, (qemu, bridge)):
-            sim_rc = subprocess.call([args.sim] + lcm + args.sim_args)
+            progress.update(1, "closed loop (tvo_sim)")
+            sim_lcm = [] if option_value(args.sim_args, "--lcm-url", "") else lcm
+            sim_rc = progress.call([args.sim] + sim_lcm + args.sim_args)
+            progress.update(2, "QEMU and the bridge ending")
         else:
+            progress.close()
             print(f"pil: the target did not print '{READY_LINE}' within {READY_TIMEOUT_S} s "
                   "(or QEMU or the bridge ended)", file=sys.stderr)
             sim_rc = 1
@@ -107,13 +119,14 @@ def main():
         try:
             proc.wait(timeout=END_TIMEOUT_S)
         except subprocess.TimeoutExpired:
-            print(f"pil: {name} did not end after the session; terminating it", file=sys.stderr)
+            progress.echo(f"pil: {name} did not end after the session; terminating it\n", sys.stderr)
             proc.kill()
             proc.wait()
             rc = rc or 1
         if proc.returncode not in (0, None) and sim_rc == 0:
             rc = 1
-            print(f"pil: {name} failed (exit {proc.returncode})", file=sys.stderr)
+            progress.echo(f"pil: {name} failed (exit {proc.returncode})\n", sys.stderr)
+    progress.close()
     qemu_log.seek(0)
     bridge_log.seek(0)
     target_text = qemu_log.read()

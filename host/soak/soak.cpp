@@ -36,6 +36,7 @@
 #include "noise.hpp"
 #include "options.hpp"
 #include "plant.hpp"
+#include "progress_line.hpp"
 #include "scenario.hpp"
 #include "session.hpp"
 
@@ -58,6 +59,7 @@ constexpr double kMinHours = 0.001;   // 360 periods
 constexpr double kMaxHours = 240.0;   // ten days: 86.4 M periods (2.2 min of CPU here)
 constexpr double kMaxBelowWrapS = 4294.0;  // less than one tick span: the first wrap lies within the run's first span
 constexpr double kMaxTraceHours = 1.0;     // --trace-csv: one row per period, ~200 bytes: at most ~75 MB
+constexpr std::int64_t kProgressEverySteps = 4096;  // the progress line reads the clock this often, not every period
 // --constrained: x <= bound for robot 0 (the demo's ellipse reaches x = 3 m; its start is at x = -1 m).
 constexpr double kDefaultHalfSpaceXMaxM = 2.9;
 constexpr double kMinHalfSpaceXMaxM = 0.5;
@@ -384,7 +386,11 @@ public:
         const std::int64_t tau = setup_.sim.delay_us;
         std::int64_t at_cap_steps = 0;
         const auto wall_start = std::chrono::steady_clock::now();
+        tvo_host::ProgressLine progress("tvo_soak", setup_.steps);
         for (std::int64_t n = 0; n < setup_.steps; ++n) {
+            if (n % kProgressEverySteps == 0) {
+                progress.update(n, "periods");
+            }
             const std::int64_t sample_us = (n + 1) * h - tau;
             const std::int64_t apply_us = (n + 1) * h;
             advance_to(sample_us);
@@ -417,6 +423,7 @@ public:
                 }
             }
         }
+        progress.clear();
         figures_.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
         if (trace_.is_open() && !trace_.flush()) {
             throw std::runtime_error("writing the trace failed");

@@ -10,6 +10,7 @@
 
 #include "chain_sim.hpp"
 #include "lifted.hpp"
+#include "progress_line.hpp"
 
 namespace study {
 
@@ -119,12 +120,16 @@ std::vector<Curve> make_curves()
 
 }  // namespace
 
-void parallel_for(size_t n, unsigned threads, const std::function<void(size_t)> &fn)
+void parallel_for(const std::string &what, size_t n, unsigned threads, const std::function<void(size_t)> &fn)
 {
     std::atomic<size_t> next{0};
+    std::atomic<size_t> done{0};
+    tvo_host::ProgressLine progress("tvo_study", static_cast<std::int64_t>(n));
+    progress.update(0, what);
     auto worker = [&]() {
         for (size_t i = next.fetch_add(1); i < n; i = next.fetch_add(1)) {
             fn(i);
+            progress.update(static_cast<std::int64_t>(done.fetch_add(1) + 1));
         }
     };
     const unsigned t = std::max(1u, std::min(threads, static_cast<unsigned>(n)));
@@ -161,7 +166,7 @@ Study1Result run_study1(const StudyOptions &opt)
     }
     const size_t nh = hs.size(), nc = r.curves.size();
     std::vector<uint64_t> not_ok(nc * nh, 0);
-    parallel_for(nc * nh + 1, opt.threads, [&](size_t job) {
+    parallel_for("study 1: error vs h", nc * nh + 1, opt.threads, [&](size_t job) {
         if (job == nc * nh) {
             r.baseline_m = continuous_baseline(2, kPole, 0.0, 20.0, 10.0, 1e-4);
             return;
@@ -221,7 +226,7 @@ double run_study2(const StudyOptions &opt, Study1Result &s1)
     // Each run records its peak |e|/|e(0)|; "diverged" at a threshold is peak > threshold (runs stop
     // early only beyond 1e6 or at a non-finite value).
     std::vector<double> peak(nc * ns * static_cast<size_t>(n_durations), 0.0);
-    parallel_for(peak.size(), opt.threads, [&](size_t j) {
+    parallel_for("study 2: stability edges", peak.size(), opt.threads, [&](size_t j) {
         const size_t d = j / (nc * ns);
         const Curve &c = s1.curves[(j % (nc * ns)) / ns];
         const size_t i = j % ns;
@@ -317,7 +322,7 @@ Study3Result run_study3(const StudyOptions &opt)
     r.tf_grid_udev.assign(r.tf_grid_s.size(), kNaN);
     const size_t per = sigmas.size() + 1, nconf = r.configs.size();
     const size_t n_noise = nconf * per;
-    parallel_for(n_noise + r.tf_grid_s.size(), opt.threads, [&](size_t job) {
+    parallel_for("study 3: noise and T_f grid", n_noise + r.tf_grid_s.size(), opt.threads, [&](size_t job) {
         if (job >= n_noise) {
             const size_t i = job - n_noise;
             const SimResult res = run_full(2, true, r.tf_grid_s[i], r.best_sigma_m);
@@ -353,7 +358,7 @@ Study3Result run_study3(const StudyOptions &opt)
         const double g = (std::sqrt(5.0) - 1.0) / 2.0;
         double x[2] = {b - g * (b - a), a + g * (b - a)};
         SimResult f[2];
-        parallel_for(2, opt.threads, [&](size_t j) { f[j] = run_full(2, true, std::exp(x[j]), r.best_sigma_m); });
+        parallel_for("study 3: T_f search", 2, opt.threads, [&](size_t j) { f[j] = run_full(2, true, std::exp(x[j]), r.best_sigma_m); });
         const int iters = opt.quick ? 6 : 20;
         for (int it = 0; it < iters; ++it) {
             if (cost_of(f[0].rms_err_m, f[0].u_dev_rms) < cost_of(f[1].rms_err_m, f[1].u_dev_rms)) {

@@ -77,7 +77,8 @@ struct Study3Result {
     double wall_s = 0.0;
 };
 
-void parallel_for(size_t n, unsigned threads, const std::function<void(size_t)> &fn);
+// Runs fn(0) .. fn(n - 1) on `threads` threads; on a terminal, a progress line names `what` (n of N).
+void parallel_for(const std::string &what, size_t n, unsigned threads, const std::function<void(size_t)> &fn);
 
 Study1Result run_study1(const StudyOptions &opt);
 double run_study2(const StudyOptions &opt, Study1Result &s1);  // fills the edges; returns wall time
