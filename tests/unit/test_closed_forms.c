@@ -167,7 +167,7 @@ static void compare_paths(const tvo_output_derivs_t *y, const tvo_time_jet_t *t,
      * solves used the same shift: otherwise the stiff barrier parts were solved apart
      * (tvo_saddle_solve_split), which the plain system's residual cannot judge in this precision
      * (tests/unit/test_saddle.c checks that solve); the Hessians themselves agree above. */
-    double diag_min = INFINITY;
+    double diag_min = HUGE_VAL;
     double diag_max = 0.0;
     for (unsigned i = 0; i < problem.objective.primal_dim; ++i) {
         diag_min = fmin(diag_min, fabs(test_d(jet_eval.hessian[i][i])));
