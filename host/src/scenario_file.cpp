@@ -89,7 +89,7 @@ public:
         }
         Map out{node.Mark(), field, {}};
         for (auto it = node.begin(); it != node.end(); ++it) {
-            const YAML::Node& key = it->first;
+            const YAML::Node key = it->first;  // a copy: it-> is a temporary proxy
             if (!key.IsScalar()) {
                 fail(key, field, "keys are names, got " + shown(key));
             }
