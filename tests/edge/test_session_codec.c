@@ -23,21 +23,8 @@ static const int64_t int64_extremes[] = {INT64_MIN, -1, EF_TWO_POW_60 + 1, INT64
 static void position_at(const tvo_target_t *target, double t_s, double out[2])
 {
     tvo_time_jet_t t;
-    t.t_s = (tvo_real_t)t_s;
-    t.rate = TVO_R(1.0);
-    t.tick_hz = TVO_EDGE_TICK_HZ;
-    t.ticks = (uint64_t)llround(t_s * (double)TVO_EDGE_TICK_HZ);
-    /* the exact split of the ticks (t_s stays as given: finite differences step below a tick) */
-    {
-        tvo_time_jet_t exact;
-        if (tvo_time_jet_at_ticks(t.ticks, t.tick_hz, t.rate, &exact) == TVO_OK) {
-            t.whole_s = exact.whole_s;
-            t.frac_ticks = exact.frac_ticks;
-        } else {
-            t.whole_s = 0u;
-            t.frac_ticks = 0u;
-        }
-    }
+    EF_ASSERT_STATUS(TVO_OK, tvo_time_jet_at_ticks((uint64_t)llround(t_s * (double)TVO_EDGE_TICK_HZ), TVO_EDGE_TICK_HZ,
+                                                   TVO_R(1.0), &t));
     tvo_real_t d[TVO_JET_MAX_ORDER + 1][2];
     EF_ASSERT_STATUS(TVO_OK, tvo_target_derivatives(target, &t, 0, d));
     out[0] = (double)d[0][0];

@@ -282,22 +282,7 @@ static void test_slack_rule_zero_when_feasible_else_max_plus_margin(void)
 
 static tvo_time_jet_t time_jet(double t_s, double rate)
 {
-    tvo_time_jet_t t;
-    t.t_s = test_r(t_s);
-    t.rate = test_r(rate);
-    t.tick_hz = 1000000u;
-    t.ticks = (uint64_t)llround(t_s * 1e6);
-    /* the exact split of the ticks (t_s stays as given: finite differences step below a tick) */
-    {
-        tvo_time_jet_t exact;
-        if (tvo_time_jet_at_ticks(t.ticks, t.tick_hz, t.rate, &exact) == TVO_OK) {
-            t.whole_s = exact.whole_s;
-            t.frac_ticks = exact.frac_ticks;
-        } else {
-            t.whole_s = 0u;
-            t.frac_ticks = 0u;
-        }
-    }
+    tvo_time_jet_t t = test_time_jet(test_r(t_s), test_r(rate), 1000000u, (uint64_t)llround(t_s * 1e6));
     return t;
 }
 

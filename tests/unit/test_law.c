@@ -70,22 +70,7 @@ static void yd_at(double t, double yd[4][2])
 
 static tvo_time_jet_t time_at(double t_s)
 {
-    tvo_time_jet_t t;
-    t.t_s = test_r(t_s);
-    t.rate = TVO_R(1.0);
-    t.tick_hz = 1000u;
-    t.ticks = (uint64_t)llround(t_s * 1000.0);
-    /* the exact split of the ticks (t_s stays as given: finite differences step below a tick) */
-    {
-        tvo_time_jet_t exact;
-        if (tvo_time_jet_at_ticks(t.ticks, t.tick_hz, t.rate, &exact) == TVO_OK) {
-            t.whole_s = exact.whole_s;
-            t.frac_ticks = exact.frac_ticks;
-        } else {
-            t.whole_s = 0u;
-            t.frac_ticks = 0u;
-        }
-    }
+    tvo_time_jet_t t = test_time_jet(test_r(t_s), TVO_R(1.0), 1000u, (uint64_t)llround(t_s * 1000.0));
     return t;
 }
 

@@ -61,22 +61,7 @@ static tvo_status_t inf_gradient_jet(const void *term, const tvo_jet_t *y, uint8
 
 static tvo_time_jet_t t_now(void)
 {
-    tvo_time_jet_t t;
-    t.t_s = TVO_R(0.5);
-    t.rate = TVO_R(1.0);
-    t.ticks = 500;
-    t.tick_hz = 1000;
-    /* the exact split of the ticks (t_s stays as given: finite differences step below a tick) */
-    {
-        tvo_time_jet_t exact;
-        if (tvo_time_jet_at_ticks(t.ticks, t.tick_hz, t.rate, &exact) == TVO_OK) {
-            t.whole_s = exact.whole_s;
-            t.frac_ticks = exact.frac_ticks;
-        } else {
-            t.whole_s = 0u;
-            t.frac_ticks = 0u;
-        }
-    }
+    tvo_time_jet_t t = test_time_jet(TVO_R(0.5), TVO_R(1.0), 1000, 500);
     return t;
 }
 

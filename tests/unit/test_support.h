@@ -236,25 +236,28 @@ static inline void fx_predict_all(const fx_t *fx, const tvo_command_t *cmd, cons
     }
 }
 
+/**
+ * A time jet at t_s (kept as given: finite differences step below a tick) whose exact tick count
+ * and its split into whole seconds are `ticks` at tick_hz (the split the ellipse's phase reads).
+ */
+static inline tvo_time_jet_t test_time_jet(tvo_real_t t_s, tvo_real_t rate, uint32_t tick_hz, uint64_t ticks)
+{
+    tvo_time_jet_t t;
+    if (tvo_time_jet_at_ticks(ticks, tick_hz, rate, &t) != TVO_OK) {
+        t.ticks = ticks;
+        t.tick_hz = tick_hz;
+        t.rate = rate;
+        t.whole_s = 0u;
+        t.frac_ticks = 0u;
+    }
+    t.t_s = t_s;
+    return t;
+}
+
 /** Target position y_d(t) of robot r, for tracking-error checks. */
 static inline void fx_target_position(const fx_t *fx, uint8_t r, double t_s, double out[2])
 {
-    tvo_time_jet_t t;
-    t.t_s = test_r(t_s);
-    t.rate = TVO_R(1.0);
-    t.tick_hz = fx->cfg.tick_hz;
-    t.ticks = (uint64_t)llround(t_s * (double)fx->cfg.tick_hz);
-    /* the exact split of the ticks (t_s stays as given: finite differences step below a tick) */
-    {
-        tvo_time_jet_t exact;
-        if (tvo_time_jet_at_ticks(t.ticks, t.tick_hz, t.rate, &exact) == TVO_OK) {
-            t.whole_s = exact.whole_s;
-            t.frac_ticks = exact.frac_ticks;
-        } else {
-            t.whole_s = 0u;
-            t.frac_ticks = 0u;
-        }
-    }
+    tvo_time_jet_t t = test_time_jet(test_r(t_s), TVO_R(1.0), fx->cfg.tick_hz, (uint64_t)llround(t_s * (double)fx->cfg.tick_hz));
     tvo_real_t d[TVO_JET_MAX_ORDER + 1][2];
     ASSERT_STATUS(TVO_OK, tvo_target_derivatives(&fx->target[r], &t, 0, d));
     out[0] = test_d(d[0][0]);

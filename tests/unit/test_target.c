@@ -14,22 +14,7 @@ void tearDown(void) {}
 
 static tvo_time_jet_t time_at(double t_s, double rate)
 {
-    tvo_time_jet_t t;
-    t.t_s = test_r(t_s);
-    t.rate = test_r(rate);
-    t.tick_hz = 1000u;
-    t.ticks = (uint64_t)llround(t_s * 1000.0);
-    /* the exact split of the ticks (t_s stays as given: finite differences step below a tick) */
-    {
-        tvo_time_jet_t exact;
-        if (tvo_time_jet_at_ticks(t.ticks, t.tick_hz, t.rate, &exact) == TVO_OK) {
-            t.whole_s = exact.whole_s;
-            t.frac_ticks = exact.frac_ticks;
-        } else {
-            t.whole_s = 0u;
-            t.frac_ticks = 0u;
-        }
-    }
+    tvo_time_jet_t t = test_time_jet(test_r(t_s), test_r(rate), 1000u, (uint64_t)llround(t_s * 1000.0));
     return t;
 }
 
@@ -391,22 +376,7 @@ static void stream_expected(tvo_real_t s[TVO_STREAM_MAX_DERIV + 1][2], double T,
 
 static tvo_time_jet_t ticks_time(uint64_t ticks, uint32_t hz)
 {
-    tvo_time_jet_t t;
-    t.ticks = ticks;
-    t.tick_hz = hz;
-    t.t_s = tvo_ticks_to_seconds(ticks, hz);
-    t.rate = TVO_R(1.0);
-    /* the exact split of the ticks (t_s stays as given: finite differences step below a tick) */
-    {
-        tvo_time_jet_t exact;
-        if (tvo_time_jet_at_ticks(t.ticks, t.tick_hz, t.rate, &exact) == TVO_OK) {
-            t.whole_s = exact.whole_s;
-            t.frac_ticks = exact.frac_ticks;
-        } else {
-            t.whole_s = 0u;
-            t.frac_ticks = 0u;
-        }
-    }
+    tvo_time_jet_t t = test_time_jet(tvo_ticks_to_seconds(ticks, hz), TVO_R(1.0), hz, ticks);
     return t;
 }
 

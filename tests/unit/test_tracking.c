@@ -60,22 +60,7 @@ static void make_y(tvo_jet_t *y, uint8_t dim, uint8_t offset)
 
 static tvo_time_jet_t time_at(double t, double rate)
 {
-    tvo_time_jet_t tj;
-    tj.t_s = test_r(t);
-    tj.rate = test_r(rate);
-    tj.tick_hz = 1000;
-    tj.ticks = (uint64_t)llround(t * 1000.0);
-    /* the exact split of the ticks (t_s stays as given: finite differences step below a tick) */
-    {
-        tvo_time_jet_t exact;
-        if (tvo_time_jet_at_ticks(tj.ticks, tj.tick_hz, tj.rate, &exact) == TVO_OK) {
-            tj.whole_s = exact.whole_s;
-            tj.frac_ticks = exact.frac_ticks;
-        } else {
-            tj.whole_s = 0u;
-            tj.frac_ticks = 0u;
-        }
-    }
+    tvo_time_jet_t tj = test_time_jet(test_r(t), test_r(rate), 1000, (uint64_t)llround(t * 1000.0));
     return tj;
 }
 
