@@ -178,9 +178,8 @@ tvo_status_t tvo_chain_controller_check(const tvo_chain_controller_t *ctl, const
     if (!ctl->initialized) {
         return TVO_ERR_NOT_INITIALIZED;
     }
-    uint64_t elapsed = 0u;
-    uint32_t periods = 1u;
-    if (tvo_sample_clock_schedule(&ctl->clock, apply_tick, &elapsed, &periods) != TVO_OK) {
+    tvo_period_t period;
+    if (tvo_sample_clock_begin(&ctl->clock, apply_tick, &period) != TVO_OK) {
         return TVO_ERR_OUT_OF_ORDER;
     }
     const tvo_status_t st = (meas == NULL) ? TVO_ERR_NO_MEASUREMENT : check_finite(ctl, meas);

@@ -465,9 +465,8 @@ tvo_status_t tvo_controller_check(const tvo_controller_t *ctl, const tvo_measure
     if (!ctl->initialized) {
         return TVO_ERR_NOT_INITIALIZED;
     }
-    uint64_t elapsed = 0u;
-    uint32_t periods = 1u;
-    if (tvo_sample_clock_schedule(&ctl->clock, apply_tick, &elapsed, &periods) != TVO_OK) {
+    tvo_period_t period;
+    if (tvo_sample_clock_begin(&ctl->clock, apply_tick, &period) != TVO_OK) {
         return TVO_ERR_OUT_OF_ORDER;
     }
     return check_measurement(ctl, meas, apply_tick);

@@ -122,27 +122,13 @@ tvo_status_t tvo_sample_clock_locate(const tvo_sample_clock_t *clock, tvo_period
     const uint32_t hz = clock->tick_hz;
     period->age_ticks = period->apply_tick - stamp_tick;
     period->age_s = tvo_ticks_to_seconds32(period->age_ticks, hz);
-    const tvo_real_t half_period_s = TVO_R(0.5) * tvo_ticks_to_seconds32(clock->period_ticks, hz);
     period->law_time = delay_compensation ? period->elapsed : tvo_tick_time_before(&period->elapsed, period->age_ticks, hz);
     period->carry_s = delay_compensation ? period->age_s : TVO_R(0.0);
     if (zoh_aware) {
         period->law_time = tvo_tick_time_after(&period->law_time, clock->period_ticks / 2u, hz);
-        period->carry_s += half_period_s;
+        period->carry_s += TVO_R(0.5) * tvo_ticks_to_seconds32(clock->period_ticks, hz);
     }
     return TVO_OK;
-}
-
-tvo_status_t tvo_sample_clock_schedule(const tvo_sample_clock_t *clock, uint32_t apply_tick, uint64_t *elapsed_ticks,
-                                       uint32_t *periods)
-{
-    if (clock == NULL || elapsed_ticks == NULL || periods == NULL) {
-        return TVO_ERR_NULL;
-    }
-    tvo_period_t period;
-    const tvo_status_t st = tvo_sample_clock_begin(clock, apply_tick, &period);
-    *periods = period.periods;
-    *elapsed_ticks = (st == TVO_OK) ? period.elapsed.ticks : 0u;
-    return st;
 }
 
 tvo_status_t tvo_sample_clock_check_stamp(const tvo_sample_clock_t *clock, uint32_t stamp_tick, uint32_t apply_tick)
@@ -166,26 +152,12 @@ tvo_status_t tvo_sample_clock_check_stamp(const tvo_sample_clock_t *clock, uint3
     return TVO_OK;
 }
 
-tvo_status_t tvo_sample_clock_accept_stamp(tvo_sample_clock_t *clock, uint32_t stamp_tick)
+/* The period's application instant becomes the clock's present. */
+static void end_period(tvo_sample_clock_t *clock, const tvo_period_t *period)
 {
-    if (clock == NULL) {
-        return TVO_ERR_NULL;
-    }
-    clock->last_stamp_tick = stamp_tick;
-    clock->has_stamp = 1;
-    return TVO_OK;
-}
-
-static void end_period(tvo_sample_clock_t *clock, uint32_t apply_tick, uint64_t elapsed_ticks)
-{
-    /* The seconds split follows the tick count forward (the schedule's advances are < 2^30). */
-    const uint64_t from = clock->started ? clock->elapsed.ticks : 0u;
-    const tvo_tick_time_t epoch = {0u, 0u, 0u};
-    const tvo_tick_time_t *base = clock->started ? &clock->elapsed : &epoch;
-    clock->elapsed = tvo_tick_time_after(base, (uint32_t)(elapsed_ticks - from), clock->tick_hz);
     clock->started = 1;
-    clock->last_apply_tick = apply_tick;
-    clock->elapsed_ticks = elapsed_ticks;
+    clock->last_apply_tick = period->apply_tick;
+    clock->elapsed = period->elapsed;
 }
 
 int tvo_sample_clock_end(tvo_sample_clock_t *clock, const tvo_period_t *period, int good, uint32_t stamp_tick)
@@ -193,29 +165,22 @@ int tvo_sample_clock_end(tvo_sample_clock_t *clock, const tvo_period_t *period, 
     if (clock == NULL || period == NULL) {
         return 1;
     }
-    if (!good) {
-        return tvo_sample_clock_missed(clock, period->apply_tick, period->elapsed.ticks, period->periods);
+    end_period(clock, period);
+    if (good) {
+        clock->last_stamp_tick = stamp_tick;
+        clock->has_stamp = 1;
+        clock->periods_without_measurement = 0;
+        clock->stopped = 0;
+        return 0;
     }
-    clock->last_stamp_tick = stamp_tick;
-    clock->has_stamp = 1;
-    clock->elapsed = period->elapsed;
-    clock->started = 1;
-    clock->last_apply_tick = period->apply_tick;
-    clock->elapsed_ticks = period->elapsed.ticks;
-    clock->periods_without_measurement = 0;
-    clock->stopped = 0;
-    return 0;
-}
-
-tvo_status_t tvo_sample_clock_good(tvo_sample_clock_t *clock, uint32_t apply_tick, uint64_t elapsed_ticks)
-{
-    if (clock == NULL) {
-        return TVO_ERR_NULL;
+    /* Saturating count: no overflow however long the outage. */
+    const uint32_t room = clock->watchdog_periods - clock->periods_without_measurement;
+    clock->periods_without_measurement =
+        (period->periods >= room) ? clock->watchdog_periods : clock->periods_without_measurement + period->periods;
+    if (clock->periods_without_measurement >= clock->watchdog_periods) {
+        clock->stopped = 1;
     }
-    end_period(clock, apply_tick, elapsed_ticks);
-    clock->periods_without_measurement = 0;
-    clock->stopped = 0;
-    return TVO_OK;
+    return clock->stopped;
 }
 
 tvo_status_t tvo_sample_clock_rebase(tvo_sample_clock_t *clock, uint32_t epoch_tick)
@@ -240,29 +205,13 @@ tvo_status_t tvo_sample_clock_expire(tvo_sample_clock_t *clock)
     return TVO_OK;
 }
 
-int tvo_sample_clock_missed(tvo_sample_clock_t *clock, uint32_t apply_tick, uint64_t elapsed_ticks, uint32_t periods)
-{
-    if (clock == NULL) {
-        return 1;
-    }
-    end_period(clock, apply_tick, elapsed_ticks);
-    /* Saturating count: no overflow however long the outage. */
-    const uint32_t room = clock->watchdog_periods - clock->periods_without_measurement;
-    clock->periods_without_measurement =
-        (periods >= room) ? clock->watchdog_periods : clock->periods_without_measurement + periods;
-    if (clock->periods_without_measurement >= clock->watchdog_periods) {
-        clock->stopped = 1;
-    }
-    return clock->stopped;
-}
-
 tvo_status_t tvo_sample_clock_objective_ticks(const tvo_sample_clock_t *clock, uint32_t tick, uint64_t *objective_ticks)
 {
     if (clock == NULL || objective_ticks == NULL) {
         return TVO_ERR_NULL;
     }
     const uint32_t ref_tick = clock->started ? clock->last_apply_tick : clock->epoch_tick;
-    const uint64_t ref_elapsed = clock->started ? clock->elapsed_ticks : 0u;
+    const uint64_t ref_elapsed = clock->started ? clock->elapsed.ticks : 0u;
     const uint32_t forward = tick - ref_tick;
     if (forward <= TVO_MAX_TICK_SPAN) {
         *objective_ticks = ref_elapsed + forward;

@@ -1329,14 +1329,14 @@ static void test_plant_refusal_by_the_step_keeps_nothing(void)
     const tvo_node_session_t *s = tvo_node_session(&node);
     const tvo_sample_clock_t *before = &snapshot.controller.u.unicycle.clock;
     const tvo_sample_clock_t *after = &s->controller.u.unicycle.clock;
-    if (before->last_apply_tick != after->last_apply_tick || before->elapsed_ticks != after->elapsed_ticks ||
+    if (before->last_apply_tick != after->last_apply_tick || before->elapsed.ticks != after->elapsed.ticks ||
         before->periods_without_measurement != after->periods_without_measurement) {
         static char text[240];
         (void)snprintf(text, sizeof(text),
                        "refused (status %d) yet the controller's clock moved: last_apply_tick %u -> %u, "
                        "elapsed %llu -> %llu, periods_without_measurement %u -> %u",
                        (int)cmd.status, (unsigned)before->last_apply_tick, (unsigned)after->last_apply_tick,
-                       (unsigned long long)before->elapsed_ticks, (unsigned long long)after->elapsed_ticks,
+                       (unsigned long long)before->elapsed.ticks, (unsigned long long)after->elapsed.ticks,
                        (unsigned)before->periods_without_measurement, (unsigned)after->periods_without_measurement);
         TEST_FAIL_MESSAGE(text);
     }

@@ -1183,7 +1183,7 @@ static void test_safe_stop_drops_to_rest_without_advancing_the_clock(void)
     TEST_ASSERT_EQUAL_UINT8(1u, fx_a.ctl.clock.stopped);
     TEST_ASSERT_EQUAL_UINT32(fx_a.cfg.watchdog_periods, fx_a.ctl.clock.periods_without_measurement);
     TEST_ASSERT_EQUAL_HEX32(clock_before.last_apply_tick, fx_a.ctl.clock.last_apply_tick);
-    TEST_ASSERT_EQUAL_UINT64(clock_before.elapsed_ticks, fx_a.ctl.clock.elapsed_ticks);
+    TEST_ASSERT_EQUAL_UINT64(clock_before.elapsed.ticks, fx_a.ctl.clock.elapsed.ticks);
     TEST_ASSERT_EQUAL_HEX32(clock_before.last_stamp_tick, fx_a.ctl.clock.last_stamp_tick);
     /* The plant stops (it applies the safe stop); the next measurement resumes from rest. */
     fx_a.cmd = cmd;

@@ -2,9 +2,10 @@
  * The sampled-data timing shared by every controller: integer ticks of a wrapping uint32 clock,
  * an elapsed-time count that never wraps, measurement-stamp checks and the watchdog.
  *
- * Per period a controller asks for the schedule of its application instant, checks the
- * measurement's stamp, and ends the period either with a good step (tvo_sample_clock_good) or
- * with a missed one (tvo_sample_clock_missed, which says when the watchdog has expired).
+ * Per period a controller begins the period of its application instant (tvo_sample_clock_begin: one
+ * record of the period's timing), checks the measurement's stamp, locates where its law is evaluated
+ * (tvo_sample_clock_locate), and ends the period with a good or a missed step
+ * (tvo_sample_clock_end, which says when the watchdog has expired). Nothing changes before the end.
  */
 #ifndef TVO_SAMPLE_CLOCK_H
 #define TVO_SAMPLE_CLOCK_H
@@ -49,8 +50,7 @@ typedef struct {
     uint32_t last_apply_tick;
     uint32_t last_stamp_tick;
     uint32_t periods_without_measurement;
-    uint64_t elapsed_ticks;          /* ticks from epoch to the last apply_tick (never wraps) */
-    tvo_tick_time_t elapsed;         /* the same instant split into seconds (elapsed.ticks == elapsed_ticks) */
+    tvo_tick_time_t elapsed;         /* epoch to the last apply_tick, in ticks (never wraps) and seconds */
     uint8_t started;                 /* a period has ended */
     uint8_t has_stamp;               /* last_stamp_tick is valid */
     uint8_t stopped;                 /* the watchdog expired and no good step since */
@@ -105,24 +105,11 @@ tvo_status_t tvo_sample_clock_locate(const tvo_sample_clock_t *clock, tvo_period
 int tvo_sample_clock_end(tvo_sample_clock_t *clock, const tvo_period_t *period, int good, uint32_t stamp_tick);
 
 /**
- * Ticks from the epoch to apply_tick and the periods since the last application (>= 1).
- * TVO_ERR_OUT_OF_ORDER if apply_tick does not advance (or precedes the epoch on the first call).
- */
-tvo_status_t tvo_sample_clock_schedule(const tvo_sample_clock_t *clock, uint32_t apply_tick, uint64_t *elapsed_ticks,
-                                       uint32_t *periods);
-
-/**
  * A stamp is usable for the command applied at apply_tick when it is not after it
  * (TVO_ERR_FUTURE_STAMP), at most one period before it (TVO_ERR_STALE) and newer than the last
  * accepted stamp (TVO_ERR_OUT_OF_ORDER).
  */
 tvo_status_t tvo_sample_clock_check_stamp(const tvo_sample_clock_t *clock, uint32_t stamp_tick, uint32_t apply_tick);
-
-/** Records an accepted stamp (later stamps must be newer). */
-tvo_status_t tvo_sample_clock_accept_stamp(tvo_sample_clock_t *clock, uint32_t stamp_tick);
-
-/** Ends a period with a good step: the watchdog restarts. */
-tvo_status_t tvo_sample_clock_good(tvo_sample_clock_t *clock, uint32_t apply_tick, uint64_t elapsed_ticks);
 
 /**
  * Ticks from the epoch to a tick near the clock's present (within TVO_MAX_TICK_SPAN either way):
@@ -138,9 +125,6 @@ tvo_status_t tvo_sample_clock_rebase(tvo_sample_clock_t *clock, uint32_t epoch_t
 
 /** Expires the watchdog now (a safe stop ordered from outside the step, e.g. the edge's timer). */
 tvo_status_t tvo_sample_clock_expire(tvo_sample_clock_t *clock);
-
-/** Ends a period without a usable step; returns 1 when the watchdog has expired (stop the plant). */
-int tvo_sample_clock_missed(tvo_sample_clock_t *clock, uint32_t apply_tick, uint64_t elapsed_ticks, uint32_t periods);
 
 #ifdef __cplusplus
 }
