@@ -80,13 +80,13 @@ tvo_status_t tvo_target_init_ellipse(tvo_target_t *target, const tvo_target_elli
     memset(target, 0, sizeof(*target));
     target->kind = TVO_TARGET_ELLIPSE;
     target->u.ellipse = *ellipse;
-    /* The rotation is fixed: its cosine and sine once here, not at every evaluation. */
-    target->rotation_cs[0] = TVO_COS(ellipse->rotation_rad);
-    target->rotation_cs[1] = TVO_SIN(ellipse->rotation_rad);
-    target->axis_m[0][0] = ellipse->semi_axis_m[0] * target->rotation_cs[0];
-    target->axis_m[0][1] = ellipse->semi_axis_m[0] * target->rotation_cs[1];
-    target->axis_m[1][0] = -ellipse->semi_axis_m[1] * target->rotation_cs[1];
-    target->axis_m[1][1] = ellipse->semi_axis_m[1] * target->rotation_cs[0];
+    /* The rotation is fixed: the rotated semi-axes once here, not at every evaluation. */
+    const tvo_real_t cos_rotation = TVO_COS(ellipse->rotation_rad);
+    const tvo_real_t sin_rotation = TVO_SIN(ellipse->rotation_rad);
+    target->axis_m[0][0] = ellipse->semi_axis_m[0] * cos_rotation;
+    target->axis_m[0][1] = ellipse->semi_axis_m[0] * sin_rotation;
+    target->axis_m[1][0] = -ellipse->semi_axis_m[1] * sin_rotation;
+    target->axis_m[1][1] = ellipse->semi_axis_m[1] * cos_rotation;
     /* The phase runs in fixed point from whole seconds: exact after hours (see ellipse_derivatives). */
     target->phase0_q64 = turns_q64_of(ellipse->phase_rad);
     target->rate_q64 = (ellipse->rate_turns_q64 != 0u) ? ellipse->rate_turns_q64 : turns_q64_of(ellipse->omega_radps);

@@ -52,7 +52,6 @@ typedef struct {
         tvo_target_ellipse_t ellipse;   /* circles are ellipses with equal semi-axes */
         tvo_target_streamed_t streamed;
     } u;
-    tvo_real_t rotation_cs[2];  /* ellipse: cos, sin of its fixed rotation, computed by init */
     tvo_real_t axis_m[2][2];    /* ellipse: the rotated semi-axes R (a, 0) and R (0, b), by init */
     uint64_t phase0_q64;        /* ellipse: phase at t = 0 in turns, Q0.64 */
     uint64_t rate_q64;          /* ellipse: fractional turns per second, Q0.64 */
