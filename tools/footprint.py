@@ -25,7 +25,7 @@ import sys
 # Charged per call that leaves the core (memset, sinf, __aeabi_* ...): newlib-nano's and libgcc's
 # leaf routines use well under this on Cortex-M and RV32.
 EXTERNAL_FRAME_BYTES = 64
-CALLBACK_SUFFIXES = ("_gradient_jet", "_constraint_max")
+CALLBACK_SUFFIXES = ("_gradient_jet", "_gradient_hessian", "_constraint_max")
 
 NODE_RE = re.compile(r'node: \{ title: "([^"]+)" label: "([^"]*)"')
 EDGE_RE = re.compile(r'edge: \{ sourcename: "([^"]+)" targetname: "([^"]+)"')

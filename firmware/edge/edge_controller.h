@@ -65,7 +65,8 @@ struct tvo_edge_controller {
 };
 
 /**
- * The controller's step; if it fails, the controller is left exactly as before (its clock included),
+ * The controller's step; if it fails, the controller is left exactly as before (its clock included;
+ * its law's workspace is scratch, not state),
  * so the edge can treat a failed step as a refused message.
  */
 tvo_status_t tvo_edge_controller_step_or_keep(tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas,

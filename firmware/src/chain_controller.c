@@ -222,8 +222,9 @@ tvo_status_t tvo_chain_controller_step(tvo_chain_controller_t *ctl, const tvo_ch
     if (st == TVO_OK) {
         st = tvo_sample_clock_check_stamp(&ctl->clock, meas->stamp_tick, apply_tick);
     }
-    tvo_output_derivs_t x;
-    tvo_dirty_derivative_t filter[TVO_MAX_RELATIVE_DEGREE - 1]; /* the step's copies, kept on success */
+    tvo_chain_controller_work_t *work = &ctl->work;
+    tvo_output_derivs_t *x = &work->state;
+    tvo_dirty_derivative_t *filter = work->filter; /* kept on success */
     if (st == TVO_OK) {
         for (uint8_t j = 0; j + 1u < TVO_MAX_RELATIVE_DEGREE; ++j) {
             filter[j] = ctl->filter[j];
@@ -231,7 +232,7 @@ tvo_status_t tvo_chain_controller_step(tvo_chain_controller_t *ctl, const tvo_ch
                 filter[j].primed = 0; /* the gap makes old filter state meaningless */
             }
         }
-        st = derivatives_at_sample(ctl, filter, meas, &x);
+        st = derivatives_at_sample(ctl, filter, meas, x);
     }
     if (st != TVO_OK) {
         return hold_or_stop(ctl, &period, st, cmd);
@@ -245,13 +246,14 @@ tvo_status_t tvo_chain_controller_step(tvo_chain_controller_t *ctl, const tvo_ch
                                   ctl->cfg.zoh_aware);
     const uint32_t flags = (period.carry_s > TVO_R(0.0)) ? TVO_FLAG_PREDICTED : 0u;
     if (period.carry_s > TVO_R(0.0)) {
-        st = tvo_chain_predict(k, m, &x, ctl->held.u, period.carry_s, &x);
+        st = tvo_chain_predict(k, m, x, ctl->held.u, period.carry_s, x);
     }
     tvo_time_jet_t t;
     (void)tvo_time_jet_at(&period.law_time, ctl->cfg.tick_hz, TVO_R(1.0), &t); /* the clock's times are valid */
-    tvo_real_t u[TVO_MAX_Z_DIM];
+    tvo_real_t *u = work->input;
     if (st == TVO_OK) {
-        st = tvo_law_evaluate(&ctl->law, ctl->objective, &x, &t, u, NULL);
+        tvo_law_report_t report = {NULL, NULL, 0u, TVO_R(0.0)};
+        st = tvo_law_evaluate_report(&ctl->law, ctl->objective, x, &t, u, &report, &work->law);
     }
     if (st != TVO_OK) {
         return hold_or_stop(ctl, &period, st, cmd);

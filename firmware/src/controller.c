@@ -286,17 +286,18 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     }
 
     tvo_status_t st = check_measurement(ctl, meas, apply_tick);
-    tvo_real_t rate_filtered[TVO_MAX_OUTPUT_DIM];
-    tvo_real_t heading_at_sample[TVO_MAX_ROBOTS];
+    tvo_controller_work_t *work = &ctl->work;
+    tvo_real_t *rate_filtered = work->rate_filtered;
+    tvo_real_t *heading_at_sample = work->heading_at_sample;
     const int position_only = cfg->velocity_source == TVO_VELOCITY_FROM_POSITION;
-    tvo_dirty_derivative_t filter; /* the step's copy of the velocity filter, kept only on success */
+    tvo_dirty_derivative_t *filter = &work->velocity_filter; /* kept only on success */
     if (st == TVO_OK) {
         if (position_only) {
-            filter = ctl->velocity_filter;
+            *filter = ctl->velocity_filter;
             if (ctl->clock.stopped) {
-                filter.primed = 0; /* the gap makes old filter state meaningless */
+                filter->primed = 0; /* the gap makes old filter state meaningless */
             }
-            st = position_only_estimate(ctl, &filter, meas, rate_filtered, heading_at_sample);
+            st = position_only_estimate(ctl, filter, meas, rate_filtered, heading_at_sample);
         } else {
             for (uint8_t r = 0; r < n; ++r) {
                 heading_at_sample[r] = meas->heading_rad[r];
@@ -315,11 +316,11 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     uint32_t flags = (carry_s > TVO_R(0.0)) ? TVO_FLAG_PREDICTED : 0u;
 
     /* State the law sees: at the sample (no compensation), the application instant, or mid-interval. */
-    tvo_output_derivs_t y;
-    tvo_real_t heading[TVO_MAX_ROBOTS] = {TVO_R(0.0)};
-    tvo_real_t heading_cs[TVO_MAX_ROBOTS][2];    /* cos, sin of heading[]: trigonometry once per robot */
-    tvo_real_t speed[TVO_MAX_ROBOTS] = {TVO_R(0.0)}; /* dynamic-extension speed where the law is evaluated */
-    tvo_real_t speed_state[TVO_MAX_ROBOTS] = {TVO_R(0.0)}; /* the step's copy of the extension's state */
+    tvo_output_derivs_t *y = &work->output;
+    tvo_real_t *heading = work->heading;
+    tvo_real_t(*heading_cs)[2] = work->heading_cs;
+    tvo_real_t *speed = work->speed;
+    tvo_real_t *speed_state = work->speed_state;
     int speed_contradicted = 0;
     for (uint8_t r = 0; r < n && st == TVO_OK; ++r) {
         speed_state[r] = ctl->speed_state_mps[r];
@@ -348,18 +349,18 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
         /* Mid-interval speed: the state plus half a period of the last acceleration (O(h^2)). */
         speed[r] = speed_state[r] +
                    (zoh_aware ? TVO_R(0.5) * ctl->period_s * ctl->telemetry.accel_mps2[r] : TVO_R(0.0));
-        y.d[0][2u * r] = pose.position_m[0];
-        y.d[0][2u * r + 1u] = pose.position_m[1];
+        y->d[0][2u * r] = pose.position_m[0];
+        y->d[0][2u * r + 1u] = pose.position_m[1];
         if (position_only) {
             /* The held turn rate rotates the velocity over the age, like the heading. */
             tvo_real_t s;
             tvo_real_t c;
             tvo_sincos(ctl->held.turn_rate_radps[r] * carry_s, &s, &c);
-            y.d[1][2u * r] = c * rate_filtered[2u * r] - s * rate_filtered[2u * r + 1u];
-            y.d[1][2u * r + 1u] = s * rate_filtered[2u * r] + c * rate_filtered[2u * r + 1u];
+            y->d[1][2u * r] = c * rate_filtered[2u * r] - s * rate_filtered[2u * r + 1u];
+            y->d[1][2u * r + 1u] = s * rate_filtered[2u * r] + c * rate_filtered[2u * r + 1u];
         } else {
-            y.d[1][2u * r] = speed[r] * heading_cs[r][0];
-            y.d[1][2u * r + 1u] = speed[r] * heading_cs[r][1];
+            y->d[1][2u * r] = speed[r] * heading_cs[r][0];
+            y->d[1][2u * r + 1u] = speed[r] * heading_cs[r][1];
         }
     }
 
@@ -371,16 +372,14 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     const uint8_t primal = ctl->objective->primal_dim;
     const uint8_t dual = ctl->objective->dual_dim;
     for (uint8_t q = 0; q < dual && q < TVO_MAX_EQUALITIES; ++q) {
-        y.d[0][primal + q] = ctl->multiplier[q];
-        y.d[1][primal + q] = ctl->multiplier_rate[q];
+        y->d[0][primal + q] = ctl->multiplier[q];
+        y->d[1][primal + q] = ctl->multiplier_rate[q];
     }
 
-    tvo_real_t y_accel[TVO_MAX_Z_DIM];
-    tvo_real_t gradient[TVO_MAX_OUTPUT_DIM];
-    tvo_real_t gradient_rate[TVO_MAX_OUTPUT_DIM];
-    tvo_law_report_t report = {gradient, gradient_rate, primal, TVO_R(0.0)};
+    tvo_real_t *y_accel = work->output_accel;
+    tvo_law_report_t report = {work->gradient, work->gradient_rate, primal, TVO_R(0.0)};
     if (st == TVO_OK) {
-        st = tvo_law_evaluate_report(&ctl->law, ctl->objective, &y, &t, y_accel, &report);
+        st = tvo_law_evaluate_report(&ctl->law, ctl->objective, y, &t, y_accel, &report, &work->law);
     }
     tvo_command_t next;
     for (unsigned r = n; r < TVO_MAX_ROBOTS; ++r) {
@@ -390,8 +389,8 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     if (st == TVO_OK && report.regularization > TVO_R(0.0)) {
         flags |= TVO_FLAG_REGULARIZED;
     }
-    tvo_real_t speed_next[TVO_MAX_ROBOTS] = {TVO_R(0.0)};
-    tvo_real_t accel[TVO_MAX_ROBOTS] = {TVO_R(0.0)};
+    tvo_real_t *speed_next = work->speed_next;
+    tvo_real_t *accel = work->accel;
     for (uint8_t r = 0; r < n && st == TVO_OK; ++r) {
         uint8_t low_speed = 0;
         tvo_real_t turn_rate;
@@ -419,7 +418,7 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     /* The step succeeded: from here on its working copies become the controller's state. */
     (void)tvo_sample_clock_end(&ctl->clock, &period, 1, meas->stamp_tick);
     if (position_only) {
-        ctl->velocity_filter = filter;
+        ctl->velocity_filter = *filter;
     }
     ctl->speed_mismatch_periods = speed_contradicted ? ctl->speed_mismatch_periods + 1u : 0u;
     if (ctl->speed_mismatch_periods >= TVO_SPEED_MISMATCH_PERIODS) {
@@ -447,11 +446,11 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     /* Telemetry of the entries this problem uses (the rest stay zero from init). */
     tm->objective_time_s = t.t_s;
     for (uint8_t i = 0; i < 2u * n; ++i) {
-        tm->output_m[i] = y.d[0][i];
-        tm->output_rate_mps[i] = y.d[1][i];
+        tm->output_m[i] = y->d[0][i];
+        tm->output_rate_mps[i] = y->d[1][i];
         tm->output_accel_mps2[i] = y_accel[i];
-        tm->gradient[i] = gradient[i];
-        tm->gradient_rate[i] = gradient_rate[i];
+        tm->gradient[i] = work->gradient[i];
+        tm->gradient_rate[i] = work->gradient_rate[i];
     }
     tm->regularization = report.regularization;
     return TVO_OK;

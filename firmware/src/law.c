@@ -63,7 +63,7 @@ static void zero_output(tvo_real_t *y_k, uint8_t dim)
  *   grad(y + e_a tau^2 + e_b tau^3) = grad(y) + H e_a tau^2 + H e_b tau^3 + O(tau^4)
  * exactly, with the ordinary Taylor arithmetic of every term (no mode, no special jet type).
  * With jets shorter than order 3 (a build limited to k < 3), one column per evaluation at tau^1.
- * The jet buffers are the caller's (their trajectory contents are no longer needed).
+ * The jets are the workspace's (their trajectory contents are no longer needed).
  */
 #if TVO_JET_MAX_ORDER >= 3
 #define HESSIAN_ORDER 3u
@@ -76,11 +76,15 @@ static const uint8_t hessian_seed_power[HESSIAN_COLUMNS_PER_PASS] = {1u};
 #endif
 
 static tvo_status_t add_jet_hessian(const tvo_objective_t *objective, const tvo_output_derivs_t *y,
-                                    const tvo_time_jet_t *t, tvo_jet_t *y_jet, tvo_jet_t *g_jet, tvo_matrix_t h)
+                                    const tvo_time_jet_t *t, tvo_law_workspace_t *work)
 {
     const uint8_t m = objective->dim;
-    tvo_time_jet_t frozen = *t;
-    frozen.rate = TVO_R(0.0);
+    tvo_jet_t *y_jet = work->y_jet;
+    tvo_jet_t *g_jet = work->g_jet;
+    tvo_real_t(*h)[TVO_MAX_Z_DIM] = work->hessian.matrix;
+    tvo_time_jet_t *frozen = &work->time;
+    *frozen = *t;
+    frozen->rate = TVO_R(0.0);
     for (uint8_t i = 0; i < m; ++i) {
         tvo_jet_constant(y->d[0][i], &y_jet[i]);
     }
@@ -88,7 +92,7 @@ static tvo_status_t add_jet_hessian(const tvo_objective_t *objective, const tvo_
         for (uint8_t d = 0; d < HESSIAN_COLUMNS_PER_PASS && first + d < m; ++d) {
             y_jet[first + d].c[hessian_seed_power[d]] = TVO_R(1.0);
         }
-        const tvo_status_t st = tvo_objective_gradient_jet_of_jet_terms(objective, y_jet, &frozen, HESSIAN_ORDER, g_jet);
+        const tvo_status_t st = tvo_objective_gradient_jet_of_jet_terms(objective, y_jet, frozen, HESSIAN_ORDER, g_jet);
         for (uint8_t d = 0; d < HESSIAN_COLUMNS_PER_PASS && first + d < m; ++d) {
             y_jet[first + d].c[hessian_seed_power[d]] = TVO_R(0.0);
         }
@@ -108,9 +112,10 @@ static tvo_status_t add_jet_hessian(const tvo_objective_t *objective, const tvo_
  * entries), hessian_out the Hessian, *shift the solve's regularisation. */
 static tvo_status_t evaluate(const tvo_law_t *law, const tvo_objective_t *objective, const tvo_output_derivs_t *y,
                              const tvo_time_jet_t *t, tvo_real_t *y_k, tvo_real_t *const *grad_rows,
-                             uint8_t grad_count, tvo_real_t (*hessian_out)[TVO_MAX_Z_DIM], tvo_real_t *shift)
+                             uint8_t grad_count, tvo_real_t (*hessian_out)[TVO_MAX_Z_DIM], tvo_real_t *shift,
+                             tvo_law_workspace_t *work)
 {
-    if (law == NULL || objective == NULL || y == NULL || t == NULL || y_k == NULL) {
+    if (law == NULL || objective == NULL || y == NULL || t == NULL || y_k == NULL || work == NULL) {
         return TVO_ERR_NULL;
     }
     if (law->relative_degree == 0u || law->relative_degree > TVO_MAX_RELATIVE_DEGREE) {
@@ -129,40 +134,43 @@ static tvo_status_t evaluate(const tvo_law_t *law, const tvo_objective_t *object
     /* Trajectory jets y(tau) = sum_{j<k} y^(j) tau^j / j!, with y^(k) = 0 on this curve. */
     static const tvo_real_t inv_factorial[4] = {TVO_R(1.0), TVO_R(1.0), TVO_R(0.5),
                                                                     TVO_R(1.0) / TVO_R(6.0)};
-    tvo_jet_t y_jet[TVO_MAX_Z_DIM];
-    tvo_jet_t g_jet[TVO_MAX_Z_DIM];
-    tvo_hessian_t hessian;
-    tvo_real_t(*h)[TVO_MAX_Z_DIM] = hessian.matrix;
-    hessian.rank_one_count = 0u;
+    tvo_jet_t *y_jet = work->y_jet;
+    tvo_jet_t *g_jet = work->g_jet;
+    tvo_hessian_t *hessian = &work->hessian;
+    tvo_real_t(*h)[TVO_MAX_Z_DIM] = hessian->matrix;
+    hessian->rank_one_count = 0u;
+    /* Coefficients above k: the passes of order k never read them, the Hessian's seeds clear them. */
     for (unsigned i = 0; i < m; ++i) {
-        for (unsigned j = 0; j <= TVO_JET_MAX_ORDER; ++j) {
-            const tvo_real_t value = (j < k) ? y->d[j][i] : TVO_R(0.0);
+        for (unsigned j = 0; j < k; ++j) {
+            const tvo_real_t value = y->d[j][i];
             if (!isfinite(value)) {
                 return TVO_ERR_NOT_FINITE;
             }
             y_jet[i].c[j] = value * inv_factorial[j];
         }
+        y_jet[i].c[k] = TVO_R(0.0);
         for (unsigned j = 0; j < m; ++j) {
             h[i][j] = TVO_R(0.0);
         }
     }
-    tvo_time_jet_t along = *t;
-    along.rate = TVO_R(1.0);
+    tvo_time_jet_t *along = &work->time;
+    *along = *t;
+    along->rate = TVO_R(1.0);
     /* One pass: every term's gradient jets; the closed forms add their Hessian on the way. */
     uint8_t jet_terms = 0u;
-    tvo_status_t st = tvo_objective_gradient_hessian(objective, y_jet, &along, k, g_jet, &hessian, &jet_terms);
+    tvo_status_t st = tvo_objective_gradient_hessian(objective, y_jet, along, k, g_jet, hessian, &jet_terms);
     if (st != TVO_OK) {
         return st;
     }
 
     /* Barrier parts that are not stiff join the matrix and the gradient; the stiff ones stay apart. */
-    tvo_hessian_settle(&hessian, objective->primal_dim, objective->dual_dim, g_jet, k);
+    tvo_hessian_settle(hessian, objective->primal_dim, objective->dual_dim, g_jet, k);
 
     /* grad^(j) = j! c_j; rhs = r + sum_{j<k} a_j grad^(j) with r = k! c_k, for the gradient jets and
      * (gamma) for each part kept apart, whose gradient is a multiple of its direction. */
     static const tvo_real_t factorial[4] = {TVO_R(1.0), TVO_R(1.0), TVO_R(2.0), TVO_R(6.0)};
-    tvo_real_t rhs[TVO_MAX_Z_DIM];
-    tvo_real_t gamma[TVO_MAX_RANK_ONE_PARTS];
+    tvo_real_t *rhs = work->rhs;
+    tvo_real_t *gamma = work->gamma;
     for (unsigned i = 0; i < m; ++i) {
         tvo_real_t sum = g_jet[i].c[k] * factorial[k];
         for (unsigned j = 0; j < k; ++j) {
@@ -173,8 +181,8 @@ static tvo_status_t evaluate(const tvo_law_t *law, const tvo_objective_t *object
         }
         rhs[i] = sum;
     }
-    for (unsigned p = 0; p < hessian.rank_one_count; ++p) {
-        const tvo_jet_t *g = &hessian.rank_one[p].gradient;
+    for (unsigned p = 0; p < hessian->rank_one_count; ++p) {
+        const tvo_jet_t *g = &hessian->rank_one[p].gradient;
         tvo_real_t sum = g->c[k] * factorial[k];
         for (unsigned j = 0; j < k; ++j) {
             sum += law->gain[j] * (g->c[j] * factorial[j]);
@@ -193,8 +201,8 @@ static tvo_status_t evaluate(const tvo_law_t *law, const tvo_objective_t *object
             for (unsigned i = 0; i < m && i < grad_count; ++i) {
                 grad_rows[j][i] = g_jet[i].c[j] * factorial[j];
             }
-            for (unsigned p = 0; p < hessian.rank_one_count; ++p) {
-                const tvo_rank_one_t *part = &hessian.rank_one[p];
+            for (unsigned p = 0; p < hessian->rank_one_count; ++p) {
+                const tvo_rank_one_t *part = &hessian->rank_one[p];
                 for (unsigned e = 0; e < part->count; ++e) {
                     if (part->index[e] < grad_count) {
                         grad_rows[j][part->index[e]] += part->gradient.c[j] * factorial[j] * part->value[e];
@@ -205,7 +213,7 @@ static tvo_status_t evaluate(const tvo_law_t *law, const tvo_objective_t *object
     }
 
     if (jet_terms > 0u) {
-        st = add_jet_hessian(objective, y, t, y_jet, g_jet, h);
+        st = add_jet_hessian(objective, y, t, work);
         if (st != TVO_OK) {
             return st;
         }
@@ -225,8 +233,8 @@ static tvo_status_t evaluate(const tvo_law_t *law, const tvo_objective_t *object
                 hessian_out[i][j] = h[i][j];
             }
         }
-        for (unsigned p = 0; p < hessian.rank_one_count; ++p) {
-            const tvo_rank_one_t *part = &hessian.rank_one[p];
+        for (unsigned p = 0; p < hessian->rank_one_count; ++p) {
+            const tvo_rank_one_t *part = &hessian->rank_one[p];
             for (unsigned i = 0; i < part->count; ++i) {
                 for (unsigned j = 0; j < part->count; ++j) {
                     hessian_out[part->index[i]][part->index[j]] += part->weight * part->value[i] * part->value[j];
@@ -235,7 +243,7 @@ static tvo_status_t evaluate(const tvo_law_t *law, const tvo_objective_t *object
         }
     }
 
-    st = tvo_saddle_solve_split(&hessian, objective->primal_dim, objective->dual_dim, rhs, gamma, rhs, shift);
+    st = tvo_saddle_solve_split(hessian, objective->primal_dim, objective->dual_dim, rhs, gamma, rhs, shift);
     if (st != TVO_OK) {
         return st;
     }
@@ -249,20 +257,21 @@ tvo_status_t tvo_law_evaluate(const tvo_law_t *law, const tvo_objective_t *objec
                               const tvo_output_derivs_t *y, const tvo_time_jet_t *t,
                               tvo_real_t *y_k, tvo_law_eval_t *eval)
 {
+    tvo_law_workspace_t work;
     if (eval == NULL) {
-        return evaluate(law, objective, y, t, y_k, NULL, 0u, NULL, NULL);
+        return evaluate(law, objective, y, t, y_k, NULL, 0u, NULL, NULL, &work);
     }
     memset(eval, 0, sizeof(*eval));
     tvo_real_t *rows[TVO_MAX_RELATIVE_DEGREE + 1];
     for (uint8_t j = 0; j <= TVO_MAX_RELATIVE_DEGREE; ++j) {
         rows[j] = eval->grad[j];
     }
-    return evaluate(law, objective, y, t, y_k, rows, TVO_MAX_Z_DIM, eval->hessian, &eval->regularization);
+    return evaluate(law, objective, y, t, y_k, rows, TVO_MAX_Z_DIM, eval->hessian, &eval->regularization, &work);
 }
 
 tvo_status_t tvo_law_evaluate_report(const tvo_law_t *law, const tvo_objective_t *objective,
                                      const tvo_output_derivs_t *y, const tvo_time_jet_t *t, tvo_real_t *y_k,
-                                     tvo_law_report_t *report)
+                                     tvo_law_report_t *report, tvo_law_workspace_t *work)
 {
     if (report == NULL) {
         return TVO_ERR_NULL;
@@ -271,5 +280,5 @@ tvo_status_t tvo_law_evaluate_report(const tvo_law_t *law, const tvo_objective_t
     tvo_real_t *rows[TVO_MAX_RELATIVE_DEGREE + 1] = {NULL};
     rows[0] = report->gradient;
     rows[1] = report->gradient_rate;
-    return evaluate(law, objective, y, t, y_k, rows, report->count, NULL, &report->regularization);
+    return evaluate(law, objective, y, t, y_k, rows, report->count, NULL, &report->regularization, work);
 }

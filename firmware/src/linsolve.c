@@ -89,11 +89,11 @@ tvo_status_t tvo_cholesky_solve(tvo_matrix_t a, uint8_t n, const tvo_real_t *b, 
 }
 
 /* Factors P + mu I in place (p = the primal block of a), smallest workable mu first. */
-static tvo_status_t regularized_factor(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t n, tvo_real_t *shift)
+static tvo_status_t regularized_factor(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t n, tvo_real_t *diag,
+                                       tvo_real_t *shift)
 {
     /* The factor overwrites the lower triangle and the diagonal: keep the diagonal, and let the strict
      * upper triangle (never written) be the pristine copy the retries restore from. */
-    tvo_real_t diag[TVO_MAX_Z_DIM];
     for (uint8_t i = 0; i < n; ++i) {
         diag[i] = a[i][i];
     }
@@ -142,16 +142,18 @@ static tvo_status_t regularized_factor(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t n
 }
 
 static tvo_status_t saddle_solve(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t primal_n, uint8_t dual_n, const tvo_real_t *b,
-                                 tvo_real_t *x, tvo_real_t *shift);
+                                 tvo_real_t *x, tvo_real_t *shift, tvo_solve_scratch_t *scratch);
 
 tvo_status_t tvo_saddle_solve(tvo_matrix_t a, uint8_t primal_n, uint8_t dual_n, const tvo_real_t *b, tvo_real_t *x,
                               tvo_real_t *shift)
 {
-    return saddle_solve(a, primal_n, dual_n, b, x, shift);
+    tvo_solve_scratch_t scratch;
+    return saddle_solve(a, primal_n, dual_n, b, x, shift, &scratch);
 }
 
+/* b must not be one of the scratch's vectors other than dense. */
 static tvo_status_t saddle_solve(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t primal_n, uint8_t dual_n, const tvo_real_t *b,
-                                 tvo_real_t *x, tvo_real_t *shift)
+                                 tvo_real_t *x, tvo_real_t *shift, tvo_solve_scratch_t *scratch)
 {
     if (a == NULL || b == NULL || x == NULL) {
         return TVO_ERR_NULL;
@@ -169,7 +171,7 @@ static tvo_status_t saddle_solve(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t primal_
         }
     }
     tvo_real_t mu = TVO_R(0.0);
-    tvo_status_t st = regularized_factor(a, primal_n, &mu);
+    tvo_status_t st = regularized_factor(a, primal_n, scratch->diag, &mu);
     if (st != TVO_OK) {
         return st;
     }
@@ -177,57 +179,55 @@ static tvo_status_t saddle_solve(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t primal_
         *shift = mu;
     }
     /* u = P^-1 b_p; then, with equalities, Y = P^-1 C^T and S w = C u - b_d, x_p = u - Y w. */
-    tvo_real_t u[TVO_MAX_Z_DIM];
+    if (dual_n == 0u) {
+        cholesky_substitute(&a[0][0], TVO_MAX_Z_DIM, primal_n, b, x);
+        return all_finite(x, n) ? TVO_OK : TVO_ERR_NUMERIC;
+    }
+    tvo_real_t *u = scratch->first;
     cholesky_substitute(&a[0][0], TVO_MAX_Z_DIM, primal_n, b, u);
-    if (dual_n > 0u) {
-        tvo_real_t y_cols[TVO_MAX_EQUALITIES][TVO_MAX_Z_DIM];
-        tvo_real_t schur[TVO_MAX_EQUALITIES][TVO_MAX_EQUALITIES];
-        tvo_real_t rhs[TVO_MAX_EQUALITIES];
-        tvo_real_t w[TVO_MAX_EQUALITIES];
-        for (uint8_t q = 0; q < dual_n && q < TVO_MAX_EQUALITIES; ++q) {
-            cholesky_substitute(&a[0][0], TVO_MAX_Z_DIM, primal_n, a[primal_n + q], y_cols[q]);
+    tvo_real_t(*y_cols)[TVO_MAX_Z_DIM] = scratch->columns;
+    tvo_real_t(*schur)[TVO_SOLVE_SMALL_DIM] = scratch->small;
+    tvo_real_t *rhs = scratch->small_rhs;
+    tvo_real_t *w = scratch->small_x;
+    for (uint8_t q = 0; q < dual_n && q < TVO_MAX_EQUALITIES; ++q) {
+        cholesky_substitute(&a[0][0], TVO_MAX_Z_DIM, primal_n, a[primal_n + q], y_cols[q]);
+    }
+    for (uint8_t q = 0; q < dual_n && q < TVO_MAX_EQUALITIES; ++q) {
+        const tvo_real_t *c_row = a[primal_n + q];
+        tvo_real_t s = -b[primal_n + q];
+        for (uint8_t i = 0; i < primal_n; ++i) {
+            s += c_row[i] * u[i];
         }
-        for (uint8_t q = 0; q < dual_n && q < TVO_MAX_EQUALITIES; ++q) {
-            const tvo_real_t *c_row = a[primal_n + q];
-            tvo_real_t s = -b[primal_n + q];
+        rhs[q] = s;
+        for (uint8_t r = 0; r < dual_n && r < TVO_MAX_EQUALITIES; ++r) {
+            tvo_real_t v = -a[primal_n + q][primal_n + r];
             for (uint8_t i = 0; i < primal_n; ++i) {
-                s += c_row[i] * u[i];
+                v += c_row[i] * y_cols[r][i];
             }
-            rhs[q] = s;
-            for (uint8_t r = 0; r < dual_n && r < TVO_MAX_EQUALITIES; ++r) {
-                tvo_real_t v = -a[primal_n + q][primal_n + r];
-                for (uint8_t i = 0; i < primal_n; ++i) {
-                    v += c_row[i] * y_cols[r][i];
-                }
-                schur[q][r] = v;
-            }
+            schur[q][r] = v;
         }
-        /* The Schur complement is symmetric in exact arithmetic; average away the rounding. */
-        for (uint8_t q = 0; q < dual_n; ++q) {
-            for (uint8_t r = 0; r < q; ++r) {
-                const tvo_real_t avg = TVO_R(0.5) * (schur[q][r] + schur[r][q]);
-                schur[q][r] = avg;
-                schur[r][q] = avg;
-            }
+    }
+    /* The Schur complement is symmetric in exact arithmetic; average away the rounding. */
+    for (uint8_t q = 0; q < dual_n; ++q) {
+        for (uint8_t r = 0; r < q; ++r) {
+            const tvo_real_t avg = TVO_R(0.5) * (schur[q][r] + schur[r][q]);
+            schur[q][r] = avg;
+            schur[r][q] = avg;
         }
-        if (!cholesky_factor(&schur[0][0], TVO_MAX_EQUALITIES, dual_n)) {
-            return TVO_ERR_NOT_POSITIVE_DEFINITE;
+    }
+    if (!cholesky_factor(&schur[0][0], TVO_SOLVE_SMALL_DIM, dual_n)) {
+        return TVO_ERR_NOT_POSITIVE_DEFINITE;
+    }
+    cholesky_substitute(&schur[0][0], TVO_SOLVE_SMALL_DIM, dual_n, rhs, w);
+    for (uint8_t i = 0; i < primal_n; ++i) {
+        tvo_real_t s = u[i];
+        for (uint8_t q = 0; q < dual_n && q < TVO_MAX_EQUALITIES; ++q) {
+            s -= y_cols[q][i] * w[q];
         }
-        cholesky_substitute(&schur[0][0], TVO_MAX_EQUALITIES, dual_n, rhs, w);
-        for (uint8_t i = 0; i < primal_n; ++i) {
-            tvo_real_t s = u[i];
-            for (uint8_t q = 0; q < dual_n && q < TVO_MAX_EQUALITIES; ++q) {
-                s -= y_cols[q][i] * w[q];
-            }
-            x[i] = s;
-        }
-        for (uint8_t q = 0; q < dual_n; ++q) {
-            x[primal_n + q] = w[q];
-        }
-    } else {
-        for (uint8_t i = 0; i < primal_n; ++i) {
-            x[i] = u[i];
-        }
+        x[i] = s;
+    }
+    for (uint8_t q = 0; q < dual_n; ++q) {
+        x[primal_n + q] = w[q];
     }
     return all_finite(x, n) ? TVO_OK : TVO_ERR_NUMERIC;
 }
@@ -337,9 +337,9 @@ void tvo_hessian_settle(tvo_hessian_t *h, uint8_t n, uint8_t dual_n, tvo_jet_t *
 }
 
 /* y = A^-1 u for a sparse u, with A's factor in the lower triangle. */
-static void substitute_sparse(const tvo_real_t *factor, unsigned n, const tvo_rank_one_t *part, tvo_real_t *y)
+static void substitute_sparse(const tvo_real_t *factor, unsigned n, const tvo_rank_one_t *part, tvo_real_t *dense,
+                              tvo_real_t *y)
 {
-    tvo_real_t dense[TVO_MAX_Z_DIM];
     for (unsigned i = 0; i < n; ++i) {
         dense[i] = TVO_R(0.0);
     }
@@ -360,11 +360,12 @@ static tvo_real_t dot_sparse(const tvo_rank_one_t *part, const tvo_real_t *v)
 
 /* The matrix restored from its upper triangle and diag (a factor overwrote it), the parts and their
  * right-hand sides added in, and the sum solved as tvo_saddle_solve does. */
-static tvo_status_t solve_parts_added(tvo_hessian_t *h, const tvo_real_t *diag, uint8_t primal_n, uint8_t dual_n,
-                                      const tvo_real_t *b, const tvo_real_t *gamma, tvo_real_t *x, tvo_real_t *shift)
+static tvo_status_t solve_parts_added(tvo_hessian_t *h, uint8_t primal_n, uint8_t dual_n, const tvo_real_t *b,
+                                      const tvo_real_t *gamma, tvo_real_t *x, tvo_real_t *shift)
 {
     const unsigned n = primal_n;
-    tvo_real_t dense_b[TVO_MAX_Z_DIM];
+    const tvo_real_t *diag = h->scratch.diag;
+    tvo_real_t *dense_b = h->scratch.dense;
     for (unsigned i = 0; i < n; ++i) {
         h->matrix[i][i] = diag[i];
         dense_b[i] = b[i];
@@ -380,7 +381,7 @@ static tvo_status_t solve_parts_added(tvo_hessian_t *h, const tvo_real_t *diag, 
         }
     }
     h->rank_one_count = 0u;
-    return saddle_solve(h->matrix, primal_n, dual_n, dense_b, x, shift);
+    return saddle_solve(h->matrix, primal_n, dual_n, dense_b, x, shift, &h->scratch);
 }
 
 tvo_status_t tvo_saddle_solve_split(tvo_hessian_t *h, uint8_t primal_n, uint8_t dual_n, const tvo_real_t *b,
@@ -395,7 +396,7 @@ tvo_status_t tvo_saddle_solve_split(tvo_hessian_t *h, uint8_t primal_n, uint8_t 
         return parts > 0u && gamma == NULL ? TVO_ERR_NULL : TVO_ERR_DIMENSION;
     }
     if (parts == 0u) {
-        return saddle_solve(h->matrix, primal_n, dual_n, b, x, shift);
+        return saddle_solve(h->matrix, primal_n, dual_n, b, x, shift, &h->scratch);
     }
     const unsigned n = primal_n;
     for (unsigned i = 0; i < n; ++i) {
@@ -407,12 +408,12 @@ tvo_status_t tvo_saddle_solve_split(tvo_hessian_t *h, uint8_t primal_n, uint8_t 
         return TVO_ERR_NOT_FINITE;
     }
     /* The soft part alone: if it is positive definite the stiff parts are solved apart, exactly. */
-    tvo_real_t diag[TVO_MAX_Z_DIM];
+    tvo_solve_scratch_t *scratch = &h->scratch;
     for (unsigned i = 0; i < n; ++i) {
-        diag[i] = h->matrix[i][i];
+        scratch->diag[i] = h->matrix[i][i];
     }
     if (!cholesky_factor(&h->matrix[0][0], TVO_MAX_Z_DIM, n)) {
-        return solve_parts_added(h, diag, primal_n, dual_n, b, gamma, x, shift);
+        return solve_parts_added(h, primal_n, dual_n, b, gamma, x, shift);
     }
     if (shift != NULL) {
         *shift = TVO_R(0.0);
@@ -421,14 +422,14 @@ tvo_status_t tvo_saddle_solve_split(tvo_hessian_t *h, uint8_t primal_n, uint8_t 
      *   x = z + Y C^-1 (S^-1 gamma - U^T z),
      * (Woodbury for b, push-through for U gamma) where every term is of the solution's own size:
      * the stiff right-hand sides enter divided by their weights, never next to the soft ones. */
-    tvo_real_t z[TVO_MAX_Z_DIM];
-    tvo_real_t y_cols[TVO_MAX_RANK_ONE_PARTS][TVO_MAX_Z_DIM];
-    tvo_real_t capacitance[TVO_MAX_RANK_ONE_PARTS][TVO_MAX_RANK_ONE_PARTS];
-    tvo_real_t rhs[TVO_MAX_RANK_ONE_PARTS];
-    tvo_real_t w[TVO_MAX_RANK_ONE_PARTS];
+    tvo_real_t *z = scratch->first;
+    tvo_real_t(*y_cols)[TVO_MAX_Z_DIM] = scratch->columns;
+    tvo_real_t(*capacitance)[TVO_SOLVE_SMALL_DIM] = scratch->small;
+    tvo_real_t *rhs = scratch->small_rhs;
+    tvo_real_t *w = scratch->small_x;
     cholesky_substitute(&h->matrix[0][0], TVO_MAX_Z_DIM, n, b, z);
     for (unsigned k = 0; k < parts; ++k) {
-        substitute_sparse(&h->matrix[0][0], n, &h->rank_one[k], y_cols[k]);
+        substitute_sparse(&h->matrix[0][0], n, &h->rank_one[k], scratch->dense, y_cols[k]);
     }
     for (unsigned k = 0; k < parts; ++k) {
         const tvo_real_t inv_weight = TVO_R(1.0) / h->rank_one[k].weight;
@@ -445,11 +446,11 @@ tvo_status_t tvo_saddle_solve_split(tvo_hessian_t *h, uint8_t primal_n, uint8_t 
             capacitance[l][k] = avg;
         }
     }
-    if (!cholesky_factor(&capacitance[0][0], TVO_MAX_RANK_ONE_PARTS, parts)) {
+    if (!cholesky_factor(&capacitance[0][0], TVO_SOLVE_SMALL_DIM, parts)) {
         /* Nearly dependent directions (three planes of one robot in the plane): solve the sum. */
-        return solve_parts_added(h, diag, primal_n, dual_n, b, gamma, x, shift);
+        return solve_parts_added(h, primal_n, dual_n, b, gamma, x, shift);
     }
-    cholesky_substitute(&capacitance[0][0], TVO_MAX_RANK_ONE_PARTS, parts, rhs, w);
+    cholesky_substitute(&capacitance[0][0], TVO_SOLVE_SMALL_DIM, parts, rhs, w);
     for (unsigned i = 0; i < n; ++i) {
         tvo_real_t sum = z[i];
         for (unsigned k = 0; k < parts; ++k) {

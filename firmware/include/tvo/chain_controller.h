@@ -54,9 +54,18 @@ typedef struct {
     uint32_t flags;               /* TVO_FLAG_* (TVO_FLAG_ACCEL_SATURATED: |u| clipped) */
 } tvo_chain_command_t;
 
+/** The step's working storage (written before it is read: nothing in it between steps). */
+typedef struct {
+    tvo_law_workspace_t law;
+    tvo_output_derivs_t state;                                 /* x^(0..k-1) where the law is evaluated */
+    tvo_dirty_derivative_t filter[TVO_MAX_RELATIVE_DEGREE - 1]; /* the filters as the step would leave them */
+    tvo_real_t input[TVO_MAX_Z_DIM];                           /* the law's u */
+} tvo_chain_controller_work_t;
+
 typedef struct {
     tvo_chain_config_t cfg;
     tvo_law_t law;
+    tvo_chain_controller_work_t work; /* scratch, off the step's stack: no state between steps */
     const tvo_objective_t *objective;
     tvo_sample_clock_t clock;
     tvo_dirty_derivative_t filter[TVO_MAX_RELATIVE_DEGREE - 1]; /* cascade: y -> y' -> y'' */

@@ -110,9 +110,30 @@ typedef struct {
     tvo_real_t regularization;                        /* Hessian shift of the solve, 0 if none */
 } tvo_controller_telemetry_t;
 
+/** The step's working storage (the law's, the derivatives it is evaluated at, the filter's trial
+ *  copy): written before it is read, so it holds nothing between steps, and not on the stack. */
+typedef struct {
+    tvo_law_workspace_t law;
+    tvo_output_derivs_t output;                      /* z^(0..k-1) where the law is evaluated */
+    tvo_real_t output_accel[TVO_MAX_Z_DIM];          /* z^(k) it demands */
+    tvo_real_t gradient[TVO_MAX_OUTPUT_DIM];
+    tvo_real_t gradient_rate[TVO_MAX_OUTPUT_DIM];
+    tvo_real_t rate_filtered[TVO_MAX_OUTPUT_DIM];    /* position-only: the filter's y' at the sample */
+    tvo_dirty_derivative_t velocity_filter;          /* the filter as the step would leave it */
+    /* Per robot (entries 0..n-1): */
+    tvo_real_t heading_at_sample[TVO_MAX_ROBOTS];
+    tvo_real_t heading[TVO_MAX_ROBOTS];              /* where the law is evaluated */
+    tvo_real_t heading_cs[TVO_MAX_ROBOTS][2];        /* its cos, sin: trigonometry once per robot */
+    tvo_real_t speed[TVO_MAX_ROBOTS];                /* the dynamic extension's speed there */
+    tvo_real_t speed_state[TVO_MAX_ROBOTS];          /* the extension's state as the step would leave it */
+    tvo_real_t speed_next[TVO_MAX_ROBOTS];
+    tvo_real_t accel[TVO_MAX_ROBOTS];
+} tvo_controller_work_t;
+
 typedef struct {
     tvo_controller_config_t cfg;
     tvo_law_t law;
+    tvo_controller_work_t work; /* scratch, off the step's stack: no state between steps */
     const tvo_objective_t *objective;
     tvo_dirty_derivative_t velocity_filter;
     tvo_real_t period_s;

@@ -47,6 +47,17 @@ typedef struct {
     tvo_real_t regularization;  /* set by the evaluation */
 } tvo_law_report_t;
 
+/** The evaluation's working storage: a controller keeps one beside its law, so the step's stack
+ *  holds none of it (its contents mean nothing between evaluations). */
+typedef struct {
+    tvo_jet_t y_jet[TVO_MAX_Z_DIM];            /* z along the trajectory, then the Hessian's seeds */
+    tvo_jet_t g_jet[TVO_MAX_Z_DIM];            /* the gradient's jets */
+    tvo_hessian_t hessian;                     /* with the solve's own scratch */
+    tvo_real_t rhs[TVO_MAX_Z_DIM];
+    tvo_real_t gamma[TVO_MAX_RANK_ONE_PARTS];
+    tvo_time_jet_t time;                       /* along the trajectory, then frozen */
+} tvo_law_workspace_t;
+
 /**
  * Validates k in 1..TVO_MAX_RELATIVE_DEGREE (TVO_ERR_PARAM), 1 <= dim <= TVO_MAX_Z_DIM
  * (TVO_ERR_DIMENSION) and that the gains make s^k + a_{k-1}s^{k-1} + ... + a_0 Hurwitz
@@ -55,7 +66,8 @@ typedef struct {
 tvo_status_t tvo_law_init(tvo_law_t *law, uint8_t relative_degree, uint8_t dim, const tvo_real_t *gain);
 
 /**
- * y_k[0..dim-1] = z^(k) demanded by the law at (z^[k-1], t). eval may be NULL.
+ * y_k[0..dim-1] = z^(k) demanded by the law at (z^[k-1], t). eval may be NULL. Its workspace is an
+ * automatic tvo_law_workspace_t (tests and tools); the controllers use tvo_law_evaluate_report.
  * An indefinite or singular primal Hessian is regularised (eval->regularization > 0, see
  * tvo/linsolve.h); TVO_ERR_NOT_POSITIVE_DEFINITE if even that fails or the equality constraints are
  * dependent; TVO_ERR_NUMERIC if a result is not finite. On error y_k is zeroed.
@@ -64,10 +76,10 @@ tvo_status_t tvo_law_evaluate(const tvo_law_t *law, const tvo_objective_t *objec
                               const tvo_output_derivs_t *y, const tvo_time_jet_t *t,
                               tvo_real_t *y_k, tvo_law_eval_t *eval);
 
-/** The same evaluation for the step: only the report's outputs are written. */
+/** The same evaluation for the step, in the caller's workspace: only the report's outputs are written. */
 tvo_status_t tvo_law_evaluate_report(const tvo_law_t *law, const tvo_objective_t *objective,
                                      const tvo_output_derivs_t *y, const tvo_time_jet_t *t, tvo_real_t *y_k,
-                                     tvo_law_report_t *report);
+                                     tvo_law_report_t *report, tvo_law_workspace_t *work);
 
 #ifdef __cplusplus
 }

@@ -52,10 +52,25 @@ typedef struct {
  * (the soft directions are lost to cancellation) nor add its gradient to the soft ones (their
  * digits are lost to rounding). tvo_saddle_solve_split solves with such parts apart.
  */
+/** Small systems of the solve: the equalities' Schur complement or the parts' capacitance. */
+#define TVO_SOLVE_SMALL_DIM (TVO_MAX_EQUALITIES > TVO_MAX_RANK_ONE_PARTS ? TVO_MAX_EQUALITIES : TVO_MAX_RANK_ONE_PARTS)
+
+/** The solve's working storage, kept beside the matrix so the step's stack stays small. */
+typedef struct {
+    tvo_real_t diag[TVO_MAX_Z_DIM];                       /* the diagonal a factor overwrites */
+    tvo_real_t first[TVO_MAX_Z_DIM];                      /* P^-1 b */
+    tvo_real_t dense[TVO_MAX_Z_DIM];                      /* a sparse vector spread out, or b with parts */
+    tvo_real_t columns[TVO_SOLVE_SMALL_DIM][TVO_MAX_Z_DIM]; /* P^-1 C^T or A^-1 U */
+    tvo_real_t small[TVO_SOLVE_SMALL_DIM][TVO_SOLVE_SMALL_DIM];
+    tvo_real_t small_rhs[TVO_SOLVE_SMALL_DIM];
+    tvo_real_t small_x[TVO_SOLVE_SMALL_DIM];
+} tvo_solve_scratch_t;
+
 typedef struct {
     tvo_matrix_t matrix;
     uint8_t rank_one_count;
     tvo_rank_one_t rank_one[TVO_MAX_RANK_ONE_PARTS];
+    tvo_solve_scratch_t scratch; /* tvo_saddle_solve_split's; no meaning between solves */
 } tvo_hessian_t;
 
 /** Zeroes the leading n x n block and drops every rank-one part. */
