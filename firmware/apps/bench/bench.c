@@ -24,8 +24,7 @@ int main(void);
 #endif
 
 static uint32_t samples[BENCH_STEPS];
-static bench_loop_t loop; /* its problem also holds chain_k3's, which runs after the others */
-static tvo_chain_controller_t chain;
+static bench_loop_t loop; /* its problem and controller's place also serve chain_k3, which runs last */
 
 /* Insertion sort: bounded (BENCH_STEPS^2), no library, enough for a median of 400 values. */
 static void sort_samples(uint32_t count)
@@ -127,7 +126,7 @@ static tvo_status_t bench_chain_k3(void)
     cfg.gain[1] = TVO_R(7.68);
     cfg.gain[2] = TVO_R(4.8);
     if (last == TVO_OK) {
-        last = tvo_chain_controller_init(&chain, &cfg, &loop.problem.objective, 0u, &bad);
+        last = tvo_chain_controller_init(&loop.chain, &cfg, &loop.problem.objective, 0u, &bad);
     }
     if (last != TVO_OK) {
         return last;
@@ -144,7 +143,7 @@ static tvo_status_t bench_chain_k3(void)
         meas.y = state;
         meas.stamp_tick = n * cfg.period_ticks + cfg.period_ticks - cfg.delay_ticks;
         (void)tvo_chain_predict(3u, 2u, &state, cmd.u, half_s, &state);
-        MEASURE(samples[n], tvo_chain_controller_step(&chain, &meas, (n + 1u) * cfg.period_ticks, &cmd));
+        MEASURE(samples[n], tvo_chain_controller_step(&loop.chain, &meas, (n + 1u) * cfg.period_ticks, &cmd));
     }
     report("chain_k3", BENCH_STEPS, last);
     return last;

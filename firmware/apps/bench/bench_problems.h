@@ -14,6 +14,7 @@
 #ifndef TVO_BENCH_PROBLEMS_H
 #define TVO_BENCH_PROBLEMS_H
 
+#include "tvo/chain_controller.h"
 #include "tvo/controller.h"
 #include "tvo/problem.h"
 
@@ -25,7 +26,10 @@ typedef enum { BENCH_UNICYCLE = 0, BENCH_OBSTACLES4, BENCH_FORMATION2, BENCH_UNI
 
 typedef struct {
     tvo_problem_t problem;
-    tvo_controller_t controller;
+    union { /* one at a time (chain_k3 runs after the unicycle problems): the bench fits 16 KiB of RAM */
+        tvo_controller_t controller;
+        tvo_chain_controller_t chain;
+    };
     tvo_controller_config_t cfg;
     tvo_pose_t pose[TVO_MAX_ROBOTS];      /* the plant */
     tvo_command_t cmd;                    /* the controller's output, applied by the plant */
