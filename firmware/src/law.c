@@ -40,8 +40,10 @@ tvo_status_t tvo_law_init(tvo_law_t *law, uint8_t relative_degree, uint8_t dim, 
     if (!gains_are_hurwitz(relative_degree, gain)) {
         return TVO_ERR_PARAM;
     }
+    static const tvo_real_t factorial[3] = {TVO_R(1.0), TVO_R(1.0), TVO_R(2.0)};
     for (uint8_t i = 0; i < relative_degree; ++i) {
         law->gain[i] = gain[i];
+        law->gain_by_factorial[i] = gain[i] * factorial[i];
     }
     law->relative_degree = relative_degree;
     law->dim = dim;
@@ -140,14 +142,19 @@ static tvo_status_t evaluate(const tvo_law_t *law, const tvo_objective_t *object
     tvo_real_t(*h)[TVO_MAX_Z_DIM] = hessian->matrix;
     hessian->rank_one_count = 0u;
     /* Coefficients above k: the passes of order k never read them, the Hessian's seeds clear them. */
-    for (unsigned i = 0; i < m; ++i) {
-        for (unsigned j = 0; j < k; ++j) {
-            const tvo_real_t value = y->d[j][i];
-            if (!isfinite(value)) {
-                return TVO_ERR_NOT_FINITE;
-            }
-            y_jet[i].c[j] = value * inv_factorial[j];
+    tvo_real_t probe = TVO_R(0.0); /* value * 0 is NaN exactly for a value that is not finite */
+    for (unsigned j = 0; j < k; ++j) {
+        const tvo_real_t *value = y->d[j];
+        const tvo_real_t scale = inv_factorial[j];
+        for (unsigned i = 0; i < m; ++i) {
+            probe += value[i] * TVO_R(0.0);
+            y_jet[i].c[j] = value[i] * scale;
         }
+    }
+    if (!isfinite(probe)) {
+        return TVO_ERR_NOT_FINITE;
+    }
+    for (unsigned i = 0; i < m; ++i) {
         y_jet[i].c[k] = TVO_R(0.0);
         for (unsigned j = 0; j < m; ++j) {
             h[i][j] = TVO_R(0.0);
@@ -171,41 +178,46 @@ static tvo_status_t evaluate(const tvo_law_t *law, const tvo_objective_t *object
     static const tvo_real_t factorial[4] = {TVO_R(1.0), TVO_R(1.0), TVO_R(2.0), TVO_R(6.0)};
     tvo_real_t *rhs = work->rhs;
     tvo_real_t *gamma = work->gamma;
+    const tvo_real_t r_scale = factorial[k];
+    const tvo_real_t *gain = law->gain_by_factorial;
     for (unsigned i = 0; i < m; ++i) {
-        tvo_real_t sum = g_jet[i].c[k] * factorial[k];
+        tvo_real_t sum = g_jet[i].c[k] * r_scale;
         for (unsigned j = 0; j < k; ++j) {
-            sum += law->gain[j] * (g_jet[i].c[j] * factorial[j]);
+            sum += gain[j] * g_jet[i].c[j];
         }
-        if (!isfinite(sum)) {
-            return TVO_ERR_NUMERIC; /* a gradient coefficient was not finite */
-        }
+        probe += sum * TVO_R(0.0);
         rhs[i] = sum;
     }
     for (unsigned p = 0; p < hessian->rank_one_count; ++p) {
         const tvo_jet_t *g = &hessian->rank_one[p].gradient;
-        tvo_real_t sum = g->c[k] * factorial[k];
+        tvo_real_t sum = g->c[k] * r_scale;
         for (unsigned j = 0; j < k; ++j) {
-            sum += law->gain[j] * (g->c[j] * factorial[j]);
+            sum += gain[j] * g->c[j];
         }
-        if (!isfinite(sum)) {
-            return TVO_ERR_NUMERIC;
-        }
+        probe += sum * TVO_R(0.0);
         gamma[p] = sum;
+    }
+    if (!isfinite(probe)) {
+        return TVO_ERR_NUMERIC; /* a gradient coefficient was not finite */
     }
     if (grad_rows != NULL) {
         /* The gradient and its derivatives as one vector each (the parts added in: for telemetry). */
+        const unsigned count = m < grad_count ? m : grad_count;
+        const unsigned parts = hessian->rank_one_count;
         for (unsigned j = 0; j <= k; ++j) {
-            if (grad_rows[j] == NULL) {
+            tvo_real_t *row = grad_rows[j];
+            if (row == NULL) {
                 continue;
             }
-            for (unsigned i = 0; i < m && i < grad_count; ++i) {
-                grad_rows[j][i] = g_jet[i].c[j] * factorial[j];
+            const tvo_real_t scale = factorial[j];
+            for (unsigned i = 0; i < count; ++i) {
+                row[i] = g_jet[i].c[j] * scale;
             }
-            for (unsigned p = 0; p < hessian->rank_one_count; ++p) {
+            for (unsigned p = 0; p < parts; ++p) {
                 const tvo_rank_one_t *part = &hessian->rank_one[p];
                 for (unsigned e = 0; e < part->count; ++e) {
-                    if (part->index[e] < grad_count) {
-                        grad_rows[j][part->index[e]] += part->gradient.c[j] * factorial[j] * part->value[e];
+                    if (part->index[e] < count) {
+                        row[part->index[e]] += part->gradient.c[j] * scale * part->value[e];
                     }
                 }
             }

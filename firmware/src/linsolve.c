@@ -60,12 +60,12 @@ static void cholesky_substitute(const tvo_real_t *l, unsigned stride, unsigned n
 
 static int all_finite(const tvo_real_t *v, unsigned n)
 {
+    /* v * 0 is NaN exactly for an infinite or NaN v: one test for the lot, no branch per entry. */
+    tvo_real_t probe = TVO_R(0.0);
     for (unsigned i = 0; i < n; ++i) {
-        if (!isfinite(v[i])) {
-            return 0;
-        }
+        probe += v[i] * TVO_R(0.0);
     }
-    return 1;
+    return isfinite(probe);
 }
 
 tvo_status_t tvo_cholesky_solve(tvo_matrix_t a, uint8_t n, const tvo_real_t *b, tvo_real_t *x)
@@ -151,6 +151,27 @@ tvo_status_t tvo_saddle_solve(tvo_matrix_t a, uint8_t primal_n, uint8_t dual_n, 
     return saddle_solve(a, primal_n, dual_n, b, x, shift, &scratch);
 }
 
+/* A diagonal positive definite P without equalities (tracking alone: W) needs no factor. 1 if solved
+ * (x and *shift written), 0 if a is not such a matrix; NaN off the diagonal is not 0, so not diagonal. */
+static int diagonal_solve(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t n, const tvo_real_t *b, tvo_real_t *x)
+{
+    for (uint8_t i = 0; i < n; ++i) {
+        const tvo_real_t *row = a[i];
+        for (uint8_t j = 0; j < n; ++j) {
+            if (j != i && row[j] != TVO_R(0.0)) {
+                return 0;
+            }
+        }
+        if (!(row[i] > TVO_R(0.0)) || !isfinite(row[i])) {
+            return 0; /* not positive definite (or not finite): the general path says which */
+        }
+    }
+    for (uint8_t i = 0; i < n; ++i) {
+        x[i] = b[i] / a[i][i];
+    }
+    return 1;
+}
+
 /* b must not be one of the scratch's vectors other than dense. */
 static tvo_status_t saddle_solve(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t primal_n, uint8_t dual_n, const tvo_real_t *b,
                                  tvo_real_t *x, tvo_real_t *shift, tvo_solve_scratch_t *scratch)
@@ -164,6 +185,9 @@ static tvo_status_t saddle_solve(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t primal_
     }
     if (shift != NULL) {
         *shift = TVO_R(0.0);
+    }
+    if (dual_n == 0u && all_finite(b, n) && diagonal_solve(a, n, b, x)) {
+        return all_finite(x, n) ? TVO_OK : TVO_ERR_NUMERIC;
     }
     for (uint8_t i = 0; i < n; ++i) {
         if (!all_finite(a[i], n) || !isfinite(b[i])) {

@@ -25,6 +25,7 @@ typedef struct {
     uint8_t relative_degree;                       /* k */
     uint8_t dim;                                   /* size of z: m (+ q multipliers) */
     tvo_real_t gain[TVO_MAX_RELATIVE_DEGREE];      /* a_0 .. a_{k-1}: s^k + a_{k-1} s^{k-1} + .. + a_0 */
+    tvo_real_t gain_by_factorial[TVO_MAX_RELATIVE_DEGREE]; /* a_i i!: they weigh the jets' coefficients */
 } tvo_law_t;
 
 /** z^(0..k-1) at the evaluation instant, each in R^dim. */
