@@ -212,8 +212,9 @@ tvo_status_t tvo_chain_controller_step(tvo_chain_controller_t *ctl, const tvo_ch
         cmd->flags = TVO_FLAG_SAFE_STOP;
         return (ctl == NULL) ? TVO_ERR_NULL : TVO_ERR_NOT_INITIALIZED;
     }
-    tvo_period_t period;
-    if (tvo_sample_clock_begin(&ctl->clock, apply_tick, &period) != TVO_OK) {
+    tvo_chain_controller_work_t *work = &ctl->work;
+    tvo_period_t *period = &work->period;
+    if (tvo_sample_clock_begin(&ctl->clock, apply_tick, period) != TVO_OK) {
         *cmd = ctl->held;
         cmd->flags = TVO_FLAG_HOLDING;
         return TVO_ERR_OUT_OF_ORDER;
@@ -222,7 +223,6 @@ tvo_status_t tvo_chain_controller_step(tvo_chain_controller_t *ctl, const tvo_ch
     if (st == TVO_OK) {
         st = tvo_sample_clock_check_stamp(&ctl->clock, meas->stamp_tick, apply_tick);
     }
-    tvo_chain_controller_work_t *work = &ctl->work;
     tvo_output_derivs_t *x = &work->state;
     tvo_dirty_derivative_t *filter = work->filter; /* kept on success */
     if (st == TVO_OK) {
@@ -235,47 +235,47 @@ tvo_status_t tvo_chain_controller_step(tvo_chain_controller_t *ctl, const tvo_ch
         st = derivatives_at_sample(ctl, filter, meas, x);
     }
     if (st != TVO_OK) {
-        return hold_or_stop(ctl, &period, st, cmd);
+        return hold_or_stop(ctl, period, st, cmd);
     }
 
     const uint8_t k = ctl->cfg.relative_degree;
     const uint8_t m = ctl->objective->primal_dim;
     /* Where the law is evaluated (the sample, the application instant, or the middle of the held
      * interval); the state is carried there with the held command. */
-    (void)tvo_sample_clock_locate(&ctl->clock, &period, meas->stamp_tick, ctl->cfg.delay_compensation,
+    (void)tvo_sample_clock_locate(&ctl->clock, period, meas->stamp_tick, ctl->cfg.delay_compensation,
                                   ctl->cfg.zoh_aware);
-    const uint32_t flags = (period.carry_s > TVO_R(0.0)) ? TVO_FLAG_PREDICTED : 0u;
-    if (period.carry_s > TVO_R(0.0)) {
-        st = tvo_chain_predict(k, m, x, ctl->held.u, period.carry_s, x);
+    const uint32_t flags = (period->carry_s > TVO_R(0.0)) ? TVO_FLAG_PREDICTED : 0u;
+    if (period->carry_s > TVO_R(0.0)) {
+        st = tvo_chain_predict(k, m, x, ctl->held.u, period->carry_s, x);
     }
-    tvo_time_jet_t t;
-    (void)tvo_time_jet_at(&period.law_time, ctl->cfg.tick_hz, TVO_R(1.0), &t); /* the clock's times are valid */
+    tvo_time_jet_t *t = &work->time;
+    (void)tvo_time_jet_at(&period->law_time, ctl->cfg.tick_hz, TVO_R(1.0), t); /* the clock's times are valid */
     tvo_real_t *u = work->input;
     if (st == TVO_OK) {
         tvo_law_report_t report = {NULL, NULL, 0u, TVO_R(0.0)};
-        st = tvo_law_evaluate_report(&ctl->law, ctl->objective, x, &t, u, &report, &work->law);
+        st = tvo_law_evaluate_report(&ctl->law, ctl->objective, x, t, u, &report, &work->law);
     }
     if (st != TVO_OK) {
-        return hold_or_stop(ctl, &period, st, cmd);
+        return hold_or_stop(ctl, period, st, cmd);
     }
-    tvo_chain_command_t next;
-    memset(&next, 0, sizeof(next));
-    next.flags = flags;
+    tvo_chain_command_t *next = &work->command;
+    memset(next, 0, sizeof(*next));
+    next->flags = flags;
     for (uint8_t i = 0; i < m; ++i) {
-        next.u[i] = u[i];
-        if (next.u[i] > ctl->cfg.input_max) {
-            next.u[i] = ctl->cfg.input_max;
-            next.flags |= TVO_FLAG_ACCEL_SATURATED;
-        } else if (next.u[i] < -ctl->cfg.input_max) {
-            next.u[i] = -ctl->cfg.input_max;
-            next.flags |= TVO_FLAG_ACCEL_SATURATED;
+        next->u[i] = u[i];
+        if (next->u[i] > ctl->cfg.input_max) {
+            next->u[i] = ctl->cfg.input_max;
+            next->flags |= TVO_FLAG_ACCEL_SATURATED;
+        } else if (next->u[i] < -ctl->cfg.input_max) {
+            next->u[i] = -ctl->cfg.input_max;
+            next->flags |= TVO_FLAG_ACCEL_SATURATED;
         }
     }
-    (void)tvo_sample_clock_end(&ctl->clock, &period, 1, meas->stamp_tick);
+    (void)tvo_sample_clock_end(&ctl->clock, period, 1, meas->stamp_tick);
     for (uint8_t j = 0; j + 1u < TVO_MAX_RELATIVE_DEGREE; ++j) {
         ctl->filter[j] = filter[j];
     }
-    ctl->held = next;
-    *cmd = next;
+    ctl->held = *next;
+    *cmd = *next;
     return TVO_OK;
 }

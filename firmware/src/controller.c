@@ -278,15 +278,15 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     const uint8_t n = cfg->robot_count;
 
     /* The period's timing: apply ticks must advance; elapsed time never wraps. */
-    tvo_period_t period;
-    if (tvo_sample_clock_begin(&ctl->clock, apply_tick, &period) != TVO_OK) {
+    tvo_controller_work_t *work = &ctl->work;
+    tvo_period_t *period = &work->period;
+    if (tvo_sample_clock_begin(&ctl->clock, apply_tick, period) != TVO_OK) {
         *cmd = ctl->held;
         cmd->flags = TVO_FLAG_HOLDING;
         return TVO_ERR_OUT_OF_ORDER;
     }
 
     tvo_status_t st = check_measurement(ctl, meas, apply_tick);
-    tvo_controller_work_t *work = &ctl->work;
     tvo_real_t *rate_filtered = work->rate_filtered;
     tvo_real_t *heading_at_sample = work->heading_at_sample;
     const int position_only = cfg->velocity_source == TVO_VELOCITY_FROM_POSITION;
@@ -305,14 +305,14 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
         }
     }
     if (st != TVO_OK) {
-        return hold_or_stop(ctl, &period, st, cmd);
+        return hold_or_stop(ctl, period, st, cmd);
     }
 
     /* Where the law is evaluated and how far the sampled state is carried there (the age to the
      * application instant with compensation, half a period on when ZOH-aware). */
-    (void)tvo_sample_clock_locate(&ctl->clock, &period, meas->stamp_tick, cfg->delay_compensation, cfg->zoh_aware);
+    (void)tvo_sample_clock_locate(&ctl->clock, period, meas->stamp_tick, cfg->delay_compensation, cfg->zoh_aware);
     const int zoh_aware = cfg->zoh_aware != 0u;
-    const tvo_real_t carry_s = period.carry_s;
+    const tvo_real_t carry_s = period->carry_s;
     uint32_t flags = (carry_s > TVO_R(0.0)) ? TVO_FLAG_PREDICTED : 0u;
 
     /* State the law sees: at the sample (no compensation), the application instant, or mid-interval. */
@@ -365,8 +365,8 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     }
 
     /* The objective's time, from the period's exact elapsed time (no 64-bit division). */
-    tvo_time_jet_t t;
-    (void)tvo_time_jet_at(&period.law_time, cfg->tick_hz, TVO_R(1.0), &t); /* the clock's times are valid */
+    tvo_time_jet_t *t = &work->time;
+    (void)tvo_time_jet_at(&period->law_time, cfg->tick_hz, TVO_R(1.0), t); /* the clock's times are valid */
 
     /* Multipliers (equality constraints) and their rates: controller states living at apply times. */
     const uint8_t primal = ctl->objective->primal_dim;
@@ -379,12 +379,12 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     tvo_real_t *y_accel = work->output_accel;
     tvo_law_report_t report = {work->gradient, work->gradient_rate, primal, TVO_R(0.0)};
     if (st == TVO_OK) {
-        st = tvo_law_evaluate_report(&ctl->law, ctl->objective, y, &t, y_accel, &report, &work->law);
+        st = tvo_law_evaluate_report(&ctl->law, ctl->objective, y, t, y_accel, &report, &work->law);
     }
-    tvo_command_t next;
+    tvo_command_t *next = &work->command;
     for (unsigned r = n; r < TVO_MAX_ROBOTS; ++r) {
-        next.speed_mps[r] = TVO_R(0.0); /* robots beyond n hold zeros */
-        next.turn_rate_radps[r] = TVO_R(0.0);
+        next->speed_mps[r] = TVO_R(0.0); /* robots beyond n hold zeros */
+        next->turn_rate_radps[r] = TVO_R(0.0);
     }
     if (st == TVO_OK && report.regularization > TVO_R(0.0)) {
         flags |= TVO_FLAG_REGULARIZED;
@@ -400,23 +400,23 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
             flags |= TVO_FLAG_LOW_SPEED;
         }
         accel[r] = clamp(accel[r], cfg->accel_max_mps2, TVO_FLAG_ACCEL_SATURATED, &flags);
-        next.turn_rate_radps[r] = clamp(turn_rate, cfg->omega_max_radps, TVO_FLAG_OMEGA_SATURATED, &flags);
+        next->turn_rate_radps[r] = clamp(turn_rate, cfg->omega_max_radps, TVO_FLAG_OMEGA_SATURATED, &flags);
         /* Anti-windup: the integrator state itself is limited, so no excess accumulates. */
         speed_next[r] = clamp(speed_state[r] + accel[r] * ctl->period_s, cfg->speed_max_mps,
                               TVO_FLAG_SPEED_SATURATED, &flags);
         /* Hold the interval average of the speed state, so the held straight-line distance matches
          * the continuous extension to second order in h (end-of-interval speed would lead by a h/2). */
-        next.speed_mps[r] = TVO_R(0.5) * (speed_state[r] + speed_next[r]);
-        if (!isfinite(next.speed_mps[r]) || !isfinite(next.turn_rate_radps[r])) {
+        next->speed_mps[r] = TVO_R(0.5) * (speed_state[r] + speed_next[r]);
+        if (!isfinite(next->speed_mps[r]) || !isfinite(next->turn_rate_radps[r])) {
             st = TVO_ERR_NUMERIC;
         }
     }
 
     if (st != TVO_OK) {
-        return hold_or_stop(ctl, &period, st, cmd);
+        return hold_or_stop(ctl, period, st, cmd);
     }
     /* The step succeeded: from here on its working copies become the controller's state. */
-    (void)tvo_sample_clock_end(&ctl->clock, &period, 1, meas->stamp_tick);
+    (void)tvo_sample_clock_end(&ctl->clock, period, 1, meas->stamp_tick);
     if (position_only) {
         ctl->velocity_filter = *filter;
     }
@@ -436,15 +436,15 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     for (uint8_t r = 0; r < n; ++r) {
         ctl->speed_state_mps[r] = speed_next[r];
         /* The estimate lives at the application instant; the next sample dead-reckons from here. */
-        ctl->heading_estimate_rad[r] = tvo_wrap_angle(heading[r] + ctl->held.turn_rate_radps[r] * (period.age_s - carry_s));
+        ctl->heading_estimate_rad[r] = tvo_wrap_angle(heading[r] + ctl->held.turn_rate_radps[r] * (period->age_s - carry_s));
         tm->accel_mps2[r] = accel[r];
     }
-    next.flags = flags;
-    ctl->held = next;
-    *cmd = next;
+    next->flags = flags;
+    ctl->held = *next;
+    *cmd = *next;
 
     /* Telemetry of the entries this problem uses (the rest stay zero from init). */
-    tm->objective_time_s = t.t_s;
+    tm->objective_time_s = t->t_s;
     for (uint8_t i = 0; i < 2u * n; ++i) {
         tm->output_m[i] = y->d[0][i];
         tm->output_rate_mps[i] = y->d[1][i];

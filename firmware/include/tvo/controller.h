@@ -120,6 +120,9 @@ typedef struct {
     tvo_real_t gradient_rate[TVO_MAX_OUTPUT_DIM];
     tvo_real_t rate_filtered[TVO_MAX_OUTPUT_DIM];    /* position-only: the filter's y' at the sample */
     tvo_dirty_derivative_t velocity_filter;          /* the filter as the step would leave it */
+    tvo_period_t period;                             /* the period's timing */
+    tvo_time_jet_t time;                             /* the objective's time where the law is evaluated */
+    tvo_command_t command;                           /* the command the step would hold */
     /* Per robot (entries 0..n-1): */
     tvo_real_t heading_at_sample[TVO_MAX_ROBOTS];
     tvo_real_t heading[TVO_MAX_ROBOTS];              /* where the law is evaluated */
