@@ -2,7 +2,8 @@
  * tvo_saddle_solve: [P C^T; C D] x = b by Cholesky of P and the Schur complement of the duals.
  * Against a hand-computed KKT solution; x aliasing b; dependent equality rows; an indefinite P
  * regularised by the ladder (shift reported, the result solves the shifted system); the Gershgorin
- * fallback when the ladder (up to 1e2 s) does not suffice; non-finite input.
+ * fallback when the ladder (up to 1e2 s) does not suffice; non-finite input; a diagonal P solved
+ * without a factor.
  */
 #include "test_support.h"
 
@@ -69,6 +70,38 @@ static void test_hand_computed_kkt_solution(void)
     ASSERT_NEAR(1.0, x[0], TEST_TOL(64, 5.0));
     ASSERT_NEAR(2.0, x[1], TEST_TOL(64, 5.0));
     ASSERT_NEAR(-5.0, x[2], TEST_TOL(64, 5.0));
+}
+
+static void test_diagonal_primal_block_is_solved_directly_or_regularised(void)
+{
+    /* A diagonal P without equalities (tracking alone) is solved entry by entry, x aliasing b. */
+    const double A[9] = {2.0, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 4.0};
+    mat_t a;
+    double copy[TVO_MAX_Z_DIM][TVO_MAX_Z_DIM];
+    load(a, copy, A, 3);
+    tvo_real_t x[3] = {TVO_R(1.0), TVO_R(-3.0), TVO_R(2.0)};
+    tvo_real_t shift = TVO_R(-1.0);
+    ASSERT_STATUS(TVO_OK, tvo_saddle_solve(a, 3, 0, x, x, &shift));
+    ASSERT_NEAR(0.0, shift, 0.0);
+    ASSERT_ULPS(0.5, x[0], 1);
+    ASSERT_ULPS(-6.0, x[1], 1);
+    ASSERT_ULPS(0.5, x[2], 1);
+    /* A zero or negative diagonal entry is not positive definite: the ladder's shift, as for any P. */
+    const double B[4] = {2.0, 0.0, 0.0, -1.0};
+    load(a, copy, B, 2);
+    const tvo_real_t b[2] = {TVO_R(1.0), TVO_R(1.0)};
+    ASSERT_STATUS(TVO_OK, tvo_saddle_solve(a, 2, 0, b, x, &shift));
+    TEST_ASSERT_TRUE(shift > TVO_R(1.0)); /* the smallest ladder step above |-1| */
+    double scale = 0.0;
+    const double b_d[2] = {1.0, 1.0};
+    ASSERT_LE(residual(copy, 2, 2, test_d(shift), x, b_d, &scale), TEST_TOL(64, scale), "shifted residual");
+    /* Non-finite entries anywhere still name themselves. */
+    load(a, copy, A, 3);
+    a[1][1] = TEST_INF;
+    ASSERT_STATUS(TVO_ERR_NOT_FINITE, tvo_saddle_solve(a, 3, 0, x, x, &shift));
+    load(a, copy, A, 3);
+    a[0][2] = TEST_NAN;
+    ASSERT_STATUS(TVO_ERR_NOT_FINITE, tvo_saddle_solve(a, 3, 0, x, x, &shift));
 }
 
 static void test_formation_kkt_with_two_equalities_solves_the_system(void)
@@ -367,6 +400,7 @@ int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_hand_computed_kkt_solution);
+    RUN_TEST(test_diagonal_primal_block_is_solved_directly_or_regularised);
     RUN_TEST(test_formation_kkt_with_two_equalities_solves_the_system);
     RUN_TEST(test_solution_may_alias_the_right_hand_side);
     RUN_TEST(test_dependent_equalities_are_rejected);
