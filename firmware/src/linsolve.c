@@ -166,6 +166,9 @@ static int diagonal_solve(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t n, const tvo_r
             return 0; /* not positive definite (or not finite): the general path says which */
         }
     }
+    if (!all_finite(b, n)) {
+        return 0; /* the general path names it */
+    }
     for (uint8_t i = 0; i < n; ++i) {
         x[i] = b[i] / a[i][i];
     }
@@ -186,7 +189,7 @@ static tvo_status_t saddle_solve(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t primal_
     if (shift != NULL) {
         *shift = TVO_R(0.0);
     }
-    if (dual_n == 0u && all_finite(b, n) && diagonal_solve(a, n, b, x)) {
+    if (dual_n == 0u && diagonal_solve(a, n, b, x)) {
         return all_finite(x, n) ? TVO_OK : TVO_ERR_NUMERIC;
     }
     for (uint8_t i = 0; i < n; ++i) {
