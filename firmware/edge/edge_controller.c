@@ -218,6 +218,18 @@ tvo_status_t tvo_edge_controller_step_or_keep(tvo_edge_controller_t *ctl, const 
     return st;
 }
 
+void tvo_edge_controller_clear_scratch(tvo_edge_controller_t *ctl)
+{
+    if (ctl == NULL) {
+        return;
+    }
+    if (ctl->ops == &unicycle_ops) {
+        memset(&ctl->u.unicycle.work, 0, sizeof(ctl->u.unicycle.work));
+    } else if (ctl->ops == &chain_ops) {
+        memset(&ctl->u.chain.work, 0, sizeof(ctl->u.chain.work));
+    }
+}
+
 const tvo_edge_controller_ops_t *tvo_edge_controller_ops(int32_t plant_kind)
 {
     switch (plant_kind) {

@@ -72,6 +72,12 @@ struct tvo_edge_controller {
 tvo_status_t tvo_edge_controller_step_or_keep(tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas,
                                               uint32_t apply_tick, tvo_edge_command_t *cmd);
 
+/**
+ * Zeroes the controller's work area (scratch its step writes before reading, holding no state
+ * between steps), so two controllers in the same state compare equal byte for byte (tests, fuzzing).
+ */
+void tvo_edge_controller_clear_scratch(tvo_edge_controller_t *ctl);
+
 /** The operations for a session's plant kind (session_t.PLANT_*), NULL if there are none. */
 const tvo_edge_controller_ops_t *tvo_edge_controller_ops(int32_t plant_kind);
 

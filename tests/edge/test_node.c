@@ -158,11 +158,7 @@ static tvo_node_session_t *session_without_scratch(const tvo_node_session_t *ses
 {
     static tvo_node_session_t copy;
     memcpy(&copy, session, sizeof(copy));
-    if (copy.controller.ops == tvo_edge_controller_ops(TVO_LCM_SESSION_T_PLANT_UNICYCLE)) {
-        memset(&copy.controller.u.unicycle.work, 0, sizeof(copy.controller.u.unicycle.work));
-    } else if (copy.controller.ops == tvo_edge_controller_ops(TVO_LCM_SESSION_T_PLANT_CHAIN)) {
-        memset(&copy.controller.u.chain.work, 0, sizeof(copy.controller.u.chain.work));
-    }
+    tvo_edge_controller_clear_scratch(&copy.controller);
     return &copy;
 }
 
