@@ -11,6 +11,9 @@
 
 #include "tvo/linsolve.h"
 
+/* 0! .. 3! (k <= TVO_MAX_RELATIVE_DEGREE <= 3). */
+static const tvo_real_t factorial[4] = {TVO_R(1.0), TVO_R(1.0), TVO_R(2.0), TVO_R(6.0)};
+
 static int gains_are_hurwitz(uint8_t k, const tvo_real_t *a)
 {
     for (uint8_t i = 0; i < k; ++i) {
@@ -40,7 +43,6 @@ tvo_status_t tvo_law_init(tvo_law_t *law, uint8_t relative_degree, uint8_t dim, 
     if (!gains_are_hurwitz(relative_degree, gain)) {
         return TVO_ERR_PARAM;
     }
-    static const tvo_real_t factorial[3] = {TVO_R(1.0), TVO_R(1.0), TVO_R(2.0)};
     for (uint8_t i = 0; i < relative_degree; ++i) {
         law->gain[i] = gain[i];
         law->gain_by_factorial[i] = gain[i] * factorial[i];
@@ -175,7 +177,6 @@ static tvo_status_t evaluate(const tvo_law_t *law, const tvo_objective_t *object
 
     /* grad^(j) = j! c_j; rhs = r + sum_{j<k} a_j grad^(j) with r = k! c_k, for the gradient jets and
      * (gamma) for each part kept apart, whose gradient is a multiple of its direction. */
-    static const tvo_real_t factorial[4] = {TVO_R(1.0), TVO_R(1.0), TVO_R(2.0), TVO_R(6.0)};
     tvo_real_t *rhs = work->rhs;
     tvo_real_t *gamma = work->gamma;
     const tvo_real_t r_scale = factorial[k];
