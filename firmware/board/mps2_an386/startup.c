@@ -5,13 +5,7 @@
 #include <stdint.h>
 
 #include "board.h"
-
-extern uint32_t __data_load__[];
-extern uint32_t __data_start__[];
-extern uint32_t __data_end__[];
-extern uint32_t __bss_start__[];
-extern uint32_t __bss_end__[];
-extern uint32_t __stack_top__[];
+#include "../common/cortex_m_startup.h" /* by path, as board.h includes the console */
 
 int main(void);
 void tvo_reset_handler(void);
@@ -23,12 +17,7 @@ void tvo_fault_handler(void);
 
 void tvo_reset_handler(void)
 {
-    for (uint32_t *src = __data_load__, *dst = __data_start__; dst < __data_end__;) {
-        *dst++ = *src++;
-    }
-    for (uint32_t *dst = __bss_start__; dst < __bss_end__;) {
-        *dst++ = 0u;
-    }
+    tvo_startup_init_memory();
 #if defined(__ARM_FP)
     SCB_CPACR |= CPACR_CP10_CP11_FULL; /* before any float instruction runs */
     __asm__ volatile("dsb\n\tisb" ::: "memory");
@@ -38,11 +27,8 @@ void tvo_reset_handler(void)
 
 void tvo_fault_handler(void)
 {
-    tvo_board_puts("FATAL: processor fault\n");
-    tvo_board_exit(99);
+    tvo_startup_report_fault();
 }
-
-typedef void (*tvo_vector_t)(void);
 
 /* Initial stack pointer, then the 15 system exception vectors. */
 __attribute__((section(".vectors"), used)) static const tvo_vector_t vector_table[16] = {
