@@ -12,17 +12,12 @@ if(NOT GENERATOR)
 endif()
 set(steps 20)
 
-function(run what)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "${what} FAILED (exit ${rc}):\n${out}")
-  endif()
-endfunction()
+include("${CMAKE_CURRENT_LIST_DIR}/../cmake/run_command.cmake")
 
-run("configure" ${CMAKE_COMMAND} -S ${FIRMWARE_DIR} -B ${BINARY_DIR} -G ${GENERATOR}
+tvo_run("configure" QUIET ${CMAKE_COMMAND} -S ${FIRMWARE_DIR} -B ${BINARY_DIR} -G ${GENERATOR}
     -DCMAKE_TOOLCHAIN_FILE=${TOOLCHAIN_FILE} -DTVO_BOARD=microbit -DCMAKE_BUILD_TYPE=Release
     -DTVO_LIMITS= -DTVO_BENCH_STEPS=${steps})
-run("build" ${CMAKE_COMMAND} --build ${BINARY_DIR} --target tvo_bench --parallel 2)
+tvo_run("build" QUIET ${CMAKE_COMMAND} --build ${BINARY_DIR} --target tvo_bench --parallel 2)
 
 execute_process(
   COMMAND ${QEMU} -M microbit -nographic -monitor none -semihosting-config enable=on,target=native

@@ -27,15 +27,7 @@ else()
 endif()
 cmake_host_system_information(RESULT jobs QUERY NUMBER_OF_LOGICAL_CORES)
 
-# Runs a command, echoing it; stops the test with <what> if it fails.
-function(run what)
-  string(REPLACE ";" " " shown "${ARGN}")
-  message(STATUS "${what}: ${shown}")
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "${what} FAILED (exit ${rc})")
-  endif()
-endfunction()
+include("${CMAKE_CURRENT_LIST_DIR}/../cmake/run_command.cmake")
 
 if(NOT BUILD_TYPE)
   set(BUILD_TYPE Release)
@@ -59,9 +51,9 @@ if(TOOLCHAIN_FILE AND EXISTS "${BINARY_DIR}/CMakeCache.txt"
 endif()
 
 # 1. firmware/ on its own, as a cross build would configure it
-run("configure firmware" "${CMAKE_COMMAND}" -S "${FIRMWARE_DIR}" -B "${BINARY_DIR}" ${common_args}
+tvo_run("configure firmware" "${CMAKE_COMMAND}" -S "${FIRMWARE_DIR}" -B "${BINARY_DIR}" ${common_args}
     -DTVO_STACK_USAGE=ON)
-run("build tvo_core" "${CMAKE_COMMAND}" --build "${BINARY_DIR}" --target tvo_core --parallel ${jobs})
+tvo_run("build tvo_core" "${CMAKE_COMMAND}" --build "${BINARY_DIR}" --target tvo_core --parallel ${jobs})
 
 load_cache("${BINARY_DIR}" READ_WITH_PREFIX SUB_ CMAKE_NM CMAKE_SIZE CMAKE_C_COMPILER)
 set(core_lib "${BINARY_DIR}/libtvo_core.a")
@@ -84,9 +76,9 @@ endif()
 #    negative control (a program calling malloc must be caught by the same check)
 if(PROBE_DIR)
   set(probe_bin "${BINARY_DIR}/probe")
-  run("configure probe" "${CMAKE_COMMAND}" -S "${PROBE_DIR}" -B "${probe_bin}" ${common_args}
+  tvo_run("configure probe" "${CMAKE_COMMAND}" -S "${PROBE_DIR}" -B "${probe_bin}" ${common_args}
       "-DTVO_CORE_LIBRARY=${core_lib}" "-DTVO_FIRMWARE_INCLUDE_DIR=${FIRMWARE_DIR}/include")
-  run("build probe" "${CMAKE_COMMAND}" --build "${probe_bin}" --parallel ${jobs})
+  tvo_run("build probe" "${CMAKE_COMMAND}" --build "${probe_bin}" --parallel ${jobs})
 
   tvo_find_allocator_symbols(found "${SUB_CMAKE_NM}" "${probe_bin}/alloc_probe.elf")
   if(found)
@@ -110,7 +102,7 @@ if(PROBE_DIR)
   endif()
 endif()
 if(PROBE_DIR AND FOOTPRINT_TOOL)
-  run("footprint" "${FOOTPRINT_TOOL}" --core-dir "${BINARY_DIR}/CMakeFiles/tvo_core.dir"
+  tvo_run("footprint" "${FOOTPRINT_TOOL}" --core-dir "${BINARY_DIR}/CMakeFiles/tvo_core.dir"
       --map "${probe_bin}/alloc_probe.map" --root tvo_controller_step --root tvo_chain_controller_step
       --json "${BINARY_DIR}/footprint.json")
 endif()

@@ -34,15 +34,7 @@ endif()
 set(prefix ${WORK}/prefix)
 file(REMOVE_RECURSE ${WORK})   # every run starts from nothing: a stale prefix would hide a broken install
 
-# Runs a command, echoing it; stops the test with <what> if it fails.
-function(run what)
-  string(REPLACE ";" " " shown "${ARGN}")
-  message(STATUS "${what}: ${shown}")
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "${what} FAILED (exit ${rc})")
-  endif()
-endfunction()
+include("${CMAKE_CURRENT_LIST_DIR}/../cmake/run_command.cmake")
 
 # Configures, builds and installs the standalone core from FIRMWARE_DIR into the prefix.
 function(install_standalone_core)
@@ -50,22 +42,22 @@ function(install_standalone_core)
   if(TOOLCHAIN_FILE)
     set(build_args -DCMAKE_BUILD_TYPE=MinSizeRel -DCMAKE_TOOLCHAIN_FILE=${TOOLCHAIN_FILE})   # as the presets
   endif()
-  run("configure the core" ${CMAKE_COMMAND} -S ${FIRMWARE_DIR} -B ${WORK}/core -G ${GENERATOR}
+  tvo_run("configure the core" ${CMAKE_COMMAND} -S ${FIRMWARE_DIR} -B ${WORK}/core -G ${GENERATOR}
       ${build_args} -DTVO_DOUBLE=${TVO_DOUBLE} "-DTVO_LIMITS=${LIMITS}")
-  run("build the core" ${CMAKE_COMMAND} --build ${WORK}/core --target tvo_core --parallel 2)
-  run("install the core" ${CMAKE_COMMAND} --install ${WORK}/core --prefix ${prefix})
+  tvo_run("build the core" ${CMAKE_COMMAND} --build ${WORK}/core --target tvo_core --parallel 2)
+  tvo_run("install the core" ${CMAKE_COMMAND} --install ${WORK}/core --prefix ${prefix})
 endfunction()
 
 function(build_and_run_consumer)
-  run("configure the consumer" ${CMAKE_COMMAND} -S ${consumer_dir} -B ${WORK}/consumer -G ${GENERATOR}
+  tvo_run("configure the consumer" ${CMAKE_COMMAND} -S ${consumer_dir} -B ${WORK}/consumer -G ${GENERATOR}
       -DCMAKE_BUILD_TYPE=Release -DEXAMPLE_DIR=${EXAMPLE_DIR} ${expect_args} ${ARGN})
-  run("build the consumer" ${CMAKE_COMMAND} --build ${WORK}/consumer --target app --parallel 2)
-  run("run the consumer" ${WORK}/consumer/app)
+  tvo_run("build the consumer" ${CMAKE_COMMAND} --build ${WORK}/consumer --target app --parallel 2)
+  tvo_run("run the consumer" ${WORK}/consumer/app)
 endfunction()
 
 if(MODE STREQUAL "install")
   if(BUILD_DIR)
-    run("install the core" ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
+    tvo_run("install the core" ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
   else()
     install_standalone_core()
   endif()
@@ -86,12 +78,12 @@ elseif(MODE STREQUAL "cross")
   while(variants)
     list(POP_FRONT variants name extra_source)
     set(bin ${WORK}/main_loop_${name})
-    # A list in an initial cache file: run()'s arguments would split it.
+    # A list in an initial cache file: tvo_run()'s arguments would split it.
     file(WRITE ${WORK}/main_loop_${name}.cmake "set(BOARD_SOURCES \"${board_dir}/startup.c;${board_dir}/board.c;${board_dir}/../common/semihosting_console.c;${extra_source}\" CACHE STRING \"\")\n")
-    run("configure the main loop (${name})" ${CMAKE_COMMAND} -C ${WORK}/main_loop_${name}.cmake
+    tvo_run("configure the main loop (${name})" ${CMAKE_COMMAND} -C ${WORK}/main_loop_${name}.cmake
         -S ${EXAMPLE_DIR} -B ${bin} -G ${GENERATOR} -DCMAKE_BUILD_TYPE=MinSizeRel
         -DCMAKE_TOOLCHAIN_FILE=${TOOLCHAIN_FILE} -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_COMPILE_WARNING_AS_ERROR=ON)
-    run("build the main loop (${name})" ${CMAKE_COMMAND} --build ${bin} --parallel 2)
+    tvo_run("build the main loop (${name})" ${CMAKE_COMMAND} --build ${bin} --parallel 2)
     tvo_find_allocator_symbols(found ${core_CMAKE_NM} ${bin}/main_loop.elf)
     string(REPLACE ";" ", " found_text "${found}")
     if(name STREQUAL "malloc")
@@ -106,7 +98,7 @@ elseif(MODE STREQUAL "cross")
     endif()
   endwhile()
   if(QEMU)
-    run("run the main loop with the simulated robot" ${QEMU} -M mps2-an386 -cpu cortex-m4 -nographic
+    tvo_run("run the main loop with the simulated robot" ${QEMU} -M mps2-an386 -cpu cortex-m4 -nographic
         -monitor none -semihosting-config enable=on,target=native -kernel ${WORK}/main_loop_plant/main_loop.elf)
   endif()
 else()

@@ -1,0 +1,21 @@
+# include() from a -P script: tvo_run(<what> [QUIET] <command> [args...]) runs the command and stops
+# the script with "<what> FAILED (exit N)" if it fails. By default it echoes the command and lets
+# its output through; QUIET keeps the output and shows it only with the failure.
+function(tvo_run what)
+  set(command ${ARGN})
+  list(GET command 0 first)
+  if(first STREQUAL "QUIET")
+    list(REMOVE_AT command 0)
+    execute_process(COMMAND ${command} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+    if(NOT rc EQUAL 0)
+      message(FATAL_ERROR "${what} FAILED (exit ${rc}):\n${out}")
+    endif()
+    return()
+  endif()
+  string(REPLACE ";" " " shown "${command}")
+  message(STATUS "${what}: ${shown}")
+  execute_process(COMMAND ${command} RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${what} FAILED (exit ${rc})")
+  endif()
+endfunction()
