@@ -232,13 +232,7 @@ static tvo_status_t evaluate(const tvo_law_t *law, const tvo_objective_t *object
         }
     }
     /* Symmetrise: the exact Hessian is symmetric; rounding should not make the solve see otherwise. */
-    for (unsigned i = 0; i < m; ++i) {
-        for (unsigned j = i + 1u; j < m; ++j) {
-            const tvo_real_t sym = TVO_R(0.5) * (h[i][j] + h[j][i]);
-            h[i][j] = sym;
-            h[j][i] = sym;
-        }
-    }
+    tvo_symmetrize(&h[0][0], TVO_MAX_Z_DIM, m);
     if (hessian_out != NULL) {
         /* The whole Hessian, rank-one parts included, for tests and tools. */
         for (unsigned i = 0; i < m; ++i) {
@@ -247,12 +241,7 @@ static tvo_status_t evaluate(const tvo_law_t *law, const tvo_objective_t *object
             }
         }
         for (unsigned p = 0; p < hessian->rank_one_count; ++p) {
-            const tvo_rank_one_t *part = &hessian->rank_one[p];
-            for (unsigned i = 0; i < part->count; ++i) {
-                for (unsigned j = 0; j < part->count; ++j) {
-                    hessian_out[part->index[i]][part->index[j]] += part->weight * part->value[i] * part->value[j];
-                }
-            }
+            tvo_rank_one_add_to(&hessian->rank_one[p], hessian_out, NULL, 0u);
         }
     }
 

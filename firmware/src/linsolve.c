@@ -235,13 +235,7 @@ static tvo_status_t saddle_solve(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t primal_
         }
     }
     /* The Schur complement is symmetric in exact arithmetic; average away the rounding. */
-    for (uint8_t q = 0; q < dual_n; ++q) {
-        for (uint8_t r = 0; r < q; ++r) {
-            const tvo_real_t avg = TVO_R(0.5) * (schur[q][r] + schur[r][q]);
-            schur[q][r] = avg;
-            schur[r][q] = avg;
-        }
-    }
+    tvo_symmetrize(&schur[0][0], TVO_SOLVE_SMALL_DIM, dual_n);
     if (!cholesky_factor(&schur[0][0], TVO_SOLVE_SMALL_DIM, dual_n)) {
         return TVO_ERR_NOT_POSITIVE_DEFINITE;
     }
@@ -269,18 +263,26 @@ void tvo_hessian_clear(tvo_hessian_t *h, uint8_t n)
     h->rank_one_count = 0u;
 }
 
-/* The part's curvature into the matrix and its gradient jets into grad. */
-static void add_into_matrix(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_t *grad, uint8_t order)
+/* The part's curvature into the matrix and its gradient jets into grad (when not NULL). */
+static void add_into_matrix(const tvo_rank_one_t *part, tvo_matrix_t m, tvo_jet_t *grad, uint8_t order)
 {
     for (unsigned i = 0; i < part->count; ++i) {
         const tvo_real_t wi = part->weight * part->value[i];
         for (unsigned j = 0; j < part->count; ++j) {
-            h->matrix[part->index[i]][part->index[j]] += wi * part->value[j];
+            m[part->index[i]][part->index[j]] += wi * part->value[j];
         }
         if (grad != NULL) {
             tvo_jet_axpy(part->value[i], &part->gradient, order, &grad[part->index[i]]);
         }
     }
+}
+
+void tvo_rank_one_add_to(const tvo_rank_one_t *part, tvo_matrix_t m, tvo_jet_t *grad, uint8_t order)
+{
+    if (part == NULL || m == NULL || part->count > TVO_RANK_ONE_MAX_ENTRIES) {
+        return;
+    }
+    add_into_matrix(part, m, grad, order);
 }
 
 static tvo_real_t rank_one_size(const tvo_rank_one_t *part)
@@ -298,7 +300,7 @@ void tvo_hessian_add_part(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_
         return;
     }
     if (!(part->weight > TVO_R(0.0))) {
-        add_into_matrix(h, part, grad, order); /* only positive curvature can be solved apart */
+        add_into_matrix(part, h->matrix, grad, order); /* only positive curvature can be solved apart */
         return;
     }
     if (h->rank_one_count < TVO_MAX_RANK_ONE_PARTS) {
@@ -313,10 +315,10 @@ void tvo_hessian_add_part(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_
         }
     }
     if (rank_one_size(part) > rank_one_size(&h->rank_one[smallest])) {
-        add_into_matrix(h, &h->rank_one[smallest], grad, order);
+        add_into_matrix(&h->rank_one[smallest], h->matrix, grad, order);
         h->rank_one[smallest] = *part;
     } else {
-        add_into_matrix(h, part, grad, order);
+        add_into_matrix(part, h->matrix, grad, order);
     }
 }
 
@@ -333,7 +335,7 @@ void tvo_hessian_add(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_t *gr
     if (rank_one_size(part) > TVO_STIFF_RATIO * scale) {
         tvo_hessian_add_part(h, part, grad, order);
     } else {
-        add_into_matrix(h, part, grad, order);
+        add_into_matrix(part, h->matrix, grad, order);
     }
 }
 
@@ -357,7 +359,7 @@ void tvo_hessian_settle(tvo_hessian_t *h, uint8_t n, uint8_t dual_n, tvo_jet_t *
             }
             kept++;
         } else {
-            add_into_matrix(h, part, grad, order);
+            add_into_matrix(part, h->matrix, grad, order);
         }
     }
     h->rank_one_count = (uint8_t)kept;
@@ -402,7 +404,7 @@ static tvo_status_t solve_parts_added(tvo_hessian_t *h, uint8_t primal_n, uint8_
     }
     for (unsigned k = 0; k < h->rank_one_count && k < TVO_MAX_RANK_ONE_PARTS; ++k) {
         const tvo_rank_one_t *part = &h->rank_one[k];
-        add_into_matrix(h, part, NULL, 0u);
+        add_into_matrix(part, h->matrix, NULL, 0u);
         for (unsigned i = 0; i < part->count; ++i) {
             dense_b[part->index[i]] += gamma[k] * part->value[i];
         }
@@ -466,13 +468,7 @@ tvo_status_t tvo_saddle_solve_split(tvo_hessian_t *h, uint8_t primal_n, uint8_t 
         }
         capacitance[k][k] += inv_weight;
     }
-    for (unsigned k = 0; k < parts; ++k) {
-        for (unsigned l = 0; l < k; ++l) {
-            const tvo_real_t avg = TVO_R(0.5) * (capacitance[k][l] + capacitance[l][k]);
-            capacitance[k][l] = avg;
-            capacitance[l][k] = avg;
-        }
-    }
+    tvo_symmetrize(&capacitance[0][0], TVO_SOLVE_SMALL_DIM, parts);
     if (!cholesky_factor(&capacitance[0][0], TVO_SOLVE_SMALL_DIM, parts)) {
         /* Nearly dependent directions (three planes of one robot in the plane): solve the sum. */
         return solve_parts_added(h, primal_n, dual_n, b, gamma, x, shift);
