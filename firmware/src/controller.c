@@ -9,6 +9,7 @@
 
 #include <string.h>
 
+#include "shape.h"
 #include "tvo/trig.h"
 
 #define TVO_PI TVO_R(3.14159265358979323846)
@@ -260,22 +261,11 @@ static tvo_status_t position_only_estimate(const tvo_controller_t *ctl, tvo_dirt
     return TVO_OK;
 }
 
-tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t *meas,
-                                 uint32_t apply_tick, tvo_command_t *cmd)
+/* The step of an initialised controller driving n robots (n = cfg.robot_count). */
+TVO_SHAPE_BODY tvo_status_t step_shape(tvo_controller_t *ctl, const tvo_measurement_t *meas, uint32_t apply_tick,
+                                       tvo_command_t *cmd, const uint8_t n)
 {
-    if (cmd == NULL) {
-        return TVO_ERR_NULL;
-    }
-    if (ctl == NULL) {
-        stop_command(cmd, TVO_FLAG_SAFE_STOP);
-        return TVO_ERR_NULL;
-    }
-    if (!ctl->initialized) {
-        stop_command(cmd, TVO_FLAG_SAFE_STOP);
-        return TVO_ERR_NOT_INITIALIZED;
-    }
     const tvo_controller_config_t *cfg = &ctl->cfg;
-    const uint8_t n = cfg->robot_count;
 
     /* The period's timing: apply ticks must advance; elapsed time never wraps. */
     tvo_controller_work_t *work = &ctl->work;
@@ -454,6 +444,28 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     }
     tm->regularization = report.regularization;
     return TVO_OK;
+}
+
+tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t *meas,
+                                 uint32_t apply_tick, tvo_command_t *cmd)
+{
+    if (cmd == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (ctl == NULL) {
+        stop_command(cmd, TVO_FLAG_SAFE_STOP);
+        return TVO_ERR_NULL;
+    }
+    if (!ctl->initialized) {
+        stop_command(cmd, TVO_FLAG_SAFE_STOP);
+        return TVO_ERR_NOT_INITIALIZED;
+    }
+#if TVO_SPECIALIZE_SHAPES
+    if (ctl->cfg.robot_count == 1u) {
+        return step_shape(ctl, meas, apply_tick, cmd, 1u);
+    }
+#endif
+    return step_shape(ctl, meas, apply_tick, cmd, ctl->cfg.robot_count);
 }
 
 tvo_status_t tvo_controller_check(const tvo_controller_t *ctl, const tvo_measurement_t *meas, uint32_t apply_tick)

@@ -9,6 +9,7 @@
 
 #include <string.h>
 
+#include "shape.h"
 #include "tvo/linsolve.h"
 
 /* 0! .. 3! (k <= TVO_MAX_RELATIVE_DEGREE <= 3). */
@@ -112,25 +113,15 @@ static tvo_status_t add_jet_hessian(const tvo_objective_t *objective, const tvo_
     return TVO_OK;
 }
 
-/* The evaluation; each output is optional: grad_rows[j] receives grad^(j) (j <= k, grad_count
- * entries), hessian_out the Hessian, *shift the solve's regularisation. */
-static tvo_status_t evaluate(const tvo_law_t *law, const tvo_objective_t *objective, const tvo_output_derivs_t *y,
-                             const tvo_time_jet_t *t, tvo_real_t *y_k, tvo_real_t *const *grad_rows,
-                             uint8_t grad_count, tvo_real_t (*hessian_out)[TVO_MAX_Z_DIM], tvo_real_t *shift,
-                             tvo_law_workspace_t *work)
+/* The evaluation for a validated law and objective of order k and dimension m; each output is
+ * optional: grad_rows[j] receives grad^(j) (j <= k, grad_count entries), hessian_out the Hessian,
+ * *shift the solve's regularisation. */
+TVO_SHAPE_BODY tvo_status_t evaluate_shape(const tvo_law_t *law, const tvo_objective_t *objective,
+                                              const tvo_output_derivs_t *y, const tvo_time_jet_t *t,
+                                              tvo_real_t *y_k, tvo_real_t *const *grad_rows, uint8_t grad_count,
+                                              tvo_real_t (*hessian_out)[TVO_MAX_Z_DIM], tvo_real_t *shift,
+                                              tvo_law_workspace_t *work, const uint8_t k, const uint8_t m)
 {
-    if (law == NULL || objective == NULL || y == NULL || t == NULL || y_k == NULL || work == NULL) {
-        return TVO_ERR_NULL;
-    }
-    if (law->relative_degree == 0u || law->relative_degree > TVO_MAX_RELATIVE_DEGREE) {
-        return TVO_ERR_NOT_INITIALIZED;
-    }
-    const uint8_t k = law->relative_degree;
-    const uint8_t m = law->dim;
-    if (m == 0u || m > TVO_MAX_Z_DIM || objective->dim != m ||
-        (unsigned)objective->primal_dim + objective->dual_dim != m) {
-        return TVO_ERR_DIMENSION;
-    }
     zero_output(y_k, m);
     if (!isfinite(t->t_s) || !isfinite(t->rate)) {
         return TVO_ERR_NOT_FINITE;
@@ -145,9 +136,11 @@ static tvo_status_t evaluate(const tvo_law_t *law, const tvo_objective_t *object
     hessian->rank_one_count = 0u;
     /* Coefficients above k: the passes of order k never read them, the Hessian's seeds clear them. */
     tvo_real_t probe = TVO_R(0.0); /* value * 0 is NaN exactly for a value that is not finite */
+    TVO_SHAPE_UNROLL
     for (unsigned j = 0; j < k; ++j) {
         const tvo_real_t *value = y->d[j];
         const tvo_real_t scale = inv_factorial[j];
+        TVO_SHAPE_UNROLL
         for (unsigned i = 0; i < m; ++i) {
             probe += value[i] * TVO_R(0.0);
             y_jet[i].c[j] = value[i] * scale;
@@ -156,8 +149,10 @@ static tvo_status_t evaluate(const tvo_law_t *law, const tvo_objective_t *object
     if (!isfinite(probe)) {
         return TVO_ERR_NOT_FINITE;
     }
+    TVO_SHAPE_UNROLL
     for (unsigned i = 0; i < m; ++i) {
         y_jet[i].c[k] = TVO_R(0.0);
+        TVO_SHAPE_UNROLL
         for (unsigned j = 0; j < m; ++j) {
             h[i][j] = TVO_R(0.0);
         }
@@ -181,8 +176,10 @@ static tvo_status_t evaluate(const tvo_law_t *law, const tvo_objective_t *object
     tvo_real_t *gamma = work->gamma;
     const tvo_real_t r_scale = factorial[k];
     const tvo_real_t *gain = law->gain_by_factorial;
+    TVO_SHAPE_UNROLL
     for (unsigned i = 0; i < m; ++i) {
         tvo_real_t sum = g_jet[i].c[k] * r_scale;
+        TVO_SHAPE_UNROLL
         for (unsigned j = 0; j < k; ++j) {
             sum += gain[j] * g_jet[i].c[j];
         }
@@ -192,6 +189,7 @@ static tvo_status_t evaluate(const tvo_law_t *law, const tvo_objective_t *object
     for (unsigned p = 0; p < hessian->rank_one_count; ++p) {
         const tvo_jet_t *g = &hessian->rank_one[p].gradient;
         tvo_real_t sum = g->c[k] * r_scale;
+        TVO_SHAPE_UNROLL
         for (unsigned j = 0; j < k; ++j) {
             sum += gain[j] * g->c[j];
         }
@@ -205,12 +203,14 @@ static tvo_status_t evaluate(const tvo_law_t *law, const tvo_objective_t *object
         /* The gradient and its derivatives as one vector each (the parts added in: for telemetry). */
         const unsigned count = m < grad_count ? m : grad_count;
         const unsigned parts = hessian->rank_one_count;
+        TVO_SHAPE_UNROLL
         for (unsigned j = 0; j <= k; ++j) {
             tvo_real_t *row = grad_rows[j];
             if (row == NULL) {
                 continue;
             }
             const tvo_real_t scale = factorial[j];
+            TVO_SHAPE_UNROLL
             for (unsigned i = 0; i < count; ++i) {
                 row[i] = g_jet[i].c[j] * scale;
             }
@@ -249,10 +249,37 @@ static tvo_status_t evaluate(const tvo_law_t *law, const tvo_objective_t *object
     if (st != TVO_OK) {
         return st;
     }
+    TVO_SHAPE_UNROLL
     for (uint8_t i = 0; i < m; ++i) {
         y_k[i] = -rhs[i];
     }
     return TVO_OK;
+}
+
+static tvo_status_t evaluate(const tvo_law_t *law, const tvo_objective_t *objective, const tvo_output_derivs_t *y,
+                             const tvo_time_jet_t *t, tvo_real_t *y_k, tvo_real_t *const *grad_rows,
+                             uint8_t grad_count, tvo_real_t (*hessian_out)[TVO_MAX_Z_DIM], tvo_real_t *shift,
+                             tvo_law_workspace_t *work)
+{
+    if (law == NULL || objective == NULL || y == NULL || t == NULL || y_k == NULL || work == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (law->relative_degree == 0u || law->relative_degree > TVO_MAX_RELATIVE_DEGREE) {
+        return TVO_ERR_NOT_INITIALIZED;
+    }
+    const uint8_t k = law->relative_degree;
+    const uint8_t m = law->dim;
+    if (m == 0u || m > TVO_MAX_Z_DIM || objective->dim != m ||
+        (unsigned)objective->primal_dim + objective->dual_dim != m) {
+        return TVO_ERR_DIMENSION;
+    }
+#if TVO_SPECIALIZE_SHAPES && TVO_MAX_RELATIVE_DEGREE >= TVO_SHAPE_ORDER
+    if (k == TVO_SHAPE_ORDER && m == TVO_SHAPE_OUTPUT_DIM) {
+        return evaluate_shape(law, objective, y, t, y_k, grad_rows, grad_count, hessian_out, shift, work,
+                              TVO_SHAPE_ORDER, TVO_SHAPE_OUTPUT_DIM);
+    }
+#endif
+    return evaluate_shape(law, objective, y, t, y_k, grad_rows, grad_count, hessian_out, shift, work, k, m);
 }
 
 tvo_status_t tvo_law_evaluate(const tvo_law_t *law, const tvo_objective_t *objective,

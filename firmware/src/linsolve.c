@@ -1,6 +1,8 @@
 /* Fixed-size Cholesky and saddle-point solves; see tvo/linsolve.h. */
 #include "tvo/linsolve.h"
 
+#include "shape.h"
+
 #include <string.h>
 
 /* Regularisation ladder: mu = s * 10^(LADDER_FIRST_EXP + j), j = 0 .. LADDER_STEPS - 1. */
@@ -152,27 +154,43 @@ tvo_status_t tvo_saddle_solve(tvo_matrix_t a, uint8_t primal_n, uint8_t dual_n, 
 }
 
 /* A diagonal positive definite P without equalities (tracking alone: W) needs no factor. 1 if solved
- * (x and *shift written), 0 if a is not such a matrix; NaN off the diagonal is not 0, so not diagonal. */
-static int diagonal_solve(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t n, const tvo_real_t *b, tvo_real_t *x)
+ * (x written), 0 if a is not such a matrix; NaN off the diagonal is not 0, so not diagonal. */
+TVO_SHAPE_BODY int diagonal_solve_shape(tvo_real_t (*a)[TVO_MAX_Z_DIM], const uint8_t n, const tvo_real_t *b,
+                                        tvo_real_t *x)
 {
+    tvo_real_t probe = TVO_R(0.0); /* v * 0 is NaN exactly for a v that is not finite */
+    TVO_SHAPE_UNROLL
     for (uint8_t i = 0; i < n; ++i) {
         const tvo_real_t *row = a[i];
+        TVO_SHAPE_UNROLL
         for (uint8_t j = 0; j < n; ++j) {
             if (j != i && row[j] != TVO_R(0.0)) {
                 return 0;
             }
         }
-        if (!(row[i] > TVO_R(0.0)) || !isfinite(row[i])) {
-            return 0; /* not positive definite (or not finite): the general path says which */
+        if (!(row[i] > TVO_R(0.0))) {
+            return 0; /* not positive definite: the general path says which */
         }
+        probe += (row[i] + b[i]) * TVO_R(0.0);
     }
-    if (!all_finite(b, n)) {
-        return 0; /* the general path names it */
+    if (!isfinite(probe)) {
+        return 0; /* the general path names the entry that is not finite */
     }
+    TVO_SHAPE_UNROLL
     for (uint8_t i = 0; i < n; ++i) {
         x[i] = b[i] / a[i][i];
     }
     return 1;
+}
+
+static int diagonal_solve(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t n, const tvo_real_t *b, tvo_real_t *x)
+{
+#if TVO_SPECIALIZE_SHAPES
+    if (n == TVO_SHAPE_OUTPUT_DIM) {
+        return diagonal_solve_shape(a, TVO_SHAPE_OUTPUT_DIM, b, x);
+    }
+#endif
+    return diagonal_solve_shape(a, n, b, x);
 }
 
 /* b must not be one of the scratch's vectors other than dense. */
