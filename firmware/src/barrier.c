@@ -3,6 +3,8 @@
 
 #include <string.h>
 
+#include "shape.h"
+
 /* Stand-in for "never" when c does not grow (alpha_c = 0): far beyond any run, still finite. */
 #define BARRIER_NEVER_S TVO_R(1e30)
 
@@ -176,16 +178,11 @@ tvo_status_t tvo_barrier_schedule_jet(const tvo_barrier_t *barrier, const tvo_ti
     return TVO_OK;
 }
 
-tvo_status_t tvo_barrier_weight_on_schedule(const tvo_barrier_t *barrier, const tvo_barrier_schedule_jet_t *schedule,
-                                            const tvo_jet_t *f_jet, uint8_t order, tvo_jet_t *w_jet,
-                                            tvo_real_t *dw_df)
+/* The weight for a validated call, at a jet order that is a constant in the common shape. */
+TVO_SHAPE_BODY tvo_status_t weight_on_schedule(const tvo_barrier_t *barrier, const tvo_barrier_schedule_jet_t *schedule,
+                                               const tvo_jet_t *f_jet, const uint8_t order, tvo_jet_t *w_jet,
+                                               tvo_real_t *dw_df)
 {
-    if (barrier == NULL || schedule == NULL || f_jet == NULL || w_jet == NULL) {
-        return TVO_ERR_NULL;
-    }
-    if (order > TVO_JET_MAX_ORDER) {
-        return TVO_ERR_PARAM;
-    }
     tvo_jet_t sigma;
     tvo_jet_sub(&schedule->slack, f_jet, order, &sigma);
     /* c sigma / delta0 = 1 + x: the branch is the logarithm when it is >= 1 at tau = 0. */
@@ -195,10 +192,16 @@ tvo_status_t tvo_barrier_weight_on_schedule(const tvo_barrier_t *barrier, const 
     const tvo_real_t delta0 = barrier->cfg.delta0;
     tvo_real_t slope = TVO_R(0.0);
     if (c_sigma.c[0] >= delta0) {
-        tvo_jet_t one;
-        tvo_jet_constant(TVO_R(1.0), &one);
-        tvo_jet_div(&one, &c_sigma, order, w_jet); /* w = 1 / (c sigma) */
-        slope = c0 * w_jet->c[0] * w_jet->c[0];  /* dw/df = -dw/dsigma = c w^2 */
+        /* w = 1 / (c sigma): the quotient recurrence with numerator 1 (tvo_jet_div's). */
+        TVO_SHAPE_UNROLL
+        for (unsigned j = 0; j <= order; ++j) {
+            tvo_real_t acc = (j == 0u) ? TVO_R(1.0) : TVO_R(0.0);
+            for (unsigned i = 0; i < j; ++i) {
+                acc -= w_jet->c[i] * c_sigma.c[j - i];
+            }
+            w_jet->c[j] = acc / c_sigma.c[0];
+        }
+        slope = c0 * w_jet->c[0] * w_jet->c[0]; /* dw/df = -dw/dsigma = c w^2 */
     } else {
         /* w = (1/delta0) P(u), P(u) = sum_{j<m_r} u^j, u = -x = 1 - c sigma / delta0, by Horner;
          * dw/df = (c / delta0^2) P'(u), also by Horner. */
@@ -219,7 +222,30 @@ tvo_status_t tvo_barrier_weight_on_schedule(const tvo_barrier_t *barrier, const 
     if (dw_df != NULL) {
         *dw_df = slope;
     }
-    return (tvo_jet_is_finite(w_jet, order) && isfinite(slope)) ? TVO_OK : TVO_ERR_NUMERIC;
+    tvo_real_t probe = slope * TVO_R(0.0); /* v * 0 is NaN exactly for a v that is not finite */
+    TVO_SHAPE_UNROLL
+    for (unsigned j = 0; j <= order; ++j) {
+        probe += w_jet->c[j] * TVO_R(0.0);
+    }
+    return isfinite(probe) ? TVO_OK : TVO_ERR_NUMERIC;
+}
+
+tvo_status_t tvo_barrier_weight_on_schedule(const tvo_barrier_t *barrier, const tvo_barrier_schedule_jet_t *schedule,
+                                            const tvo_jet_t *f_jet, uint8_t order, tvo_jet_t *w_jet,
+                                            tvo_real_t *dw_df)
+{
+    if (barrier == NULL || schedule == NULL || f_jet == NULL || w_jet == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (order > TVO_JET_MAX_ORDER) {
+        return TVO_ERR_PARAM;
+    }
+#if TVO_SPECIALIZE_SHAPES
+    if (order == TVO_SHAPE_ORDER) {
+        return weight_on_schedule(barrier, schedule, f_jet, TVO_SHAPE_ORDER, w_jet, dw_df);
+    }
+#endif
+    return weight_on_schedule(barrier, schedule, f_jet, order, w_jet, dw_df);
 }
 
 tvo_status_t tvo_barrier_weight_jet(const tvo_barrier_t *barrier, const tvo_jet_t *f_jet, const tvo_time_jet_t *t,

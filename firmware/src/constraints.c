@@ -3,6 +3,8 @@
 
 #include <string.h>
 
+#include "shape.h"
+
 /* A robot centre closer than this to an obstacle centre has no defined separating plane. */
 #define FREE_SPACE_MIN_CENTER_DISTANCE_M TVO_R(1e-6)
 
@@ -59,9 +61,9 @@ static tvo_real_t distance_sign(const tvo_distance_term_t *self)
 
 /* The distance bound's gradient jets, and with hessian its closed-form Hessian
  * H += (dw/df) grad f grad f^T + w hess f, grad f = 2 sign (D, -D), hess f = 2 sign [I -I; -I I]. */
-static tvo_status_t distance_sum(const tvo_distance_term_t *self, const tvo_jet_t *z, uint8_t dim,
-                                 const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
-                                 tvo_hessian_t *hessian)
+TVO_SHAPE_BODY tvo_status_t distance_sum_shape(const tvo_distance_term_t *self, const tvo_jet_t *z, uint8_t dim,
+                                               const tvo_time_jet_t *t, const uint8_t order, tvo_jet_t *grad,
+                                               tvo_hessian_t *hessian)
 {
     if (self == NULL || z == NULL || t == NULL || grad == NULL) {
         return TVO_ERR_NULL;
@@ -76,7 +78,7 @@ static tvo_status_t distance_sum(const tvo_distance_term_t *self, const tvo_jet_
     }
     const tvo_real_t sign = distance_sign(self);
     tvo_jet_t diff[2];
-    tvo_jet_t f;
+    tvo_jet_t f = {{TVO_R(0.0)}}; /* written to order by the product; set so no compiler sees it unset */
     tvo_jet_mul(&bound, &bound, order, &f);
     tvo_jet_scale(&f, -sign, order, &f);
     for (uint8_t axis = 0; axis < 2u; ++axis) {
@@ -143,6 +145,17 @@ static tvo_status_t distance_sum(const tvo_distance_term_t *self, const tvo_jet_
     return TVO_OK;
 }
 
+static tvo_status_t distance_sum(const tvo_distance_term_t *self, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t, uint8_t order,
+                                 tvo_jet_t *grad, tvo_hessian_t *hessian)
+{
+#if TVO_SPECIALIZE_SHAPES
+    if (order == TVO_SHAPE_ORDER) {
+        return distance_sum_shape(self, z, dim, t, TVO_SHAPE_ORDER, grad, hessian);
+    }
+#endif
+    return distance_sum_shape(self, z, dim, t, order, grad, hessian);
+}
+
 tvo_status_t tvo_distance_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
                                        uint8_t order, tvo_jet_t *grad)
 {
@@ -205,9 +218,9 @@ tvo_status_t tvo_halfspace_term_init(tvo_halfspace_term_t *term, const tvo_barri
 }
 
 /* The half-space's gradient jets, and with hessian its closed form H += (dw/df) a a^T (f is affine). */
-static tvo_status_t halfspace_sum(const tvo_halfspace_term_t *self, const tvo_jet_t *z, uint8_t dim,
-                                  const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
-                                  tvo_hessian_t *hessian)
+TVO_SHAPE_BODY tvo_status_t halfspace_sum_shape(const tvo_halfspace_term_t *self, const tvo_jet_t *z, uint8_t dim,
+                                                const tvo_time_jet_t *t, const uint8_t order, tvo_jet_t *grad,
+                                                tvo_hessian_t *hessian)
 {
     if (self == NULL || z == NULL || t == NULL || grad == NULL) {
         return TVO_ERR_NULL;
@@ -219,7 +232,7 @@ static tvo_status_t halfspace_sum(const tvo_halfspace_term_t *self, const tvo_je
     tvo_jet_t f;
     affine_time_jet(-self->bound_m, -self->bound_rate_mps, t, &f);
     for (uint8_t axis = 0; axis < 2u; ++axis) {
-        tvo_jet_t product;
+        tvo_jet_t product = {{TVO_R(0.0)}}; /* written to order; set so no compiler sees it unset */
         affine_time_jet(self->normal[axis], self->normal_rate[axis], t, &normal[axis]);
         tvo_jet_mul(&normal[axis], &z[self->offset + axis], order, &product);
         tvo_jet_add(&f, &product, order, &f);
@@ -257,6 +270,17 @@ static tvo_status_t halfspace_sum(const tvo_halfspace_term_t *self, const tvo_je
     }
     tvo_hessian_add(hessian, &part, grad, order);
     return TVO_OK;
+}
+
+static tvo_status_t halfspace_sum(const tvo_halfspace_term_t *self, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t, uint8_t order,
+                                  tvo_jet_t *grad, tvo_hessian_t *hessian)
+{
+#if TVO_SPECIALIZE_SHAPES
+    if (order == TVO_SHAPE_ORDER) {
+        return halfspace_sum_shape(self, z, dim, t, TVO_SHAPE_ORDER, grad, hessian);
+    }
+#endif
+    return halfspace_sum_shape(self, z, dim, t, order, grad, hessian);
 }
 
 tvo_status_t tvo_halfspace_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
@@ -370,9 +394,9 @@ static tvo_status_t free_space_plane(const tvo_free_space_term_t *self, uint8_t 
 
 /* The free space's gradient jets, and with hessian its closed form H += sum_i (dw_i/df) a_i a_i^T
  * (the planes are frozen at y_c: affine in y). The schedules are shared by every plane. */
-static tvo_status_t free_space_sum(const tvo_free_space_term_t *self, const tvo_jet_t *z, uint8_t dim,
-                                   const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
-                                   tvo_hessian_t *hessian)
+TVO_SHAPE_BODY tvo_status_t free_space_sum_shape(const tvo_free_space_term_t *self, const tvo_jet_t *z, uint8_t dim,
+                                                 const tvo_time_jet_t *t, const uint8_t order, tvo_jet_t *grad,
+                                                 tvo_hessian_t *hessian)
 {
     if (self == NULL || z == NULL || t == NULL || grad == NULL) {
         return TVO_ERR_NULL;
@@ -422,6 +446,17 @@ static tvo_status_t free_space_sum(const tvo_free_space_term_t *self, const tvo_
         tvo_hessian_add(hessian, &part, grad, order);
     }
     return TVO_OK;
+}
+
+static tvo_status_t free_space_sum(const tvo_free_space_term_t *self, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t, uint8_t order,
+                                   tvo_jet_t *grad, tvo_hessian_t *hessian)
+{
+#if TVO_SPECIALIZE_SHAPES
+    if (order == TVO_SHAPE_ORDER) {
+        return free_space_sum_shape(self, z, dim, t, TVO_SHAPE_ORDER, grad, hessian);
+    }
+#endif
+    return free_space_sum_shape(self, z, dim, t, order, grad, hessian);
 }
 
 tvo_status_t tvo_free_space_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,

@@ -464,6 +464,11 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     if (ctl->cfg.robot_count == 1u) {
         return step_shape(ctl, meas, apply_tick, cmd, 1u);
     }
+#if TVO_MAX_ROBOTS >= 2
+    if (ctl->cfg.robot_count == 2u) {
+        return step_shape(ctl, meas, apply_tick, cmd, 2u);
+    }
+#endif
 #endif
     return step_shape(ctl, meas, apply_tick, cmd, ctl->cfg.robot_count);
 }

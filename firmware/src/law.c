@@ -211,8 +211,10 @@ TVO_SHAPE_BODY tvo_status_t evaluate_shape(const tvo_law_t *law, const tvo_objec
             }
             const tvo_real_t scale = factorial[j];
             TVO_SHAPE_UNROLL
-            for (unsigned i = 0; i < count; ++i) {
-                row[i] = g_jet[i].c[j] * scale;
+            for (unsigned i = 0; i < m; ++i) { /* over m, a constant in the common shape */
+                if (i < count) {
+                    row[i] = g_jet[i].c[j] * scale;
+                }
             }
             for (unsigned p = 0; p < parts; ++p) {
                 const tvo_rank_one_t *part = &hessian->rank_one[p];
@@ -278,6 +280,12 @@ static tvo_status_t evaluate(const tvo_law_t *law, const tvo_objective_t *object
         return evaluate_shape(law, objective, y, t, y_k, grad_rows, grad_count, hessian_out, shift, work,
                               TVO_SHAPE_ORDER, TVO_SHAPE_OUTPUT_DIM);
     }
+#if TVO_MAX_Z_DIM >= TVO_SHAPE_PAIR_OUTPUT_DIM
+    if (k == TVO_SHAPE_ORDER && m == TVO_SHAPE_PAIR_OUTPUT_DIM) {
+        return evaluate_shape(law, objective, y, t, y_k, grad_rows, grad_count, hessian_out, shift, work,
+                              TVO_SHAPE_ORDER, TVO_SHAPE_PAIR_OUTPUT_DIM);
+    }
+#endif
 #endif
     return evaluate_shape(law, objective, y, t, y_k, grad_rows, grad_count, hessian_out, shift, work, k, m);
 }

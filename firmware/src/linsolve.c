@@ -15,8 +15,9 @@
  * make the soft directions look singular (a floor relative to the largest diagonal would). */
 #define AT(a, stride, i, j) ((a)[(size_t)(i) * (stride) + (j)])
 
-static int cholesky_factor(tvo_real_t *a, unsigned stride, unsigned n)
+TVO_SHAPE_BODY int cholesky_factor_shape(tvo_real_t *a, const unsigned stride, const unsigned n)
 {
+    TVO_SHAPE_UNROLL
     for (unsigned j = 0; j < n; ++j) {
         const tvo_real_t diagonal = AT(a, stride, j, j);
         tvo_real_t d = diagonal;
@@ -41,8 +42,10 @@ static int cholesky_factor(tvo_real_t *a, unsigned stride, unsigned n)
 }
 
 /* x = (L L^T)^-1 b with the factor in the lower triangle; x may alias b. */
-static void cholesky_substitute(const tvo_real_t *l, unsigned stride, unsigned n, const tvo_real_t *b, tvo_real_t *x)
+TVO_SHAPE_BODY void cholesky_substitute_shape(const tvo_real_t *l, const unsigned stride, const unsigned n,
+                                              const tvo_real_t *b, tvo_real_t *x)
 {
+    TVO_SHAPE_UNROLL
     for (unsigned i = 0; i < n; ++i) {
         tvo_real_t s = b[i];
         for (unsigned k = 0; k < i; ++k) {
@@ -50,6 +53,7 @@ static void cholesky_substitute(const tvo_real_t *l, unsigned stride, unsigned n
         }
         x[i] = s / AT(l, stride, i, i);
     }
+    TVO_SHAPE_UNROLL
     for (unsigned ii = n; ii > 0u; --ii) {
         const unsigned i = ii - 1u;
         tvo_real_t s = x[i];
@@ -58,6 +62,35 @@ static void cholesky_substitute(const tvo_real_t *l, unsigned stride, unsigned n
         }
         x[i] = s / AT(l, stride, i, i);
     }
+}
+
+/* The primal blocks of the common shapes (one robot, two) with the matrix's own stride. */
+static int cholesky_factor(tvo_real_t *a, unsigned stride, unsigned n)
+{
+#if TVO_SPECIALIZE_SHAPES
+    if (stride == TVO_MAX_Z_DIM && n == TVO_SHAPE_OUTPUT_DIM) {
+        return cholesky_factor_shape(a, TVO_MAX_Z_DIM, TVO_SHAPE_OUTPUT_DIM);
+    }
+    if (stride == TVO_MAX_Z_DIM && n == TVO_SHAPE_PAIR_OUTPUT_DIM) {
+        return cholesky_factor_shape(a, TVO_MAX_Z_DIM, TVO_SHAPE_PAIR_OUTPUT_DIM);
+    }
+#endif
+    return cholesky_factor_shape(a, stride, n);
+}
+
+static void cholesky_substitute(const tvo_real_t *l, unsigned stride, unsigned n, const tvo_real_t *b, tvo_real_t *x)
+{
+#if TVO_SPECIALIZE_SHAPES
+    if (stride == TVO_MAX_Z_DIM && n == TVO_SHAPE_OUTPUT_DIM) {
+        cholesky_substitute_shape(l, TVO_MAX_Z_DIM, TVO_SHAPE_OUTPUT_DIM, b, x);
+        return;
+    }
+    if (stride == TVO_MAX_Z_DIM && n == TVO_SHAPE_PAIR_OUTPUT_DIM) {
+        cholesky_substitute_shape(l, TVO_MAX_Z_DIM, TVO_SHAPE_PAIR_OUTPUT_DIM, b, x);
+        return;
+    }
+#endif
+    cholesky_substitute_shape(l, stride, n, b, x);
 }
 
 static int all_finite(const tvo_real_t *v, unsigned n)
@@ -281,18 +314,38 @@ void tvo_hessian_clear(tvo_hessian_t *h, uint8_t n)
     h->rank_one_count = 0u;
 }
 
-/* The part's curvature into the matrix and its gradient jets into grad (when not NULL). */
-static void add_into_matrix(const tvo_rank_one_t *part, tvo_matrix_t m, tvo_jet_t *grad, uint8_t order)
+/* The part's curvature into the matrix and its gradient jets into grad (when not NULL), for a part
+ * of count entries. */
+TVO_SHAPE_BODY void add_part_shape(const tvo_rank_one_t *part, tvo_matrix_t m, tvo_jet_t *grad, const unsigned count,
+                                   const uint8_t order)
 {
-    for (unsigned i = 0; i < part->count; ++i) {
+    TVO_SHAPE_UNROLL
+    for (unsigned i = 0; i < count; ++i) {
         const tvo_real_t wi = part->weight * part->value[i];
-        for (unsigned j = 0; j < part->count; ++j) {
+        TVO_SHAPE_UNROLL
+        for (unsigned j = 0; j < count; ++j) {
             m[part->index[i]][part->index[j]] += wi * part->value[j];
         }
         if (grad != NULL) {
             tvo_jet_axpy(part->value[i], &part->gradient, order, &grad[part->index[i]]);
         }
     }
+}
+
+static void add_into_matrix(const tvo_rank_one_t *part, tvo_matrix_t m, tvo_jet_t *grad, uint8_t order)
+{
+#if TVO_SPECIALIZE_SHAPES
+    /* A plane's part has 2 entries (one robot), a distance bound's 4 (two robots). */
+    if (order == TVO_SHAPE_ORDER && part->count == 2u) {
+        add_part_shape(part, m, grad, 2u, TVO_SHAPE_ORDER);
+        return;
+    }
+    if (order == TVO_SHAPE_ORDER && part->count == 4u) {
+        add_part_shape(part, m, grad, 4u, TVO_SHAPE_ORDER);
+        return;
+    }
+#endif
+    add_part_shape(part, m, grad, part->count, order);
 }
 
 void tvo_rank_one_add_to(const tvo_rank_one_t *part, tvo_matrix_t m, tvo_jet_t *grad, uint8_t order)

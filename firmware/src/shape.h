@@ -3,8 +3,8 @@
  *
  * Loops over the law's order k, the output dimension and the robot count run a handful of times;
  * with those counts as constants the compiler unrolls them and keeps the values in registers.
- * A body written once as a TVO_SHAPE_BODY function is called with constants for the common shape
- * (k = 2, one robot) and with the run-time counts for any other. Optimising for size (-Os) keeps
+ * A body written once as a TVO_SHAPE_BODY function is called with constants for the common shapes
+ * (k = 2; one robot or two) and with the run-time counts for any other. Optimising for size (-Os) keeps
  * one copy; -DTVO_SPECIALIZE_SHAPES=0/1 overrides.
  */
 #ifndef TVO_SHAPE_H
@@ -31,8 +31,10 @@
 #define TVO_SHAPE_UNROLL
 #endif
 
-/* The common shape: the paper's unicycle law (relative degree 2) for one robot. */
+/* The common shapes: the paper's unicycle law (relative degree 2) for one robot, and for a pair
+ * (a formation or an escort, without equalities). */
 #define TVO_SHAPE_ORDER 2u
 #define TVO_SHAPE_OUTPUT_DIM 2u
+#define TVO_SHAPE_PAIR_OUTPUT_DIM 4u
 
 #endif /* TVO_SHAPE_H */
