@@ -10,9 +10,9 @@
 #include <string.h>
 
 #include "shape.h"
+#include "unicycle_kernel.h"
 #include "tvo/trig.h"
 
-#define TVO_PI TVO_R(3.14159265358979323846)
 /* Position-only heading: the velocity direction corrects dead reckoning with this many T_f. */
 #define TVO_HEADING_CORRECTION_TF_MULTIPLE TVO_R(10.0)
 
@@ -32,7 +32,7 @@ tvo_status_t tvo_controller_config_default(tvo_controller_config_t *cfg)
     cfg->filter_tf_s = TVO_R(0.05);
     cfg->gain_kp = TVO_R(40.0);
     cfg->gain_kd = TVO_R(13.0);
-    cfg->omega_max_radps = TVO_R(2.0) * TVO_PI;
+    cfg->omega_max_radps = TVO_R(2.0) * UNICYCLE_PI;
     cfg->accel_max_mps2 = TVO_R(15.0);
     cfg->speed_max_mps = TVO_R(5.0);
     cfg->min_speed_mps = TVO_R(0.05);
@@ -252,7 +252,7 @@ static tvo_status_t position_only_estimate(const tvo_controller_t *ctl, tvo_dirt
         if (vx * vx + vy * vy > TVO_R(4.0) * ctl->cfg.min_speed_mps * ctl->cfg.min_speed_mps) {
             tvo_real_t direction = TVO_ATAN2(vy, vx);
             if (ctl->speed_state_mps[r] < TVO_R(0.0)) {
-                direction += TVO_PI; /* reversing: the robot faces against its velocity */
+                direction += UNICYCLE_PI; /* reversing: the robot faces against its velocity */
             }
             heading += (correction < TVO_R(1.0) ? correction : TVO_R(1.0)) * tvo_wrap_angle(direction - heading);
         }
@@ -330,8 +330,8 @@ TVO_SHAPE_BODY tvo_status_t step_shape(tvo_controller_t *ctl, const tvo_measurem
         pose.position_m[1] = meas->position_m[r][1];
         pose.heading_rad = heading_at_sample[r];
         if (carry_s > TVO_R(0.0)) {
-            st = tvo_unicycle_predict_cs(&pose, ctl->held.speed_mps[r], ctl->held.turn_rate_radps[r], carry_s, &pose,
-                                         heading_cs[r]);
+            unicycle_predict_unchecked(&pose, ctl->held.speed_mps[r], ctl->held.turn_rate_radps[r], carry_s, &pose,
+                                       heading_cs[r]);
         } else {
             tvo_sincos(pose.heading_rad, &heading_cs[r][1], &heading_cs[r][0]);
         }
@@ -384,8 +384,8 @@ TVO_SHAPE_BODY tvo_status_t step_shape(tvo_controller_t *ctl, const tvo_measurem
     for (uint8_t r = 0; r < n && st == TVO_OK; ++r) {
         uint8_t low_speed = 0;
         tvo_real_t turn_rate;
-        st = tvo_unicycle_flat_map_cs(heading_cs[r], speed[r], &y_accel[2u * r], cfg->min_speed_mps, &accel[r],
-                                      &turn_rate, &low_speed);
+        unicycle_flat_map_unchecked(heading_cs[r], speed[r], &y_accel[2u * r], cfg->min_speed_mps, &accel[r],
+                                    &turn_rate, &low_speed);
         if (low_speed) {
             flags |= TVO_FLAG_LOW_SPEED;
         }
@@ -426,7 +426,7 @@ TVO_SHAPE_BODY tvo_status_t step_shape(tvo_controller_t *ctl, const tvo_measurem
     for (uint8_t r = 0; r < n; ++r) {
         ctl->speed_state_mps[r] = speed_next[r];
         /* The estimate lives at the application instant; the next sample dead-reckons from here. */
-        ctl->heading_estimate_rad[r] = tvo_wrap_angle(heading[r] + ctl->held.turn_rate_radps[r] * (period->age_s - carry_s));
+        ctl->heading_estimate_rad[r] = unicycle_wrap_angle_near(heading[r] + ctl->held.turn_rate_radps[r] * (period->age_s - carry_s));
         tm->accel_mps2[r] = accel[r];
     }
     next->flags = flags;
