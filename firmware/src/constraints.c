@@ -3,7 +3,15 @@
 
 #include <string.h>
 
-#include "shape.h"
+#include "barrier_kernel.h"
+
+/* The barrier's weight inline where the terms are compiled for speed (the order then a constant in
+ * their shape copies), by call where they are compiled for size. */
+#if TVO_SPECIALIZE_SHAPES
+#define TERM_BARRIER_WEIGHT barrier_weight_unchecked
+#else
+#define TERM_BARRIER_WEIGHT tvo_barrier_weight_on_schedule
+#endif
 
 /* A robot centre closer than this to an obstacle centre has no defined separating plane. */
 #define FREE_SPACE_MIN_CENTER_DISTANCE_M TVO_R(1e-6)
@@ -92,7 +100,7 @@ TVO_SHAPE_BODY tvo_status_t distance_sum_shape(const tvo_distance_term_t *self, 
     tvo_jet_t w;
     tvo_real_t dw_df = TVO_R(0.0);
     if (st == TVO_OK) {
-        st = tvo_barrier_weight_on_schedule(self->barrier, &schedule, &f, order, &w, hessian != NULL ? &dw_df : NULL);
+        st = TERM_BARRIER_WEIGHT(self->barrier, &schedule, &f, order, &w, hessian != NULL ? &dw_df : NULL);
     }
     if (st != TVO_OK) {
         return st;
@@ -242,7 +250,7 @@ TVO_SHAPE_BODY tvo_status_t halfspace_sum_shape(const tvo_halfspace_term_t *self
     tvo_jet_t w;
     tvo_real_t dw_df = TVO_R(0.0);
     if (st == TVO_OK) {
-        st = tvo_barrier_weight_on_schedule(self->barrier, &schedule, &f, order, &w, hessian != NULL ? &dw_df : NULL);
+        st = TERM_BARRIER_WEIGHT(self->barrier, &schedule, &f, order, &w, hessian != NULL ? &dw_df : NULL);
     }
     if (st != TVO_OK) {
         return st;
@@ -425,7 +433,7 @@ TVO_SHAPE_BODY tvo_status_t free_space_sum_shape(const tvo_free_space_term_t *se
         tvo_jet_axpy(normal[1], &z[o + 1u], order, &f);
         tvo_jet_t w;
         tvo_real_t dw_df = TVO_R(0.0);
-        st = tvo_barrier_weight_on_schedule(self->barrier, &schedule, &f, order, &w, hessian != NULL ? &dw_df : NULL);
+        st = TERM_BARRIER_WEIGHT(self->barrier, &schedule, &f, order, &w, hessian != NULL ? &dw_df : NULL);
         if (st != TVO_OK) {
             return st;
         }

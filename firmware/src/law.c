@@ -136,11 +136,11 @@ TVO_SHAPE_BODY tvo_status_t evaluate_shape(const tvo_law_t *law, const tvo_objec
     hessian->rank_one_count = 0u;
     /* Coefficients above k: the passes of order k never read them, the Hessian's seeds clear them. */
     tvo_real_t probe = TVO_R(0.0); /* value * 0 is NaN exactly for a value that is not finite */
-    TVO_SHAPE_UNROLL
+    TVO_UNROLL_SMALL
     for (unsigned j = 0; j < k; ++j) {
         const tvo_real_t *value = y->d[j];
         const tvo_real_t scale = inv_factorial[j];
-        TVO_SHAPE_UNROLL
+        TVO_UNROLL_SMALL
         for (unsigned i = 0; i < m; ++i) {
             probe += value[i] * TVO_R(0.0);
             y_jet[i].c[j] = value[i] * scale;
@@ -149,10 +149,10 @@ TVO_SHAPE_BODY tvo_status_t evaluate_shape(const tvo_law_t *law, const tvo_objec
     if (!isfinite(probe)) {
         return TVO_ERR_NOT_FINITE;
     }
-    TVO_SHAPE_UNROLL
+    TVO_UNROLL_SMALL
     for (unsigned i = 0; i < m; ++i) {
         y_jet[i].c[k] = TVO_R(0.0);
-        TVO_SHAPE_UNROLL
+        TVO_UNROLL_SMALL
         for (unsigned j = 0; j < m; ++j) {
             h[i][j] = TVO_R(0.0);
         }
@@ -176,10 +176,10 @@ TVO_SHAPE_BODY tvo_status_t evaluate_shape(const tvo_law_t *law, const tvo_objec
     tvo_real_t *gamma = work->gamma;
     const tvo_real_t r_scale = factorial[k];
     const tvo_real_t *gain = law->gain_by_factorial;
-    TVO_SHAPE_UNROLL
+    TVO_UNROLL_SMALL
     for (unsigned i = 0; i < m; ++i) {
         tvo_real_t sum = g_jet[i].c[k] * r_scale;
-        TVO_SHAPE_UNROLL
+        TVO_UNROLL_SMALL
         for (unsigned j = 0; j < k; ++j) {
             sum += gain[j] * g_jet[i].c[j];
         }
@@ -189,7 +189,7 @@ TVO_SHAPE_BODY tvo_status_t evaluate_shape(const tvo_law_t *law, const tvo_objec
     for (unsigned p = 0; p < hessian->rank_one_count; ++p) {
         const tvo_jet_t *g = &hessian->rank_one[p].gradient;
         tvo_real_t sum = g->c[k] * r_scale;
-        TVO_SHAPE_UNROLL
+        TVO_UNROLL_SMALL
         for (unsigned j = 0; j < k; ++j) {
             sum += gain[j] * g->c[j];
         }
@@ -203,14 +203,14 @@ TVO_SHAPE_BODY tvo_status_t evaluate_shape(const tvo_law_t *law, const tvo_objec
         /* The gradient and its derivatives as one vector each (the parts added in: for telemetry). */
         const unsigned count = m < grad_count ? m : grad_count;
         const unsigned parts = hessian->rank_one_count;
-        TVO_SHAPE_UNROLL
+        TVO_UNROLL_SMALL
         for (unsigned j = 0; j <= k; ++j) {
             tvo_real_t *row = grad_rows[j];
             if (row == NULL) {
                 continue;
             }
             const tvo_real_t scale = factorial[j];
-            TVO_SHAPE_UNROLL
+            TVO_UNROLL_SMALL
             for (unsigned i = 0; i < m; ++i) { /* over m, a constant in the common shape */
                 if (i < count) {
                     row[i] = g_jet[i].c[j] * scale;
@@ -251,7 +251,7 @@ TVO_SHAPE_BODY tvo_status_t evaluate_shape(const tvo_law_t *law, const tvo_objec
     if (st != TVO_OK) {
         return st;
     }
-    TVO_SHAPE_UNROLL
+    TVO_UNROLL_SMALL
     for (uint8_t i = 0; i < m; ++i) {
         y_k[i] = -rhs[i];
     }

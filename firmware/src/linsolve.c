@@ -17,7 +17,7 @@
 
 TVO_SHAPE_BODY int cholesky_factor_shape(tvo_real_t *a, const unsigned stride, const unsigned n)
 {
-    TVO_SHAPE_UNROLL
+    TVO_UNROLL_SMALL
     for (unsigned j = 0; j < n; ++j) {
         const tvo_real_t diagonal = AT(a, stride, j, j);
         tvo_real_t d = diagonal;
@@ -45,7 +45,7 @@ TVO_SHAPE_BODY int cholesky_factor_shape(tvo_real_t *a, const unsigned stride, c
 TVO_SHAPE_BODY void cholesky_substitute_shape(const tvo_real_t *l, const unsigned stride, const unsigned n,
                                               const tvo_real_t *b, tvo_real_t *x)
 {
-    TVO_SHAPE_UNROLL
+    TVO_UNROLL_SMALL
     for (unsigned i = 0; i < n; ++i) {
         tvo_real_t s = b[i];
         for (unsigned k = 0; k < i; ++k) {
@@ -53,7 +53,7 @@ TVO_SHAPE_BODY void cholesky_substitute_shape(const tvo_real_t *l, const unsigne
         }
         x[i] = s / AT(l, stride, i, i);
     }
-    TVO_SHAPE_UNROLL
+    TVO_UNROLL_SMALL
     for (unsigned ii = n; ii > 0u; --ii) {
         const unsigned i = ii - 1u;
         tvo_real_t s = x[i];
@@ -192,10 +192,10 @@ TVO_SHAPE_BODY int diagonal_solve_shape(tvo_real_t (*a)[TVO_MAX_Z_DIM], const ui
                                         tvo_real_t *x)
 {
     tvo_real_t probe = TVO_R(0.0); /* v * 0 is NaN exactly for a v that is not finite */
-    TVO_SHAPE_UNROLL
+    TVO_UNROLL_SMALL
     for (uint8_t i = 0; i < n; ++i) {
         const tvo_real_t *row = a[i];
-        TVO_SHAPE_UNROLL
+        TVO_UNROLL_SMALL
         for (uint8_t j = 0; j < n; ++j) {
             if (j != i && row[j] != TVO_R(0.0)) {
                 return 0;
@@ -209,7 +209,7 @@ TVO_SHAPE_BODY int diagonal_solve_shape(tvo_real_t (*a)[TVO_MAX_Z_DIM], const ui
     if (!isfinite(probe)) {
         return 0; /* the general path names the entry that is not finite */
     }
-    TVO_SHAPE_UNROLL
+    TVO_UNROLL_SMALL
     for (uint8_t i = 0; i < n; ++i) {
         x[i] = b[i] / a[i][i];
     }
@@ -314,23 +314,46 @@ void tvo_hessian_clear(tvo_hessian_t *h, uint8_t n)
     h->rank_one_count = 0u;
 }
 
+/* gcc cannot tell that the entries below count, the only ones read, are the ones written. */
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 /* The part's curvature into the matrix and its gradient jets into grad (when not NULL), for a part
  * of count entries. */
 TVO_SHAPE_BODY void add_part_shape(const tvo_rank_one_t *part, tvo_matrix_t m, tvo_jet_t *grad, const unsigned count,
                                    const uint8_t order)
 {
-    TVO_SHAPE_UNROLL
+#if TVO_SPECIALIZE_SHAPES
+    /* For speed, the part read once into registers: the stores into m and grad could alias it. */
+    unsigned index[TVO_RANK_ONE_MAX_ENTRIES];
+    tvo_real_t value[TVO_RANK_ONE_MAX_ENTRIES];
+    TVO_UNROLL_SMALL
     for (unsigned i = 0; i < count; ++i) {
-        const tvo_real_t wi = part->weight * part->value[i];
-        TVO_SHAPE_UNROLL
+        index[i] = part->index[i];
+        value[i] = part->value[i];
+    }
+#else
+    const uint8_t *index = part->index; /* for size: read where it is */
+    const tvo_real_t *value = part->value;
+#endif
+    const tvo_real_t weight = part->weight;
+    TVO_UNROLL_SMALL
+    for (unsigned i = 0; i < count; ++i) {
+        const tvo_real_t wi = weight * value[i];
+        tvo_real_t *row = m[index[i]];
+        TVO_UNROLL_SMALL
         for (unsigned j = 0; j < count; ++j) {
-            m[part->index[i]][part->index[j]] += wi * part->value[j];
+            row[index[j]] += wi * value[j];
         }
         if (grad != NULL) {
-            tvo_jet_axpy(part->value[i], &part->gradient, order, &grad[part->index[i]]);
+            tvo_jet_axpy(value[i], &part->gradient, order, &grad[index[i]]);
         }
     }
 }
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
 
 static void add_into_matrix(const tvo_rank_one_t *part, tvo_matrix_t m, tvo_jet_t *grad, uint8_t order)
 {
@@ -393,21 +416,42 @@ void tvo_hessian_add_part(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_
     }
 }
 
+/* tvo_hessian_add for a valid part of count entries. */
+TVO_SHAPE_BODY void hessian_add_shape(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_t *grad,
+                                      const unsigned count, const uint8_t order)
+{
+    tvo_real_t scale = TVO_R(1.0);
+    tvo_real_t norm_sq = TVO_R(0.0);
+    TVO_UNROLL_SMALL
+    for (unsigned i = 0; i < count; ++i) {
+        const tvo_real_t d = TVO_FABS(h->matrix[part->index[i]][part->index[i]]);
+        scale = d > scale ? d : scale;
+        norm_sq += part->value[i] * part->value[i];
+    }
+    if (part->weight * norm_sq > TVO_STIFF_RATIO * scale) { /* rank_one_size(part) */
+        tvo_hessian_add_part(h, part, grad, order);
+    } else {
+        add_part_shape(part, h->matrix, grad, count, order);
+    }
+}
+
 void tvo_hessian_add(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_t *grad, uint8_t order)
 {
     if (h == NULL || part == NULL || part->count > TVO_RANK_ONE_MAX_ENTRIES) {
         return;
     }
-    tvo_real_t scale = TVO_R(1.0);
-    for (unsigned i = 0; i < part->count; ++i) {
-        const tvo_real_t d = TVO_FABS(h->matrix[part->index[i]][part->index[i]]);
-        scale = d > scale ? d : scale;
+#if TVO_SPECIALIZE_SHAPES
+    /* A plane's part has 2 entries (one robot), a distance bound's 4 (two robots). */
+    if (order == TVO_SHAPE_ORDER && part->count == 2u) {
+        hessian_add_shape(h, part, grad, 2u, TVO_SHAPE_ORDER);
+        return;
     }
-    if (rank_one_size(part) > TVO_STIFF_RATIO * scale) {
-        tvo_hessian_add_part(h, part, grad, order);
-    } else {
-        add_into_matrix(part, h->matrix, grad, order);
+    if (order == TVO_SHAPE_ORDER && part->count == 4u) {
+        hessian_add_shape(h, part, grad, 4u, TVO_SHAPE_ORDER);
+        return;
     }
+#endif
+    hessian_add_shape(h, part, grad, part->count, order);
 }
 
 void tvo_hessian_settle(tvo_hessian_t *h, uint8_t n, uint8_t dual_n, tvo_jet_t *grad, uint8_t order)

@@ -1,22 +1,16 @@
 /*
- * Private to the core: compiling a loop-heavy body a second time for the unicycle's shape.
+ * Private to the core: compiling a loop-heavy body a second time for the common shapes.
  *
  * Loops over the law's order k, the output dimension and the robot count run a handful of times;
  * with those counts as constants the compiler unrolls them and keeps the values in registers.
  * A body written once as a TVO_SHAPE_BODY function is called with constants for the common shapes
- * (k = 2; one robot or two) and with the run-time counts for any other. Optimising for size (-Os) keeps
- * one copy; -DTVO_SPECIALIZE_SHAPES=0/1 overrides.
+ * (k = 2; one robot or two) and with the run-time counts for any other. TVO_SPECIALIZE_SHAPES
+ * (tvo/config.h) turns the second copies off, as optimising for size (-Os) does.
  */
 #ifndef TVO_SHAPE_H
 #define TVO_SHAPE_H
 
-#ifndef TVO_SPECIALIZE_SHAPES
-#if defined(__OPTIMIZE_SIZE__)
-#define TVO_SPECIALIZE_SHAPES 0
-#else
-#define TVO_SPECIALIZE_SHAPES 1
-#endif
-#endif
+#include "tvo/config.h"
 
 #if defined(__GNUC__)
 #define TVO_SHAPE_BODY static inline __attribute__((always_inline))
@@ -24,17 +18,24 @@
 #define TVO_SHAPE_BODY static inline
 #endif
 
-/* Before a loop of a shape body whose count is at most 4: unrolled in full when the count is a constant. */
-#if TVO_SPECIALIZE_SHAPES && defined(__GNUC__)
-#define TVO_SHAPE_UNROLL _Pragma("GCC unroll 4")
-#else
-#define TVO_SHAPE_UNROLL
-#endif
-
 /* The common shapes: the paper's unicycle law (relative degree 2) for one robot, and for a pair
  * (a formation or an escort, without equalities). */
 #define TVO_SHAPE_ORDER 2u
 #define TVO_SHAPE_OUTPUT_DIM 2u
 #define TVO_SHAPE_PAIR_OUTPUT_DIM 4u
+
+/* Replaces a (leading n x n block, row stride `stride`) by (a + a^T) / 2: exactly symmetric. */
+TVO_SHAPE_BODY void tvo_symmetrize(tvo_real_t *a, const unsigned stride, const unsigned n)
+{
+    TVO_UNROLL_SMALL
+    for (unsigned i = 0; i < n; ++i) {
+        TVO_UNROLL_SMALL
+        for (unsigned j = 0; j < i; ++j) {
+            const tvo_real_t avg = TVO_R(0.5) * (a[i * stride + j] + a[j * stride + i]);
+            a[i * stride + j] = avg;
+            a[j * stride + i] = avg;
+        }
+    }
+}
 
 #endif /* TVO_SHAPE_H */

@@ -189,7 +189,7 @@ static void ellipse_derivatives(const tvo_target_t *target, const tvo_time_jet_t
     const tvo_real_t dcos[4] = {c, -s, -c, s};
     const tvo_real_t dsin[4] = {s, c, -s, -c};
     tvo_real_t omega_pow = TVO_R(1.0);
-    TVO_SHAPE_UNROLL
+    TVO_UNROLL_SMALL
     for (unsigned j = 0; j <= order; ++j) {
         const tvo_real_t u = dcos[j & 3u] * omega_pow;
         const tvo_real_t v = dsin[j & 3u] * omega_pow;

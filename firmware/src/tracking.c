@@ -57,7 +57,7 @@ TVO_SHAPE_BODY void add_weighted_error(const tvo_tracking_term_t *self, const tv
     for (unsigned axis = 0; axis < 2u; ++axis) {
         const unsigned i = self->offset + axis;
         const tvo_real_t w = self->weight[axis];
-        TVO_SHAPE_UNROLL
+        TVO_UNROLL_SMALL
         for (unsigned j = 0; j < count; ++j) {
             grad[i].c[j] += w * (y[i].c[j] - deriv[j][axis] * scale[j]);
         }

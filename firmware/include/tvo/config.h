@@ -87,6 +87,25 @@ typedef float tvo_real_t;
 #define TVO_STREAM_MAX_DERIV 3
 #endif
 
+/**
+ * Speed over size: the core compiles its loop-heavy bodies a second time for the common shapes (the
+ * k = 2 law for one robot or two) and unrolls loops that run at most 4 times (jet coefficients,
+ * a robot's outputs). Optimising for size (-Os) turns both off; -DTVO_SPECIALIZE_SHAPES=0/1 overrides.
+ */
+#ifndef TVO_SPECIALIZE_SHAPES
+#if defined(__OPTIMIZE_SIZE__)
+#define TVO_SPECIALIZE_SHAPES 0
+#else
+#define TVO_SPECIALIZE_SHAPES 1
+#endif
+#endif
+/* Before a loop that runs at most 4 times: unrolled in full where its count is a constant. */
+#if TVO_SPECIALIZE_SHAPES && defined(__GNUC__)
+#define TVO_UNROLL_SMALL _Pragma("GCC unroll 4")
+#else
+#define TVO_UNROLL_SMALL
+#endif
+
 /* The limits must make sense together. */
 #if TVO_MAX_OUTPUT_DIM < 2 || TVO_MAX_OUTPUT_DIM % 2 != 0
 #error "TVO_MAX_OUTPUT_DIM must be a positive even number (2 per robot)"

@@ -26,6 +26,14 @@ typedef struct {
 /* The arithmetic of the hot path is inline: a handful of coefficients per call, where a call would
  * cost as much as the work. */
 
+/* True where order is the compile-time constant 2 (the k = 2 law in the core's shape copies): the
+ * arithmetic below is then written out, with the same operations in the same order as its loops. */
+#if TVO_SPECIALIZE_SHAPES && defined(__GNUC__) && TVO_JET_MAX_ORDER >= 2
+#define TVO_JET_ORDER_IS_CONSTANT_2(order) (__builtin_constant_p(order) && (order) == 2u)
+#else
+#define TVO_JET_ORDER_IS_CONSTANT_2(order) 0
+#endif
+
 /** The order clamped to TVO_JET_MAX_ORDER (every loop stays bounded). */
 static inline unsigned tvo_jet_order_clamp(uint8_t order)
 {
@@ -50,6 +58,12 @@ static inline void tvo_jet_variable(tvo_real_t value, tvo_real_t slope, tvo_jet_
 
 static inline void tvo_jet_add(const tvo_jet_t *a, const tvo_jet_t *b, uint8_t order, tvo_jet_t *out)
 {
+    if (TVO_JET_ORDER_IS_CONSTANT_2(order)) {
+        out->c[0] = a->c[0] + b->c[0]; /* coefficient j needs only a_j and b_j: out may alias a or b */
+        out->c[1] = a->c[1] + b->c[1];
+        out->c[2] = a->c[2] + b->c[2];
+        return;
+    }
     const unsigned n = tvo_jet_order_clamp(order);
     for (unsigned j = 0; j <= n; ++j) {
         out->c[j] = a->c[j] + b->c[j];
@@ -58,6 +72,12 @@ static inline void tvo_jet_add(const tvo_jet_t *a, const tvo_jet_t *b, uint8_t o
 
 static inline void tvo_jet_sub(const tvo_jet_t *a, const tvo_jet_t *b, uint8_t order, tvo_jet_t *out)
 {
+    if (TVO_JET_ORDER_IS_CONSTANT_2(order)) {
+        out->c[0] = a->c[0] - b->c[0]; /* coefficient j needs only a_j and b_j: out may alias a or b */
+        out->c[1] = a->c[1] - b->c[1];
+        out->c[2] = a->c[2] - b->c[2];
+        return;
+    }
     const unsigned n = tvo_jet_order_clamp(order);
     for (unsigned j = 0; j <= n; ++j) {
         out->c[j] = a->c[j] - b->c[j];
@@ -66,6 +86,12 @@ static inline void tvo_jet_sub(const tvo_jet_t *a, const tvo_jet_t *b, uint8_t o
 
 static inline void tvo_jet_scale(const tvo_jet_t *a, tvo_real_t s, uint8_t order, tvo_jet_t *out)
 {
+    if (TVO_JET_ORDER_IS_CONSTANT_2(order)) {
+        out->c[0] = s * a->c[0];
+        out->c[1] = s * a->c[1];
+        out->c[2] = s * a->c[2];
+        return;
+    }
     const unsigned n = tvo_jet_order_clamp(order);
     for (unsigned j = 0; j <= n; ++j) {
         out->c[j] = s * a->c[j];
@@ -75,6 +101,15 @@ static inline void tvo_jet_scale(const tvo_jet_t *a, tvo_real_t s, uint8_t order
 /** out += s * a (fused accumulate). */
 static inline void tvo_jet_axpy(tvo_real_t s, const tvo_jet_t *a, uint8_t order, tvo_jet_t *out)
 {
+    if (TVO_JET_ORDER_IS_CONSTANT_2(order)) {
+        const tvo_real_t a0 = a->c[0]; /* all read before out is written: out may alias a */
+        const tvo_real_t a1 = a->c[1];
+        const tvo_real_t a2 = a->c[2];
+        out->c[0] += s * a0;
+        out->c[1] += s * a1;
+        out->c[2] += s * a2;
+        return;
+    }
     const unsigned n = tvo_jet_order_clamp(order);
     for (unsigned j = 0; j <= n; ++j) {
         out->c[j] += s * a->c[j];
@@ -84,17 +119,24 @@ static inline void tvo_jet_axpy(tvo_real_t s, const tvo_jet_t *a, uint8_t order,
 /** Cauchy product; out may alias a or b. */
 static inline void tvo_jet_mul(const tvo_jet_t *a, const tvo_jet_t *b, uint8_t order, tvo_jet_t *out)
 {
+    if (TVO_JET_ORDER_IS_CONSTANT_2(order)) {
+        const tvo_real_t r0 = a->c[0] * b->c[0];
+        const tvo_real_t r1 = a->c[0] * b->c[1] + a->c[1] * b->c[0];
+        const tvo_real_t r2 = a->c[0] * b->c[2] + a->c[1] * b->c[1] + a->c[2] * b->c[0];
+        out->c[0] = r0;
+        out->c[1] = r1;
+        out->c[2] = r2;
+        return;
+    }
+    /* Highest coefficient first: coefficient j reads only coefficients <= j, so out may alias a or b. */
     const unsigned n = tvo_jet_order_clamp(order);
-    tvo_jet_t r;
-    for (unsigned j = 0; j <= n; ++j) {
+    for (unsigned jj = n + 1u; jj > 0u; --jj) {
+        const unsigned j = jj - 1u;
         tvo_real_t acc = TVO_R(0.0);
         for (unsigned i = 0; i <= j; ++i) {
             acc += a->c[i] * b->c[j - i];
         }
-        r.c[j] = acc;
-    }
-    for (unsigned j = 0; j <= n; ++j) {
-        out->c[j] = r.c[j];
+        out->c[j] = acc;
     }
 }
 

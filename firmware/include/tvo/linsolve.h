@@ -77,18 +77,6 @@ typedef struct {
  *  jets to order: a part added into a matrix. */
 void tvo_rank_one_add_to(const tvo_rank_one_t *part, tvo_matrix_t m, tvo_jet_t *grad, uint8_t order);
 
-/** Replaces a (leading n x n block, row stride `stride`) by (a + a^T) / 2: exactly symmetric. */
-static inline void tvo_symmetrize(tvo_real_t *a, unsigned stride, unsigned n)
-{
-    for (unsigned i = 0; i < n; ++i) {
-        for (unsigned j = 0; j < i; ++j) {
-            const tvo_real_t avg = TVO_R(0.5) * (a[i * stride + j] + a[j * stride + i]);
-            a[i * stride + j] = avg;
-            a[j * stride + i] = avg;
-        }
-    }
-}
-
 /** Zeroes the leading n x n block and drops every rank-one part. */
 void tvo_hessian_clear(tvo_hessian_t *h, uint8_t n);
 

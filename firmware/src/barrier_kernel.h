@@ -1,0 +1,65 @@
+/*
+ * Private to the core: the relaxed barrier's weight jet without argument checks, inline, so that a
+ * constraint term compiled for the common shape (tvo/config.h, TVO_SPECIALIZE_SHAPES) computes it
+ * with the jet order a constant. tvo_barrier_weight_on_schedule checks, then calls the same code.
+ */
+#ifndef TVO_BARRIER_KERNEL_H
+#define TVO_BARRIER_KERNEL_H
+
+#include "shape.h"
+#include "tvo/barrier.h"
+
+/* tvo_barrier_weight_on_schedule for valid arguments (order <= TVO_JET_MAX_ORDER). */
+TVO_SHAPE_BODY tvo_status_t barrier_weight_unchecked(const tvo_barrier_t *barrier,
+                                                     const tvo_barrier_schedule_jet_t *schedule,
+                                                     const tvo_jet_t *f_jet, const uint8_t order, tvo_jet_t *w_jet,
+                                                     tvo_real_t *dw_df)
+{
+    tvo_jet_t sigma;
+    tvo_jet_sub(&schedule->slack, f_jet, order, &sigma);
+    /* c sigma / delta0 = 1 + x: the branch is the logarithm when it is >= 1 at tau = 0. */
+    tvo_jet_t c_sigma;
+    tvo_jet_mul(&schedule->c, &sigma, order, &c_sigma);
+    const tvo_real_t c0 = schedule->c.c[0];
+    const tvo_real_t delta0 = barrier->cfg.delta0;
+    tvo_real_t slope = TVO_R(0.0);
+    if (c_sigma.c[0] >= delta0) {
+        /* w = 1 / (c sigma): the quotient recurrence with numerator 1 (tvo_jet_div's). */
+        TVO_UNROLL_SMALL
+        for (unsigned j = 0; j <= order; ++j) {
+            tvo_real_t acc = (j == 0u) ? TVO_R(1.0) : TVO_R(0.0);
+            for (unsigned i = 0; i < j; ++i) {
+                acc -= w_jet->c[i] * c_sigma.c[j - i];
+            }
+            w_jet->c[j] = acc / c_sigma.c[0];
+        }
+        slope = c0 * w_jet->c[0] * w_jet->c[0]; /* dw/df = -dw/dsigma = c w^2 */
+    } else {
+        /* w = (1/delta0) P(u), P(u) = sum_{j<m_r} u^j, u = -x = 1 - c sigma / delta0, by Horner;
+         * dw/df = (c / delta0^2) P'(u), also by Horner. */
+        tvo_jet_t u;
+        tvo_jet_scale(&c_sigma, TVO_R(-1.0) / delta0, order, &u);
+        u.c[0] += TVO_R(1.0);
+        tvo_jet_t acc;
+        tvo_jet_constant(TVO_R(1.0), &acc);
+        tvo_real_t derivative = TVO_R(0.0);
+        for (uint8_t j = 1; j < barrier->cfg.relaxation_degree && j < TVO_BARRIER_MAX_DEGREE; ++j) {
+            derivative = derivative * u.c[0] + acc.c[0]; /* P_j' = P_{j-1} + u P_{j-1}' */
+            tvo_jet_mul(&acc, &u, order, &acc);
+            acc.c[0] += TVO_R(1.0);
+        }
+        tvo_jet_scale(&acc, TVO_R(1.0) / delta0, order, w_jet);
+        slope = c0 * derivative / (delta0 * delta0);
+    }
+    if (dw_df != NULL) {
+        *dw_df = slope;
+    }
+    tvo_real_t probe = slope * TVO_R(0.0); /* v * 0 is NaN exactly for a v that is not finite */
+    TVO_UNROLL_SMALL
+    for (unsigned j = 0; j <= order; ++j) {
+        probe += w_jet->c[j] * TVO_R(0.0);
+    }
+    return isfinite(probe) ? TVO_OK : TVO_ERR_NUMERIC;
+}
+
+#endif /* TVO_BARRIER_KERNEL_H */
