@@ -153,8 +153,8 @@ TVO_SHAPE_BODY tvo_status_t distance_sum_shape(const tvo_distance_term_t *self, 
     return TVO_OK;
 }
 
-static tvo_status_t distance_sum(const tvo_distance_term_t *self, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t, uint8_t order,
-                                 tvo_jet_t *grad, tvo_hessian_t *hessian)
+static tvo_status_t distance_sum(const tvo_distance_term_t *self, const tvo_jet_t *z, uint8_t dim,
+                                 const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian)
 {
 #if TVO_SPECIALIZE_SHAPES
     if (order == TVO_SHAPE_ORDER) {
@@ -280,8 +280,8 @@ TVO_SHAPE_BODY tvo_status_t halfspace_sum_shape(const tvo_halfspace_term_t *self
     return TVO_OK;
 }
 
-static tvo_status_t halfspace_sum(const tvo_halfspace_term_t *self, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t, uint8_t order,
-                                  tvo_jet_t *grad, tvo_hessian_t *hessian)
+static tvo_status_t halfspace_sum(const tvo_halfspace_term_t *self, const tvo_jet_t *z, uint8_t dim,
+                                  const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian)
 {
 #if TVO_SPECIALIZE_SHAPES
     if (order == TVO_SHAPE_ORDER) {
@@ -456,8 +456,8 @@ TVO_SHAPE_BODY tvo_status_t free_space_sum_shape(const tvo_free_space_term_t *se
     return TVO_OK;
 }
 
-static tvo_status_t free_space_sum(const tvo_free_space_term_t *self, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t, uint8_t order,
-                                   tvo_jet_t *grad, tvo_hessian_t *hessian)
+static tvo_status_t free_space_sum(const tvo_free_space_term_t *self, const tvo_jet_t *z, uint8_t dim,
+                                   const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian)
 {
 #if TVO_SPECIALIZE_SHAPES
     if (order == TVO_SHAPE_ORDER) {

@@ -426,7 +426,8 @@ TVO_SHAPE_BODY tvo_status_t step_shape(tvo_controller_t *ctl, const tvo_measurem
     for (uint8_t r = 0; r < n; ++r) {
         ctl->speed_state_mps[r] = speed_next[r];
         /* The estimate lives at the application instant; the next sample dead-reckons from here. */
-        ctl->heading_estimate_rad[r] = unicycle_wrap_angle_near(heading[r] + ctl->held.turn_rate_radps[r] * (period->age_s - carry_s));
+        ctl->heading_estimate_rad[r] =
+            unicycle_wrap_angle_near(heading[r] + ctl->held.turn_rate_radps[r] * (period->age_s - carry_s));
         tm->accel_mps2[r] = accel[r];
     }
     next->flags = flags;
