@@ -357,17 +357,6 @@ TVO_SHAPE_BODY void add_part_shape(const tvo_rank_one_t *part, tvo_matrix_t m, t
 
 static void add_into_matrix(const tvo_rank_one_t *part, tvo_matrix_t m, tvo_jet_t *grad, uint8_t order)
 {
-#if TVO_SPECIALIZE_SHAPES
-    /* A plane's part has 2 entries (one robot), a distance bound's 4 (two robots). */
-    if (order == TVO_SHAPE_ORDER && part->count == 2u) {
-        add_part_shape(part, m, grad, 2u, TVO_SHAPE_ORDER);
-        return;
-    }
-    if (order == TVO_SHAPE_ORDER && part->count == 4u) {
-        add_part_shape(part, m, grad, 4u, TVO_SHAPE_ORDER);
-        return;
-    }
-#endif
     add_part_shape(part, m, grad, part->count, order);
 }
 
