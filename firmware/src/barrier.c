@@ -188,7 +188,7 @@ tvo_status_t tvo_barrier_weight_on_schedule(const tvo_barrier_t *barrier, const 
     if (order > TVO_JET_MAX_ORDER) {
         return TVO_ERR_PARAM;
     }
-#if TVO_SPECIALIZE_SHAPES
+#if TVO_SHAPE_COPIES
     if (order == TVO_SHAPE_ORDER) {
         return barrier_weight_unchecked(barrier, schedule, f_jet, TVO_SHAPE_ORDER, w_jet, dw_df);
     }

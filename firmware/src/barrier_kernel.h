@@ -1,7 +1,7 @@
 /*
  * Private to the core: the relaxed barrier's weight jet without argument checks, inline, so that a
- * constraint term compiled for the common shape (tvo/config.h, TVO_SPECIALIZE_SHAPES) computes it
- * with the jet order a constant. tvo_barrier_weight_on_schedule checks, then calls the same code.
+ * constraint term's shape copy (src/shape.h) computes it with the jet order a constant.
+ * tvo_barrier_weight_on_schedule checks, then calls the same code.
  */
 #ifndef TVO_BARRIER_KERNEL_H
 #define TVO_BARRIER_KERNEL_H
@@ -24,15 +24,9 @@ TVO_SHAPE_BODY tvo_status_t barrier_weight_unchecked(const tvo_barrier_t *barrie
     const tvo_real_t delta0 = barrier->cfg.delta0;
     tvo_real_t slope = TVO_R(0.0);
     if (c_sigma.c[0] >= delta0) {
-        /* w = 1 / (c sigma): the quotient recurrence with numerator 1 (tvo_jet_div's). */
-        TVO_UNROLL_SMALL
-        for (unsigned j = 0; j <= order; ++j) {
-            tvo_real_t acc = (j == 0u) ? TVO_R(1.0) : TVO_R(0.0);
-            for (unsigned i = 0; i < j; ++i) {
-                acc -= w_jet->c[i] * c_sigma.c[j - i];
-            }
-            w_jet->c[j] = acc / c_sigma.c[0];
-        }
+        tvo_jet_t one;
+        tvo_jet_constant(TVO_R(1.0), &one);
+        tvo_jet_div(&one, &c_sigma, order, w_jet); /* w = 1 / (c sigma) */
         slope = c0 * w_jet->c[0] * w_jet->c[0]; /* dw/df = -dw/dsigma = c w^2 */
     } else {
         /* w = (1/delta0) P(u), P(u) = sum_{j<m_r} u^j, u = -x = 1 - c sigma / delta0, by Horner;

@@ -5,9 +5,9 @@
 
 #include "barrier_kernel.h"
 
-/* The barrier's weight inline where the terms are compiled for speed (the order then a constant in
- * their shape copies), by call where they are compiled for size. */
-#if TVO_SPECIALIZE_SHAPES
+/* The barrier's weight inline where the terms have shape copies (the order then a constant in them),
+ * by call where they are compiled for size. */
+#if TVO_SHAPE_COPIES
 #define TERM_BARRIER_WEIGHT barrier_weight_unchecked
 #else
 #define TERM_BARRIER_WEIGHT tvo_barrier_weight_on_schedule
@@ -156,7 +156,7 @@ TVO_SHAPE_BODY tvo_status_t distance_sum_shape(const tvo_distance_term_t *self, 
 static tvo_status_t distance_sum(const tvo_distance_term_t *self, const tvo_jet_t *z, uint8_t dim,
                                  const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian)
 {
-#if TVO_SPECIALIZE_SHAPES
+#if TVO_SHAPE_COPIES
     if (order == TVO_SHAPE_ORDER) {
         return distance_sum_shape(self, z, dim, t, TVO_SHAPE_ORDER, grad, hessian);
     }
@@ -283,7 +283,7 @@ TVO_SHAPE_BODY tvo_status_t halfspace_sum_shape(const tvo_halfspace_term_t *self
 static tvo_status_t halfspace_sum(const tvo_halfspace_term_t *self, const tvo_jet_t *z, uint8_t dim,
                                   const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian)
 {
-#if TVO_SPECIALIZE_SHAPES
+#if TVO_SHAPE_COPIES
     if (order == TVO_SHAPE_ORDER) {
         return halfspace_sum_shape(self, z, dim, t, TVO_SHAPE_ORDER, grad, hessian);
     }
@@ -459,7 +459,7 @@ TVO_SHAPE_BODY tvo_status_t free_space_sum_shape(const tvo_free_space_term_t *se
 static tvo_status_t free_space_sum(const tvo_free_space_term_t *self, const tvo_jet_t *z, uint8_t dim,
                                    const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian)
 {
-#if TVO_SPECIALIZE_SHAPES
+#if TVO_SHAPE_COPIES
     if (order == TVO_SHAPE_ORDER) {
         return free_space_sum_shape(self, z, dim, t, TVO_SHAPE_ORDER, grad, hessian);
     }

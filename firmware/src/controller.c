@@ -461,7 +461,7 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
         stop_command(cmd, TVO_FLAG_SAFE_STOP);
         return TVO_ERR_NOT_INITIALIZED;
     }
-#if TVO_SPECIALIZE_SHAPES
+#if TVO_SHAPE_COPIES
     if (ctl->cfg.robot_count == 1u) {
         return step_shape(ctl, meas, apply_tick, cmd, 1u);
     }

@@ -7,23 +7,6 @@ static unsigned clamp_order(uint8_t order)
     return tvo_jet_order_clamp(order);
 }
 
-void tvo_jet_div(const tvo_jet_t *a, const tvo_jet_t *b, uint8_t order, tvo_jet_t *out)
-{
-    /* q = a / b  <=>  q_j = (a_j - sum_{i<j} q_i b_{j-i}) / b_0 */
-    const unsigned n = clamp_order(order);
-    tvo_jet_t q;
-    for (unsigned j = 0; j <= n; ++j) {
-        tvo_real_t acc = a->c[j];
-        for (unsigned i = 0; i < j; ++i) {
-            acc -= q.c[i] * b->c[j - i];
-        }
-        q.c[j] = acc / b->c[0];
-    }
-    for (unsigned j = 0; j <= n; ++j) {
-        out->c[j] = q.c[j];
-    }
-}
-
 void tvo_jet_sqrt(const tvo_jet_t *a, uint8_t order, tvo_jet_t *out)
 {
     /* s^2 = a  <=>  s_j = (a_j - sum_{0<i<j} s_i s_{j-i}) / (2 s_0) */

@@ -234,7 +234,7 @@ TVO_SHAPE_BODY tvo_status_t evaluate_shape(const tvo_law_t *law, const tvo_objec
         }
     }
     /* Symmetrise: the exact Hessian is symmetric; rounding should not make the solve see otherwise. */
-    tvo_symmetrize(&h[0][0], TVO_MAX_Z_DIM, m);
+    symmetrize(&h[0][0], TVO_MAX_Z_DIM, m);
     if (hessian_out != NULL) {
         /* The whole Hessian, rank-one parts included, for tests and tools. */
         for (unsigned i = 0; i < m; ++i) {
@@ -275,7 +275,7 @@ static tvo_status_t evaluate(const tvo_law_t *law, const tvo_objective_t *object
         (unsigned)objective->primal_dim + objective->dual_dim != m) {
         return TVO_ERR_DIMENSION;
     }
-#if TVO_SPECIALIZE_SHAPES && TVO_MAX_RELATIVE_DEGREE >= TVO_SHAPE_ORDER
+#if TVO_SHAPE_COPIES
     if (k == TVO_SHAPE_ORDER && m == TVO_SHAPE_OUTPUT_DIM) {
         return evaluate_shape(law, objective, y, t, y_k, grad_rows, grad_count, hessian_out, shift, work,
                               TVO_SHAPE_ORDER, TVO_SHAPE_OUTPUT_DIM);

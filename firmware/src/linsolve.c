@@ -67,7 +67,7 @@ TVO_SHAPE_BODY void cholesky_substitute_shape(const tvo_real_t *l, const unsigne
 /* The primal blocks of the common shapes (one robot, two) with the matrix's own stride. */
 static int cholesky_factor(tvo_real_t *a, unsigned stride, unsigned n)
 {
-#if TVO_SPECIALIZE_SHAPES
+#if TVO_SHAPE_COPIES
     if (stride == TVO_MAX_Z_DIM && n == TVO_SHAPE_OUTPUT_DIM) {
         return cholesky_factor_shape(a, TVO_MAX_Z_DIM, TVO_SHAPE_OUTPUT_DIM);
     }
@@ -80,7 +80,7 @@ static int cholesky_factor(tvo_real_t *a, unsigned stride, unsigned n)
 
 static void cholesky_substitute(const tvo_real_t *l, unsigned stride, unsigned n, const tvo_real_t *b, tvo_real_t *x)
 {
-#if TVO_SPECIALIZE_SHAPES
+#if TVO_SHAPE_COPIES
     if (stride == TVO_MAX_Z_DIM && n == TVO_SHAPE_OUTPUT_DIM) {
         cholesky_substitute_shape(l, TVO_MAX_Z_DIM, TVO_SHAPE_OUTPUT_DIM, b, x);
         return;
@@ -204,7 +204,8 @@ TVO_SHAPE_BODY int diagonal_solve_shape(tvo_real_t (*a)[TVO_MAX_Z_DIM], const ui
         if (!(row[i] > TVO_R(0.0))) {
             return 0; /* not positive definite: the general path says which */
         }
-        probe += (row[i] + b[i]) * TVO_R(0.0);
+        probe += row[i] * TVO_R(0.0); /* each alone: a finite sum of the two could overflow */
+        probe += b[i] * TVO_R(0.0);
     }
     if (!isfinite(probe)) {
         return 0; /* the general path names the entry that is not finite */
@@ -218,7 +219,7 @@ TVO_SHAPE_BODY int diagonal_solve_shape(tvo_real_t (*a)[TVO_MAX_Z_DIM], const ui
 
 static int diagonal_solve(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t n, const tvo_real_t *b, tvo_real_t *x)
 {
-#if TVO_SPECIALIZE_SHAPES
+#if TVO_SHAPE_COPIES
     if (n == TVO_SHAPE_OUTPUT_DIM) {
         return diagonal_solve_shape(a, TVO_SHAPE_OUTPUT_DIM, b, x);
     }
@@ -286,7 +287,7 @@ static tvo_status_t saddle_solve(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t primal_
         }
     }
     /* The Schur complement is symmetric in exact arithmetic; average away the rounding. */
-    tvo_symmetrize(&schur[0][0], TVO_SOLVE_SMALL_DIM, dual_n);
+    symmetrize(&schur[0][0], TVO_SOLVE_SMALL_DIM, dual_n);
     if (!cholesky_factor(&schur[0][0], TVO_SOLVE_SMALL_DIM, dual_n)) {
         return TVO_ERR_NOT_POSITIVE_DEFINITE;
     }
@@ -314,20 +315,16 @@ void tvo_hessian_clear(tvo_hessian_t *h, uint8_t n)
     h->rank_one_count = 0u;
 }
 
-/* gcc cannot tell that the entries below count, the only ones read, are the ones written. */
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
 /* The part's curvature into the matrix and its gradient jets into grad (when not NULL), for a part
  * of count entries. */
 TVO_SHAPE_BODY void add_part_shape(const tvo_rank_one_t *part, tvo_matrix_t m, tvo_jet_t *grad, const unsigned count,
                                    const uint8_t order)
 {
-#if TVO_SPECIALIZE_SHAPES
-    /* For speed, the part read once into registers: the stores into m and grad could alias it. */
-    unsigned index[TVO_RANK_ONE_MAX_ENTRIES];
-    tvo_real_t value[TVO_RANK_ONE_MAX_ENTRIES];
+#if TVO_SHAPE_COPIES
+    /* For speed, the part read once into registers (a store into m or grad could otherwise be a
+     * store into the part, as far as the compiler knows; the part must not overlap them). */
+    unsigned index[TVO_RANK_ONE_MAX_ENTRIES] = {0u};
+    tvo_real_t value[TVO_RANK_ONE_MAX_ENTRIES] = {TVO_R(0.0)};
     TVO_UNROLL_SMALL
     for (unsigned i = 0; i < count; ++i) {
         index[i] = part->index[i];
@@ -351,9 +348,6 @@ TVO_SHAPE_BODY void add_part_shape(const tvo_rank_one_t *part, tvo_matrix_t m, t
         }
     }
 }
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
 
 static void add_into_matrix(const tvo_rank_one_t *part, tvo_matrix_t m, tvo_jet_t *grad, uint8_t order)
 {
@@ -429,7 +423,7 @@ void tvo_hessian_add(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_t *gr
     if (h == NULL || part == NULL || part->count > TVO_RANK_ONE_MAX_ENTRIES) {
         return;
     }
-#if TVO_SPECIALIZE_SHAPES
+#if TVO_SHAPE_COPIES
     /* A plane's part has 2 entries (one robot), a distance bound's 4 (two robots). */
     if (order == TVO_SHAPE_ORDER && part->count == 2u) {
         hessian_add_shape(h, part, grad, 2u, TVO_SHAPE_ORDER);
@@ -572,7 +566,7 @@ tvo_status_t tvo_saddle_solve_split(tvo_hessian_t *h, uint8_t primal_n, uint8_t 
         }
         capacitance[k][k] += inv_weight;
     }
-    tvo_symmetrize(&capacitance[0][0], TVO_SOLVE_SMALL_DIM, parts);
+    symmetrize(&capacitance[0][0], TVO_SOLVE_SMALL_DIM, parts);
     if (!cholesky_factor(&capacitance[0][0], TVO_SOLVE_SMALL_DIM, parts)) {
         /* Nearly dependent directions (three planes of one robot in the plane): solve the sum. */
         return solve_parts_added(h, primal_n, dual_n, b, gamma, x, shift);

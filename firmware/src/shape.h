@@ -12,20 +12,23 @@
 
 #include "tvo/config.h"
 
-#if defined(__GNUC__)
-#define TVO_SHAPE_BODY static inline __attribute__((always_inline))
-#else
-#define TVO_SHAPE_BODY static inline
-#endif
-
 /* The common shapes: the paper's unicycle law (relative degree 2) for one robot, and for a pair
  * (a formation or an escort, without equalities). */
 #define TVO_SHAPE_ORDER 2u
 #define TVO_SHAPE_OUTPUT_DIM 2u
 #define TVO_SHAPE_PAIR_OUTPUT_DIM 4u
 
+/* The copies exist where asked for (TVO_SPECIALIZE_SHAPES) and where the build's jets can hold the
+ * common shapes' order. Without them a body is an ordinary inline function: one copy. */
+#define TVO_SHAPE_COPIES (TVO_SPECIALIZE_SHAPES && TVO_JET_MAX_ORDER >= TVO_SHAPE_ORDER)
+#if TVO_SHAPE_COPIES && defined(__GNUC__)
+#define TVO_SHAPE_BODY static inline __attribute__((always_inline))
+#else
+#define TVO_SHAPE_BODY static inline
+#endif
+
 /* Replaces a (leading n x n block, row stride `stride`) by (a + a^T) / 2: exactly symmetric. */
-TVO_SHAPE_BODY void tvo_symmetrize(tvo_real_t *a, const unsigned stride, const unsigned n)
+TVO_SHAPE_BODY void symmetrize(tvo_real_t *a, const unsigned stride, const unsigned n)
 {
     TVO_UNROLL_SMALL
     for (unsigned i = 0; i < n; ++i) {

@@ -3,13 +3,16 @@
 
 #define TRIG_TWO_OVER_PI TVO_R(0.636619772367581343076)
 #define TRIG_PI_OVER_TWO TVO_R(1.57079632679489661923)
-#define TRIG_PI_OVER_FOUR TVO_R(0.785398163397448309616)
 /* pi/2 = P1 + P2 + P3, P1 and P2 with few enough bits that q * P1, q * P2 are exact for q < 2^13. */
 #define TRIG_PIO2_1 TVO_R(1.5703125)
 #define TRIG_PIO2_2 TVO_R(4.837512969970703125e-4)
 #define TRIG_PIO2_3 TVO_R(7.54978995489188216e-8)
 
 #if !TVO_USE_DOUBLE
+/* The largest float the reduction below maps to quarter 0 (pi/4 itself rounds to quarter 1 there):
+ * below it the reduction is the identity, so skipping it changes no result. */
+#define TRIG_NO_REDUCTION_LIMIT 0x1.921fb2p-1f
+
 /* sin and cos on [-pi/4, pi/4]: the minimax polynomials of Cephes' sinf/cosf. */
 static void sincos_kernel(float x, float *s, float *c)
 {
@@ -53,7 +56,7 @@ void tvo_sincos(tvo_real_t angle_rad, tvo_real_t *sin_out, tvo_real_t *cos_out)
         *cos_out = cosf(angle_rad);
         return;
     }
-    if (TVO_FABS(angle_rad) <= TRIG_PI_OVER_FOUR) {
+    if (TVO_FABS(angle_rad) <= TRIG_NO_REDUCTION_LIMIT) {
         sincos_kernel(angle_rad, sin_out, cos_out); /* small angles (a turn over one period): no reduction */
         return;
     }
@@ -85,7 +88,7 @@ void tvo_sincos_turns(uint64_t turns_q64, tvo_real_t extra_rad, tvo_real_t *sin_
     const float rest = (float)rest_q32 * (TRIG_PI_OVER_TWO / 1073741824.0f) + extra_rad;
     float s;
     float c;
-    if (TVO_FABS(rest) > TRIG_PI_OVER_FOUR) {
+    if (TVO_FABS(rest) > 0.7853982f) {
         tvo_sincos(rest, &s, &c); /* the extra angle left the octant: reduce it too */
     } else {
         sincos_kernel(rest, &s, &c);

@@ -6,6 +6,8 @@
  *
  * Prints one line per problem: "BENCH <name> steps <n> min <a> median <b> max <c> status <s>" in
  * instructions under qemu -icount shift=0 (counter ticks times the board's instructions per tick),
+ * then "BENCH_DIGEST <name> <n>", a 32-bit FNV-1a hash of every command's bytes (two builds of the
+ * core that compute the same commands bit for bit print the same digest),
  * "BENCH_SKIP <name>" for a problem the build's limits cannot hold, then "BENCH_CONFIG" with the
  * build's limits and the resolution. With an argument (host builds), runs only that problem.
  */
@@ -45,6 +47,17 @@ static uint32_t instructions(uint32_t ticks)
     return (uint32_t)(((uint64_t)ticks * TVO_BOARD_INSTRUCTIONS_PER_TICK_NUM) / TVO_BOARD_INSTRUCTIONS_PER_TICK_DEN);
 }
 
+static uint32_t digest;
+
+/* FNV-1a over the bytes of what the step returned: outside the measured span. */
+static void digest_add(const void *bytes, size_t size)
+{
+    const unsigned char *p = (const unsigned char *)bytes;
+    for (size_t i = 0; i < size; ++i) {
+        digest = (digest ^ p[i]) * 16777619u;
+    }
+}
+
 static void report(const char *name, uint32_t count, tvo_status_t last_status)
 {
     sort_samples(count);
@@ -60,6 +73,10 @@ static void report(const char *name, uint32_t count, tvo_status_t last_status)
     tvo_board_put_u32(instructions(samples[count - 1u]));
     tvo_board_puts(" status ");
     tvo_board_put_i32((int32_t)last_status);
+    tvo_board_puts("\nBENCH_DIGEST ");
+    tvo_board_puts(name);
+    tvo_board_putc(' ');
+    tvo_board_put_u32(digest);
     tvo_board_putc('\n');
 }
 
@@ -83,12 +100,16 @@ static tvo_status_t bench_unicycle_problem(bench_unicycle_problem_t which)
     if (last != TVO_OK) {
         return last;
     }
+    digest = 2166136261u;
     for (uint32_t n = 0; n < BENCH_STEPS; ++n) {
         const tvo_status_t advanced = bench_loop_advance(&loop);
         if (advanced != TVO_OK) {
             return advanced;
         }
         MEASURE(samples[n], tvo_controller_step(&loop.controller, &loop.meas, loop.apply_tick, &loop.cmd));
+        digest_add(&loop.cmd.speed_mps, sizeof(loop.cmd.speed_mps));
+        digest_add(&loop.cmd.turn_rate_radps, sizeof(loop.cmd.turn_rate_radps));
+        digest_add(&loop.cmd.flags, sizeof(loop.cmd.flags));
     }
     report(bench_problem_name(which), BENCH_STEPS, last);
     return last;
@@ -137,6 +158,7 @@ static tvo_status_t bench_chain_k3(void)
     tvo_chain_command_t cmd;
     memset(&cmd, 0, sizeof(cmd));
     const tvo_real_t half_s = TVO_R(0.5) * tvo_ticks_to_seconds(cfg.period_ticks, cfg.tick_hz);
+    digest = 2166136261u;
     for (uint32_t n = 0; n < BENCH_STEPS; ++n) {
         tvo_chain_measurement_t meas;
         (void)tvo_chain_predict(3u, 2u, &state, cmd.u, half_s, &state);
@@ -144,6 +166,7 @@ static tvo_status_t bench_chain_k3(void)
         meas.stamp_tick = n * cfg.period_ticks + cfg.period_ticks - cfg.delay_ticks;
         (void)tvo_chain_predict(3u, 2u, &state, cmd.u, half_s, &state);
         MEASURE(samples[n], tvo_chain_controller_step(&loop.chain, &meas, (n + 1u) * cfg.period_ticks, &cmd));
+        digest_add(&cmd.u, sizeof(cmd.u));
     }
     report("chain_k3", BENCH_STEPS, last);
     return last;

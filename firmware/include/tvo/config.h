@@ -99,7 +99,8 @@ typedef float tvo_real_t;
 #define TVO_SPECIALIZE_SHAPES 1
 #endif
 #endif
-/* Before a loop that runs at most 4 times: unrolled in full where its count is a constant. */
+/* Before a short loop (a jet's coefficients, a robot's outputs, a part's entries, a small matrix's
+ * rows): unrolled in full where its count is a constant, by up to 4 where it is not. */
 #if TVO_SPECIALIZE_SHAPES && defined(__GNUC__)
 #define TVO_UNROLL_SMALL _Pragma("GCC unroll 4")
 #else

@@ -120,9 +120,15 @@ static inline void tvo_jet_axpy(tvo_real_t s, const tvo_jet_t *a, uint8_t order,
 static inline void tvo_jet_mul(const tvo_jet_t *a, const tvo_jet_t *b, uint8_t order, tvo_jet_t *out)
 {
     if (TVO_JET_ORDER_IS_CONSTANT_2(order)) {
-        const tvo_real_t r0 = a->c[0] * b->c[0];
-        const tvo_real_t r1 = a->c[0] * b->c[1] + a->c[1] * b->c[0];
-        const tvo_real_t r2 = a->c[0] * b->c[2] + a->c[1] * b->c[1] + a->c[2] * b->c[0];
+        tvo_real_t r0 = TVO_R(0.0); /* each sum as the loop below forms it, from +0 in the same order */
+        r0 += a->c[0] * b->c[0];
+        tvo_real_t r1 = TVO_R(0.0);
+        r1 += a->c[0] * b->c[1];
+        r1 += a->c[1] * b->c[0];
+        tvo_real_t r2 = TVO_R(0.0);
+        r2 += a->c[0] * b->c[2];
+        r2 += a->c[1] * b->c[1];
+        r2 += a->c[2] * b->c[0];
         out->c[0] = r0;
         out->c[1] = r1;
         out->c[2] = r2;
@@ -141,7 +147,39 @@ static inline void tvo_jet_mul(const tvo_jet_t *a, const tvo_jet_t *b, uint8_t o
 }
 
 /** a / b; b->c[0] must be non-zero (the caller checks). out may alias a or b. */
-void tvo_jet_div(const tvo_jet_t *a, const tvo_jet_t *b, uint8_t order, tvo_jet_t *out);
+static inline void tvo_jet_div(const tvo_jet_t *a, const tvo_jet_t *b, uint8_t order, tvo_jet_t *out)
+{
+    /* q = a / b  <=>  q_j = (a_j - sum_{i<j} q_i b_{j-i}) / b_0 */
+    if (TVO_JET_ORDER_IS_CONSTANT_2(order)) {
+        tvo_real_t q0 = a->c[0];
+        q0 = q0 / b->c[0];
+        tvo_real_t q1 = a->c[1];
+        q1 -= q0 * b->c[1];
+        q1 = q1 / b->c[0];
+        tvo_real_t q2 = a->c[2];
+        q2 -= q0 * b->c[2];
+        q2 -= q1 * b->c[1];
+        q2 = q2 / b->c[0];
+        out->c[0] = q0;
+        out->c[1] = q1;
+        out->c[2] = q2;
+        return;
+    }
+    const unsigned n = tvo_jet_order_clamp(order);
+    tvo_jet_t q;
+    tvo_jet_constant(TVO_R(0.0), &q); /* set: not every compiler sees the loop write 0..n first */
+    for (unsigned j = 0; j <= n; ++j) {
+        tvo_real_t acc = a->c[j];
+        for (unsigned i = 0; i < j; ++i) {
+            acc -= q.c[i] * b->c[j - i];
+        }
+        q.c[j] = acc / b->c[0];
+    }
+    for (unsigned j = 0; j <= n; ++j) {
+        out->c[j] = q.c[j];
+    }
+}
+
 /** sqrt(a); a->c[0] must be > 0. */
 void tvo_jet_sqrt(const tvo_jet_t *a, uint8_t order, tvo_jet_t *out);
 /** log(a); a->c[0] must be > 0. */
