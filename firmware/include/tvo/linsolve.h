@@ -74,7 +74,7 @@ typedef struct {
 } tvo_hessian_t;
 
 /** m += weight u u^T for a part, and (grad not NULL) grad[u's indices] += u's entries x its gradient
- *  jets to order: a part added into a matrix. */
+ *  jets to order: a part added into a matrix. The part must not lie in m or grad. */
 void tvo_rank_one_add_to(const tvo_rank_one_t *part, tvo_matrix_t m, tvo_jet_t *grad, uint8_t order);
 
 /** Zeroes the leading n x n block and drops every rank-one part. */
@@ -97,7 +97,7 @@ tvo_status_t tvo_saddle_solve(tvo_matrix_t a, uint8_t primal_n, uint8_t dual_n, 
 /**
  * Adds a part (count <= TVO_RANK_ONE_MAX_ENTRIES). A part with positive weight is kept apart while
  * there is room; otherwise (or for the smallest, by weight |u|^2, when full) it is added into the
- * matrix and its gradient jets into grad (to order).
+ * matrix and its gradient jets into grad (to order). The part must not lie in h's matrix or grad.
  */
 void tvo_hessian_add_part(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_t *grad, uint8_t order);
 
