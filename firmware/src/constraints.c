@@ -86,7 +86,7 @@ TVO_SHAPE_BODY tvo_status_t distance_sum_shape(const tvo_distance_term_t *self, 
     }
     const tvo_real_t sign = distance_sign(self);
     tvo_jet_t diff[2];
-    tvo_jet_t f = {{TVO_R(0.0)}}; /* written to order by the product; set so no compiler sees it unset */
+    tvo_jet_t f;
     tvo_jet_mul(&bound, &bound, order, &f);
     tvo_jet_scale(&f, -sign, order, &f);
     for (uint8_t axis = 0; axis < 2u; ++axis) {
@@ -240,7 +240,7 @@ TVO_SHAPE_BODY tvo_status_t halfspace_sum_shape(const tvo_halfspace_term_t *self
     tvo_jet_t f;
     affine_time_jet(-self->bound_m, -self->bound_rate_mps, t, &f);
     for (uint8_t axis = 0; axis < 2u; ++axis) {
-        tvo_jet_t product = {{TVO_R(0.0)}}; /* written to order; set so no compiler sees it unset */
+        tvo_jet_t product;
         affine_time_jet(self->normal[axis], self->normal_rate[axis], t, &normal[axis]);
         tvo_jet_mul(&normal[axis], &z[self->offset + axis], order, &product);
         tvo_jet_add(&f, &product, order, &f);

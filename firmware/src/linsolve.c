@@ -362,13 +362,20 @@ void tvo_rank_one_add_to(const tvo_rank_one_t *part, tvo_matrix_t m, tvo_jet_t *
     add_into_matrix(part, m, grad, order);
 }
 
-static tvo_real_t rank_one_size(const tvo_rank_one_t *part)
+/* A part's size weight |u|^2 (what decides whether it is stiff), for a part of count entries. */
+TVO_SHAPE_BODY tvo_real_t rank_one_size_shape(const tvo_rank_one_t *part, const unsigned count)
 {
     tvo_real_t norm_sq = TVO_R(0.0);
-    for (unsigned i = 0; i < part->count; ++i) {
+    TVO_UNROLL_SMALL
+    for (unsigned i = 0; i < count; ++i) {
         norm_sq += part->value[i] * part->value[i];
     }
     return part->weight * norm_sq;
+}
+
+static tvo_real_t rank_one_size(const tvo_rank_one_t *part)
+{
+    return rank_one_size_shape(part, part->count);
 }
 
 void tvo_hessian_add_part(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_t *grad, uint8_t order)
@@ -404,14 +411,12 @@ TVO_SHAPE_BODY void hessian_add_shape(tvo_hessian_t *h, const tvo_rank_one_t *pa
                                       const unsigned count, const uint8_t order)
 {
     tvo_real_t scale = TVO_R(1.0);
-    tvo_real_t norm_sq = TVO_R(0.0);
     TVO_UNROLL_SMALL
     for (unsigned i = 0; i < count; ++i) {
         const tvo_real_t d = TVO_FABS(h->matrix[part->index[i]][part->index[i]]);
         scale = d > scale ? d : scale;
-        norm_sq += part->value[i] * part->value[i];
     }
-    if (part->weight * norm_sq > TVO_STIFF_RATIO * scale) { /* rank_one_size(part) */
+    if (rank_one_size_shape(part, count) > TVO_STIFF_RATIO * scale) {
         tvo_hessian_add_part(h, part, grad, order);
     } else {
         add_part_shape(part, h->matrix, grad, count, order);

@@ -84,7 +84,7 @@ tvo_status_t tvo_tracking_gradient_hessian(const void *term, const tvo_jet_t *y,
     /* rate^j / j! (rate is 1 along the trajectory, 0 for frozen time). */
     const tvo_real_t rate = t->rate;
     const tvo_real_t scale[4] = {TVO_R(1.0), rate, TVO_R(0.5) * rate * rate, rate * rate * rate / TVO_R(6.0)};
-    const unsigned count = order < TVO_JET_MAX_ORDER ? order + 1u : TVO_JET_MAX_ORDER + 1u;
+    const unsigned count = tvo_jet_order_clamp(order) + 1u;
 #if TVO_SHAPE_COPIES
     if (count == TVO_SHAPE_ORDER + 1u) {
         add_weighted_error(self, y, deriv, scale, TVO_SHAPE_ORDER + 1u, grad);

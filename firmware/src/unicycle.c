@@ -13,7 +13,7 @@ tvo_real_t tvo_wrap_angle(tvo_real_t angle_rad)
     if (!isfinite(angle_rad)) {
         return angle_rad;
     }
-    if (angle_rad <= UNICYCLE_PI && angle_rad > -UNICYCLE_PI) {
+    if (unicycle_angle_in_range(angle_rad)) {
         return angle_rad; /* the common case: headings move by at most omega_max h per step */
     }
     /* Subtract the nearest multiple of 2 pi in constant time, 2 pi split in two parts (Cody-Waite)

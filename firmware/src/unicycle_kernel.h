@@ -11,13 +11,16 @@
 
 #define UNICYCLE_PI TVO_R(3.14159265358979323846)
 
+/* Whether an angle is in tvo_wrap_angle's range (-pi, pi] already (false for NaN and infinities). */
+static inline int unicycle_angle_in_range(tvo_real_t angle_rad)
+{
+    return angle_rad <= UNICYCLE_PI && angle_rad > -UNICYCLE_PI;
+}
+
 /* tvo_wrap_angle for an angle that is usually in range already (a heading moved by one period). */
 static inline tvo_real_t unicycle_wrap_angle_near(tvo_real_t angle_rad)
 {
-    if (angle_rad <= UNICYCLE_PI && angle_rad > -UNICYCLE_PI) {
-        return angle_rad;
-    }
-    return tvo_wrap_angle(angle_rad);
+    return unicycle_angle_in_range(angle_rad) ? angle_rad : tvo_wrap_angle(angle_rad);
 }
 
 /* tvo_unicycle_flat_map_cs for finite inputs, min_speed_mps > 0; *low_speed is only ever set to 1. */
