@@ -47,6 +47,9 @@ static uint32_t instructions(uint32_t ticks)
     return (uint32_t)(((uint64_t)ticks * TVO_BOARD_INSTRUCTIONS_PER_TICK_NUM) / TVO_BOARD_INSTRUCTIONS_PER_TICK_DEN);
 }
 
+/* FNV-1a's offset basis: each problem's digest starts from it. */
+#define DIGEST_BASIS 2166136261u
+
 static uint32_t digest;
 
 /* FNV-1a over the bytes of what the step returned: outside the measured span. */
@@ -100,7 +103,7 @@ static tvo_status_t bench_unicycle_problem(bench_unicycle_problem_t which)
     if (last != TVO_OK) {
         return last;
     }
-    digest = 2166136261u;
+    digest = DIGEST_BASIS;
     for (uint32_t n = 0; n < BENCH_STEPS; ++n) {
         const tvo_status_t advanced = bench_loop_advance(&loop);
         if (advanced != TVO_OK) {
@@ -158,7 +161,7 @@ static tvo_status_t bench_chain_k3(void)
     tvo_chain_command_t cmd;
     memset(&cmd, 0, sizeof(cmd));
     const tvo_real_t half_s = TVO_R(0.5) * tvo_ticks_to_seconds(cfg.period_ticks, cfg.tick_hz);
-    digest = 2166136261u;
+    digest = DIGEST_BASIS;
     for (uint32_t n = 0; n < BENCH_STEPS; ++n) {
         tvo_chain_measurement_t meas;
         (void)tvo_chain_predict(3u, 2u, &state, cmd.u, half_s, &state);
