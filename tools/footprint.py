@@ -1,30 +1,33 @@
 #!/usr/bin/python3
 """Flash, RAM and worst-case step stack of the control core in one cross build.
 
-  tools/footprint.py --core-dir DIR --map FILE [--root FN ...] [--json PATH]
+  tools/footprint.py --core-dir DIR --map FILE --elf FILE --objdump PROG [--root FN ...] [--json PATH]
 
 --core-dir  the build folder of firmware/ configured with -DTVO_STACK_USAGE=ON: its object folder
             holds one .ci call graph (gcc -fcallgraph-info=su) per core source.
 --map       the GNU ld map file of a --gc-sections link that uses the core; only the input sections
             that came from libtvo_core.a are counted, so libc, libm and startup code are not.
+--elf       the linked program of that map; --objdump the toolchain's objdump, to disassemble it.
 --root      functions whose worst-case stack depth to report (default: tvo_controller_step).
 
 Flash = .text + .rodata + .data of the core, RAM = .data + .bss of the core (what the linker kept).
 Stack: the deepest path of static frame sizes through the call graph. The core's only indirect
 calls are the objective's term callbacks (tvo_gradient_jet_fn, tvo_constraint_max_fn); an indirect
-call is charged the deepest of the functions that implement them (names ending in _gradient_jet or
-_constraint_max). Calls into libc/libm/libgcc (no .ci of ours) are charged EXTERNAL_FRAME_BYTES
-each, a stated bound, not a measurement. The core has no recursion; a cycle is reported as an error.
+call is charged the deepest of the functions that implement them (names ending in _gradient_jet,
+_gradient_hessian or _constraint_max) that the link kept. Calls into libc/libm/libgcc (no .ci of
+ours) are measured in the linked ELF (--elf, disassembled by --objdump): each library function's
+frame is the sum of its stack-pointer decrements (pushes, stack adjustments), its callees are its
+direct calls and tail branches, so a library path is charged in full (newlib's sinf of a huge
+argument goes through __kernel_rem_pio2f, over 400 B on Cortex-M). A library function with an
+indirect call or a stack adjustment by a register on the path is an error, as is recursion.
 """
 import argparse
 import json
 import pathlib
 import re
+import subprocess
 import sys
 
-# Charged per call that leaves the core (memset, sinf, __aeabi_* ...): newlib-nano's and libgcc's
-# leaf routines use well under this on Cortex-M and RV32.
-EXTERNAL_FRAME_BYTES = 64
 CALLBACK_SUFFIXES = ("_gradient_jet", "_gradient_hessian", "_constraint_max")
 
 NODE_RE = re.compile(r'node: \{ title: "([^"]+)" label: "([^"]*)"')
@@ -50,33 +53,152 @@ def read_call_graph(core_dir):
     return frames, edges
 
 
-def worst_stack(root, frames, edges):
+FUNCTION_RE = re.compile(r"^[0-9a-f]+ <([^>+]+)>:$")
+INSN_RE = re.compile(r"^\s*[0-9a-f]+:\s+(\S+)\s*(.*)$")
+TARGET_RE = re.compile(r"<([^>+]+)>$")
+REG_LIST_RE = re.compile(r"\{([^}]*)\}")
+# ARM: push/stmdb sp!/vpush/vstmdb sp! {list}; sub sp, #n; str/strd ..., [sp, #-n]!.
+# RISC-V: add(i) sp,sp,-n.
+ARM_SUB_RE = re.compile(r"^sp, (?:sp, )?#(\d+)")
+PRE_INDEX_RE = re.compile(r"\[sp, #-(\d+)\]!")
+RV_ADD_RE = re.compile(r"^sp,sp,-(\d+)$")
+FUNCTION_SYMBOL_RE = re.compile(r"^([0-9a-f]+) .* F \S+\s+[0-9a-f]+\s+(?:\.hidden )?(\S+)$", re.M)
+
+
+def register_list_bytes(args):
+    """Bytes a push of the listed registers takes: 4 per core or s register, 8 per d register."""
+    total = 0
+    for item in REG_LIST_RE.search(args).group(1).split(","):
+        item = item.strip()
+        first, _, last = item.partition("-")
+        count = int(last[1:]) - int(first[1:]) + 1 if last else 1
+        total += count * (8 if first.startswith("d") else 4)
+    return total
+
+
+def stack_decrement(op, args):
+    """Bytes an instruction takes from the stack; None when by a register (not static)."""
+    base = op.split(".")[0]
+    if base == "push" or base == "vpush" or (base in ("stmdb", "stmfd", "vstmdb") and args.startswith("sp!")):
+        return register_list_bytes(args)
+    if base in ("sub", "subw") and args.startswith("sp,"):
+        match = ARM_SUB_RE.match(args)
+        return int(match.group(1)) if match else None
+    if base.startswith("str") and PRE_INDEX_RE.search(args):
+        return int(PRE_INDEX_RE.search(args).group(1))
+    if base in ("add", "addi") and args.startswith("sp,sp,-"):
+        return int(RV_ADD_RE.match(args).group(1))
+    if base == "sub" and args.startswith("sp,sp,"):
+        return None
+    return 0
+
+
+def read_binary_graph(elf, objdump):
+    """Frames and direct callees of every function in a linked program, from its disassembly."""
+    text = subprocess.run([objdump, "-d", "--no-show-raw-insn", elf], check=True, capture_output=True,
+                          text=True).stdout
+    frames, edges, millicode, problems = {}, {}, {}, {}
+    current = None
+    for line in text.splitlines():
+        match = FUNCTION_RE.match(line)
+        if match:
+            current = match.group(1)
+            frames.setdefault(current, 0)
+            edges.setdefault(current, set())
+            continue
+        match = INSN_RE.match(line) if current else None
+        if not match:
+            continue
+        op, args = match.group(1), match.group(2).split(";")[0].split("@")[0].strip()
+        if current.startswith("__riscv_save"):
+            # RV32 millicode: saves up to 12 registers in one 64-byte block for its caller.
+            frames[current] = 64
+            continue
+        taken = stack_decrement(op, args)
+        if taken is None:
+            problems.setdefault(current, f"stack adjusted by a register ({op} {args})")
+        else:
+            frames[current] += taken
+        base = op.split(".")[0]
+        target = TARGET_RE.search(args)
+        # An indirect call has no static callee; an indirect jump without link (bx/jr through a
+        # register) is taken as the library's switch tables, which stay in the function.
+        if base in ("blx", "jalr") and not target:
+            problems.setdefault(current, f"indirect call ({op} {args})")
+        elif target and (base.startswith("b") or base in ("j", "jal", "call", "tail")):
+            callee = target.group(1)
+            if base == "jal" and args.startswith("t0,"):
+                millicode[current] = callee  # its frame is the caller's until the caller returns
+            elif callee != current:
+                edges[current].add(callee)
+    for fn, routine in millicode.items():
+        frames[fn] += frames.get(routine, 64)
+        edges[fn].discard(routine)
+    # Aliases (__aeabi_uidiv is __udivsi3): the disassembly labels an address by one of its names.
+    symbols = subprocess.run([objdump, "-t", elf], check=True, capture_output=True, text=True).stdout
+    by_address = {}
+    for match in FUNCTION_SYMBOL_RE.finditer(symbols):
+        by_address.setdefault(match.group(1), []).append(match.group(2))
+    for names in by_address.values():
+        label = next((n for n in names if n in frames), None)
+        for name in names:
+            if label and name not in frames:
+                frames[name], edges[name] = frames[label], edges[label]
+                if label in problems:
+                    problems[name] = problems[label]
+    return frames, edges, problems
+
+
+def worst_stack(root, frames, edges, binary):
+    """The deepest path from root: our functions by gcc's call graph, the library's by the ELF's."""
+    bin_frames, bin_edges, bin_problems = binary
     # The objective's own dispatchers share the suffixes but are the callers, not the callbacks.
-    callbacks = [f for f in frames if f.endswith(CALLBACK_SUFFIXES) and not f.startswith("tvo_objective_")]
+    callbacks = [f for f in frames if f.endswith(CALLBACK_SUFFIXES) and not f.startswith("tvo_objective_")
+                 and f.split(":")[-1] in bin_frames]
     memo, active = {}, set()
 
     def depth(fn):
         if fn in memo:
             return memo[fn]
         if fn == "__indirect_call":
-            result = max((depth(c) for c in callbacks), default=(EXTERNAL_FRAME_BYTES, [fn]))
-            memo[fn] = result
-            return result
-        if fn not in frames:
-            return EXTERNAL_FRAME_BYTES, [fn + " (external)"]
+            if not callbacks:
+                sys.exit("footprint: an indirect call, but no term callback in the link")
+            memo[fn] = max((depth(c) for c in callbacks), key=lambda item: item[0])
+            return memo[fn]
+        ours = fn in frames
+        if not ours and fn not in bin_frames:
+            sys.exit(f"footprint: {fn} is called but is neither in the core's call graph nor in the link")
+        if not ours and fn in bin_problems:
+            sys.exit(f"footprint: no static stack bound through {fn}: {bin_problems[fn]}")
         if fn in active:
             sys.exit(f"footprint: recursion through {fn}: no static worst case")
         active.add(fn)
         best = (0, [])
-        for callee in sorted(edges.get(fn, ())):
+        for callee in sorted(edges.get(fn, ()) if ours else bin_edges[fn]):
             best = max(best, depth(callee), key=lambda item: item[0])
         active.discard(fn)
-        memo[fn] = (frames[fn] + best[0], [fn] + best[1])
+        frame = frames[fn] if ours else bin_frames[fn]
+        memo[fn] = (frame + best[0], [fn if ours else fn + " (library)"] + best[1])
         return memo[fn]
 
     if root not in frames:
         sys.exit(f"footprint: {root} not in the call graph")
     return depth(root)
+
+
+def check_binary_frames(frames, binary):
+    """The disassembly must find gcc's own frame for the core's public functions the link kept (the
+    check of the library's figures); returns how many it compared and how many matched exactly."""
+    bin_frames = binary[0]
+    compared = equal = 0
+    for fn, frame in frames.items():
+        if ":" in fn or fn not in bin_frames:
+            continue
+        if bin_frames[fn] < frame:
+            sys.exit(f"footprint: the disassembly finds {bin_frames[fn]} B for {fn}, gcc says {frame} B")
+        compared += 1
+        equal += bin_frames[fn] == frame
+    return {"compared": compared, "equal": equal}
 
 
 SECTION_RE = re.compile(r"^ (\.\S+)\s+0x[0-9a-f]+\s+0x([0-9a-f]+)\s+(\S+)$")
@@ -134,10 +256,14 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--core-dir", required=True)
     parser.add_argument("--map", required=True)
+    parser.add_argument("--elf", required=True)
+    parser.add_argument("--objdump", required=True)
     parser.add_argument("--root", action="append")
     parser.add_argument("--json")
     args = parser.parse_args()
     frames, edges = read_call_graph(args.core_dir)
+    binary = read_binary_graph(args.elf, args.objdump)
+    frames_check = check_binary_frames(frames, binary)
     sections = core_sections(args.map)
     result = {
         "flash_bytes": sections["text"] + sections["rodata"] + sections["data"],
@@ -145,9 +271,10 @@ def main():
         "sections": sections,
         "instance_bytes": instance_sizes(args.map),
         "stack": {},
+        "frames_from_disassembly_vs_gcc": frames_check,
     }
     for root in args.root or ["tvo_controller_step"]:
-        bytes_, path = worst_stack(root, frames, edges)
+        bytes_, path = worst_stack(root, frames, edges, binary)
         result["stack"][root] = {"bytes": bytes_, "path": path}
     result["stack_bytes"] = max(v["bytes"] for v in result["stack"].values())
     text = json.dumps(result, indent=2)

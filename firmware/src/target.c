@@ -82,8 +82,9 @@ tvo_status_t tvo_target_init_ellipse(tvo_target_t *target, const tvo_target_elli
     target->kind = TVO_TARGET_ELLIPSE;
     target->u.ellipse = *ellipse;
     /* The rotation is fixed: the rotated semi-axes once here, not at every evaluation. */
-    const tvo_real_t cos_rotation = TVO_COS(ellipse->rotation_rad);
-    const tvo_real_t sin_rotation = TVO_SIN(ellipse->rotation_rad);
+    tvo_real_t sin_rotation;
+    tvo_real_t cos_rotation;
+    tvo_sincos(ellipse->rotation_rad, &sin_rotation, &cos_rotation);
     target->axis_m[0][0] = ellipse->semi_axis_m[0] * cos_rotation;
     target->axis_m[0][1] = ellipse->semi_axis_m[0] * sin_rotation;
     target->axis_m[1][0] = -ellipse->semi_axis_m[1] * sin_rotation;

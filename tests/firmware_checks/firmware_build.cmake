@@ -55,7 +55,7 @@ tvo_run("configure firmware" "${CMAKE_COMMAND}" -S "${FIRMWARE_DIR}" -B "${BINAR
     -DTVO_STACK_USAGE=ON)
 tvo_run("build tvo_core" "${CMAKE_COMMAND}" --build "${BINARY_DIR}" --target tvo_core --parallel ${jobs})
 
-load_cache("${BINARY_DIR}" READ_WITH_PREFIX SUB_ CMAKE_NM CMAKE_SIZE CMAKE_C_COMPILER)
+load_cache("${BINARY_DIR}" READ_WITH_PREFIX SUB_ CMAKE_NM CMAKE_SIZE CMAKE_OBJDUMP CMAKE_C_COMPILER)
 set(core_lib "${BINARY_DIR}/libtvo_core.a")
 if(NOT EXISTS "${core_lib}")
   message(FATAL_ERROR "${core_lib} was not produced")
@@ -103,7 +103,7 @@ if(PROBE_DIR)
 endif()
 if(PROBE_DIR AND FOOTPRINT_TOOL)
   tvo_run("footprint" "${FOOTPRINT_TOOL}" --core-dir "${BINARY_DIR}/CMakeFiles/tvo_core.dir"
-      --map "${probe_bin}/alloc_probe.map" --root tvo_controller_step --root tvo_chain_controller_step
+      --map "${probe_bin}/alloc_probe.map" --elf "${probe_bin}/alloc_probe.elf" --objdump "${SUB_CMAKE_OBJDUMP}" --root tvo_controller_step --root tvo_chain_controller_step
       --json "${BINARY_DIR}/footprint.json")
 endif()
 message(STATUS "firmware build check passed")

@@ -1,10 +1,14 @@
 /*
  * tvo_sincos and tvo_sincos_turns against libm in double: within a few float32 ulps over the fast
- * range, libm's answer beyond it, NaN for NaN and Inf; the fixed-point phase exact at every quarter.
+ * range and beyond it (the exact reduction, at every float exponent), NaN for NaN and Inf; the
+ * fixed-point phase exact at every quarter.
  */
 #include "test_support.h"
 
 #include "tvo/trig.h"
+
+#include <float.h>
+#include <string.h>
 
 void setUp(void) {}
 void tearDown(void) {}
@@ -47,6 +51,31 @@ static void test_sincos_beyond_the_fast_range_and_not_finite(void)
     TEST_ASSERT_TRUE(isnan(s) && isnan(c));
 }
 
+/* Beyond the fast range the float build reduces by the bits of 2/pi; libm's double reduction of the
+ * same float is exact, so the two agree to float32 rounding at every exponent up to FLT_MAX. */
+static void test_sincos_beyond_the_fast_range_at_every_exponent(void)
+{
+#if !TVO_USE_DOUBLE
+    uint32_t state = 2463534242u;
+    for (uint32_t exponent = 140u; exponent <= 254u; ++exponent) { /* 2^13 <= |x| < 2^128 */
+        for (int k = 0; k < 48; ++k) {
+            state ^= state << 13;
+            state ^= state >> 17;
+            state ^= state << 5;
+            const uint32_t bits = (exponent << 23) | (state & 0x7FFFFFu) | (state & 0x80000000u);
+            float x;
+            memcpy(&x, &bits, sizeof(x));
+            if (fabsf(x) > TVO_SINCOS_FAST_LIMIT_RAD) {
+                assert_sincos_at((double)x);
+            }
+        }
+    }
+    assert_sincos_at((double)FLT_MAX);
+    assert_sincos_at(-(double)FLT_MAX);
+    assert_sincos_at((double)nextafterf(TVO_SINCOS_FAST_LIMIT_RAD, INFINITY));
+#endif
+}
+
 static void test_turns_are_exact_at_quarters_and_match_libm_between(void)
 {
     tvo_real_t s;
@@ -72,6 +101,7 @@ int main(void)
     UNITY_BEGIN();
     RUN_TEST(test_sincos_matches_libm_over_the_fast_range);
     RUN_TEST(test_sincos_beyond_the_fast_range_and_not_finite);
+    RUN_TEST(test_sincos_beyond_the_fast_range_at_every_exponent);
     RUN_TEST(test_turns_are_exact_at_quarters_and_match_libm_between);
     return UNITY_END();
 }
