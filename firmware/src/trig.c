@@ -81,7 +81,11 @@ static uint64_t mul_high_u64(uint64_t a, uint64_t b)
  * sin and cos of a finite |angle| >= TVO_SINCOS_FAST_LIMIT_RAD by exact reduction (Payne-Hanek):
  * angle 2/pi modulo 4 in integer arithmetic, from the 96 bits of 2/pi that matter at the angle's
  * exponent. No libm: its reduction of a huge argument takes over 400 bytes of stack on Cortex-M.
+ * Kept out of line, so the common path's frame does not carry its registers.
  */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
 static void sincos_huge(float angle_rad, float *sin_out, float *cos_out)
 {
     uint32_t bits;

@@ -10,6 +10,10 @@
  * core that compute the same commands bit for bit print the same digest),
  * "BENCH_SKIP <name>" for a problem the build's limits cannot hold, then "BENCH_CONFIG" with the
  * build's limits and the resolution. With an argument (host builds), runs only that problem.
+ * On Cortex-M, each step also runs with the stack below it painted and interrupts off, and
+ * "BENCH_STACK <name> <bytes>" gives the deepest any step wrote below its caller's stack pointer;
+ * "BENCH_STACK hostile <bytes>" the same for steps fed hostile measurements (huge finite headings,
+ * positions and speeds, which the step accepts and must still handle in bounded stack).
  */
 #include <string.h>
 
@@ -83,6 +87,60 @@ static void report(const char *name, uint32_t count, tvo_status_t last_status)
     tvo_board_putc('\n');
 }
 
+#if defined(__arm__)
+/* The window painted below the caller's stack pointer: 4 KiB, several times any step's static bound
+ * (tools/footprint.py); a step that wrote to its bottom word would be reported as using it all. */
+#define STACK_WINDOW_WORDS 1024u
+#define STACK_PAINT 0xA5A5A5A5u
+static volatile uint32_t *stack_window;
+static uint32_t stack_deepest; /* bytes, the deepest step of the current problem */
+
+/* Paints the window just below the stack pointer of the caller (the frame the step is called from)
+ * and masks interrupts, whose exception frames would land there too. Inline, so the pointer read is
+ * the calling function's. */
+#define STACK_PAINT_BELOW_HERE()                                               \
+    do {                                                                       \
+        uint32_t sp_;                                                          \
+        __asm__ volatile("mov %0, sp" : "=r"(sp_));                            \
+        stack_window = (volatile uint32_t *)(sp_ - 4u * STACK_WINDOW_WORDS);   \
+        for (uint32_t i_ = 0; i_ < STACK_WINDOW_WORDS; ++i_) {                 \
+            stack_window[i_] = STACK_PAINT;                                    \
+        }                                                                      \
+        __asm__ volatile("cpsid i" ::: "memory");                              \
+    } while (0)
+
+/* After the step: interrupts back on; the lowest word no longer painted is how deep it went. */
+static void stack_measure_after_step(void)
+{
+    __asm__ volatile("cpsie i" ::: "memory");
+    uint32_t untouched = 0u;
+    while (untouched < STACK_WINDOW_WORDS && stack_window[untouched] == STACK_PAINT) {
+        ++untouched;
+    }
+    const uint32_t used = 4u * (STACK_WINDOW_WORDS - untouched);
+    if (used > stack_deepest) {
+        stack_deepest = used;
+    }
+}
+
+static void stack_report(const char *name)
+{
+    tvo_board_puts("BENCH_STACK ");
+    tvo_board_puts(name);
+    tvo_board_putc(' ');
+    tvo_board_put_u32(stack_deepest);
+    tvo_board_putc('\n');
+    stack_deepest = 0u;
+}
+#else
+#define STACK_PAINT_BELOW_HERE() ((void)0)
+static void stack_measure_after_step(void) {}
+static void stack_report(const char *name)
+{
+    (void)name;
+}
+#endif
+
 /* The measured span: the counter reads stay on either side of the step (volatile accesses, and
  * the step's result feeds the next read through a compiler barrier). */
 #define MEASURE(sample, call)                                \
@@ -109,13 +167,47 @@ static tvo_status_t bench_unicycle_problem(bench_unicycle_problem_t which)
         if (advanced != TVO_OK) {
             return advanced;
         }
+        STACK_PAINT_BELOW_HERE();
         MEASURE(samples[n], tvo_controller_step(&loop.controller, &loop.meas, loop.apply_tick, &loop.cmd));
+        stack_measure_after_step();
         digest_add(&loop.cmd.speed_mps, sizeof(loop.cmd.speed_mps));
         digest_add(&loop.cmd.turn_rate_radps, sizeof(loop.cmd.turn_rate_radps));
         digest_add(&loop.cmd.flags, sizeof(loop.cmd.flags));
     }
     report(bench_problem_name(which), BENCH_STEPS, last);
+    stack_report(bench_problem_name(which));
     return last;
+}
+
+/* Hostile measurements the step accepts (finite, so not refused at the door) on the unicycle
+ * problem, whose ordinary steps are shallow: how deep the step goes for them (the trigonometry of a huge heading, limits
+ * hit by huge positions and speeds). The statuses are whatever the step decides; only the stack is
+ * measured here (the edge's and the fuzzers' tests judge the answers). */
+static tvo_status_t bench_hostile(void)
+{
+    static const tvo_real_t headings_rad[] = {TVO_R(1e30), TVO_R(-3.4e38), TVO_R(8192.5), TVO_R(-1e9)};
+    static const tvo_real_t positions_m[] = {TVO_R(1e30), TVO_R(-1e20), TVO_R(3.0e38), TVO_R(0.5)};
+    tvo_status_t last = bench_loop_init(&loop, BENCH_UNICYCLE);
+    if (last != TVO_OK) {
+        return last;
+    }
+    for (uint32_t n = 0; n < 40u; ++n) {
+        if (bench_loop_advance(&loop) != TVO_OK) {
+            return TVO_ERR_NUMERIC;
+        }
+        if (n >= 8u) {
+            const uint32_t k = n % 4u;
+            loop.meas.heading_rad[0] = headings_rad[k];
+            loop.meas.position_m[0][k % 2u] = positions_m[(n / 4u) % 4u];
+            loop.meas.speed_valid = 1u;
+            loop.meas.speed_mps[0] = (k == 3u) ? TVO_R(1e35) : TVO_R(0.3);
+        }
+        STACK_PAINT_BELOW_HERE();
+        (void)tvo_controller_step(&loop.controller, &loop.meas, loop.apply_tick, &loop.cmd);
+        stack_measure_after_step();
+    }
+    stack_report("hostile");
+    return TVO_OK;
 }
 
 static tvo_status_t bench_unicycle(void)
@@ -168,10 +260,13 @@ static tvo_status_t bench_chain_k3(void)
         meas.y = state;
         meas.stamp_tick = n * cfg.period_ticks + cfg.period_ticks - cfg.delay_ticks;
         (void)tvo_chain_predict(3u, 2u, &state, cmd.u, half_s, &state);
+        STACK_PAINT_BELOW_HERE();
         MEASURE(samples[n], tvo_chain_controller_step(&loop.chain, &meas, (n + 1u) * cfg.period_ticks, &cmd));
+        stack_measure_after_step();
         digest_add(&cmd.u, sizeof(cmd.u));
     }
     report("chain_k3", BENCH_STEPS, last);
+    stack_report("chain_k3");
     return last;
 }
 
@@ -184,7 +279,8 @@ static int bench_run(const char *only)
     } benches[] = {{"unicycle", bench_unicycle},
                    {"obstacles4", bench_obstacles4},
                    {"formation2", bench_formation2},
-                   {"chain_k3", bench_chain_k3}};
+                   {"chain_k3", bench_chain_k3},
+                   {"hostile", bench_hostile}};
     tvo_board_cycle_counter_start();
     int failures = 0;
     for (uint32_t i = 0; i < sizeof(benches) / sizeof(benches[0]); ++i) {
