@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "shape.h"
+#include "tracking_kernel.h"
 #include "tvo/linsolve.h"
 
 /* 0! .. 3! (k <= TVO_MAX_RELATIVE_DEGREE <= 3). */
@@ -113,28 +114,12 @@ static tvo_status_t add_jet_hessian(const tvo_objective_t *objective, const tvo_
     return TVO_OK;
 }
 
-/* The evaluation for a validated law and objective of order k and dimension m; each output is
- * optional: grad_rows[j] receives grad^(j) (j <= k, grad_count entries), hessian_out the Hessian,
- * *shift the solve's regularisation. */
-TVO_SHAPE_BODY tvo_status_t evaluate_shape(const tvo_law_t *law, const tvo_objective_t *objective,
-                                              const tvo_output_derivs_t *y, const tvo_time_jet_t *t,
-                                              tvo_real_t *y_k, tvo_real_t *const *grad_rows, uint8_t grad_count,
-                                              tvo_real_t (*hessian_out)[TVO_MAX_Z_DIM], tvo_real_t *shift,
-                                              tvo_law_workspace_t *work, const uint8_t k, const uint8_t m)
+/* Trajectory jets y(tau) = sum_{j<k} y^(j) tau^j / j!, with y^(k) = 0 on this curve (coefficients
+ * above k: the passes of order k never read them, the Hessian's seeds clear them); 0 if a
+ * derivative is not finite. */
+TVO_SHAPE_BODY int trajectory_jets(const tvo_output_derivs_t *y, tvo_jet_t *y_jet, const uint8_t k, const uint8_t m)
 {
-    zero_output(y_k, m);
-    if (!isfinite(t->t_s) || !isfinite(t->rate)) {
-        return TVO_ERR_NOT_FINITE;
-    }
-    /* Trajectory jets y(tau) = sum_{j<k} y^(j) tau^j / j!, with y^(k) = 0 on this curve. */
-    static const tvo_real_t inv_factorial[4] = {TVO_R(1.0), TVO_R(1.0), TVO_R(0.5),
-                                                                    TVO_R(1.0) / TVO_R(6.0)};
-    tvo_jet_t *y_jet = work->y_jet;
-    tvo_jet_t *g_jet = work->g_jet;
-    tvo_hessian_t *hessian = &work->hessian;
-    tvo_real_t(*h)[TVO_MAX_Z_DIM] = hessian->matrix;
-    hessian->rank_one_count = 0u;
-    /* Coefficients above k: the passes of order k never read them, the Hessian's seeds clear them. */
+    static const tvo_real_t inv_factorial[4] = {TVO_R(1.0), TVO_R(1.0), TVO_R(0.5), TVO_R(1.0) / TVO_R(6.0)};
     tvo_real_t probe = TVO_R(0.0); /* value * 0 is NaN exactly for a value that is not finite */
     TVO_UNROLL_SMALL
     for (unsigned j = 0; j < k; ++j) {
@@ -146,12 +131,177 @@ TVO_SHAPE_BODY tvo_status_t evaluate_shape(const tvo_law_t *law, const tvo_objec
             y_jet[i].c[j] = value[i] * scale;
         }
     }
+    TVO_UNROLL_SMALL
+    for (unsigned i = 0; i < m; ++i) {
+        y_jet[i].c[k] = TVO_R(0.0);
+    }
+    return isfinite(probe);
+}
+
+/* grad^(j) = j! c_j; rhs = r + sum_{j<k} a_j grad^(j) with r = k! c_k. Returns the sum of the rhs
+ * entries times 0: NaN exactly when one is not finite. */
+TVO_SHAPE_BODY tvo_real_t combine_rhs(const tvo_law_t *law, const tvo_jet_t *g_jet, tvo_real_t *rhs, const uint8_t k,
+                                      const uint8_t m)
+{
+    const tvo_real_t r_scale = factorial[k];
+    const tvo_real_t *gain = law->gain_by_factorial;
+    tvo_real_t probe = TVO_R(0.0);
+    TVO_UNROLL_SMALL
+    for (unsigned i = 0; i < m; ++i) {
+        tvo_real_t sum = g_jet[i].c[k] * r_scale;
+        TVO_UNROLL_SMALL
+        for (unsigned j = 0; j < k; ++j) {
+            sum += gain[j] * g_jet[i].c[j];
+        }
+        probe += sum * TVO_R(0.0);
+        rhs[i] = sum;
+    }
+    return probe;
+}
+
+/* The gradient and its derivatives as one vector each, grad^(j) = j! c_j, for the rows asked for
+ * (grad_rows[j] non-NULL) and their first `count` entries (telemetry); with the rank-one parts kept
+ * apart in `parts` added in (NULL: none). */
+TVO_SHAPE_BODY void write_gradient_rows(const tvo_jet_t *g_jet, const tvo_hessian_t *parts, tvo_real_t *const *grad_rows,
+                                        const unsigned count, const uint8_t k, const uint8_t m)
+{
+    const unsigned part_count = parts != NULL ? parts->rank_one_count : 0u;
+    TVO_UNROLL_SMALL
+    for (unsigned j = 0; j <= k; ++j) {
+        tvo_real_t *row = grad_rows[j];
+        if (row == NULL) {
+            continue;
+        }
+        const tvo_real_t scale = factorial[j];
+        TVO_UNROLL_SMALL
+        for (unsigned i = 0; i < m; ++i) { /* over m, a constant in the common shape */
+            if (i < count) {
+                row[i] = g_jet[i].c[j] * scale;
+            }
+        }
+        for (unsigned p = 0; p < part_count; ++p) {
+            const tvo_rank_one_t *part = &parts->rank_one[p];
+            for (unsigned e = 0; e < part->count; ++e) {
+                if (part->index[e] < count) {
+                    row[part->index[e]] += part->gradient.c[j] * scale * part->value[e];
+                }
+            }
+        }
+    }
+}
+
+/* Whether every term is a tracking term's closed form, with no multipliers: the Hessian is then the
+ * constant diagonal sum of the weights, and the law needs neither the matrix nor the general solve.
+ * The objective's flag rules the rest out at once; the terms are checked before they are trusted. */
+static int tracking_terms_only(const tvo_objective_t *objective)
+{
+    if (!objective->tracking_only || objective->dual_dim != 0u || objective->jets_only ||
+        objective->term_count == 0u) {
+        return 0;
+    }
+    for (unsigned p = 0; p < objective->term_count && p < TVO_MAX_TERMS; ++p) {
+        if (objective->terms[p].gradient_hessian != tvo_tracking_gradient_hessian) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
+/*
+ * evaluate_shape for an objective of tracking terms only (tracking_terms_only) with the same
+ * arithmetic in the same order: each term's gradient added in turn, the weights summed on the
+ * diagonal, the solve rhs / W. Returns 1 when done; 0 for anything out of the ordinary (a term out
+ * of range, a target's error, a value that is not finite), which the general path then evaluates
+ * and reports.
+ */
+TVO_SHAPE_BODY int evaluate_tracking_shape(const tvo_law_t *law, const tvo_objective_t *objective,
+                                           const tvo_output_derivs_t *y, const tvo_time_jet_t *t, tvo_real_t *y_k,
+                                           tvo_real_t *const *grad_rows, uint8_t grad_count, tvo_real_t *shift,
+                                           tvo_law_workspace_t *work, const uint8_t k, const uint8_t m)
+{
+    if (!isfinite(t->t_s) || !isfinite(t->rate) || !trajectory_jets(y, work->y_jet, k, m)) {
+        return 0;
+    }
+    tvo_jet_t *g_jet = work->g_jet;
+    /* The diagonal of the workspace's matrix holds the weights' sums (entry i at i * stride). */
+    tvo_real_t *diagonal = &work->hessian.matrix[0][0];
+    const unsigned stride = TVO_MAX_Z_DIM + 1u;
+    TVO_UNROLL_SMALL
+    for (unsigned i = 0; i < m; ++i) {
+        tvo_jet_constant(TVO_R(0.0), &g_jet[i]);
+        diagonal[i * stride] = TVO_R(0.0);
+    }
+    tvo_time_jet_t *along = &work->time;
+    *along = *t;
+    along->rate = TVO_R(1.0);
+    for (unsigned p = 0; p < objective->term_count && p < TVO_MAX_TERMS; ++p) {
+        const tvo_tracking_term_t *term = (const tvo_tracking_term_t *)objective->terms[p].term;
+        if (term == NULL || (unsigned)term->offset + 2u > m ||
+            tracking_add_unchecked(term, work->y_jet, along, k, g_jet, diagonal, stride) != TVO_OK) {
+            return 0;
+        }
+    }
+    tvo_real_t *x = work->rhs;
+    if (!isfinite(combine_rhs(law, g_jet, x, k, m))) {
+        return 0;
+    }
+    /* tvo_saddle_solve's diagonal solve: each W_ii > 0 and finite, then x = rhs / W. */
+    tvo_real_t probe = TVO_R(0.0);
+    TVO_UNROLL_SMALL
+    for (unsigned i = 0; i < m; ++i) {
+        if (!(diagonal[i * stride] > TVO_R(0.0))) {
+            return 0;
+        }
+        probe += diagonal[i * stride] * TVO_R(0.0);
+    }
+    TVO_UNROLL_SMALL
+    for (unsigned i = 0; i < m; ++i) {
+        x[i] = x[i] / diagonal[i * stride];
+        probe += x[i] * TVO_R(0.0);
+    }
     if (!isfinite(probe)) {
+        return 0;
+    }
+    if (grad_rows != NULL) {
+        write_gradient_rows(g_jet, NULL, grad_rows, m < grad_count ? m : grad_count, k, m);
+    }
+    if (shift != NULL) {
+        *shift = TVO_R(0.0);
+    }
+    TVO_UNROLL_SMALL
+    for (unsigned i = 0; i < m; ++i) {
+        y_k[i] = -x[i];
+    }
+    return 1;
+}
+
+/* The evaluation for a validated law and objective of order k and dimension m; each output is
+ * optional: grad_rows[j] receives grad^(j) (j <= k, grad_count entries), hessian_out the Hessian,
+ * *shift the solve's regularisation. */
+TVO_SHAPE_BODY tvo_status_t evaluate_shape(const tvo_law_t *law, const tvo_objective_t *objective,
+                                              const tvo_output_derivs_t *y, const tvo_time_jet_t *t,
+                                              tvo_real_t *y_k, tvo_real_t *const *grad_rows, uint8_t grad_count,
+                                              tvo_real_t (*hessian_out)[TVO_MAX_Z_DIM], tvo_real_t *shift,
+                                              tvo_law_workspace_t *work, const uint8_t k, const uint8_t m)
+{
+    if (hessian_out == NULL && tracking_terms_only(objective) &&
+        evaluate_tracking_shape(law, objective, y, t, y_k, grad_rows, grad_count, shift, work, k, m)) {
+        return TVO_OK;
+    }
+    zero_output(y_k, m);
+    if (!isfinite(t->t_s) || !isfinite(t->rate)) {
+        return TVO_ERR_NOT_FINITE;
+    }
+    tvo_jet_t *y_jet = work->y_jet;
+    tvo_jet_t *g_jet = work->g_jet;
+    tvo_hessian_t *hessian = &work->hessian;
+    tvo_real_t(*h)[TVO_MAX_Z_DIM] = hessian->matrix;
+    hessian->rank_one_count = 0u;
+    if (!trajectory_jets(y, y_jet, k, m)) {
         return TVO_ERR_NOT_FINITE;
     }
     TVO_UNROLL_SMALL
     for (unsigned i = 0; i < m; ++i) {
-        y_jet[i].c[k] = TVO_R(0.0);
         TVO_UNROLL_SMALL
         for (unsigned j = 0; j < m; ++j) {
             h[i][j] = TVO_R(0.0);
@@ -170,22 +320,13 @@ TVO_SHAPE_BODY tvo_status_t evaluate_shape(const tvo_law_t *law, const tvo_objec
     /* Barrier parts that are not stiff join the matrix and the gradient; the stiff ones stay apart. */
     tvo_hessian_settle(hessian, objective->primal_dim, objective->dual_dim, g_jet, k);
 
-    /* grad^(j) = j! c_j; rhs = r + sum_{j<k} a_j grad^(j) with r = k! c_k, for the gradient jets and
-     * (gamma) for each part kept apart, whose gradient is a multiple of its direction. */
+    /* rhs for the gradient jets and (gamma) for each part kept apart, whose gradient is a multiple
+     * of its direction. */
     tvo_real_t *rhs = work->rhs;
     tvo_real_t *gamma = work->gamma;
+    tvo_real_t probe = combine_rhs(law, g_jet, rhs, k, m);
     const tvo_real_t r_scale = factorial[k];
     const tvo_real_t *gain = law->gain_by_factorial;
-    TVO_UNROLL_SMALL
-    for (unsigned i = 0; i < m; ++i) {
-        tvo_real_t sum = g_jet[i].c[k] * r_scale;
-        TVO_UNROLL_SMALL
-        for (unsigned j = 0; j < k; ++j) {
-            sum += gain[j] * g_jet[i].c[j];
-        }
-        probe += sum * TVO_R(0.0);
-        rhs[i] = sum;
-    }
     for (unsigned p = 0; p < hessian->rank_one_count; ++p) {
         const tvo_jet_t *g = &hessian->rank_one[p].gradient;
         tvo_real_t sum = g->c[k] * r_scale;
@@ -200,31 +341,7 @@ TVO_SHAPE_BODY tvo_status_t evaluate_shape(const tvo_law_t *law, const tvo_objec
         return TVO_ERR_NUMERIC; /* a gradient coefficient was not finite */
     }
     if (grad_rows != NULL) {
-        /* The gradient and its derivatives as one vector each (the parts added in: for telemetry). */
-        const unsigned count = m < grad_count ? m : grad_count;
-        const unsigned parts = hessian->rank_one_count;
-        TVO_UNROLL_SMALL
-        for (unsigned j = 0; j <= k; ++j) {
-            tvo_real_t *row = grad_rows[j];
-            if (row == NULL) {
-                continue;
-            }
-            const tvo_real_t scale = factorial[j];
-            TVO_UNROLL_SMALL
-            for (unsigned i = 0; i < m; ++i) { /* over m, a constant in the common shape */
-                if (i < count) {
-                    row[i] = g_jet[i].c[j] * scale;
-                }
-            }
-            for (unsigned p = 0; p < parts; ++p) {
-                const tvo_rank_one_t *part = &hessian->rank_one[p];
-                for (unsigned e = 0; e < part->count; ++e) {
-                    if (part->index[e] < count) {
-                        row[part->index[e]] += part->gradient.c[j] * scale * part->value[e];
-                    }
-                }
-            }
-        }
+        write_gradient_rows(g_jet, hessian, grad_rows, m < grad_count ? m : grad_count, k, m);
     }
 
     if (jet_terms > 0u) {

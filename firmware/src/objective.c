@@ -1,6 +1,8 @@
 /* The objective as a sum of gradient-jet terms; see tvo/objective.h. */
 #include "tvo/objective.h"
 
+#include "tvo/tracking.h"
+
 tvo_status_t tvo_objective_init(tvo_objective_t *objective, uint8_t primal_dim)
 {
     if (objective == NULL) {
@@ -11,6 +13,7 @@ tvo_status_t tvo_objective_init(tvo_objective_t *objective, uint8_t primal_dim)
     objective->dual_dim = 0;
     objective->dim = 0;
     objective->jets_only = 0;
+    objective->tracking_only = 0;
     if (primal_dim == 0u || primal_dim > TVO_MAX_OUTPUT_DIM) {
         return TVO_ERR_DIMENSION;
     }
@@ -34,6 +37,9 @@ static tvo_status_t append_term(tvo_objective_t *objective, tvo_gradient_jet_fn 
     slot->gradient_hessian = gradient_hessian;
     slot->constraint_max = constraint_max;
     slot->term = term;
+    /* Tracking terms alone need no Hessian matrix in the law (its diagonal path). */
+    const int tracking = gradient_hessian == tvo_tracking_gradient_hessian;
+    objective->tracking_only = (uint8_t)((objective->term_count == 0u || objective->tracking_only) && tracking);
     objective->term_count++;
     return TVO_OK;
 }

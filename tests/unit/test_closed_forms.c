@@ -7,6 +7,8 @@
  * the objective's jets_only switch (every gradient and Hessian from jets, the reference). The
  * gradient rows, the Hessian and the law's output must agree to a few units of rounding of their
  * own magnitude, in float32 and double, on the host and on the Cortex-M4F (tests/target).
+ * And the law's path for objectives of tracking terms only (no Hessian matrix, no general solve)
+ * against its general path on the same objective: the same numbers bit for bit, the same refusals.
  */
 #include "test_support.h"
 
@@ -262,11 +264,136 @@ static void test_every_built_in_term_has_a_closed_form(void)
     TEST_ASSERT_EQUAL_UINT8(problem.objective.term_count, jet_terms);
 }
 
+/* A term that adds nothing: appended, it sends the law down its general path with the same sums. */
+static tvo_status_t nothing_gradient_jet(const void *term, const tvo_jet_t *y, uint8_t dim, const tvo_time_jet_t *t,
+                                         uint8_t order, tvo_jet_t *grad)
+{
+    (void)term;
+    (void)y;
+    (void)dim;
+    (void)t;
+    (void)order;
+    (void)grad;
+    return TVO_OK;
+}
+
+static tvo_status_t nothing_gradient_hessian(const void *term, const tvo_jet_t *y, uint8_t dim,
+                                             const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
+                                             tvo_hessian_t *hessian)
+{
+    (void)hessian;
+    return nothing_gradient_jet(term, y, dim, t, order, grad);
+}
+
+/* Sentinel in the workspace matrix's off-diagonal entry: the tracking path leaves it, the general
+ * path clears it, so each successful evaluation shows which path it took. */
+#define PATH_SENTINEL TVO_R(7.0)
+
+typedef struct {
+    tvo_status_t status;
+    tvo_real_t out[TVO_MAX_Z_DIM];
+    tvo_real_t gradient[TVO_MAX_Z_DIM];
+    tvo_real_t gradient_rate[TVO_MAX_Z_DIM];
+    tvo_real_t regularization;
+    int took_tracking_path;
+} law_result_t;
+
+static void evaluate_reporting(const tvo_law_t *law, const tvo_objective_t *objective, const tvo_output_derivs_t *y,
+                               const tvo_time_jet_t *t, law_result_t *result)
+{
+    static tvo_law_workspace_t work;
+    memset(result, 0, sizeof(*result));
+    memset(&work, 0, sizeof(work));
+    work.hessian.matrix[0][1] = PATH_SENTINEL;
+    tvo_law_report_t report = {result->gradient, result->gradient_rate, objective->dim, TVO_R(-1.0)};
+    result->status = tvo_law_evaluate_report(law, objective, y, t, result->out, &report, &work);
+    result->regularization = report.regularization;
+    result->took_tracking_path = work.hessian.matrix[0][1] == PATH_SENTINEL;
+}
+
+static void assert_same_bits(const law_result_t *a, const law_result_t *b, unsigned m)
+{
+    ASSERT_STATUS(a->status, b->status);
+    TEST_ASSERT_EQUAL_MEMORY(a->out, b->out, m * sizeof(tvo_real_t));
+    TEST_ASSERT_EQUAL_MEMORY(a->gradient, b->gradient, m * sizeof(tvo_real_t));
+    TEST_ASSERT_EQUAL_MEMORY(a->gradient_rate, b->gradient_rate, m * sizeof(tvo_real_t));
+    TEST_ASSERT_EQUAL_MEMORY(&a->regularization, &b->regularization, sizeof(tvo_real_t));
+}
+
+/* Random tracking-only objectives (1 .. TVO_MAX_ROBOTS robots, every target kind, k = 1 .. the build's
+ * maximum, sometimes a second target on robot 0): the tracking path and the general path (the same
+ * objective with a term that adds nothing) give the same bits; a target's refusal and a state that
+ * is not finite are refused alike, outputs zeroed. */
+static void test_tracking_path_matches_the_general_path_bit_for_bit(void)
+{
+    static tvo_target_t targets[TVO_MAX_ROBOTS + 1];
+    static tvo_tracking_term_t terms[TVO_MAX_ROBOTS + 1];
+    static tvo_objective_t tracking_only;
+    static tvo_objective_t general;
+    static const int nothing = 0;
+    const tvo_term_t nothing_term = {nothing_gradient_jet, nothing_gradient_hessian, NULL, &nothing};
+    unsigned tracking_paths = 0u;
+    for (unsigned trial = 0; trial < 4u * TRIALS; ++trial) {
+        const uint8_t robots = (uint8_t)(1u + trial % TVO_MAX_ROBOTS);
+        const uint8_t m = (uint8_t)(2u * robots);
+        const uint8_t k = (uint8_t)(1u + (trial / TVO_MAX_ROBOTS) % TVO_MAX_RELATIVE_DEGREE);
+        ASSERT_STATUS(TVO_OK, tvo_objective_init(&tracking_only, m));
+        const unsigned term_count = robots + (trial % 3u == 0u ? 1u : 0u);
+        for (unsigned r = 0; r < term_count; ++r) {
+            const unsigned robot = r < robots ? r : 0u;
+            random_target(&targets[r], 2.0 * (double)robot, 0.0);
+            if (trial % 17u == 5u && r == 0u) {
+                ASSERT_STATUS(TVO_OK, tvo_target_init_streamed(&targets[r])); /* no sample: refused */
+            }
+            const tvo_real_t w[2] = {test_r(uniform(0.1, 5.0)), test_r(uniform(0.1, 5.0))};
+            ASSERT_STATUS(TVO_OK, tvo_tracking_init(&terms[r], &targets[r], w, (uint8_t)(2u * robot)));
+            const tvo_term_t term = {tvo_tracking_gradient_jet, tvo_tracking_gradient_hessian, NULL, &terms[r]};
+            ASSERT_STATUS(TVO_OK, tvo_objective_add(&tracking_only, &term));
+        }
+        TEST_ASSERT_EQUAL_UINT8(1u, tracking_only.tracking_only);
+        general = tracking_only;
+        ASSERT_STATUS(TVO_OK, tvo_objective_add(&general, &nothing_term));
+        TEST_ASSERT_EQUAL_UINT8(0u, general.tracking_only);
+
+        const tvo_real_t gains[3] = {TVO_R(8.0), TVO_R(12.0), TVO_R(6.0)}; /* (s + 2)^3's, Hurwitz for each k */
+        tvo_law_t law;
+        ASSERT_STATUS(TVO_OK, tvo_law_init(&law, k, m, gains));
+        tvo_output_derivs_t y;
+        memset(&y, 0, sizeof(y));
+        for (unsigned j = 0; j < k; ++j) {
+            for (unsigned i = 0; i < m; ++i) {
+                y.d[j][i] = test_r(uniform(-3.0, 3.0));
+            }
+        }
+        if (trial % 23u == 7u) {
+            y.d[k - 1u][m - 1u] = test_r(NAN);
+        }
+        tvo_time_jet_t t;
+        ASSERT_STATUS(TVO_OK, tvo_time_jet_at_ticks((uint64_t)llround(uniform(0.0, 3600.0) * 1e4), 10000u,
+                                                    TVO_R(1.0), &t));
+        law_result_t fast;
+        law_result_t reference;
+        evaluate_reporting(&law, &tracking_only, &y, &t, &fast);
+        evaluate_reporting(&law, &general, &y, &t, &reference);
+        assert_same_bits(&reference, &fast, m);
+        if (fast.status == TVO_OK) {
+            TEST_ASSERT_FALSE(reference.took_tracking_path);
+            TEST_ASSERT_TRUE(fast.took_tracking_path);
+            tracking_paths++;
+        } else {
+            const tvo_real_t zeros[TVO_MAX_Z_DIM] = {TVO_R(0.0)};
+            TEST_ASSERT_EQUAL_MEMORY(zeros, fast.out, m * sizeof(tvo_real_t));
+        }
+    }
+    ASSERT_LE(3u * TRIALS, tracking_paths, "evaluations that took the tracking path");
+}
+
 int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_closed_forms_match_jets_without_equalities);
     RUN_TEST(test_closed_forms_match_jets_with_an_offset_equality);
     RUN_TEST(test_every_built_in_term_has_a_closed_form);
+    RUN_TEST(test_tracking_path_matches_the_general_path_bit_for_bit);
     return UNITY_END();
 }

@@ -84,6 +84,8 @@ typedef struct {
     uint8_t dual_dim;    /* equality multipliers q, reserved by tvo_objective_reserve_multipliers */
     uint8_t dim;         /* m + q: the size of z, of the gradient and of the law's solve */
     uint8_t jets_only;   /* 1: closed forms ignored, every term through jets (the reference path) */
+    uint8_t tracking_only; /* kept by the add functions: every term so far a tracking term's closed form
+                              (the law re-checks the terms before it relies on it) */
 } tvo_objective_t;
 
 /** Empty objective over y in R^primal_dim, 1 <= primal_dim <= TVO_MAX_OUTPUT_DIM, no multipliers. */

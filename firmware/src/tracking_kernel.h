@@ -1,0 +1,59 @@
+/*
+ * Private to the core: the tracking term's closed form without input checks, for a caller that has
+ * validated them (tvo_tracking_gradient_hessian, and the law's path for objectives of tracking terms
+ * only, which needs no Hessian matrix).
+ */
+#ifndef TVO_TRACKING_KERNEL_H
+#define TVO_TRACKING_KERNEL_H
+
+#include "shape.h"
+#include "tvo/tracking.h"
+
+/* grad += W (y - y_d) for coefficients 0 .. count-1, y_d's j-th coefficient being deriv[j] scale[j]. */
+TVO_SHAPE_BODY void tracking_add_weighted_error(const tvo_tracking_term_t *self, const tvo_jet_t *y,
+                                                tvo_real_t (*deriv)[2], const tvo_real_t *scale, unsigned count,
+                                                tvo_jet_t *grad)
+{
+    for (unsigned axis = 0; axis < 2u; ++axis) {
+        const unsigned i = self->offset + axis;
+        const tvo_real_t w = self->weight[axis];
+        TVO_UNROLL_SMALL
+        for (unsigned j = 0; j < count; ++j) {
+            grad[i].c[j] += w * (y[i].c[j] - deriv[j][axis] * scale[j]);
+        }
+    }
+}
+
+/*
+ * grad += W (y - y_d(t)) coefficient by coefficient (y_d's j-th coefficient being y_d^(j) rate^j / j!)
+ * and the constant Hessian W added on the diagonal: diagonal[i * diagonal_stride] += W_ii. For a
+ * term whose offset + 2 <= the objective's dimension. Returns the target's status.
+ */
+static inline tvo_status_t tracking_add_unchecked(const tvo_tracking_term_t *self, const tvo_jet_t *y,
+                                                  const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
+                                                  tvo_real_t *diagonal, unsigned diagonal_stride)
+{
+    tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2];
+    const tvo_status_t st = tvo_target_derivatives(self->target, t, order, deriv);
+    if (st != TVO_OK) {
+        return st;
+    }
+    /* rate^j / j! (rate is 1 along the trajectory, 0 for frozen time). */
+    const tvo_real_t rate = t->rate;
+    const tvo_real_t scale[4] = {TVO_R(1.0), rate, TVO_R(0.5) * rate * rate, rate * rate * rate / TVO_R(6.0)};
+    const unsigned count = tvo_jet_order_clamp(order) + 1u;
+#if TVO_SHAPE_COPIES
+    if (count == TVO_SHAPE_ORDER + 1u) {
+        tracking_add_weighted_error(self, y, deriv, scale, TVO_SHAPE_ORDER + 1u, grad);
+    } else
+#endif
+    {
+        tracking_add_weighted_error(self, y, deriv, scale, count, grad);
+    }
+    for (unsigned axis = 0; axis < 2u; ++axis) {
+        diagonal[(self->offset + axis) * diagonal_stride] += self->weight[axis];
+    }
+    return TVO_OK;
+}
+
+#endif /* TVO_TRACKING_KERNEL_H */
