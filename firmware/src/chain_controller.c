@@ -3,6 +3,8 @@
 
 #include <string.h>
 
+#include "sample_clock_kernel.h"
+
 tvo_status_t tvo_chain_config_default(tvo_chain_config_t *cfg)
 {
     if (cfg == NULL) {
@@ -125,7 +127,7 @@ static tvo_status_t derivatives_at_sample(const tvo_chain_controller_t *ctl, tvo
     }
     tvo_status_t st = TVO_OK;
     const int primed = filter[0].primed;
-    const tvo_real_t dt_s = primed ? tvo_ticks_to_seconds32(meas->stamp_tick - ctl->clock.last_stamp_tick, ctl->cfg.tick_hz)
+    const tvo_real_t dt_s = primed ? ticks_to_seconds32(meas->stamp_tick - ctl->clock.last_stamp_tick, ctl->cfg.tick_hz)
                                    : TVO_R(0.0);
     for (uint8_t j = 0; st == TVO_OK && j + 1u < k; ++j) {
         if (!primed || !filter[j].primed) {
@@ -214,14 +216,14 @@ tvo_status_t tvo_chain_controller_step(tvo_chain_controller_t *ctl, const tvo_ch
     }
     tvo_chain_controller_work_t *work = &ctl->work;
     tvo_period_t *period = &work->period;
-    if (tvo_sample_clock_begin(&ctl->clock, apply_tick, period) != TVO_OK) {
+    if (sample_clock_begin(&ctl->clock, apply_tick, period) != TVO_OK) {
         *cmd = ctl->held;
         cmd->flags = TVO_FLAG_HOLDING;
         return TVO_ERR_OUT_OF_ORDER;
     }
     tvo_status_t st = (meas == NULL) ? TVO_ERR_NO_MEASUREMENT : check_finite(ctl, meas);
     if (st == TVO_OK) {
-        st = tvo_sample_clock_check_stamp(&ctl->clock, meas->stamp_tick, apply_tick);
+        st = sample_clock_check_stamp(&ctl->clock, meas->stamp_tick, apply_tick);
     }
     tvo_output_derivs_t *x = &work->state;
     tvo_dirty_derivative_t *filter = work->filter; /* kept on success */
@@ -242,14 +244,13 @@ tvo_status_t tvo_chain_controller_step(tvo_chain_controller_t *ctl, const tvo_ch
     const uint8_t m = ctl->objective->primal_dim;
     /* Where the law is evaluated (the sample, the application instant, or the middle of the held
      * interval); the state is carried there with the held command. */
-    (void)tvo_sample_clock_locate(&ctl->clock, period, meas->stamp_tick, ctl->cfg.delay_compensation,
-                                  ctl->cfg.zoh_aware);
+    sample_clock_locate(&ctl->clock, period, meas->stamp_tick, ctl->cfg.delay_compensation, ctl->cfg.zoh_aware);
     const uint32_t flags = (period->carry_s > TVO_R(0.0)) ? TVO_FLAG_PREDICTED : 0u;
     if (period->carry_s > TVO_R(0.0)) {
         st = tvo_chain_predict(k, m, x, ctl->held.u, period->carry_s, x);
     }
     tvo_time_jet_t *t = &work->time;
-    (void)tvo_time_jet_at(&period->law_time, ctl->cfg.tick_hz, TVO_R(1.0), t); /* the clock's times are valid */
+    time_jet_at_tick_time(&period->law_time, ctl->cfg.tick_hz, TVO_R(1.0), t); /* the clock's times are valid */
     tvo_real_t *u = work->input;
     if (st == TVO_OK) {
         tvo_law_report_t report = {NULL, NULL, 0u, TVO_R(0.0)};
@@ -271,7 +272,7 @@ tvo_status_t tvo_chain_controller_step(tvo_chain_controller_t *ctl, const tvo_ch
             next->flags |= TVO_FLAG_ACCEL_SATURATED;
         }
     }
-    (void)tvo_sample_clock_end(&ctl->clock, period, 1, meas->stamp_tick);
+    sample_clock_end_good(&ctl->clock, period, meas->stamp_tick);
     for (uint8_t j = 0; j + 1u < TVO_MAX_RELATIVE_DEGREE; ++j) {
         ctl->filter[j] = filter[j];
     }

@@ -9,6 +9,7 @@
 
 #include <string.h>
 
+#include "sample_clock_kernel.h"
 #include "shape.h"
 #include "unicycle_kernel.h"
 #include "tvo/trig.h"
@@ -148,7 +149,7 @@ static tvo_status_t check_measurement(const tvo_controller_t *ctl, const tvo_mea
             return TVO_ERR_NOT_FINITE;
         }
     }
-    const tvo_status_t st = tvo_sample_clock_check_stamp(&ctl->clock, meas->stamp_tick, apply_tick);
+    const tvo_status_t st = sample_clock_check_stamp(&ctl->clock, meas->stamp_tick, apply_tick);
     if (st != TVO_OK) {
         return st;
     }
@@ -234,7 +235,7 @@ static tvo_status_t position_only_estimate(const tvo_controller_t *ctl, tvo_dirt
         }
         return st;
     }
-    const tvo_real_t dt_s = tvo_ticks_to_seconds32(meas->stamp_tick - ctl->clock.last_stamp_tick, ctl->cfg.tick_hz);
+    const tvo_real_t dt_s = ticks_to_seconds32(meas->stamp_tick - ctl->clock.last_stamp_tick, ctl->cfg.tick_hz);
     st = tvo_dirty_derivative_step(filter, position, dt_s, rate_at_sample);
     if (st != TVO_OK) {
         return st;
@@ -270,7 +271,7 @@ TVO_SHAPE_BODY tvo_status_t step_shape(tvo_controller_t *ctl, const tvo_measurem
     /* The period's timing: apply ticks must advance; elapsed time never wraps. */
     tvo_controller_work_t *work = &ctl->work;
     tvo_period_t *period = &work->period;
-    if (tvo_sample_clock_begin(&ctl->clock, apply_tick, period) != TVO_OK) {
+    if (sample_clock_begin(&ctl->clock, apply_tick, period) != TVO_OK) {
         *cmd = ctl->held;
         cmd->flags = TVO_FLAG_HOLDING;
         return TVO_ERR_OUT_OF_ORDER;
@@ -300,7 +301,7 @@ TVO_SHAPE_BODY tvo_status_t step_shape(tvo_controller_t *ctl, const tvo_measurem
 
     /* Where the law is evaluated and how far the sampled state is carried there (the age to the
      * application instant with compensation, half a period on when ZOH-aware). */
-    (void)tvo_sample_clock_locate(&ctl->clock, period, meas->stamp_tick, cfg->delay_compensation, cfg->zoh_aware);
+    sample_clock_locate(&ctl->clock, period, meas->stamp_tick, cfg->delay_compensation, cfg->zoh_aware);
     const int zoh_aware = cfg->zoh_aware != 0u;
     const tvo_real_t carry_s = period->carry_s;
     uint32_t flags = (carry_s > TVO_R(0.0)) ? TVO_FLAG_PREDICTED : 0u;
@@ -356,7 +357,7 @@ TVO_SHAPE_BODY tvo_status_t step_shape(tvo_controller_t *ctl, const tvo_measurem
 
     /* The objective's time, from the period's exact elapsed time (no 64-bit division). */
     tvo_time_jet_t *t = &work->time;
-    (void)tvo_time_jet_at(&period->law_time, cfg->tick_hz, TVO_R(1.0), t); /* the clock's times are valid */
+    time_jet_at_tick_time(&period->law_time, cfg->tick_hz, TVO_R(1.0), t); /* the clock's times are valid */
 
     /* Multipliers (equality constraints) and their rates: controller states living at apply times. */
     const uint8_t primal = ctl->objective->primal_dim;
@@ -371,11 +372,7 @@ TVO_SHAPE_BODY tvo_status_t step_shape(tvo_controller_t *ctl, const tvo_measurem
     if (st == TVO_OK) {
         st = tvo_law_evaluate_report(&ctl->law, ctl->objective, y, t, y_accel, &report, &work->law);
     }
-    tvo_command_t *next = &work->command;
-    for (unsigned r = n; r < TVO_MAX_ROBOTS; ++r) {
-        next->speed_mps[r] = TVO_R(0.0); /* robots beyond n hold zeros */
-        next->turn_rate_radps[r] = TVO_R(0.0);
-    }
+    tvo_command_t *next = &work->command; /* robots 0..n-1; the held command's others stay zero */
     if (st == TVO_OK && report.regularization > TVO_R(0.0)) {
         flags |= TVO_FLAG_REGULARIZED;
     }
@@ -406,7 +403,7 @@ TVO_SHAPE_BODY tvo_status_t step_shape(tvo_controller_t *ctl, const tvo_measurem
         return hold_or_stop(ctl, period, st, cmd);
     }
     /* The step succeeded: from here on its working copies become the controller's state. */
-    (void)tvo_sample_clock_end(&ctl->clock, period, 1, meas->stamp_tick);
+    sample_clock_end_good(&ctl->clock, period, meas->stamp_tick);
     if (position_only) {
         ctl->velocity_filter = *filter;
     }
@@ -430,9 +427,12 @@ TVO_SHAPE_BODY tvo_status_t step_shape(tvo_controller_t *ctl, const tvo_measurem
             unicycle_wrap_angle_near(heading[r] + ctl->held.turn_rate_radps[r] * (period->age_s - carry_s));
         tm->accel_mps2[r] = accel[r];
     }
-    next->flags = flags;
-    ctl->held = *next;
-    *cmd = *next;
+    for (uint8_t r = 0; r < n; ++r) {
+        ctl->held.speed_mps[r] = next->speed_mps[r];
+        ctl->held.turn_rate_radps[r] = next->turn_rate_radps[r];
+    }
+    ctl->held.flags = flags;
+    *cmd = ctl->held;
 
     /* Telemetry of the entries this problem uses (the rest stay zero from init). */
     tm->objective_time_s = t->t_s;

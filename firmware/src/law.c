@@ -193,7 +193,7 @@ TVO_SHAPE_BODY void write_gradient_rows(const tvo_jet_t *g_jet, const tvo_hessia
 /* Whether every term is a tracking term's closed form, with no multipliers: the Hessian is then the
  * constant diagonal sum of the weights, and the law needs neither the matrix nor the general solve.
  * The objective's flag rules the rest out at once; the terms are checked before they are trusted. */
-static int tracking_terms_only(const tvo_objective_t *objective)
+static inline int tracking_terms_only(const tvo_objective_t *objective)
 {
     if (!objective->tracking_only || objective->dual_dim != 0u || objective->jets_only ||
         objective->term_count == 0u) {
@@ -231,13 +231,11 @@ TVO_SHAPE_BODY int evaluate_tracking_shape(const tvo_law_t *law, const tvo_objec
         tvo_jet_constant(TVO_R(0.0), &g_jet[i]);
         diagonal[i * stride] = TVO_R(0.0);
     }
-    tvo_time_jet_t *along = &work->time;
-    *along = *t;
-    along->rate = TVO_R(1.0);
+    /* Along the trajectory (rate 1, as the general path's time jet); the targets read only t's time. */
     for (unsigned p = 0; p < objective->term_count && p < TVO_MAX_TERMS; ++p) {
         const tvo_tracking_term_t *term = (const tvo_tracking_term_t *)objective->terms[p].term;
         if (term == NULL || (unsigned)term->offset + 2u > m ||
-            tracking_add_unchecked(term, work->y_jet, along, k, g_jet, diagonal, stride) != TVO_OK) {
+            tracking_add_unchecked(term, work->y_jet, t, TVO_R(1.0), k, g_jet, diagonal, stride) != TVO_OK) {
             return 0;
         }
     }

@@ -1,6 +1,7 @@
 /* The objective as a sum of gradient-jet terms; see tvo/objective.h. */
 #include "tvo/objective.h"
 
+#include "sample_clock_kernel.h"
 #include "tvo/tracking.h"
 
 tvo_status_t tvo_objective_init(tvo_objective_t *objective, uint8_t primal_dim)
@@ -226,12 +227,7 @@ tvo_status_t tvo_time_jet_at(const tvo_tick_time_t *time, uint32_t tick_hz, tvo_
     if (tick_hz == 0u || time->frac_ticks >= tick_hz) {
         return TVO_ERR_PARAM;
     }
-    t->ticks = time->ticks;
-    t->tick_hz = tick_hz;
-    t->whole_s = time->whole_s;
-    t->frac_ticks = time->frac_ticks;
-    t->t_s = tvo_tick_time_seconds(time, tick_hz);
-    t->rate = rate;
+    time_jet_at_tick_time(time, tick_hz, rate, t);
     return TVO_OK;
 }
 

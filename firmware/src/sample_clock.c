@@ -3,6 +3,8 @@
 
 #include <string.h>
 
+#include "sample_clock_kernel.h"
+
 tvo_param_t tvo_sample_clock_check_timing(uint32_t tick_hz, uint32_t period_ticks, uint32_t delay_ticks)
 {
     if (tick_hz == 0u) {
@@ -42,48 +44,22 @@ tvo_status_t tvo_sample_clock_init(tvo_sample_clock_t *clock, uint32_t tick_hz, 
 
 tvo_tick_time_t tvo_tick_time_after(const tvo_tick_time_t *t, uint32_t delta_ticks, uint32_t tick_hz)
 {
-    tvo_tick_time_t out = *t;
-    out.ticks += delta_ticks;
-    out.whole_s += delta_ticks / tick_hz;
-    out.frac_ticks += delta_ticks % tick_hz;
-    if (out.frac_ticks >= tick_hz) {
-        out.frac_ticks -= tick_hz;
-        out.whole_s += 1u;
-    }
-    return out;
+    return tick_time_after(t, delta_ticks, tick_hz);
 }
 
 tvo_tick_time_t tvo_tick_time_before(const tvo_tick_time_t *t, uint32_t delta_ticks, uint32_t tick_hz)
 {
-    tvo_tick_time_t out = {0u, 0u, 0u};
-    if ((uint64_t)delta_ticks >= t->ticks) {
-        return out;
-    }
-    out.ticks = t->ticks - delta_ticks;
-    const uint32_t whole = delta_ticks / tick_hz;
-    const uint32_t frac = delta_ticks % tick_hz;
-    out.whole_s = t->whole_s - whole;
-    if (t->frac_ticks >= frac) {
-        out.frac_ticks = t->frac_ticks - frac;
-    } else {
-        out.frac_ticks = t->frac_ticks + (tick_hz - frac);
-        out.whole_s -= 1u; /* cannot go below 0: ticks > delta */
-    }
-    return out;
+    return tick_time_before(t, delta_ticks, tick_hz);
 }
 
 tvo_real_t tvo_tick_time_seconds(const tvo_tick_time_t *t, uint32_t tick_hz)
 {
-    return (tvo_real_t)t->whole_s + (tvo_real_t)t->frac_ticks / (tvo_real_t)tick_hz;
+    return tick_time_seconds(t, tick_hz);
 }
 
 tvo_real_t tvo_ticks_to_seconds32(uint32_t ticks, uint32_t tick_hz)
 {
-    if (tick_hz == 0u) {
-        return TVO_R(0.0);
-    }
-    /* Whole seconds and the rest separately, so only the final sum rounds. */
-    return (tvo_real_t)(ticks / tick_hz) + (tvo_real_t)(ticks % tick_hz) / (tvo_real_t)tick_hz;
+    return ticks_to_seconds32(ticks, tick_hz);
 }
 
 tvo_status_t tvo_sample_clock_begin(const tvo_sample_clock_t *clock, uint32_t apply_tick, tvo_period_t *period)
@@ -91,26 +67,7 @@ tvo_status_t tvo_sample_clock_begin(const tvo_sample_clock_t *clock, uint32_t ap
     if (clock == NULL || period == NULL) {
         return TVO_ERR_NULL;
     }
-    period->apply_tick = apply_tick;
-    period->periods = 1u;
-    if (!clock->started) {
-        const uint32_t since_epoch = apply_tick - clock->epoch_tick;
-        if (since_epoch > TVO_MAX_TICK_SPAN) {
-            return TVO_ERR_OUT_OF_ORDER; /* first application before the epoch */
-        }
-        const tvo_tick_time_t epoch = {0u, 0u, 0u};
-        period->elapsed = tvo_tick_time_after(&epoch, since_epoch, clock->tick_hz);
-        return TVO_OK;
-    }
-    const uint32_t advance = apply_tick - clock->last_apply_tick;
-    if (advance == 0u || advance > TVO_MAX_TICK_SPAN) {
-        return TVO_ERR_OUT_OF_ORDER;
-    }
-    period->elapsed = tvo_tick_time_after(&clock->elapsed, advance, clock->tick_hz);
-    if (advance / clock->period_ticks > 1u) {
-        period->periods = advance / clock->period_ticks;
-    }
-    return TVO_OK;
+    return sample_clock_begin(clock, apply_tick, period);
 }
 
 tvo_status_t tvo_sample_clock_locate(const tvo_sample_clock_t *clock, tvo_period_t *period, uint32_t stamp_tick,
@@ -119,15 +76,7 @@ tvo_status_t tvo_sample_clock_locate(const tvo_sample_clock_t *clock, tvo_period
     if (clock == NULL || period == NULL) {
         return TVO_ERR_NULL;
     }
-    const uint32_t hz = clock->tick_hz;
-    period->age_ticks = period->apply_tick - stamp_tick;
-    period->age_s = tvo_ticks_to_seconds32(period->age_ticks, hz);
-    period->law_time = delay_compensation ? period->elapsed : tvo_tick_time_before(&period->elapsed, period->age_ticks, hz);
-    period->carry_s = delay_compensation ? period->age_s : TVO_R(0.0);
-    if (zoh_aware) {
-        period->law_time = tvo_tick_time_after(&period->law_time, clock->period_ticks / 2u, hz);
-        period->carry_s += TVO_R(0.5) * tvo_ticks_to_seconds32(clock->period_ticks, hz);
-    }
+    sample_clock_locate(clock, period, stamp_tick, delay_compensation, zoh_aware);
     return TVO_OK;
 }
 
@@ -136,43 +85,22 @@ tvo_status_t tvo_sample_clock_check_stamp(const tvo_sample_clock_t *clock, uint3
     if (clock == NULL) {
         return TVO_ERR_NULL;
     }
-    const uint32_t age = apply_tick - stamp_tick;
-    if (age > TVO_MAX_TICK_SPAN) {
-        return TVO_ERR_FUTURE_STAMP; /* negative age in wrap-around arithmetic */
-    }
-    if (age > clock->period_ticks) {
-        return TVO_ERR_STALE;
-    }
-    if (clock->has_stamp) {
-        const uint32_t advance = stamp_tick - clock->last_stamp_tick;
-        if (advance == 0u || advance > TVO_MAX_TICK_SPAN) {
-            return TVO_ERR_OUT_OF_ORDER;
-        }
-    }
-    return TVO_OK;
+    return sample_clock_check_stamp(clock, stamp_tick, apply_tick);
 }
 
-/* The period's application instant becomes the clock's present. */
-static void end_period(tvo_sample_clock_t *clock, const tvo_period_t *period)
-{
-    clock->started = 1;
-    clock->last_apply_tick = period->apply_tick;
-    clock->elapsed = period->elapsed;
-}
 
 int tvo_sample_clock_end(tvo_sample_clock_t *clock, const tvo_period_t *period, int good, uint32_t stamp_tick)
 {
     if (clock == NULL || period == NULL) {
         return 1;
     }
-    end_period(clock, period);
     if (good) {
-        clock->last_stamp_tick = stamp_tick;
-        clock->has_stamp = 1;
-        clock->periods_without_measurement = 0;
-        clock->stopped = 0;
+        sample_clock_end_good(clock, period, stamp_tick);
         return 0;
     }
+    clock->started = 1;
+    clock->last_apply_tick = period->apply_tick;
+    clock->elapsed = period->elapsed;
     /* Saturating count: no overflow however long the outage. */
     const uint32_t room = clock->watchdog_periods - clock->periods_without_measurement;
     clock->periods_without_measurement =

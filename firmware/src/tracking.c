@@ -60,5 +60,5 @@ tvo_status_t tvo_tracking_gradient_hessian(const void *term, const tvo_jet_t *y,
         return TVO_ERR_DIMENSION;
     }
     /* The Hessian is the constant W, on the matrix's diagonal. */
-    return tracking_add_unchecked(self, y, t, order, grad, &hessian->matrix[0][0], TVO_MAX_Z_DIM + 1u);
+    return tracking_add_unchecked(self, y, t, t->rate, order, grad, &hessian->matrix[0][0], TVO_MAX_Z_DIM + 1u);
 }

@@ -25,13 +25,14 @@ TVO_SHAPE_BODY void tracking_add_weighted_error(const tvo_tracking_term_t *self,
 }
 
 /*
- * grad += W (y - y_d(t)) coefficient by coefficient (y_d's j-th coefficient being y_d^(j) rate^j / j!)
- * and the constant Hessian W added on the diagonal: diagonal[i * diagonal_stride] += W_ii. For a
- * term whose offset + 2 <= the objective's dimension. Returns the target's status.
+ * grad += W (y - y_d(t)) coefficient by coefficient (y_d's j-th coefficient being y_d^(j) rate^j / j!,
+ * rate being t's: passed apart, so a caller along the trajectory can pass the constant 1) and the
+ * constant Hessian W added on the diagonal: diagonal[i * diagonal_stride] += W_ii. For a term whose
+ * offset + 2 <= the objective's dimension. Returns the target's status.
  */
 static inline tvo_status_t tracking_add_unchecked(const tvo_tracking_term_t *self, const tvo_jet_t *y,
-                                                  const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
-                                                  tvo_real_t *diagonal, unsigned diagonal_stride)
+                                                  const tvo_time_jet_t *t, tvo_real_t rate, uint8_t order,
+                                                  tvo_jet_t *grad, tvo_real_t *diagonal, unsigned diagonal_stride)
 {
     tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2];
     const tvo_status_t st = tvo_target_derivatives(self->target, t, order, deriv);
@@ -39,7 +40,6 @@ static inline tvo_status_t tracking_add_unchecked(const tvo_tracking_term_t *sel
         return st;
     }
     /* rate^j / j! (rate is 1 along the trajectory, 0 for frozen time). */
-    const tvo_real_t rate = t->rate;
     const tvo_real_t scale[4] = {TVO_R(1.0), rate, TVO_R(0.5) * rate * rate, rate * rate * rate / TVO_R(6.0)};
     const unsigned count = tvo_jet_order_clamp(order) + 1u;
 #if TVO_SHAPE_COPIES

@@ -1,0 +1,142 @@
+/*
+ * Private to the core: the sample clock's arithmetic without pointer checks, inline, for the
+ * controllers' steps (their own clock and period records). The functions of tvo/sample_clock.h
+ * check their pointers, then run the same code.
+ */
+#ifndef TVO_SAMPLE_CLOCK_KERNEL_H
+#define TVO_SAMPLE_CLOCK_KERNEL_H
+
+#include "tvo/objective.h"
+#include "tvo/sample_clock.h"
+
+static inline tvo_tick_time_t tick_time_after(const tvo_tick_time_t *t, uint32_t delta_ticks, uint32_t tick_hz)
+{
+    tvo_tick_time_t out = *t;
+    out.ticks += delta_ticks;
+    out.whole_s += delta_ticks / tick_hz;
+    out.frac_ticks += delta_ticks % tick_hz;
+    if (out.frac_ticks >= tick_hz) {
+        out.frac_ticks -= tick_hz;
+        out.whole_s += 1u;
+    }
+    return out;
+}
+
+static inline tvo_tick_time_t tick_time_before(const tvo_tick_time_t *t, uint32_t delta_ticks, uint32_t tick_hz)
+{
+    tvo_tick_time_t out = {0u, 0u, 0u};
+    if ((uint64_t)delta_ticks >= t->ticks) {
+        return out;
+    }
+    out.ticks = t->ticks - delta_ticks;
+    const uint32_t whole = delta_ticks / tick_hz;
+    const uint32_t frac = delta_ticks % tick_hz;
+    out.whole_s = t->whole_s - whole;
+    if (t->frac_ticks >= frac) {
+        out.frac_ticks = t->frac_ticks - frac;
+    } else {
+        out.frac_ticks = t->frac_ticks + (tick_hz - frac);
+        out.whole_s -= 1u; /* cannot go below 0: ticks > delta */
+    }
+    return out;
+}
+
+static inline tvo_real_t tick_time_seconds(const tvo_tick_time_t *t, uint32_t tick_hz)
+{
+    return (tvo_real_t)t->whole_s + (tvo_real_t)t->frac_ticks / (tvo_real_t)tick_hz;
+}
+
+static inline tvo_real_t ticks_to_seconds32(uint32_t ticks, uint32_t tick_hz)
+{
+    if (tick_hz == 0u) {
+        return TVO_R(0.0);
+    }
+    /* Whole seconds and the rest separately, so only the final sum rounds. */
+    return (tvo_real_t)(ticks / tick_hz) + (tvo_real_t)(ticks % tick_hz) / (tvo_real_t)tick_hz;
+}
+
+static inline tvo_status_t sample_clock_begin(const tvo_sample_clock_t *clock, uint32_t apply_tick,
+                                              tvo_period_t *period)
+{
+    period->apply_tick = apply_tick;
+    period->periods = 1u;
+    if (!clock->started) {
+        const uint32_t since_epoch = apply_tick - clock->epoch_tick;
+        if (since_epoch > TVO_MAX_TICK_SPAN) {
+            return TVO_ERR_OUT_OF_ORDER; /* first application before the epoch */
+        }
+        const tvo_tick_time_t epoch = {0u, 0u, 0u};
+        period->elapsed = tick_time_after(&epoch, since_epoch, clock->tick_hz);
+        return TVO_OK;
+    }
+    const uint32_t advance = apply_tick - clock->last_apply_tick;
+    if (advance == 0u || advance > TVO_MAX_TICK_SPAN) {
+        return TVO_ERR_OUT_OF_ORDER;
+    }
+    period->elapsed = tick_time_after(&clock->elapsed, advance, clock->tick_hz);
+    if (advance / clock->period_ticks > 1u) {
+        period->periods = advance / clock->period_ticks;
+    }
+    return TVO_OK;
+}
+
+static inline void sample_clock_locate(const tvo_sample_clock_t *clock, tvo_period_t *period, uint32_t stamp_tick,
+                                       uint8_t delay_compensation, uint8_t zoh_aware)
+{
+    const uint32_t hz = clock->tick_hz;
+    period->age_ticks = period->apply_tick - stamp_tick;
+    period->age_s = ticks_to_seconds32(period->age_ticks, hz);
+    period->law_time = delay_compensation ? period->elapsed : tick_time_before(&period->elapsed, period->age_ticks, hz);
+    period->carry_s = delay_compensation ? period->age_s : TVO_R(0.0);
+    if (zoh_aware) {
+        period->law_time = tick_time_after(&period->law_time, clock->period_ticks / 2u, hz);
+        period->carry_s += TVO_R(0.5) * ticks_to_seconds32(clock->period_ticks, hz);
+    }
+}
+
+static inline tvo_status_t sample_clock_check_stamp(const tvo_sample_clock_t *clock, uint32_t stamp_tick,
+                                                    uint32_t apply_tick)
+{
+    const uint32_t age = apply_tick - stamp_tick;
+    if (age > TVO_MAX_TICK_SPAN) {
+        return TVO_ERR_FUTURE_STAMP; /* negative age in wrap-around arithmetic */
+    }
+    if (age > clock->period_ticks) {
+        return TVO_ERR_STALE;
+    }
+    if (clock->has_stamp) {
+        const uint32_t advance = stamp_tick - clock->last_stamp_tick;
+        if (advance == 0u || advance > TVO_MAX_TICK_SPAN) {
+            return TVO_ERR_OUT_OF_ORDER;
+        }
+    }
+    return TVO_OK;
+}
+
+/* The period's application instant becomes the clock's present; with good, stamp_tick is recorded
+ * and the watchdog restarts. The watchdog's count after a period without a good step is
+ * tvo_sample_clock_end's. */
+static inline void sample_clock_end_good(tvo_sample_clock_t *clock, const tvo_period_t *period, uint32_t stamp_tick)
+{
+    clock->started = 1;
+    clock->last_apply_tick = period->apply_tick;
+    clock->elapsed = period->elapsed;
+    clock->last_stamp_tick = stamp_tick;
+    clock->has_stamp = 1;
+    clock->periods_without_measurement = 0;
+    clock->stopped = 0;
+}
+
+/* The objective's time at a tick time of the clock (frac_ticks < tick_hz, tick_hz > 0). */
+static inline void time_jet_at_tick_time(const tvo_tick_time_t *time, uint32_t tick_hz, tvo_real_t rate,
+                                         tvo_time_jet_t *t)
+{
+    t->ticks = time->ticks;
+    t->tick_hz = tick_hz;
+    t->whole_s = time->whole_s;
+    t->frac_ticks = time->frac_ticks;
+    t->t_s = tick_time_seconds(time, tick_hz);
+    t->rate = rate;
+}
+
+#endif /* TVO_SAMPLE_CLOCK_KERNEL_H */
