@@ -9,6 +9,7 @@
 
 #include <string.h>
 
+#include "law_step.h"
 #include "sample_clock_kernel.h"
 #include "shape.h"
 #include "unicycle_kernel.h"
@@ -135,7 +136,7 @@ tvo_status_t tvo_controller_init(tvo_controller_t *ctl, const tvo_controller_con
     return TVO_OK;
 }
 
-static tvo_status_t check_measurement(const tvo_controller_t *ctl, const tvo_measurement_t *meas,
+static inline tvo_status_t check_measurement(const tvo_controller_t *ctl, const tvo_measurement_t *meas,
                                       uint32_t apply_tick)
 {
     if (meas == NULL) {
@@ -370,7 +371,7 @@ TVO_SHAPE_BODY tvo_status_t step_shape(tvo_controller_t *ctl, const tvo_measurem
     tvo_real_t *y_accel = work->output_accel;
     tvo_law_report_t report = {work->gradient, work->gradient_rate, primal, TVO_R(0.0)};
     if (st == TVO_OK) {
-        st = tvo_law_evaluate_report(&ctl->law, ctl->objective, y, t, y_accel, &report, &work->law);
+        st = law_evaluate_report_unchecked(&ctl->law, ctl->objective, y, t, y_accel, &report, &work->law);
     }
     tvo_command_t *next = &work->command; /* robots 0..n-1; the held command's others stay zero */
     if (st == TVO_OK && report.regularization > TVO_R(0.0)) {

@@ -9,6 +9,7 @@
 
 #include <string.h>
 
+#include "law_step.h"
 #include "shape.h"
 #include "tracking_kernel.h"
 #include "tvo/linsolve.h"
@@ -116,8 +117,9 @@ static tvo_status_t add_jet_hessian(const tvo_objective_t *objective, const tvo_
 
 /* Trajectory jets y(tau) = sum_{j<k} y^(j) tau^j / j!, with y^(k) = 0 on this curve (coefficients
  * above k: the passes of order k never read them, the Hessian's seeds clear them); 0 if a
- * derivative is not finite. */
-TVO_SHAPE_BODY int trajectory_jets(const tvo_output_derivs_t *y, tvo_jet_t *y_jet, const uint8_t k, const uint8_t m)
+ * derivative is not finite (when check: a caller whose own result check catches them passes 0). */
+TVO_SHAPE_BODY int trajectory_jets(const tvo_output_derivs_t *y, tvo_jet_t *y_jet, const uint8_t k, const uint8_t m,
+                                   const int check)
 {
     static const tvo_real_t inv_factorial[4] = {TVO_R(1.0), TVO_R(1.0), TVO_R(0.5), TVO_R(1.0) / TVO_R(6.0)};
     tvo_real_t probe = TVO_R(0.0); /* value * 0 is NaN exactly for a value that is not finite */
@@ -127,7 +129,9 @@ TVO_SHAPE_BODY int trajectory_jets(const tvo_output_derivs_t *y, tvo_jet_t *y_je
         const tvo_real_t scale = inv_factorial[j];
         TVO_UNROLL_SMALL
         for (unsigned i = 0; i < m; ++i) {
-            probe += value[i] * TVO_R(0.0);
+            if (check) {
+                probe += value[i] * TVO_R(0.0);
+            }
             y_jet[i].c[j] = value[i] * scale;
         }
     }
@@ -135,7 +139,7 @@ TVO_SHAPE_BODY int trajectory_jets(const tvo_output_derivs_t *y, tvo_jet_t *y_je
     for (unsigned i = 0; i < m; ++i) {
         y_jet[i].c[k] = TVO_R(0.0);
     }
-    return isfinite(probe);
+    return !check || isfinite(probe);
 }
 
 /* grad^(j) = j! c_j; rhs = r + sum_{j<k} a_j grad^(j) with r = k! c_k. Returns the sum of the rhs
@@ -219,16 +223,22 @@ TVO_SHAPE_BODY int evaluate_tracking_shape(const tvo_law_t *law, const tvo_objec
                                            tvo_real_t *const *grad_rows, uint8_t grad_count, tvo_real_t *shift,
                                            tvo_law_workspace_t *work, const uint8_t k, const uint8_t m)
 {
-    if (!isfinite(t->t_s) || !isfinite(t->rate) || !trajectory_jets(y, work->y_jet, k, m)) {
+    if (!isfinite(t->t_s) || !isfinite(t->rate)) {
         return 0;
     }
+    /* A derivative that is not finite reaches its output's gradient, hence the rhs checked below (an
+     * output no term covers has no weight, which the solve's check declines): no check here. */
+    (void)trajectory_jets(y, work->y_jet, k, m, 0);
     tvo_jet_t *g_jet = work->g_jet;
     /* The diagonal of the workspace's matrix holds the weights' sums (entry i at i * stride). */
     tvo_real_t *diagonal = &work->hessian.matrix[0][0];
     const unsigned stride = TVO_MAX_Z_DIM + 1u;
     TVO_UNROLL_SMALL
     for (unsigned i = 0; i < m; ++i) {
-        tvo_jet_constant(TVO_R(0.0), &g_jet[i]);
+        TVO_UNROLL_SMALL
+        for (unsigned j = 0; j <= k; ++j) {
+            g_jet[i].c[j] = TVO_R(0.0); /* the coefficients this order reads */
+        }
         diagonal[i * stride] = TVO_R(0.0);
     }
     /* Along the trajectory (rate 1, as the general path's time jet); the targets read only t's time. */
@@ -295,7 +305,7 @@ TVO_SHAPE_BODY tvo_status_t evaluate_shape(const tvo_law_t *law, const tvo_objec
     tvo_hessian_t *hessian = &work->hessian;
     tvo_real_t(*h)[TVO_MAX_Z_DIM] = hessian->matrix;
     hessian->rank_one_count = 0u;
-    if (!trajectory_jets(y, y_jet, k, m)) {
+    if (!trajectory_jets(y, y_jet, k, m, 1)) {
         return TVO_ERR_NOT_FINITE;
     }
     TVO_UNROLL_SMALL
@@ -421,6 +431,28 @@ tvo_status_t tvo_law_evaluate(const tvo_law_t *law, const tvo_objective_t *objec
     return evaluate(law, objective, y, t, y_k, rows, TVO_MAX_Z_DIM, eval->hessian, &eval->regularization, &work);
 }
 
+tvo_status_t law_evaluate_report_unchecked(const tvo_law_t *law, const tvo_objective_t *objective,
+                                           const tvo_output_derivs_t *y, const tvo_time_jet_t *t, tvo_real_t *y_k,
+                                           tvo_law_report_t *report, tvo_law_workspace_t *work)
+{
+    report->regularization = TVO_R(0.0);
+    tvo_real_t *rows[TVO_MAX_RELATIVE_DEGREE + 1] = {NULL};
+    rows[0] = report->gradient;
+    rows[1] = report->gradient_rate;
+#if TVO_SHAPE_COPIES
+    /* The controllers' common case, one robot's tracking at k = 2, without the general entry's
+     * argument passing; anything else (or anything the path declines) takes the general entry. */
+    if (objective->tracking_only && law->relative_degree == TVO_SHAPE_ORDER && law->dim == TVO_SHAPE_OUTPUT_DIM &&
+        objective->dim == TVO_SHAPE_OUTPUT_DIM && objective->primal_dim == TVO_SHAPE_OUTPUT_DIM &&
+        tracking_terms_only(objective) &&
+        evaluate_tracking_shape(law, objective, y, t, y_k, rows, report->count, &report->regularization, work,
+                                TVO_SHAPE_ORDER, TVO_SHAPE_OUTPUT_DIM)) {
+        return TVO_OK;
+    }
+#endif
+    return evaluate(law, objective, y, t, y_k, rows, report->count, NULL, &report->regularization, work);
+}
+
 tvo_status_t tvo_law_evaluate_report(const tvo_law_t *law, const tvo_objective_t *objective,
                                      const tvo_output_derivs_t *y, const tvo_time_jet_t *t, tvo_real_t *y_k,
                                      tvo_law_report_t *report, tvo_law_workspace_t *work)
@@ -428,9 +460,9 @@ tvo_status_t tvo_law_evaluate_report(const tvo_law_t *law, const tvo_objective_t
     if (report == NULL) {
         return TVO_ERR_NULL;
     }
-    report->regularization = TVO_R(0.0);
-    tvo_real_t *rows[TVO_MAX_RELATIVE_DEGREE + 1] = {NULL};
-    rows[0] = report->gradient;
-    rows[1] = report->gradient_rate;
-    return evaluate(law, objective, y, t, y_k, rows, report->count, NULL, &report->regularization, work);
+    if (law == NULL || objective == NULL || y == NULL || t == NULL || y_k == NULL || work == NULL) {
+        report->regularization = TVO_R(0.0);
+        return TVO_ERR_NULL;
+    }
+    return law_evaluate_report_unchecked(law, objective, y, t, y_k, report, work);
 }
