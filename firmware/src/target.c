@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "shape.h"
+#include "target_kernel.h"
 #include "tvo/trig.h"
 
 #define TARGET_INV_TWO_PI TVO_R(0.159154943091895335768883763372514362)
@@ -239,6 +240,15 @@ tvo_status_t tvo_target_derivatives(const tvo_target_t *target, const tvo_time_j
     }
     if (!isfinite(t->t_s)) {
         return TVO_ERR_NOT_FINITE;
+    }
+    return target_derivatives_unchecked(target, t, order, deriv);
+}
+
+tvo_status_t target_derivatives_unchecked(const tvo_target_t *target, const tvo_time_jet_t *t, uint8_t order,
+                                          tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2])
+{
+    if (order > TVO_JET_MAX_ORDER) {
+        return TVO_ERR_PARAM; /* checked by the callers; kept, as it bounds the loops below */
     }
     switch (target->kind) {
     case TVO_TARGET_POLYNOMIAL:

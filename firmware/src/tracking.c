@@ -59,6 +59,9 @@ tvo_status_t tvo_tracking_gradient_hessian(const void *term, const tvo_jet_t *y,
     if ((unsigned)self->offset + 2u > dim) {
         return TVO_ERR_DIMENSION;
     }
+    if (!isfinite(t->t_s)) {
+        return TVO_ERR_NOT_FINITE;
+    }
     /* The Hessian is the constant W, on the matrix's diagonal. */
     return tracking_add_unchecked(self, y, t, t->rate, order, grad, &hessian->matrix[0][0], TVO_MAX_Z_DIM + 1u);
 }

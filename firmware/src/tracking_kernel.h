@@ -7,6 +7,7 @@
 #define TVO_TRACKING_KERNEL_H
 
 #include "shape.h"
+#include "target_kernel.h"
 #include "tvo/tracking.h"
 
 /* grad += W (y - y_d) for coefficients 0 .. count-1, y_d's j-th coefficient being deriv[j] scale[j]. */
@@ -28,14 +29,15 @@ TVO_SHAPE_BODY void tracking_add_weighted_error(const tvo_tracking_term_t *self,
  * grad += W (y - y_d(t)) coefficient by coefficient (y_d's j-th coefficient being y_d^(j) rate^j / j!,
  * rate being t's: passed apart, so a caller along the trajectory can pass the constant 1) and the
  * constant Hessian W added on the diagonal: diagonal[i * diagonal_stride] += W_ii. For a term whose
- * offset + 2 <= the objective's dimension. Returns the target's status.
+ * offset + 2 <= the objective's dimension and a finite t->t_s (its target's pointer is valid from
+ * tvo_tracking_init). Returns the target's status.
  */
 static inline tvo_status_t tracking_add_unchecked(const tvo_tracking_term_t *self, const tvo_jet_t *y,
                                                   const tvo_time_jet_t *t, tvo_real_t rate, uint8_t order,
                                                   tvo_jet_t *grad, tvo_real_t *diagonal, unsigned diagonal_stride)
 {
     tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2];
-    const tvo_status_t st = tvo_target_derivatives(self->target, t, order, deriv);
+    const tvo_status_t st = target_derivatives_unchecked(self->target, t, order, deriv);
     if (st != TVO_OK) {
         return st;
     }
