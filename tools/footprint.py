@@ -19,7 +19,11 @@ ours) are measured in the linked ELF (--elf, disassembled by --objdump): each li
 frame is the sum of its stack-pointer decrements (pushes, stack adjustments), its callees are its
 direct calls and tail branches, so a library path is charged in full (newlib's sinf of a huge
 argument goes through __kernel_rem_pio2f, over 400 B on Cortex-M). A library function with an
-indirect call or a stack adjustment by a register on the path is an error, as is recursion.
+indirect call or a stack adjustment by a register on the path is an error, as is recursion. A
+branch into another function (its start or its middle) counts as a call to all of it; not followed:
+a jump through a register without link (taken as a switch table) and code that runs off the end
+of one function into the next (libgcc's __aeabi_fsub into __addsf3: leaves with no frame of their
+own on today's paths, checked by hand).
 """
 import argparse
 import json
@@ -55,7 +59,7 @@ def read_call_graph(core_dir):
 
 FUNCTION_RE = re.compile(r"^[0-9a-f]+ <([^>+]+)>:$")
 INSN_RE = re.compile(r"^\s*[0-9a-f]+:\s+(\S+)\s*(.*)$")
-TARGET_RE = re.compile(r"<([^>+]+)>$")
+TARGET_RE = re.compile(r"<([^>+]+)(?:\+0x[0-9a-f]+)?>$")
 REG_LIST_RE = re.compile(r"\{([^}]*)\}")
 # ARM: push/stmdb sp!/vpush/vstmdb sp! {list}; sub sp, #n; str/strd ..., [sp, #-n]!.
 # RISC-V: add(i) sp,sp,-n.
@@ -90,6 +94,9 @@ def stack_decrement(op, args):
         return int(RV_ADD_RE.match(args).group(1))
     if base == "sub" and args.startswith("sp,sp,"):
         return None
+    # By a register: Thumb-1's large frames (add sp, rN with rN negative), RISC-V's add sp,sp,rN.
+    if base == "add" and re.match(r"^sp, (?:sp, )?[a-z]+[0-9]*$", args) or re.match(r"^sp,sp,[a-z]+[0-9]*$", args):
+        return None
     return 0
 
 
@@ -122,10 +129,12 @@ def read_binary_graph(elf, objdump):
         base = op.split(".")[0]
         target = TARGET_RE.search(args)
         # An indirect call has no static callee; an indirect jump without link (bx/jr through a
-        # register) is taken as the library's switch tables, which stay in the function.
+        # register) is taken as the library's switch tables, which stay in the function (a tail call
+        # through a function pointer would be missed: none is in newlib's or libgcc's routines here).
+        # A RISC-V far call (auipc; jalr) names its target in the comment: a call.
         if base in ("blx", "jalr") and not target:
             problems.setdefault(current, f"indirect call ({op} {args})")
-        elif target and (base.startswith("b") or base in ("j", "jal", "call", "tail")):
+        elif target and (base.startswith("b") or base in ("j", "jal", "jalr", "jr", "call", "tail")):
             callee = target.group(1)
             if base == "jal" and args.startswith("t0,"):
                 millicode[current] = callee  # its frame is the caller's until the caller returns

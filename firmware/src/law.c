@@ -244,7 +244,7 @@ TVO_SHAPE_BODY int evaluate_tracking_shape(const tvo_law_t *law, const tvo_objec
     /* Along the trajectory (rate 1, as the general path's time jet); the targets read only t's time. */
     for (unsigned p = 0; p < objective->term_count && p < TVO_MAX_TERMS; ++p) {
         const tvo_tracking_term_t *term = (const tvo_tracking_term_t *)objective->terms[p].term;
-        if (term == NULL || (unsigned)term->offset + 2u > m ||
+        if (term == NULL || term->target == NULL || (unsigned)term->offset + 2u > m ||
             tracking_add_unchecked(term, work->y_jet, t, TVO_R(1.0), k, g_jet, diagonal, stride) != TVO_OK) {
             return 0;
         }

@@ -59,6 +59,13 @@ tvo_status_t tvo_tracking_gradient_hessian(const void *term, const tvo_jet_t *y,
     if ((unsigned)self->offset + 2u > dim) {
         return TVO_ERR_DIMENSION;
     }
+    /* What tvo_target_derivatives checks, in its order: the target, the order, then the time. */
+    if (self->target == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (order > TVO_JET_MAX_ORDER) {
+        return TVO_ERR_PARAM;
+    }
     if (!isfinite(t->t_s)) {
         return TVO_ERR_NOT_FINITE;
     }

@@ -366,7 +366,7 @@ static void test_tracking_path_matches_the_general_path_bit_for_bit(void)
             }
         }
         if (trial % 23u == 7u) {
-            y.d[k - 1u][m - 1u] = test_r(NAN);
+            y.d[k - 1u][m - 1u] = TEST_NAN;
         }
         tvo_time_jet_t t;
         ASSERT_STATUS(TVO_OK, tvo_time_jet_at_ticks((uint64_t)llround(uniform(0.0, 3600.0) * 1e4), 10000u,

@@ -8,6 +8,8 @@
  */
 #include "test_support.h"
 
+#include "tvo/law.h"
+
 void setUp(void) {}
 void tearDown(void) {}
 
@@ -219,6 +221,49 @@ static void test_gradient_jet_with_streamed_target_uses_tick_age(void)
     ASSERT_NEAR(YC[1][1] + 1.0, g[1].c[1], TEST_TOL(16, 2.0));
 }
 
+/* The closed form refuses what tvo_target_derivatives refused, in its order: a term never initialised
+ * (no target) with TVO_ERR_NULL, then an order above the jets' with TVO_ERR_PARAM (also with a time
+ * that is not finite), then such a time; and the law's tracking path declines the uninitialised
+ * term instead of reading through it. */
+static void test_closed_form_refuses_like_the_target_did(void)
+{
+    static tvo_tracking_term_t blank;
+    memset(&blank, 0, sizeof(blank));
+    tvo_jet_t y[2];
+    tvo_jet_t grad[2];
+    static tvo_hessian_t h;
+    tvo_jet_constant(TVO_R(0.0), &y[0]);
+    tvo_jet_constant(TVO_R(0.0), &y[1]);
+    tvo_time_jet_t t;
+    ASSERT_STATUS(TVO_OK, tvo_time_jet_at_ticks(1000u, 1000u, TVO_R(1.0), &t));
+    ASSERT_STATUS(TVO_ERR_NULL, tvo_tracking_gradient_hessian(&blank, y, 2u, &t, 2u, grad, &h));
+    t.t_s = TEST_NAN;
+    ASSERT_STATUS(TVO_ERR_NULL, tvo_tracking_gradient_hessian(&blank, y, 2u, &t, 2u, grad, &h));
+
+    static tvo_target_t target;
+    const tvo_real_t center[2] = {TVO_R(0.0), TVO_R(0.0)};
+    ASSERT_STATUS(TVO_OK, tvo_target_init_circle(&target, center, TVO_R(1.0), TVO_R(1.0), TVO_R(0.0)));
+    static tvo_tracking_term_t term;
+    const tvo_real_t w[2] = {TVO_R(1.0), TVO_R(1.0)};
+    ASSERT_STATUS(TVO_OK, tvo_tracking_init(&term, &target, w, 0u));
+    ASSERT_STATUS(TVO_ERR_PARAM, tvo_tracking_gradient_hessian(&term, y, 2u, &t, TVO_JET_MAX_ORDER + 1u, grad, &h));
+    ASSERT_STATUS(TVO_ERR_NOT_FINITE, tvo_tracking_gradient_hessian(&term, y, 2u, &t, 2u, grad, &h));
+
+    static tvo_objective_t objective;
+    ASSERT_STATUS(TVO_OK, tvo_objective_init(&objective, 2u));
+    const tvo_term_t closed = {tvo_tracking_gradient_jet, tvo_tracking_gradient_hessian, NULL, &blank};
+    ASSERT_STATUS(TVO_OK, tvo_objective_add(&objective, &closed));
+    TEST_ASSERT_EQUAL_UINT8(1u, objective.tracking_only);
+    const tvo_real_t gains[2] = {TVO_R(4.0), TVO_R(4.0)};
+    tvo_law_t law;
+    ASSERT_STATUS(TVO_OK, tvo_law_init(&law, 2u, 2u, gains));
+    tvo_output_derivs_t state;
+    memset(&state, 0, sizeof(state));
+    ASSERT_STATUS(TVO_OK, tvo_time_jet_at_ticks(1000u, 1000u, TVO_R(1.0), &t));
+    tvo_real_t out[2];
+    ASSERT_STATUS(TVO_ERR_NULL, tvo_law_evaluate(&law, &objective, &state, &t, out, NULL));
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -230,5 +275,6 @@ int main(void)
     RUN_TEST(test_gradient_jet_accumulates_into_its_block_only);
     RUN_TEST(test_gradient_jet_rejects_block_outside_dimension);
     RUN_TEST(test_gradient_jet_with_streamed_target_uses_tick_age);
+    RUN_TEST(test_closed_form_refuses_like_the_target_did);
     return UNITY_END();
 }

@@ -109,14 +109,15 @@ static uint32_t stack_deepest; /* bytes, the deepest step of the current problem
         __asm__ volatile("cpsid i" ::: "memory");                              \
     } while (0)
 
-/* After the step: interrupts back on; the lowest word no longer painted is how deep it went. */
+/* After the step: the lowest word no longer painted is how deep it went; then interrupts back on
+ * (after the scan, so a pending one cannot leave its frame in the window first). */
 static void stack_measure_after_step(void)
 {
-    __asm__ volatile("cpsie i" ::: "memory");
     uint32_t untouched = 0u;
     while (untouched < STACK_WINDOW_WORDS && stack_window[untouched] == STACK_PAINT) {
         ++untouched;
     }
+    __asm__ volatile("cpsie i" ::: "memory");
     const uint32_t used = 4u * (STACK_WINDOW_WORDS - untouched);
     if (used > stack_deepest) {
         stack_deepest = used;

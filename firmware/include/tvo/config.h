@@ -26,6 +26,8 @@ extern "C" {
 typedef double tvo_real_t;
 #define TVO_R(x) (x)
 #define TVO_SQRT sqrt
+#define TVO_SIN sin
+#define TVO_COS cos
 #define TVO_ATAN2 atan2
 #define TVO_FABS fabs
 #define TVO_EXP exp
@@ -36,6 +38,8 @@ typedef double tvo_real_t;
 typedef float tvo_real_t;
 #define TVO_R(x) (x##f)
 #define TVO_SQRT sqrtf
+#define TVO_SIN sinf
+#define TVO_COS cosf
 #define TVO_ATAN2 atan2f
 #define TVO_FABS fabsf
 #define TVO_EXP expf
