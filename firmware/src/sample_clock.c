@@ -98,9 +98,7 @@ int tvo_sample_clock_end(tvo_sample_clock_t *clock, const tvo_period_t *period, 
         sample_clock_end_good(clock, period, stamp_tick);
         return 0;
     }
-    clock->started = 1;
-    clock->last_apply_tick = period->apply_tick;
-    clock->elapsed = period->elapsed;
+    sample_clock_end_period(clock, period);
     /* Saturating count: no overflow however long the outage. */
     const uint32_t room = clock->watchdog_periods - clock->periods_without_measurement;
     clock->periods_without_measurement =

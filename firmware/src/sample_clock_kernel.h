@@ -113,14 +113,19 @@ static inline tvo_status_t sample_clock_check_stamp(const tvo_sample_clock_t *cl
     return TVO_OK;
 }
 
-/* The period's application instant becomes the clock's present; with good, stamp_tick is recorded
- * and the watchdog restarts. The watchdog's count after a period without a good step is
- * tvo_sample_clock_end's. */
-static inline void sample_clock_end_good(tvo_sample_clock_t *clock, const tvo_period_t *period, uint32_t stamp_tick)
+/* The period's application instant becomes the clock's present. */
+static inline void sample_clock_end_period(tvo_sample_clock_t *clock, const tvo_period_t *period)
 {
     clock->started = 1;
     clock->last_apply_tick = period->apply_tick;
     clock->elapsed = period->elapsed;
+}
+
+/* A period with a good step ends: stamp_tick is recorded and the watchdog restarts. The watchdog's
+ * count after a period without one is tvo_sample_clock_end's. */
+static inline void sample_clock_end_good(tvo_sample_clock_t *clock, const tvo_period_t *period, uint32_t stamp_tick)
+{
+    sample_clock_end_period(clock, period);
     clock->last_stamp_tick = stamp_tick;
     clock->has_stamp = 1;
     clock->periods_without_measurement = 0;
