@@ -76,7 +76,8 @@ tvo_status_t tvo_target_init_ellipse(tvo_target_t *target, const tvo_target_elli
     if (!all_finite(values, 7u)) {
         return TVO_ERR_NOT_FINITE;
     }
-    if (!(ellipse->semi_axis_m[0] > TVO_R(0.0)) || !(ellipse->semi_axis_m[1] > TVO_R(0.0))) {
+    if (!(ellipse->semi_axis_m[0] > TVO_R(0.0)) || !(ellipse->semi_axis_m[1] > TVO_R(0.0)) ||
+        !(TVO_FABS(ellipse->omega_radps) <= TVO_TARGET_MAX_OMEGA_RADPS)) {
         return TVO_ERR_PARAM;
     }
     memset(target, 0, sizeof(*target));
@@ -212,10 +213,15 @@ static tvo_status_t streamed_derivatives(const tvo_target_streamed_t *s, const t
     if (t->ticks < s->stamp_ticks) {
         return TVO_ERR_FUTURE_STAMP;
     }
-    /* Exact age from integer ticks: no loss however long the run (and no 64-bit division when short). */
+    /* The age from integer ticks: exact however long the run. Beyond 2^32 ticks (days at 1 kHz) one
+     * rounding of each operand, which costs nothing at float's precision and needs no 64-bit division. */
     const uint64_t age_ticks = t->ticks - s->stamp_ticks;
-    const tvo_real_t age_s = (age_ticks <= UINT32_MAX) ? tvo_ticks_to_seconds32((uint32_t)age_ticks, t->tick_hz)
-                                                       : tvo_ticks_to_seconds(age_ticks, t->tick_hz);
+    tvo_real_t age_s = TVO_R(0.0);
+    if (age_ticks <= UINT32_MAX) {
+        age_s = tvo_ticks_to_seconds32((uint32_t)age_ticks, t->tick_hz);
+    } else if (t->tick_hz != 0u) {
+        age_s = (tvo_real_t)age_ticks / (tvo_real_t)t->tick_hz;
+    }
     for (uint8_t j = 0; j <= order; ++j) {
         for (uint8_t axis = 0; axis < 2u; ++axis) {
             /* Taylor polynomial of the j-th derivative: sum_{i>=j} d_i age^(i-j) / (i-j)!, by Horner. */

@@ -122,6 +122,26 @@ static void sincos_huge(float angle_rad, float *sin_out, float *cos_out)
 }
 #endif
 
+#if !TVO_USE_DOUBLE
+/* sin and cos of |angle| <= TVO_SINCOS_FAST_LIMIT_RAD (Cody-Waite to the nearest quarter turn). */
+static void sincos_fast_range(float angle_rad, float *sin_out, float *cos_out)
+{
+    if (TVO_FABS(angle_rad) <= TRIG_NO_REDUCTION_LIMIT) {
+        sincos_kernel(angle_rad, sin_out, cos_out); /* small angles (a turn over one period): no reduction */
+        return;
+    }
+    /* Nearest quarter turn by conversion to integer (one instruction; floorf is a library call). */
+    const float scaled = angle_rad * TRIG_TWO_OVER_PI;
+    const int32_t quarter = (int32_t)(scaled + (scaled >= 0.0f ? 0.5f : -0.5f));
+    const float q = (float)quarter;
+    const float x = ((angle_rad - q * TRIG_PIO2_1) - q * TRIG_PIO2_2) - q * TRIG_PIO2_3;
+    float s;
+    float c;
+    sincos_kernel(x, &s, &c);
+    by_quadrant((uint32_t)quarter, s, c, sin_out, cos_out);
+}
+#endif
+
 void tvo_sincos(tvo_real_t angle_rad, tvo_real_t *sin_out, tvo_real_t *cos_out)
 {
 #if TVO_USE_DOUBLE
@@ -137,24 +157,18 @@ void tvo_sincos(tvo_real_t angle_rad, tvo_real_t *sin_out, tvo_real_t *cos_out)
         sincos_huge(angle_rad, sin_out, cos_out);
         return;
     }
-    if (TVO_FABS(angle_rad) <= TRIG_NO_REDUCTION_LIMIT) {
-        sincos_kernel(angle_rad, sin_out, cos_out); /* small angles (a turn over one period): no reduction */
-        return;
-    }
-    /* Nearest quarter turn by conversion to integer (one instruction; floorf is a library call). */
-    const float scaled = angle_rad * TRIG_TWO_OVER_PI;
-    const int32_t quarter = (int32_t)(scaled + (scaled >= 0.0f ? 0.5f : -0.5f));
-    const float q = (float)quarter;
-    const float x = ((angle_rad - q * TRIG_PIO2_1) - q * TRIG_PIO2_2) - q * TRIG_PIO2_3;
-    float s;
-    float c;
-    sincos_kernel(x, &s, &c);
-    by_quadrant((uint32_t)quarter, s, c, sin_out, cos_out);
+    sincos_fast_range(angle_rad, sin_out, cos_out);
 #endif
 }
 
 void tvo_sincos_turns(uint64_t turns_q64, tvo_real_t extra_rad, tvo_real_t *sin_out, tvo_real_t *cos_out)
 {
+    if (!(TVO_FABS(extra_rad) <= TVO_SINCOS_FAST_LIMIT_RAD)) {
+        /* Out of contract (and NaN): no huge-angle reduction on the targets' path, whose stack it would deepen. */
+        *sin_out = (tvo_real_t)NAN;
+        *cos_out = *sin_out;
+        return;
+    }
 #if TVO_USE_DOUBLE
     /* Signed turns in [-1/2, 1/2): the angle stays small, and double keeps 53 of the 64 bits. */
     const double angle = (double)(int64_t)turns_q64 * (6.283185307179586476925 / 18446744073709551616.0) + extra_rad;
@@ -170,7 +184,8 @@ void tvo_sincos_turns(uint64_t turns_q64, tvo_real_t extra_rad, tvo_real_t *sin_
     float s;
     float c;
     if (TVO_FABS(rest) > 0.7853982f) {
-        tvo_sincos(rest, &s, &c); /* the extra angle left the octant: reduce it too */
+        /* The extra angle left the octant: reduce it too (|rest| <= the limit + pi/4 keeps q < 2^13). */
+        sincos_fast_range(rest, &s, &c);
     } else {
         sincos_kernel(rest, &s, &c);
     }

@@ -308,6 +308,30 @@ static void test_ellipse_rejects_nonpositive_semi_axes(void)
     ASSERT_STATUS(TVO_ERR_NOT_FINITE, tvo_target_init_ellipse(&target, &el));
 }
 
+static void test_ellipse_rejects_a_rate_beyond_the_bound_and_runs_at_it(void)
+{
+    tvo_target_ellipse_t el = ellipse_params();
+    tvo_target_t target;
+    el.omega_radps = TVO_TARGET_MAX_OMEGA_RADPS * TVO_R(1.0001);
+    ASSERT_STATUS(TVO_ERR_PARAM, tvo_target_init_ellipse(&target, &el));
+    el.omega_radps = -el.omega_radps;
+    ASSERT_STATUS(TVO_ERR_PARAM, tvo_target_init_ellipse(&target, &el));
+    const tvo_real_t centre[2] = {TVO_R(0.0), TVO_R(0.0)};
+    ASSERT_STATUS(TVO_ERR_PARAM, tvo_target_init_circle(&target, centre, TVO_R(1.0), el.omega_radps, TVO_R(0.0)));
+    /* At the bound, the fraction of a second just below one adds the largest angle: still evaluated. */
+    el.omega_radps = -TVO_TARGET_MAX_OMEGA_RADPS;
+    ASSERT_STATUS(TVO_OK, tvo_target_init_ellipse(&target, &el));
+    const tvo_time_jet_t t = time_at(3.999, 1.0);
+    TEST_ASSERT_EQUAL_UINT32(t.tick_hz - 1u, t.frac_ticks);
+    tvo_real_t d[ORD + 1][2];
+    ASSERT_STATUS(TVO_OK, tvo_target_derivatives(&target, &t, 0u, d));
+    double e[ORD + 1][2];
+    ellipse_expected(&el, 3.999, e);
+    /* The angle is known to float32's rounding of the product omega t (~1e-3 rad here), not better. */
+    ASSERT_NEAR(e[0][0], d[0][0], 1e-2);
+    ASSERT_NEAR(e[0][1], d[0][1], 1e-2);
+}
+
 static void test_derivatives_reject_order_above_maximum(void)
 {
     tvo_target_t target;
@@ -441,6 +465,24 @@ static void test_streamed_age_is_exact_far_from_the_epoch(void)
     assert_derivs(e, d, ORD, 3.0);
 }
 
+static void test_streamed_age_beyond_two_to_the_32_ticks_keeps_float_precision(void)
+{
+    /* 2^33 + 0.5e6 ticks at 1 MHz: an age of 8590.434592 s, converted without a 64-bit division. */
+    const uint64_t stamp = 5u;
+    const uint64_t age_ticks = (1ull << 33) + 500000u;
+    tvo_real_t s[TVO_STREAM_MAX_DERIV + 1][2] = {{TVO_R(1.0), TVO_R(2.0)}, {TVO_R(0.5), TVO_R(-0.25)}};
+    tvo_target_t target;
+    ASSERT_STATUS(TVO_OK, tvo_target_init_streamed(&target));
+    ASSERT_STATUS(TVO_OK, tvo_target_stream_update(&target, stamp, TEST_CONST_STREAM(s)));
+    const tvo_time_jet_t t = ticks_time(stamp + age_ticks, 1000000u);
+    tvo_real_t d[ORD + 1][2];
+    ASSERT_STATUS(TVO_OK, tvo_target_derivatives(&target, &t, 1u, d));
+    const double age_s = (double)age_ticks / 1e6;
+    ASSERT_NEAR(1.0 + 0.5 * age_s, d[0][0], 8.0 * TEST_EPS * (1.0 + 0.5 * age_s));
+    ASSERT_NEAR(2.0 - 0.25 * age_s, d[0][1], 8.0 * TEST_EPS * (0.25 * age_s));
+    ASSERT_NEAR(0.5, d[1][0], TEST_TOL(8, 1.0));
+}
+
 static void test_streamed_derivatives_do_not_depend_on_jet_rate(void)
 {
     tvo_target_t target;
@@ -558,6 +600,7 @@ int main(void)
     RUN_TEST(test_circle_rejects_nonpositive_radius);
     RUN_TEST(test_circle_rejects_non_finite_values);
     RUN_TEST(test_ellipse_rejects_nonpositive_semi_axes);
+    RUN_TEST(test_ellipse_rejects_a_rate_beyond_the_bound_and_runs_at_it);
     RUN_TEST(test_derivatives_reject_order_above_maximum);
     RUN_TEST(test_derivatives_reject_non_finite_time);
     RUN_TEST(test_target_functions_reject_null);
@@ -565,6 +608,7 @@ int main(void)
     RUN_TEST(test_streamed_at_its_stamp_returns_the_sample);
     RUN_TEST(test_streamed_extrapolates_by_taylor_polynomial);
     RUN_TEST(test_streamed_age_is_exact_far_from_the_epoch);
+    RUN_TEST(test_streamed_age_beyond_two_to_the_32_ticks_keeps_float_precision);
     RUN_TEST(test_streamed_derivatives_do_not_depend_on_jet_rate);
     RUN_TEST(test_streamed_before_its_stamp_is_a_future_stamp_error);
     RUN_TEST(test_streamed_rejects_non_finite_sample_and_keeps_the_old_one);

@@ -96,6 +96,24 @@ static void test_turns_are_exact_at_quarters_and_match_libm_between(void)
     }
 }
 
+static void test_turns_refuse_an_extra_angle_beyond_the_fast_range(void)
+{
+    tvo_real_t s;
+    tvo_real_t c;
+    tvo_sincos_turns(0x1234567812345678u, TVO_SINCOS_FAST_LIMIT_RAD, &s, &c); /* the limit itself: reduced */
+    const double angle = (double)0x1234567812345678u * (2.0 * TEST_PI / 18446744073709551616.0) +
+                         test_d(TVO_SINCOS_FAST_LIMIT_RAD);
+    /* Known to the rounding of the phase plus the extra angle (an ulp of 8192 rad), not better. */
+    ASSERT_NEAR(sin(angle), s, 8192.0 * TEST_EPS);
+    ASSERT_NEAR(cos(angle), c, 8192.0 * TEST_EPS);
+    const tvo_real_t beyond[3] = {TVO_SINCOS_FAST_LIMIT_RAD * TVO_R(1.0001), -TVO_SINCOS_FAST_LIMIT_RAD * TVO_R(1.0001),
+                                  TEST_NAN};
+    for (unsigned i = 0; i < 3u; ++i) {
+        tvo_sincos_turns(0u, beyond[i], &s, &c);
+        TEST_ASSERT_TRUE(isnan(s) && isnan(c));
+    }
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -103,5 +121,6 @@ int main(void)
     RUN_TEST(test_sincos_beyond_the_fast_range_and_not_finite);
     RUN_TEST(test_sincos_beyond_the_fast_range_at_every_exponent);
     RUN_TEST(test_turns_are_exact_at_quarters_and_match_libm_between);
+    RUN_TEST(test_turns_refuse_an_extra_angle_beyond_the_fast_range);
     return UNITY_END();
 }

@@ -12,6 +12,7 @@
 #include "tvo/jet.h"
 #include "tvo/objective.h"
 #include "tvo/status.h"
+#include "tvo/trig.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -61,10 +62,13 @@ typedef struct {
 /** Polynomial target; coeff[axis][j] multiplies t^j, degree <= TVO_POLY_MAX_DEGREE. */
 tvo_status_t tvo_target_init_polynomial(tvo_target_t *target,
                                         const tvo_real_t coeff[2][TVO_POLY_MAX_DEGREE + 1]);
-/** Circle centre + radius (cos, sin) of (omega t + phase). radius > 0. */
+/** |omega| above this is refused (TVO_ERR_PARAM): the angle a second adds stays in tvo_sincos_turns' range. */
+#define TVO_TARGET_MAX_OMEGA_RADPS TVO_SINCOS_FAST_LIMIT_RAD
+
+/** Circle centre + radius (cos, sin) of (omega t + phase). radius > 0, |omega| <= TVO_TARGET_MAX_OMEGA_RADPS. */
 tvo_status_t tvo_target_init_circle(tvo_target_t *target, const tvo_real_t center_m[2],
                                     tvo_real_t radius_m, tvo_real_t omega_radps, tvo_real_t phase_rad);
-/** Ellipse: centre + R(rotation) (a cos, b sin) of (omega t + phase). a, b > 0. */
+/** Ellipse: centre + R(rotation) (a cos, b sin) of (omega t + phase). a, b > 0, |omega| <= TVO_TARGET_MAX_OMEGA_RADPS. */
 tvo_status_t tvo_target_init_ellipse(tvo_target_t *target, const tvo_target_ellipse_t *ellipse);
 /**
  * The fractional part of omega / (2 pi) in Q0.64 turns per second, from a double (an edge that
