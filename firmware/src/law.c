@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "law_step.h"
+#include "objective_kernel.h"
 #include "shape.h"
 #include "tracking_kernel.h"
 #include "tvo/linsolve.h"
@@ -99,7 +100,8 @@ static tvo_status_t add_jet_hessian(const tvo_objective_t *objective, const tvo_
         for (uint8_t d = 0; d < HESSIAN_COLUMNS_PER_PASS && first + d < m; ++d) {
             y_jet[first + d].c[hessian_seed_power[d]] = TVO_R(1.0);
         }
-        const tvo_status_t st = tvo_objective_gradient_jet_of_jet_terms(objective, y_jet, frozen, HESSIAN_ORDER, g_jet);
+        const tvo_status_t st =
+            objective_sum_terms(objective, y_jet, frozen, HESSIAN_ORDER, g_jet, NULL, SUM_JET_TERMS, NULL);
         for (uint8_t d = 0; d < HESSIAN_COLUMNS_PER_PASS && first + d < m; ++d) {
             y_jet[first + d].c[hessian_seed_power[d]] = TVO_R(0.0);
         }
@@ -211,6 +213,14 @@ static inline int tracking_terms_only(const tvo_objective_t *objective)
     return 1;
 }
 
+/* With one copy (a size build), the tracking path stays out of line: its target arrays would
+ * otherwise sit in the general path's frame, under the deepest call chain of the step. */
+#if TVO_SHAPE_COPIES || !defined(__GNUC__)
+#define TRACKING_PATH_BODY TVO_SHAPE_BODY
+#else
+#define TRACKING_PATH_BODY static __attribute__((noinline))
+#endif
+
 /*
  * evaluate_shape for an objective of tracking terms only (tracking_terms_only) with the same
  * arithmetic in the same order: each term's gradient added in turn, the weights summed on the
@@ -218,7 +228,7 @@ static inline int tracking_terms_only(const tvo_objective_t *objective)
  * of range, a target's error, a value that is not finite), which the general path then evaluates
  * and reports.
  */
-TVO_SHAPE_BODY int evaluate_tracking_shape(const tvo_law_t *law, const tvo_objective_t *objective,
+TRACKING_PATH_BODY int evaluate_tracking_shape(const tvo_law_t *law, const tvo_objective_t *objective,
                                            const tvo_output_derivs_t *y, const tvo_time_jet_t *t, tvo_real_t *y_k,
                                            tvo_real_t *const *grad_rows, uint8_t grad_count, tvo_real_t *shift,
                                            tvo_law_workspace_t *work, const uint8_t k, const uint8_t m)
@@ -320,7 +330,7 @@ TVO_SHAPE_BODY tvo_status_t evaluate_shape(const tvo_law_t *law, const tvo_objec
     along->rate = TVO_R(1.0);
     /* One pass: every term's gradient jets; the closed forms add their Hessian on the way. */
     uint8_t jet_terms = 0u;
-    tvo_status_t st = tvo_objective_gradient_hessian(objective, y_jet, along, k, g_jet, hessian, &jet_terms);
+    tvo_status_t st = objective_sum_terms(objective, y_jet, along, k, g_jet, hessian, SUM_CLOSED_FORMS, &jet_terms);
     if (st != TVO_OK) {
         return st;
     }
@@ -383,10 +393,9 @@ TVO_SHAPE_BODY tvo_status_t evaluate_shape(const tvo_law_t *law, const tvo_objec
     return TVO_OK;
 }
 
+/* The evaluation, writing where work->outputs says. */
 static tvo_status_t evaluate(const tvo_law_t *law, const tvo_objective_t *objective, const tvo_output_derivs_t *y,
-                             const tvo_time_jet_t *t, tvo_real_t *y_k, tvo_real_t *const *grad_rows,
-                             uint8_t grad_count, tvo_real_t (*hessian_out)[TVO_MAX_Z_DIM], tvo_real_t *shift,
-                             tvo_law_workspace_t *work)
+                             const tvo_time_jet_t *t, tvo_real_t *y_k, tvo_law_workspace_t *work)
 {
     if (law == NULL || objective == NULL || y == NULL || t == NULL || y_k == NULL || work == NULL) {
         return TVO_ERR_NULL;
@@ -400,19 +409,21 @@ static tvo_status_t evaluate(const tvo_law_t *law, const tvo_objective_t *object
         (unsigned)objective->primal_dim + objective->dual_dim != m) {
         return TVO_ERR_DIMENSION;
     }
+    const tvo_law_outputs_t *out = &work->outputs;
 #if TVO_SHAPE_COPIES
     if (k == TVO_SHAPE_ORDER && m == TVO_SHAPE_OUTPUT_DIM) {
-        return evaluate_shape(law, objective, y, t, y_k, grad_rows, grad_count, hessian_out, shift, work,
-                              TVO_SHAPE_ORDER, TVO_SHAPE_OUTPUT_DIM);
+        return evaluate_shape(law, objective, y, t, y_k, out->grad_rows, out->grad_count, out->hessian,
+                              out->regularization, work, TVO_SHAPE_ORDER, TVO_SHAPE_OUTPUT_DIM);
     }
 #if TVO_MAX_Z_DIM >= TVO_SHAPE_PAIR_OUTPUT_DIM
     if (k == TVO_SHAPE_ORDER && m == TVO_SHAPE_PAIR_OUTPUT_DIM) {
-        return evaluate_shape(law, objective, y, t, y_k, grad_rows, grad_count, hessian_out, shift, work,
-                              TVO_SHAPE_ORDER, TVO_SHAPE_PAIR_OUTPUT_DIM);
+        return evaluate_shape(law, objective, y, t, y_k, out->grad_rows, out->grad_count, out->hessian,
+                              out->regularization, work, TVO_SHAPE_ORDER, TVO_SHAPE_PAIR_OUTPUT_DIM);
     }
 #endif
 #endif
-    return evaluate_shape(law, objective, y, t, y_k, grad_rows, grad_count, hessian_out, shift, work, k, m);
+    return evaluate_shape(law, objective, y, t, y_k, out->grad_rows, out->grad_count, out->hessian,
+                          out->regularization, work, k, m);
 }
 
 tvo_status_t tvo_law_evaluate(const tvo_law_t *law, const tvo_objective_t *objective,
@@ -420,15 +431,17 @@ tvo_status_t tvo_law_evaluate(const tvo_law_t *law, const tvo_objective_t *objec
                               tvo_real_t *y_k, tvo_law_eval_t *eval)
 {
     tvo_law_workspace_t work;
-    if (eval == NULL) {
-        return evaluate(law, objective, y, t, y_k, NULL, 0u, NULL, NULL, &work);
+    memset(&work.outputs, 0, sizeof(work.outputs));
+    if (eval != NULL) {
+        memset(eval, 0, sizeof(*eval));
+        for (uint8_t j = 0; j <= TVO_MAX_RELATIVE_DEGREE; ++j) {
+            work.outputs.grad_rows[j] = eval->grad[j];
+        }
+        work.outputs.grad_count = TVO_MAX_Z_DIM;
+        work.outputs.hessian = eval->hessian;
+        work.outputs.regularization = &eval->regularization;
     }
-    memset(eval, 0, sizeof(*eval));
-    tvo_real_t *rows[TVO_MAX_RELATIVE_DEGREE + 1];
-    for (uint8_t j = 0; j <= TVO_MAX_RELATIVE_DEGREE; ++j) {
-        rows[j] = eval->grad[j];
-    }
-    return evaluate(law, objective, y, t, y_k, rows, TVO_MAX_Z_DIM, eval->hessian, &eval->regularization, &work);
+    return evaluate(law, objective, y, t, y_k, &work);
 }
 
 tvo_status_t law_evaluate_report_unchecked(const tvo_law_t *law, const tvo_objective_t *objective,
@@ -436,21 +449,28 @@ tvo_status_t law_evaluate_report_unchecked(const tvo_law_t *law, const tvo_objec
                                            tvo_law_report_t *report, tvo_law_workspace_t *work)
 {
     report->regularization = TVO_R(0.0);
-    tvo_real_t *rows[TVO_MAX_RELATIVE_DEGREE + 1] = {NULL};
-    rows[0] = report->gradient;
-    rows[1] = report->gradient_rate;
+    tvo_law_outputs_t *out = &work->outputs;
+    out->grad_rows[0] = report->gradient;
+    out->grad_rows[1] = report->gradient_rate;
+    for (uint8_t j = 2; j <= TVO_MAX_RELATIVE_DEGREE; ++j) {
+        out->grad_rows[j] = NULL;
+    }
+    out->grad_count = report->count;
+    out->hessian = NULL;
+    out->regularization = &report->regularization;
 #if TVO_SHAPE_COPIES
     /* The controllers' common case, one robot's tracking at k = 2, without the general entry's
      * argument passing; anything else (or anything the path declines) takes the general entry. */
     if (objective->tracking_only && law->relative_degree == TVO_SHAPE_ORDER && law->dim == TVO_SHAPE_OUTPUT_DIM &&
         objective->dim == TVO_SHAPE_OUTPUT_DIM && objective->primal_dim == TVO_SHAPE_OUTPUT_DIM &&
         tracking_terms_only(objective) &&
-        evaluate_tracking_shape(law, objective, y, t, y_k, rows, report->count, &report->regularization, work,
-                                TVO_SHAPE_ORDER, TVO_SHAPE_OUTPUT_DIM)) {
+        evaluate_tracking_shape(law, objective, y, t, y_k, out->grad_rows, report->count, &report->regularization,
+                                work, TVO_SHAPE_ORDER, TVO_SHAPE_OUTPUT_DIM)) {
         return TVO_OK;
     }
 #endif
-    return evaluate(law, objective, y, t, y_k, rows, report->count, NULL, &report->regularization, work);
+    /* A tail call (its arguments fit this function's): no frame of this entry under the law's. */
+    return evaluate(law, objective, y, t, y_k, work);
 }
 
 tvo_status_t tvo_law_evaluate_report(const tvo_law_t *law, const tvo_objective_t *objective,

@@ -1,6 +1,7 @@
 /* The objective as a sum of gradient-jet terms; see tvo/objective.h. */
 #include "tvo/objective.h"
 
+#include "objective_kernel.h"
 #include "sample_clock_kernel.h"
 #include "tvo/tracking.h"
 
@@ -91,21 +92,14 @@ tvo_status_t tvo_objective_reserve_multipliers(tvo_objective_t *objective, uint8
     return TVO_OK;
 }
 
-/* Which terms a pass sums, and how. */
-typedef enum {
-    SUM_ALL_BY_JETS = 0,  /* gradient jets of every term (the reference) */
-    SUM_CLOSED_FORMS = 1, /* closed forms add gradient and Hessian; the rest gradient jets */
-    SUM_JET_TERMS = 2     /* gradient jets of the terms SUM_CLOSED_FORMS leaves to jets */
-} sum_mode_t;
-
 static int uses_closed_form(const tvo_objective_t *objective, const tvo_term_t *term)
 {
     return term->gradient_hessian != NULL && !objective->jets_only;
 }
 
-static tvo_status_t sum_terms(const tvo_objective_t *objective, const tvo_jet_t *z, const tvo_time_jet_t *t,
-                              uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian, sum_mode_t mode,
-                              uint8_t *jet_terms)
+tvo_status_t objective_sum_terms(const tvo_objective_t *objective, const tvo_jet_t *z, const tvo_time_jet_t *t,
+                                 uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian, sum_mode_t mode,
+                                 uint8_t *jet_terms)
 {
     if (objective == NULL || z == NULL || t == NULL || grad == NULL) {
         return TVO_ERR_NULL;
@@ -149,7 +143,7 @@ static tvo_status_t sum_terms(const tvo_objective_t *objective, const tvo_jet_t 
 tvo_status_t tvo_objective_gradient_jet(const tvo_objective_t *objective, const tvo_jet_t *z,
                                         const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad)
 {
-    return sum_terms(objective, z, t, order, grad, NULL, SUM_ALL_BY_JETS, NULL);
+    return objective_sum_terms(objective, z, t, order, grad, NULL, SUM_ALL_BY_JETS, NULL);
 }
 
 tvo_status_t tvo_objective_gradient_hessian(const tvo_objective_t *objective, const tvo_jet_t *z,
@@ -159,13 +153,13 @@ tvo_status_t tvo_objective_gradient_hessian(const tvo_objective_t *objective, co
     if (hessian == NULL || jet_terms == NULL) {
         return TVO_ERR_NULL;
     }
-    return sum_terms(objective, z, t, order, grad, hessian, SUM_CLOSED_FORMS, jet_terms);
+    return objective_sum_terms(objective, z, t, order, grad, hessian, SUM_CLOSED_FORMS, jet_terms);
 }
 
 tvo_status_t tvo_objective_gradient_jet_of_jet_terms(const tvo_objective_t *objective, const tvo_jet_t *z,
                                                      const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad)
 {
-    return sum_terms(objective, z, t, order, grad, NULL, SUM_JET_TERMS, NULL);
+    return objective_sum_terms(objective, z, t, order, grad, NULL, SUM_JET_TERMS, NULL);
 }
 
 tvo_status_t tvo_objective_constraint_max(const tvo_objective_t *objective, const tvo_real_t *y, tvo_real_t t_s,

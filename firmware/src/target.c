@@ -282,20 +282,8 @@ tvo_status_t tvo_target_jet(const tvo_target_t *target, const tvo_time_jet_t *t,
     if (order > TVO_JET_MAX_ORDER) {
         return TVO_ERR_PARAM;
     }
-    tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2];
-    /* With time frozen (rate 0: Hessian columns) only the position enters the jet. */
-    const uint8_t needed = (t->rate == TVO_R(0.0)) ? 0u : order;
-    const tvo_status_t st = tvo_target_derivatives(target, t, needed, deriv);
-    if (st != TVO_OK) {
-        return st;
+    if (!isfinite(t->t_s)) {
+        return TVO_ERR_NOT_FINITE;
     }
-    for (uint8_t axis = 0; axis < 2u; ++axis) {
-        tvo_jet_constant(TVO_R(0.0), &out[axis]);
-        tvo_real_t scale = TVO_R(1.0);
-        for (uint8_t j = 0; j <= needed; ++j) {
-            out[axis].c[j] = deriv[j][axis] * scale;
-            scale *= t->rate / (tvo_real_t)(j + 1u);
-        }
-    }
-    return TVO_OK;
+    return target_jet_unchecked(target, t, order, out);
 }

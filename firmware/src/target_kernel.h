@@ -14,4 +14,26 @@
 tvo_status_t target_derivatives_unchecked(const tvo_target_t *target, const tvo_time_jet_t *t, uint8_t order,
                                           tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2]);
 
+/* tvo_target_jet for a target and time as above (inline: its caller's frame holds the derivatives). */
+static inline tvo_status_t target_jet_unchecked(const tvo_target_t *target, const tvo_time_jet_t *t, uint8_t order,
+                                                tvo_jet_t out[2])
+{
+    tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2];
+    /* With time frozen (rate 0: Hessian columns) only the position enters the jet. */
+    const uint8_t needed = (t->rate == TVO_R(0.0)) ? 0u : order;
+    const tvo_status_t st = target_derivatives_unchecked(target, t, needed, deriv);
+    if (st != TVO_OK) {
+        return st;
+    }
+    for (uint8_t axis = 0; axis < 2u; ++axis) {
+        tvo_jet_constant(TVO_R(0.0), &out[axis]);
+        tvo_real_t scale = TVO_R(1.0);
+        for (uint8_t j = 0; j <= needed && j <= TVO_JET_MAX_ORDER; ++j) {
+            out[axis].c[j] = deriv[j][axis] * scale;
+            scale *= t->rate / (tvo_real_t)(j + 1u);
+        }
+    }
+    return TVO_OK;
+}
+
 #endif /* TVO_TARGET_KERNEL_H */

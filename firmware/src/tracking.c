@@ -26,6 +26,22 @@ tvo_status_t tvo_tracking_init(tvo_tracking_term_t *term, const tvo_target_t *ta
     return TVO_OK;
 }
 
+/* The checks tvo_target_jet and tvo_target_derivatives make, in their order: the target, the order,
+ * then the time (the term's own pointers and offset are checked by the caller). */
+static tvo_status_t check_target_call(const tvo_tracking_term_t *self, const tvo_time_jet_t *t, uint8_t order)
+{
+    if (self->target == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (order > TVO_JET_MAX_ORDER) {
+        return TVO_ERR_PARAM;
+    }
+    if (!isfinite(t->t_s)) {
+        return TVO_ERR_NOT_FINITE;
+    }
+    return TVO_OK;
+}
+
 tvo_status_t tvo_tracking_gradient_jet(const void *term, const tvo_jet_t *y, uint8_t dim,
                                        const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad)
 {
@@ -36,8 +52,13 @@ tvo_status_t tvo_tracking_gradient_jet(const void *term, const tvo_jet_t *y, uin
     if ((unsigned)self->offset + 2u > dim) {
         return TVO_ERR_DIMENSION;
     }
+    tvo_status_t st = check_target_call(self, t, order);
+    if (st != TVO_OK) {
+        return st;
+    }
+    /* tvo_target_jet's body inline: the deepest call path of the step runs through here. */
     tvo_jet_t target_jet[2];
-    const tvo_status_t st = tvo_target_jet(self->target, t, order, target_jet);
+    st = target_jet_unchecked(self->target, t, order, target_jet);
     if (st != TVO_OK) {
         return st;
     }
@@ -59,15 +80,9 @@ tvo_status_t tvo_tracking_gradient_hessian(const void *term, const tvo_jet_t *y,
     if ((unsigned)self->offset + 2u > dim) {
         return TVO_ERR_DIMENSION;
     }
-    /* What tvo_target_derivatives checks, in its order: the target, the order, then the time. */
-    if (self->target == NULL) {
-        return TVO_ERR_NULL;
-    }
-    if (order > TVO_JET_MAX_ORDER) {
-        return TVO_ERR_PARAM;
-    }
-    if (!isfinite(t->t_s)) {
-        return TVO_ERR_NOT_FINITE;
+    const tvo_status_t st = check_target_call(self, t, order);
+    if (st != TVO_OK) {
+        return st;
     }
     /* The Hessian is the constant W, on the matrix's diagonal. */
     return tracking_add_unchecked(self, y, t, t->rate, order, grad, &hessian->matrix[0][0], TVO_MAX_Z_DIM + 1u);

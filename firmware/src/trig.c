@@ -1,6 +1,8 @@
 /* Sine and cosine together; see tvo/trig.h. */
 #include "tvo/trig.h"
 
+#include "shape.h"
+
 #include <string.h>
 
 #define TRIG_TWO_OVER_PI TVO_R(0.636619772367581343076)
@@ -123,8 +125,9 @@ static void sincos_huge(float angle_rad, float *sin_out, float *cos_out)
 #endif
 
 #if !TVO_USE_DOUBLE
-/* sin and cos of |angle| <= TVO_SINCOS_FAST_LIMIT_RAD (Cody-Waite to the nearest quarter turn). */
-static void sincos_fast_range(float angle_rad, float *sin_out, float *cos_out)
+/* sin and cos of |angle| <= TVO_SINCOS_FAST_LIMIT_RAD (Cody-Waite to the nearest quarter turn);
+ * in both callers' bodies when the build compiles for speed. */
+TVO_SHAPE_BODY void sincos_fast_range(float angle_rad, float *sin_out, float *cos_out)
 {
     if (TVO_FABS(angle_rad) <= TRIG_NO_REDUCTION_LIMIT) {
         sincos_kernel(angle_rad, sin_out, cos_out); /* small angles (a turn over one period): no reduction */

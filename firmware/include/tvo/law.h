@@ -48,9 +48,18 @@ typedef struct {
     tvo_real_t regularization;  /* set by the evaluation */
 } tvo_law_report_t;
 
+/** Where one evaluation writes besides y_k, set by its entry (NULL or 0: not wanted). */
+typedef struct {
+    tvo_real_t *grad_rows[TVO_MAX_RELATIVE_DEGREE + 1]; /* grad^(j), grad_count entries each */
+    uint8_t grad_count;
+    tvo_real_t (*hessian)[TVO_MAX_Z_DIM];
+    tvo_real_t *regularization;
+} tvo_law_outputs_t;
+
 /** The evaluation's working storage: a controller keeps one beside its law, so the step's stack
  *  holds none of it (its contents mean nothing between evaluations). */
 typedef struct {
+    tvo_law_outputs_t outputs;                 /* the entry's, so the evaluation's call passes fewer */
     tvo_jet_t y_jet[TVO_MAX_Z_DIM];            /* z along the trajectory, then the Hessian's seeds */
     tvo_jet_t g_jet[TVO_MAX_Z_DIM];            /* the gradient's jets */
     tvo_hessian_t hessian;                     /* with the solve's own scratch */
