@@ -263,21 +263,15 @@ static tvo_status_t position_only_estimate(const tvo_controller_t *ctl, tvo_dirt
     return TVO_OK;
 }
 
-/* The step of an initialised controller driving n robots (n = cfg.robot_count). */
-TVO_SHAPE_BODY tvo_status_t step_shape(tvo_controller_t *ctl, const tvo_measurement_t *meas, uint32_t apply_tick,
-                                       tvo_command_t *cmd, const uint8_t n)
+/* The step before the law, for a period the clock has begun: the measurement checked, the state and
+ * time the law is evaluated at (work->output, work->time), *flags and *speed_contradicted. */
+TVO_OFF_CHAIN_BODY tvo_status_t step_before_law(tvo_controller_t *ctl, const tvo_measurement_t *meas,
+                                                uint32_t apply_tick, const uint8_t n, uint32_t *flags_out,
+                                                int *speed_contradicted_out)
 {
     const tvo_controller_config_t *cfg = &ctl->cfg;
-
-    /* The period's timing: apply ticks must advance; elapsed time never wraps. */
     tvo_controller_work_t *work = &ctl->work;
     tvo_period_t *period = &work->period;
-    if (sample_clock_begin(&ctl->clock, apply_tick, period) != TVO_OK) {
-        *cmd = ctl->held;
-        cmd->flags = TVO_FLAG_HOLDING;
-        return TVO_ERR_OUT_OF_ORDER;
-    }
-
     tvo_status_t st = check_measurement(ctl, meas, apply_tick);
     tvo_real_t *rate_filtered = work->rate_filtered;
     tvo_real_t *heading_at_sample = work->heading_at_sample;
@@ -297,7 +291,7 @@ TVO_SHAPE_BODY tvo_status_t step_shape(tvo_controller_t *ctl, const tvo_measurem
         }
     }
     if (st != TVO_OK) {
-        return hold_or_stop(ctl, period, st, cmd);
+        return st;
     }
 
     /* Where the law is evaluated and how far the sampled state is carried there (the age to the
@@ -368,15 +362,32 @@ TVO_SHAPE_BODY tvo_status_t step_shape(tvo_controller_t *ctl, const tvo_measurem
         y->d[1][primal + q] = ctl->multiplier_rate[q];
     }
 
-    tvo_real_t *y_accel = work->output_accel;
-    tvo_law_report_t report = {work->gradient, work->gradient_rate, primal, TVO_R(0.0)};
-    if (st == TVO_OK) {
-        st = law_evaluate_report_unchecked(&ctl->law, ctl->objective, y, t, y_accel, &report, &work->law);
-    }
+    *flags_out = flags;
+    *speed_contradicted_out = speed_contradicted;
+    return st;
+}
+
+/* The step after the law: the flat map, the limits, and on success the period's commit. */
+TVO_OFF_CHAIN_BODY tvo_status_t step_after_law(tvo_controller_t *ctl, const tvo_measurement_t *meas,
+                                               tvo_command_t *cmd, const uint8_t n, uint32_t flags,
+                                               int speed_contradicted)
+{
+    const tvo_controller_config_t *cfg = &ctl->cfg;
+    tvo_controller_work_t *work = &ctl->work;
+    tvo_period_t *period = &work->period;
+    const int position_only = cfg->velocity_source == TVO_VELOCITY_FROM_POSITION;
+    const tvo_output_derivs_t *y = &work->output;
+    const tvo_time_jet_t *t = &work->time;
+    const tvo_real_t *y_accel = work->output_accel;
+    const tvo_real_t *heading = work->heading;
+    tvo_real_t(*heading_cs)[2] = work->heading_cs;
+    const tvo_real_t *speed = work->speed;
+    const tvo_real_t *speed_state = work->speed_state;
+    const uint8_t primal = work->report.count; /* the objective's primal_dim */
+    const uint8_t dual = ctl->objective->dual_dim;
+    const tvo_real_t carry_s = period->carry_s;
     tvo_command_t *next = &work->command; /* robots 0..n-1; the held command's others stay zero */
-    if (st == TVO_OK && report.regularization > TVO_R(0.0)) {
-        flags |= TVO_FLAG_REGULARIZED;
-    }
+    tvo_status_t st = TVO_OK;
     tvo_real_t *speed_next = work->speed_next;
     tvo_real_t *accel = work->accel;
     for (uint8_t r = 0; r < n && st == TVO_OK; ++r) {
@@ -406,7 +417,7 @@ TVO_SHAPE_BODY tvo_status_t step_shape(tvo_controller_t *ctl, const tvo_measurem
     /* The step succeeded: from here on its working copies become the controller's state. */
     sample_clock_end_good(&ctl->clock, period, meas->stamp_tick);
     if (position_only) {
-        ctl->velocity_filter = *filter;
+        ctl->velocity_filter = work->velocity_filter;
     }
     ctl->speed_mismatch_periods = speed_contradicted ? ctl->speed_mismatch_periods + 1u : 0u;
     if (ctl->speed_mismatch_periods >= TVO_SPEED_MISMATCH_PERIODS) {
@@ -444,8 +455,40 @@ TVO_SHAPE_BODY tvo_status_t step_shape(tvo_controller_t *ctl, const tvo_measurem
         tm->gradient[i] = work->gradient[i];
         tm->gradient_rate[i] = work->gradient_rate[i];
     }
-    tm->regularization = report.regularization;
+    tm->regularization = work->report.regularization;
     return TVO_OK;
+}
+
+/* The step of an initialised controller driving n robots (n = cfg.robot_count): before the law, the
+ * law, after it, with only what crosses the law's call in this frame. */
+TVO_SHAPE_BODY tvo_status_t step_shape(tvo_controller_t *ctl, const tvo_measurement_t *meas, uint32_t apply_tick,
+                                       tvo_command_t *cmd, const uint8_t n)
+{
+    /* The period's timing: apply ticks must advance; elapsed time never wraps. */
+    tvo_controller_work_t *work = &ctl->work;
+    if (sample_clock_begin(&ctl->clock, apply_tick, &work->period) != TVO_OK) {
+        *cmd = ctl->held;
+        cmd->flags = TVO_FLAG_HOLDING;
+        return TVO_ERR_OUT_OF_ORDER;
+    }
+    uint32_t flags = 0u;
+    int speed_contradicted = 0;
+    tvo_status_t st = step_before_law(ctl, meas, apply_tick, n, &flags, &speed_contradicted);
+    if (st == TVO_OK) {
+        tvo_law_report_t *report = &work->report;
+        report->gradient = work->gradient;
+        report->gradient_rate = work->gradient_rate;
+        report->count = ctl->objective->primal_dim;
+        st = law_evaluate_report_unchecked(&ctl->law, ctl->objective, &work->output, &work->time,
+                                           work->output_accel, report, &work->law);
+        if (report->regularization > TVO_R(0.0)) {
+            flags |= TVO_FLAG_REGULARIZED;
+        }
+    }
+    if (st != TVO_OK) {
+        return hold_or_stop(ctl, &work->period, st, cmd);
+    }
+    return step_after_law(ctl, meas, cmd, n, flags, speed_contradicted);
 }
 
 tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t *meas,

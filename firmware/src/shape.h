@@ -27,6 +27,14 @@
 #define TVO_SHAPE_BODY static inline
 #endif
 
+/* A piece of a step kept out of line when there is one copy (a size build), so the step's deepest
+ * call chain, through the law, does not carry its frame; compiled into its caller with the copies. */
+#if TVO_SHAPE_COPIES || !defined(__GNUC__)
+#define TVO_OFF_CHAIN_BODY TVO_SHAPE_BODY
+#else
+#define TVO_OFF_CHAIN_BODY static __attribute__((noinline))
+#endif
+
 /* Replaces a (leading n x n block, row stride `stride`) by (a + a^T) / 2: exactly symmetric. */
 TVO_SHAPE_BODY void symmetrize(tvo_real_t *a, const unsigned stride, const unsigned n)
 {

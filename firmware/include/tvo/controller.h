@@ -123,6 +123,7 @@ typedef struct {
     tvo_period_t period;                             /* the period's timing */
     tvo_time_jet_t time;                             /* the objective's time where the law is evaluated */
     tvo_command_t command;                           /* the command the step would hold */
+    tvo_law_report_t report;                         /* what the law reports to the step */
     /* Per robot (entries 0..n-1): */
     tvo_real_t heading_at_sample[TVO_MAX_ROBOTS];
     tvo_real_t heading[TVO_MAX_ROBOTS];              /* where the law is evaluated */
