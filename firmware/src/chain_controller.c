@@ -5,6 +5,7 @@
 
 #include "law_step.h"
 #include "sample_clock_kernel.h"
+#include "shape.h"
 
 tvo_status_t tvo_chain_config_default(tvo_chain_config_t *cfg)
 {
@@ -204,24 +205,13 @@ tvo_status_t tvo_chain_controller_safe_stop(tvo_chain_controller_t *ctl, tvo_cha
     return TVO_OK;
 }
 
-tvo_status_t tvo_chain_controller_step(tvo_chain_controller_t *ctl, const tvo_chain_measurement_t *meas,
-                                       uint32_t apply_tick, tvo_chain_command_t *cmd)
+/* The step before the law, for a period the clock has begun: the measurement checked, the filters'
+ * trial copies, the state carried to where the law is evaluated, its time; *flags. */
+TVO_OFF_CHAIN_BODY tvo_status_t chain_step_before_law(tvo_chain_controller_t *ctl, const tvo_chain_measurement_t *meas,
+                                                      uint32_t apply_tick, uint32_t *flags)
 {
-    if (cmd == NULL) {
-        return TVO_ERR_NULL;
-    }
-    if (ctl == NULL || !ctl->initialized) {
-        memset(cmd, 0, sizeof(*cmd));
-        cmd->flags = TVO_FLAG_SAFE_STOP;
-        return (ctl == NULL) ? TVO_ERR_NULL : TVO_ERR_NOT_INITIALIZED;
-    }
     tvo_chain_controller_work_t *work = &ctl->work;
     tvo_period_t *period = &work->period;
-    if (sample_clock_begin(&ctl->clock, apply_tick, period) != TVO_OK) {
-        *cmd = ctl->held;
-        cmd->flags = TVO_FLAG_HOLDING;
-        return TVO_ERR_OUT_OF_ORDER;
-    }
     tvo_status_t st = (meas == NULL) ? TVO_ERR_NO_MEASUREMENT : check_finite(ctl, meas);
     if (st == TVO_OK) {
         st = sample_clock_check_stamp(&ctl->clock, meas->stamp_tick, apply_tick);
@@ -238,7 +228,7 @@ tvo_status_t tvo_chain_controller_step(tvo_chain_controller_t *ctl, const tvo_ch
         st = derivatives_at_sample(ctl, filter, meas, x);
     }
     if (st != TVO_OK) {
-        return hold_or_stop(ctl, period, st, cmd);
+        return st;
     }
 
     const uint8_t k = ctl->cfg.relative_degree;
@@ -246,20 +236,21 @@ tvo_status_t tvo_chain_controller_step(tvo_chain_controller_t *ctl, const tvo_ch
     /* Where the law is evaluated (the sample, the application instant, or the middle of the held
      * interval); the state is carried there with the held command. */
     sample_clock_locate(&ctl->clock, period, meas->stamp_tick, ctl->cfg.delay_compensation, ctl->cfg.zoh_aware);
-    const uint32_t flags = (period->carry_s > TVO_R(0.0)) ? TVO_FLAG_PREDICTED : 0u;
+    *flags = (period->carry_s > TVO_R(0.0)) ? TVO_FLAG_PREDICTED : 0u;
     if (period->carry_s > TVO_R(0.0)) {
         st = tvo_chain_predict(k, m, x, ctl->held.u, period->carry_s, x);
     }
-    tvo_time_jet_t *t = &work->time;
-    time_jet_at_tick_time(&period->law_time, ctl->cfg.tick_hz, TVO_R(1.0), t); /* the clock's times are valid */
-    tvo_real_t *u = work->input;
-    if (st == TVO_OK) {
-        tvo_law_report_t report = {NULL, NULL, 0u, TVO_R(0.0)};
-        st = law_evaluate_report_unchecked(&ctl->law, ctl->objective, x, t, u, &report, &work->law);
-    }
-    if (st != TVO_OK) {
-        return hold_or_stop(ctl, period, st, cmd);
-    }
+    time_jet_at_tick_time(&period->law_time, ctl->cfg.tick_hz, TVO_R(1.0), &work->time); /* valid times */
+    return st;
+}
+
+/* The step after the law: the input's limit, and the period's commit. */
+TVO_OFF_CHAIN_BODY tvo_status_t chain_step_after_law(tvo_chain_controller_t *ctl, const tvo_chain_measurement_t *meas,
+                                                     tvo_chain_command_t *cmd, uint32_t flags)
+{
+    tvo_chain_controller_work_t *work = &ctl->work;
+    const uint8_t m = ctl->objective->primal_dim;
+    const tvo_real_t *u = work->input;
     tvo_chain_command_t *next = &work->command;
     memset(next, 0, sizeof(*next));
     next->flags = flags;
@@ -273,11 +264,45 @@ tvo_status_t tvo_chain_controller_step(tvo_chain_controller_t *ctl, const tvo_ch
             next->flags |= TVO_FLAG_ACCEL_SATURATED;
         }
     }
-    sample_clock_end_good(&ctl->clock, period, meas->stamp_tick);
+    sample_clock_end_good(&ctl->clock, &work->period, meas->stamp_tick);
     for (uint8_t j = 0; j + 1u < TVO_MAX_RELATIVE_DEGREE; ++j) {
-        ctl->filter[j] = filter[j];
+        ctl->filter[j] = work->filter[j];
     }
     ctl->held = *next;
     *cmd = *next;
     return TVO_OK;
+}
+
+tvo_status_t tvo_chain_controller_step(tvo_chain_controller_t *ctl, const tvo_chain_measurement_t *meas,
+                                       uint32_t apply_tick, tvo_chain_command_t *cmd)
+{
+    if (cmd == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (ctl == NULL || !ctl->initialized) {
+        memset(cmd, 0, sizeof(*cmd));
+        cmd->flags = TVO_FLAG_SAFE_STOP;
+        return (ctl == NULL) ? TVO_ERR_NULL : TVO_ERR_NOT_INITIALIZED;
+    }
+    tvo_chain_controller_work_t *work = &ctl->work;
+    if (sample_clock_begin(&ctl->clock, apply_tick, &work->period) != TVO_OK) {
+        *cmd = ctl->held;
+        cmd->flags = TVO_FLAG_HOLDING;
+        return TVO_ERR_OUT_OF_ORDER;
+    }
+    /* Before the law, the law, after it: only what crosses the law's call in this frame. */
+    uint32_t flags = 0u;
+    tvo_status_t st = chain_step_before_law(ctl, meas, apply_tick, &flags);
+    if (st == TVO_OK) {
+        tvo_law_report_t *report = &work->report;
+        report->gradient = NULL;
+        report->gradient_rate = NULL;
+        report->count = 0u;
+        st = law_evaluate_report_unchecked(&ctl->law, ctl->objective, &work->state, &work->time, work->input, report,
+                                           &work->law);
+    }
+    if (st != TVO_OK) {
+        return hold_or_stop(ctl, &work->period, st, cmd);
+    }
+    return chain_step_after_law(ctl, meas, cmd, flags);
 }

@@ -63,6 +63,7 @@ typedef struct {
     tvo_period_t period;                                       /* the period's timing */
     tvo_time_jet_t time;                                       /* the objective's time for the law */
     tvo_chain_command_t command;                               /* the command the step would hold */
+    tvo_law_report_t report;                                   /* what the law reports to the step */
 } tvo_chain_controller_work_t;
 
 typedef struct {
