@@ -2,6 +2,7 @@
 #include "session_codec.h"
 
 #include <float.h>
+#include <math.h>
 #include <string.h>
 
 #include "tvo/sample_clock.h"
@@ -200,7 +201,10 @@ tvo_status_t tvo_session_decode_path(const tvo_lcm_path_t *path, tvo_target_t *t
         ellipse.rotation_rad = circle ? TVO_R(0.0) : tvo_wire_real(path->rotation_rad);
         /* omega multiplies hours of time: its phase rate keeps the wire's double precision. */
         ellipse.rate_turns_q64 = tvo_target_turns_q64(path->omega_radps);
-        const tvo_status_t st = tvo_target_init_ellipse(target, &ellipse);
+        tvo_status_t st = tvo_target_init_ellipse(target, &ellipse);
+        if (st == TVO_OK && !(fabs(path->omega_radps) <= (double)TVO_TARGET_MAX_OMEGA_RADPS)) {
+            st = TVO_ERR_PARAM; /* the bound on the wire's value, not on its rounding to tvo_real_t */
+        }
         if (st == TVO_OK && circle) {
             target->kind = TVO_TARGET_CIRCLE;
         }

@@ -213,8 +213,9 @@ static tvo_status_t streamed_derivatives(const tvo_target_streamed_t *s, const t
     if (t->ticks < s->stamp_ticks) {
         return TVO_ERR_FUTURE_STAMP;
     }
-    /* The age from integer ticks: exact however long the run. Beyond 2^32 ticks (days at 1 kHz) one
-     * rounding of each operand, which costs nothing at float's precision and needs no 64-bit division. */
+    /* The age from integer ticks: exact however long the run. Beyond 2^32 ticks (50 days at 1 kHz,
+     * 71.6 min at the edge's 1 MHz) one rounding of each operand, which costs nothing at float's
+     * precision and needs no 64-bit division. */
     const uint64_t age_ticks = t->ticks - s->stamp_ticks;
     tvo_real_t age_s = TVO_R(0.0);
     if (age_ticks <= UINT32_MAX) {

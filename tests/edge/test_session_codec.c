@@ -447,6 +447,36 @@ static void test_circle_and_ellipse_paths_evaluate_their_parameters(void)
     EF_ASSERT_STATUS(TVO_ERR_PARAM, tvo_session_decode_path(&path, &target));
 }
 
+static void test_periodic_paths_refuse_a_rate_beyond_the_bound_on_the_wire_value(void)
+{
+    /* The bound is on the wire's double: 8192.0001 rounds to 8192.0f, which the core would take. */
+    const double bound = (double)TVO_TARGET_MAX_OMEGA_RADPS;
+    const double above = nextafter(bound, INFINITY) > bound + 1e-4 ? nextafter(bound, INFINITY) : bound + 1e-4;
+    for (int32_t kind = TVO_LCM_PATH_T_KIND_CIRCLE; kind <= TVO_LCM_PATH_T_KIND_ELLIPSE; ++kind) {
+        tvo_lcm_path_t path;
+        memset(&path, 0, sizeof(path));
+        path.kind = kind;
+        path.semi_axis_m[0] = 0.5;
+        path.semi_axis_m[1] = 0.25;
+        tvo_target_t target;
+        for (int sign = -1; sign <= 1; sign += 2) {
+            path.omega_radps = sign * bound;
+            EF_ASSERT_STATUS(TVO_OK, tvo_session_decode_path(&path, &target));
+            path.omega_radps = sign * above;
+            EF_ASSERT_STATUS(TVO_ERR_PARAM, tvo_session_decode_path(&path, &target));
+        }
+        /* What the core refuses first is still the core's to say. */
+        path.omega_radps = above;
+        path.semi_axis_m[0] = NAN;
+        EF_ASSERT_STATUS(TVO_ERR_NOT_FINITE, tvo_session_decode_path(&path, &target));
+        /* In a START: the robot's target names the robot. */
+        ef_start(&msg, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 2);
+        msg.robot[1].target = path;
+        msg.robot[1].target.semi_axis_m[0] = 0.5;
+        EXPECT_PROBLEM_REFUSED(TVO_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 1);
+    }
+}
+
 static void test_streamed_path_waits_for_its_first_sample(void)
 {
     tvo_lcm_path_t path;
@@ -764,6 +794,7 @@ int main(void)
     RUN_TEST(test_polynomial_path_evaluates_its_coefficients);
     RUN_TEST(test_polynomial_coefficients_past_the_builds_degree_are_refused);
     RUN_TEST(test_circle_and_ellipse_paths_evaluate_their_parameters);
+    RUN_TEST(test_periodic_paths_refuse_a_rate_beyond_the_bound_on_the_wire_value);
     RUN_TEST(test_streamed_path_waits_for_its_first_sample);
     RUN_TEST(test_unknown_path_kinds_are_refused);
     RUN_TEST(test_a_streamed_formation_offset_is_refused);
