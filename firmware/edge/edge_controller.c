@@ -27,9 +27,10 @@ static tvo_status_t unicycle_init(tvo_edge_controller_t *ctl, const tvo_lcm_sess
     return st;
 }
 
-static tvo_status_t unicycle_measurement(const tvo_lcm_measurement_t *msg, uint8_t robot_count, uint32_t stamp_tick,
-                                         tvo_edge_measurement_t *meas)
+static tvo_status_t unicycle_measurement(const tvo_edge_controller_t *ctl, const tvo_lcm_measurement_t *msg,
+                                         uint8_t robot_count, uint32_t stamp_tick, tvo_edge_measurement_t *meas)
 {
+    (void)ctl; /* the core's check says which fields its configuration needs (heading_valid) */
     return tvo_step_measurement_from_lcm(msg, robot_count, stamp_tick, &meas->unicycle);
 }
 
@@ -126,10 +127,16 @@ static tvo_status_t chain_init(tvo_edge_controller_t *ctl, const tvo_lcm_session
     return st;
 }
 
-static tvo_status_t chain_measurement(const tvo_lcm_measurement_t *msg, uint8_t robot_count, uint32_t stamp_tick,
-                                      tvo_edge_measurement_t *meas)
+static tvo_status_t chain_measurement(const tvo_edge_controller_t *ctl, const tvo_lcm_measurement_t *msg,
+                                      uint8_t robot_count, uint32_t stamp_tick, tvo_edge_measurement_t *meas)
 {
-    return tvo_step_chain_measurement_from_lcm(msg, robot_count, stamp_tick, &meas->chain);
+    const tvo_status_t st = tvo_step_chain_measurement_from_lcm(msg, robot_count, stamp_tick, &meas->chain);
+    /* The core's chain measurement has no validity flag: y' (and y'') read as measured must be. */
+    const tvo_chain_config_t *cfg = &ctl->u.chain.cfg;
+    if (st == TVO_OK && !msg->derivatives_valid && cfg->relative_degree >= 2u && !cfg->filtered_derivatives) {
+        return TVO_ERR_MISSING_FIELD;
+    }
+    return st;
 }
 
 static void chain_positions(const tvo_edge_measurement_t *meas, uint8_t robot_count, tvo_real_t *y)

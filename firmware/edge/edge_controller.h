@@ -38,8 +38,9 @@ typedef struct {
     /** Configuration from the START, then the core's init (which names the culprit in *why). */
     tvo_status_t (*init)(tvo_edge_controller_t *ctl, const tvo_lcm_session_t *msg, const tvo_objective_t *objective,
                          uint32_t epoch_tick, tvo_session_reject_t *why);
-    tvo_status_t (*measurement)(const tvo_lcm_measurement_t *msg, uint8_t robot_count, uint32_t stamp_tick,
-                                tvo_edge_measurement_t *meas);
+    /** The wire's measurement for the core; TVO_ERR_MISSING_FIELD if it lacks what ctl's configuration reads. */
+    tvo_status_t (*measurement)(const tvo_edge_controller_t *ctl, const tvo_lcm_measurement_t *msg, uint8_t robot_count,
+                                uint32_t stamp_tick, tvo_edge_measurement_t *meas);
     /** The measured positions y (2 per robot), for the slack rule. */
     void (*positions)(const tvo_edge_measurement_t *meas, uint8_t robot_count, tvo_real_t *y);
     /** What the step would refuse, changing nothing. */

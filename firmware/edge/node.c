@@ -12,8 +12,8 @@ _Static_assert(TVO_STATUS_COUNT <= TVO_LCM_NODE_COUNTERS_T_STATUS_SLOTS, "node_c
 /* CLOCK_NODE, before the first accepted measurement: this many refused measurements in a row that
  * agree (within a quarter period) on the plant's clock re-anchor the offset the START gave. */
 #define NODE_ANCHOR_VOTES 3u
-/* CLOCK_PLANT: the first sample must be stamped within this long after the START (or within
- * watchdog_periods periods, if longer). */
+/* CLOCK_PLANT: the first sample must be stamped within this long after the later of the START and
+ * the epoch (or within watchdog_periods periods, if longer). */
 #define NODE_FIRST_SAMPLE_WINDOW_US 1000000
 #define NODE_ANCHOR_AGREEMENT_DIVISOR 4
 
@@ -171,6 +171,10 @@ static void on_start(tvo_node_t *node, const tvo_lcm_session_t *msg, uint64_t co
         /* The plant repeats START until acked: the same content is answered again, not restarted. */
         if (content_hash != running->content_hash) {
             why.status = TVO_ERR_SESSION_CONFLICT;
+        } else if (running->timing.clock_source == TVO_LCM_SESSION_T_CLOCK_PLANT && !running->has_accepted &&
+                   msg->utime > running->start_utime) {
+            /* Stamped with the plant's clock now: the first sample's window starts from it. */
+            node->slot[node->running].start_utime = msg->utime;
         }
         publish_ack(node, msg, &why);
         return;
@@ -221,6 +225,17 @@ static int64_t apply_instant(const tvo_node_session_t *s, int64_t period)
     return s->epoch_schedule_us + period * s->timing.period_us;
 }
 
+/* CLOCK_PLANT, before the first accepted measurement: the latest stamp a first sample may carry. */
+static int64_t first_sample_deadline(const tvo_node_session_t *s)
+{
+    const int64_t h = s->timing.period_us;
+    const int64_t window = (int64_t)s->timing.watchdog_periods * h > NODE_FIRST_SAMPLE_WINDOW_US
+                               ? (int64_t)s->timing.watchdog_periods * h
+                               : NODE_FIRST_SAMPLE_WINDOW_US;
+    const int64_t from = s->start_utime > s->epoch_schedule_us ? s->start_utime : s->epoch_schedule_us;
+    return from + window; /* wire times and a window of at most 2^30 us: no overflow */
+}
+
 /*
  * Which period the measurement serves and when that period's command applies (schedule clock), or
  * why it cannot serve any. Only wire-range-checked values enter the arithmetic.
@@ -248,12 +263,10 @@ static tvo_status_t schedule_measurement(const tvo_node_session_t *s, const tvo_
     }
     *period = to_apply / h;
     if (!s->has_accepted) {
-        /* The first sample anchors the sequence: it must follow the START closely (a stray from far
-         * ahead would otherwise anchor it), and its period lie within the controller's clock span. */
-        const int64_t window = (int64_t)s->timing.watchdog_periods * h > NODE_FIRST_SAMPLE_WINDOW_US
-                                   ? (int64_t)s->timing.watchdog_periods * h
-                                   : NODE_FIRST_SAMPLE_WINDOW_US;
-        return (*stamp_us <= s->start_utime + window && *period * h <= (int64_t)TVO_MAX_TICK_SPAN)
+        /* The first sample anchors the sequence: it must follow the START (or the epoch) closely (a
+         * stray from far ahead would otherwise anchor it), and its period lie within the controller's
+         * clock span. */
+        return (*stamp_us <= first_sample_deadline(s) && *period * h <= (int64_t)TVO_MAX_TICK_SPAN)
                    ? TVO_OK
                    : TVO_ERR_IMPLAUSIBLE_STAMP;
     }
@@ -335,6 +348,10 @@ static int vote(tvo_node_session_t *s, int64_t implied, int64_t tolerance)
  * CLOCK_PLANT, while tracking: if a stray was taken as the anchor of the sequence numbering (it came
  * first, or its stamp and sequence happened to agree), the genuine samples disagree with it ever
  * after; samples ahead of the last served period that agree on their own numbering adopt it.
+ * CLOCK_PLANT, before tracking: a plant that could not be served within the first-sample window (its
+ * robot inside an obstacle, its target stream late) would be refused ever after; samples past the
+ * window that agree on their own numbering move the window to the last of them. The move stands even
+ * if that sample is refused for another reason: it anchors nothing, it only admits what follows.
  */
 static int reanchor(tvo_node_session_t *s, const tvo_lcm_measurement_t *msg, tvo_status_t refusal, int64_t now_us)
 {
@@ -359,20 +376,27 @@ static int reanchor(tvo_node_session_t *s, const tvo_lcm_measurement_t *msg, tvo
         s->epoch_schedule_us = epoch_schedule;
         return 1;
     }
-    if (!in_range || !s->has_accepted || refusal != TVO_ERR_IMPLAUSIBLE_STAMP) {
+    if (!in_range || refusal != TVO_ERR_IMPLAUSIBLE_STAMP) {
         s->anchor_votes = 0u;
         return 0;
     }
     const int64_t to_apply = msg->utime + s->timing.delay_us - s->epoch_schedule_us + h / 2; /* in range: no overflow */
-    if (to_apply < 0 || to_apply / h <= s->last_period) {
+    const int64_t period = to_apply / h;
+    const int votes = to_apply >= 0 &&
+                      (s->has_accepted ? period > s->last_period
+                                       : msg->utime > first_sample_deadline(s) && period * h <= (int64_t)TVO_MAX_TICK_SPAN);
+    if (!votes) {
         s->anchor_votes = 0u;
         return 0;
     }
-    const int64_t period = to_apply / h;
     if (!vote(s, msg->sequence - period, 0)) {
         return 0;
     }
-    s->last_sequence = msg->sequence - (period - s->last_period); /* the samples' own numbering */
+    if (s->has_accepted) {
+        s->last_sequence = msg->sequence - (period - s->last_period); /* the samples' own numbering */
+    } else {
+        s->start_utime = msg->utime; /* the first-sample window starts from the plant's samples */
+    }
     return 1;
 }
 
@@ -395,10 +419,13 @@ static tvo_status_t vet_measurement(tvo_node_session_t *s, const tvo_lcm_measure
     if (!wire_time_ok(*apply_us - s->offset_us)) {
         return TVO_ERR_IMPLAUSIBLE_STAMP; /* its command could not be stamped on the wire */
     }
+    if (*apply_us - stamp_us > (int64_t)TVO_MAX_TICK_SPAN) {
+        return TVO_ERR_STALE; /* older than the controller's ticks span: as uint32 it could look fresh */
+    }
     if (s->has_accepted && (*period - s->last_period) > (int64_t)TVO_MAX_TICK_SPAN / s->timing.period_us) {
         return TVO_ERR_STALE; /* a silence longer than the clock spans: START a new session */
     }
-    st = ops->measurement(msg, s->timing.robot_count, schedule_tick(stamp_us), meas);
+    st = ops->measurement(&s->controller, msg, s->timing.robot_count, schedule_tick(stamp_us), meas);
     return (st == TVO_OK) ? ops->check(&s->controller, meas, schedule_tick(*apply_us)) : st;
 }
 
@@ -471,13 +498,14 @@ static void on_measurement(tvo_node_t *node, const tvo_lcm_measurement_t *msg, i
 /* ---- streamed targets -------------------------------------------------------------------------- */
 
 /* The latest stamp (schedule clock) a streamed target sample may carry: the node's now plus half a
- * period (CLOCK_NODE), or the apply instant of the period after the last accepted one (CLOCK_PLANT). */
+ * period (CLOCK_NODE), or the apply instant of the period after the last accepted one (CLOCK_PLANT;
+ * before the first, one period past the first sample's window, so a stream may start late). */
 static int64_t latest_plausible_target_us(const tvo_node_session_t *s, int64_t now_us)
 {
     if (s->timing.clock_source == TVO_LCM_SESSION_T_CLOCK_NODE) {
         return now_us + s->timing.period_us / NODE_FUTURE_TOLERANCE_DIVISOR;
     }
-    return apply_instant(s, s->has_accepted ? s->last_period + 1 : 1);
+    return s->has_accepted ? apply_instant(s, s->last_period + 1) : first_sample_deadline(s) + s->timing.period_us;
 }
 
 static void on_target(tvo_node_t *node, const tvo_lcm_target_t *msg, int64_t now_us)
@@ -496,11 +524,13 @@ static void on_target(tvo_node_t *node, const tvo_lcm_target_t *msg, int64_t now
          * streamed target takes only newer samples): one stray costs at most one period. */
         st = TVO_ERR_IMPLAUSIBLE_STAMP;
     }
-    uint64_t objective_ticks = 0u;
-    if (st == TVO_OK) {
-        st = tvo_sample_clock_objective_ticks(s->controller.ops->clock(&s->controller),
-                                              schedule_tick(msg->utime + s->offset_us), &objective_ticks);
+    /* The objective's time of the sample, in ticks (us) since the epoch, from 64-bit times: a
+     * uint32 tick would alias a sample 2^32 us old with one from the future. */
+    const int64_t since_epoch_us = (st == TVO_OK) ? msg->utime + s->offset_us - s->epoch_schedule_us : 0;
+    if (st == TVO_OK && since_epoch_us < 0) {
+        st = TVO_ERR_OUT_OF_ORDER; /* before the epoch */
     }
+    const uint64_t objective_ticks = (uint64_t)since_epoch_us;
     if (st == TVO_OK) {
         st = tvo_step_target_from_lcm(msg, s->timing.robot_count, objective_ticks, &s->problem);
     }

@@ -47,7 +47,7 @@ typedef struct {
     tvo_session_timing_t timing;
     int64_t session_id;
     uint64_t content_hash;             /* of the START past its utime: a repeat is recognised */
-    int64_t start_utime;               /* the plant's clock when it sent the START (CLOCK_PLANT's first sample follows) */
+    int64_t start_utime;               /* CLOCK_PLANT: the plant's clock at the START (a repeat's, or the vote's, if later): the first sample's window */
     int64_t offset_us;                 /* schedule clock minus plant clock: 0 in CLOCK_PLANT */
     int64_t epoch_schedule_us;         /* the epoch on the schedule's clock */
     uint8_t has_accepted;              /* a measurement was accepted (anchors sequence and watchdog) */

@@ -1186,11 +1186,11 @@ static void test_plant_first_measurement_beyond_the_tick_span_is_implausible(voi
         (void)EXPECT_REFUSED(m, 0, k + 1 < W ? TVO_ERR_IMPLAUSIBLE_STAMP : TVO_ERR_WATCHDOG);
     }
     TEST_ASSERT_EQUAL_INT32((int32_t)W + 1, node.counters.refused[TVO_ERR_IMPLAUSIBLE_STAMP]);
-    /* The first sample anchors the sequence, so it must follow the START within a second (or
-     * watchdog_periods periods if longer): the last period inside that window is served, the next
-     * one is not. */
+    /* The first sample anchors the sequence, so it must follow the later of the START and the epoch
+     * within a second (or watchdog_periods periods if longer): the last period inside that window is
+     * served, the next one is not. */
     const int64_t window = (W * H > 1000000) ? W * H : 1000000;
-    const int64_t last = (EF_UTIME + window - EF_EPOCH + TAU) / H;
+    const int64_t last = ((EF_UTIME > EF_EPOCH ? EF_UTIME : EF_EPOCH) + window - EF_EPOCH + TAU) / H;
     tvo_lcm_measurement_t m;
     plant_meas(&m, last + 1);
     (void)EXPECT_REFUSED(m, 0, TVO_ERR_WATCHDOG);
@@ -1214,6 +1214,10 @@ static void test_chain_session_runs_through_the_node(void)
                 node_meas(&m, j, j);
             } else {
                 plant_meas(&m, j);
+            }
+            if (j == 2) {
+                /* The session reads y' as measured (no filters): a sample without it is refused. */
+                (void)EXPECT_REFUSED(m, node_clock ? node_arrival(j) : 0, TVO_ERR_MISSING_FIELD);
             }
             m.derivatives_valid = 1;
             cmd = EXPECT_ACCEPTED(m, node_clock ? node_arrival(j) : 0,
@@ -1323,6 +1327,178 @@ static void test_plant_target_beyond_the_next_period_is_refused(void)
     EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
     plant_meas(&m, 2);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(2));
+}
+
+/* The window a first CLOCK_PLANT sample must fall in: max(1 s, W h) after the START or the epoch. */
+static int64_t first_window_us(void)
+{
+    return (W * H > 1000000) ? W * H : 1000000;
+}
+
+/* The first period whose sample (stamped apply - tau) lies past the first window of a START at utime. */
+static int64_t first_period_past_window(int64_t start_utime)
+{
+    const int64_t from = start_utime > EF_EPOCH ? start_utime : EF_EPOCH;
+    return (from + first_window_us() - EF_EPOCH + TAU) / H + 1;
+}
+
+static void test_plant_first_window_starts_at_a_later_epoch(void)
+{
+    /* An epoch 5 s after the START (allowed: within 2^29 us): the plant's first sample comes after it. */
+    ef_start(&start, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+    start.epoch_utime = start.utime + 5000000;
+    ef_record_clear(&rec);
+    (void)send_session(&start, 0);
+    EF_ASSERT_STATUS(TVO_OK, THE_ACK().status);
+    const int64_t epoch = start.epoch_utime;
+    tvo_lcm_measurement_t m;
+    ef_measurement(&m, EF_SESSION_ID, epoch + 50 * H - TAU, 50, 1);
+    (void)EXPECT_ACCEPTED(m, 0, epoch + 50 * H);
+}
+
+static void test_plant_repeated_start_moves_the_first_window(void)
+{
+    /* The plant re-sends its START (its first ack was lost) 3 s later, stamped with its clock then. */
+    start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
+    const int64_t j = first_period_past_window(EF_UTIME + 3000000) - 10;
+    TEST_ASSERT_TRUE(j > first_period_past_window(EF_UTIME));
+    tvo_lcm_measurement_t m;
+    plant_meas(&m, j);
+    (void)EXPECT_REFUSED(m, 0, TVO_ERR_IMPLAUSIBLE_STAMP); /* past the first START's window */
+    tvo_lcm_session_t again = start;
+    again.utime = EF_UTIME + 3000000;
+    ef_record_clear(&rec);
+    (void)send_session(&again, 0);
+    EF_ASSERT_STATUS(TVO_OK, THE_ACK().status);
+    /* An older repeat (reordered on the link) does not move it back. */
+    ef_record_clear(&rec);
+    (void)send_session(&start, 0);
+    EF_ASSERT_STATUS(TVO_OK, THE_ACK().status);
+    plant_meas(&m, j + 1);
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(j + 1));
+}
+
+static void test_plant_samples_past_the_first_window_that_agree_move_it(void)
+{
+    /* A plant that could not be served in its first second (say its robot started inside an
+     * obstacle) is not refused for ever: three samples in a row past the window that agree on their
+     * numbering move the window, and the third is served; a lone stray or a disagreeing one does not. */
+    start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
+    const int64_t j = first_period_past_window(EF_UTIME) + 200;
+    tvo_lcm_measurement_t m;
+    plant_meas(&m, j);
+    (void)EXPECT_REFUSED(m, 0, TVO_ERR_IMPLAUSIBLE_STAMP);
+    plant_meas(&m, j + 1);
+    (void)EXPECT_REFUSED(m, 0, TVO_ERR_IMPLAUSIBLE_STAMP);
+    plant_meas(&m, j + 2);
+    m.sequence += 7; /* a stray: its numbering disagrees, so the vote starts again */
+    (void)EXPECT_REFUSED(m, 0, TVO_ERR_WATCHDOG);
+    const int64_t window_start = tvo_node_session(&node)->start_utime;
+    for (int64_t k = 3; k <= 4; ++k) {
+        plant_meas(&m, j + k);
+        (void)EXPECT_REFUSED(m, 0, TVO_ERR_WATCHDOG);
+        TEST_ASSERT_EQUAL_INT64(window_start, tvo_node_session(&node)->start_utime);
+    }
+    plant_meas(&m, j + 5);
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(j + 5));
+    plant_meas(&m, j + 6);
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(j + 6));
+}
+
+static void test_plant_target_stream_may_start_late(void)
+{
+    /* Its first sample half a second after the epoch is taken (it lies within the first window) ... */
+    streamed_session(TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
+    tvo_lcm_target_t t;
+    target_at_epoch(&t);
+    t.utime = plant_apply(50) - TAU;
+    (void)send_target(&t, 0);
+    EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
+    tvo_lcm_measurement_t m;
+    plant_meas(&m, 50);
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(50));
+
+    /* ... and one that starts after the window, once the plant's samples have moved it. */
+    setUp();
+    streamed_session(TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
+    const int64_t j = first_period_past_window(EF_UTIME) + 50;
+    t.utime = plant_apply(j) - TAU;
+    (void)send_target(&t, 0);
+    EF_ASSERT_STATUS(TVO_ERR_IMPLAUSIBLE_STAMP, node.last_target_status);
+    for (int64_t k = 0; k < 2; ++k) {
+        plant_meas(&m, j + k);
+        (void)EXPECT_REFUSED(m, 0, TVO_ERR_IMPLAUSIBLE_STAMP);
+    }
+    plant_meas(&m, j + 2);
+    ef_record_clear(&rec);
+    (void)send_measurement(&m, 0);
+    /* The window moved, but there is no target yet: the third refusal in a row, so a safe stop. */
+    EF_ASSERT_STATUS(TVO_ERR_WATCHDOG, THE_COMMAND().status);
+    EF_ASSERT_STATUS(TVO_ERR_TARGET_NOT_READY, node.last_refusal);
+    t.utime = plant_apply(j + 3) - TAU;
+    (void)send_target(&t, 0);
+    EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
+    plant_meas(&m, j + 3);
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(j + 3));
+}
+
+static void test_plant_target_two_to_the_32_us_old_is_not_taken_for_a_new_one(void)
+{
+    /* A session past 2^32 us of the plant's clock (71.6 min): a stray sample stamped 2^32 us - 60 s
+     * in the past has the uint32 tick of one 60 s ahead. It is old, and refused as old. */
+    streamed_session(TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
+    tvo_lcm_target_t t;
+    target_at_epoch(&t);
+    (void)send_target(&t, 0);
+    EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
+    const int64_t jump = (int64_t)TVO_MAX_TICK_SPAN / H; /* the longest silence a session spans */
+    int64_t j = 1;
+    tvo_lcm_measurement_t m;
+    while (plant_apply(j) - EF_EPOCH <= ((int64_t)1 << 32) + 120000000) {
+        plant_meas(&m, j);
+        (void)EXPECT_ACCEPTED(m, 0, plant_apply(j));
+        t.utime = plant_apply(j + 1) - TAU;
+        (void)send_target(&t, 0);
+        EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
+        j += jump;
+    }
+    const int64_t last = j - jump;
+    tvo_lcm_target_t stray = t;
+    stray.utime = plant_apply(last) + 60000000 - ((int64_t)1 << 32);
+    stray.position_m[0][0] = 99.0;
+    (void)send_target(&stray, 0);
+    EF_ASSERT_STATUS(TVO_ERR_OUT_OF_ORDER, node.last_target_status);
+    t.utime = plant_apply(last + 1);
+    (void)send_target(&t, 0);
+    EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
+    plant_meas(&m, last + 1);
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(last + 1));
+}
+
+static void test_node_clock_sample_two_to_the_32_us_old_is_stale(void)
+{
+    /* A plant clock past 2^32 us: a stray stamped 2^32 us + 1 ms before a genuine sample has its
+     * uint32 tick 1 ms before it, so it would look fresh. It is stale, and the genuine one is served. */
+    const int64_t big = ((int64_t)1 << 33);
+    ef_start(&start, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_NODE, 1);
+    start.utime = big;
+    start.epoch_utime = big + EF_EPOCH_LEAD;
+    ef_record_clear(&rec);
+    (void)send_session(&start, NODE_T0);
+    EF_ASSERT_STATUS(TVO_OK, THE_ACK().status);
+    const int64_t offset = NODE_T0 - big;
+    tvo_lcm_measurement_t m;
+    for (int64_t j = 1; j <= 2; ++j) {
+        const int64_t apply_node = start.epoch_utime + offset + j * H;
+        ef_measurement(&m, EF_SESSION_ID, apply_node - 5000 - offset, j, 1);
+        if (j == 2) {
+            tvo_lcm_measurement_t stray = m;
+            stray.utime = m.utime - ((int64_t)1 << 32) - 1000;
+            stray.position_m[0][0] = 50.0;
+            (void)EXPECT_REFUSED(stray, apply_node - 4000, TVO_ERR_STALE);
+        }
+        (void)EXPECT_ACCEPTED(m, apply_node - 4000, apply_node - offset);
+    }
 }
 
 static void test_plant_refusal_by_the_step_keeps_nothing(void)
@@ -1917,6 +2093,12 @@ int main(void)
     RUN_TEST(test_chain_session_runs_through_the_node);
     RUN_TEST(test_plant_refusal_by_the_step_keeps_nothing);
     RUN_TEST(test_plant_target_beyond_the_next_period_is_refused);
+    RUN_TEST(test_plant_first_window_starts_at_a_later_epoch);
+    RUN_TEST(test_plant_repeated_start_moves_the_first_window);
+    RUN_TEST(test_plant_samples_past_the_first_window_that_agree_move_it);
+    RUN_TEST(test_plant_target_stream_may_start_late);
+    RUN_TEST(test_plant_target_two_to_the_32_us_old_is_not_taken_for_a_new_one);
+    RUN_TEST(test_node_clock_sample_two_to_the_32_us_old_is_stale);
     RUN_TEST(test_node_clock_reanchors_on_agreeing_measurements_before_tracking);
     RUN_TEST(test_plant_step_refusals_count_toward_the_watchdog);
     RUN_TEST(test_start_utime_extremes);
