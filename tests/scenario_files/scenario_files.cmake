@@ -1,5 +1,4 @@
-# Scenario files (README.md, "Your own scenario"); included by tests/closed_loop/CMakeLists.txt,
-# whose port counter (tvo_cl_port) it continues. The built-in runs' figures are checked by the
+# Scenario files (README.md, "Your own scenario"); included by tests/closed_loop/CMakeLists.txt. The built-in runs' figures are checked by the
 # closed-loop scenario tests there, which load the same files by name.
 set(tvo_sf_dir ${PROJECT_SOURCE_DIR}/tests/scenario_files)
 
@@ -12,15 +11,13 @@ set_tests_properties(scenario_files_builtins_load PROPERTIES LABELS "closed_loop
 # tvo_scenario_file_run(NAME <name> FILE <file> [BUILTIN <name>] [CHECKS ...])
 function(tvo_scenario_file_run)
   cmake_parse_arguments(T "" "NAME;FILE;BUILTIN" "CHECKS" ${ARGN})
-  set(port ${tvo_cl_port})
-  math(EXPR next "${tvo_cl_port} + 1")
-  set(tvo_cl_port ${next} PARENT_SCOPE)
+  tvo_test_lcm_url(url)
   string(REPLACE ";" "|" checks "${T_CHECKS}")
   add_test(NAME ${T_NAME}
     COMMAND ${CMAKE_COMMAND}
       -DSCENARIO_TOOL=${PROJECT_SOURCE_DIR}/tools/scenario -DBUILD_DIR=${PROJECT_BINARY_DIR}
       -DSIM=$<TARGET_FILE:tvo_sim> -DFIRMWARE=$<TARGET_FILE:tvo_firmware_node>
-      "-DLCM_URL=udpm://239.255.76.67:${port}?ttl=0" -DOUT_DIR=${CMAKE_CURRENT_BINARY_DIR}/${T_NAME}
+      "-DLCM_URL=${url}" -DOUT_DIR=${CMAKE_CURRENT_BINARY_DIR}/${T_NAME}
       -DFILE=${T_FILE} "-DBUILTIN=${T_BUILTIN}" "-DCHECKS=${checks}"
       -P ${tvo_sf_dir}/file_like_builtin.cmake)
   set_tests_properties(${T_NAME} PROPERTIES LABELS closed_loop TIMEOUT 240)

@@ -29,12 +29,11 @@ endforeach()
 # and the plant simulator over LCM (tests/target/pil_check.py says what each variant proves): a clean
 # lockstep run compared with the host build, a lockstep run with frames corrupted on the link, and a
 # realtime run on the board's own clock through a link outage.
-set(TVO_PIL_LCM_PORT 7760 CACHE STRING "First of the six LCM multicast ports the PIL tests use")
 if(TARGET tvo_sim AND TARGET tvo_pil_bridge AND TARGET tvo_firmware_node)
   set(tvo_pil_elf ${tvo_target_bin}/firmware/apps/pil/tvo_pil.elf)
-  set(port ${TVO_PIL_LCM_PORT})
   foreach(variant IN ITEMS clean corrupted node-clock)
     string(REPLACE "-" "_" name ${variant})
+    tvo_test_lcm_port(port COUNT 2) # pil_check.py: the PIL run on port, its host reference on port + 1
     add_test(NAME target_pil_${name}
       COMMAND /usr/bin/python3 ${CMAKE_CURRENT_LIST_DIR}/pil_check.py --variant ${variant}
               --tools ${PROJECT_SOURCE_DIR}/tools --elf ${tvo_pil_elf} --bridge $<TARGET_FILE:tvo_pil_bridge>
@@ -44,7 +43,6 @@ if(TARGET tvo_sim AND TARGET tvo_pil_bridge AND TARGET tvo_firmware_node)
     # together can be handed the same one (then the bridges cross); QEMU also needs the CPU.
     set_tests_properties(target_pil_${name} PROPERTIES FIXTURES_REQUIRED tvo_target_elfs LABELS "target;pil"
       TIMEOUT 300 RESOURCE_LOCK tvo_qemu_pil)
-    math(EXPR port "${port} + 2")
   endforeach()
 endif()
 
