@@ -318,18 +318,26 @@ static void test_ellipse_rejects_a_rate_beyond_the_bound_and_runs_at_it(void)
     ASSERT_STATUS(TVO_ERR_PARAM, tvo_target_init_ellipse(&target, &el));
     const tvo_real_t centre[2] = {TVO_R(0.0), TVO_R(0.0)};
     ASSERT_STATUS(TVO_ERR_PARAM, tvo_target_init_circle(&target, centre, TVO_R(1.0), el.omega_radps, TVO_R(0.0)));
-    /* At the bound, the fraction of a second just below one adds the largest angle: still evaluated. */
-    el.omega_radps = -TVO_TARGET_MAX_OMEGA_RADPS;
-    ASSERT_STATUS(TVO_OK, tvo_target_init_ellipse(&target, &el));
-    const tvo_time_jet_t t = time_at(3.999, 1.0);
-    TEST_ASSERT_EQUAL_UINT32(t.tick_hz - 1u, t.frac_ticks);
-    tvo_real_t d[ORD + 1][2];
-    ASSERT_STATUS(TVO_OK, tvo_target_derivatives(&target, &t, 0u, d));
-    double e[ORD + 1][2];
-    ellipse_expected(&el, 3.999, e);
-    /* The angle is known to float32's rounding of the product omega t (~1e-3 rad here), not better. */
-    ASSERT_NEAR(e[0][0], d[0][0], 1e-2);
-    ASSERT_NEAR(e[0][1], d[0][1], 1e-2);
+    /* At the bound (either sign), the fraction of a second just below one adds the largest angle:
+     * still evaluated, every derivative the law reads. */
+    for (int sign = -1; sign <= 1; sign += 2) {
+        el.omega_radps = (tvo_real_t)sign * TVO_TARGET_MAX_OMEGA_RADPS;
+        ASSERT_STATUS(TVO_OK, tvo_target_init_ellipse(&target, &el));
+        const tvo_time_jet_t t = time_at(3.999, 1.0);
+        TEST_ASSERT_EQUAL_UINT32(t.tick_hz - 1u, t.frac_ticks);
+        tvo_real_t d[ORD + 1][2];
+        ASSERT_STATUS(TVO_OK, tvo_target_derivatives(&target, &t, (uint8_t)ORD, d));
+        double e[ORD + 1][2];
+        ellipse_expected(&el, 3.999, e);
+        /* The angle is known to float32's rounding of the product omega t (~1e-3 rad here), not
+         * better: derivative j, of amplitude up to 2 omega^j, to 1e-2 omega^j. */
+        double scale = 1.0;
+        for (int j = 0; j <= ORD; ++j) {
+            ASSERT_NEAR(e[j][0], d[j][0], 1e-2 * scale);
+            ASSERT_NEAR(e[j][1], d[j][1], 1e-2 * scale);
+            scale *= (double)TVO_TARGET_MAX_OMEGA_RADPS;
+        }
+    }
 }
 
 static void test_derivatives_reject_order_above_maximum(void)
