@@ -169,9 +169,11 @@ static void on_start(tvo_node_t *node, const tvo_lcm_session_t *msg, uint64_t co
     const tvo_node_session_t *running = tvo_node_session(node);
     if (running != NULL && msg->session_id == running->session_id) {
         /* The plant repeats START until acked: the same content is answered again, not restarted. */
+        tvo_session_timing_t timing;
         if (content_hash != running->content_hash) {
             why.status = TVO_ERR_SESSION_CONFLICT;
-        } else if (running->timing.clock_source == TVO_LCM_SESSION_T_CLOCK_PLANT && !running->has_accepted &&
+        } else if (tvo_session_decode_timing(msg, &timing, &why) == TVO_OK && /* its utime, as a fresh START's */
+                   running->timing.clock_source == TVO_LCM_SESSION_T_CLOCK_PLANT && !running->has_accepted &&
                    msg->utime > running->start_utime) {
             /* Stamped with the plant's clock now: the first sample's window starts from it. */
             node->slot[node->running].start_utime = msg->utime;
@@ -225,15 +227,21 @@ static int64_t apply_instant(const tvo_node_session_t *s, int64_t period)
     return s->epoch_schedule_us + period * s->timing.period_us;
 }
 
-/* CLOCK_PLANT, before the first accepted measurement: the latest stamp a first sample may carry. */
+/* CLOCK_PLANT, before the first accepted measurement: what the node knows of the plant's clock, the
+ * later of the START (or its repeat, or the samples' vote) and the epoch. */
+static int64_t first_sample_anchor(const tvo_node_session_t *s)
+{
+    return s->start_utime > s->epoch_schedule_us ? s->start_utime : s->epoch_schedule_us;
+}
+
+/* ... and the latest stamp a first sample may carry. */
 static int64_t first_sample_deadline(const tvo_node_session_t *s)
 {
     const int64_t h = s->timing.period_us;
     const int64_t window = (int64_t)s->timing.watchdog_periods * h > NODE_FIRST_SAMPLE_WINDOW_US
                                ? (int64_t)s->timing.watchdog_periods * h
                                : NODE_FIRST_SAMPLE_WINDOW_US;
-    const int64_t from = s->start_utime > s->epoch_schedule_us ? s->start_utime : s->epoch_schedule_us;
-    return from + window; /* wire times and a window of at most 2^30 us: no overflow */
+    return first_sample_anchor(s) + window; /* wire times and a window of at most 2^30 us: no overflow */
 }
 
 /*
@@ -350,8 +358,9 @@ static int vote(tvo_node_session_t *s, int64_t implied, int64_t tolerance)
  * after; samples ahead of the last served period that agree on their own numbering adopt it.
  * CLOCK_PLANT, before tracking: a plant that could not be served within the first-sample window (its
  * robot inside an obstacle, its target stream late) would be refused ever after; samples past the
- * window that agree on their own numbering move the window to the last of them. The move stands even
- * if that sample is refused for another reason: it anchors nothing, it only admits what follows.
+ * window that agree on their own numbering move the window to the last of them. Like the others, the
+ * move stands only if the node's checks then pass that sample; if only the step refuses it (a target
+ * sample not there yet), the move stands: it anchors nothing, it admits what follows.
  */
 static int reanchor(tvo_node_session_t *s, const tvo_lcm_measurement_t *msg, tvo_status_t refusal, int64_t now_us)
 {
@@ -451,6 +460,7 @@ static void on_measurement(tvo_node_t *node, const tvo_lcm_measurement_t *msg, i
         const int64_t offset = s->offset_us;
         const int64_t epoch_schedule = s->epoch_schedule_us;
         const int64_t last_sequence = s->last_sequence;
+        const int64_t start_utime = s->start_utime;
         const uint32_t epoch_tick = schedule_tick(epoch_schedule);
         if (reanchor(s, msg, st, now_us)) {
             st = vet_measurement(s, msg, now_us, &period, &apply_us, &meas); /* on the corrected anchor */
@@ -458,6 +468,7 @@ static void on_measurement(tvo_node_t *node, const tvo_lcm_measurement_t *msg, i
                 s->offset_us = offset;
                 s->epoch_schedule_us = epoch_schedule;
                 s->last_sequence = last_sequence;
+                s->start_utime = start_utime;
                 (void)tvo_sample_clock_rebase(ops->clock(&s->controller), epoch_tick);
             }
         }
@@ -499,13 +510,14 @@ static void on_measurement(tvo_node_t *node, const tvo_lcm_measurement_t *msg, i
 
 /* The latest stamp (schedule clock) a streamed target sample may carry: the node's now plus half a
  * period (CLOCK_NODE), or the apply instant of the period after the last accepted one (CLOCK_PLANT;
- * before the first, one period past the first sample's window, so a stream may start late). */
+ * before the first, one period past the first sample's anchor, which the plant's samples move when
+ * its stream starts late). So one stray costs at most one period. */
 static int64_t latest_plausible_target_us(const tvo_node_session_t *s, int64_t now_us)
 {
     if (s->timing.clock_source == TVO_LCM_SESSION_T_CLOCK_NODE) {
         return now_us + s->timing.period_us / NODE_FUTURE_TOLERANCE_DIVISOR;
     }
-    return s->has_accepted ? apply_instant(s, s->last_period + 1) : first_sample_deadline(s) + s->timing.period_us;
+    return s->has_accepted ? apply_instant(s, s->last_period + 1) : first_sample_anchor(s) + s->timing.period_us;
 }
 
 static void on_target(tvo_node_t *node, const tvo_lcm_target_t *msg, int64_t now_us)

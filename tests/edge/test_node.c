@@ -1374,6 +1374,18 @@ static void test_plant_repeated_start_moves_the_first_window(void)
     ef_record_clear(&rec);
     (void)send_session(&start, 0);
     EF_ASSERT_STATUS(TVO_OK, THE_ACK().status);
+    /* A repeat's utime is checked as a fresh START's: outside the wire range, or the epoch more than
+     * 2^29 us from it, it is refused and moves nothing. */
+    const int64_t bad_utime[] = {INT64_MAX, (int64_t)1 << 60, EF_EPOCH + ((int64_t)1 << 29) + 1};
+    for (size_t k = 0; k < sizeof(bad_utime) / sizeof(bad_utime[0]); ++k) {
+        tvo_lcm_session_t bad = start;
+        bad.utime = bad_utime[k];
+        take_snapshot();
+        ef_record_clear(&rec);
+        (void)send_session(&bad, 0);
+        TEST_ASSERT_TRUE(THE_ACK().status != TVO_OK);
+        ASSERT_SESSION_AND_COUNTERS_KEPT();
+    }
     plant_meas(&m, j + 1);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(j + 1));
 }
@@ -1405,20 +1417,44 @@ static void test_plant_samples_past_the_first_window_that_agree_move_it(void)
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(j + 6));
 }
 
+static void test_plant_strays_the_node_refuses_do_not_move_the_first_window(void)
+{
+    /* Three agreeing samples past the window that are not finite: each is refused, and the window
+     * stays where it was (a genuine first sample inside it is served). */
+    start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
+    const int64_t far = first_period_past_window(EF_UTIME) + 48000; /* 8 min ahead */
+    const int64_t window_start = tvo_node_session(&node)->start_utime;
+    tvo_lcm_measurement_t m;
+    for (int64_t k = 0; k < 3; ++k) {
+        plant_meas(&m, far + k);
+        m.position_m[0][0] = NAN;
+        ef_record_clear(&rec);
+        (void)send_measurement(&m, 0);
+        TEST_ASSERT_TRUE(THE_COMMAND().status != TVO_OK);
+        TEST_ASSERT_EQUAL_INT64(window_start, tvo_node_session(&node)->start_utime);
+    }
+    plant_meas(&m, 2);
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(2));
+}
+
 static void test_plant_target_stream_may_start_late(void)
 {
-    /* Its first sample half a second after the epoch is taken (it lies within the first window) ... */
+    /* Before the first accepted measurement a sample may lead the START (or epoch) by one period: a
+     * stray half a second ahead is refused, and costs the genuine stream nothing ... */
     streamed_session(TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
     tvo_lcm_target_t t;
     target_at_epoch(&t);
     t.utime = plant_apply(50) - TAU;
     (void)send_target(&t, 0);
+    EF_ASSERT_STATUS(TVO_ERR_IMPLAUSIBLE_STAMP, node.last_target_status);
+    t.utime = plant_apply(1);
+    (void)send_target(&t, 0);
     EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
     tvo_lcm_measurement_t m;
-    plant_meas(&m, 50);
-    (void)EXPECT_ACCEPTED(m, 0, plant_apply(50));
+    plant_meas(&m, 1);
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(1));
 
-    /* ... and one that starts after the window, once the plant's samples have moved it. */
+    /* ... and a stream that starts after the window is taken once the plant's samples move it. */
     setUp();
     streamed_session(TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
     const int64_t j = first_period_past_window(EF_UTIME) + 50;
@@ -2096,6 +2132,7 @@ int main(void)
     RUN_TEST(test_plant_first_window_starts_at_a_later_epoch);
     RUN_TEST(test_plant_repeated_start_moves_the_first_window);
     RUN_TEST(test_plant_samples_past_the_first_window_that_agree_move_it);
+    RUN_TEST(test_plant_strays_the_node_refuses_do_not_move_the_first_window);
     RUN_TEST(test_plant_target_stream_may_start_late);
     RUN_TEST(test_plant_target_two_to_the_32_us_old_is_not_taken_for_a_new_one);
     RUN_TEST(test_node_clock_sample_two_to_the_32_us_old_is_stale);
