@@ -170,12 +170,14 @@ static void on_start(tvo_node_t *node, const tvo_lcm_session_t *msg, uint64_t co
     if (running != NULL && msg->session_id == running->session_id) {
         /* The plant repeats START until acked: the same content is answered again, not restarted. */
         tvo_session_timing_t timing;
+        tvo_session_reject_t repeat_why = why;
         if (content_hash != running->content_hash) {
             why.status = TVO_ERR_SESSION_CONFLICT;
-        } else if (tvo_session_decode_timing(msg, &timing, &why) == TVO_OK && /* its utime, as a fresh START's */
-                   running->timing.clock_source == TVO_LCM_SESSION_T_CLOCK_PLANT && !running->has_accepted &&
-                   msg->utime > running->start_utime) {
-            /* Stamped with the plant's clock now: the first sample's window starts from it. */
+        } else if (running->timing.clock_source == TVO_LCM_SESSION_T_CLOCK_PLANT && !running->has_accepted &&
+                   msg->utime > running->start_utime &&
+                   tvo_session_decode_timing(msg, &timing, &repeat_why) == TVO_OK) {
+            /* Stamped with the plant's clock now (a utime a fresh START could have): the first sample's
+             * window starts from it. A repeat is acked 0 either way: the session runs. */
             node->slot[node->running].start_utime = msg->utime;
         }
         publish_ack(node, msg, &why);
@@ -510,14 +512,20 @@ static void on_measurement(tvo_node_t *node, const tvo_lcm_measurement_t *msg, i
 
 /* The latest stamp (schedule clock) a streamed target sample may carry: the node's now plus half a
  * period (CLOCK_NODE), or the apply instant of the period after the last accepted one (CLOCK_PLANT;
- * before the first, one period past the first sample's anchor, which the plant's samples move when
- * its stream starts late). So one stray costs at most one period. */
+ * before the first, after the one a sample stamped at the first sample's anchor would serve, which
+ * the plant's samples move when its stream starts late). So one stray costs at most a period or two. */
 static int64_t latest_plausible_target_us(const tvo_node_session_t *s, int64_t now_us)
 {
+    const int64_t h = s->timing.period_us;
     if (s->timing.clock_source == TVO_LCM_SESSION_T_CLOCK_NODE) {
-        return now_us + s->timing.period_us / NODE_FUTURE_TOLERANCE_DIVISOR;
+        return now_us + h / NODE_FUTURE_TOLERANCE_DIVISOR;
     }
-    return s->has_accepted ? apply_instant(s, s->last_period + 1) : first_sample_anchor(s) + s->timing.period_us;
+    if (s->has_accepted) {
+        return apply_instant(s, s->last_period + 1);
+    }
+    /* The anchor is a wire time no earlier than the epoch: no overflow, a period >= 0. */
+    const int64_t anchor_period = (first_sample_anchor(s) + s->timing.delay_us - s->epoch_schedule_us + h / 2) / h;
+    return apply_instant(s, anchor_period + 1);
 }
 
 static void on_target(tvo_node_t *node, const tvo_lcm_target_t *msg, int64_t now_us)
