@@ -1,6 +1,7 @@
 // Session START/STOP with the firmware node; see session.hpp.
 #include "session.hpp"
 
+#include <algorithm>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
@@ -258,6 +259,7 @@ bool SessionClient::start(std::chrono::milliseconds timeout, const std::function
     acked_ = false;
     const auto deadline = std::chrono::steady_clock::now() + timeout;
     bool first = true;
+    std::chrono::milliseconds repeat = kStartRepeat;
     while (std::chrono::steady_clock::now() < deadline) {
         if (!keep_waiting()) {
             return false;
@@ -268,9 +270,10 @@ bool SessionClient::start(std::chrono::milliseconds timeout, const std::function
         } else {
             send_start_again();
         }
-        if (await_ack(tvo_lcm::session_t::ACTION_START, std::chrono::steady_clock::now() + kStartRepeat)) {
+        if (await_ack(tvo_lcm::session_t::ACTION_START, std::chrono::steady_clock::now() + repeat)) {
             return true;
         }
+        repeat = std::min(2 * repeat, kStartRepeatMax);
     }
     throw TransportError("no session ack from the firmware node within " + std::to_string(timeout.count()) +
                          " ms (is tvo_firmware_node running on the same LCM URL? pass --firmware PATH to spawn it)");

@@ -15,8 +15,11 @@
 
 namespace tvo_host {
 
-/// START is repeated at this interval until acknowledged (LCM drops messages nobody subscribed yet).
+/// START is repeated until acknowledged (LCM drops messages nobody subscribed yet), first after this
+/// interval, then after twice the last, up to kStartRepeatMax: a slow link (a 2 kB START takes 184 ms
+/// at 115200 baud) is not flooded with repeats that delay the first measurements behind them.
 constexpr std::chrono::milliseconds kStartRepeat{100};
+constexpr std::chrono::milliseconds kStartRepeatMax{800};
 
 /// The START message for this run: timing (CLOCK_NODE when realtime, else CLOCK_PLANT), controller
 /// settings, robots, tracking weights, targets and constraints, stamped `utime`, with the

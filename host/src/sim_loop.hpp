@@ -43,10 +43,12 @@
 namespace tvo_host {
 
 /// Realtime: the epoch lies this far after the first START's stamp. It covers the START's round
-/// trip with up to two repeats (kStartRepeat apart: a node that was just spawned may not be
-/// subscribed yet), so the ack is normally back before the first period; a later ack only costs
-/// the first periods (their measurements go out late and are refused as stale).
-constexpr std::int64_t kNodeClockEpochLeadUs = 300000;
+/// trip with up to three repeats (after 100, 300 and 700 ms: a node that was just spawned may not be
+/// subscribed yet), and the link's time to carry the repeats still in flight, so the first
+/// measurements do not queue behind them (on a slow link they would arrive late by as much, and the
+/// node's clock offset, which it takes from their arrival, would keep that error); a later ack only
+/// costs the first periods (their measurements go out late and are refused as stale).
+constexpr std::int64_t kNodeClockEpochLeadUs = 1000000;
 
 struct LoopResult {
     std::int64_t steps{0};
