@@ -1427,7 +1427,7 @@ static void test_plant_strays_the_node_refuses_do_not_move_the_first_window(void
     tvo_lcm_measurement_t m;
     for (int64_t k = 0; k < 3; ++k) {
         plant_meas(&m, far + k);
-        m.position_m[0][0] = NAN;
+        m.position_m[0][0] = (double)NAN;
         ef_record_clear(&rec);
         (void)send_measurement(&m, 0);
         TEST_ASSERT_TRUE(THE_COMMAND().status != TVO_OK);

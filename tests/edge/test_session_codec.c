@@ -451,7 +451,7 @@ static void test_periodic_paths_refuse_a_rate_beyond_the_bound_on_the_wire_value
 {
     /* The bound is on the wire's double: 8192.0001 rounds to 8192.0f, which the core would take. */
     const double bound = (double)TVO_TARGET_MAX_OMEGA_RADPS;
-    const double above = nextafter(bound, INFINITY) > bound + 1e-4 ? nextafter(bound, INFINITY) : bound + 1e-4;
+    const double above = nextafter(bound, HUGE_VAL) > bound + 1e-4 ? nextafter(bound, HUGE_VAL) : bound + 1e-4;
     for (int32_t kind = TVO_LCM_PATH_T_KIND_CIRCLE; kind <= TVO_LCM_PATH_T_KIND_ELLIPSE; ++kind) {
         tvo_lcm_path_t path;
         memset(&path, 0, sizeof(path));
@@ -467,7 +467,7 @@ static void test_periodic_paths_refuse_a_rate_beyond_the_bound_on_the_wire_value
         }
         /* What the core refuses first is still the core's to say. */
         path.omega_radps = above;
-        path.semi_axis_m[0] = NAN;
+        path.semi_axis_m[0] = (double)NAN;
         EF_ASSERT_STATUS(TVO_ERR_NOT_FINITE, tvo_session_decode_path(&path, &target));
         /* In a START: the robot's target names the robot. */
         ef_start(&msg, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 2);
