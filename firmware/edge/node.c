@@ -229,6 +229,14 @@ static int64_t apply_instant(const tvo_node_session_t *s, int64_t period)
     return s->epoch_schedule_us + period * s->timing.period_us;
 }
 
+/* CLOCK_PLANT: from the epoch to stamp + tau, plus half a period, so that its quotient by h is the
+ * period whose apply instant is nearest (a sample stamped then serves it; negative: before the epoch).
+ * Wire times: no overflow. */
+static int64_t plant_to_apply_us(const tvo_node_session_t *s, int64_t stamp_us)
+{
+    return stamp_us + s->timing.delay_us - s->epoch_schedule_us + s->timing.period_us / 2;
+}
+
 /* CLOCK_PLANT, before the first accepted measurement: what the node knows of the plant's clock, the
  * later of the START (or its repeat, or the samples' vote) and the epoch. */
 static int64_t first_sample_anchor(const tvo_node_session_t *s)
@@ -267,7 +275,7 @@ static tvo_status_t schedule_measurement(const tvo_node_session_t *s, const tvo_
         return TVO_OK; /* the age against the apply instant: the controller's check */
     }
     /* CLOCK_PLANT: the period whose apply instant is nearest to stamp + tau. */
-    const int64_t to_apply = *stamp_us + s->timing.delay_us - s->epoch_schedule_us + h / 2;
+    const int64_t to_apply = plant_to_apply_us(s, *stamp_us);
     if (to_apply < 0) {
         return TVO_ERR_IMPLAUSIBLE_STAMP; /* before the epoch */
     }
@@ -391,7 +399,7 @@ static int reanchor(tvo_node_session_t *s, const tvo_lcm_measurement_t *msg, tvo
         s->anchor_votes = 0u;
         return 0;
     }
-    const int64_t to_apply = msg->utime + s->timing.delay_us - s->epoch_schedule_us + h / 2; /* in range: no overflow */
+    const int64_t to_apply = plant_to_apply_us(s, msg->utime); /* in range */
     const int64_t period = to_apply / h;
     const int votes = to_apply >= 0 &&
                       (s->has_accepted ? period > s->last_period
@@ -523,8 +531,8 @@ static int64_t latest_plausible_target_us(const tvo_node_session_t *s, int64_t n
     if (s->has_accepted) {
         return apply_instant(s, s->last_period + 1);
     }
-    /* The anchor is a wire time no earlier than the epoch: no overflow, a period >= 0. */
-    const int64_t anchor_period = (first_sample_anchor(s) + s->timing.delay_us - s->epoch_schedule_us + h / 2) / h;
+    /* The anchor is a wire time no earlier than the epoch: a period >= 0. */
+    const int64_t anchor_period = plant_to_apply_us(s, first_sample_anchor(s)) / h;
     return apply_instant(s, anchor_period + 1);
 }
 
@@ -541,7 +549,7 @@ static void on_target(tvo_node_t *node, const tvo_lcm_target_t *msg, int64_t now
     tvo_status_t st = wire_time_ok(msg->utime) ? TVO_OK : TVO_ERR_IMPLAUSIBLE_STAMP;
     if (st == TVO_OK && msg->utime + s->offset_us > latest_plausible_target_us(s, now_us)) {
         /* A sample from beyond the next period would hold back every genuine one after it (a
-         * streamed target takes only newer samples): one stray costs at most one period. */
+         * streamed target takes only newer samples): one stray costs a period or two at most. */
         st = TVO_ERR_IMPLAUSIBLE_STAMP;
     }
     /* The objective's time of the sample, in ticks (us) since the epoch, from 64-bit times: a

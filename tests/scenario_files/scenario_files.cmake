@@ -1,5 +1,6 @@
-# Scenario files (README.md, "Your own scenario"); included by tests/closed_loop/CMakeLists.txt. The built-in runs' figures are checked by the
-# closed-loop scenario tests there, which load the same files by name.
+# Scenario files (README.md, "Your own scenario"); included by tests/closed_loop/CMakeLists.txt. The
+# built-in runs' figures are checked by the closed-loop scenario tests there, which load the same files
+# by name.
 set(tvo_sf_dir ${PROJECT_SOURCE_DIR}/tests/scenario_files)
 
 # Each built-in file loads by its name, and --list-scenarios lists them all with their descriptions.
