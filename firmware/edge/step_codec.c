@@ -127,7 +127,7 @@ void tvo_step_telemetry_to_lcm(const tvo_controller_t *ctl, const tvo_problem_t 
         msg->speed_state_mps[r] = (double)ctl->speed_state_mps[r];
     }
     const size_t multipliers = problem->objective.dual_dim;
-    for (size_t q = 0; q < multipliers && q < TVO_MAX_EQUALITIES && q < 4u; ++q) {
+    for (size_t q = 0; q < multipliers && q < TVO_ARRAY_LEN(TVO_MAX_EQUALITIES) && q < 4u; ++q) {
         msg->multiplier[q] = (double)tel->multiplier[q];
     }
     msg->regularization = (double)tel->regularization;

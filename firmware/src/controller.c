@@ -185,7 +185,7 @@ static void drop_to_rest(tvo_controller_t *ctl, tvo_command_t *cmd)
     for (uint8_t r = 0; r < TVO_MAX_ROBOTS; ++r) {
         ctl->speed_state_mps[r] = TVO_R(0.0);
     }
-    for (uint8_t q = 0; q < TVO_MAX_EQUALITIES; ++q) {
+    for (uint8_t q = 0; q < TVO_ARRAY_LEN(TVO_MAX_EQUALITIES); ++q) {
         ctl->multiplier_rate[q] = TVO_R(0.0);
     }
     ctl->speed_mismatch_periods = 0u;
@@ -357,7 +357,7 @@ TVO_OFF_CHAIN_BODY tvo_status_t step_before_law(tvo_controller_t *ctl, const tvo
     /* Multipliers (equality constraints) and their rates: controller states living at apply times. */
     const uint8_t primal = ctl->objective->primal_dim;
     const uint8_t dual = ctl->objective->dual_dim;
-    for (uint8_t q = 0; q < dual && q < TVO_MAX_EQUALITIES; ++q) {
+    for (uint8_t q = 0; q < dual && q < TVO_ARRAY_LEN(TVO_MAX_EQUALITIES); ++q) {
         y->d[0][primal + q] = ctl->multiplier[q];
         y->d[1][primal + q] = ctl->multiplier_rate[q];
     }
@@ -425,7 +425,7 @@ TVO_OFF_CHAIN_BODY tvo_status_t step_after_law(tvo_controller_t *ctl, const tvo_
         flags |= TVO_FLAG_SPEED_MISMATCH;
     }
     tvo_controller_telemetry_t *tm = &ctl->telemetry;
-    for (uint8_t q = 0; q < dual && q < TVO_MAX_EQUALITIES; ++q) {
+    for (uint8_t q = 0; q < dual && q < TVO_ARRAY_LEN(TVO_MAX_EQUALITIES); ++q) {
         /* Exact for the constant nu'' the law asked for over the period. */
         const tvo_real_t accel_q = y_accel[primal + q];
         ctl->multiplier[q] += (ctl->multiplier_rate[q] + TVO_R(0.5) * accel_q * ctl->period_s) * ctl->period_s;

@@ -262,6 +262,7 @@ static tvo_status_t saddle_solve(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t primal_
         cholesky_substitute(&a[0][0], TVO_MAX_Z_DIM, primal_n, b, x);
         return all_finite(x, n) ? TVO_OK : TVO_ERR_NUMERIC;
     }
+#if TVO_MAX_EQUALITIES > 0
     tvo_real_t *u = scratch->first;
     cholesky_substitute(&a[0][0], TVO_MAX_Z_DIM, primal_n, b, u);
     tvo_real_t(*y_cols)[TVO_MAX_Z_DIM] = scratch->columns;
@@ -303,6 +304,9 @@ static tvo_status_t saddle_solve(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t primal_
         x[primal_n + q] = w[q];
     }
     return all_finite(x, n) ? TVO_OK : TVO_ERR_NUMERIC;
+#else
+    return TVO_ERR_DIMENSION; /* unreachable: dual_n <= TVO_MAX_EQUALITIES was checked above */
+#endif
 }
 
 void tvo_hessian_clear(tvo_hessian_t *h, uint8_t n)
@@ -498,7 +502,7 @@ static tvo_status_t solve_parts_added(tvo_hessian_t *h, uint8_t primal_n, uint8_
     const unsigned n = primal_n;
     const tvo_real_t *diag = h->scratch.diag;
     tvo_real_t *dense_b = h->scratch.dense;
-    for (unsigned i = 0; i < n; ++i) {
+    for (unsigned i = 0; i < n && i < TVO_MAX_Z_DIM; ++i) {
         h->matrix[i][i] = diag[i];
         dense_b[i] = b[i];
         for (unsigned j = 0; j < i; ++j) {

@@ -1212,7 +1212,7 @@ typedef struct {
     tvo_dirty_derivative_t velocity_filter;
     tvo_real_t speed_state_mps[TVO_MAX_ROBOTS];
     tvo_real_t heading_estimate_rad[TVO_MAX_ROBOTS];
-    tvo_real_t multiplier[TVO_MAX_EQUALITIES];
+    tvo_real_t multiplier[TVO_ARRAY_LEN(TVO_MAX_EQUALITIES)];
     tvo_command_t held;
     uint32_t last_stamp_tick;
     uint8_t has_stamp;

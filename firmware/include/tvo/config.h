@@ -60,12 +60,15 @@ typedef float tvo_real_t;
 #endif
 /** Most robots one controller drives (each contributes 2 flat outputs). */
 #define TVO_MAX_ROBOTS (TVO_MAX_OUTPUT_DIM / 2)
-/** Most equality constraints (Lagrange multipliers) one objective may carry. */
+/** Most equality constraints (Lagrange multipliers) one objective may carry; 0 compiles the saddle
+ * (KKT) solve out, for a product without equality constraints (a formation offset needs two robots). */
 #ifndef TVO_MAX_EQUALITIES
 #define TVO_MAX_EQUALITIES 4
 #endif
 /** Largest primal-dual dimension z = (y, nu): the size of the law's linear solve. */
 #define TVO_MAX_Z_DIM (TVO_MAX_OUTPUT_DIM + TVO_MAX_EQUALITIES)
+/** The length of an array of up to n entries: ISO C has no zero-length array (a limit may be 0). */
+#define TVO_ARRAY_LEN(n) ((n) > 0 ? (n) : 1)
 /** Most objective terms one objective may sum. */
 #ifndef TVO_MAX_TERMS
 #define TVO_MAX_TERMS 16
@@ -114,8 +117,8 @@ typedef float tvo_real_t;
 #if TVO_MAX_RELATIVE_DEGREE < 1 || TVO_MAX_RELATIVE_DEGREE > 3
 #error "TVO_MAX_RELATIVE_DEGREE must be 1, 2 or 3"
 #endif
-#if TVO_MAX_EQUALITIES < 2 || TVO_MAX_EQUALITIES % 2 != 0
-#error "TVO_MAX_EQUALITIES must be a positive even number (a formation offset uses 2)"
+#if TVO_MAX_EQUALITIES < 0 || TVO_MAX_EQUALITIES % 2 != 0
+#error "TVO_MAX_EQUALITIES must be 0 or a positive even number (a formation offset uses 2)"
 #endif
 
 #ifdef __cplusplus

@@ -106,7 +106,7 @@ typedef struct {
     tvo_real_t gradient[TVO_MAX_OUTPUT_DIM];
     tvo_real_t gradient_rate[TVO_MAX_OUTPUT_DIM];
     tvo_real_t accel_mps2[TVO_MAX_ROBOTS];            /* v' after limits */
-    tvo_real_t multiplier[TVO_MAX_EQUALITIES];        /* nu after the step (equality constraints) */
+    tvo_real_t multiplier[TVO_ARRAY_LEN(TVO_MAX_EQUALITIES)]; /* nu after the step (equality constraints) */
     tvo_real_t regularization;                        /* Hessian shift of the solve, 0 if none */
 } tvo_controller_telemetry_t;
 
@@ -144,8 +144,8 @@ typedef struct {
     tvo_sample_clock_t clock;        /* ticks, elapsed time, stamps, watchdog */
     tvo_real_t speed_state_mps[TVO_MAX_ROBOTS];   /* dynamic extension v */
     tvo_real_t heading_estimate_rad[TVO_MAX_ROBOTS]; /* position-only mode: dead-reckoned heading */
-    tvo_real_t multiplier[TVO_MAX_EQUALITIES];       /* nu of equality constraints, at apply_tick */
-    tvo_real_t multiplier_rate[TVO_MAX_EQUALITIES];  /* nu' */
+    tvo_real_t multiplier[TVO_ARRAY_LEN(TVO_MAX_EQUALITIES)];      /* nu of equality constraints, at apply_tick */
+    tvo_real_t multiplier_rate[TVO_ARRAY_LEN(TVO_MAX_EQUALITIES)]; /* nu' */
     tvo_command_t held;              /* command applied over the current interval */
     tvo_controller_telemetry_t telemetry;
     uint32_t speed_mismatch_periods; /* accepted steps in a row whose measured speed contradicted the held one */

@@ -58,7 +58,7 @@ typedef struct {
     tvo_real_t robot_radius_m;
     tvo_disk_t obstacle[TVO_MAX_OBSTACLES];
     uint8_t offset_count;
-    tvo_offset_desc_t offset[TVO_MAX_OFFSET_EQUALITIES];
+    tvo_offset_desc_t offset[TVO_ARRAY_LEN(TVO_MAX_OFFSET_EQUALITIES)];
 } tvo_problem_desc_t;
 
 typedef struct {
@@ -69,8 +69,8 @@ typedef struct {
     tvo_distance_term_t distance[2u * TVO_MAX_DISTANCE_BOUNDS];
     tvo_halfspace_term_t halfspace[TVO_MAX_HALFSPACES];
     tvo_free_space_term_t free_space[TVO_MAX_ROBOTS];
-    tvo_target_t offset_function[TVO_MAX_OFFSET_EQUALITIES];
-    tvo_offset_equality_term_t offset[TVO_MAX_OFFSET_EQUALITIES];
+    tvo_target_t offset_function[TVO_ARRAY_LEN(TVO_MAX_OFFSET_EQUALITIES)];
+    tvo_offset_equality_term_t offset[TVO_ARRAY_LEN(TVO_MAX_OFFSET_EQUALITIES)];
     uint8_t distance_term_count;
     uint8_t has_inequalities;
     uint8_t slack_chosen;
