@@ -61,7 +61,7 @@ std::uint64_t log_event_bytes(const char* channel)
     return kLcmLogEventHeaderBytes + std::strlen(channel) + static_cast<std::uint64_t>(Msg{}.getEncodedSize());
 }
 
-// The session's own messages: the START handshake (a START every kStartRepeat until acked), the STOP,
+// The session's own messages: the START handshake (START repeated, backing off, until acked), the STOP,
 // and START again after each node restart, with their acks. Generous: a handshake takes a few.
 constexpr std::uint64_t kSessionExchanges = 256;
 // summary.json and scenario.json: a few kB each (scenario.json grows with the scenario's obstacles).

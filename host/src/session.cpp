@@ -258,22 +258,25 @@ bool SessionClient::start(std::chrono::milliseconds timeout, const std::function
     transport_.set_log_utime(session_.utime);
     acked_ = false;
     const auto deadline = std::chrono::steady_clock::now() + timeout;
+    StartRepeats repeats;
     bool first = true;
-    std::chrono::milliseconds repeat = kStartRepeat;
     while (std::chrono::steady_clock::now() < deadline) {
         if (!keep_waiting()) {
             return false;
         }
-        if (first) {
-            transport_.publish(session_);
-            first = false;
-        } else {
-            send_start_again();
+        const auto now = std::chrono::steady_clock::now();
+        if (repeats.due(now)) {
+            if (first) {
+                transport_.publish(session_);
+                first = false;
+            } else {
+                send_start_again();
+            }
+            repeats.sent(now);
         }
-        if (await_ack(tvo_lcm::session_t::ACTION_START, std::chrono::steady_clock::now() + repeat)) {
+        if (await_ack(tvo_lcm::session_t::ACTION_START, repeats.next(now))) {
             return true;
         }
-        repeat = std::min(2 * repeat, kStartRepeatMax);
     }
     throw TransportError("no session ack from the firmware node within " + std::to_string(timeout.count()) +
                          " ms (is tvo_firmware_node running on the same LCM URL? pass --firmware PATH to spawn it)");

@@ -3,6 +3,7 @@
 // lost the session) and STOP at the end.
 #pragma once
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -20,6 +21,26 @@ namespace tvo_host {
 /// at 115200 baud) is not flooded with repeats that delay the first measurements behind them.
 constexpr std::chrono::milliseconds kStartRepeat{100};
 constexpr std::chrono::milliseconds kStartRepeatMax{800};
+
+/// When to repeat an unacknowledged START, for the first session and a restart alike: `sent` after
+/// each copy, `due` when the next one is; reset for a new handshake.
+class StartRepeats {
+public:
+    using Clock = std::chrono::steady_clock;
+    void sent(Clock::time_point now)
+    {
+        interval_ = next_ ? std::min(2 * interval_, kStartRepeatMax) : kStartRepeat;
+        next_ = now + interval_;
+    }
+    bool due(Clock::time_point now) const { return !next_ || now >= *next_; }
+    /// When the next copy is due (the first at once).
+    Clock::time_point next(Clock::time_point now) const { return next_ ? *next_ : now; }
+    void reset() { next_.reset(); }
+
+private:
+    std::optional<Clock::time_point> next_;
+    std::chrono::milliseconds interval_{kStartRepeat};
+};
 
 /// The START message for this run: timing (CLOCK_NODE when realtime, else CLOCK_PLANT), controller
 /// settings, robots, tracking weights, targets and constraints, stamped `utime`, with the

@@ -102,7 +102,7 @@ void SimLoop::on_command(const tvo_lcm::command_t& command)
         command.measurement_sequence > restart_acked_through_sequence_) {
         // The node lost our session (it restarted): START again, from the loop (not from inside LCM's handler).
         restart_pending_ = true;
-        restart_sent_at_.reset();
+        restart_repeats_.reset();
         ++counts_.session_restarts;
     }
     const bool answers_ours = sent(command.measurement_sequence);
@@ -324,11 +324,11 @@ void SimLoop::service_restart()
         return;
     }
     const auto now = std::chrono::steady_clock::now();
-    if (!restart_sent_at_ || now - *restart_sent_at_ >= kStartRepeat) {
+    if (restart_repeats_.due(now)) {
         // Stamped with the plant's clock now (lockstep: its simulated time): the node's first sample
         // of a session must follow its START closely.
         session_.send_start_again(options_.realtime ? std::nullopt : std::optional<std::int64_t>(epoch_utime_ + now_us_));
-        restart_sent_at_ = now;
+        restart_repeats_.sent(now);
     }
 }
 
@@ -344,7 +344,7 @@ bool SimLoop::await_restart()
             throw TransportError("the node lost the session and did not acknowledge it again within " +
                                  std::to_string(kRestartTimeout.count()) + " ms");
         }
-        const auto until_repeat = *restart_sent_at_ + kStartRepeat;
+        const auto until_repeat = restart_repeats_.next(now);
         transport_.wait(std::chrono::duration_cast<std::chrono::microseconds>(std::min(deadline, until_repeat) - now));
     }
     return true;

@@ -134,7 +134,7 @@ private:
 
     // Session restart (the node answered TVO_ERR_NO_SESSION).
     bool restart_pending_{false};
-    std::optional<std::chrono::steady_clock::time_point> restart_sent_at_;
+    StartRepeats restart_repeats_;              // the restart's START copies, backing off as the first session's
     std::optional<tvo_lcm::session_ack_t> restart_refused_;
     std::int64_t last_sent_sequence_{-1};
     std::int64_t restart_acked_through_sequence_{-1};  // newest sent when the last restart was acked

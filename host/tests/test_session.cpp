@@ -1,5 +1,6 @@
 // Checks of the session START built from the scenarios (every field of the nested v2 types, the
 // clock source) and of the rejection message. Plain asserts (no framework): exit code 0 = pass.
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -137,8 +138,34 @@ void test_rejection_message()
 
 }  // namespace
 
+// The first session and a restart repeat START on one schedule: 100 ms after the first copy, then
+// twice the last interval up to 800 ms; a reset starts a new handshake at once. Times are given, not
+// slept, so the check does not depend on the machine's speed.
+void test_start_repeats_back_off()
+{
+    using std::chrono::milliseconds;
+    tvo_host::StartRepeats repeats;
+    const auto t0 = tvo_host::StartRepeats::Clock::time_point{} + std::chrono::hours(1);
+    check(repeats.due(t0) && repeats.next(t0) == t0, "the first START is due at once");
+    auto now = t0;
+    const long expected_ms[] = {100, 200, 400, 800, 800, 800};
+    bool intervals_ok = true;
+    for (const long interval : expected_ms) {
+        repeats.sent(now);
+        intervals_ok = intervals_ok && repeats.next(now) - now == milliseconds(interval) &&
+                       !repeats.due(now + milliseconds(interval - 1)) && repeats.due(now + milliseconds(interval));
+        now += milliseconds(interval);
+    }
+    check(intervals_ok, "START repeats after 100, 200, 400, 800, 800, 800 ms");
+    repeats.reset();
+    check(repeats.due(now) && repeats.next(now) == now, "after a reset the next START is due at once");
+    repeats.sent(now);
+    check(repeats.next(now) - now == milliseconds(100), "and the schedule starts again from 100 ms");
+}
+
 int main()
 {
+    test_start_repeats_back_off();
     test_demo_ellipse();
     test_circle_and_streamed();
     test_constraints();
