@@ -354,13 +354,15 @@ TVO_OFF_CHAIN_BODY tvo_status_t step_before_law(tvo_controller_t *ctl, const tvo
     tvo_time_jet_t *t = &work->time;
     time_jet_at_tick_time(&period->law_time, cfg->tick_hz, TVO_R(1.0), t); /* the clock's times are valid */
 
+#if TVO_MAX_EQUALITIES > 0
     /* Multipliers (equality constraints) and their rates: controller states living at apply times. */
     const uint8_t primal = ctl->objective->primal_dim;
     const uint8_t dual = ctl->objective->dual_dim;
-    for (uint8_t q = 0; q < dual && q < TVO_ARRAY_LEN(TVO_MAX_EQUALITIES); ++q) {
+    for (uint8_t q = 0; q < dual && q < TVO_MAX_EQUALITIES; ++q) {
         y->d[0][primal + q] = ctl->multiplier[q];
         y->d[1][primal + q] = ctl->multiplier_rate[q];
     }
+#endif
 
     *flags_out = flags;
     *speed_contradicted_out = speed_contradicted;
@@ -383,8 +385,10 @@ TVO_OFF_CHAIN_BODY tvo_status_t step_after_law(tvo_controller_t *ctl, const tvo_
     tvo_real_t(*heading_cs)[2] = work->heading_cs;
     const tvo_real_t *speed = work->speed;
     const tvo_real_t *speed_state = work->speed_state;
+#if TVO_MAX_EQUALITIES > 0
     const uint8_t primal = work->report.count; /* the objective's primal_dim */
     const uint8_t dual = ctl->objective->dual_dim;
+#endif
     const tvo_real_t carry_s = period->carry_s;
     tvo_command_t *next = &work->command; /* robots 0..n-1; the held command's others stay zero */
     tvo_status_t st = TVO_OK;
@@ -425,13 +429,15 @@ TVO_OFF_CHAIN_BODY tvo_status_t step_after_law(tvo_controller_t *ctl, const tvo_
         flags |= TVO_FLAG_SPEED_MISMATCH;
     }
     tvo_controller_telemetry_t *tm = &ctl->telemetry;
-    for (uint8_t q = 0; q < dual && q < TVO_ARRAY_LEN(TVO_MAX_EQUALITIES); ++q) {
+#if TVO_MAX_EQUALITIES > 0
+    for (uint8_t q = 0; q < dual && q < TVO_MAX_EQUALITIES; ++q) {
         /* Exact for the constant nu'' the law asked for over the period. */
         const tvo_real_t accel_q = y_accel[primal + q];
         ctl->multiplier[q] += (ctl->multiplier_rate[q] + TVO_R(0.5) * accel_q * ctl->period_s) * ctl->period_s;
         ctl->multiplier_rate[q] += accel_q * ctl->period_s;
         tm->multiplier[q] = ctl->multiplier[q];
     }
+#endif
     for (uint8_t r = 0; r < n; ++r) {
         ctl->speed_state_mps[r] = speed_next[r];
         /* The estimate lives at the application instant; the next sample dead-reckons from here. */
