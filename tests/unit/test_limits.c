@@ -5,8 +5,8 @@
  * under the limits, one robot is controlled as the default limits control it: the closed loop below
  * prints a digest of its commands, which limits_agree.cmake compares across the twins.
  */
-#include <stdint.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 
