@@ -32,7 +32,9 @@ static tvo_param_t first_bad_param(const tvo_chain_config_t *cfg, const tvo_obje
     if (timing != TVO_PARAM_NONE) {
         return timing;
     }
-    if (cfg->relative_degree == 0u || cfg->relative_degree > TVO_MAX_RELATIVE_DEGREE) {
+    if (cfg->relative_degree == 0u || cfg->relative_degree > TVO_MAX_RELATIVE_DEGREE ||
+        tvo_law_check_sampling_reach(cfg->relative_degree, cfg->gain,
+                                     tvo_ticks_to_seconds32(cfg->period_ticks, cfg->tick_hz)) != TVO_OK) {
         return TVO_PARAM_GAINS;
     }
     if (cfg->filtered_derivatives && !(isfinite(cfg->filter_tf_s) && cfg->filter_tf_s > TVO_R(0.0))) {

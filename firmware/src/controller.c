@@ -68,6 +68,10 @@ static tvo_param_t first_bad_param(const tvo_controller_config_t *cfg, const tvo
     if (!positive_finite(cfg->gain_kp) || !positive_finite(cfg->gain_kd)) {
         return TVO_PARAM_GAINS; /* s^2 + kd s + kp is Hurwitz iff both are positive */
     }
+    const tvo_real_t gains[2] = {cfg->gain_kp, cfg->gain_kd};
+    if (tvo_law_check_sampling_reach(2u, gains, tvo_ticks_to_seconds32(cfg->period_ticks, cfg->tick_hz)) != TVO_OK) {
+        return TVO_PARAM_GAINS;
+    }
     if (!positive_finite(cfg->omega_max_radps)) {
         return TVO_PARAM_OMEGA_MAX;
     }

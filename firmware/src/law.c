@@ -56,6 +56,34 @@ tvo_status_t tvo_law_init(tvo_law_t *law, uint8_t relative_degree, uint8_t dim, 
     return TVO_OK;
 }
 
+tvo_status_t tvo_law_check_sampling_reach(uint8_t relative_degree, const tvo_real_t *gain, tvo_real_t period_s)
+{
+    /* C(k, j) for j < k <= 3, row k. */
+    static const tvo_real_t binomial[4][3] = {
+        {TVO_R(0.0), TVO_R(0.0), TVO_R(0.0)},
+        {TVO_R(1.0), TVO_R(0.0), TVO_R(0.0)},
+        {TVO_R(1.0), TVO_R(2.0), TVO_R(0.0)},
+        {TVO_R(1.0), TVO_R(3.0), TVO_R(3.0)},
+    };
+    if (gain == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (relative_degree == 0u || relative_degree > TVO_MAX_RELATIVE_DEGREE || !isfinite(period_s) ||
+        !(period_s > TVO_R(0.0))) {
+        return TVO_ERR_PARAM;
+    }
+    const tvo_real_t nyquist_radps = TVO_R(3.14159265358979323846) / period_s;
+    tvo_real_t power = TVO_R(1.0); /* R^(k-j), j descending from k - 1 */
+    for (uint8_t n = 0; n < relative_degree; ++n) {
+        const uint8_t j = (uint8_t)(relative_degree - 1u - n);
+        power *= nyquist_radps;
+        if (!(gain[j] <= binomial[relative_degree][j] * power)) {
+            return TVO_ERR_PARAM; /* beyond the bound, or NaN */
+        }
+    }
+    return TVO_OK;
+}
+
 static void zero_output(tvo_real_t *y_k, uint8_t dim)
 {
     for (uint8_t i = 0; i < dim && i < TVO_MAX_Z_DIM; ++i) {

@@ -403,6 +403,7 @@ static void make_invalid(tvo_lcm_session_t *m, int which)
         m->halfspace_count = 1;
         m->barrier.relaxation_degree = 1; /* below k + 1: the core's barrier refuses it */
         break;
+    case 5: m->gain_kp = 3e38; break; /* a float, but past the sampling's reach (and the law's range) */
     default: m->robot[0].target.kind = 9; break;
     }
 }
@@ -413,6 +414,7 @@ static const refusal_t invalid_starts[] = {
     {"epoch beyond the span", TVO_ERR_PARAM, TVO_PARAM_EPOCH, TVO_LCM_SESSION_ACK_T_PART_NONE, -1},
     {"distance robot 5", TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_DISTANCE, 0},
     {"relaxation degree 1", TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_BARRIER, -1},
+    {"gain 3e38", TVO_ERR_PARAM, TVO_PARAM_GAINS, TVO_LCM_SESSION_ACK_T_PART_NONE, -1},
     {"target kind 9", TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 0},
 };
 

@@ -484,6 +484,18 @@ static void test_init_names_the_first_bad_parameter(void)
     ch.cfg.gain[1] = TVO_R(-1.0); /* s^2 - s + 2.56: not Hurwitz */
     ASSERT_STATUS(TVO_ERR_PARAM, tvo_chain_controller_init(&ch.ctl, &ch.cfg, &ch.objective, CH_EPOCH, &bad));
     ASSERT_PARAM(TVO_PARAM_GAINS, bad);
+    /* Beyond the sampling's reach (h = 10 ms: a_1 <= 2 pi / h = 628.3), and a gain that would overflow. */
+    ch_config(&ch, 2, 10000u, 0u, 0u, 0u);
+    ch.cfg.gain[1] = TVO_R(629.0);
+    ASSERT_STATUS(TVO_ERR_PARAM, tvo_chain_controller_init(&ch.ctl, &ch.cfg, &ch.objective, CH_EPOCH, &bad));
+    ASSERT_PARAM(TVO_PARAM_GAINS, bad);
+    ch_config(&ch, 2, 10000u, 0u, 0u, 0u);
+    ch.cfg.gain[0] = TVO_R(3e38);
+    ASSERT_STATUS(TVO_ERR_PARAM, tvo_chain_controller_init(&ch.ctl, &ch.cfg, &ch.objective, CH_EPOCH, &bad));
+    ASSERT_PARAM(TVO_PARAM_GAINS, bad);
+    ch_config(&ch, 2, 10000u, 0u, 0u, 0u);
+    ch.cfg.gain[1] = TVO_R(628.0); /* just inside; s^2 + 628 s + 2.56 is Hurwitz */
+    ASSERT_STATUS(TVO_OK, tvo_chain_controller_init(&ch.ctl, &ch.cfg, &ch.objective, CH_EPOCH, &bad));
     ch_config(&ch, 2, 10000u, 0u, 0u, 0u);
     ch.cfg.filtered_derivatives = 1u;
     ch.cfg.filter_tf_s = TVO_R(0.0);

@@ -199,6 +199,30 @@ static void test_init_rejects_nan_gains(void)
     expect_rejected(&fx_a, TVO_PARAM_GAINS);
 }
 
+/* Gains beyond what a loop sampled every h can follow (a pole faster than R = pi / h; for s^2 + kd s + kp
+ * that bounds kp <= R^2 and kd <= 2 R): refused naming the gains, as is a gain that would overflow the
+ * law's first step; just inside the bound, accepted. The fixture's h = 10 ms: R = 314.16 rad/s. */
+static void test_init_rejects_gains_beyond_the_sampling_reach(void)
+{
+    const double reach = TEST_PI / ((double)FX_PERIOD / (double)FX_TICK_HZ);
+    const double bad[][2] = {{1.001 * reach * reach, 13.0}, {40.0, 1.001 * 2.0 * reach}, {3e38, 13.0}, {40.0, 3e38}};
+    for (size_t i = 0; i < sizeof(bad) / sizeof(bad[0]); ++i) {
+        fx_static_point(&fx_a, 1.0, 1.0);
+        fx_a.cfg.gain_kp = test_r(bad[i][0]);
+        fx_a.cfg.gain_kd = test_r(bad[i][1]);
+        expect_rejected(&fx_a, TVO_PARAM_GAINS);
+    }
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_a.cfg.gain_kp = test_r(0.999 * reach * reach);
+    fx_a.cfg.gain_kd = test_r(0.999 * 2.0 * reach);
+    fx_start(&fx_a, 0u);
+    /* The reach scales with the period: the same kp at h = 20 ms is beyond it (R^2 = 24,674). */
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_a.cfg.period_ticks = 2u * FX_PERIOD;
+    fx_a.cfg.gain_kp = test_r(0.999 * reach * reach);
+    expect_rejected(&fx_a, TVO_PARAM_GAINS);
+}
+
 static void test_init_rejects_nonpositive_omega_max(void)
 {
     fx_static_point(&fx_a, 1.0, 1.0);
@@ -1428,6 +1452,7 @@ int main(void)
     RUN_TEST(test_init_rejects_nan_filter_time_constant);
     RUN_TEST(test_init_rejects_non_hurwitz_gains);
     RUN_TEST(test_init_rejects_nan_gains);
+    RUN_TEST(test_init_rejects_gains_beyond_the_sampling_reach);
     RUN_TEST(test_init_rejects_nonpositive_omega_max);
     RUN_TEST(test_init_rejects_nonpositive_accel_max);
     RUN_TEST(test_init_rejects_nonpositive_speed_max);

@@ -597,6 +597,37 @@ static void test_init_rejects_non_finite_gains(void)
     ASSERT_STATUS(TVO_ERR_PARAM, init_with(3, 2, 4.096, (double)NAN, 4.8));
 }
 
+/* Roots within R = pi / h bound a_j by C(k, j) R^(k-j): each coefficient of each order just inside its
+ * bound passes (the others at (s + R/2)^k's), just beyond it fails; NaN, k and h out of range fail. */
+static void test_sampling_reach_bounds_each_coefficient(void)
+{
+    const double h = 0.01;
+    const double reach = TEST_PI / h;
+    const double binomial[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 2, 0}, {1, 3, 3}};
+    for (uint8_t k = 1; k <= TVO_MAX_RELATIVE_DEGREE; ++k) {
+        for (uint8_t j = 0; j < k; ++j) {
+            tvo_real_t gain[TVO_MAX_RELATIVE_DEGREE];
+            for (uint8_t i = 0; i < k; ++i) {
+                gain[i] = test_r(binomial[k][i] * pow(0.5 * reach, (double)(k - i)));
+            }
+            const double bound = binomial[k][j] * pow(reach, (double)(k - j));
+            gain[j] = test_r(0.999 * bound);
+            ASSERT_STATUS(TVO_OK, tvo_law_check_sampling_reach(k, gain, test_r(h)));
+            gain[j] = test_r(1.001 * bound);
+            ASSERT_STATUS(TVO_ERR_PARAM, tvo_law_check_sampling_reach(k, gain, test_r(h)));
+            gain[j] = TEST_NAN;
+            ASSERT_STATUS(TVO_ERR_PARAM, tvo_law_check_sampling_reach(k, gain, test_r(h)));
+        }
+    }
+    const tvo_real_t gain[3] = {TVO_R(1.0), TVO_R(1.0), TVO_R(1.0)};
+    ASSERT_STATUS(TVO_ERR_NULL, tvo_law_check_sampling_reach(2, NULL, test_r(h)));
+    ASSERT_STATUS(TVO_ERR_PARAM, tvo_law_check_sampling_reach(0, gain, test_r(h)));
+    ASSERT_STATUS(TVO_ERR_PARAM, tvo_law_check_sampling_reach(TVO_MAX_RELATIVE_DEGREE + 1, gain, test_r(h)));
+    ASSERT_STATUS(TVO_ERR_PARAM, tvo_law_check_sampling_reach(2, gain, TVO_R(0.0)));
+    ASSERT_STATUS(TVO_ERR_PARAM, tvo_law_check_sampling_reach(2, gain, TVO_R(-0.01)));
+    ASSERT_STATUS(TVO_ERR_PARAM, tvo_law_check_sampling_reach(2, gain, TEST_NAN));
+}
+
 static void test_init_rejects_bad_relative_degree(void)
 {
     ASSERT_STATUS(TVO_ERR_PARAM, init_with(0, 2, 1, 1, 1));
@@ -654,6 +685,7 @@ int main(void)
     RUN_TEST(test_init_rejects_non_hurwitz_k1);
     RUN_TEST(test_init_rejects_non_hurwitz_k2);
     RUN_TEST(test_init_rejects_non_hurwitz_k3);
+    RUN_TEST(test_sampling_reach_bounds_each_coefficient);
     RUN_TEST(test_init_rejects_non_finite_gains);
     RUN_TEST(test_init_rejects_bad_relative_degree);
     RUN_TEST(test_init_rejects_bad_dimension);
