@@ -11,10 +11,12 @@
 --root      functions whose worst-case stack depth to report (default: tvo_controller_step).
 
 Flash = .text + .rodata + .data of the core, RAM = .data + .bss of the core (what the linker kept).
-Stack: the deepest path of static frame sizes through the call graph. The core's only indirect
-calls are the objective's term callbacks (tvo_gradient_jet_fn, tvo_constraint_max_fn); an indirect
-call is charged the deepest of the functions that implement them (names ending in _gradient_jet,
-_gradient_hessian or _constraint_max) that the link kept. Calls into libc/libm/libgcc (no .ci of
+Stack: the deepest path of static frame sizes through the call graph. The core makes indirect
+calls in two files (INDIRECT_TARGETS; one elsewhere is an error): objective.c calls the terms'
+callbacks (tvo_gradient_jet_fn, tvo_constraint_max_fn), charged the deepest of the functions that
+implement them (names ending in _gradient_jet, _gradient_hessian or _constraint_max) that the link
+kept; law.c calls the objective's general path (tvo_general_path_fn), charged law_general_path if
+the link kept it and nothing if not (then no add function stored it: the pointer is NULL). Calls into libc/libm/libgcc (no .ci of
 ours) are measured in the linked ELF (--elf, disassembled by --objdump): each library function's
 frame is the sum of its stack-pointer decrements (pushes, stack adjustments), its callees are its
 direct calls and tail branches, so a library path is charged in full (newlib's sinf of a huge
@@ -33,9 +35,16 @@ import subprocess
 import sys
 
 CALLBACK_SUFFIXES = ("_gradient_jet", "_gradient_hessian", "_constraint_max")
+# The source file of an indirect call -> what it can reach: names ending in these suffixes (terms'
+# callbacks) or these exact names.
+INDIRECT_TARGETS = {
+    "objective.c": {"suffixes": CALLBACK_SUFFIXES, "names": (), "may_be_absent": False},
+    "law.c": {"suffixes": (), "names": ("law_general_path",), "may_be_absent": True},
+}
+INDIRECT = "__indirect_call"
 
 NODE_RE = re.compile(r'node: \{ title: "([^"]+)" label: "([^"]*)"')
-EDGE_RE = re.compile(r'edge: \{ sourcename: "([^"]+)" targetname: "([^"]+)"')
+EDGE_RE = re.compile(r'edge: \{ sourcename: "([^"]+)" targetname: "([^"]+)"(?: label: "([^"]*)")?')
 BYTES_RE = re.compile(r'\\n(\d+) bytes \((static|dynamic[^)]*)\)')
 
 
@@ -52,7 +61,14 @@ def read_call_graph(core_dir):
                 if match.group(2) != "static":
                     sys.exit(f"footprint: {name} has a {match.group(2)} frame: worst case not static")
                 frames[name] = int(match.group(1))
-        for src, dst in EDGE_RE.findall(text):
+        for src, dst, label in EDGE_RE.findall(text):
+            if dst == INDIRECT:
+                # label "<path>:<line>:<column>": an indirect call is told apart by its file
+                source = pathlib.PurePath(label.rsplit(":", 2)[0]).name if label else "?"
+                if source not in INDIRECT_TARGETS:
+                    sys.exit(f"footprint: an indirect call in {src} ({label}): INDIRECT_TARGETS does not say "
+                             "what it can reach")
+                dst = f"{INDIRECT}@{source}"
             edges.setdefault(src, set()).add(dst)
     return frames, edges
 
@@ -161,18 +177,24 @@ def read_binary_graph(elf, objdump):
 def worst_stack(root, frames, edges, binary):
     """The deepest path from root: our functions by gcc's call graph, the library's by the ELF's."""
     bin_frames, bin_edges, bin_problems = binary
-    # The objective's own dispatchers share the suffixes but are the callers, not the callbacks.
-    callbacks = [f for f in frames if f.endswith(CALLBACK_SUFFIXES) and not f.startswith("tvo_objective_")
-                 and f.split(":")[-1] in bin_frames]
+
+    def reachable(source):
+        spec = INDIRECT_TARGETS[source]
+        # The objective's own dispatchers share the suffixes but are the callers, not the callbacks.
+        return [f for f in frames if f.split(":")[-1] in bin_frames and not f.startswith("tvo_objective_")
+                and ((bool(spec["suffixes"]) and f.endswith(spec["suffixes"])) or f in spec["names"])]
+
     memo, active = {}, set()
 
     def depth(fn):
         if fn in memo:
             return memo[fn]
-        if fn == "__indirect_call":
-            if not callbacks:
-                sys.exit("footprint: an indirect call, but no term callback in the link")
-            memo[fn] = max((depth(c) for c in callbacks), key=lambda item: item[0])
+        if fn.startswith(INDIRECT + "@"):
+            source = fn.split("@", 1)[1]
+            targets = reachable(source)
+            if not targets and not INDIRECT_TARGETS[source]["may_be_absent"]:
+                sys.exit(f"footprint: an indirect call in {source}, but nothing it can reach is in the link")
+            memo[fn] = max((depth(c) for c in targets), key=lambda item: item[0], default=(0, []))
             return memo[fn]
         ours = fn in frames
         if not ours and fn not in bin_frames:

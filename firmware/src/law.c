@@ -249,23 +249,40 @@ static inline int tracking_terms_only(const tvo_objective_t *objective)
 #define TRACKING_PATH_BODY static __attribute__((noinline))
 #endif
 
-/*
- * evaluate_shape for an objective of tracking terms only (tracking_terms_only) with the same
- * arithmetic in the same order: each term's gradient added in turn, the weights summed on the
- * diagonal, the solve rhs / W. Returns 1 when done; 0 for anything out of the ordinary (a term out
- * of range, a target's error, a value that is not finite), which the general path then evaluates
- * and reports.
- */
-TRACKING_PATH_BODY int evaluate_tracking_shape(const tvo_law_t *law, const tvo_objective_t *objective,
-                                           const tvo_output_derivs_t *y, const tvo_time_jet_t *t, tvo_real_t *y_k,
-                                           tvo_real_t *const *grad_rows, uint8_t grad_count, tvo_real_t *shift,
-                                           tvo_law_workspace_t *work, const uint8_t k, const uint8_t m)
+/* The status the general path reports for what the tracking path declined (its checks in its order:
+ * the derivatives before the terms), with y_k zeroed as there. Off the step's common path. */
+static tvo_status_t tracking_path_refusal(const tvo_output_derivs_t *y, tvo_real_t *y_k, tvo_law_workspace_t *work,
+                                          tvo_status_t found, uint8_t k, uint8_t m)
 {
+    zero_output(y_k, m);
+    if (k > TVO_MAX_RELATIVE_DEGREE || m > TVO_MAX_Z_DIM) {
+        return found; /* checked by check_call: restated for the compiler's bounds */
+    }
+    return trajectory_jets(y, work->y_jet, k, m, 1) ? found : TVO_ERR_NOT_FINITE;
+}
+
+/*
+ * The evaluation of an objective of tracking terms only (tracking_terms_only): the same arithmetic in
+ * the same order as the general path (each term's gradient added in turn, the weights summed on the
+ * diagonal, the solve rhs / W), and the same status for any input the general path refuses. One
+ * exception: an output that no term covers has no curvature, which the general path's solve
+ * regularises and this path refuses (TVO_ERR_NOT_POSITIVE_DEFINITE); the law then falls back to the
+ * general path where the objective links it.
+ */
+TRACKING_PATH_BODY tvo_status_t evaluate_tracking_shape(tvo_law_workspace_t *work, const uint8_t k, const uint8_t m)
+{
+    /* The call's arguments from the workspace: a size build's call passes three. */
+    const tvo_law_t *law = work->call.law;
+    const tvo_objective_t *objective = work->call.objective;
+    const tvo_output_derivs_t *y = work->call.y;
+    const tvo_time_jet_t *t = work->call.t;
+    tvo_real_t *y_k = work->call.y_k;
     if (!isfinite(t->t_s) || !isfinite(t->rate)) {
-        return 0;
+        zero_output(y_k, m);
+        return TVO_ERR_NOT_FINITE;
     }
     /* A derivative that is not finite reaches its output's gradient, hence the rhs checked below (an
-     * output no term covers has no weight, which the solve's check declines): no check here. */
+     * output no term covers has no weight, which the solve's check declines): checked only then. */
     (void)trajectory_jets(y, work->y_jet, k, m, 0);
     tvo_jet_t *g_jet = work->g_jet;
     /* The diagonal of the workspace's matrix holds the weights' sums (entry i at i * stride). */
@@ -279,24 +296,32 @@ TRACKING_PATH_BODY int evaluate_tracking_shape(const tvo_law_t *law, const tvo_o
         }
         diagonal[i * stride] = TVO_R(0.0);
     }
-    /* Along the trajectory (rate 1, as the general path's time jet); the targets read only t's time. */
+    /* Along the trajectory (rate 1, as the general path's time jet); the targets read only t's time.
+     * The checks are tvo_tracking_gradient_hessian's, in its order. */
     for (unsigned p = 0; p < objective->term_count && p < TVO_MAX_TERMS; ++p) {
         const tvo_tracking_term_t *term = (const tvo_tracking_term_t *)objective->terms[p].term;
-        if (term == NULL || term->target == NULL || (unsigned)term->offset + 2u > m ||
-            tracking_add_unchecked(term, work->y_jet, t, TVO_R(1.0), k, g_jet, diagonal, stride) != TVO_OK) {
-            return 0;
+        tvo_status_t st = TVO_ERR_NULL;
+        if (term != NULL) {
+            st = (unsigned)term->offset + 2u > m ? TVO_ERR_DIMENSION
+                 : term->target == NULL          ? TVO_ERR_NULL
+                                                 : tracking_add_unchecked(term, work->y_jet, t, TVO_R(1.0), k,
+                                                                          g_jet, diagonal, stride);
+        }
+        if (st != TVO_OK) {
+            return tracking_path_refusal(y, y_k, work, st, k, m);
         }
     }
     tvo_real_t *x = work->rhs;
     if (!isfinite(combine_rhs(law, g_jet, x, k, m))) {
-        return 0;
+        return tracking_path_refusal(y, y_k, work, TVO_ERR_NUMERIC, k, m);
     }
     /* tvo_saddle_solve's diagonal solve: each W_ii > 0 and finite, then x = rhs / W. */
     tvo_real_t probe = TVO_R(0.0);
     TVO_UNROLL_SMALL
     for (unsigned i = 0; i < m; ++i) {
         if (!(diagonal[i * stride] > TVO_R(0.0))) {
-            return 0;
+            zero_output(y_k, m);
+            return TVO_ERR_NOT_POSITIVE_DEFINITE;
         }
         probe += diagonal[i * stride] * TVO_R(0.0);
     }
@@ -306,19 +331,19 @@ TRACKING_PATH_BODY int evaluate_tracking_shape(const tvo_law_t *law, const tvo_o
         probe += x[i] * TVO_R(0.0);
     }
     if (!isfinite(probe)) {
-        return 0;
+        zero_output(y_k, m);
+        return TVO_ERR_NUMERIC;
     }
-    if (grad_rows != NULL) {
-        write_gradient_rows(g_jet, NULL, grad_rows, m < grad_count ? m : grad_count, k, m);
-    }
-    if (shift != NULL) {
-        *shift = TVO_R(0.0);
+    const tvo_law_outputs_t *out = &work->outputs;
+    write_gradient_rows(g_jet, NULL, out->grad_rows, m < out->grad_count ? m : out->grad_count, k, m);
+    if (out->regularization != NULL) {
+        *out->regularization = TVO_R(0.0);
     }
     TVO_UNROLL_SMALL
     for (unsigned i = 0; i < m; ++i) {
         y_k[i] = -x[i];
     }
-    return 1;
+    return TVO_OK;
 }
 
 /* The evaluation for a validated law and objective of order k and dimension m; each output is
@@ -330,10 +355,6 @@ TVO_SHAPE_BODY tvo_status_t evaluate_shape(const tvo_law_t *law, const tvo_objec
                                               tvo_real_t (*hessian_out)[TVO_MAX_Z_DIM], tvo_real_t *shift,
                                               tvo_law_workspace_t *work, const uint8_t k, const uint8_t m)
 {
-    if (hessian_out == NULL && tracking_terms_only(objective) &&
-        evaluate_tracking_shape(law, objective, y, t, y_k, grad_rows, grad_count, shift, work, k, m)) {
-        return TVO_OK;
-    }
     zero_output(y_k, m);
     if (!isfinite(t->t_s) || !isfinite(t->rate)) {
         return TVO_ERR_NOT_FINITE;
@@ -421,43 +442,125 @@ TVO_SHAPE_BODY tvo_status_t evaluate_shape(const tvo_law_t *law, const tvo_objec
     return TVO_OK;
 }
 
-/* The evaluation, writing where work->outputs says. */
-static tvo_status_t evaluate(const tvo_law_t *law, const tvo_objective_t *objective, const tvo_output_derivs_t *y,
-                             const tvo_time_jet_t *t, tvo_real_t *y_k, tvo_law_workspace_t *work)
+/* The checks of an evaluation's law and objective (the entries check the pointers). */
+static tvo_status_t check_call(const tvo_law_t *law, const tvo_objective_t *objective)
 {
-    if (law == NULL || objective == NULL || y == NULL || t == NULL || y_k == NULL || work == NULL) {
-        return TVO_ERR_NULL;
-    }
     if (law->relative_degree == 0u || law->relative_degree > TVO_MAX_RELATIVE_DEGREE) {
         return TVO_ERR_NOT_INITIALIZED;
     }
-    const uint8_t k = law->relative_degree;
     const uint8_t m = law->dim;
     if (m == 0u || m > TVO_MAX_Z_DIM || objective->dim != m ||
         (unsigned)objective->primal_dim + objective->dual_dim != m) {
         return TVO_ERR_DIMENSION;
     }
+    return TVO_OK;
+}
+
+tvo_status_t law_general_path(void *law_workspace)
+{
+    tvo_law_workspace_t *work = (tvo_law_workspace_t *)law_workspace;
+    const tvo_law_t *law = work->call.law;
+    const tvo_objective_t *objective = work->call.objective;
+    const tvo_status_t st = check_call(law, objective); /* reached through a pointer: checks again */
+    if (st != TVO_OK) {
+        return st;
+    }
     const tvo_law_outputs_t *out = &work->outputs;
+    const uint8_t k = law->relative_degree;
+    const uint8_t m = law->dim;
 #if TVO_SHAPE_COPIES
     if (k == TVO_SHAPE_ORDER && m == TVO_SHAPE_OUTPUT_DIM) {
-        return evaluate_shape(law, objective, y, t, y_k, out->grad_rows, out->grad_count, out->hessian,
-                              out->regularization, work, TVO_SHAPE_ORDER, TVO_SHAPE_OUTPUT_DIM);
+        return evaluate_shape(law, objective, work->call.y, work->call.t, work->call.y_k, out->grad_rows,
+                              out->grad_count, out->hessian, out->regularization, work, TVO_SHAPE_ORDER,
+                              TVO_SHAPE_OUTPUT_DIM);
     }
 #if TVO_MAX_Z_DIM >= TVO_SHAPE_PAIR_OUTPUT_DIM
     if (k == TVO_SHAPE_ORDER && m == TVO_SHAPE_PAIR_OUTPUT_DIM) {
-        return evaluate_shape(law, objective, y, t, y_k, out->grad_rows, out->grad_count, out->hessian,
-                              out->regularization, work, TVO_SHAPE_ORDER, TVO_SHAPE_PAIR_OUTPUT_DIM);
+        return evaluate_shape(law, objective, work->call.y, work->call.t, work->call.y_k, out->grad_rows,
+                              out->grad_count, out->hessian, out->regularization, work, TVO_SHAPE_ORDER,
+                              TVO_SHAPE_PAIR_OUTPUT_DIM);
     }
 #endif
 #endif
-    return evaluate_shape(law, objective, y, t, y_k, out->grad_rows, out->grad_count, out->hessian,
-                          out->regularization, work, k, m);
+    return evaluate_shape(law, objective, work->call.y, work->call.t, work->call.y_k, out->grad_rows,
+                          out->grad_count, out->hessian, out->regularization, work, k, m);
+}
+
+/* The evaluation of a validated call recorded in work->call, writing where work->outputs says: the
+ * tracking path where it applies; the general path (general: NULL when the objective does not link
+ * it) for anything else and for what the tracking path declines, by a tail call. In its entries'
+ * bodies, so no frame of its own sits under the general path's. */
+/* The tracking path for the common shapes' copies or the run-time counts. */
+static tvo_status_t evaluate_tracking(tvo_law_workspace_t *work)
+{
+    const uint8_t k = work->call.law->relative_degree;
+    const uint8_t m = work->call.law->dim;
+#if TVO_SHAPE_COPIES
+    if (k == TVO_SHAPE_ORDER && m == TVO_SHAPE_OUTPUT_DIM) {
+        return evaluate_tracking_shape(work, TVO_SHAPE_ORDER, TVO_SHAPE_OUTPUT_DIM);
+    }
+#if TVO_MAX_Z_DIM >= TVO_SHAPE_PAIR_OUTPUT_DIM
+    if (k == TVO_SHAPE_ORDER && m == TVO_SHAPE_PAIR_OUTPUT_DIM) {
+        return evaluate_tracking_shape(work, TVO_SHAPE_ORDER, TVO_SHAPE_PAIR_OUTPUT_DIM);
+    }
+#endif
+#endif
+    if (k > TVO_MAX_RELATIVE_DEGREE || m > TVO_MAX_Z_DIM) {
+        return TVO_ERR_NOT_INITIALIZED; /* checked by check_call: restated for the compiler's bounds */
+    }
+    return evaluate_tracking_shape(work, k, m);
+}
+
+/* Only fields set by hand (e.g. jets_only on an objective of tvo_tracking_add's terms) bring such an
+ * objective past the tracking path without a general path: nothing this link's law can evaluate. */
+static tvo_status_t refuse_without_general_path(tvo_law_workspace_t *work)
+{
+    zero_output(work->call.y_k, work->call.law->dim);
+    return TVO_ERR_NOT_INITIALIZED;
+}
+
+#if defined(__GNUC__)
+#define ENTRY_BODY static inline __attribute__((always_inline))
+#else
+#define ENTRY_BODY static inline
+#endif
+ENTRY_BODY tvo_status_t evaluate_recorded(tvo_law_workspace_t *work, tvo_general_path_fn general)
+{
+    /* Few values live across the calls here: this frame sits under the general path's. */
+    const tvo_status_t checked = check_call(work->call.law, work->call.objective);
+    if (checked != TVO_OK) {
+        return checked;
+    }
+    if (work->outputs.hessian == NULL && tracking_terms_only(work->call.objective)) {
+        const tvo_status_t st = evaluate_tracking(work);
+        if (st == TVO_OK || general == NULL) {
+            return st;
+        }
+    }
+    if (general == NULL) {
+        return refuse_without_general_path(work);
+    }
+    return general(work);
+}
+
+/* Records the call (pointers checked by the entries; the rest by evaluate_recorded). */
+static inline void record_call(const tvo_law_t *law, const tvo_objective_t *objective, const tvo_output_derivs_t *y,
+                               const tvo_time_jet_t *t, tvo_real_t *y_k, tvo_law_workspace_t *work)
+{
+    work->call.law = law;
+    work->call.objective = objective;
+    work->call.y = y;
+    work->call.t = t;
+    work->call.y_k = y_k;
 }
 
 tvo_status_t tvo_law_evaluate(const tvo_law_t *law, const tvo_objective_t *objective,
                               const tvo_output_derivs_t *y, const tvo_time_jet_t *t,
                               tvo_real_t *y_k, tvo_law_eval_t *eval)
 {
+    if (law == NULL || objective == NULL || y == NULL || t == NULL || y_k == NULL) {
+        return TVO_ERR_NULL;
+    }
     tvo_law_workspace_t work;
     memset(&work.outputs, 0, sizeof(work.outputs));
     if (eval != NULL) {
@@ -469,7 +572,9 @@ tvo_status_t tvo_law_evaluate(const tvo_law_t *law, const tvo_objective_t *objec
         work.outputs.hessian = eval->hessian;
         work.outputs.regularization = &eval->regularization;
     }
-    return evaluate(law, objective, y, t, y_k, &work);
+    record_call(law, objective, y, t, y_k, &work);
+    /* The tools' entry (a Hessian on request): the general path always, whatever the objective links. */
+    return evaluate_recorded(&work, law_general_path);
 }
 
 tvo_status_t law_evaluate_report_unchecked(const tvo_law_t *law, const tvo_objective_t *objective,
@@ -486,19 +591,20 @@ tvo_status_t law_evaluate_report_unchecked(const tvo_law_t *law, const tvo_objec
     out->grad_count = report->count;
     out->hessian = NULL;
     out->regularization = &report->regularization;
+    record_call(law, objective, y, t, y_k, work);
 #if TVO_SHAPE_COPIES
-    /* The controllers' common case, one robot's tracking at k = 2, without the general entry's
-     * argument passing; anything else (or anything the path declines) takes the general entry. */
+    /* The controllers' common case, one robot's tracking at k = 2, in this body (no call, no dispatch). */
     if (objective->tracking_only && law->relative_degree == TVO_SHAPE_ORDER && law->dim == TVO_SHAPE_OUTPUT_DIM &&
         objective->dim == TVO_SHAPE_OUTPUT_DIM && objective->primal_dim == TVO_SHAPE_OUTPUT_DIM &&
-        tracking_terms_only(objective) &&
-        evaluate_tracking_shape(law, objective, y, t, y_k, out->grad_rows, report->count, &report->regularization,
-                                work, TVO_SHAPE_ORDER, TVO_SHAPE_OUTPUT_DIM)) {
-        return TVO_OK;
+        tracking_terms_only(objective)) {
+        const tvo_status_t st = evaluate_tracking_shape(work, TVO_SHAPE_ORDER, TVO_SHAPE_OUTPUT_DIM);
+        if (st == TVO_OK || objective->general_path == NULL) {
+            return st;
+        }
+        return objective->general_path(work); /* what the path declined */
     }
 #endif
-    /* A tail call (its arguments fit this function's): no frame of this entry under the law's. */
-    return evaluate(law, objective, y, t, y_k, work);
+    return evaluate_recorded(work, objective->general_path);
 }
 
 tvo_status_t tvo_law_evaluate_report(const tvo_law_t *law, const tvo_objective_t *objective,

@@ -13,4 +13,9 @@ tvo_status_t law_evaluate_report_unchecked(const tvo_law_t *law, const tvo_objec
                                            const tvo_output_derivs_t *y, const tvo_time_jet_t *t, tvo_real_t *y_k,
                                            tvo_law_report_t *report, tvo_law_workspace_t *work);
 
+/* The general path (a tvo_general_path_fn; law_workspace points to a tvo_law_workspace_t whose call
+ * and outputs are set): what the objective's add functions store, and so the only reference that
+ * links it into a firmware. */
+tvo_status_t law_general_path(void *law_workspace);
+
 #endif /* TVO_LAW_STEP_H */

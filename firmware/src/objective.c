@@ -1,6 +1,7 @@
 /* The objective as a sum of gradient-jet terms; see tvo/objective.h. */
 #include "tvo/objective.h"
 
+#include "law_step.h"
 #include "objective_kernel.h"
 #include "sample_clock_kernel.h"
 #include "tvo/tracking.h"
@@ -16,6 +17,7 @@ tvo_status_t tvo_objective_init(tvo_objective_t *objective, uint8_t primal_dim)
     objective->dim = 0;
     objective->jets_only = 0;
     objective->tracking_only = 0;
+    objective->general_path = NULL;
     if (primal_dim == 0u || primal_dim > TVO_MAX_OUTPUT_DIM) {
         return TVO_ERR_DIMENSION;
     }
@@ -24,9 +26,9 @@ tvo_status_t tvo_objective_init(tvo_objective_t *objective, uint8_t primal_dim)
     return TVO_OK;
 }
 
-static tvo_status_t append_term(tvo_objective_t *objective, tvo_gradient_jet_fn gradient_jet,
-                                tvo_gradient_hessian_fn gradient_hessian, tvo_constraint_max_fn constraint_max,
-                                const void *term)
+tvo_status_t objective_append_term(tvo_objective_t *objective, tvo_gradient_jet_fn gradient_jet,
+                                   tvo_gradient_hessian_fn gradient_hessian, tvo_constraint_max_fn constraint_max,
+                                   const void *term)
 {
     if (objective->dim == 0u) {
         return TVO_ERR_NOT_INITIALIZED;
@@ -46,13 +48,25 @@ static tvo_status_t append_term(tvo_objective_t *objective, tvo_gradient_jet_fn 
     return TVO_OK;
 }
 
+/* The public add functions take any term: their objective may need the law's general path. */
+static tvo_status_t append_general_term(tvo_objective_t *objective, tvo_gradient_jet_fn gradient_jet,
+                                        tvo_gradient_hessian_fn gradient_hessian,
+                                        tvo_constraint_max_fn constraint_max, const void *term)
+{
+    const tvo_status_t st = objective_append_term(objective, gradient_jet, gradient_hessian, constraint_max, term);
+    if (st == TVO_OK) {
+        objective->general_path = law_general_path;
+    }
+    return st;
+}
+
 tvo_status_t tvo_objective_add_term(tvo_objective_t *objective, tvo_gradient_jet_fn gradient_jet,
                                     const void *term)
 {
     if (objective == NULL || gradient_jet == NULL || term == NULL) {
         return TVO_ERR_NULL;
     }
-    return append_term(objective, gradient_jet, NULL, NULL, term);
+    return append_general_term(objective, gradient_jet, NULL, NULL, term);
 }
 
 tvo_status_t tvo_objective_add_constraint(tvo_objective_t *objective, tvo_gradient_jet_fn gradient_jet,
@@ -61,7 +75,7 @@ tvo_status_t tvo_objective_add_constraint(tvo_objective_t *objective, tvo_gradie
     if (objective == NULL || gradient_jet == NULL || constraint_max == NULL || term == NULL) {
         return TVO_ERR_NULL;
     }
-    return append_term(objective, gradient_jet, NULL, constraint_max, term);
+    return append_general_term(objective, gradient_jet, NULL, constraint_max, term);
 }
 
 tvo_status_t tvo_objective_add(tvo_objective_t *objective, const tvo_term_t *term)
@@ -69,7 +83,7 @@ tvo_status_t tvo_objective_add(tvo_objective_t *objective, const tvo_term_t *ter
     if (objective == NULL || term == NULL || term->gradient_jet == NULL || term->term == NULL) {
         return TVO_ERR_NULL;
     }
-    return append_term(objective, term->gradient_jet, term->gradient_hessian, term->constraint_max, term->term);
+    return append_general_term(objective, term->gradient_jet, term->gradient_hessian, term->constraint_max, term->term);
 }
 
 tvo_status_t tvo_objective_reserve_multipliers(tvo_objective_t *objective, uint8_t count, uint8_t *first_index)
@@ -89,6 +103,7 @@ tvo_status_t tvo_objective_reserve_multipliers(tvo_objective_t *objective, uint8
     *first_index = objective->dim;
     objective->dual_dim = (uint8_t)(objective->dual_dim + count);
     objective->dim = (uint8_t)(objective->primal_dim + objective->dual_dim);
+    objective->general_path = law_general_path; /* the KKT solve */
     return TVO_OK;
 }
 

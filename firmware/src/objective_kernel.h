@@ -22,4 +22,10 @@ tvo_status_t objective_sum_terms(const tvo_objective_t *objective, const tvo_jet
                                  uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian, sum_mode_t mode,
                                  uint8_t *jet_terms);
 
+/* Appends a term without linking the law's general path (tvo_tracking_add's way; the public add
+ * functions call it and then set objective->general_path). */
+tvo_status_t objective_append_term(tvo_objective_t *objective, tvo_gradient_jet_fn gradient_jet,
+                                   tvo_gradient_hessian_fn gradient_hessian, tvo_constraint_max_fn constraint_max,
+                                   const void *term);
+
 #endif /* TVO_OBJECTIVE_KERNEL_H */

@@ -1,6 +1,7 @@
 /* Weighted tracking term; see tvo/tracking.h. */
 #include "tvo/tracking.h"
 
+#include "objective_kernel.h"
 #include "tracking_kernel.h"
 
 tvo_status_t tvo_tracking_init(tvo_tracking_term_t *term, const tvo_target_t *target,
@@ -24,6 +25,24 @@ tvo_status_t tvo_tracking_init(tvo_tracking_term_t *term, const tvo_target_t *ta
     term->weight[1] = weight[1];
     term->offset = offset;
     return TVO_OK;
+}
+
+tvo_status_t tvo_tracking_add(tvo_objective_t *objective, const tvo_tracking_term_t *term)
+{
+    if (objective == NULL || term == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (term->target == NULL || !(term->weight[0] > TVO_R(0.0)) || !(term->weight[1] > TVO_R(0.0)) ||
+        !isfinite(term->weight[0]) || !isfinite(term->weight[1])) {
+        return TVO_ERR_NOT_INITIALIZED;
+    }
+    if (objective->dim == 0u) {
+        return TVO_ERR_NOT_INITIALIZED;
+    }
+    if ((unsigned)term->offset + 2u > objective->primal_dim) {
+        return TVO_ERR_DIMENSION;
+    }
+    return objective_append_term(objective, tvo_tracking_gradient_jet, tvo_tracking_gradient_hessian, NULL, term);
 }
 
 /* The checks tvo_target_jet and tvo_target_derivatives make, in their order: the target, the order,

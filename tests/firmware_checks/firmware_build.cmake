@@ -8,7 +8,8 @@
 #         [-DLIMITS=<size limits, e.g. TVO_MAX_OUTPUT_DIM=2,TVO_MAX_EQUALITIES=2>]
 #         -P firmware_build.cmake
 # With a probe and FOOTPRINT_TOOL, writes <dir>/footprint.json: the core's flash and RAM in the
-# probe's --gc-sections link and the worst-case stack of one controller step.
+# probe's --gc-sections link and the worst-case stack of one controller step; and
+# <dir>/footprint_tracking.json, the same for a one-robot tracking firmware (tracking_probe.c).
 cmake_minimum_required(VERSION 3.16)
 include("${CMAKE_CURRENT_LIST_DIR}/check_no_allocator.cmake")
 
@@ -80,12 +81,14 @@ if(PROBE_DIR)
       "-DTVO_CORE_LIBRARY=${core_lib}" "-DTVO_FIRMWARE_INCLUDE_DIR=${FIRMWARE_DIR}/include")
   tvo_run("build probe" "${CMAKE_COMMAND}" --build "${probe_bin}" --parallel ${jobs})
 
-  tvo_find_allocator_symbols(found "${SUB_CMAKE_NM}" "${probe_bin}/alloc_probe.elf")
-  if(found)
-    string(REPLACE ";" ", " found "${found}")
-    message(FATAL_ERROR "allocator symbols in the linked probe alloc_probe.elf: ${found}")
-  endif()
-  message(STATUS "no allocator symbols in ${probe_bin}/alloc_probe.elf")
+  foreach(probe alloc_probe tracking_probe)
+    tvo_find_allocator_symbols(found "${SUB_CMAKE_NM}" "${probe_bin}/${probe}.elf")
+    if(found)
+      string(REPLACE ";" ", " found "${found}")
+      message(FATAL_ERROR "allocator symbols in the linked probe ${probe}.elf: ${found}")
+    endif()
+    message(STATUS "no allocator symbols in ${probe_bin}/${probe}.elf")
+  endforeach()
 
   tvo_find_allocator_symbols(found "${SUB_CMAKE_NM}" "${probe_bin}/alloc_canary.elf")
   if(NOT found)
@@ -105,5 +108,9 @@ if(PROBE_DIR AND FOOTPRINT_TOOL)
   tvo_run("footprint" "${FOOTPRINT_TOOL}" --core-dir "${BINARY_DIR}/CMakeFiles/tvo_core.dir"
       --map "${probe_bin}/alloc_probe.map" --elf "${probe_bin}/alloc_probe.elf" --objdump "${SUB_CMAKE_OBJDUMP}" --root tvo_controller_step --root tvo_chain_controller_step
       --json "${BINARY_DIR}/footprint.json")
+  # A one-robot tracking firmware: what a board links when it adds tracking terms only.
+  tvo_run("footprint of the tracking firmware" "${FOOTPRINT_TOOL}" --core-dir "${BINARY_DIR}/CMakeFiles/tvo_core.dir"
+      --map "${probe_bin}/tracking_probe.map" --elf "${probe_bin}/tracking_probe.elf" --objdump "${SUB_CMAKE_OBJDUMP}"
+      --root tvo_controller_step --json "${BINARY_DIR}/footprint_tracking.json")
 endif()
 message(STATUS "firmware build check passed")

@@ -22,22 +22,32 @@ void tearDown(void) {}
 
 static fx_t fx;
 
-/* One robot on the fixture's circle, its tracking term through the closed form (closed_form = 1) or
- * through jets only, the general mechanism (a term without a closed form takes that path). */
-static void setup_one_robot(int closed_form)
+/* How the one robot's tracking term joins the objective. */
+enum {
+    BY_JETS,      /* tvo_objective_add_term: jets only, the general mechanism (a term without a closed form) */
+    CLOSED_FORM,  /* tvo_objective_add with its closed form: the law's tracking path, the general path linked */
+    TRACKING_ADD  /* tvo_tracking_add: the tracking path alone, the general path not linked */
+};
+
+/* One robot on the fixture's circle, its tracking term added as `how` says. */
+static void setup_one_robot(int how)
 {
     const tvo_real_t weight[2] = {TVO_R(3.0), TVO_R(0.7)};
     fx_reset(&fx, 1u);
     fx_circle_target(&fx.target[0], 0.0, 0.0, 1.0, 0.5);
     ASSERT_STATUS(TVO_OK, tvo_objective_init(&fx.objective, 2u));
     ASSERT_STATUS(TVO_OK, tvo_tracking_init(&fx.term[0], &fx.target[0], weight, 0u));
-    if (closed_form) {
+    if (how == CLOSED_FORM) {
         const tvo_term_t spec = {tvo_tracking_gradient_jet, tvo_tracking_gradient_hessian, NULL, &fx.term[0]};
         ASSERT_STATUS(TVO_OK, tvo_objective_add(&fx.objective, &spec));
+    } else if (how == TRACKING_ADD) {
+        ASSERT_STATUS(TVO_OK, tvo_tracking_add(&fx.objective, &fx.term[0]));
     } else {
         ASSERT_STATUS(TVO_OK, tvo_objective_add_term(&fx.objective, tvo_tracking_gradient_jet, &fx.term[0]));
     }
-    TEST_ASSERT_EQUAL_UINT8(closed_form ? 1u : 0u, fx.objective.tracking_only); /* which path the law takes */
+    /* Which path the law takes, and whether the objective links the general path. */
+    TEST_ASSERT_EQUAL_UINT8(how == BY_JETS ? 0u : 1u, fx.objective.tracking_only);
+    TEST_ASSERT_TRUE((how == TRACKING_ADD) == (fx.objective.general_path == NULL));
     fx.epoch = 1000u;
     fx.apply = fx.epoch + fx.cfg.period_ticks;
     fx.pose[0].position_m[0] = TVO_R(1.5);
@@ -103,18 +113,26 @@ static uint64_t digest_add(uint64_t h, const void *bytes, size_t n)
 }
 
 /* The law's tracking path keeps the general path's arithmetic and order (law.c), so the two agree to
- * the bit; the general path here is the one a term without a closed form takes in this build. */
-static void test_one_robot_tracks_through_the_closed_form_and_through_jets_bit_for_bit(void)
+ * the bit; the general path here is the one a term without a closed form takes in this build. The
+ * tracking path without the general path linked (tvo_tracking_add) commands the same again. */
+static void test_one_robot_tracks_through_the_closed_form_alone_or_not_and_through_jets_bit_for_bit(void)
 {
     enum { steps = 1500 }; /* 15 s: three turns of the circle */
     static tvo_command_t by_jets[steps];
-    setup_one_robot(0);
+    setup_one_robot(BY_JETS);
     for (int n = 0; n < steps; ++n) {
         ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx, &by_jets[n]));
     }
     const double jets_error = fx_tracking_error(&fx, 0u);
 
-    setup_one_robot(1);
+    setup_one_robot(TRACKING_ADD);
+    for (int n = 0; n < steps; ++n) {
+        tvo_command_t cmd;
+        ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx, &cmd));
+        assert_commands_bit_identical(&by_jets[n], &cmd);
+    }
+
+    setup_one_robot(CLOSED_FORM);
     uint64_t digest = 14695981039346656037ull;
     for (int n = 0; n < steps; ++n) {
         tvo_command_t cmd;
@@ -140,6 +158,6 @@ int main(void)
     UNITY_BEGIN();
     RUN_TEST(test_multipliers_beyond_the_limit_are_refused_and_leave_the_objective_as_it_was);
     RUN_TEST(test_saddle_solve_refuses_more_multipliers_than_the_limit_and_solves_without_them);
-    RUN_TEST(test_one_robot_tracks_through_the_closed_form_and_through_jets_bit_for_bit);
+    RUN_TEST(test_one_robot_tracks_through_the_closed_form_alone_or_not_and_through_jets_bit_for_bit);
     return UNITY_END();
 }

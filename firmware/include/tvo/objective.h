@@ -70,6 +70,15 @@ typedef tvo_status_t (*tvo_gradient_hessian_fn)(const void *term, const tvo_jet_
                                                 const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
                                                 tvo_hessian_t *hessian);
 
+/**
+ * The law's general path (every kind of term, the Hessian from jets and closed forms, the KKT solve),
+ * reached through the objective: the functions that add a term the tracking path cannot evaluate
+ * (tvo_objective_add*, tvo_objective_reserve_multipliers) set it, so a firmware whose objective holds
+ * tracking terms only (tvo_tracking_add) does not link it. The argument is the law's workspace
+ * (tvo_law_workspace_t), which holds the call's arguments.
+ */
+typedef tvo_status_t (*tvo_general_path_fn)(void *law_workspace);
+
 typedef struct {
     tvo_gradient_jet_fn gradient_jet;         /* required: the general mechanism and the reference */
     tvo_gradient_hessian_fn gradient_hessian; /* NULL: the Hessian comes from jets */
@@ -86,6 +95,7 @@ typedef struct {
     uint8_t jets_only;   /* 1: closed forms ignored, every term through jets (the reference path) */
     uint8_t tracking_only; /* kept by the add functions: every term so far a tracking term's closed form
                               (the law re-checks the terms before it relies on it) */
+    tvo_general_path_fn general_path; /* NULL: tracking terms only, and the law has only its tracking path */
 } tvo_objective_t;
 
 /** Empty objective over y in R^primal_dim, 1 <= primal_dim <= TVO_MAX_OUTPUT_DIM, no multipliers. */
