@@ -234,7 +234,7 @@ static inline int tracking_terms_only(const tvo_objective_t *objective)
         return 0;
     }
     for (unsigned p = 0; p < objective->term_count && p < TVO_MAX_TERMS; ++p) {
-        if (objective->terms[p].gradient_hessian != tvo_tracking_gradient_hessian) {
+        if (!objective_slot_is_tracking(&objective->terms[p])) {
             return 0;
         }
     }

@@ -26,9 +26,7 @@ tvo_status_t tvo_objective_init(tvo_objective_t *objective, uint8_t primal_dim)
     return TVO_OK;
 }
 
-tvo_status_t objective_append_term(tvo_objective_t *objective, tvo_gradient_jet_fn gradient_jet,
-                                   tvo_gradient_hessian_fn gradient_hessian, tvo_constraint_max_fn constraint_max,
-                                   const void *term)
+tvo_status_t objective_append_term(tvo_objective_t *objective, const tvo_term_t *spec)
 {
     if (objective->dim == 0u) {
         return TVO_ERR_NOT_INITIALIZED;
@@ -36,24 +34,27 @@ tvo_status_t objective_append_term(tvo_objective_t *objective, tvo_gradient_jet_
     if (objective->term_count >= TVO_MAX_TERMS) {
         return TVO_ERR_CAPACITY;
     }
-    tvo_term_t *slot = &objective->terms[objective->term_count];
-    slot->gradient_jet = gradient_jet;
-    slot->gradient_hessian = gradient_hessian;
-    slot->constraint_max = constraint_max;
-    slot->term = term;
+    objective->terms[objective->term_count] = *spec;
     /* Tracking terms alone need no Hessian matrix in the law (its diagonal path). */
-    const int tracking = gradient_hessian == tvo_tracking_gradient_hessian;
+    const int tracking = objective_slot_is_tracking(spec);
     objective->tracking_only = (uint8_t)((objective->term_count == 0u || objective->tracking_only) && tracking);
     objective->term_count++;
     return TVO_OK;
 }
 
-/* The public add functions take any term: their objective may need the law's general path. */
+/* The public add functions take any term: their objective may need the law's general path. A tracking
+ * term's closed form is kept as the tracking slot (objective_kernel.h), as tvo_tracking_add keeps it. */
 static tvo_status_t append_general_term(tvo_objective_t *objective, tvo_gradient_jet_fn gradient_jet,
                                         tvo_gradient_hessian_fn gradient_hessian,
                                         tvo_constraint_max_fn constraint_max, const void *term)
 {
-    const tvo_status_t st = objective_append_term(objective, gradient_jet, gradient_hessian, constraint_max, term);
+    tvo_term_t spec = {gradient_jet, gradient_hessian, constraint_max, term};
+    if (gradient_jet == tvo_tracking_gradient_jet && gradient_hessian == tvo_tracking_gradient_hessian &&
+        constraint_max == NULL) {
+        spec.gradient_jet = NULL;
+        spec.gradient_hessian = NULL;
+    }
+    const tvo_status_t st = objective_append_term(objective, &spec);
     if (st == TVO_OK) {
         objective->general_path = law_general_path;
     }
@@ -107,10 +108,6 @@ tvo_status_t tvo_objective_reserve_multipliers(tvo_objective_t *objective, uint8
     return TVO_OK;
 }
 
-static int uses_closed_form(const tvo_objective_t *objective, const tvo_term_t *term)
-{
-    return term->gradient_hessian != NULL && !objective->jets_only;
-}
 
 tvo_status_t objective_sum_terms(const tvo_objective_t *objective, const tvo_jet_t *z, const tvo_time_jet_t *t,
                                  uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian, sum_mode_t mode,
@@ -131,12 +128,20 @@ tvo_status_t objective_sum_terms(const tvo_objective_t *objective, const tvo_jet
     uint8_t left_to_jets = 0u;
     for (uint8_t k = 0; k < objective->term_count && k < TVO_MAX_TERMS; ++k) {
         const tvo_term_t *term = &objective->terms[k];
-        const int closed = (mode != SUM_ALL_BY_JETS) && uses_closed_form(objective, term);
+        /* The tracking slot's callbacks are the tracking term's, named here (the general path), so a
+         * firmware without the general path links neither. */
+        tvo_gradient_jet_fn gradient_jet = term->gradient_jet;
+        tvo_gradient_hessian_fn gradient_hessian = term->gradient_hessian;
+        if (objective_slot_is_tracking(term)) {
+            gradient_jet = tvo_tracking_gradient_jet;
+            gradient_hessian = tvo_tracking_gradient_hessian;
+        }
+        const int closed = (mode != SUM_ALL_BY_JETS) && gradient_hessian != NULL && !objective->jets_only;
         tvo_status_t st = TVO_OK;
         if (mode == SUM_CLOSED_FORMS && closed) {
-            st = term->gradient_hessian(term->term, z, objective->dim, t, order, grad, hessian);
+            st = gradient_hessian(term->term, z, objective->dim, t, order, grad, hessian);
         } else if (!(mode == SUM_JET_TERMS && closed)) {
-            st = term->gradient_jet(term->term, z, objective->dim, t, order, grad);
+            st = gradient_jet(term->term, z, objective->dim, t, order, grad);
             left_to_jets++;
         }
         if (st != TVO_OK) {

@@ -22,10 +22,19 @@ tvo_status_t objective_sum_terms(const tvo_objective_t *objective, const tvo_jet
                                  uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian, sum_mode_t mode,
                                  uint8_t *jet_terms);
 
-/* Appends a term without linking the law's general path (tvo_tracking_add's way; the public add
- * functions call it and then set objective->general_path). */
-tvo_status_t objective_append_term(tvo_objective_t *objective, tvo_gradient_jet_fn gradient_jet,
-                                   tvo_gradient_hessian_fn gradient_hessian, tvo_constraint_max_fn constraint_max,
-                                   const void *term);
+/* The tracking slot: a tracking term's closed form is kept as {NULL, NULL, NULL, term} (the public add
+ * functions refuse a NULL gradient_jet, so no other term looks like it). Its callbacks,
+ * tvo_tracking_gradient_jet and _hessian, are named only where the general path calls them
+ * (objective_sum_terms): the law's tracking path needs neither, and a firmware without the general
+ * path links neither. */
+static inline int objective_slot_is_tracking(const tvo_term_t *slot)
+{
+    return slot->gradient_jet == NULL && slot->gradient_hessian == NULL && slot->constraint_max == NULL &&
+           slot->term != NULL;
+}
+
+/* Appends the slot as given, without linking the law's general path (tvo_tracking_add's way; the
+ * public add functions call it and then set objective->general_path). */
+tvo_status_t objective_append_term(tvo_objective_t *objective, const tvo_term_t *spec);
 
 #endif /* TVO_OBJECTIVE_KERNEL_H */

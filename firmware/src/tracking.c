@@ -42,7 +42,8 @@ tvo_status_t tvo_tracking_add(tvo_objective_t *objective, const tvo_tracking_ter
     if ((unsigned)term->offset + 2u > objective->primal_dim) {
         return TVO_ERR_DIMENSION;
     }
-    return objective_append_term(objective, tvo_tracking_gradient_jet, tvo_tracking_gradient_hessian, NULL, term);
+    const tvo_term_t slot = {NULL, NULL, NULL, term}; /* the tracking slot (objective_kernel.h) */
+    return objective_append_term(objective, &slot);
 }
 
 /* The checks tvo_target_jet and tvo_target_derivatives make, in their order: the target, the order,

@@ -87,7 +87,8 @@ typedef struct {
 } tvo_term_t;
 
 typedef struct {
-    tvo_term_t terms[TVO_MAX_TERMS];
+    tvo_term_t terms[TVO_MAX_TERMS]; /* a tracking term's closed form is kept as {NULL, NULL, NULL, term}: its
+                                        callbacks are named only where the general path calls them */
     uint8_t term_count;
     uint8_t primal_dim;  /* flat-output dimension m (2 per robot) */
     uint8_t dual_dim;    /* equality multipliers q, reserved by tvo_objective_reserve_multipliers */
