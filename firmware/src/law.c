@@ -72,7 +72,7 @@ tvo_status_t tvo_law_check_sampling_reach(uint8_t relative_degree, const tvo_rea
         !(period_s > TVO_R(0.0))) {
         return TVO_ERR_PARAM;
     }
-    const tvo_real_t nyquist_radps = TVO_R(3.14159265358979323846) / period_s;
+    const tvo_real_t nyquist_radps = TVO_PI / period_s;
     tvo_real_t power = TVO_R(1.0); /* R^(k-j), j descending from k - 1 */
     for (uint8_t n = 0; n < relative_degree; ++n) {
         const uint8_t j = (uint8_t)(relative_degree - 1u - n);
@@ -486,10 +486,6 @@ tvo_status_t law_general_path(void *law_workspace)
                           out->grad_count, out->hessian, out->regularization, work, k, m);
 }
 
-/* The evaluation of a validated call recorded in work->call, writing where work->outputs says: the
- * tracking path where it applies; the general path (general: NULL when the objective does not link
- * it) for anything else and for what the tracking path declines, by a tail call. In its entries'
- * bodies, so no frame of its own sits under the general path's. */
 /* The tracking path for the common shapes' copies or the run-time counts. */
 static tvo_status_t evaluate_tracking(tvo_law_workspace_t *work)
 {
@@ -524,6 +520,10 @@ static tvo_status_t refuse_without_general_path(tvo_law_workspace_t *work)
 #else
 #define ENTRY_BODY static inline
 #endif
+/* The evaluation of a validated call recorded in work->call, writing where work->outputs says: the
+ * tracking path where it applies; the general path (general: NULL when the objective does not link
+ * it) for anything else and for what the tracking path declines, by a tail call. In its entries'
+ * bodies, so no frame of its own sits under the general path's. */
 ENTRY_BODY tvo_status_t evaluate_recorded(tvo_law_workspace_t *work, tvo_general_path_fn general)
 {
     /* Few values live across the calls here: this frame sits under the general path's. */
@@ -558,9 +558,6 @@ tvo_status_t tvo_law_evaluate(const tvo_law_t *law, const tvo_objective_t *objec
                               const tvo_output_derivs_t *y, const tvo_time_jet_t *t,
                               tvo_real_t *y_k, tvo_law_eval_t *eval)
 {
-    if (law == NULL || objective == NULL || y == NULL || t == NULL || y_k == NULL) {
-        return TVO_ERR_NULL;
-    }
     tvo_law_workspace_t work;
     memset(&work.outputs, 0, sizeof(work.outputs));
     if (eval != NULL) {
@@ -571,6 +568,9 @@ tvo_status_t tvo_law_evaluate(const tvo_law_t *law, const tvo_objective_t *objec
         work.outputs.grad_count = TVO_MAX_Z_DIM;
         work.outputs.hessian = eval->hessian;
         work.outputs.regularization = &eval->regularization;
+    }
+    if (law == NULL || objective == NULL || y == NULL || t == NULL || y_k == NULL) {
+        return TVO_ERR_NULL;
     }
     record_call(law, objective, y, t, y_k, &work);
     /* The tools' entry (a Hessian on request): the general path always, whatever the objective links. */
