@@ -34,7 +34,7 @@ tvo_status_t tvo_controller_config_default(tvo_controller_config_t *cfg)
     cfg->filter_tf_s = TVO_R(0.05);
     cfg->gain_kp = TVO_R(40.0);
     cfg->gain_kd = TVO_R(13.0);
-    cfg->omega_max_radps = TVO_R(2.0) * UNICYCLE_PI;
+    cfg->omega_max_radps = TVO_R(2.0) * TVO_PI;
     cfg->accel_max_mps2 = TVO_R(15.0);
     cfg->speed_max_mps = TVO_R(5.0);
     cfg->min_speed_mps = TVO_R(0.05);
@@ -258,7 +258,7 @@ static tvo_status_t position_only_estimate(const tvo_controller_t *ctl, tvo_dirt
         if (vx * vx + vy * vy > TVO_R(4.0) * ctl->cfg.min_speed_mps * ctl->cfg.min_speed_mps) {
             tvo_real_t direction = TVO_ATAN2(vy, vx);
             if (ctl->speed_state_mps[r] < TVO_R(0.0)) {
-                direction += UNICYCLE_PI; /* reversing: the robot faces against its velocity */
+                direction += TVO_PI; /* reversing: the robot faces against its velocity */
             }
             heading += (correction < TVO_R(1.0) ? correction : TVO_R(1.0)) * tvo_wrap_angle(direction - heading);
         }

@@ -7,8 +7,6 @@
 #include "target_kernel.h"
 #include "tvo/trig.h"
 
-#define TARGET_INV_TWO_PI TVO_R(0.159154943091895335768883763372514362)
-
 static int all_finite(const tvo_real_t *v, size_t n)
 {
     for (size_t i = 0; i < n; ++i) {
@@ -54,7 +52,7 @@ uint64_t tvo_target_turns_q64(double omega_radps)
 /* The fractional turns of an angle in Q0.64, at tvo_real_t's precision. */
 static uint64_t turns_q64_of(tvo_real_t angle_rad)
 {
-    const tvo_real_t turns = angle_rad * TARGET_INV_TWO_PI;
+    const tvo_real_t turns = angle_rad * TVO_INV_TWO_PI;
     const tvo_real_t frac = turns - TVO_FLOOR(turns);
 #if TVO_USE_DOUBLE
     const double scaled = ldexp(frac, 64);

@@ -5,7 +5,6 @@
 
 #include <string.h>
 
-#define TRIG_TWO_OVER_PI TVO_R(0.636619772367581343076)
 #define TRIG_PI_OVER_TWO TVO_R(1.57079632679489661923)
 /* pi/2 = P1 + P2 + P3, P1 and P2 with few enough bits that q * P1, q * P2 are exact for q < 2^13. */
 #define TRIG_PIO2_1 TVO_R(1.5703125)
@@ -134,7 +133,7 @@ TVO_SHAPE_BODY void sincos_fast_range(float angle_rad, float *sin_out, float *co
         return;
     }
     /* Nearest quarter turn by conversion to integer (one instruction; floorf is a library call). */
-    const float scaled = angle_rad * TRIG_TWO_OVER_PI;
+    const float scaled = angle_rad * TVO_TWO_OVER_PI;
     const int32_t quarter = (int32_t)(scaled + (scaled >= 0.0f ? 0.5f : -0.5f));
     const float q = (float)quarter;
     const float x = ((angle_rad - q * TRIG_PIO2_1) - q * TRIG_PIO2_2) - q * TRIG_PIO2_3;

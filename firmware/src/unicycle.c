@@ -3,7 +3,6 @@
 
 #include "unicycle_kernel.h"
 
-#define UNICYCLE_INV_TWO_PI TVO_R(0.15915494309189533577)
 /* 2 pi = HI + LO with HI = 6.28125 (8 significant bits: n * HI is exact for |n| < 2^16). */
 #define UNICYCLE_TWO_PI_HI TVO_R(6.28125)
 #define UNICYCLE_TWO_PI_LO TVO_R(0.0019353071795864769253)
@@ -18,10 +17,10 @@ tvo_real_t tvo_wrap_angle(tvo_real_t angle_rad)
     }
     /* Subtract the nearest multiple of 2 pi in constant time, 2 pi split in two parts (Cody-Waite)
      * so that n * 2pi_hi is exact and the reduction keeps the angle's own precision. */
-    const tvo_real_t turns = TVO_FLOOR(angle_rad * UNICYCLE_INV_TWO_PI + TVO_R(0.5));
+    const tvo_real_t turns = TVO_FLOOR(angle_rad * TVO_INV_TWO_PI + TVO_R(0.5));
     tvo_real_t wrapped = (angle_rad - turns * UNICYCLE_TWO_PI_HI) - turns * UNICYCLE_TWO_PI_LO;
-    if (wrapped <= -UNICYCLE_PI) {
-        wrapped += TVO_R(2.0) * UNICYCLE_PI; /* rounding at the boundary: keep (-pi, pi] */
+    if (wrapped <= -TVO_PI) {
+        wrapped += TVO_R(2.0) * TVO_PI; /* rounding at the boundary: keep (-pi, pi] */
     }
     return wrapped;
 }

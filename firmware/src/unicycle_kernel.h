@@ -9,12 +9,10 @@
 #include "tvo/trig.h"
 #include "tvo/unicycle.h"
 
-#define UNICYCLE_PI TVO_R(3.14159265358979323846)
-
 /* Whether an angle is in tvo_wrap_angle's range (-pi, pi] already (false for NaN and infinities). */
 static inline int unicycle_angle_in_range(tvo_real_t angle_rad)
 {
-    return angle_rad <= UNICYCLE_PI && angle_rad > -UNICYCLE_PI;
+    return angle_rad <= TVO_PI && angle_rad > -TVO_PI;
 }
 
 /* tvo_wrap_angle for an angle that is usually in range already (a heading moved by one period). */

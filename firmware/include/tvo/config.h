@@ -48,6 +48,11 @@ typedef float tvo_real_t;
 #define TVO_EPSILON 1.1920929e-07f
 #endif
 
+/* pi and the two constants derived from it that the core uses, in the scalar type, written once. */
+#define TVO_PI TVO_R(3.14159265358979323846)
+#define TVO_INV_TWO_PI TVO_R(0.159154943091895335768883763372514362)
+#define TVO_TWO_OVER_PI TVO_R(0.636619772367581343076)
+
 /** Highest relative degree k the law supports (jets carry k+1 Taylor coefficients). */
 #ifndef TVO_MAX_RELATIVE_DEGREE
 #define TVO_MAX_RELATIVE_DEGREE 3
