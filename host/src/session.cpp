@@ -1,7 +1,6 @@
 // Session START/STOP with the firmware node; see session.hpp.
 #include "session.hpp"
 
-#include <algorithm>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
