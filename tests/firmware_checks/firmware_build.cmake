@@ -63,14 +63,19 @@ if(NOT EXISTS "${core_lib}")
 endif()
 message(STATUS "built ${core_lib} with ${SUB_CMAKE_C_COMPILER}")
 
-# 2. no allocator in the core library
-if(CHECK_ALLOCATOR)
-  tvo_find_allocator_symbols(found "${SUB_CMAKE_NM}" "${core_lib}")
+# Fails if the library or program links an allocator.
+function(tvo_require_no_allocator file)
+  tvo_find_allocator_symbols(found "${SUB_CMAKE_NM}" "${file}")
   if(found)
     string(REPLACE ";" ", " found "${found}")
-    message(FATAL_ERROR "allocator symbols in ${core_lib}: ${found}")
+    message(FATAL_ERROR "allocator symbols in ${file}: ${found}")
   endif()
-  message(STATUS "no allocator symbols in ${core_lib}")
+  message(STATUS "no allocator symbols in ${file}")
+endfunction()
+
+# 2. no allocator in the core library
+if(CHECK_ALLOCATOR)
+  tvo_require_no_allocator("${core_lib}")
 endif()
 
 # 3. the probe: a --gc-sections link of the whole core, then the same check on the ELF, plus the
@@ -82,12 +87,7 @@ if(PROBE_DIR)
   tvo_run("build probe" "${CMAKE_COMMAND}" --build "${probe_bin}" --parallel ${jobs})
 
   foreach(probe alloc_probe tracking_probe)
-    tvo_find_allocator_symbols(found "${SUB_CMAKE_NM}" "${probe_bin}/${probe}.elf")
-    if(found)
-      string(REPLACE ";" ", " found "${found}")
-      message(FATAL_ERROR "allocator symbols in the linked probe ${probe}.elf: ${found}")
-    endif()
-    message(STATUS "no allocator symbols in ${probe_bin}/${probe}.elf")
+    tvo_require_no_allocator("${probe_bin}/${probe}.elf")
   endforeach()
 
   tvo_find_allocator_symbols(found "${SUB_CMAKE_NM}" "${probe_bin}/alloc_canary.elf")

@@ -148,14 +148,20 @@ static tvo_time_jet_t random_time(void)
     return test_time_jet(test_r((double)ticks / TICK_HZ), TVO_R(1.0), TICK_HZ, ticks);
 }
 
+/* A unit circle's tracking term for robot 0. */
+static void circle_term(tvo_target_t *target, tvo_tracking_term_t *term)
+{
+    const tvo_real_t w[2] = {TVO_R(1.0), TVO_R(2.0)};
+    fx_circle_target(target, 0.0, 0.0, 1.0, 0.5);
+    ASSERT_STATUS(TVO_OK, tvo_tracking_init(term, target, w, 0u));
+}
+
 static void test_tracking_add_checks_its_inputs_and_writes_nothing_when_it_refuses(void)
 {
     tvo_objective_t objective;
     tvo_target_t target;
     tvo_tracking_term_t term;
-    const tvo_real_t w[2] = {TVO_R(1.0), TVO_R(2.0)};
-    fx_circle_target(&target, 0.0, 0.0, 1.0, 0.5);
-    ASSERT_STATUS(TVO_OK, tvo_tracking_init(&term, &target, w, 0u));
+    circle_term(&target, &term);
 
     memset(&objective, 0, sizeof(objective));
     ASSERT_STATUS(TVO_ERR_NOT_INITIALIZED, tvo_tracking_add(&objective, &term)); /* objective not initialised */
@@ -191,9 +197,7 @@ static void test_the_general_add_functions_link_the_general_path(void)
     tvo_objective_t objective;
     tvo_target_t target;
     tvo_tracking_term_t term;
-    const tvo_real_t w[2] = {TVO_R(1.0), TVO_R(2.0)};
-    fx_circle_target(&target, 0.0, 0.0, 1.0, 0.5);
-    ASSERT_STATUS(TVO_OK, tvo_tracking_init(&term, &target, w, 0u));
+    circle_term(&target, &term);
     ASSERT_STATUS(TVO_OK, tvo_objective_init(&objective, 2u));
     ASSERT_STATUS(TVO_OK, tvo_tracking_add(&objective, &term));
     TEST_ASSERT_NULL(objective.general_path);
