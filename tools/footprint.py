@@ -180,6 +180,10 @@ def worst_stack(root, frames, edges, binary):
 
     def reachable(source):
         spec = INDIRECT_TARGETS[source]
+        missing = [name for name in spec["names"] if name not in frames]
+        if missing:  # not linked may be; not compiled is a renamed target this table missed
+            sys.exit(f"footprint: {', '.join(missing)} (an indirect call in {source} reaches it) is not in the "
+                     "core's call graph")
         # The objective's own dispatchers share the suffixes but are the callers, not the callbacks.
         return [f for f in frames if f.split(":")[-1] in bin_frames and not f.startswith("tvo_objective_")
                 and ((bool(spec["suffixes"]) and f.endswith(spec["suffixes"])) or f in spec["names"])]

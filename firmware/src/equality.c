@@ -15,6 +15,7 @@ tvo_status_t tvo_offset_equality_add(tvo_offset_equality_term_t *term, tvo_objec
         return TVO_ERR_PARAM;
     }
     uint8_t first = 0;
+    const tvo_general_path_fn general_path_before = objective->general_path;
     tvo_status_t st = tvo_objective_reserve_multipliers(objective, 2u, &first);
     if (st != TVO_OK) {
         return st;
@@ -29,6 +30,7 @@ tvo_status_t tvo_offset_equality_add(tvo_offset_equality_term_t *term, tvo_objec
         /* Give the multipliers back, so a failed add leaves the objective as it was. */
         objective->dual_dim = (uint8_t)(objective->dual_dim - 2u);
         objective->dim = (uint8_t)(objective->dim - 2u);
+        objective->general_path = general_path_before;
     }
     return st;
 }

@@ -315,15 +315,18 @@ TRACKING_PATH_BODY tvo_status_t evaluate_tracking_shape(tvo_law_workspace_t *wor
     if (!isfinite(combine_rhs(law, g_jet, x, k, m))) {
         return tracking_path_refusal(y, y_k, work, TVO_ERR_NUMERIC, k, m);
     }
-    /* tvo_saddle_solve's diagonal solve: each W_ii > 0 and finite, then x = rhs / W. */
+    /* tvo_saddle_solve's diagonal solve: each W_ii finite (else, as there, TVO_ERR_NOT_FINITE) and
+     * > 0 (else the general path's solve regularises: refused here), then x = rhs / W. */
     tvo_real_t probe = TVO_R(0.0);
+    int positive = 1;
     TVO_UNROLL_SMALL
     for (unsigned i = 0; i < m; ++i) {
-        if (!(diagonal[i * stride] > TVO_R(0.0))) {
-            zero_output(y_k, m);
-            return TVO_ERR_NOT_POSITIVE_DEFINITE;
-        }
         probe += diagonal[i * stride] * TVO_R(0.0);
+        positive &= diagonal[i * stride] > TVO_R(0.0);
+    }
+    if (!isfinite(probe) || !positive) {
+        return tracking_path_refusal(y, y_k, work, isfinite(probe) ? TVO_ERR_NOT_POSITIVE_DEFINITE : TVO_ERR_NOT_FINITE,
+                                     k, m);
     }
     TVO_UNROLL_SMALL
     for (unsigned i = 0; i < m; ++i) {

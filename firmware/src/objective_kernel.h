@@ -26,11 +26,10 @@ tvo_status_t objective_sum_terms(const tvo_objective_t *objective, const tvo_jet
  * functions refuse a NULL gradient_jet, so no other term looks like it). Its callbacks,
  * tvo_tracking_gradient_jet and _hessian, are named only where the general path calls them
  * (objective_sum_terms): the law's tracking path needs neither, and a firmware without the general
- * path links neither. */
+ * path links neither. A slot whose term was set to NULL by hand stays one: its callbacks refuse it. */
 static inline int objective_slot_is_tracking(const tvo_term_t *slot)
 {
-    return slot->gradient_jet == NULL && slot->gradient_hessian == NULL && slot->constraint_max == NULL &&
-           slot->term != NULL;
+    return slot->gradient_jet == NULL && slot->gradient_hessian == NULL && slot->constraint_max == NULL;
 }
 
 /* Appends the slot as given, without linking the law's general path (tvo_tracking_add's way; the

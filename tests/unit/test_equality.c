@@ -124,6 +124,14 @@ static void test_add_rejects_same_robot_range_and_capacity(void)
     ASSERT_STATUS(TVO_ERR_CAPACITY, tvo_offset_equality_add(&eq[0], &obj, &d, 0, 1));
     TEST_ASSERT_EQUAL_UINT8(4, obj.dim);
     TEST_ASSERT_EQUAL_UINT8(0, obj.dual_dim);
+    /* The same with tracking terms alone (tvo_tracking_add): nor does the general path stay linked. */
+    ASSERT_STATUS(TVO_OK, tvo_objective_init(&obj, 4));
+    for (int i = 0; i < TVO_MAX_TERMS; ++i) {
+        ASSERT_STATUS(TVO_OK, tvo_tracking_add(&obj, &track));
+    }
+    ASSERT_STATUS(TVO_ERR_CAPACITY, tvo_offset_equality_add(&eq[0], &obj, &d, 0, 1));
+    TEST_ASSERT_EQUAL_UINT8(0, obj.dual_dim);
+    TEST_ASSERT_NULL(obj.general_path);
 }
 
 static void test_gradient_jet_is_the_lagrangian_gradient(void)

@@ -299,6 +299,42 @@ static void test_tracking_terms_alone_refuse_what_the_general_path_refuses_with_
     ASSERT_STATUS(TVO_ERR_NUMERIC, b.status);
     assert_same_outcome(&a, &b, 2u);
 
+    /* A slot whose term was set to NULL by hand: refused by the term's checks, not called through. */
+    random_state(&y, 2u);
+    pair.term[0].weight[0] = TVO_R(1.0);
+    pair.tracking_only.terms[0].term = NULL;
+    pair.general.terms[0].term = NULL;
+    a = evaluate(&pair.tracking_only, &y, &good);
+    b = evaluate(&pair.general, &y, &good);
+    ASSERT_STATUS(TVO_ERR_NULL, b.status);
+    assert_same_outcome(&a, &b, 2u);
+    pair.tracking_only.terms[0].term = &pair.term[0];
+    pair.general.terms[0].term = &pair.term[0];
+
+    /* A curvature that overflows with a finite gradient: two terms near the type's largest weight on
+     * the same output, the state exactly on a still target (every error 0). */
+    tvo_objective_t heavy_alone;
+    tvo_objective_t heavy_general;
+    tvo_tracking_term_t heavy;
+    const tvo_real_t huge = (tvo_real_t)(sizeof(tvo_real_t) == sizeof(float) ? 2.5e38 : 1.3e308);
+    const tvo_real_t huge_w[2] = {huge, huge};
+    fx_line_target(&pair.target[0], 0.5, -0.25, 0.0, 0.0);
+    ASSERT_STATUS(TVO_OK, tvo_tracking_init(&heavy, &pair.target[0], huge_w, 0u));
+    ASSERT_STATUS(TVO_OK, tvo_objective_init(&heavy_alone, 2u));
+    ASSERT_STATUS(TVO_OK, tvo_objective_init(&heavy_general, 2u));
+    const tvo_term_t heavy_spec = {tvo_tracking_gradient_jet, tvo_tracking_gradient_hessian, NULL, &heavy};
+    for (unsigned n = 0; n < 2u; ++n) {
+        ASSERT_STATUS(TVO_OK, tvo_tracking_add(&heavy_alone, &heavy));
+        ASSERT_STATUS(TVO_OK, tvo_objective_add(&heavy_general, &heavy_spec));
+    }
+    memset(&y, 0, sizeof(y));
+    y.d[0][0] = TVO_R(0.5);
+    y.d[0][1] = TVO_R(-0.25);
+    a = evaluate(&heavy_alone, &y, &good);
+    b = evaluate(&heavy_general, &y, &good);
+    ASSERT_STATUS(TVO_ERR_NOT_FINITE, b.status);
+    assert_same_outcome(&a, &b, 2u);
+
     /* A streamed target without a sample yet. */
     make_pair(1u, 3u, k);
     ASSERT_STATUS(TVO_OK, tvo_target_init_streamed(&pair.target[0]));
@@ -357,6 +393,13 @@ static void test_an_output_without_a_term_is_refused_without_the_general_path(vo
     }
     ASSERT_STATUS(TVO_OK, b.status);
     TEST_ASSERT_TRUE(b.regularization > TVO_R(0.0));
+    /* A derivative of the uncovered output that is not finite: refused for that first, as the
+     * general path does. */
+    y.d[1][3] = TEST_NAN;
+    const outcome_t c = evaluate(&tracking_only, &y, &t);
+    const outcome_t d = evaluate(&general, &y, &t);
+    ASSERT_STATUS(TVO_ERR_NOT_FINITE, d.status);
+    assert_same_outcome(&c, &d, 4u);
 }
 #endif
 

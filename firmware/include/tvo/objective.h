@@ -72,15 +72,16 @@ typedef tvo_status_t (*tvo_gradient_hessian_fn)(const void *term, const tvo_jet_
 
 /**
  * The law's general path (every kind of term, the Hessian from jets and closed forms, the KKT solve),
- * reached through the objective: the functions that add a term the tracking path cannot evaluate
- * (tvo_objective_add*, tvo_objective_reserve_multipliers) set it, so a firmware whose objective holds
- * tracking terms only (tvo_tracking_add) does not link it. The argument is the law's workspace
+ * reached through the objective: every public add function (tvo_objective_add*, for any term, a
+ * tracking term's closed form included) and tvo_objective_reserve_multipliers set it; only
+ * tvo_tracking_add does not, so a firmware whose objective holds tracking terms only does not link it. The argument is the law's workspace
  * (tvo_law_workspace_t), which holds the call's arguments.
  */
 typedef tvo_status_t (*tvo_general_path_fn)(void *law_workspace);
 
 typedef struct {
-    tvo_gradient_jet_fn gradient_jet;         /* required: the general mechanism and the reference */
+    tvo_gradient_jet_fn gradient_jet;         /* required: the general mechanism and the reference (NULL
+                                                 only in a tracking slot, see terms[] below) */
     tvo_gradient_hessian_fn gradient_hessian; /* NULL: the Hessian comes from jets */
     tvo_constraint_max_fn constraint_max;     /* NULL for terms without inequality constraints */
     const void *term;
@@ -93,7 +94,9 @@ typedef struct {
     uint8_t primal_dim;  /* flat-output dimension m (2 per robot) */
     uint8_t dual_dim;    /* equality multipliers q, reserved by tvo_objective_reserve_multipliers */
     uint8_t dim;         /* m + q: the size of z, of the gradient and of the law's solve */
-    uint8_t jets_only;   /* 1: closed forms ignored, every term through jets (the reference path) */
+    uint8_t jets_only;   /* 1: closed forms ignored, every term through jets (the reference path); needs
+                            the general path, which tvo_tracking_add alone does not link (the step then
+                            refuses with TVO_ERR_NOT_INITIALIZED) */
     uint8_t tracking_only; /* kept by the add functions: every term so far a tracking term's closed form
                               (the law re-checks the terms before it relies on it) */
     tvo_general_path_fn general_path; /* NULL: tracking terms only, and the law has only its tracking path */

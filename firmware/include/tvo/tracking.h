@@ -26,8 +26,8 @@ tvo_status_t tvo_tracking_init(tvo_tracking_term_t *term, const tvo_target_t *ta
  * Appends the term to the objective with its closed form (tvo_tracking_gradient_hessian), checking
  * that it was initialised (TVO_ERR_NOT_INITIALIZED) and that its output lies within the objective's
  * (TVO_ERR_DIMENSION). An objective of such terms only is evaluated by the law's tracking path: a
- * firmware that adds no other term (no tvo_objective_add*, no multipliers) does not link the law's
- * general path. Every output needs a term then: an output without one has no curvature, and the
+ * firmware that adds no other term (no tvo_objective_add*, no multipliers) and does not call
+ * tvo_law_evaluate (the tools' entry, which always has it) does not link the law's general path. Every output needs a term then: an output without one has no curvature, and the
  * step refuses it (TVO_ERR_NOT_POSITIVE_DEFINITE) where the general path would regularise it.
  */
 tvo_status_t tvo_tracking_add(tvo_objective_t *objective, const tvo_tracking_term_t *term);
