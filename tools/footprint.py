@@ -12,11 +12,14 @@
 
 Flash = .text + .rodata + .data of the core, RAM = .data + .bss of the core (what the linker kept).
 Stack: the deepest path of static frame sizes through the call graph. The core makes indirect
-calls in two files (INDIRECT_TARGETS; one elsewhere is an error): objective.c calls the terms'
+calls in three files (INDIRECT_TARGETS; one elsewhere is an error): objective.c calls the terms'
 callbacks (tvo_gradient_jet_fn, tvo_constraint_max_fn), charged the deepest of the functions that
 implement them (names ending in _gradient_jet, _gradient_hessian or _constraint_max) that the link
 kept; law.c calls the objective's general path (tvo_general_path_fn), charged law_general_path if
-the link kept it and nothing if not (then no add function stored it: the pointer is NULL). Calls into libc/libm/libgcc (no .ci of
+the link kept it and nothing if not (then no add function stored it: the pointer is NULL);
+controller.c calls the position-only velocity source (tvo_position_velocity_fn), charged
+controller_position_velocity if the link kept it and nothing if not (then only
+tvo_controller_init_pose_velocity initialised controllers, and it refuses that source). Calls into libc/libm/libgcc (no .ci of
 ours) are measured in the linked ELF (--elf, disassembled by --objdump): each library function's
 frame is the sum of its stack-pointer decrements (pushes, stack adjustments), its callees are its
 direct calls and tail branches, so a library path is charged in full (newlib's sinf of a huge
@@ -40,6 +43,7 @@ CALLBACK_SUFFIXES = ("_gradient_jet", "_gradient_hessian", "_constraint_max")
 INDIRECT_TARGETS = {
     "objective.c": {"suffixes": CALLBACK_SUFFIXES, "names": (), "may_be_absent": False},
     "law.c": {"suffixes": (), "names": ("law_general_path",), "may_be_absent": True},
+    "controller.c": {"suffixes": (), "names": ("controller_position_velocity",), "may_be_absent": True},
 }
 INDIRECT = "__indirect_call"
 

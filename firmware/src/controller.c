@@ -10,13 +10,11 @@
 #include <string.h>
 
 #include "law_step.h"
+#include "position_velocity.h"
 #include "sample_clock_kernel.h"
 #include "shape.h"
 #include "unicycle_kernel.h"
 #include "tvo/trig.h"
-
-/* Position-only heading: the velocity direction corrects dead reckoning with this many T_f. */
-#define TVO_HEADING_CORRECTION_TF_MULTIPLE TVO_R(10.0)
 
 tvo_status_t tvo_controller_config_default(tvo_controller_config_t *cfg)
 {
@@ -47,7 +45,9 @@ static int positive_finite(tvo_real_t v)
     return isfinite(v) && v > TVO_R(0.0);
 }
 
-static tvo_param_t first_bad_param(const tvo_controller_config_t *cfg, const tvo_objective_t *objective)
+/* position_velocity: the position-only source's estimate, NULL if the caller does not offer it. */
+static tvo_param_t first_bad_param(const tvo_controller_config_t *cfg, const tvo_objective_t *objective,
+                                   tvo_position_velocity_fn position_velocity)
 {
     const tvo_param_t timing = tvo_sample_clock_check_timing(cfg->tick_hz, cfg->period_ticks, cfg->delay_ticks);
     if (timing != TVO_PARAM_NONE) {
@@ -59,7 +59,8 @@ static tvo_param_t first_bad_param(const tvo_controller_config_t *cfg, const tvo
     if (cfg->delay_compensation > 1u || cfg->zoh_aware > 1u) {
         return TVO_PARAM_DELAY; /* switches are 0 or 1 */
     }
-    if (cfg->velocity_source != TVO_VELOCITY_FROM_POSE && cfg->velocity_source != TVO_VELOCITY_FROM_POSITION) {
+    if (cfg->velocity_source != TVO_VELOCITY_FROM_POSE &&
+        (cfg->velocity_source != TVO_VELOCITY_FROM_POSITION || position_velocity == NULL)) {
         return TVO_PARAM_VELOCITY_SOURCE;
     }
     if (!positive_finite(cfg->filter_tf_s)) {
@@ -98,9 +99,11 @@ static tvo_param_t first_bad_param(const tvo_controller_config_t *cfg, const tvo
     return TVO_PARAM_NONE;
 }
 
-tvo_status_t tvo_controller_init(tvo_controller_t *ctl, const tvo_controller_config_t *cfg,
-                                 const tvo_objective_t *objective, uint32_t epoch_tick,
-                                 tvo_param_t *bad_param)
+/* Validates, binds and starts the controller, all but marking it initialised and the position-only
+ * source's filter (position_velocity: that source's estimate, NULL when the caller does not link it). */
+static tvo_status_t controller_setup(tvo_controller_t *ctl, const tvo_controller_config_t *cfg,
+                                     const tvo_objective_t *objective, uint32_t epoch_tick,
+                                     tvo_param_t *bad_param, tvo_position_velocity_fn position_velocity)
 {
     if (bad_param != NULL) {
         *bad_param = TVO_PARAM_NONE;
@@ -109,7 +112,7 @@ tvo_status_t tvo_controller_init(tvo_controller_t *ctl, const tvo_controller_con
         return TVO_ERR_NULL;
     }
     memset(ctl, 0, sizeof(*ctl));
-    const tvo_param_t bad = first_bad_param(cfg, objective);
+    const tvo_param_t bad = first_bad_param(cfg, objective, position_velocity);
     if (bad != TVO_PARAM_NONE) {
         if (bad_param != NULL) {
             *bad_param = bad;
@@ -118,12 +121,10 @@ tvo_status_t tvo_controller_init(tvo_controller_t *ctl, const tvo_controller_con
     }
     ctl->cfg = *cfg;
     ctl->objective = objective;
+    ctl->position_velocity = position_velocity;
     ctl->period_s = tvo_ticks_to_seconds32(cfg->period_ticks, cfg->tick_hz);
     const tvo_real_t gains[2] = {cfg->gain_kp, cfg->gain_kd};
-    tvo_status_t st = tvo_law_init(&ctl->law, 2u, objective->dim, gains);
-    if (st == TVO_OK) {
-        st = tvo_dirty_derivative_init(&ctl->velocity_filter, objective->primal_dim, cfg->filter_tf_s, ctl->period_s);
-    }
+    const tvo_status_t st = tvo_law_init(&ctl->law, 2u, objective->dim, gains);
     if (st != TVO_OK) {
         if (bad_param != NULL) {
             *bad_param = TVO_PARAM_OBJECTIVE;
@@ -136,8 +137,33 @@ tvo_status_t tvo_controller_init(tvo_controller_t *ctl, const tvo_controller_con
         ctl->speed_state_mps[r] = cfg->initial_speed_mps[r];
         ctl->held.speed_mps[r] = cfg->initial_speed_mps[r];
     }
-    ctl->initialized = 1;
     return TVO_OK;
+}
+
+tvo_status_t tvo_controller_init(tvo_controller_t *ctl, const tvo_controller_config_t *cfg,
+                                 const tvo_objective_t *objective, uint32_t epoch_tick,
+                                 tvo_param_t *bad_param)
+{
+    tvo_status_t st = controller_setup(ctl, cfg, objective, epoch_tick, bad_param, controller_position_velocity);
+    if (st == TVO_OK) {
+        st = tvo_dirty_derivative_init(&ctl->velocity_filter, objective->primal_dim, cfg->filter_tf_s, ctl->period_s);
+        if (st != TVO_OK && bad_param != NULL) {
+            *bad_param = TVO_PARAM_OBJECTIVE;
+        }
+        ctl->initialized = st == TVO_OK;
+    }
+    return st;
+}
+
+tvo_status_t tvo_controller_init_pose_velocity(tvo_controller_t *ctl, const tvo_controller_config_t *cfg,
+                                               const tvo_objective_t *objective, uint32_t epoch_tick,
+                                               tvo_param_t *bad_param)
+{
+    const tvo_status_t st = controller_setup(ctl, cfg, objective, epoch_tick, bad_param, NULL);
+    if (st == TVO_OK) {
+        ctl->initialized = 1;
+    }
+    return st;
 }
 
 static inline tvo_status_t check_measurement(const tvo_controller_t *ctl, const tvo_measurement_t *meas,
@@ -210,63 +236,6 @@ static tvo_status_t hold_or_stop(tvo_controller_t *ctl, const tvo_period_t *peri
     return reason;
 }
 
-/* Position-only mode: filtered y' and the heading estimate at the sample. The filter is the step's
- * working copy (committed only when the step succeeds), so a refused step leaves no trace. */
-static tvo_status_t position_only_estimate(const tvo_controller_t *ctl, tvo_dirty_derivative_t *filter,
-                                           const tvo_measurement_t *meas, tvo_real_t *rate_at_sample,
-                                           tvo_real_t *heading_at_sample)
-{
-    const uint8_t n = ctl->cfg.robot_count;
-    tvo_real_t position[TVO_MAX_OUTPUT_DIM] = {TVO_R(0.0)};
-    for (uint8_t r = 0; r < n; ++r) {
-        position[2u * r] = meas->position_m[r][0];
-        position[2u * r + 1u] = meas->position_m[r][1];
-    }
-    tvo_status_t st;
-    if (!filter->primed) {
-        /* Start as if moving at the speed state along the (first measured, else estimated) heading. */
-        tvo_real_t rate0[TVO_MAX_OUTPUT_DIM] = {TVO_R(0.0)};
-        for (uint8_t r = 0; r < n; ++r) {
-            heading_at_sample[r] = meas->heading_valid ? meas->heading_rad[r] : ctl->heading_estimate_rad[r];
-            tvo_real_t sin_heading;
-            tvo_real_t cos_heading;
-            tvo_sincos(heading_at_sample[r], &sin_heading, &cos_heading);
-            rate0[2u * r] = ctl->speed_state_mps[r] * cos_heading;
-            rate0[2u * r + 1u] = ctl->speed_state_mps[r] * sin_heading;
-        }
-        st = tvo_dirty_derivative_reset(filter, position, rate0);
-        for (uint8_t i = 0; i < 2u * n; ++i) {
-            rate_at_sample[i] = rate0[i];
-        }
-        return st;
-    }
-    const tvo_real_t dt_s = ticks_to_seconds32(meas->stamp_tick - ctl->clock.last_stamp_tick, ctl->cfg.tick_hz);
-    st = tvo_dirty_derivative_step(filter, position, dt_s, rate_at_sample);
-    if (st != TVO_OK) {
-        return st;
-    }
-    /* Signed time from the last application instant (where the estimate lives) to this sample. */
-    const int32_t since_apply_ticks = (int32_t)(meas->stamp_tick - ctl->clock.last_apply_tick);
-    const tvo_real_t since_apply_s = (tvo_real_t)since_apply_ticks / (tvo_real_t)ctl->cfg.tick_hz;
-    const tvo_real_t correction = ctl->period_s / (TVO_HEADING_CORRECTION_TF_MULTIPLE * ctl->cfg.filter_tf_s);
-    for (uint8_t r = 0; r < n; ++r) {
-        /* Dead-reckon with the held turn rate, then pull toward the velocity direction when the
-         * robot moves fast enough for that direction to mean something. */
-        tvo_real_t heading = ctl->heading_estimate_rad[r] + ctl->held.turn_rate_radps[r] * since_apply_s;
-        const tvo_real_t vx = rate_at_sample[2u * r];
-        const tvo_real_t vy = rate_at_sample[2u * r + 1u];
-        if (vx * vx + vy * vy > TVO_R(4.0) * ctl->cfg.min_speed_mps * ctl->cfg.min_speed_mps) {
-            tvo_real_t direction = TVO_ATAN2(vy, vx);
-            if (ctl->speed_state_mps[r] < TVO_R(0.0)) {
-                direction += TVO_PI; /* reversing: the robot faces against its velocity */
-            }
-            heading += (correction < TVO_R(1.0) ? correction : TVO_R(1.0)) * tvo_wrap_angle(direction - heading);
-        }
-        heading_at_sample[r] = tvo_wrap_angle(heading);
-    }
-    return TVO_OK;
-}
-
 /* The step before the law, for a period the clock has begun: the measurement checked, the state and
  * time the law is evaluated at (work->output, work->time), *flags and *speed_contradicted. */
 TVO_OFF_CHAIN_BODY tvo_status_t step_before_law(tvo_controller_t *ctl, const tvo_measurement_t *meas,
@@ -277,30 +246,21 @@ TVO_OFF_CHAIN_BODY tvo_status_t step_before_law(tvo_controller_t *ctl, const tvo
     tvo_controller_work_t *work = &ctl->work;
     tvo_period_t *period = &work->period;
     tvo_status_t st = check_measurement(ctl, meas, apply_tick);
-    tvo_real_t *rate_filtered = work->rate_filtered;
-    tvo_real_t *heading_at_sample = work->heading_at_sample;
-    const int position_only = cfg->velocity_source == TVO_VELOCITY_FROM_POSITION;
-    tvo_dirty_derivative_t *filter = &work->velocity_filter; /* kept only on success */
-    if (st == TVO_OK) {
-        if (position_only) {
-            *filter = ctl->velocity_filter;
-            if (ctl->clock.stopped) {
-                filter->primed = 0; /* the gap makes old filter state meaningless */
-            }
-            st = position_only_estimate(ctl, filter, meas, rate_filtered, heading_at_sample);
-        } else {
-            for (uint8_t r = 0; r < n; ++r) {
-                heading_at_sample[r] = meas->heading_rad[r];
-            }
-        }
-    }
     if (st != TVO_OK) {
         return st;
     }
-
     /* Where the law is evaluated and how far the sampled state is carried there (the age to the
      * application instant with compensation, half a period on when ZOH-aware). */
     sample_clock_locate(&ctl->clock, period, meas->stamp_tick, cfg->delay_compensation, cfg->zoh_aware);
+    const int position_only = cfg->velocity_source == TVO_VELOCITY_FROM_POSITION;
+    if (position_only) {
+        st = ctl->position_velocity(ctl, meas); /* init set it for this source */
+        if (st != TVO_OK) {
+            return st;
+        }
+    }
+    const tvo_real_t *heading_at_sample = position_only ? work->heading_at_sample : meas->heading_rad;
+    const tvo_real_t *rate_carried = work->rate_filtered;
     const int zoh_aware = cfg->zoh_aware != 0u;
     const tvo_real_t carry_s = period->carry_s;
     uint32_t flags = (carry_s > TVO_R(0.0)) ? TVO_FLAG_PREDICTED : 0u;
@@ -342,12 +302,8 @@ TVO_OFF_CHAIN_BODY tvo_status_t step_before_law(tvo_controller_t *ctl, const tvo
         y->d[0][2u * r] = pose.position_m[0];
         y->d[0][2u * r + 1u] = pose.position_m[1];
         if (position_only) {
-            /* The held turn rate rotates the velocity over the age, like the heading. */
-            tvo_real_t s;
-            tvo_real_t c;
-            tvo_sincos(ctl->held.turn_rate_radps[r] * carry_s, &s, &c);
-            y->d[1][2u * r] = c * rate_filtered[2u * r] - s * rate_filtered[2u * r + 1u];
-            y->d[1][2u * r + 1u] = s * rate_filtered[2u * r] + c * rate_filtered[2u * r + 1u];
+            y->d[1][2u * r] = rate_carried[2u * r];
+            y->d[1][2u * r + 1u] = rate_carried[2u * r + 1u];
         } else {
             y->d[1][2u * r] = speed[r] * heading_cs[r][0];
             y->d[1][2u * r + 1u] = speed[r] * heading_cs[r][1];

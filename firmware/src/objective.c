@@ -26,7 +26,7 @@ tvo_status_t tvo_objective_init(tvo_objective_t *objective, uint8_t primal_dim)
     return TVO_OK;
 }
 
-tvo_status_t objective_append_term(tvo_objective_t *objective, const tvo_term_t *spec)
+static tvo_status_t append_slot(tvo_objective_t *objective, const tvo_term_t *spec)
 {
     if (objective->dim == 0u) {
         return TVO_ERR_NOT_INITIALIZED;
@@ -42,19 +42,22 @@ tvo_status_t objective_append_term(tvo_objective_t *objective, const tvo_term_t 
     return TVO_OK;
 }
 
+tvo_status_t objective_append_tracking(tvo_objective_t *objective, const void *tracking_term)
+{
+    const tvo_term_t slot = {NULL, NULL, NULL, tracking_term}; /* the tracking slot (objective_kernel.h) */
+    return append_slot(objective, &slot);
+}
+
 /* The public add functions take any term: their objective may need the law's general path. A tracking
  * term's closed form is kept as the tracking slot (objective_kernel.h), as tvo_tracking_add keeps it. */
 static tvo_status_t append_general_term(tvo_objective_t *objective, tvo_gradient_jet_fn gradient_jet,
                                         tvo_gradient_hessian_fn gradient_hessian,
                                         tvo_constraint_max_fn constraint_max, const void *term)
 {
-    tvo_term_t spec = {gradient_jet, gradient_hessian, constraint_max, term};
-    if (gradient_jet == tvo_tracking_gradient_jet && gradient_hessian == tvo_tracking_gradient_hessian &&
-        constraint_max == NULL) {
-        spec.gradient_jet = NULL;
-        spec.gradient_hessian = NULL;
-    }
-    const tvo_status_t st = objective_append_term(objective, &spec);
+    const tvo_term_t spec = {gradient_jet, gradient_hessian, constraint_max, term};
+    const int tracking = gradient_jet == tvo_tracking_gradient_jet &&
+                         gradient_hessian == tvo_tracking_gradient_hessian && constraint_max == NULL;
+    const tvo_status_t st = tracking ? objective_append_tracking(objective, term) : append_slot(objective, &spec);
     if (st == TVO_OK) {
         objective->general_path = law_general_path;
     }

@@ -32,8 +32,8 @@ static inline int objective_slot_is_tracking(const tvo_term_t *slot)
     return slot->gradient_jet == NULL && slot->gradient_hessian == NULL && slot->constraint_max == NULL;
 }
 
-/* Appends the slot as given, without linking the law's general path (tvo_tracking_add's way; the
- * public add functions call it and then set objective->general_path). */
-tvo_status_t objective_append_term(tvo_objective_t *objective, const tvo_term_t *spec);
+/* Appends a tracking term's slot, without linking the law's general path (tvo_tracking_add's way;
+ * the public add functions call it for a tracking term and then set objective->general_path). */
+tvo_status_t objective_append_tracking(tvo_objective_t *objective, const void *tracking_term);
 
 #endif /* TVO_OBJECTIVE_KERNEL_H */

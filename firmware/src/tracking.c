@@ -4,18 +4,27 @@
 #include "objective_kernel.h"
 #include "tracking_kernel.h"
 
+/* W finite and > 0 keeps f0 strongly convex, which the law's Newton step relies on. */
+static tvo_status_t check_weight(const tvo_real_t weight[2])
+{
+    if (!isfinite(weight[0]) || !isfinite(weight[1])) {
+        return TVO_ERR_NOT_FINITE;
+    }
+    if (!(weight[0] > TVO_R(0.0)) || !(weight[1] > TVO_R(0.0))) {
+        return TVO_ERR_PARAM;
+    }
+    return TVO_OK;
+}
+
 tvo_status_t tvo_tracking_init(tvo_tracking_term_t *term, const tvo_target_t *target,
                                const tvo_real_t weight[2], uint8_t offset)
 {
     if (term == NULL || target == NULL || weight == NULL) {
         return TVO_ERR_NULL;
     }
-    if (!isfinite(weight[0]) || !isfinite(weight[1])) {
-        return TVO_ERR_NOT_FINITE;
-    }
-    /* W > 0 keeps f0 strongly convex, which the law's Newton step relies on. */
-    if (!(weight[0] > TVO_R(0.0)) || !(weight[1] > TVO_R(0.0))) {
-        return TVO_ERR_PARAM;
+    const tvo_status_t st = check_weight(weight);
+    if (st != TVO_OK) {
+        return st;
     }
     if ((unsigned)offset + 2u > TVO_MAX_OUTPUT_DIM) /* a robot's output, never a multiplier */ {
         return TVO_ERR_DIMENSION;
@@ -32,8 +41,7 @@ tvo_status_t tvo_tracking_add(tvo_objective_t *objective, const tvo_tracking_ter
     if (objective == NULL || term == NULL) {
         return TVO_ERR_NULL;
     }
-    if (term->target == NULL || !(term->weight[0] > TVO_R(0.0)) || !(term->weight[1] > TVO_R(0.0)) ||
-        !isfinite(term->weight[0]) || !isfinite(term->weight[1])) {
+    if (term->target == NULL || check_weight(term->weight) != TVO_OK) {
         return TVO_ERR_NOT_INITIALIZED;
     }
     if (objective->dim == 0u) {
@@ -42,8 +50,7 @@ tvo_status_t tvo_tracking_add(tvo_objective_t *objective, const tvo_tracking_ter
     if ((unsigned)term->offset + 2u > objective->primal_dim) {
         return TVO_ERR_DIMENSION;
     }
-    const tvo_term_t slot = {NULL, NULL, NULL, term}; /* the tracking slot (objective_kernel.h) */
-    return objective_append_term(objective, &slot);
+    return objective_append_tracking(objective, term);
 }
 
 /* The checks tvo_target_jet and tvo_target_derivatives make, in their order: the target, the order,

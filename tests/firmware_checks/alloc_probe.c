@@ -80,7 +80,12 @@ int main(void)
         check(tvo_tracking_init(&terms[r], &targets[r], weight, (uint8_t)(2u * r)));
         check(tvo_objective_add_term(&objective, tvo_tracking_gradient_jet, &terms[r]));
     }
-    check(tvo_controller_init(&controller, &cfg, &objective, input_tick, &bad_param));
+    /* Either init, as a board would call one (the pose-only one links less, not more). */
+    if (input_tick & 2u) {
+        check(tvo_controller_init_pose_velocity(&controller, &cfg, &objective, input_tick, &bad_param));
+    } else {
+        check(tvo_controller_init(&controller, &cfg, &objective, input_tick, &bad_param));
+    }
 
     for (uint32_t n = 1u; n <= 4u; ++n) {
         uint32_t apply_tick = input_tick + n * cfg.period_ticks;

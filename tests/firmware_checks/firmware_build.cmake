@@ -9,7 +9,8 @@
 #         -P firmware_build.cmake
 # With a probe and FOOTPRINT_TOOL, writes <dir>/footprint.json: the core's flash and RAM in the
 # probe's --gc-sections link and the worst-case stack of one controller step; and
-# <dir>/footprint_tracking.json, the same for a one-robot tracking firmware (tracking_probe.c).
+# <dir>/footprint_tracking.json, the same for a one-robot tracking firmware (tracking_probe.c) with
+# the pose velocity source, and footprint_tracking_both_sources.json with either source.
 cmake_minimum_required(VERSION 3.16)
 include("${CMAKE_CURRENT_LIST_DIR}/check_no_allocator.cmake")
 
@@ -86,7 +87,7 @@ if(PROBE_DIR)
       "-DTVO_CORE_LIBRARY=${core_lib}" "-DTVO_FIRMWARE_INCLUDE_DIR=${FIRMWARE_DIR}/include")
   tvo_run("build probe" "${CMAKE_COMMAND}" --build "${probe_bin}" --parallel ${jobs})
 
-  foreach(probe alloc_probe tracking_probe)
+  foreach(probe alloc_probe tracking_probe tracking_probe_both_sources)
     tvo_require_no_allocator("${probe_bin}/${probe}.elf")
   endforeach()
 
@@ -108,9 +109,13 @@ if(PROBE_DIR AND FOOTPRINT_TOOL)
   tvo_run("footprint" "${FOOTPRINT_TOOL}" --core-dir "${BINARY_DIR}/CMakeFiles/tvo_core.dir"
       --map "${probe_bin}/alloc_probe.map" --elf "${probe_bin}/alloc_probe.elf" --objdump "${SUB_CMAKE_OBJDUMP}" --root tvo_controller_step --root tvo_chain_controller_step
       --json "${BINARY_DIR}/footprint.json")
-  # A one-robot tracking firmware: what a board links when it adds tracking terms only.
-  tvo_run("footprint of the tracking firmware" "${FOOTPRINT_TOOL}" --core-dir "${BINARY_DIR}/CMakeFiles/tvo_core.dir"
-      --map "${probe_bin}/tracking_probe.map" --elf "${probe_bin}/tracking_probe.elf" --objdump "${SUB_CMAKE_OBJDUMP}"
-      --root tvo_controller_step --json "${BINARY_DIR}/footprint_tracking.json")
+  # A one-robot tracking firmware: what a board links when it adds tracking terms only (with the
+  # pose velocity source, and with both sources).
+  foreach(probe tracking_probe tracking_probe_both_sources)
+    string(REPLACE "_probe" "" json_name "footprint_${probe}")
+    tvo_run("footprint of ${probe}" "${FOOTPRINT_TOOL}" --core-dir "${BINARY_DIR}/CMakeFiles/tvo_core.dir"
+        --map "${probe_bin}/${probe}.map" --elf "${probe_bin}/${probe}.elf" --objdump "${SUB_CMAKE_OBJDUMP}"
+        --root tvo_controller_step --json "${BINARY_DIR}/${json_name}.json")
+  endforeach()
 endif()
 message(STATUS "firmware build check passed")

@@ -1,11 +1,16 @@
 /*
  * Link probe for the footprint of a one-robot tracking firmware: what a board that tracks a target
- * links. The controller (either velocity source, chosen at run time), one tracking term added with
- * tvo_tracking_add (so the law's general path is not linked), every target kind (a target arrives
- * at run time) and the streamed target's update. No status strings: a board reports codes, and a
- * host prints them. Not meant to run; inputs are volatile so nothing is constant-folded away.
+ * links. The controller with the pose velocity source (tvo_controller_init_pose_velocity), or with
+ * TRACKING_PROBE_BOTH_SOURCES either source chosen at run time (tvo_controller_init); one tracking
+ * term added with tvo_tracking_add (so the law's general path is not linked); every target kind (a
+ * target arrives at run time) and the streamed target's update. No status strings: a board reports
+ * codes, and a host prints them. Not meant to run; inputs are volatile so nothing is constant-folded.
  */
 #include <stdint.h>
+
+#ifndef TRACKING_PROBE_BOTH_SOURCES
+#define TRACKING_PROBE_BOTH_SOURCES 0
+#endif
 
 #include "tvo/controller.h"
 #include "tvo/target.h"
@@ -57,12 +62,18 @@ int main(void)
 
     sink += (uint32_t)tvo_controller_config_default(&cfg);
     cfg.robot_count = 1u;
+#if TRACKING_PROBE_BOTH_SOURCES
     cfg.velocity_source = (input_tick & 1u) ? TVO_VELOCITY_FROM_POSITION : TVO_VELOCITY_FROM_POSE;
+#endif
     sink += (uint32_t)setup_target();
     sink += (uint32_t)tvo_objective_init(&objective, 2u);
     sink += (uint32_t)tvo_tracking_init(&term, &target, weight, 0u);
     sink += (uint32_t)tvo_tracking_add(&objective, &term);
+#if TRACKING_PROBE_BOTH_SOURCES
     sink += (uint32_t)tvo_controller_init(&controller, &cfg, &objective, input_tick, &bad_param);
+#else
+    sink += (uint32_t)tvo_controller_init_pose_velocity(&controller, &cfg, &objective, input_tick, &bad_param);
+#endif
     for (uint32_t n = 1u; n <= 4u; ++n) {
         const uint32_t apply_tick = input_tick + n * cfg.period_ticks;
         uint32_t sample_tick = 0u;

@@ -108,17 +108,23 @@ static void test_valid_config_reports_no_bad_param(void)
 
 /* Edits one field of a valid config, then expects TVO_ERR_PARAM naming `param` and an unusable
  * controller afterwards. */
-static void expect_rejected(fx_t *fx, tvo_param_t param)
+static void expect_not_initialized(fx_t *fx)
 {
-    const tvo_status_t st = fx_init_controller(fx, 0);
-    ASSERT_STATUS(TVO_ERR_PARAM, st);
-    ASSERT_PARAM(param, fx->bad_param);
     tvo_command_t cmd;
     memset(&cmd, 0x7F, sizeof(cmd));
     tvo_measurement_t m = measure_now(fx, 0);
     ASSERT_STATUS(TVO_ERR_NOT_INITIALIZED, tvo_controller_step(&fx->ctl, &m, FX_PERIOD, &cmd));
     ASSERT_NEAR(0.0, cmd.speed_mps[0], 0.0);
     ASSERT_NEAR(0.0, cmd.turn_rate_radps[0], 0.0);
+    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_SAFE_STOP);
+}
+
+static void expect_rejected(fx_t *fx, tvo_param_t param)
+{
+    const tvo_status_t st = fx_init_controller(fx, 0);
+    ASSERT_STATUS(TVO_ERR_PARAM, st);
+    ASSERT_PARAM(param, fx->bad_param);
+    expect_not_initialized(fx);
 }
 
 static void test_init_rejects_zero_tick_rate(void)
@@ -609,6 +615,105 @@ static void test_identical_inputs_give_bit_identical_commands(void)
         assert_commands_bit_identical(&ca, &cb);
         TEST_ASSERT_EQUAL_MEMORY(&fx_a.ctl.telemetry, &fx_b.ctl.telemetry, sizeof(fx_a.ctl.telemetry));
     }
+}
+
+/* ------------------------------------------------------------------------------------------------
+ * tvo_controller_init_pose_velocity: the pose source alone (the position source is not linked)
+ * --------------------------------------------------------------------------------------------- */
+
+static tvo_status_t init_pose_velocity(fx_t *fx)
+{
+    fx->bad_param = TVO_PARAM_EPOCH; /* anything but NONE: init must write it */
+    return tvo_controller_init_pose_velocity(&fx->ctl, &fx->cfg, &fx->objective, fx->epoch, &fx->bad_param);
+}
+
+static void expect_pose_init_refuses(fx_t *fx, tvo_param_t param)
+{
+    ASSERT_STATUS(TVO_ERR_PARAM, init_pose_velocity(fx));
+    ASSERT_PARAM(param, fx->bad_param);
+    expect_not_initialized(fx);
+}
+
+static void test_pose_velocity_init_refuses_the_position_source(void)
+{
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_a.cfg.velocity_source = TVO_VELOCITY_FROM_POSITION;
+    fx_start(&fx_a, 0u); /* the full init takes it */
+    ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_a, NULL));
+    expect_pose_init_refuses(&fx_a, TVO_PARAM_VELOCITY_SOURCE); /* and a refusal undoes the controller */
+    fx_a.cfg.velocity_source = (tvo_velocity_source_t)7;
+    expect_pose_init_refuses(&fx_a, TVO_PARAM_VELOCITY_SOURCE);
+}
+
+static void test_pose_velocity_init_validates_as_the_full_init(void)
+{
+    tvo_param_t bad = TVO_PARAM_EPOCH;
+    fx_static_point(&fx_a, 1.0, 1.0);
+    ASSERT_STATUS(TVO_OK, fx_init_controller(&fx_a, 0));
+    ASSERT_STATUS(TVO_ERR_NULL, tvo_controller_init_pose_velocity(NULL, &fx_a.cfg, &fx_a.objective, 0, &bad));
+    ASSERT_PARAM(TVO_PARAM_NONE, bad);
+    ASSERT_STATUS(TVO_ERR_NULL, tvo_controller_init_pose_velocity(&fx_a.ctl, NULL, &fx_a.objective, 0, NULL));
+    ASSERT_STATUS(TVO_ERR_NULL, tvo_controller_init_pose_velocity(&fx_a.ctl, &fx_a.cfg, NULL, 0, NULL));
+    ASSERT_STATUS(TVO_OK, init_pose_velocity(&fx_a));
+    ASSERT_PARAM(TVO_PARAM_NONE, fx_a.bad_param);
+    TEST_ASSERT_TRUE(fx_a.ctl.position_velocity == NULL);
+    /* One wrong field at a time: the same status and the same culprit as tvo_controller_init. */
+    for (int field = 0; field < 6; ++field) {
+        fx_static_point(&fx_a, 1.0, 1.0);
+        ASSERT_STATUS(TVO_OK, fx_init_controller(&fx_a, 0));
+        switch (field) {
+        case 0: fx_a.cfg.tick_hz = 0u; break;
+        case 1: fx_a.cfg.filter_tf_s = TEST_NAN; break;
+        case 2: fx_a.cfg.gain_kd = TVO_R(-1.0); break;
+        case 3: fx_a.cfg.min_speed_mps = fx_a.cfg.speed_max_mps; break;
+        case 4: fx_a.cfg.watchdog_periods = 0u; break;
+        default: fx_a.cfg.robot_count = 2u; break;
+        }
+        const tvo_status_t full = tvo_controller_init(&fx_b.ctl, &fx_a.cfg, &fx_a.objective, 0, &bad);
+        TEST_ASSERT_NOT_EQUAL(TVO_OK, full);
+        TEST_ASSERT_NOT_EQUAL(TVO_PARAM_NONE, bad);
+        ASSERT_STATUS(full, init_pose_velocity(&fx_a));
+        ASSERT_PARAM(bad, fx_a.bad_param);
+        expect_not_initialized(&fx_a);
+    }
+}
+
+static void test_pose_velocity_init_steps_bit_identically(void)
+{
+    /* The same problem and measurements, one controller from each init, through good periods, missing
+     * and NaN measurements, a watchdog stop and the recovery: every status, command, telemetry and
+     * state identical to the bit. */
+    for (int k = 0; k < 2; ++k) {
+        fx_t *fx = k ? &fx_b : &fx_a;
+        fx_reset(fx, 1);
+        fx_circle_target(&fx->target[0], 0.5, -0.3, 1.2, 0.8);
+        fx_set_pose(fx, 0, 1.0, 0.4, 2.0);
+        fx->cfg.zoh_aware = 1u;
+        fx->cfg.initial_speed_mps[0] = TVO_R(0.3);
+        fx_start(fx, 777u);
+    }
+    ASSERT_STATUS(TVO_OK, init_pose_velocity(&fx_b));
+    ASSERT_PARAM(TVO_PARAM_NONE, fx_b.bad_param);
+    int stopped = 0;
+    for (int i = 0; i < 400; ++i) {
+        const uint8_t mode = (i >= 120 && i < 125) ? FX_MEAS_NONE
+                             : (i >= 125 && i < 128) ? FX_MEAS_NAN
+                             : (i >= 200 && i < 215) ? FX_MEAS_NONE : FX_MEAS_NORMAL;
+        fx_a.meas_mode = mode;
+        fx_b.meas_mode = mode;
+        tvo_command_t ca, cb;
+        const tvo_status_t sa = fx_closed_loop_step(&fx_a, &ca);
+        ASSERT_STATUS(sa, fx_closed_loop_step(&fx_b, &cb));
+        stopped |= sa == TVO_ERR_WATCHDOG;
+        assert_commands_bit_identical(&ca, &cb);
+        TEST_ASSERT_EQUAL_MEMORY(&fx_a.ctl.telemetry, &fx_b.ctl.telemetry, sizeof(fx_a.ctl.telemetry));
+        TEST_ASSERT_EQUAL_MEMORY(fx_a.ctl.speed_state_mps, fx_b.ctl.speed_state_mps, sizeof(fx_a.ctl.speed_state_mps));
+        TEST_ASSERT_EQUAL_MEMORY(fx_a.ctl.heading_estimate_rad, fx_b.ctl.heading_estimate_rad,
+                                 sizeof(fx_a.ctl.heading_estimate_rad));
+        assert_commands_bit_identical(&fx_a.ctl.held, &fx_b.ctl.held);
+    }
+    TEST_ASSERT_TRUE(stopped); /* the run went through the watchdog's stop */
+    ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_b, NULL)); /* and came back */
 }
 
 /* ------------------------------------------------------------------------------------------------
@@ -1480,6 +1585,9 @@ int main(void)
     RUN_TEST(test_compensation_predicts_over_the_actual_jittered_age);
     RUN_TEST(test_without_compensation_law_sees_the_measured_pose);
     RUN_TEST(test_identical_inputs_give_bit_identical_commands);
+    RUN_TEST(test_pose_velocity_init_refuses_the_position_source);
+    RUN_TEST(test_pose_velocity_init_validates_as_the_full_init);
+    RUN_TEST(test_pose_velocity_init_steps_bit_identically);
     RUN_TEST(test_huge_error_respects_every_limit_and_flags_it);
     RUN_TEST(test_first_step_toward_far_target_saturates_turn_rate);
     RUN_TEST(test_far_target_ahead_saturates_acceleration);

@@ -118,7 +118,7 @@ typedef struct {
     tvo_real_t output_accel[TVO_MAX_Z_DIM];          /* z^(k) it demands */
     tvo_real_t gradient[TVO_MAX_OUTPUT_DIM];
     tvo_real_t gradient_rate[TVO_MAX_OUTPUT_DIM];
-    tvo_real_t rate_filtered[TVO_MAX_OUTPUT_DIM];    /* position-only: the filter's y' at the sample */
+    tvo_real_t rate_filtered[TVO_MAX_OUTPUT_DIM];    /* position-only: the filter's y', carried to the law */
     tvo_dirty_derivative_t velocity_filter;          /* the filter as the step would leave it */
     tvo_period_t period;                             /* the period's timing */
     tvo_time_jet_t time;                             /* the objective's time where the law is evaluated */
@@ -134,7 +134,13 @@ typedef struct {
     tvo_real_t accel[TVO_MAX_ROBOTS];
 } tvo_controller_work_t;
 
-typedef struct {
+typedef struct tvo_controller tvo_controller_t;
+
+/** The position-only velocity source: from the measurement, the step's trial filter, the heading at
+ *  the sample and y' where the law is evaluated (work's velocity_filter, heading_at_sample, rate_filtered). */
+typedef tvo_status_t (*tvo_position_velocity_fn)(tvo_controller_t *ctl, const tvo_measurement_t *meas);
+
+struct tvo_controller {
     tvo_controller_config_t cfg;
     tvo_law_t law;
     tvo_controller_work_t work; /* scratch, off the step's stack: no state between steps */
@@ -149,8 +155,9 @@ typedef struct {
     tvo_command_t held;              /* command applied over the current interval */
     tvo_controller_telemetry_t telemetry;
     uint32_t speed_mismatch_periods; /* accepted steps in a row whose measured speed contradicted the held one */
+    tvo_position_velocity_fn position_velocity; /* set by tvo_controller_init only: NULL links none */
     uint8_t initialized;
-} tvo_controller_t;
+};
 
 /** The paper's defaults: k_p = 40, k_d = 13, omega_max = 2 pi, accel_max = 15, h = 10 ms, tau = h/2. */
 tvo_status_t tvo_controller_config_default(tvo_controller_config_t *cfg);
@@ -165,6 +172,16 @@ tvo_status_t tvo_controller_config_default(tvo_controller_config_t *cfg);
 tvo_status_t tvo_controller_init(tvo_controller_t *ctl, const tvo_controller_config_t *cfg,
                                  const tvo_objective_t *objective, uint32_t epoch_tick,
                                  tvo_param_t *bad_param);
+
+/**
+ * tvo_controller_init for the pose velocity source only: TVO_VELOCITY_FROM_POSITION is refused
+ * (TVO_ERR_PARAM, TVO_PARAM_VELOCITY_SOURCE). A firmware that calls no other init links neither
+ * the position-only estimate nor its dirty-derivative filter (about 1 KiB of flash on Cortex-M4F).
+ * The controller then steps exactly as one from tvo_controller_init with the same arguments.
+ */
+tvo_status_t tvo_controller_init_pose_velocity(tvo_controller_t *ctl, const tvo_controller_config_t *cfg,
+                                               const tvo_objective_t *objective, uint32_t epoch_tick,
+                                               tvo_param_t *bad_param);
 
 /**
  * One period: computes the command applied at apply_tick from the measurement (NULL when none
