@@ -3,8 +3,9 @@
  * Invariants: every command finite and within the limits, a safe stop all zero, status OK only on a
  * computed command; a measurement tvo_controller_check refuses leaves the velocity filter, the speed
  * state and the last stamp as they were.
- * Record format: stamp step (2 bytes, ticks), apply lead (2 bytes, ticks), flags (1 byte),
- * position x, y, heading, speed (4 x 4-byte floats).
+ * The first byte chooses the velocity source (bit 0: position-only) and, for the pose source, the
+ * init (bits 1..0 = 2: tvo_controller_init_pose_velocity). Then records: stamp step (2 bytes,
+ * ticks), apply lead (2 bytes, ticks), flags (1 byte), position x, y, heading, speed (4 x 4-byte floats).
  */
 #include <math.h>
 #include <stdio.h>
@@ -51,7 +52,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         fail("reference problem");
     }
     cfg.velocity_source = (size > 0 && (data[0] & 1u)) ? TVO_VELOCITY_FROM_POSITION : TVO_VELOCITY_FROM_POSE;
-    if (tvo_controller_init(&ctl, &cfg, &problem.objective, 0u, NULL) != TVO_OK) {
+    /* The pose source also from the init that does not link the position-only one. */
+    const int pose_init = size > 0 && (data[0] & 3u) == 2u;
+    if ((pose_init ? tvo_controller_init_pose_velocity(&ctl, &cfg, &problem.objective, 0u, NULL)
+                   : tvo_controller_init(&ctl, &cfg, &problem.objective, 0u, NULL)) != TVO_OK) {
         fail("reference controller");
     }
     uint32_t stamp = 0u;
