@@ -510,6 +510,15 @@ static tvo_status_t evaluate_tracking(tvo_law_workspace_t *work)
     return evaluate_tracking_shape(work, k, m);
 }
 
+/* A call check_call refused: y_k zeroed where its length is known (an initialised law, another size). */
+static tvo_status_t refuse_call(const tvo_law_workspace_t *work, tvo_status_t status)
+{
+    if (status == TVO_ERR_DIMENSION) {
+        zero_output(work->call.y_k, work->call.law->dim);
+    }
+    return status;
+}
+
 /* Only fields set by hand (e.g. jets_only on an objective of tvo_tracking_add's terms) bring such an
  * objective past the tracking path without a general path: nothing this link's law can evaluate. */
 static tvo_status_t refuse_without_general_path(tvo_law_workspace_t *work)
@@ -532,7 +541,7 @@ ENTRY_BODY tvo_status_t evaluate_recorded(tvo_law_workspace_t *work, tvo_general
     /* Few values live across the calls here: this frame sits under the general path's. */
     const tvo_status_t checked = check_call(work->call.law, work->call.objective);
     if (checked != TVO_OK) {
-        return checked;
+        return refuse_call(work, checked);
     }
     if (work->outputs.hessian == NULL && tracking_terms_only(work->call.objective)) {
         const tvo_status_t st = evaluate_tracking(work);

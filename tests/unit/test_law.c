@@ -518,8 +518,18 @@ static void test_objective_dimension_must_match_the_law(void)
     ASSERT_STATUS(TVO_OK, tvo_law_init(&law, 2, 4, gain)); /* law over R^4, objective over R^2 */
     const tvo_output_derivs_t y = state(2);
     const tvo_time_jet_t tj = time_at(0.5);
-    tvo_real_t ydd[4];
-    TEST_ASSERT_TRUE(tvo_law_evaluate(&law, &fx.objective, &y, &tj, ydd, NULL) != TVO_OK);
+    tvo_real_t ydd[4] = {TVO_R(1.0), TVO_R(1.0), TVO_R(1.0), TVO_R(1.0)};
+    ASSERT_STATUS(TVO_ERR_DIMENSION, tvo_law_evaluate(&law, &fx.objective, &y, &tj, ydd, NULL));
+    for (int i = 0; i < 4; ++i) {
+        ASSERT_NEAR(0.0, ydd[i], 0.0); /* the law's dim: zeroed, as on any refusal of a known length */
+    }
+    tvo_law_workspace_t work;
+    tvo_real_t gradient[4];
+    tvo_real_t gradient_rate[4];
+    tvo_law_report_t report = {gradient, gradient_rate, 4u, TVO_R(0.0)};
+    ydd[3] = TVO_R(1.0);
+    ASSERT_STATUS(TVO_ERR_DIMENSION, tvo_law_evaluate_report(&law, &fx.objective, &y, &tj, ydd, &report, &work));
+    ASSERT_NEAR(0.0, ydd[3], 0.0);
 }
 
 static void test_identical_inputs_give_bit_identical_outputs(void)

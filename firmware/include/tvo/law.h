@@ -97,7 +97,8 @@ tvo_status_t tvo_law_check_sampling_reach(uint8_t relative_degree, const tvo_rea
  * automatic tvo_law_workspace_t (tests and tools); the controllers use tvo_law_evaluate_report.
  * An indefinite or singular primal Hessian is regularised (eval->regularization > 0, see
  * tvo/linsolve.h); TVO_ERR_NOT_POSITIVE_DEFINITE if even that fails or the equality constraints are
- * dependent; TVO_ERR_NUMERIC if a result is not finite. On error y_k is zeroed.
+ * dependent; TVO_ERR_NUMERIC if a result is not finite. On error y_k is zeroed, but where its length
+ * is unknown: a NULL argument (TVO_ERR_NULL) or a law that is not initialised (TVO_ERR_NOT_INITIALIZED).
  */
 tvo_status_t tvo_law_evaluate(const tvo_law_t *law, const tvo_objective_t *objective,
                               const tvo_output_derivs_t *y, const tvo_time_jet_t *t,
