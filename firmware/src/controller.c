@@ -184,8 +184,12 @@ static inline tvo_status_t check_measurement(const tvo_controller_t *ctl, const 
     if (st != TVO_OK) {
         return st;
     }
-    if (ctl->cfg.velocity_source == TVO_VELOCITY_FROM_POSE && !meas->heading_valid) {
-        return TVO_ERR_MISSING_FIELD;
+    if (ctl->cfg.velocity_source == TVO_VELOCITY_FROM_POSE) {
+        if (!meas->heading_valid) {
+            return TVO_ERR_MISSING_FIELD;
+        }
+    } else if (ctl->position_velocity == NULL) {
+        return TVO_ERR_NOT_INITIALIZED; /* the source was set by hand after tvo_controller_init_pose_velocity */
     }
     return TVO_OK;
 }

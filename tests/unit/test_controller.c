@@ -5,6 +5,7 @@
  * tvo_unicycle_predict (see fx_closed_loop_step in test_support.h for the plant's timing).
  */
 #include "test_support.h"
+#include "tvo/trig.h"
 
 void setUp(void) {}
 void tearDown(void) {}
@@ -714,6 +715,13 @@ static void test_pose_velocity_init_steps_bit_identically(void)
     }
     TEST_ASSERT_TRUE(stopped); /* the run went through the watchdog's stop */
     ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_b, NULL)); /* and came back */
+    /* The position source set by hand afterwards: refused as not initialised, the command held. */
+    fx_b.ctl.cfg.velocity_source = TVO_VELOCITY_FROM_POSITION;
+    tvo_command_t cmd;
+    ASSERT_STATUS(TVO_ERR_NOT_INITIALIZED, fx_closed_loop_step(&fx_b, &cmd));
+    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_HOLDING);
+    tvo_measurement_t m = measure_now(&fx_b, fx_b.apply - FX_DELAY);
+    ASSERT_STATUS(TVO_ERR_NOT_INITIALIZED, tvo_controller_check(&fx_b.ctl, &m, fx_b.apply));
 }
 
 /* ------------------------------------------------------------------------------------------------
@@ -1192,6 +1200,76 @@ static void test_position_only_mode_tracks_a_circle(void)
     ASSERT_LE(steady, 2.0 * bias, "steady position-only error (m)");
 }
 
+/* The y' the law sees in position-only mode is the dirty-derivative filter's estimate at the sample,
+ * rotated by the held turn rate over this period's carry (its own jittered age, plus half a period
+ * when ZOH-aware), and the filter restarts after a watchdog stop: checked against a filter the test
+ * runs itself on the same samples, through jitter, an outage past the watchdog and the recovery. */
+static void test_position_only_law_sees_the_filter_rotated_over_this_periods_carry(void)
+{
+    fx_reset(&fx_a, 1);
+    fx_a.cfg.velocity_source = TVO_VELOCITY_FROM_POSITION;
+    fx_a.cfg.zoh_aware = 1u;
+    fx_circle_target(&fx_a.target[0], 0.0, 0.0, 1.0, 0.6);
+    fx_start(&fx_a, 0u);
+    const uint32_t hz = fx_a.cfg.tick_hz, h = fx_a.cfg.period_ticks;
+    const tvo_real_t half_period_s = TVO_R(0.5) * tvo_ticks_to_seconds32(h, hz);
+    tvo_dirty_derivative_t reference;
+    ASSERT_STATUS(TVO_OK, tvo_dirty_derivative_init(&reference, 2u, fx_a.cfg.filter_tf_s,
+                                                    tvo_ticks_to_seconds32(h, hz)));
+    int restart = 1, restarts = 0, stopped = 0;
+    uint32_t last_stamp = 0u;
+    double largest_rotation_m_s = 0.0;
+    for (uint32_t i = 1u; i <= 400u; ++i) {
+        const uint32_t apply = i * h;
+        const uint32_t stamp = apply - FX_DELAY + (uint32_t)((i * 7919u) % 6001u) - 3000u; /* age 2..8 ms */
+        const double t_s = (double)stamp / (double)hz;
+        tvo_measurement_t m;
+        memset(&m, 0, sizeof(m));
+        m.stamp_tick = stamp;
+        m.position_m[0][0] = test_r(1.5 * cos(0.8 * t_s));
+        m.position_m[0][1] = test_r(1.5 * sin(0.8 * t_s) + 0.2 * t_s);
+        m.heading_rad[0] = TVO_R(0.3);
+        m.heading_valid = (uint8_t)(i == 1u);
+        const int outage = i >= 200u && i < 200u + fx_a.cfg.watchdog_periods + 3u;
+        const tvo_real_t held_turn_radps = fx_a.ctl.held.turn_rate_radps[0];
+        tvo_command_t cmd;
+        const tvo_status_t st = tvo_controller_step(&fx_a.ctl, outage ? NULL : &m, apply, &cmd);
+        if (outage) {
+            stopped |= st == TVO_ERR_WATCHDOG;
+            restart |= st == TVO_ERR_WATCHDOG;
+            continue;
+        }
+        ASSERT_STATUS(TVO_OK, st);
+        tvo_real_t rate[2];
+        if (restart) {
+            const tvo_real_t rate0[2] = {TVO_R(0.0), TVO_R(0.0)}; /* at rest: the speed state is 0 */
+            ASSERT_STATUS(TVO_OK, tvo_dirty_derivative_reset(&reference, m.position_m[0], rate0));
+            rate[0] = rate0[0];
+            rate[1] = rate0[1];
+            restarts += restart;
+            restart = 0;
+        } else {
+            ASSERT_STATUS(TVO_OK, tvo_dirty_derivative_step(&reference, m.position_m[0],
+                                                            tvo_ticks_to_seconds32(stamp - last_stamp, hz), rate));
+        }
+        last_stamp = stamp;
+        const tvo_real_t carry_s = tvo_ticks_to_seconds32(apply - stamp, hz) + half_period_s;
+        tvo_real_t s, c;
+        tvo_sincos(held_turn_radps * carry_s, &s, &c);
+        const double expected[2] = {test_d(c * rate[0] - s * rate[1]), test_d(s * rate[0] + c * rate[1])};
+        const double tolerance = 1e-5 * (fabs(expected[0]) + fabs(expected[1])) + 1e-6;
+        for (int axis = 0; axis < 2; ++axis) {
+            ASSERT_NEAR(expected[axis], test_d(fx_a.ctl.telemetry.output_rate_mps[axis]), tolerance);
+            const double rotation = fabs(expected[axis] - test_d(rate[axis]));
+            largest_rotation_m_s = rotation > largest_rotation_m_s ? rotation : largest_rotation_m_s;
+        }
+    }
+    TEST_ASSERT_TRUE(stopped);
+    TEST_ASSERT_EQUAL_INT(2, restarts); /* the first sample and the one after the stop */
+    /* The rotation is far above the tolerance, so leaving it out (or its carry) fails the check. */
+    TEST_ASSERT_TRUE(largest_rotation_m_s > 1e-3);
+}
+
 static void test_position_only_mode_ignores_heading_and_speed_after_the_first_sample(void)
 {
     /* Run A: heading only on the first sample. Run B: every sample carries a wrong heading (+1 rad)
@@ -1612,6 +1690,7 @@ int main(void)
     RUN_TEST(test_delay_compensation_removes_the_delay_from_the_error);
     RUN_TEST(test_pose_mode_tracks_circle_and_ellipse_with_two_robots);
     RUN_TEST(test_position_only_mode_tracks_a_circle);
+    RUN_TEST(test_position_only_law_sees_the_filter_rotated_over_this_periods_carry);
     RUN_TEST(test_position_only_mode_ignores_heading_and_speed_after_the_first_sample);
     RUN_TEST(test_check_changes_nothing_and_says_what_the_step_would);
     RUN_TEST(test_safe_stop_drops_to_rest_without_advancing_the_clock);

@@ -176,8 +176,11 @@ tvo_status_t tvo_controller_init(tvo_controller_t *ctl, const tvo_controller_con
 /**
  * tvo_controller_init for the pose velocity source only: TVO_VELOCITY_FROM_POSITION is refused
  * (TVO_ERR_PARAM, TVO_PARAM_VELOCITY_SOURCE). A firmware that calls no other init links neither
- * the position-only estimate nor its dirty-derivative filter (about 1 KiB of flash on Cortex-M4F).
- * The controller then steps exactly as one from tvo_controller_init with the same arguments.
+ * the position-only estimate nor its dirty-derivative filter (about 1 KiB of flash on Cortex-M4F)
+ * when its link drops unused sections (-ffunction-sections and --gc-sections, as the project's
+ * toolchain files set). The controller then steps exactly as one from tvo_controller_init with the
+ * same arguments; a measurement for the position source set by hand afterwards is refused
+ * (TVO_ERR_NOT_INITIALIZED).
  */
 tvo_status_t tvo_controller_init_pose_velocity(tvo_controller_t *ctl, const tvo_controller_config_t *cfg,
                                                const tvo_objective_t *objective, uint32_t epoch_tick,
