@@ -386,6 +386,11 @@ TVO_OFF_CHAIN_BODY tvo_status_t step_after_law(tvo_controller_t *ctl, const tvo_
     sample_clock_end_good(&ctl->clock, period, meas->stamp_tick);
     if (position_only) {
         ctl->velocity_filter = work->velocity_filter;
+        for (uint8_t r = 0; r < n; ++r) {
+            /* The estimate lives at the application instant; the next sample dead-reckons from here. */
+            ctl->heading_estimate_rad[r] =
+                unicycle_wrap_angle_near(heading[r] + ctl->held.turn_rate_radps[r] * (period->age_s - carry_s));
+        }
     }
     ctl->speed_mismatch_periods = speed_contradicted ? ctl->speed_mismatch_periods + 1u : 0u;
     if (ctl->speed_mismatch_periods >= TVO_SPEED_MISMATCH_PERIODS) {
@@ -404,9 +409,6 @@ TVO_OFF_CHAIN_BODY tvo_status_t step_after_law(tvo_controller_t *ctl, const tvo_
 #endif
     for (uint8_t r = 0; r < n; ++r) {
         ctl->speed_state_mps[r] = speed_next[r];
-        /* The estimate lives at the application instant; the next sample dead-reckons from here. */
-        ctl->heading_estimate_rad[r] =
-            unicycle_wrap_angle_near(heading[r] + ctl->held.turn_rate_radps[r] * (period->age_s - carry_s));
         tm->accel_mps2[r] = accel[r];
     }
     for (uint8_t r = 0; r < n; ++r) {

@@ -149,7 +149,7 @@ struct tvo_controller {
     tvo_real_t period_s;
     tvo_sample_clock_t clock;        /* ticks, elapsed time, stamps, watchdog */
     tvo_real_t speed_state_mps[TVO_MAX_ROBOTS];   /* dynamic extension v */
-    tvo_real_t heading_estimate_rad[TVO_MAX_ROBOTS]; /* position-only mode: dead-reckoned heading */
+    tvo_real_t heading_estimate_rad[TVO_MAX_ROBOTS]; /* position-only mode: dead-reckoned heading (else unused) */
     tvo_real_t multiplier[TVO_ARRAY_LEN(TVO_MAX_EQUALITIES)];      /* nu of equality constraints, at apply_tick */
     tvo_real_t multiplier_rate[TVO_ARRAY_LEN(TVO_MAX_EQUALITIES)]; /* nu' */
     tvo_command_t held;              /* command applied over the current interval */
