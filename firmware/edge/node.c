@@ -298,9 +298,10 @@ static tvo_status_t schedule_measurement(const tvo_node_session_t *s, const tvo_
 }
 
 /* The refusal's answer: the command in force (or, after watchdog_periods refusals in a row in
- * CLOCK_PLANT, a safe stop), stamped no earlier than the measurement. Nothing of the message is kept. */
+ * CLOCK_PLANT, a safe stop; or the stop the core's step answered with, `stepped`, NULL if none),
+ * stamped no earlier than the measurement. Nothing of the message is kept. */
 static void refuse_measurement(tvo_node_t *node, tvo_node_session_t *s, const tvo_lcm_measurement_t *msg,
-                               tvo_status_t reason, int64_t now_us)
+                               tvo_status_t reason, const tvo_edge_command_t *stepped, int64_t now_us)
 {
     count(&node->counters.refused[(uint32_t)reason < (uint32_t)TVO_LCM_NODE_COUNTERS_T_STATUS_SLOTS ? reason : 0]);
     node->last_refusal = reason;
@@ -313,7 +314,10 @@ static void refuse_measurement(tvo_node_t *node, tvo_node_session_t *s, const tv
     if (s->refused_in_row < UINT32_MAX) {
         s->refused_in_row++;
     }
-    if (s->timing.clock_source == TVO_LCM_SESSION_T_CLOCK_PLANT && s->refused_in_row >= s->timing.watchdog_periods) {
+    if (stepped != NULL && (s->controller.ops->flags(stepped) & TVO_FLAG_SAFE_STOP) != 0u) {
+        cmd = *stepped; /* the core's watchdog stopped the robots: the answer says so */
+    } else if (s->timing.clock_source == TVO_LCM_SESSION_T_CLOCK_PLANT &&
+               s->refused_in_row >= s->timing.watchdog_periods) {
         (void)s->controller.ops->safe_stop(&s->controller, &cmd);
         stamp.status = TVO_ERR_WATCHDOG;
     } else {
@@ -484,7 +488,7 @@ static void on_measurement(tvo_node_t *node, const tvo_lcm_measurement_t *msg, i
         }
     }
     if (st != TVO_OK) {
-        refuse_measurement(node, s, msg, st, now_us);
+        refuse_measurement(node, s, msg, st, NULL, now_us);
         return;
     }
     /* The paper's slack rule takes the first accepted sample as the state at t = 0; undone with the
@@ -503,7 +507,7 @@ static void on_measurement(tvo_node_t *node, const tvo_lcm_measurement_t *msg, i
          * other, which keeps nothing and counts toward the watchdog. */
         s->problem.barrier = barrier_before;
         s->problem.slack_chosen = slack_was_chosen;
-        refuse_measurement(node, s, msg, st, now_us);
+        refuse_measurement(node, s, msg, st, &cmd, now_us);
         return;
     }
     count(&node->counters.accepted);

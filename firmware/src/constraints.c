@@ -21,6 +21,12 @@ static int finite2(const tvo_real_t v[2])
     return isfinite(v[0]) && isfinite(v[1]);
 }
 
+/* Both entries within the workspace's magnitude (tvo/config.h). */
+static int within2(const tvo_real_t v[2])
+{
+    return TVO_FABS(v[0]) <= TVO_POSITION_LIMIT_M && TVO_FABS(v[1]) <= TVO_POSITION_LIMIT_M;
+}
+
 /* value + rate (t + t_rate tau) as a jet. */
 static void affine_time_jet(tvo_real_t value, tvo_real_t rate, const tvo_time_jet_t *t, tvo_jet_t *out)
 {
@@ -49,7 +55,8 @@ tvo_status_t tvo_distance_term_init(tvo_distance_term_t *term, const tvo_barrier
     if (!isfinite(bound_m) || !isfinite(bound_rate_mps)) {
         return TVO_ERR_NOT_FINITE;
     }
-    if (robot_a == robot_b || !(bound_m > TVO_R(0.0)) || (kind != TVO_DISTANCE_MIN && kind != TVO_DISTANCE_MAX)) {
+    if (robot_a == robot_b || !(bound_m > TVO_R(0.0)) || (kind != TVO_DISTANCE_MIN && kind != TVO_DISTANCE_MAX) ||
+        !(bound_m <= TVO_POSITION_LIMIT_M) || !(TVO_FABS(bound_rate_mps) <= TVO_POSITION_LIMIT_M)) {
         return TVO_ERR_PARAM;
     }
     term->barrier = barrier;
@@ -214,6 +221,10 @@ tvo_status_t tvo_halfspace_term_init(tvo_halfspace_term_t *term, const tvo_barri
     if (normal[0] == TVO_R(0.0) && normal[1] == TVO_R(0.0)) {
         return TVO_ERR_PARAM;
     }
+    if (!within2(normal) || !within2(normal_rate) || !(TVO_FABS(bound_m) <= TVO_POSITION_LIMIT_M) ||
+        !(TVO_FABS(bound_rate_mps) <= TVO_POSITION_LIMIT_M)) {
+        return TVO_ERR_PARAM; /* beyond the workspace (tvo/config.h) */
+    }
     term->barrier = barrier;
     term->offset = (uint8_t)(2u * robot);
     for (uint8_t axis = 0; axis < 2u; ++axis) {
@@ -349,14 +360,15 @@ tvo_status_t tvo_free_space_term_init(tvo_free_space_term_t *term, const tvo_bar
     if (!isfinite(robot_radius_m)) {
         return TVO_ERR_NOT_FINITE;
     }
-    if (robot_radius_m < TVO_R(0.0)) {
+    if (robot_radius_m < TVO_R(0.0) || !(robot_radius_m <= TVO_POSITION_LIMIT_M)) {
         return TVO_ERR_PARAM;
     }
     for (uint8_t i = 0; i < count; ++i) {
         if (!finite2(obstacles[i].center_m) || !isfinite(obstacles[i].radius_m)) {
             return TVO_ERR_NOT_FINITE;
         }
-        if (!(obstacles[i].radius_m > TVO_R(0.0))) {
+        if (!(obstacles[i].radius_m > TVO_R(0.0)) || !(obstacles[i].radius_m <= TVO_POSITION_LIMIT_M) ||
+            !within2(obstacles[i].center_m)) {
             return TVO_ERR_PARAM;
         }
         for (uint8_t j = 0; j < i; ++j) {

@@ -123,6 +123,8 @@ static tvo_status_t controller_setup(tvo_controller_t *ctl, const tvo_controller
     ctl->objective = objective;
     ctl->position_velocity = position_velocity;
     ctl->period_s = tvo_ticks_to_seconds32(cfg->period_ticks, cfg->tick_hz);
+    ctl->speed_step_max_mps = cfg->accel_max_mps2 * ctl->period_s;
+    ctl->measured_speed_limit_mps = TVO_MEASURED_SPEED_FACTOR * cfg->speed_max_mps + TVO_MEASURED_SPEED_MARGIN_MPS;
     const tvo_real_t gains[2] = {cfg->gain_kp, cfg->gain_kd};
     const tvo_status_t st = tvo_law_init(&ctl->law, 2u, objective->dim, gains);
     if (st != TVO_OK) {
@@ -166,6 +168,19 @@ tvo_status_t tvo_controller_init_pose_velocity(tvo_controller_t *ctl, const tvo_
     return st;
 }
 
+/* Why a measurement failed the range check: a value not finite (any robot's) before one out of range. */
+static tvo_status_t measurement_range_refusal(const tvo_controller_t *ctl, const tvo_measurement_t *meas)
+{
+    for (uint8_t r = 0; r < ctl->cfg.robot_count; ++r) {
+        if (!isfinite(meas->position_m[r][0]) || !isfinite(meas->position_m[r][1]) ||
+            (meas->heading_valid && !isfinite(meas->heading_rad[r])) ||
+            (meas->speed_valid && !isfinite(meas->speed_mps[r]))) {
+            return TVO_ERR_NOT_FINITE;
+        }
+    }
+    return TVO_ERR_IMPLAUSIBLE_MEASUREMENT;
+}
+
 static inline tvo_status_t check_measurement(const tvo_controller_t *ctl, const tvo_measurement_t *meas,
                                       uint32_t apply_tick)
 {
@@ -173,11 +188,14 @@ static inline tvo_status_t check_measurement(const tvo_controller_t *ctl, const 
         return TVO_ERR_NO_MEASUREMENT;
     }
     const uint8_t n = ctl->cfg.robot_count;
+    const tvo_real_t speed_limit = ctl->measured_speed_limit_mps;
     for (uint8_t r = 0; r < n; ++r) {
-        if (!isfinite(meas->position_m[r][0]) || !isfinite(meas->position_m[r][1]) ||
-            (meas->heading_valid && !isfinite(meas->heading_rad[r])) ||
-            (meas->speed_valid && !isfinite(meas->speed_mps[r]))) {
-            return TVO_ERR_NOT_FINITE;
+        /* One comparison per value refuses NaN, infinities and the impossible alike (NaN compares false). */
+        if (!(TVO_FABS(meas->position_m[r][0]) <= TVO_POSITION_LIMIT_M) ||
+            !(TVO_FABS(meas->position_m[r][1]) <= TVO_POSITION_LIMIT_M) ||
+            (meas->heading_valid && !(TVO_FABS(meas->heading_rad[r]) <= TVO_HEADING_LIMIT_RAD)) ||
+            (meas->speed_valid && !(TVO_FABS(meas->speed_mps[r]) <= speed_limit))) {
+            return measurement_range_refusal(ctl, meas);
         }
     }
     const tvo_status_t st = sample_clock_check_stamp(&ctl->clock, meas->stamp_tick, apply_tick);
@@ -223,6 +241,7 @@ static void drop_to_rest(tvo_controller_t *ctl, tvo_command_t *cmd)
         ctl->multiplier_rate[q] = TVO_R(0.0);
     }
     ctl->speed_mismatch_periods = 0u;
+    ctl->speed_mismatch_holdoff = 0u;
     stop_command(&ctl->held, 0u);
     stop_command(cmd, TVO_FLAG_SAFE_STOP);
 }
@@ -374,7 +393,20 @@ TVO_OFF_CHAIN_BODY tvo_status_t step_after_law(tvo_controller_t *ctl, const tvo_
         /* Hold the interval average of the speed state, so the held straight-line distance matches
          * the continuous extension to second order in h (end-of-interval speed would lead by a h/2). */
         next->speed_mps[r] = TVO_R(0.5) * (speed_state[r] + speed_next[r]);
-        if (!isfinite(next->speed_mps[r]) || !isfinite(next->turn_rate_radps[r])) {
+        /* The command in force bounds the new one, whatever a measured speed re-synced: the state moves
+         * with the command, so the next period's command stays within a_max h of this one too. */
+        const tvo_real_t speed_step = next->speed_mps[r] - ctl->held.speed_mps[r];
+        if (!(TVO_FABS(speed_step) <= ctl->speed_step_max_mps)) {
+            const tvo_real_t bound = speed_step > TVO_R(0.0) ? ctl->speed_step_max_mps : -ctl->speed_step_max_mps;
+            next->speed_mps[r] = ctl->held.speed_mps[r] + bound;
+            speed_next[r] = clamp(speed_next[r] - (speed_step - bound), cfg->speed_max_mps, 0u, &flags);
+            flags |= TVO_FLAG_ACCEL_SATURATED;
+        }
+        /* What the telemetry reports of the law must be finite too (y'' clipped to a limit could hide it). */
+        const tvo_real_t law_sum = y_accel[2u * r] + y_accel[2u * r + 1u] + work->gradient[2u * r] +
+                                   work->gradient[2u * r + 1u] + work->gradient_rate[2u * r] +
+                                   work->gradient_rate[2u * r + 1u];
+        if (!isfinite(law_sum) || !isfinite(next->speed_mps[r]) || !isfinite(next->turn_rate_radps[r])) {
             st = TVO_ERR_NUMERIC;
         }
     }
@@ -394,8 +426,11 @@ TVO_OFF_CHAIN_BODY tvo_status_t step_after_law(tvo_controller_t *ctl, const tvo_
     }
     ctl->speed_mismatch_periods = speed_contradicted ? ctl->speed_mismatch_periods + 1u : 0u;
     if (ctl->speed_mismatch_periods >= TVO_SPEED_MISMATCH_PERIODS) {
-        ctl->speed_mismatch_periods = TVO_SPEED_MISMATCH_PERIODS; /* saturate: no wrap in a long stall */
         flags |= TVO_FLAG_SPEED_MISMATCH;
+        if (ctl->speed_mismatch_periods >= TVO_SPEED_MISMATCH_STOP_PERIODS) {
+            ctl->speed_mismatch_periods = 0u;
+            ctl->speed_mismatch_holdoff = TVO_SPEED_MISMATCH_HOLDOFF_PERIODS;
+        }
     }
     tvo_controller_telemetry_t *tm = &ctl->telemetry;
 #if TVO_MAX_EQUALITIES > 0
@@ -407,6 +442,20 @@ TVO_OFF_CHAIN_BODY tvo_status_t step_after_law(tvo_controller_t *ctl, const tvo_
         tm->multiplier[q] = ctl->multiplier[q];
     }
 #endif
+    if (ctl->speed_mismatch_holdoff > 0u) {
+        /* The period is accepted (clock, filters, multipliers move on), but the robots stand still. */
+        ctl->speed_mismatch_holdoff--;
+        for (uint8_t r = 0; r < n; ++r) {
+            speed_next[r] = TVO_R(0.0);
+            accel[r] = TVO_R(0.0);
+            next->speed_mps[r] = TVO_R(0.0);
+            next->turn_rate_radps[r] = TVO_R(0.0);
+        }
+        for (uint8_t q = 0; q < TVO_ARRAY_LEN(TVO_MAX_EQUALITIES); ++q) {
+            ctl->multiplier_rate[q] = TVO_R(0.0);
+        }
+        flags = TVO_FLAG_SAFE_STOP | TVO_FLAG_SPEED_MISMATCH;
+    }
     for (uint8_t r = 0; r < n; ++r) {
         ctl->speed_state_mps[r] = speed_next[r];
         tm->accel_mps2[r] = accel[r];

@@ -23,6 +23,7 @@ const char *tvo_status_str(tvo_status_t status)
     case TVO_ERR_IMPLAUSIBLE_STAMP: return "stamp does not fit the session's schedule";
     case TVO_ERR_SESSION_CONFLICT: return "session id already running with other parameters";
     case TVO_ERR_NO_SESSION: return "no such session running (send START)";
+    case TVO_ERR_IMPLAUSIBLE_MEASUREMENT: return "measurement beyond the robot's workspace, heading range or speed";
     default: return "unknown status";
     }
 }

@@ -17,6 +17,17 @@ static int all_finite(const tvo_real_t *v, size_t n)
     return 1;
 }
 
+/* Whether every |v_i| <= limit (values known to be finite). */
+static int all_within(const tvo_real_t *v, size_t n, tvo_real_t limit)
+{
+    for (size_t i = 0; i < n; ++i) {
+        if (!(TVO_FABS(v[i]) <= limit)) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
 tvo_status_t tvo_target_init_polynomial(tvo_target_t *target,
                                         const tvo_real_t coeff[2][TVO_POLY_MAX_DEGREE + 1])
 {
@@ -25,6 +36,13 @@ tvo_status_t tvo_target_init_polynomial(tvo_target_t *target,
     }
     if (!all_finite(&coeff[0][0], 2u * (TVO_POLY_MAX_DEGREE + 1u))) {
         return TVO_ERR_NOT_FINITE;
+    }
+    /* Its value at the epoch in the workspace, its other coefficients within TVO_POLY_COEFF_LIMIT. */
+    for (uint8_t axis = 0; axis < 2u; ++axis) {
+        if (!(TVO_FABS(coeff[axis][0]) <= TVO_POSITION_LIMIT_M) ||
+            !all_within(&coeff[axis][1], TVO_POLY_MAX_DEGREE, TVO_POLY_COEFF_LIMIT)) {
+            return TVO_ERR_PARAM;
+        }
     }
     memset(target, 0, sizeof(*target));
     target->kind = TVO_TARGET_POLYNOMIAL;
@@ -75,6 +93,7 @@ tvo_status_t tvo_target_init_ellipse(tvo_target_t *target, const tvo_target_elli
         return TVO_ERR_NOT_FINITE;
     }
     if (!(ellipse->semi_axis_m[0] > TVO_R(0.0)) || !(ellipse->semi_axis_m[1] > TVO_R(0.0)) ||
+        !all_within(values, 4u, TVO_POSITION_LIMIT_M) ||
         !(TVO_FABS(ellipse->omega_radps) <= TVO_TARGET_MAX_OMEGA_RADPS)) {
         return TVO_ERR_PARAM;
     }
@@ -139,6 +158,9 @@ tvo_status_t tvo_target_stream_update(tvo_target_t *target, uint64_t stamp_ticks
     }
     if (!all_finite(&deriv[0][0], 2u * (TVO_STREAM_MAX_DERIV + 1u))) {
         return TVO_ERR_NOT_FINITE;
+    }
+    if (!all_within(&deriv[0][0], 2u * (TVO_STREAM_MAX_DERIV + 1u), TVO_POSITION_LIMIT_M)) {
+        return TVO_ERR_PARAM; /* beyond the workspace, or a rate of it */
     }
     tvo_target_streamed_t *s = &target->u.streamed;
     if (s->has_sample && stamp_ticks <= s->stamp_ticks) {

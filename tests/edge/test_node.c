@@ -404,6 +404,20 @@ static void make_invalid(tvo_lcm_session_t *m, int which)
         m->barrier.relaxation_degree = 1; /* below k + 1: the core's barrier refuses it */
         break;
     case 5: m->gain_kp = 3e38; break; /* a float, but past the sampling's reach (and the law's range) */
+    case 6: m->robot[0].target.coeff[0][3] = 1e30; break; /* acked before, then every step failed */
+    case 7: m->robot[0].target.coeff[1][0] = 2e4; break; /* the target starts beyond the workspace */
+    case 8:
+        m->obstacle_count = 1;
+        m->obstacle[0].center_m[0] = 1e5;
+        m->obstacle[0].radius_m = 0.5;
+        break;
+    case 9:
+        m->halfspace_count = 1;
+        m->halfspace[0].normal[0] = 1.0;
+        m->halfspace[0].normal_rate[1] = 3.14159;
+        m->halfspace[0].bound_m = 1.0;
+        m->halfspace[0].bound_rate_mps = -1e6; /* the fuzzer's -inf telemetry came from such a wall */
+        break;
     default: m->robot[0].target.kind = 9; break;
     }
 }
@@ -415,6 +429,10 @@ static const refusal_t invalid_starts[] = {
     {"distance robot 5", TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_DISTANCE, 0},
     {"relaxation degree 1", TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_BARRIER, -1},
     {"gain 3e38", TVO_ERR_PARAM, TVO_PARAM_GAINS, TVO_LCM_SESSION_ACK_T_PART_NONE, -1},
+    {"target coefficient 1e30", TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 0},
+    {"target 2e4 m out", TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 0},
+    {"obstacle 1e5 m out", TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_OBSTACLES, -1},
+    {"wall moving at 1e6 m/s", TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_HALFSPACE, -1},
     {"target kind 9", TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 0},
 };
 
@@ -1087,19 +1105,43 @@ static void test_telemetry_counts_every_kind_of_event(void)
 
 static void test_telemetry_counts_speed_mismatch_steps(void)
 {
-    /* A plant that reports a speed beyond anything it was commanded (|v| <= speed_max = 2). */
+    /* A plant that reports a speed beyond anything it was commanded (|v| <= speed_max = 2), yet
+     * plausible (below 2 speed_max + 0.5); 10 m/s is refused, as the next test says. */
     plant_session_after(0);
     for (int64_t j = 1; j <= (int64_t)TVO_SPEED_MISMATCH_PERIODS + 1; ++j) {
         tvo_lcm_measurement_t m;
         plant_meas(&m, j);
         m.speed_valid = 1;
-        m.speed_mps[0] = 10.0;
+        m.speed_mps[0] = 4.0;
         const tvo_lcm_command_t cmd = EXPECT_ACCEPTED(m, 0, plant_apply(j));
         const int flagged = ((uint32_t)cmd.flags & TVO_FLAG_SPEED_MISMATCH) != 0u;
         TEST_ASSERT_EQUAL_INT(j >= (int64_t)TVO_SPEED_MISMATCH_PERIODS, flagged);
     }
     TEST_ASSERT_EQUAL_INT32(2, node.counters.speed_mismatch);
     TEST_ASSERT_EQUAL_INT32(2, last_telemetry.counters.speed_mismatch);
+}
+
+static void test_plant_implausible_measurements_are_refused_and_keep_nothing(void)
+{
+    /* The independent client's cases: a speed of 1e3 m/s, a position of 1e6 m, a heading of 1e6 rad,
+     * each refused with its own status and nothing of it kept; the stream then goes on. */
+    plant_session_after(2);
+    for (int which = 0; which < 3; ++which) {
+        tvo_lcm_measurement_t m;
+        plant_meas(&m, 3 + 2 * which);
+        switch (which) {
+        case 0:
+            m.speed_valid = 1;
+            m.speed_mps[0] = 1e3;
+            break;
+        case 1: m.position_m[0][0] = 1e6; break;
+        default: m.heading_rad[0] = 1e6; break;
+        }
+        (void)EXPECT_REFUSED(m, 0, TVO_ERR_IMPLAUSIBLE_MEASUREMENT);
+        plant_meas(&m, 4 + 2 * which); /* the genuine stream goes on (and the watchdog's count restarts) */
+        (void)EXPECT_ACCEPTED(m, 0, plant_apply(4 + 2 * which));
+    }
+    TEST_ASSERT_EQUAL_INT32(3, node.counters.refused[TVO_ERR_IMPLAUSIBLE_MEASUREMENT]);
 }
 
 /* A START whose robot 0 streams its target and must stay in x <= 0.5 (a half-space). */
@@ -1567,6 +1609,36 @@ static void test_plant_refusal_by_the_step_keeps_nothing(void)
         TEST_FAIL_MESSAGE(text);
     }
     ASSERT_SESSION_KEPT();
+}
+
+static void test_node_clock_a_law_failure_after_the_timer_stop_is_answered_with_a_safe_stop(void)
+{
+    /* After a silence the timer stopped, a measurement the law then fails on (its streamed target
+     * sample lies ahead of it) was answered TVO_ERR_WATCHDOG flagged HOLDING with v = omega = 0: the
+     * core had stopped, the node said "hold". The answer is the core's: a safe stop. */
+    ef_start(&start, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_NODE, 1);
+    start.delay_compensation = 0;
+    start.robot[0].target.kind = TVO_LCM_PATH_T_KIND_STREAMED;
+    ef_record_clear(&rec);
+    (void)send_session(&start, NODE_T0);
+    EF_ASSERT_STATUS(TVO_OK, THE_ACK().status);
+    tvo_lcm_target_t t;
+    target_at_epoch(&t);
+    (void)send_target(&t, node_apply(0));
+    EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
+    tvo_lcm_measurement_t m;
+    for (int64_t j = 1; j <= 2; ++j) {
+        node_meas(&m, j, j);
+        (void)EXPECT_ACCEPTED(m, node_arrival(j), node_apply(j) - OFFSET);
+    }
+    EXPECT_TIMER_STOP(node_apply(2 + W), node_apply(3 + W));
+    const int64_t j = 5 + W;
+    t.utime = node_arrival(j) - OFFSET + H / 2 - 1; /* plausible, and after the sample below */
+    (void)send_target(&t, node_arrival(j));
+    EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
+    node_meas(&m, j, j);
+    const tvo_lcm_command_t cmd = EXPECT_REFUSED(m, node_arrival(j), TVO_ERR_WATCHDOG);
+    TEST_ASSERT_EQUAL_HEX32(TVO_FLAG_SAFE_STOP, (uint32_t)cmd.flags);
 }
 
 static void test_plant_step_refusals_count_toward_the_watchdog(void)
@@ -2127,6 +2199,7 @@ int main(void)
     RUN_TEST(test_stop_disarms_the_timer);
     RUN_TEST(test_telemetry_counts_every_kind_of_event);
     RUN_TEST(test_telemetry_counts_speed_mismatch_steps);
+    RUN_TEST(test_plant_implausible_measurements_are_refused_and_keep_nothing);
     RUN_TEST(test_slack_rule_is_undone_when_the_first_step_fails);
     RUN_TEST(test_plant_first_measurement_beyond_the_tick_span_is_implausible);
     RUN_TEST(test_chain_session_runs_through_the_node);
@@ -2141,6 +2214,7 @@ int main(void)
     RUN_TEST(test_node_clock_sample_two_to_the_32_us_old_is_stale);
     RUN_TEST(test_node_clock_reanchors_on_agreeing_measurements_before_tracking);
     RUN_TEST(test_plant_step_refusals_count_toward_the_watchdog);
+    RUN_TEST(test_node_clock_a_law_failure_after_the_timer_stop_is_answered_with_a_safe_stop);
     RUN_TEST(test_start_utime_extremes);
     RUN_TEST(test_start_epoch_extremes);
     RUN_TEST(test_start_period_extremes);

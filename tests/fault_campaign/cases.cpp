@@ -3,7 +3,9 @@
 // (strays, garbage, duplicates, session requests) a run without them is the reference its genuine
 // answers must equal bit for bit: nothing from a refused message may be kept.
 #include "cases.hpp"
+#include "tvo/controller.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -853,12 +855,36 @@ void case_speed_mismatch(Context& ctx)
         run.stop();
         const auto [during, first] = flagged(run, from, to);
         const double error = run.max_error_between(run.apply_utime(from), run.apply_utime(to));
-        ctx.report.check(first >= from && first <= from + 5 && during >= (to - first) - 1,
-                         v.what + " for 2 s: flagged TVO_FLAG_SPEED_MISMATCH within 5 periods and while it lasts",
+        ctx.report.check(first >= from && first <= from + static_cast<std::int64_t>(TVO_SPEED_MISMATCH_PERIODS),
+                         v.what + " for 2 s: flagged TVO_FLAG_SPEED_MISMATCH within its periods",
                          "first flagged at sample " + (first < 0 ? std::string("none") : std::to_string(first)) +
                              " (from " + std::to_string(from) + "), " + std::to_string(during) + " of " +
-                             std::to_string(to - from) + " flagged; meanwhile the error reached " + fmt(error) +
-                             " m with status 0 on every command");
+                             std::to_string(to - from) + " flagged; meanwhile the error reached " + fmt(error) + " m");
+        // Acted on: stopped (status 0, SAFE_STOP with the flag) within the stop's periods, and held
+        // stopped for the holdoff's periods each time.
+        const auto stop_flags = static_cast<std::int32_t>(TVO_FLAG_SAFE_STOP | TVO_FLAG_SPEED_MISMATCH);
+        std::int64_t first_stop = -1;
+        long stopped = 0;
+        long stopped_in_run = 0;
+        long bad_status = 0;
+        for (const auto& [seq, answer] : run.genuine_answers()) {
+            const bool stop = (answer.flags & stop_flags) == stop_flags;
+            stopped_in_run += stop ? 1 : 0;
+            bad_status += stop && answer.status != 0 ? 1 : 0;
+            if (seq >= from && seq < to && stop) {
+                first_stop = first_stop < 0 ? seq : first_stop;
+                ++stopped;
+            }
+        }
+        const auto holdoff = static_cast<long>(TVO_SPEED_MISMATCH_HOLDOFF_PERIODS);
+        const long room = first_stop < 0 ? 0 : static_cast<long>(to - first_stop);
+        ctx.report.check(first_stop >= from &&
+                             first_stop <= from + static_cast<std::int64_t>(TVO_SPEED_MISMATCH_STOP_PERIODS) &&
+                             stopped >= std::min(room, holdoff) && bad_status == 0,
+                         v.what + ": the robot is stopped within TVO_SPEED_MISMATCH_STOP_PERIODS, for the holdoff",
+                         "first stop at sample " + (first_stop < 0 ? std::string("none") : std::to_string(first_stop)) +
+                             ", " + std::to_string(stopped) + " stopped periods of " + std::to_string(to - from) +
+                             ", " + std::to_string(bad_status) + " of them with a status other than 0");
         const auto [all_flagged, first_any] = flagged(run, 0, run.genuine_sent);
         const tvo_lcm::telemetry_t* t = run.last_telemetry();
         ctx.report.check(t != nullptr && t->counters.speed_mismatch == all_flagged,
@@ -866,7 +892,7 @@ void case_speed_mismatch(Context& ctx)
                          std::to_string(t != nullptr ? t->counters.speed_mismatch : -1) + " counted, " +
                              std::to_string(all_flagged) + " flagged in the run (first at " +
                              std::to_string(first_any) + ")");
-        check_genuine(ctx.report, run, {});
+        check_genuine(ctx.report, run, {}, -1, stopped_in_run); // the holdoff's stops outlast the fault a little
         check_tracking(ctx.report, run, "4 s after the speed is true again");
     }
 }

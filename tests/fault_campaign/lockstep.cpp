@@ -660,14 +660,14 @@ void check_tracking(Report& report, const LockstepRun& run, const std::string& w
 }
 
 void check_genuine(Report& report, const LockstepRun& run, const std::vector<std::int64_t>& fault_steps,
-                   long expected_accepted)
+                   long expected_accepted, long expected_stopped)
 {
     std::string first;
     for (std::size_t i = 0; i < run.problems.size() && i < 2; ++i) {
         first += (first.empty() ? "; first: " : " | ") + run.problems[i];
     }
-    const long want = expected_accepted >= 0 ? expected_accepted : run.genuine_sent;
-    report.check(run.genuine_wrong == 0 && run.genuine_accepted == want,
+    const long want = expected_accepted >= 0 ? expected_accepted : run.genuine_sent - expected_stopped;
+    report.check(run.genuine_wrong == expected_stopped && run.genuine_accepted == want,
                  "every genuine sample meant to be accepted is: status 0, applied at a_j",
                  std::to_string(run.genuine_accepted) + " accepted of " + std::to_string(want) + ", " +
                      std::to_string(run.genuine_wrong) + " answered otherwise" + first);

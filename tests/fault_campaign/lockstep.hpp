@@ -202,8 +202,10 @@ private:
 void check_tracking(Report& report, const LockstepRun& run, const std::string& what);
 /// Genuine samples: each meant to be accepted is; at most one period of holding after each bad message
 /// (fault_steps: the periods where one is injected; none: no holding at all); no unexpected answer.
+/// expected_stopped: accepted samples the controller answered with a stop of its own (status 0,
+/// TVO_FLAG_SAFE_STOP: a speed mismatch), counted apart from the accepted ones.
 void check_genuine(Report& report, const LockstepRun& run, const std::vector<std::int64_t>& fault_steps,
-                   long expected_accepted = -1);
+                   long expected_accepted = -1, long expected_stopped = 0);
 /// Every genuine answer bit for bit as in a run without the faults: nothing was kept from them.
 void check_same_as_reference(Report& report, const LockstepRun& reference, const LockstepRun& run);
 /// The labelled outcomes as checks.

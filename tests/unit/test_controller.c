@@ -1545,9 +1545,9 @@ static void test_speed_mismatch_is_flagged_after_its_periods_in_a_row(void)
 {
     fx_running(&fx_a); /* speed_max = 2 m/s */
     tvo_command_t cmd;
-    /* A speed no command could give, reported TVO_SPEED_MISMATCH_PERIODS times in a row. */
+    /* A speed no command gave (within the plausible 2 speed_max + 0.5), reported TVO_SPEED_MISMATCH_PERIODS times in a row. */
     for (uint32_t k = 1; k <= TVO_SPEED_MISMATCH_PERIODS + 2u; ++k) {
-        ASSERT_STATUS(TVO_OK, step_reporting_speed(&fx_a, 10.0, &cmd));
+        ASSERT_STATUS(TVO_OK, step_reporting_speed(&fx_a, 4.0, &cmd));
         if (k < TVO_SPEED_MISMATCH_PERIODS) {
             ASSERT_FLAG_CLEAR(cmd.flags, TVO_FLAG_SPEED_MISMATCH);
         } else {
@@ -1559,17 +1559,17 @@ static void test_speed_mismatch_is_flagged_after_its_periods_in_a_row(void)
     ASSERT_STATUS(TVO_OK, step_reporting_speed(&fx_a, test_d(fx_a.cmd.speed_mps[0]), &cmd));
     ASSERT_FLAG_CLEAR(cmd.flags, TVO_FLAG_SPEED_MISMATCH);
     for (uint32_t k = 1; k < TVO_SPEED_MISMATCH_PERIODS; ++k) {
-        ASSERT_STATUS(TVO_OK, step_reporting_speed(&fx_a, -10.0, &cmd));
+        ASSERT_STATUS(TVO_OK, step_reporting_speed(&fx_a, -4.0, &cmd));
         ASSERT_FLAG_CLEAR(cmd.flags, TVO_FLAG_SPEED_MISMATCH);
     }
     /* A refused measurement neither counts nor resets it. */
     tvo_measurement_t stale = next_sample(&fx_a);
     stale.stamp_tick = fx_a.apply - FX_PERIOD - 1u;
     stale.speed_valid = 1;
-    stale.speed_mps[0] = TVO_R(-10.0);
+    stale.speed_mps[0] = TVO_R(-4.0);
     ASSERT_STATUS(TVO_ERR_STALE, tvo_controller_step(&fx_a.ctl, &stale, fx_a.apply, &cmd));
     fx_a.apply += FX_PERIOD;
-    ASSERT_STATUS(TVO_OK, step_reporting_speed(&fx_a, -10.0, &cmd));
+    ASSERT_STATUS(TVO_OK, step_reporting_speed(&fx_a, -4.0, &cmd));
     ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_SPEED_MISMATCH);
 }
 
@@ -1618,6 +1618,188 @@ static void test_speed_mismatch_flags_a_plant_reporting_zero_while_it_falls_behi
                        fx_tracking_error(&fx_a, 0), k, largest_departure, test_d(TVO_SPEED_MISMATCH_MPS));
         TEST_FAIL_MESSAGE(text);
     }
+}
+
+
+/* ------------------------------------------------------------------------------------------------
+ * Limits against any measurement: every command within |v| <= speed_max, |omega| <= omega_max and
+ * |v_{n+1} - v_n| <= accel_max h of the command in force, whatever the plant reports.
+ * --------------------------------------------------------------------------------------------- */
+
+typedef enum {
+    HOSTILE_NONE,
+    HOSTILE_SPEED_1E3,       /* speed_valid, 1e3 m/s */
+    HOSTILE_SPEED_HIGH,      /* speed_valid, just inside the plausible 2 speed_max + 0.5 */
+    HOSTILE_POSITION_1E6,    /* x = 1e6 m */
+    HOSTILE_JUMP_100M,       /* the position 100 m off, inside the workspace */
+    HOSTILE_HEADING_1E6,     /* heading 1e6 rad */
+    HOSTILE_NAN              /* a NaN position */
+} hostile_t;
+
+/* One closed-loop period whose (truthful, speed_valid) measurement is corrupted as `kind` says; the
+ * command is checked against the limits and against the command in force. */
+static tvo_status_t hostile_step(fx_t *fx, hostile_t kind, tvo_command_t *out)
+{
+    const double wmax = test_d(fx->cfg.omega_max_radps), vmax = test_d(fx->cfg.speed_max_mps);
+    const double amax_h = test_d(fx->cfg.accel_max_mps2) * h_s(fx);
+    const double slack = TEST_TOL(8, 10.0);
+    tvo_pose_t at_sample[TVO_MAX_ROBOTS];
+    fx_predict_all(fx, &fx->cmd, fx->pose, FX_PERIOD - FX_DELAY, at_sample);
+    tvo_measurement_t m;
+    fx_measure(fx, at_sample, fx->apply - FX_DELAY, &m);
+    m.speed_valid = 1;
+    m.speed_mps[0] = fx->cmd.speed_mps[0]; /* the exact plant runs at the command in force */
+    switch (kind) {
+    case HOSTILE_SPEED_1E3: m.speed_mps[0] = TVO_R(1.0e3); break;
+    case HOSTILE_SPEED_HIGH: m.speed_mps[0] = test_r(2.0 * vmax + 0.49); break;
+    case HOSTILE_POSITION_1E6: m.position_m[0][0] = TVO_R(1.0e6); break;
+    case HOSTILE_JUMP_100M: m.position_m[0][0] += TVO_R(100.0); break;
+    case HOSTILE_HEADING_1E6: m.heading_rad[0] = TVO_R(1.0e6); break;
+    case HOSTILE_NAN: m.position_m[0][1] = TEST_NAN; break;
+    case HOSTILE_NONE: break;
+    }
+    const double v_in_force = test_d(fx->cmd.speed_mps[0]);
+    tvo_command_t cmd;
+    const tvo_status_t st = tvo_controller_step(&fx->ctl, &m, fx->apply, &cmd);
+    assert_command_finite(&cmd, 1);
+    const double v = test_d(cmd.speed_mps[0]), w = test_d(cmd.turn_rate_radps[0]);
+    ASSERT_LE(fabs(w), wmax + slack, "|omega| above omega_max");
+    ASSERT_LE(fabs(v), vmax + slack, "|v| above speed_max");
+    ASSERT_LE(fabs(v - v_in_force), amax_h + slack, "|v_{n+1} - v_n| above accel_max h");
+    fx_predict_all(fx, &fx->cmd, at_sample, FX_DELAY, fx->pose);
+    fx->cmd = cmd;
+    fx->apply += FX_PERIOD;
+    fx->steps++;
+    if (out != NULL) {
+        *out = cmd;
+    }
+    return st;
+}
+
+static void test_hostile_measurements_never_break_a_limit(void)
+{
+    /* The independent plant client's cases, each followed by a NaN and then the truth again. */
+    fx_reset(&fx_a, 1);
+    fx_circle_target(&fx_a.target[0], 0.0, 0.0, 1.0, 0.8);
+    fx_set_pose(&fx_a, 0, 1.2, -0.3, 1.4);
+    fx_start(&fx_a, 0);
+    tvo_command_t cmd;
+    for (int k = 0; k < 200; ++k) {
+        ASSERT_STATUS(TVO_OK, hostile_step(&fx_a, HOSTILE_NONE, &cmd));
+    }
+    const struct {
+        hostile_t kind;
+        tvo_status_t status;
+    } cases[] = {{HOSTILE_SPEED_1E3, TVO_ERR_IMPLAUSIBLE_MEASUREMENT},
+                 {HOSTILE_SPEED_HIGH, TVO_OK},
+                 {HOSTILE_POSITION_1E6, TVO_ERR_IMPLAUSIBLE_MEASUREMENT},
+                 {HOSTILE_JUMP_100M, TVO_OK},
+                 {HOSTILE_HEADING_1E6, TVO_ERR_IMPLAUSIBLE_MEASUREMENT}};
+    for (size_t c = 0; c < sizeof(cases) / sizeof(cases[0]); ++c) {
+        for (int repeat = 0; repeat < 3; ++repeat) { /* three in a row: below the watchdog's 5 */
+            ASSERT_STATUS(cases[c].status, hostile_step(&fx_a, cases[c].kind, &cmd));
+        }
+        ASSERT_STATUS(TVO_ERR_NOT_FINITE, hostile_step(&fx_a, HOSTILE_NAN, &cmd));
+        for (int k = 0; k < 100; ++k) {
+            ASSERT_STATUS(TVO_OK, hostile_step(&fx_a, HOSTILE_NONE, &cmd));
+        }
+    }
+    for (int k = 0; k < 300; ++k) {
+        ASSERT_STATUS(TVO_OK, hostile_step(&fx_a, HOSTILE_NONE, &cmd));
+    }
+    ASSERT_LE(fx_tracking_error(&fx_a, 0), 0.05, "tracking error 3 s after the last hostile period");
+}
+
+static void test_a_resynced_speed_moves_the_command_by_at_most_accel_h(void)
+{
+    /* Before: a measured 4.4 m/s (plausible for speed_max 2) moved the command from ~0.3 to 2 m/s. */
+    fx_running(&fx_a);
+    tvo_command_t cmd;
+    ASSERT_STATUS(TVO_OK, hostile_step(&fx_a, HOSTILE_SPEED_HIGH, &cmd));
+    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_ACCEL_SATURATED);
+    for (int k = 0; k < 50; ++k) { /* and every command after it (hostile_step checks each) */
+        ASSERT_STATUS(TVO_OK, hostile_step(&fx_a, HOSTILE_NONE, &cmd));
+    }
+}
+
+static void test_implausible_measurements_are_refused_and_keep_nothing(void)
+{
+    const double limit_m = test_d(TVO_POSITION_LIMIT_M);
+    const double heading_limit = test_d(TVO_HEADING_LIMIT_RAD);
+    fx_running(&fx_a);
+    const double speed_limit = 2.0 * test_d(fx_a.cfg.speed_max_mps) + test_d(TVO_MEASURED_SPEED_MARGIN_MPS);
+    for (int which = 0; which < 6; ++which) {
+        tvo_measurement_t m = next_sample(&fx_a);
+        m.speed_valid = 1;
+        m.speed_mps[0] = fx_a.cmd.speed_mps[0];
+        tvo_measurement_t at_limit = m;
+        switch (which) {
+        case 0: m.position_m[0][0] = test_r(limit_m * 1.001); at_limit.position_m[0][0] = test_r(limit_m); break;
+        case 1: m.position_m[0][1] = test_r(-limit_m * 1.001); at_limit.position_m[0][1] = test_r(-limit_m); break;
+        case 2: m.heading_rad[0] = test_r(heading_limit * 1.001); at_limit.heading_rad[0] = test_r(-heading_limit); break;
+        case 3: m.speed_mps[0] = test_r(speed_limit * 1.001); at_limit.speed_mps[0] = test_r(speed_limit); break;
+        case 4: m.speed_mps[0] = test_r(-speed_limit * 1.001); at_limit.speed_mps[0] = test_r(-speed_limit); break;
+        default: /* out of range and not finite: not finite is said first */
+            m.position_m[0][0] = TVO_R(1.0e6);
+            m.speed_mps[0] = TEST_NAN;
+            break;
+        }
+        const tvo_status_t expected = (which == 5) ? TVO_ERR_NOT_FINITE : TVO_ERR_IMPLAUSIBLE_MEASUREMENT;
+        if (which < 5) {
+            ASSERT_STATUS(TVO_OK, tvo_controller_check(&fx_a.ctl, &at_limit, fx_a.apply)); /* the limit is in */
+        }
+        ASSERT_STATUS(expected, tvo_controller_check(&fx_a.ctl, &m, fx_a.apply));
+        trace_t before;
+        trace_of(&fx_a.ctl, &before);
+        tvo_command_t cmd;
+        expect_held(&fx_a, expected, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), &cmd);
+        assert_no_trace(&before, &fx_a.ctl);
+        fx_a.apply += FX_PERIOD;
+        run_ok(&fx_a, 3); /* the watchdog's count starts over */
+    }
+    /* Without speed_valid or heading_valid the fields are not read: no refusal. */
+    tvo_measurement_t m = next_sample(&fx_a);
+    m.speed_valid = 0;
+    m.speed_mps[0] = TVO_R(1.0e30);
+    ASSERT_STATUS(TVO_OK, tvo_controller_check(&fx_a.ctl, &m, fx_a.apply));
+}
+
+static void test_speed_mismatch_stops_the_robot_then_starts_again_from_rest(void)
+{
+    /* A plant that moves as commanded but reports 0 m/s: flagged, then stopped, then restarted. */
+    fx_reset(&fx_a, 1);
+    fx_line_target(&fx_a.target[0], 0.5, 0.0, 1.0, 0.0);
+    fx_set_pose(&fx_a, 0, 0.0, 0.0, 0.0);
+    fx_start(&fx_a, 0);
+    tvo_command_t cmd;
+    int flagged_in_row = 0;
+    int k = 0;
+    for (; k < 200; ++k) {
+        ASSERT_STATUS(TVO_OK, step_reporting_speed(&fx_a, 0.0, &cmd));
+        if ((cmd.flags & TVO_FLAG_SAFE_STOP) != 0u) {
+            break;
+        }
+        flagged_in_row = (cmd.flags & TVO_FLAG_SPEED_MISMATCH) != 0u ? flagged_in_row + 1 : 0;
+    }
+    TEST_ASSERT_TRUE_MESSAGE(k < 200, "never stopped");
+    /* Flagged from the TVO_SPEED_MISMATCH_PERIODS-th contradicted period, stopped at the STOP-th. */
+    TEST_ASSERT_EQUAL_INT((int)(TVO_SPEED_MISMATCH_STOP_PERIODS - TVO_SPEED_MISMATCH_PERIODS), flagged_in_row);
+    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_SPEED_MISMATCH);
+    const tvo_command_t rest = {{TVO_R(0.0)}, {TVO_R(0.0)}, 0u};
+    assert_same_motion(&rest, &cmd, 1);
+    /* Stopped for the holdoff's accepted periods, status TVO_OK; the measurement's 0 m/s now agrees. */
+    for (uint32_t j = 1; j < TVO_SPEED_MISMATCH_HOLDOFF_PERIODS; ++j) {
+        ASSERT_STATUS(TVO_OK, step_reporting_speed(&fx_a, 0.0, &cmd));
+        ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_SAFE_STOP);
+        ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_SPEED_MISMATCH);
+        assert_same_motion(&rest, &cmd, 1);
+    }
+    /* Then it starts again from rest, within the limits. */
+    ASSERT_STATUS(TVO_OK, step_reporting_speed(&fx_a, 0.0, &cmd));
+    ASSERT_FLAG_CLEAR(cmd.flags, TVO_FLAG_SAFE_STOP);
+    ASSERT_LE(fabs(test_d(cmd.speed_mps[0])), test_d(fx_a.cfg.accel_max_mps2) * h_s(&fx_a) + TEST_TOL(8, 1.0),
+              "first speed after the holdoff");
+    TEST_ASSERT_TRUE_MESSAGE(cmd.speed_mps[0] > TVO_R(0.0), "the controller drives again after the holdoff");
 }
 
 int main(void)
@@ -1699,5 +1881,9 @@ int main(void)
     RUN_TEST(test_speed_mismatch_is_flagged_after_its_periods_in_a_row);
     RUN_TEST(test_speed_mismatch_is_not_flagged_for_a_plant_that_follows);
     RUN_TEST(test_speed_mismatch_flags_a_plant_reporting_zero_while_it_falls_behind);
+    RUN_TEST(test_hostile_measurements_never_break_a_limit);
+    RUN_TEST(test_a_resynced_speed_moves_the_command_by_at_most_accel_h);
+    RUN_TEST(test_implausible_measurements_are_refused_and_keep_nothing);
+    RUN_TEST(test_speed_mismatch_stops_the_robot_then_starts_again_from_rest);
     return UNITY_END();
 }

@@ -96,6 +96,20 @@ typedef float tvo_real_t;
 #endif
 
 /**
+ * The workspace, in metres: every position the core accepts (a measurement, a target's value at the
+ * epoch, a constraint's geometry) has |x| <= TVO_POSITION_LIMIT_M per axis, and every rate of that
+ * geometry at most TVO_POSITION_LIMIT_M per second. float32 keeps about 1 mm at this magnitude, and
+ * no product the law forms of such numbers can overflow. Override with -DTVO_POSITION_LIMIT_M_VALUE
+ * (whole metres).
+ */
+#ifndef TVO_POSITION_LIMIT_M_VALUE
+#define TVO_POSITION_LIMIT_M_VALUE 10000
+#endif
+#define TVO_POSITION_LIMIT_M ((tvo_real_t)(TVO_POSITION_LIMIT_M_VALUE))
+/** A polynomial target's coefficients c_j (j >= 1, in m/s^j): any fit a robot can follow lies far inside. */
+#define TVO_POLY_COEFF_LIMIT TVO_R(1.0e6)
+
+/**
  * Speed over size: the core compiles its loop-heavy bodies a second time for the common shapes (the
  * k = 2 law for one robot or two) and unrolls loops that run at most 4 times (jet coefficients,
  * a robot's outputs). Optimising for size (-Os) turns both off; -DTVO_SPECIALIZE_SHAPES=0/1 overrides.
@@ -121,6 +135,9 @@ typedef float tvo_real_t;
 #endif
 #if TVO_MAX_RELATIVE_DEGREE < 1 || TVO_MAX_RELATIVE_DEGREE > 3
 #error "TVO_MAX_RELATIVE_DEGREE must be 1, 2 or 3"
+#endif
+#if TVO_POSITION_LIMIT_M_VALUE < 1 || TVO_POSITION_LIMIT_M_VALUE > 1000000
+#error "TVO_POSITION_LIMIT_M_VALUE must be 1 .. 1000000 whole metres (float32 keeps 6 cm at 1e6)"
 #endif
 #if TVO_MAX_EQUALITIES < 0 || TVO_MAX_EQUALITIES % 2 != 0
 #error "TVO_MAX_EQUALITIES must be 0 or a positive even number (a formation offset uses 2)"

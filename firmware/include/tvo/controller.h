@@ -35,7 +35,14 @@
  * A valid measured speed that departs from the held speed by more than
  * max(TVO_SPEED_MISMATCH_MPS, TVO_SPEED_MISMATCH_FRACTION |held|) for TVO_SPEED_MISMATCH_PERIODS
  * accepted steps in a row flags the command TVO_FLAG_SPEED_MISMATCH (stalled wheels, or a plant
- * that reports a speed it does not have); the command is still computed.
+ * that reports a speed it does not have); for TVO_SPEED_MISMATCH_STOP_PERIODS in a row, it stops the
+ * robots for TVO_SPEED_MISMATCH_HOLDOFF_PERIODS accepted periods.
+ *
+ * Limits hold against any input: every command satisfies |v| <= speed_max, |omega| <= omega_max and
+ * |v_{n+1} - v_n| <= accel_max h against the command in force (a measured speed's re-sync moves the
+ * command by at most that; the speed state moves with the command, so the next period's limit holds
+ * too). Finite but impossible measurements are refused (see TVO_HEADING_LIMIT_RAD). A step whose
+ * law results (y'', gradient, its rate) are not finite is TVO_ERR_NUMERIC.
  */
 #ifndef TVO_CONTROLLER_H
 #define TVO_CONTROLLER_H
@@ -54,6 +61,20 @@ extern "C" {
 #define TVO_SPEED_MISMATCH_MPS TVO_R(0.05)
 #define TVO_SPEED_MISMATCH_FRACTION TVO_R(0.25)
 #define TVO_SPEED_MISMATCH_PERIODS 5u
+/** ... acted on: after this many contradicted periods in a row the robots stop (TVO_FLAG_SAFE_STOP with
+ *  TVO_FLAG_SPEED_MISMATCH, status TVO_OK: the measurements are accepted) and stay stopped for
+ *  TVO_SPEED_MISMATCH_HOLDOFF_PERIODS accepted periods; then the controller starts again from rest. */
+#define TVO_SPEED_MISMATCH_STOP_PERIODS 10u
+#define TVO_SPEED_MISMATCH_HOLDOFF_PERIODS 50u
+
+/** Plausibility: a finite measurement is refused with TVO_ERR_IMPLAUSIBLE_MEASUREMENT when a position
+ *  lies beyond TVO_POSITION_LIMIT_M (tvo/config.h), a valid heading beyond +-TVO_HEADING_LIMIT_RAD
+ *  (unwrapped headings are fine up to it; float32 keeps 0.008 rad there), or a valid measured speed
+ *  beyond TVO_MEASURED_SPEED_FACTOR * speed_max_mps + TVO_MEASURED_SPEED_MARGIN_MPS (no command
+ *  reaches it). A jump within the workspace is served: the command's limits bound its effect. */
+#define TVO_HEADING_LIMIT_RAD TVO_R(65536.0)
+#define TVO_MEASURED_SPEED_FACTOR TVO_R(2.0)
+#define TVO_MEASURED_SPEED_MARGIN_MPS TVO_R(0.5)
 
 typedef enum {
     /** y' = v e_theta with the measured heading; a valid measured speed re-syncs the speed state. */
@@ -155,6 +176,9 @@ struct tvo_controller {
     tvo_command_t held;              /* command applied over the current interval */
     tvo_controller_telemetry_t telemetry;
     uint32_t speed_mismatch_periods; /* accepted steps in a row whose measured speed contradicted the held one */
+    uint32_t speed_mismatch_holdoff; /* accepted periods the mismatch stop still lasts */
+    tvo_real_t speed_step_max_mps;   /* accel_max h: the most a command's speed may differ from the one in force */
+    tvo_real_t measured_speed_limit_mps; /* a measured speed beyond it is refused (TVO_MEASURED_SPEED_FACTOR) */
     tvo_position_velocity_fn position_velocity; /* set by tvo_controller_init only: NULL links none */
     uint8_t initialized;
 };

@@ -32,11 +32,12 @@ typedef enum {
     TVO_ERR_WATCHDOG = 15,           /* no valid measurement within the watchdog: safe stop */
     TVO_ERR_IMPLAUSIBLE_STAMP = 16,  /* the stamp (or stamp and sequence) does not fit the schedule */
     TVO_ERR_SESSION_CONFLICT = 17,   /* a START reuses the running session's id with other content */
-    TVO_ERR_NO_SESSION = 18          /* no such session is running (send START) */
+    TVO_ERR_NO_SESSION = 18,         /* no such session is running (send START) */
+    TVO_ERR_IMPLAUSIBLE_MEASUREMENT = 19 /* finite, but beyond what the session's robot can be (tvo/controller.h) */
 } tvo_status_t;
 
 /** Number of status codes: arrays indexed by status (the node's refusal counters) hold this many. */
-#define TVO_STATUS_COUNT 19
+#define TVO_STATUS_COUNT 20
 
 /** Names the parameter an init rejected. */
 typedef enum {
