@@ -136,7 +136,8 @@ def read_binary_graph(elf, objdump):
         match = INSN_RE.match(line) if current else None
         if not match:
             continue
-        op, args = match.group(1), match.group(2).split(";")[0].split("@")[0].strip()
+        # Comments: ";" and "@" (Arm), " # " (RISC-V's address annotations; Arm immediates have no space).
+        op, args = match.group(1), match.group(2).split(";")[0].split("@")[0].split(" # ")[0].strip()
         if current.startswith("__riscv_save"):
             # RV32 millicode: saves up to 12 registers in one 64-byte block for its caller.
             frames[current] = 64

@@ -168,8 +168,9 @@ tvo_status_t tvo_controller_init_pose_velocity(tvo_controller_t *ctl, const tvo_
     return st;
 }
 
-/* Why a measurement failed the range check: a value not finite (any robot's) before one out of range. */
-static tvo_status_t measurement_range_refusal(const tvo_controller_t *ctl, const tvo_measurement_t *meas)
+/* Why a measurement failed the range check: a value not finite (any robot's) before one out of range.
+ * Off the common path: the check's loop says only "out of range", this names it. */
+TVO_COLD_BODY tvo_status_t measurement_range_refusal(const tvo_controller_t *ctl, const tvo_measurement_t *meas)
 {
     for (uint8_t r = 0; r < ctl->cfg.robot_count; ++r) {
         if (!isfinite(meas->position_m[r][0]) || !isfinite(meas->position_m[r][1]) ||
@@ -195,7 +196,7 @@ static inline tvo_status_t check_measurement(const tvo_controller_t *ctl, const 
             !(TVO_FABS(meas->position_m[r][1]) <= TVO_POSITION_LIMIT_M) ||
             (meas->heading_valid && !(TVO_FABS(meas->heading_rad[r]) <= TVO_HEADING_LIMIT_RAD)) ||
             (meas->speed_valid && !(TVO_FABS(meas->speed_mps[r]) <= speed_limit))) {
-            return measurement_range_refusal(ctl, meas);
+            return TVO_ERR_IMPLAUSIBLE_MEASUREMENT; /* or not finite: refusal_of_range tells them apart */
         }
     }
     const tvo_status_t st = sample_clock_check_stamp(&ctl->clock, meas->stamp_tick, apply_tick);
@@ -257,6 +258,46 @@ static tvo_status_t hold_or_stop(tvo_controller_t *ctl, const tvo_period_t *peri
     *cmd = ctl->held;
     cmd->flags = TVO_FLAG_HOLDING;
     return reason;
+}
+
+/* The command's speed moved beyond accel_max h from the one in force (a measured speed's re-sync):
+ * held to the bound, the speed state moved with it. Returns the flag it sets. */
+TVO_COLD_BODY uint32_t limit_speed_step(const tvo_controller_t *ctl, tvo_real_t *speed_mps, tvo_real_t *speed_next_mps,
+                                        tvo_real_t held_speed_mps)
+{
+    const tvo_real_t step = *speed_mps - held_speed_mps;
+    const tvo_real_t bound = step > TVO_R(0.0) ? ctl->speed_step_max_mps : -ctl->speed_step_max_mps;
+    uint32_t unused = 0u;
+    *speed_mps = held_speed_mps + bound;
+    *speed_next_mps = clamp(*speed_next_mps - (step - bound), ctl->cfg.speed_max_mps, 0u, &unused);
+    return TVO_FLAG_ACCEL_SATURATED;
+}
+
+/* A period of the speed mismatch's stop, after the period's commit: accepted (clock, filters,
+ * multipliers move on), but the robots stand still. */
+TVO_COLD_BODY tvo_status_t hold_mismatch_stop(tvo_controller_t *ctl, tvo_command_t *cmd)
+{
+    ctl->speed_mismatch_holdoff--;
+    for (uint8_t r = 0; r < TVO_MAX_ROBOTS; ++r) {
+        ctl->speed_state_mps[r] = TVO_R(0.0);
+        ctl->telemetry.accel_mps2[r] = TVO_R(0.0);
+    }
+    for (uint8_t q = 0; q < TVO_ARRAY_LEN(TVO_MAX_EQUALITIES); ++q) {
+        ctl->multiplier_rate[q] = TVO_R(0.0);
+    }
+    stop_command(&ctl->held, TVO_FLAG_SAFE_STOP | TVO_FLAG_SPEED_MISMATCH);
+    *cmd = ctl->held;
+    return TVO_OK;
+}
+
+/* A step that cannot use its measurement (or its law result): the refusal named, then held or stopped. */
+TVO_COLD_BODY tvo_status_t refuse_step(tvo_controller_t *ctl, const tvo_measurement_t *meas, const tvo_period_t *period,
+                                       tvo_status_t reason, tvo_command_t *cmd)
+{
+    if (reason == TVO_ERR_IMPLAUSIBLE_MEASUREMENT) {
+        reason = measurement_range_refusal(ctl, meas); /* the check's loop said only "out of range" */
+    }
+    return hold_or_stop(ctl, period, reason, cmd);
 }
 
 /* The step before the law, for a period the clock has begun: the measurement checked, the state and
@@ -395,18 +436,10 @@ TVO_OFF_CHAIN_BODY tvo_status_t step_after_law(tvo_controller_t *ctl, const tvo_
         next->speed_mps[r] = TVO_R(0.5) * (speed_state[r] + speed_next[r]);
         /* The command in force bounds the new one, whatever a measured speed re-synced: the state moves
          * with the command, so the next period's command stays within a_max h of this one too. */
-        const tvo_real_t speed_step = next->speed_mps[r] - ctl->held.speed_mps[r];
-        if (!(TVO_FABS(speed_step) <= ctl->speed_step_max_mps)) {
-            const tvo_real_t bound = speed_step > TVO_R(0.0) ? ctl->speed_step_max_mps : -ctl->speed_step_max_mps;
-            next->speed_mps[r] = ctl->held.speed_mps[r] + bound;
-            speed_next[r] = clamp(speed_next[r] - (speed_step - bound), cfg->speed_max_mps, 0u, &flags);
-            flags |= TVO_FLAG_ACCEL_SATURATED;
+        if (!(TVO_FABS(next->speed_mps[r] - ctl->held.speed_mps[r]) <= ctl->speed_step_max_mps)) {
+            flags |= limit_speed_step(ctl, &next->speed_mps[r], &speed_next[r], ctl->held.speed_mps[r]);
         }
-        /* What the telemetry reports of the law must be finite too (y'' clipped to a limit could hide it). */
-        const tvo_real_t law_sum = y_accel[2u * r] + y_accel[2u * r + 1u] + work->gradient[2u * r] +
-                                   work->gradient[2u * r + 1u] + work->gradient_rate[2u * r] +
-                                   work->gradient_rate[2u * r + 1u];
-        if (!isfinite(law_sum) || !isfinite(next->speed_mps[r]) || !isfinite(next->turn_rate_radps[r])) {
+        if (!isfinite(next->speed_mps[r]) || !isfinite(next->turn_rate_radps[r])) {
             st = TVO_ERR_NUMERIC;
         }
     }
@@ -442,20 +475,6 @@ TVO_OFF_CHAIN_BODY tvo_status_t step_after_law(tvo_controller_t *ctl, const tvo_
         tm->multiplier[q] = ctl->multiplier[q];
     }
 #endif
-    if (ctl->speed_mismatch_holdoff > 0u) {
-        /* The period is accepted (clock, filters, multipliers move on), but the robots stand still. */
-        ctl->speed_mismatch_holdoff--;
-        for (uint8_t r = 0; r < n; ++r) {
-            speed_next[r] = TVO_R(0.0);
-            accel[r] = TVO_R(0.0);
-            next->speed_mps[r] = TVO_R(0.0);
-            next->turn_rate_radps[r] = TVO_R(0.0);
-        }
-        for (uint8_t q = 0; q < TVO_ARRAY_LEN(TVO_MAX_EQUALITIES); ++q) {
-            ctl->multiplier_rate[q] = TVO_R(0.0);
-        }
-        flags = TVO_FLAG_SAFE_STOP | TVO_FLAG_SPEED_MISMATCH;
-    }
     for (uint8_t r = 0; r < n; ++r) {
         ctl->speed_state_mps[r] = speed_next[r];
         tm->accel_mps2[r] = accel[r];
@@ -477,6 +496,9 @@ TVO_OFF_CHAIN_BODY tvo_status_t step_after_law(tvo_controller_t *ctl, const tvo_
         tm->gradient_rate[i] = work->gradient_rate[i];
     }
     tm->regularization = work->report.regularization;
+    if (ctl->speed_mismatch_holdoff > 0u) {
+        return hold_mismatch_stop(ctl, cmd);
+    }
     return TVO_OK;
 }
 
@@ -507,7 +529,7 @@ TVO_SHAPE_BODY tvo_status_t step_shape(tvo_controller_t *ctl, const tvo_measurem
         }
     }
     if (st != TVO_OK) {
-        return hold_or_stop(ctl, &work->period, st, cmd);
+        return refuse_step(ctl, meas, &work->period, st, cmd);
     }
     return step_after_law(ctl, meas, cmd, n, flags, speed_contradicted);
 }
@@ -551,7 +573,8 @@ tvo_status_t tvo_controller_check(const tvo_controller_t *ctl, const tvo_measure
     if (tvo_sample_clock_begin(&ctl->clock, apply_tick, &period) != TVO_OK) {
         return TVO_ERR_OUT_OF_ORDER;
     }
-    return check_measurement(ctl, meas, apply_tick);
+    const tvo_status_t st = check_measurement(ctl, meas, apply_tick);
+    return (st == TVO_ERR_IMPLAUSIBLE_MEASUREMENT) ? measurement_range_refusal(ctl, meas) : st;
 }
 
 tvo_status_t tvo_controller_safe_stop(tvo_controller_t *ctl, tvo_command_t *cmd)

@@ -35,6 +35,14 @@
 #define TVO_OFF_CHAIN_BODY static __attribute__((noinline))
 #endif
 
+/* A rare branch's body (a limit's correction, a stop), kept out of line so the common path's
+ * registers and layout do not pay for it. */
+#if defined(__GNUC__)
+#define TVO_COLD_BODY static __attribute__((noinline, cold))
+#else
+#define TVO_COLD_BODY static
+#endif
+
 /* Replaces a (leading n x n block, row stride `stride`) by (a + a^T) / 2: exactly symmetric. */
 TVO_SHAPE_BODY void symmetrize(tvo_real_t *a, const unsigned stride, const unsigned n)
 {

@@ -1,8 +1,9 @@
 /*
  * The unicycle controller's step with fuzzed measurements (values, flags and stamps from the input).
- * Invariants: every command finite and within the limits, a safe stop all zero, status OK only on a
- * computed command; a measurement tvo_controller_check refuses leaves the velocity filter, the speed
- * state and the last stamp as they were.
+ * Invariants: every command finite and within the limits (|v|, |omega|, and but for a safe stop
+ * |v - v_in_force| <= accel_max h), a safe stop all zero, status OK only on a computed command (or the
+ * speed mismatch's stop) with finite telemetry; a measurement tvo_controller_check refuses leaves the
+ * velocity filter, the speed state and the last stamp as they were.
  * The first byte chooses the velocity source (bit 0: position-only) and, for the pose source, the
  * init (bits 1..0 = 2: tvo_controller_init_pose_velocity). Then records: stamp step (2 bytes,
  * ticks), apply lead (2 bytes, ticks), flags (1 byte), position x, y, heading, speed (4 x 4-byte floats).
@@ -59,6 +60,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         fail("reference controller");
     }
     uint32_t stamp = 0u;
+    tvo_real_t speed_in_force = cfg.initial_speed_mps[0];
+    const double speed_step_max = (double)cfg.accel_max_mps2 * (double)cfg.period_ticks / (double)cfg.tick_hz;
     for (size_t i = 1; i + RECORD_BYTES <= size; i += RECORD_BYTES) {
         const uint8_t *p = data + i;
         tvo_measurement_t meas;
@@ -88,8 +91,24 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         if ((cmd.flags & TVO_FLAG_SAFE_STOP) && (cmd.speed_mps[0] != TVO_R(0.0) || cmd.turn_rate_radps[0] != TVO_R(0.0))) {
             fail("safe stop not all zero");
         }
-        if (st == TVO_OK && (cmd.flags & (TVO_FLAG_HOLDING | TVO_FLAG_SAFE_STOP))) {
+        const int mismatch_stop = (cmd.flags & (TVO_FLAG_SAFE_STOP | TVO_FLAG_SPEED_MISMATCH)) ==
+                                  (TVO_FLAG_SAFE_STOP | TVO_FLAG_SPEED_MISMATCH);
+        if (st == TVO_OK && ((cmd.flags & TVO_FLAG_HOLDING) || ((cmd.flags & TVO_FLAG_SAFE_STOP) && !mismatch_stop))) {
             fail("status OK on a holding or stop command");
+        }
+        if (!(cmd.flags & TVO_FLAG_SAFE_STOP) &&
+            fabs((double)cmd.speed_mps[0] - (double)speed_in_force) > speed_step_max * (1.0 + 1e-5) + 1e-6) {
+            fail("the speed moved by more than accel_max h from the command in force");
+        }
+        speed_in_force = cmd.speed_mps[0];
+        if (st == TVO_OK) {
+            const tvo_controller_telemetry_t *tm = &ctl.telemetry;
+            for (int axis = 0; axis < 2; ++axis) {
+                if (!isfinite(tm->gradient[axis]) || !isfinite(tm->gradient_rate[axis]) ||
+                    !isfinite(tm->output_accel_mps2[axis]) || !isfinite(tm->output_rate_mps[axis])) {
+                    fail("status OK with telemetry not finite");
+                }
+            }
         }
         if (verdict != TVO_OK && st == TVO_OK) {
             fail("the step used a measurement its check refused");

@@ -125,7 +125,10 @@ static inline void fuzz_check_command(const tvo_lcm_command_t *m, const tvo_lcm_
             fuzz_fail("safe stop not all zero (chain)");
         }
     }
-    if (m->status == 0 && (m->flags & (int32_t)(TVO_FLAG_HOLDING | TVO_FLAG_SAFE_STOP)) != 0) {
+    /* Status 0 is a computed command, or the speed mismatch's stop (the measurement was accepted). */
+    const int32_t mismatch_stop = (int32_t)(TVO_FLAG_SAFE_STOP | TVO_FLAG_SPEED_MISMATCH);
+    if (m->status == 0 && ((m->flags & (int32_t)TVO_FLAG_HOLDING) != 0 ||
+                           ((m->flags & (int32_t)TVO_FLAG_SAFE_STOP) != 0 && (m->flags & mismatch_stop) != mismatch_stop))) {
         fuzz_fail("status OK on a holding or stop command");
     }
 }
