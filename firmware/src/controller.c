@@ -168,18 +168,15 @@ tvo_status_t tvo_controller_init_pose_velocity(tvo_controller_t *ctl, const tvo_
     return st;
 }
 
-/* Why a measurement failed the range check: a value not finite (any robot's) before one out of range.
- * Off the common path: the check's loop says only "out of range", this names it. */
+/* Why a measurement failed the range check, off the common path: not finite if the sum of the robots'
+ * values is not (a field the configuration does not read included), else out of range. */
 TVO_COLD_BODY tvo_status_t measurement_range_refusal(const tvo_controller_t *ctl, const tvo_measurement_t *meas)
 {
-    for (uint8_t r = 0; r < ctl->cfg.robot_count; ++r) {
-        if (!isfinite(meas->position_m[r][0]) || !isfinite(meas->position_m[r][1]) ||
-            (meas->heading_valid && !isfinite(meas->heading_rad[r])) ||
-            (meas->speed_valid && !isfinite(meas->speed_mps[r]))) {
-            return TVO_ERR_NOT_FINITE;
-        }
+    tvo_real_t probe = TVO_R(0.0);
+    for (uint8_t r = 0; r < ctl->cfg.robot_count && r < TVO_MAX_ROBOTS; ++r) {
+        probe += meas->position_m[r][0] + meas->position_m[r][1] + meas->heading_rad[r] + meas->speed_mps[r];
     }
-    return TVO_ERR_IMPLAUSIBLE_MEASUREMENT;
+    return isfinite(probe - probe) ? TVO_ERR_IMPLAUSIBLE_MEASUREMENT : TVO_ERR_NOT_FINITE;
 }
 
 static inline tvo_status_t check_measurement(const tvo_controller_t *ctl, const tvo_measurement_t *meas,
@@ -196,7 +193,7 @@ static inline tvo_status_t check_measurement(const tvo_controller_t *ctl, const 
             !(TVO_FABS(meas->position_m[r][1]) <= TVO_POSITION_LIMIT_M) ||
             (meas->heading_valid && !(TVO_FABS(meas->heading_rad[r]) <= TVO_HEADING_LIMIT_RAD)) ||
             (meas->speed_valid && !(TVO_FABS(meas->speed_mps[r]) <= speed_limit))) {
-            return TVO_ERR_IMPLAUSIBLE_MEASUREMENT; /* or not finite: refusal_of_range tells them apart */
+            return TVO_ERR_IMPLAUSIBLE_MEASUREMENT; /* or not finite: measurement_range_refusal says which */
         }
     }
     const tvo_status_t st = sample_clock_check_stamp(&ctl->clock, meas->stamp_tick, apply_tick);
@@ -260,6 +257,16 @@ static tvo_status_t hold_or_stop(tvo_controller_t *ctl, const tvo_period_t *peri
     return reason;
 }
 
+/* A step that cannot use its measurement (or its law result): the refusal named, then held or stopped. */
+TVO_COLD_BODY tvo_status_t refuse_step(tvo_controller_t *ctl, const tvo_measurement_t *meas, const tvo_period_t *period,
+                                       tvo_status_t reason, tvo_command_t *cmd)
+{
+    if (reason == TVO_ERR_IMPLAUSIBLE_MEASUREMENT) {
+        reason = measurement_range_refusal(ctl, meas);
+    }
+    return hold_or_stop(ctl, period, reason, cmd);
+}
+
 /* The command's speed moved beyond accel_max h from the one in force (a measured speed's re-sync):
  * held to the bound, the speed state moved with it. Returns the flag it sets. */
 TVO_COLD_BODY uint32_t limit_speed_step(const tvo_controller_t *ctl, tvo_real_t *speed_mps, tvo_real_t *speed_next_mps,
@@ -288,16 +295,6 @@ TVO_COLD_BODY tvo_status_t hold_mismatch_stop(tvo_controller_t *ctl, tvo_command
     stop_command(&ctl->held, TVO_FLAG_SAFE_STOP | TVO_FLAG_SPEED_MISMATCH);
     *cmd = ctl->held;
     return TVO_OK;
-}
-
-/* A step that cannot use its measurement (or its law result): the refusal named, then held or stopped. */
-TVO_COLD_BODY tvo_status_t refuse_step(tvo_controller_t *ctl, const tvo_measurement_t *meas, const tvo_period_t *period,
-                                       tvo_status_t reason, tvo_command_t *cmd)
-{
-    if (reason == TVO_ERR_IMPLAUSIBLE_MEASUREMENT) {
-        reason = measurement_range_refusal(ctl, meas); /* the check's loop said only "out of range" */
-    }
-    return hold_or_stop(ctl, period, reason, cmd);
 }
 
 /* The step before the law, for a period the clock has begun: the measurement checked, the state and

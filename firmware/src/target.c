@@ -17,15 +17,19 @@ static int all_finite(const tvo_real_t *v, size_t n)
     return 1;
 }
 
-/* Whether every |v_i| <= limit (values known to be finite). */
-static int all_within(const tvo_real_t *v, size_t n, tvo_real_t limit)
+/* TVO_ERR_NOT_FINITE if a value is not finite, else TVO_ERR_PARAM if one has |v_i| > limit, else TVO_OK. */
+static __attribute__((noinline)) tvo_status_t check_values(const tvo_real_t *v, size_t n, tvo_real_t limit)
 {
+    tvo_status_t st = TVO_OK;
     for (size_t i = 0; i < n; ++i) {
+        if (!isfinite(v[i])) {
+            return TVO_ERR_NOT_FINITE;
+        }
         if (!(TVO_FABS(v[i]) <= limit)) {
-            return 0;
+            st = TVO_ERR_PARAM;
         }
     }
-    return 1;
+    return st;
 }
 
 tvo_status_t tvo_target_init_polynomial(tvo_target_t *target,
@@ -34,15 +38,13 @@ tvo_status_t tvo_target_init_polynomial(tvo_target_t *target,
     if (target == NULL || coeff == NULL) {
         return TVO_ERR_NULL;
     }
-    if (!all_finite(&coeff[0][0], 2u * (TVO_POLY_MAX_DEGREE + 1u))) {
-        return TVO_ERR_NOT_FINITE;
+    /* Its value at the epoch in the workspace, its coefficients within TVO_POLY_COEFF_LIMIT (wider). */
+    const tvo_status_t st = check_values(&coeff[0][0], 2u * (TVO_POLY_MAX_DEGREE + 1u), TVO_POLY_COEFF_LIMIT);
+    if (st != TVO_OK) {
+        return st;
     }
-    /* Its value at the epoch in the workspace, its other coefficients within TVO_POLY_COEFF_LIMIT. */
-    for (uint8_t axis = 0; axis < 2u; ++axis) {
-        if (!(TVO_FABS(coeff[axis][0]) <= TVO_POSITION_LIMIT_M) ||
-            !all_within(&coeff[axis][1], TVO_POLY_MAX_DEGREE, TVO_POLY_COEFF_LIMIT)) {
-            return TVO_ERR_PARAM;
-        }
+    if (!(TVO_FABS(coeff[0][0]) <= TVO_POSITION_LIMIT_M) || !(TVO_FABS(coeff[1][0]) <= TVO_POSITION_LIMIT_M)) {
+        return TVO_ERR_PARAM;
     }
     memset(target, 0, sizeof(*target));
     target->kind = TVO_TARGET_POLYNOMIAL;
@@ -93,7 +95,7 @@ tvo_status_t tvo_target_init_ellipse(tvo_target_t *target, const tvo_target_elli
         return TVO_ERR_NOT_FINITE;
     }
     if (!(ellipse->semi_axis_m[0] > TVO_R(0.0)) || !(ellipse->semi_axis_m[1] > TVO_R(0.0)) ||
-        !all_within(values, 4u, TVO_POSITION_LIMIT_M) ||
+        check_values(values, 4u, TVO_POSITION_LIMIT_M) != TVO_OK ||
         !(TVO_FABS(ellipse->omega_radps) <= TVO_TARGET_MAX_OMEGA_RADPS)) {
         return TVO_ERR_PARAM;
     }
@@ -156,11 +158,9 @@ tvo_status_t tvo_target_stream_update(tvo_target_t *target, uint64_t stamp_ticks
     if (target->kind != TVO_TARGET_STREAMED) {
         return TVO_ERR_PARAM;
     }
-    if (!all_finite(&deriv[0][0], 2u * (TVO_STREAM_MAX_DERIV + 1u))) {
-        return TVO_ERR_NOT_FINITE;
-    }
-    if (!all_within(&deriv[0][0], 2u * (TVO_STREAM_MAX_DERIV + 1u), TVO_POSITION_LIMIT_M)) {
-        return TVO_ERR_PARAM; /* beyond the workspace, or a rate of it */
+    const tvo_status_t st = check_values(&deriv[0][0], 2u * (TVO_STREAM_MAX_DERIV + 1u), TVO_POSITION_LIMIT_M);
+    if (st != TVO_OK) {
+        return st; /* not finite, or beyond the workspace (or a rate of it) */
     }
     tvo_target_streamed_t *s = &target->u.streamed;
     if (s->has_sample && stamp_ticks <= s->stamp_ticks) {
