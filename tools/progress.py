@@ -16,9 +16,14 @@ From bash (a command whose length in seconds is known, e.g. a fuzzer with -max_t
     tools/progress.py run --label fuzz --what frame --seconds 600 [--output LOG] -- CMD ARGS...
     (runs CMD, passes its exit code through; the estimate is the time left of --seconds; on a
     terminal CMD's output goes through pipes, line by line, so it never lands on the progress line)
+From bash, a build (tools/build, make's "[ 42%] Building ... x.cpp.o" lines):
+    tools/progress.py build --label scenario [--output LOG] -- CMD ARGS...
+    (runs CMD, passes its exit code through; the line shows make's last percentage and what it
+    builds, or the last other line (setup, configure); its output goes to LOG, or around the line)
 """
 import argparse
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -187,6 +192,57 @@ def run_command(label, what, seconds, command, output=None):
             return 127
 
 
+MAKE_LINE = re.compile(r"^\[\s*(\d+)%\]\s*(.*)$")
+
+
+def build_step(line):
+    """What a build's output line says it does, for the progress line: make's "[ 42%] Building CXX
+    object host/x.dir/src/sim.cpp.o" -> "[ 42%] sim.cpp", "Linking ... tvo_sim" -> "[ 99%] linking
+    tvo_sim"; another non-empty line as it is; None for an empty one."""
+    line = line.strip()
+    match = MAKE_LINE.match(line)
+    if not match:
+        return line or None
+    percent, rest = match.groups()
+    words = rest.split()
+    if words and words[0] in ("Building", "Linking") and len(words) > 1:
+        name = os.path.basename(words[-1])
+        name = name[:-2] if name.endswith(".o") else name
+        rest = name if words[0] == "Building" else f"linking {name}"
+    return f"[{int(percent):3d}%] {rest}"
+
+
+def run_build(label, command, output=None):
+    """Runs a build with a progress line of its steps (its output into the file output, or around
+    the line); returns its exit code."""
+    with Progress(label, estimate=False) as progress:
+        progress.update(0, "starting")
+        try:
+            out = open(output, "w") if output is not None else None
+            try:
+                with subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                                      errors="replace") as proc:
+                    for line in proc.stdout:
+                        step = build_step(line)
+                        if step is not None:
+                            progress.update(0, step)
+                        if out is not None:
+                            out.write(line)
+                            out.flush()
+                        else:
+                            progress.echo(line, sys.stdout)
+                    return proc.wait()
+            finally:
+                if out is not None:
+                    out.close()
+        except KeyboardInterrupt:
+            return 130
+        except OSError as err:
+            progress.close()
+            print(f"{label}: ERROR: cannot run {command[0]}: {err}", file=sys.stderr)
+            return 127
+
+
 def main():
     parser = argparse.ArgumentParser(description="Runs a command with a progress line (on a terminal only).")
     sub = parser.add_subparsers(dest="action", required=True)
@@ -196,10 +252,16 @@ def main():
     run.add_argument("--seconds", type=float, required=True, help="how long the command is expected to run")
     run.add_argument("--output", help="write the command's stdout and stderr to this file")
     run.add_argument("command", nargs=argparse.REMAINDER, help="-- CMD ARGS...")
+    build = sub.add_parser("build", help="run a build, showing make's percentage and what it builds")
+    build.add_argument("--label", required=True, help="the tool's name, e.g. scenario")
+    build.add_argument("--output", help="write the build's stdout and stderr to this file")
+    build.add_argument("command", nargs=argparse.REMAINDER, help="-- CMD ARGS...")
     args = parser.parse_args()
     command = args.command[1:] if args.command[:1] == ["--"] else args.command
     if not command:
-        parser.error("run needs a command after --")
+        parser.error(f"{args.action} needs a command after --")
+    if args.action == "build":
+        return run_build(args.label, command, args.output)
     if args.seconds <= 0:
         parser.error("--seconds must be positive")
     return run_command(args.label, args.what, args.seconds, command, args.output)

@@ -1,7 +1,9 @@
 # Install rules of the control core (included by firmware/CMakeLists.txt after tvo_core is defined):
 #   cmake --install <build> --prefix <P>
-# puts tvo/*.h in <P>/include, libtvo_core.a in <P>/lib and the package config in <P>/lib/cmake/tvo,
-# so a consumer writes find_package(tvo REQUIRED) and target_link_libraries(app PRIVATE tvo::core).
+# puts tvo/*.h (the generated tvo/version.h too) in <P>/include, libtvo_core.a in <P>/lib, the package
+# config in <P>/lib/cmake/tvo and the pkg-config file in <P>/lib/pkgconfig/tvo.pc, so a consumer writes
+# find_package(tvo 1.0 REQUIRED) and target_link_libraries(app PRIVATE tvo::core), or compiles with
+# `pkg-config --cflags --libs tvo`.
 include(CMakePackageConfigHelpers)
 
 # The scalar type and the size limits set the struct layouts, so tvo::core carries them as compile
@@ -25,6 +27,7 @@ set(tvo_config_dir ${CMAKE_INSTALL_LIBDIR}/cmake/tvo)
 install(TARGETS tvo_core EXPORT tvoTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}/include/tvo DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
         FILES_MATCHING PATTERN "*.h")
+install(FILES ${tvo_generated_include_dir}/tvo/version.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/tvo)
 install(EXPORT tvoTargets NAMESPACE tvo:: DESTINATION ${tvo_config_dir})
 
 # What tvoConfig.cmake reports and checks (the definitions themselves travel with tvo::core).
@@ -38,6 +41,35 @@ configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/tvoConfig.cmake.in
 # Same major version; the pointer-size check of this file also tells a 32-bit microcontroller build
 # from a 64-bit host one.
 write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/tvoConfigVersion.cmake
-  VERSION ${tvo_core_version} COMPATIBILITY SameMajorVersion)
+  VERSION ${tvo_version} COMPATIBILITY SameMajorVersion)
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/tvoConfig.cmake ${CMAKE_CURRENT_BINARY_DIR}/tvoConfigVersion.cmake
         DESTINATION ${tvo_config_dir})
+
+# pkg-config (tvo.pc beside the CMake package, in <libdir>/pkgconfig): the same include folder, scalar
+# type and size limits as tvo::core (its interface definitions, not a second list) and its libraries.
+# Relocatable: the prefix is found from the file's own folder, so `cmake --install --prefix P` works.
+get_target_property(tvo_pc_definitions_list tvo_core INTERFACE_COMPILE_DEFINITIONS)
+get_target_property(tvo_pc_link_list tvo_core INTERFACE_LINK_LIBRARIES)
+set(tvo_pc_cflags "")
+foreach(definition IN LISTS tvo_pc_definitions_list)
+  if(definition MATCHES "[$<>]")
+    message(FATAL_ERROR "tvo.pc: tvo_core's definition '${definition}' is a generator expression")
+  endif()
+  string(APPEND tvo_pc_cflags " -D${definition}")
+endforeach()
+set(tvo_pc_libs "")
+foreach(library IN LISTS tvo_pc_link_list)
+  # Plain system libraries (m on the host); the build-only warning target is a generator expression.
+  if(library MATCHES "^[A-Za-z0-9_]+$" AND NOT TARGET ${library})
+    string(APPEND tvo_pc_libs " -l${library}")
+  endif()
+endforeach()
+foreach(dir LIBDIR INCLUDEDIR)
+  if(IS_ABSOLUTE "${CMAKE_INSTALL_${dir}}")
+    message(FATAL_ERROR "tvo.pc is relocatable: CMAKE_INSTALL_${dir} must be relative to the prefix")
+  endif()
+endforeach()
+file(RELATIVE_PATH tvo_pc_up "/prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig" "/prefix")
+string(REGEX REPLACE "/$" "" tvo_pc_up "${tvo_pc_up}")
+configure_file(${CMAKE_CURRENT_LIST_DIR}/tvo.pc.in ${CMAKE_CURRENT_BINARY_DIR}/tvo.pc @ONLY)
+install(FILES ${CMAKE_CURRENT_BINARY_DIR}/tvo.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)

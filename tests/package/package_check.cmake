@@ -2,8 +2,12 @@
 #
 #   MODE=install       install the core into WORK/prefix (from BUILD_DIR with `cmake --install`, or a
 #                      standalone host build of FIRMWARE_DIR with TVO_DOUBLE and LIMITS), then build
-#                      the consumer project (consumer/) with find_package(tvo) and run it
+#                      the consumer project (consumer/) with find_package(tvo 1.0) and run it, and
+#                      build the same main loop and version_check.c with C_COMPILER and
+#                      `PKG_CONFIG --cflags --libs tvo` (the installed tvo.pc) and run them
 #   MODE=subdirectory  the same consumer with add_subdirectory(FIRMWARE_DIR)
+#   Every consumer's version_check must find TVO_VERSION_STRING (tvo/version.h) equal to the version
+#   of FIRMWARE_DIR/cmake/tvo_version.cmake, as the package's tvo_VERSION and tvo.pc's Version.
 #   MODE=cross         a standalone cross build of FIRMWARE_DIR with TOOLCHAIN_FILE installed into
 #                      WORK/prefix; the main-loop example (EXAMPLE_DIR) built against it three times:
 #                      with its weak stubs (no allocator symbol may be linked), with plant.c as the
@@ -12,7 +16,8 @@
 #
 #   cmake -DMODE=... -DWORK=<dir> -DFIRMWARE_DIR=<firmware> -DEXAMPLE_DIR=<examples/main_loop>
 #         [-DBUILD_DIR=<configured tree>] [-DTVO_DOUBLE=ON] [-DLIMITS=NAME=VALUE,...]
-#         [-DTOOLCHAIN_FILE=<file>] [-DQEMU=<qemu-system-arm>] [-DGENERATOR=<gen>] -P package_check.cmake
+#         [-DTOOLCHAIN_FILE=<file>] [-DQEMU=<qemu-system-arm>] [-DGENERATOR=<gen>]
+#         [-DC_COMPILER=<cc> -DPKG_CONFIG=<pkg-config>] -P package_check.cmake   (the last two: install)
 cmake_minimum_required(VERSION 3.16)
 include(${CMAKE_CURRENT_LIST_DIR}/../firmware_checks/check_no_allocator.cmake)
 set(consumer_dir ${CMAKE_CURRENT_LIST_DIR}/consumer)
@@ -31,6 +36,7 @@ set(expect_args -DEXPECT_DOUBLE=${expect_double})
 if(LIMITS MATCHES "TVO_MAX_OUTPUT_DIM=([0-9]+)")
   list(APPEND expect_args -DEXPECT_MAX_OUTPUT_DIM=${CMAKE_MATCH_1})
 endif()
+include(${FIRMWARE_DIR}/cmake/tvo_version.cmake)   # tvo_version: what every consumer must see
 set(prefix ${WORK}/prefix)
 file(REMOVE_RECURSE ${WORK})   # every run starts from nothing: a stale prefix would hide a broken install
 
@@ -50,9 +56,42 @@ endfunction()
 
 function(build_and_run_consumer)
   tvo_run("configure the consumer" ${CMAKE_COMMAND} -S ${consumer_dir} -B ${WORK}/consumer -G ${GENERATOR}
-      -DCMAKE_BUILD_TYPE=Release -DEXAMPLE_DIR=${EXAMPLE_DIR} ${expect_args} ${ARGN})
-  tvo_run("build the consumer" ${CMAKE_COMMAND} --build ${WORK}/consumer --target app --parallel 2)
+      -DCMAKE_BUILD_TYPE=Release -DEXAMPLE_DIR=${EXAMPLE_DIR} ${expect_args} -DEXPECT_VERSION=${tvo_version} ${ARGN})
+  tvo_run("build the consumer" ${CMAKE_COMMAND} --build ${WORK}/consumer --target app version_check --parallel 2)
   tvo_run("run the consumer" ${WORK}/consumer/app)
+  tvo_run("run the consumer's version check" ${WORK}/consumer/version_check)
+endfunction()
+
+# The installed tvo.pc: a plain compiler command with `pkg-config --cflags --libs tvo` builds the main
+# loop (its layout checks need the Cflags' definitions) and version_check.c, and both run.
+function(build_and_run_pkg_config_consumer)
+  foreach(var C_COMPILER PKG_CONFIG)
+    if(NOT ${var})
+      message(FATAL_ERROR "package_check.cmake: MODE=install needs -D${var}=...")
+    endif()
+  endforeach()
+  set(ENV{PKG_CONFIG_PATH} ${prefix}/lib/pkgconfig)
+  execute_process(COMMAND ${PKG_CONFIG} --modversion tvo RESULT_VARIABLE rc OUTPUT_VARIABLE pc_version
+                  OUTPUT_STRIP_TRAILING_WHITESPACE)
+  if(NOT rc EQUAL 0 OR NOT pc_version STREQUAL tvo_version)
+    message(FATAL_ERROR "pkg-config --modversion tvo: '${pc_version}' (exit ${rc}), the sources say ${tvo_version}")
+  endif()
+  execute_process(COMMAND ${PKG_CONFIG} --cflags --libs tvo RESULT_VARIABLE rc OUTPUT_VARIABLE pc_flags
+                  OUTPUT_STRIP_TRAILING_WHITESPACE)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "pkg-config --cflags --libs tvo FAILED (exit ${rc})")
+  endif()
+  message(STATUS "pkg-config --cflags --libs tvo: ${pc_flags}")
+  separate_arguments(pc_flags UNIX_COMMAND "${pc_flags}")
+  set(out ${WORK}/pkg_config)
+  file(MAKE_DIRECTORY ${out})
+  set(warnings -std=c11 -Wall -Wextra -Wpedantic -Wconversion -Wmissing-prototypes -Werror)
+  tvo_run("build the main loop through pkg-config" ${C_COMPILER} ${warnings} ${expect_args} -I${EXAMPLE_DIR}
+      ${EXAMPLE_DIR}/main_loop.c ${CMAKE_CURRENT_LIST_DIR}/plant.c ${pc_flags} -o ${out}/app)
+  tvo_run("run the main loop built through pkg-config" ${out}/app)
+  tvo_run("build the version check through pkg-config" ${C_COMPILER} ${warnings} "-DEXPECT_VERSION=\"${tvo_version}\""
+      ${CMAKE_CURRENT_LIST_DIR}/version_check.c ${pc_flags} -o ${out}/version_check)
+  tvo_run("run the version check built through pkg-config" ${out}/version_check)
 endfunction()
 
 if(MODE STREQUAL "install")
@@ -61,17 +100,24 @@ if(MODE STREQUAL "install")
   else()
     install_standalone_core()
   endif()
-  foreach(file include/tvo/controller.h include/tvo/config.h lib/libtvo_core.a lib/cmake/tvo/tvoConfig.cmake
-               lib/cmake/tvo/tvoConfigVersion.cmake lib/cmake/tvo/tvoTargets.cmake)
+  foreach(file include/tvo/controller.h include/tvo/config.h include/tvo/version.h lib/libtvo_core.a
+               lib/cmake/tvo/tvoConfig.cmake lib/cmake/tvo/tvoConfigVersion.cmake lib/cmake/tvo/tvoTargets.cmake
+               lib/pkgconfig/tvo.pc)
     if(NOT EXISTS ${prefix}/${file})
       message(FATAL_ERROR "the install lacks ${prefix}/${file}")
     endif()
   endforeach()
   build_and_run_consumer(-DCMAKE_PREFIX_PATH=${prefix})
+  build_and_run_pkg_config_consumer()
 elseif(MODE STREQUAL "subdirectory")
   build_and_run_consumer(-DTVO_FIRMWARE_DIR=${FIRMWARE_DIR} -DTVO_DOUBLE=${TVO_DOUBLE} "-DTVO_LIMITS=${LIMITS}")
 elseif(MODE STREQUAL "cross")
   install_standalone_core()
+  foreach(file include/tvo/version.h lib/pkgconfig/tvo.pc)
+    if(NOT EXISTS ${prefix}/${file})
+      message(FATAL_ERROR "the cross install lacks ${prefix}/${file}")
+    endif()
+  endforeach()
   load_cache(${WORK}/core READ_WITH_PREFIX core_ CMAKE_NM)
   set(board_dir ${FIRMWARE_DIR}/board/mps2_an386)
   set(variants stubs "" plant ${CMAKE_CURRENT_LIST_DIR}/plant.c malloc ${CMAKE_CURRENT_LIST_DIR}/malloc_board.c)

@@ -1,8 +1,9 @@
 # Every built-in scenario file loads: `tvo_sim --scenario NAME --dry-run` accepts each file of the
 # folder by its name, and `--list-scenarios` prints one line per file, its name then its
-# description (cmake -P script).
+# description (cmake -P script). With SCENARIO_TOOL, `tools/scenario --list` without a build (an
+# empty TVO_BUILD_DIR) must print the same lines and build nothing.
 #
-#   -DSIM=<tvo_sim> -DSCENARIO_DIR=<host/scenarios>
+#   -DSIM=<tvo_sim> -DSCENARIO_DIR=<host/scenarios> [-DSCENARIO_TOOL=<tools/scenario> -DWORK=<dir>]
 if(NOT SIM OR NOT SCENARIO_DIR)
   message(FATAL_ERROR "builtins_load: SIM and SCENARIO_DIR are required")
 endif()
@@ -37,3 +38,17 @@ foreach(file IN LISTS files)
   endif()
   message(STATUS "ok: ${name}: ${description}")
 endforeach()
+
+if(SCENARIO_TOOL)
+  file(REMOVE_RECURSE ${WORK})
+  file(MAKE_DIRECTORY ${WORK})
+  execute_process(COMMAND ${CMAKE_COMMAND} -E env TVO_BUILD_DIR=${WORK} TVO_SCENARIO_DIR=${SCENARIO_DIR}
+                          ${SCENARIO_TOOL} --list
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE tool_listing ERROR_VARIABLE err)
+  file(GLOB built ${WORK}/*)
+  if(NOT rc STREQUAL "0" OR NOT tool_listing STREQUAL listing OR built)
+    message(FATAL_ERROR "tools/scenario --list without a build: exit '${rc}', wrote '${built}', printed\n"
+                        "${tool_listing}${err}\nwhere tvo_sim lists\n${listing}")
+  endif()
+  message(STATUS "ok: tools/scenario --list without a build lists what tvo_sim lists")
+endif()

@@ -3,9 +3,11 @@
 # by name.
 set(tvo_sf_dir ${PROJECT_SOURCE_DIR}/tests/scenario_files)
 
-# Each built-in file loads by its name, and --list-scenarios lists them all with their descriptions.
+# Each built-in file loads by its name, and --list-scenarios lists them all with their descriptions,
+# as tools/scenario --list does without a build.
 add_test(NAME scenario_files_builtins_load
   COMMAND ${CMAKE_COMMAND} -DSIM=$<TARGET_FILE:tvo_sim> -DSCENARIO_DIR=${PROJECT_SOURCE_DIR}/host/scenarios
+    -DSCENARIO_TOOL=${PROJECT_SOURCE_DIR}/tools/scenario -DWORK=${CMAKE_CURRENT_BINARY_DIR}/scenario_files_builtins_load
     -P ${tvo_sf_dir}/builtins_load.cmake)
 set_tests_properties(scenario_files_builtins_load PROPERTIES LABELS "closed_loop;host" TIMEOUT 60)
 
