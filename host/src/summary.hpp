@@ -13,7 +13,8 @@ namespace tvo_host {
 
 struct RunSummary {
     double final_error_m{0.0};
-    double rms_error_last5s_m{0.0};
+    double rms_error_last5s_m{0.0};  // over the whole run if it is kRmsWindowS or shorter
+    bool rms_whole_run{false};
     double max_abs_omega_radps{0.0};
     std::int64_t steps{0};
     double steps_per_s{0.0};

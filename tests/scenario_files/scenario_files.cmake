@@ -112,6 +112,21 @@ tvo_scenario_message(NAME scenario_file_no_robots_variant EXIT 2 ARGS --scenario
 tvo_scenario_message(NAME scenario_file_demo_variants EXIT 0 ARGS --scenario demo --robots 3 --target circle --dry-run
   STDOUT "dry run: scenario demo, 3 robot(s)")
 
+# A run that completes with a collision exits 3, after writing every output; tools/scenario passes the
+# code through. Its 3 s are the whole run of the RMS error.
+tvo_closed_loop_test(NAME scenario_file_collision_exit
+  ARGS --scenario ${tvo_sf_dir}/collision.yaml EXPECT_EXIT 3
+  EXPECT_STDERR "the run ended with [1-9][0-9]* collision\\(s\\) \\(exit code 3\\)"
+  CHECKS "collisions>=1" "steps==300" EXPECT_FILES run.csv summary.json scenario.json)
+tvo_test_lcm_url(tvo_sf_url)
+set(tvo_sf_tool_out ${CMAKE_CURRENT_BINARY_DIR}/scenario_file_collision_exit_tool)
+add_test(NAME scenario_file_collision_exit_tool
+  COMMAND /bin/sh -c "TVO_DEMO_NO_BUILD=1 TVO_BUILD_DIR='${PROJECT_BINARY_DIR}' '${PROJECT_SOURCE_DIR}/tools/scenario' \
+'${tvo_sf_dir}/collision.yaml' --lcm-url '${tvo_sf_url}' --out-dir '${tvo_sf_tool_out}' >'${tvo_sf_tool_out}.log' 2>&1; \
+rc=$?; cat '${tvo_sf_tool_out}.log'; echo \"exit code $rc\"; test $rc -eq 3 && \
+grep -q 'RMS tracking error, whole run' '${tvo_sf_tool_out}.log'")
+set_tests_properties(scenario_file_collision_exit_tool PROPERTIES LABELS closed_loop TIMEOUT 120)
+
 # README.md's complete example is a scenario file that loads as written.
 add_test(NAME scenario_file_readme_example
   COMMAND ${CMAKE_COMMAND} -DSIM=$<TARGET_FILE:tvo_sim> -DREADME=${PROJECT_SOURCE_DIR}/README.md
