@@ -181,6 +181,14 @@ void write_scenario_json(const std::string& path, const Scenario& sc, double dur
                              {"max_m", d.max_m},
                              {"max_rate_mps", d.max_rate_mps}});
     }
+    nlohmann::json halfspaces = nlohmann::json::array();
+    for (const HalfSpace& h : sc.halfspaces) {
+        halfspaces.push_back({{"robot", h.robot},
+                              {"normal", {h.normal.x(), h.normal.y()}},
+                              {"normal_rate", {h.normal_rate.x(), h.normal_rate.y()}},
+                              {"bound_m", h.bound_m},
+                              {"bound_rate_mps", h.bound_rate_mps}});
+    }
     nlohmann::json offsets = nlohmann::json::array();
     for (const OffsetEquality& e : sc.offsets) {
         offsets.push_back({{"robot_a", e.robot_a}, {"robot_b", e.robot_b}});
@@ -192,6 +200,7 @@ void write_scenario_json(const std::string& path, const Scenario& sc, double dur
         {"robot_radius_m", sc.robot_radius_m},
         {"obstacles", obstacles},
         {"distance_bounds", distances},
+        {"halfspaces", halfspaces},
         {"offsets", offsets},
         {"settle_time_s", sc.settle_time_s},
     };

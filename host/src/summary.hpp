@@ -60,7 +60,7 @@ void print_summary_table(std::ostream& out, const RunSummary& summary, const Sim
 void write_summary_json(const std::string& path, const RunSummary& summary);
 
 /// The scenario's geometry for the plot (tools/plot_run.py): name, robot radius, obstacles, distance
-/// bounds, offsets, crossing window. std::runtime_error if the file cannot be written.
+/// bounds, half-spaces, offsets, crossing window. std::runtime_error if the file cannot be written.
 void write_scenario_json(const std::string& path, const Scenario& scenario, double duration_s);
 
 }  // namespace tvo_host
