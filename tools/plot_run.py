@@ -1,7 +1,7 @@
 #!/usr/bin/python3
-"""Plots a tvo_sim run: the paths (targets and robots, start markers; obstacles as grey disks and the
-robot's footprint every second when the scenario has them), the scenario's constraint over time
-(inter-robot distance with its bounds dashed, clearance to the obstacles, or the formation-offset
+"""Plots a tvo_sim run: the paths (targets and robots, start markers; obstacles as grey disks,
+half-space walls as lines and the robot's footprint every second when the scenario has them), the
+scenario's constraint over time (inter-robot distance with its bounds dashed, clearance to the obstacles, or the formation-offset
 residual) and the tracking error over time on a log scale.
 
 Reads the run's CSV (see host/src/run_recorder.hpp) and, when present next to it, the scenario's
@@ -65,6 +65,32 @@ def marks(times):
     return out
 
 
+def wall_points(h, t_s):
+    """Two points of the wall (normal + normal_rate t)^T y = bound_m + bound_rate_mps t, or None."""
+    a = [h["normal"][k] + h["normal_rate"][k] * t_s for k in range(2)]
+    b = h["bound_m"] + h["bound_rate_mps"] * t_s
+    norm2 = a[0] ** 2 + a[1] ** 2
+    if norm2 == 0.0:
+        return None
+    p0 = (a[0] * b / norm2, a[1] * b / norm2)
+    return p0, (p0[0] - a[1], p0[1] + a[0])
+
+
+def plot_walls(ax, scenario):
+    """Each half-space wall as a dark line (its robot in the legend), at t = 0 (solid) and, if it moves,
+    at T (dotted). Infinite lines: they do not change the limits."""
+    duration = scenario.get("duration_s", 0.0)
+    for k, h in enumerate(scenario.get("halfspaces", [])):
+        color = f"{0.15 + 0.15 * (k % 4):.2f}"  # greys apart from the robots' colours
+        moves = any(h["normal_rate"]) or h["bound_rate_mps"] != 0.0
+        for t_s, style in [(0.0, "-")] + ([(duration, ":")] if moves else []):
+            points = wall_points(h, t_s)
+            if points is None:
+                continue
+            label = f"wall {k} (robot {h['robot']})" + (f", t = {t_s:g} s" if moves else "")
+            ax.axline(points[0], points[1], color=color, ls=style, lw=2.0, label=label)
+
+
 def plot_paths(ax, robots, scenario):
     radius = scenario.get("robot_radius_m", 0.0) if scenario else 0.0
     # With formation offsets each robot's reference is the constrained minimiser, not a target.
@@ -84,6 +110,8 @@ def plot_paths(ax, robots, scenario):
             if scenario and scenario.get("name") != "demo" and int(round(s["t_s"][i])) % 2 == 0:
                 ax.annotate(f"{s['t_s'][i]:.0f}", (s["target_x_m"][i], s["target_y_m"][i]), fontsize=6,
                             color=color, xytext=(2, 2), textcoords="offset points")
+    if scenario:
+        plot_walls(ax, scenario)
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")

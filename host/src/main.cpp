@@ -1,7 +1,8 @@
 // tvo_sim: the plant side of the hardware-in-the-loop run (see sim_loop.hpp for the timing).
 //
-// Exit codes: 0 run completed; 1 runtime failure (LCM, firmware rejected or silent, files);
-// 2 bad command line; 128 + signal when interrupted (130 for Ctrl-C).
+// Exit codes (host/README.md, "Exit codes"): 0 run completed; 1 runtime failure (LCM, firmware
+// rejected or silent, files, out of memory); 2 bad command line or scenario file; 3 run completed
+// with a collision; 128 + signal when interrupted (130 for Ctrl-C).
 #include <signal.h>
 #include <unistd.h>
 
@@ -10,6 +11,7 @@
 #include <csignal>
 #include <filesystem>
 #include <iostream>
+#include <new>
 
 #include "constraint_metrics.hpp"
 #include "firmware_process.hpp"
@@ -18,6 +20,7 @@
 #include "plant_clock.hpp"
 #include "run_recorder.hpp"
 #include "scenario.hpp"
+#include "scenario_file.hpp"
 #include "session.hpp"
 #include "sim_loop.hpp"
 #include "summary.hpp"
@@ -45,7 +48,9 @@ void install_signal_handlers()
 constexpr std::chrono::milliseconds kStartTimeout{5000};
 constexpr std::chrono::milliseconds kStopTimeout{1000};
 constexpr std::chrono::milliseconds kChildExitTimeout{2000};
-constexpr double kRmsWindowS = 5.0;
+// A run that completed with a robot in contact (summary key collisions > 0).
+constexpr int kExitCollision = 3;
+constexpr int kExitUsage = 2;
 
 std::int64_t make_session_id()
 {
@@ -184,6 +189,7 @@ int run(const tvo_host::SimOptions& options)
     RunSummary summary;
     summary.final_error_m = metrics.final_error_m();
     summary.rms_error_last5s_m = metrics.rms_error_window_m();
+    summary.rms_whole_run = metrics.rms_whole_run();
     summary.max_abs_omega_radps = metrics.max_abs_omega_radps();
     summary.steps = result.steps;
     summary.steps_per_s = result.wall_s > 0.0 ? static_cast<double>(result.steps) / result.wall_s : 0.0;
@@ -221,23 +227,65 @@ int run(const tvo_host::SimOptions& options)
         std::cerr << "tvo_sim: error: writing " << log_path << " failed\n";
         return 1;
     }
+    if (summary.collisions && *summary.collisions > 0) {
+        std::cerr << "tvo_sim: the run ended with " << *summary.collisions << " collision(s) (exit code "
+                  << kExitCollision << ")\n";
+        return kExitCollision;
+    }
     return 0;
+}
+
+/// The run's duration (the file's, the default or --duration-s) against the file's last waypoints;
+/// the file itself was checked against its own duration when it was read. -1 if fine, else 2.
+int check_duration(const tvo_host::SimOptions& options)
+{
+    using namespace tvo_host;
+    try {
+        const ScenarioFile file = load_scenario_file(scenario_path(options.scenario));
+        const double duration_s = static_cast<double>(options.steps * options.period_us) * 1e-6;
+        check_run_duration(file, duration_s, "--duration-s");
+    } catch (const ScenarioFileError& e) {
+        std::cerr << "tvo_sim: error: " << e.what() << '\n';
+        return kExitUsage;
+    }
+    return -1;
+}
+
+int main_unguarded(int argc, char** argv)
+{
+    tvo_host::SimOptions options;
+    const int parsed = tvo_host::parse_options(argc, argv, &options);
+    const bool checked_run = parsed < 0 || (parsed == 0 && options.dry_run && !options.list_scenarios);
+    if (!checked_run) {
+        return parsed;
+    }
+    if (const int duration = check_duration(options); duration >= 0) {
+        return duration;
+    }
+    if (parsed == 0) {
+        return 0;  // --dry-run
+    }
+    install_signal_handlers();
+    try {
+        return run(options);
+    } catch (const std::bad_alloc&) {
+        throw;
+    } catch (const std::exception& e) {
+        std::cerr << "tvo_sim: error: " << e.what() << '\n';
+        return 1;
+    }
 }
 
 }  // namespace
 
 int main(int argc, char** argv)
 {
-    tvo_host::SimOptions options;
-    const int parsed = tvo_host::parse_options(argc, argv, &options);
-    if (parsed >= 0) {
-        return parsed;
-    }
-    install_signal_handlers();
+    // Out of memory anywhere (reading the options, a scenario file, the run) ends with a message and
+    // exit code 1, not an abort (std::terminate: SIGABRT, 134).
     try {
-        return run(options);
-    } catch (const std::exception& e) {
-        std::cerr << "tvo_sim: error: " << e.what() << '\n';
+        return main_unguarded(argc, argv);
+    } catch (const std::bad_alloc&) {
+        std::cerr << "tvo_sim: error: out of memory (std::bad_alloc)\n";
         return 1;
     }
 }

@@ -12,7 +12,7 @@ constexpr double kTimeSlackS = 1e-9;
 }  // namespace
 
 TrackingMetrics::TrackingMetrics(double duration_s, double window_s)
-    : window_start_s_(std::max(0.0, duration_s - window_s) - kTimeSlackS)
+    : window_start_s_(std::max(0.0, duration_s - window_s) - kTimeSlackS), whole_run_(duration_s <= window_s)
 {
 }
 

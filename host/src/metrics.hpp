@@ -6,6 +6,9 @@
 
 namespace tvo_host {
 
+/// The RMS error's window: the last 5 s of a run, the whole run if it is not longer.
+constexpr double kRmsWindowS = 5.0;
+
 class TrackingMetrics {
 public:
     /// Errors sampled at t >= duration_s - window_s enter the RMS (all of them if the run is shorter).
@@ -20,6 +23,8 @@ public:
 
     double final_error_m() const { return final_error_m_; }
     double rms_error_window_m() const;
+    /// True if the window covers the whole run (a run of at most window_s).
+    bool rms_whole_run() const { return whole_run_; }
     double max_abs_omega_radps() const { return max_abs_omega_radps_; }
     std::uint64_t faults() const { return faults_; }
     std::uint64_t commands() const { return commands_; }
@@ -27,6 +32,7 @@ public:
 
 private:
     double window_start_s_;
+    bool whole_run_;
     double final_error_m_{0.0};
     double window_sum_sq_{0.0};
     std::uint64_t window_count_{0};

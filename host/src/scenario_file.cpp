@@ -8,7 +8,9 @@
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
+#include <iomanip>
 #include <limits>
+#include <sstream>
 
 #include <Eigen/Geometry>
 // yaml-cpp 0.7's node lookups trip GCC 12's -Wdangling-pointer (a false positive, gone in yaml-cpp 0.8).
@@ -70,12 +72,17 @@ public:
     /// The top-level key came from another file (a base): its errors name that file.
     void set_origin(const std::string& top_key, const std::string& file) { origins_.emplace_back(top_key, file); }
 
-    [[noreturn]] void fail(const YAML::Mark& mark, const std::string& field, const std::string& why) const
+    /// FILE:LINE:COLUMN of a node of the field (the file is the base's for a key kept from it).
+    std::string where(const YAML::Mark& mark, const std::string& field) const
     {
         const int line = mark.is_null() ? 1 : mark.line + 1;
         const int column = mark.is_null() ? 1 : mark.column + 1;
-        throw ScenarioFileError(origin(field) + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " +
-                                (field.empty() ? "" : field + ": ") + why);
+        return origin(field) + ":" + std::to_string(line) + ":" + std::to_string(column);
+    }
+
+    [[noreturn]] void fail(const YAML::Mark& mark, const std::string& field, const std::string& why) const
+    {
+        throw ScenarioFileError(where(mark, field) + ": " + (field.empty() ? "" : field + ": ") + why);
     }
     [[noreturn]] void fail(const YAML::Node& node, const std::string& field, const std::string& why) const
     {
@@ -255,7 +262,32 @@ private:
 
     std::string file_;
     std::vector<std::pair<std::string, std::string>> origins_;
+
+public:
+    /// Filled while reading (the readers take a const Reader): the last waypoint of each `through`.
+    mutable std::vector<WaypointEnd> waypoint_ends;
 };
+
+/// Where the checks between sections point: the nodes of each robot's start position, each obstacle
+/// and each half-space, in the order read.
+struct Marks {
+    std::vector<YAML::Mark> starts;
+    std::vector<YAML::Mark> obstacles;
+    std::vector<YAML::Mark> halfspaces;
+};
+
+/// A value the checks computed (a distance, a product), to 4 significant digits.
+std::string approx(double value)
+{
+    std::ostringstream out;
+    out << std::setprecision(4) << value;
+    return out.str();
+}
+
+std::string point(const Eigen::Vector2d& p)
+{
+    return "[" + approx(p.x()) + ", " + approx(p.y()) + "]";
+}
 
 // ---- targets ---------------------------------------------------------------------------------
 
@@ -319,10 +351,21 @@ TargetPath waypoint_target(const Reader& in, const YAML::Node& node, const std::
     static const char* const kOrders[] = {"position_m", "velocity_mps", "acceleration_mps2", "jerk_mps3"};
     std::vector<PathCondition> conditions;
     const std::vector<YAML::Node> points = in.sequence(node, field, 1, kPolyCoeffs);
+    double previous_t_s = 0.0;
     for (std::size_t i = 0; i < points.size(); ++i) {
         const std::string at = item(field, i);
         const Map m = in.map(points[i], at, {"t_s", kOrders[0], kOrders[1], kOrders[2], kOrders[3]});
-        const double t_s = in.real(in.required(m, "t_s"), m.at("t_s"));
+        const YAML::Node& t_node = in.required(m, "t_s");
+        const double t_s = in.real(t_node, m.at("t_s"));
+        // In time order: a waypoint out of order still determines a polynomial, but not the path meant.
+        if (i > 0 && !(t_s > previous_t_s)) {
+            in.fail(t_node, m.at("t_s"), "waypoint times must increase strictly: got " + t_node.Scalar() +
+                                             " after " + item(field, i - 1) + ".t_s = " + number(previous_t_s));
+        }
+        previous_t_s = t_s;
+        if (i + 1 == points.size()) {
+            in.waypoint_ends.push_back({m.at("t_s"), in.where(t_node.Mark(), m.at("t_s")), t_s});
+        }
         const std::size_t before = conditions.size();
         for (int order = 0; order < 4; ++order) {
             const YAML::Node* value = m.find(kOrders[order]);
@@ -393,7 +436,7 @@ TargetPath time_function(const Reader& in, const YAML::Node& node, const std::st
 
 // ---- sections --------------------------------------------------------------------------------
 
-void read_robots(const Reader& in, const YAML::Node& node, Scenario* s)
+void read_robots(const Reader& in, const YAML::Node& node, Scenario* s, Marks* marks)
 {
     const std::vector<YAML::Node> robots = in.sequence(node, "robots", 1, kMaxRobots);
     s->robot_count = robots.size();
@@ -401,7 +444,9 @@ void read_robots(const Reader& in, const YAML::Node& node, Scenario* s)
         const std::string at = item("robots", r);
         const Map m = in.map(robots[r], at, {"start", "weights", "target"});
         const Map start = in.map(in.required(m, "start"), m.at("start"), {"position_m", "heading_rad"});
-        s->starts[r].position_m = in.vec2(in.required(start, "position_m"), start.at("position_m"));
+        const YAML::Node& position = in.required(start, "position_m");
+        s->starts[r].position_m = in.vec2(position, start.at("position_m"));
+        marks->starts.push_back(position.Mark());
         s->starts[r].heading_rad = optional_real(in, start, "heading_rad", 0.0);
         s->weights[r] = Eigen::Vector2d(1.0, 1.0);
         if (const YAML::Node* weights = m.find("weights")) {
@@ -440,7 +485,7 @@ void read_distance_bounds(const Reader& in, const YAML::Node& node, Scenario* s)
     }
 }
 
-void read_halfspaces(const Reader& in, const YAML::Node& node, Scenario* s)
+void read_halfspaces(const Reader& in, const YAML::Node& node, Scenario* s, Marks* marks)
 {
     const std::vector<YAML::Node> halfspaces = in.sequence(node, "halfspaces", 0, tvo_lcm::session_t::MAX_HALFSPACES);
     for (std::size_t i = 0; i < halfspaces.size(); ++i) {
@@ -456,10 +501,11 @@ void read_halfspaces(const Reader& in, const YAML::Node& node, Scenario* s)
         h.bound_m = in.real(in.required(m, "bound_m"), m.at("bound_m"));
         h.bound_rate_mps = optional_real(in, m, "bound_rate_mps", 0.0);
         s->halfspaces.push_back(h);
+        marks->halfspaces.push_back(m.mark);
     }
 }
 
-void read_obstacles(const Reader& in, const YAML::Node& node, Scenario* s)
+void read_obstacles(const Reader& in, const YAML::Node& node, Scenario* s, Marks* marks)
 {
     const std::vector<YAML::Node> disks = in.sequence(node, "obstacles", 0, tvo_lcm::session_t::MAX_OBSTACLES);
     for (std::size_t i = 0; i < disks.size(); ++i) {
@@ -469,6 +515,7 @@ void read_obstacles(const Reader& in, const YAML::Node& node, Scenario* s)
         d.center_m = in.vec2(in.required(m, "center_m"), m.at("center_m"));
         d.radius_m = in.positive(in.required(m, "radius_m"), m.at("radius_m"));
         s->obstacles.push_back(d);
+        marks->obstacles.push_back(m.mark);
     }
 }
 
@@ -627,6 +674,75 @@ void read_run_settings(const Reader& in, const Map& top, RunSettings* run)
     }
 }
 
+// ---- checks between sections -----------------------------------------------------------------
+
+/// No robot starts in contact with an obstacle (the run's collision test: clearance < 0) or beyond one
+/// of its half-space walls at t = 0: the run would begin with a collision or a violated wall.
+void check_starts(const Reader& in, const Scenario& s, const Marks& marks)
+{
+    for (std::size_t r = 0; r < s.robot_count; ++r) {
+        const std::string at = item("robots", r) + ".start.position_m";
+        const Eigen::Vector2d& p = s.starts[r].position_m;
+        for (std::size_t i = 0; i < s.obstacles.size(); ++i) {
+            const Disk& o = s.obstacles[i];
+            const double distance_m = (p - o.center_m).norm();
+            if (distance_m - s.robot_radius_m - o.radius_m < 0.0) {
+                in.fail(marks.starts[r], at,
+                        "robot " + std::to_string(r) + " starts inside " + item("obstacles", i) + " (" +
+                            in.where(marks.obstacles[i], "obstacles") + "): " + point(p) + " is " + approx(distance_m) +
+                            " m from its centre " + point(o.center_m) + ", less than its radius " +
+                            number(o.radius_m) + " m + robot_radius_m " + number(s.robot_radius_m) + " m");
+            }
+        }
+        for (std::size_t k = 0; k < s.halfspaces.size(); ++k) {
+            const HalfSpace& h = s.halfspaces[k];
+            const double side = h.normal.dot(p);
+            if (h.robot == r && side > h.bound_m) {
+                in.fail(marks.starts[r], at,
+                        "robot " + std::to_string(r) + " starts beyond the wall " + item("halfspaces", k) + " (" +
+                            in.where(marks.halfspaces[k], "halfspaces") + "): normal^T " + point(p) + " = " +
+                            approx(side) + " > bound_m " + number(h.bound_m) + " at t = 0");
+            }
+        }
+    }
+}
+
+/// Disjoint obstacles: each is its own barrier constraint, and overlapping disks are one obstacle
+/// written twice (give a disk that covers both).
+void check_obstacles(const Reader& in, const Scenario& s, const Marks& marks)
+{
+    for (std::size_t j = 1; j < s.obstacles.size(); ++j) {
+        for (std::size_t i = 0; i < j; ++i) {
+            const Disk& a = s.obstacles[i];
+            const Disk& b = s.obstacles[j];
+            const double apart_m = (a.center_m - b.center_m).norm();
+            if (apart_m < a.radius_m + b.radius_m) {
+                in.fail(marks.obstacles[j], item("obstacles", j),
+                        "overlaps " + item("obstacles", i) + " (" + in.where(marks.obstacles[i], "obstacles") +
+                            "): centres " + approx(apart_m) + " m apart, less than the radii's sum " +
+                            approx(a.radius_m + b.radius_m) + " m (give one disk that covers both, or move them apart)");
+            }
+        }
+    }
+}
+
+// Times are whole microseconds of plant time: a nanosecond of slack keeps a run that ends on the
+// waypoint in.
+constexpr double kWaypointSlackS = 1e-9;
+constexpr const char* kNoHold =
+    "a `through` polynomial is not held after its last waypoint but runs on (the firmware evaluates "
+    "it on board); end the run by then or add a later waypoint";
+
+const WaypointEnd* first_end_before(const ScenarioFile& file, double duration_s)
+{
+    for (const WaypointEnd& end : file.waypoint_ends) {
+        if (duration_s > end.t_s + kWaypointSlackS) {
+            return &end;
+        }
+    }
+    return nullptr;
+}
+
 bool has_yaml_extension(const std::string& name)
 {
     const std::string ext = std::filesystem::path(name).extension().string();
@@ -634,15 +750,39 @@ bool has_yaml_extension(const std::string& name)
 }
 
 
-YAML::Node parse_yaml(const Reader& in, const std::string& path)
+/// The file's text, refused before it is parsed if it is larger than kMaxScenarioFileBytes (also if
+/// it grew after its size was read: at most one byte more is ever read).
+std::string read_bounded(const Reader& in, const std::string& path)
 {
-    std::ifstream stream(path);
+    const auto too_large = [&in](const std::string& size) {
+        in.fail(YAML::Mark::null_mark(), "", "the file is " + size + " bytes, over the limit of " +
+                                                 std::to_string(kMaxScenarioFileBytes) +
+                                                 " bytes for a scenario file (refused before parsing)");
+    };
+    std::error_code error;
+    const std::uintmax_t size = std::filesystem::file_size(path, error);
+    if (!error && size > kMaxScenarioFileBytes) {
+        too_large(std::to_string(size));
+    }
+    std::ifstream stream(path, std::ios::binary);
     if (!stream) {
         throw ScenarioFileError(path + ": cannot read the file");
     }
+    std::string text(kMaxScenarioFileBytes + 1, '\0');
+    stream.read(text.data(), static_cast<std::streamsize>(text.size()));
+    text.resize(static_cast<std::size_t>(stream.gcount()));
+    if (text.size() > kMaxScenarioFileBytes) {
+        too_large("more than " + std::to_string(kMaxScenarioFileBytes));
+    }
+    return text;
+}
+
+YAML::Node parse_yaml(const Reader& in, const std::string& path)
+{
+    const std::string text = read_bounded(in, path);
     YAML::Node root;
     try {
-        root = YAML::Load(stream);
+        root = YAML::Load(text);
     } catch (const YAML::ParserException& e) {
         in.fail(e.mark, "", "not valid YAML: " + e.msg);
     }
@@ -689,11 +829,13 @@ ScenarioFile load_scenario_file(const std::string& path)
     file.path = path;
     file.description = in.text(in.required(top, "description"), "description");
     Scenario& s = file.scenario;
+    Marks marks;
     s.name = std::filesystem::path(path).stem().string();
-    if (const YAML::Node* duration = top.find("duration_s")) {
+    const YAML::Node* duration = top.find("duration_s");
+    if (duration != nullptr) {
         s.duration_s = in.real_in(*duration, "duration_s", sim_ranges::kDuration);
     }
-    read_robots(in, in.required(top, "robots"), &s);
+    read_robots(in, in.required(top, "robots"), &s, &marks);
     if (const YAML::Node* streamed = top.find("streamed")) {
         s.streamed = in.boolean(*streamed, "streamed");
     }
@@ -701,13 +843,13 @@ ScenarioFile load_scenario_file(const std::string& path)
         s.robot_radius_m = in.non_negative(*radius, "robot_radius_m");
     }
     if (const YAML::Node* node = top.find("obstacles")) {
-        read_obstacles(in, *node, &s);
+        read_obstacles(in, *node, &s, &marks);
     }
     if (const YAML::Node* node = top.find("distance_bounds")) {
         read_distance_bounds(in, *node, &s);
     }
     if (const YAML::Node* node = top.find("halfspaces")) {
-        read_halfspaces(in, *node, &s);
+        read_halfspaces(in, *node, &s, &marks);
     }
     if (const YAML::Node* node = top.find("offsets")) {
         read_offsets(in, *node, &s);
@@ -722,7 +864,29 @@ ScenarioFile load_scenario_file(const std::string& path)
         read_variants(in, *node, s, &file.variants);
     }
     read_run_settings(in, top, &file.run);
+    // Between sections: each names the node of the field at fault.
+    check_obstacles(in, s, marks);
+    check_starts(in, s, marks);
+    file.waypoint_ends = in.waypoint_ends;
+    if (duration != nullptr) {
+        if (const WaypointEnd* end = first_end_before(file, s.duration_s)) {
+            in.fail(*duration, "duration_s", "must be at most the last waypoint's time, " + end->field + " = " +
+                                                 number(end->t_s) + " s (" + end->where + "), got " +
+                                                 duration->Scalar() + ": " + kNoHold);
+        }
+    } else {
+        check_run_duration(file, s.duration_s, "the default duration, no duration_s given");
+    }
     return file;
+}
+
+void check_run_duration(const ScenarioFile& file, double duration_s, const std::string& duration_source)
+{
+    if (const WaypointEnd* end = first_end_before(file, duration_s)) {
+        throw ScenarioFileError(end->where + ": " + end->field + ": the last waypoint, at " + number(end->t_s) +
+                                " s, comes before the run's end, " + number(duration_s) + " s (" + duration_source +
+                                "): " + kNoHold);
+    }
 }
 
 std::string scenario_folder()

@@ -45,12 +45,25 @@ struct ScenarioVariants {
     std::optional<double> circle_radius_m;  // each ellipse target becomes a circle of this radius
 };
 
+/// A file larger than this is refused before it is read (a scenario of 4 robots with 8 waypoints each,
+/// 8 obstacles and every section is a few kB; a 43 MB file took yaml-cpp 3.3 GB and 42 s to parse).
+constexpr std::uintmax_t kMaxScenarioFileBytes = 1048576;  // 1 MiB
+
+/// The last waypoint of a `through` time function: its polynomial is not held after it (the firmware
+/// evaluates the same polynomial on board), so a run must end by t_s.
+struct WaypointEnd {
+    std::string field;  // robots[0].target.through[2].t_s
+    std::string where;  // FILE:LINE:COLUMN of that t_s
+    double t_s{0.0};
+};
+
 struct ScenarioFile {
     std::string path;
     std::string description;
     Scenario scenario;  // as written (one copy of each robot, targets as given)
     ScenarioVariants variants;
     RunSettings run;
+    std::vector<WaypointEnd> waypoint_ends;  // one per `through` (targets and offsets)
 };
 
 class ScenarioFileError : public std::runtime_error {
@@ -61,6 +74,10 @@ public:
 /// Reads and checks a scenario file; its scenario is named after the file (obstacles.yaml: obstacles).
 /// Throws ScenarioFileError naming the file, line, column and field of the first problem.
 ScenarioFile load_scenario_file(const std::string& path);
+
+/// Throws ScenarioFileError naming the waypoint's FILE:LINE:COLUMN if a run of duration_s (the file's,
+/// the default or --duration-s) ends after the last waypoint of one of the file's `through` functions.
+void check_run_duration(const ScenarioFile& file, double duration_s, const std::string& duration_source);
 
 /// The folder of the built-in scenarios: $TVO_SCENARIO_DIR if set, else host/scenarios of this tree.
 std::string scenario_folder();

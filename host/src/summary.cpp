@@ -9,6 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "metrics.hpp"
+
 namespace tvo_host {
 
 namespace {
@@ -33,6 +35,13 @@ void optional_line(std::ostream& out, const char* label, const std::optional<dou
     if (value) {
         line(out, label, sci(*value, unit));
     }
+}
+
+std::string window_text()
+{
+    std::ostringstream s;
+    s << kRmsWindowS;
+    return s.str();
 }
 
 nlohmann::json number_or_null(double value)
@@ -60,7 +69,9 @@ void print_summary_table(std::ostream& out, const RunSummary& s, const SimOption
          << (o.target == TargetKind::Streamed ? "streamed targets" : "on-board targets");
     out << "tvo_sim summary (" << mode.str() << ")\n";
     line(out, "final tracking error", sci(s.final_error_m, "m"));
-    line(out, "RMS tracking error, last 5 s", sci(s.rms_error_last5s_m, "m"));
+    const std::string rms_label =
+        s.rms_whole_run ? std::string("RMS tracking error, whole run") : "RMS tracking error, last " + window_text() + " s";
+    line(out, rms_label.c_str(), sci(s.rms_error_last5s_m, "m"));
     line(out, "max |omega|", sci(s.max_abs_omega_radps, "rad/s"));
     line(out, "steps", std::to_string(s.steps));
     std::ostringstream rate;
@@ -110,6 +121,7 @@ void write_summary_json(const std::string& path, const RunSummary& s)
     nlohmann::json json = {
         {"final_error_m", s.final_error_m},
         {"rms_error_last5s_m", s.rms_error_last5s_m},
+        {"rms_error_whole_run", s.rms_whole_run},
         {"max_abs_omega_radps", s.max_abs_omega_radps},
         {"steps", s.steps},
         {"steps_per_s", s.steps_per_s},
@@ -169,6 +181,14 @@ void write_scenario_json(const std::string& path, const Scenario& sc, double dur
                              {"max_m", d.max_m},
                              {"max_rate_mps", d.max_rate_mps}});
     }
+    nlohmann::json halfspaces = nlohmann::json::array();
+    for (const HalfSpace& h : sc.halfspaces) {
+        halfspaces.push_back({{"robot", h.robot},
+                              {"normal", {h.normal.x(), h.normal.y()}},
+                              {"normal_rate", {h.normal_rate.x(), h.normal_rate.y()}},
+                              {"bound_m", h.bound_m},
+                              {"bound_rate_mps", h.bound_rate_mps}});
+    }
     nlohmann::json offsets = nlohmann::json::array();
     for (const OffsetEquality& e : sc.offsets) {
         offsets.push_back({{"robot_a", e.robot_a}, {"robot_b", e.robot_b}});
@@ -180,6 +200,7 @@ void write_scenario_json(const std::string& path, const Scenario& sc, double dur
         {"robot_radius_m", sc.robot_radius_m},
         {"obstacles", obstacles},
         {"distance_bounds", distances},
+        {"halfspaces", halfspaces},
         {"offsets", offsets},
         {"settle_time_s", sc.settle_time_s},
     };

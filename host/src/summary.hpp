@@ -13,7 +13,8 @@ namespace tvo_host {
 
 struct RunSummary {
     double final_error_m{0.0};
-    double rms_error_last5s_m{0.0};
+    double rms_error_last5s_m{0.0};  // over the whole run if it is kRmsWindowS or shorter
+    bool rms_whole_run{false};
     double max_abs_omega_radps{0.0};
     std::int64_t steps{0};
     double steps_per_s{0.0};
@@ -59,7 +60,7 @@ void print_summary_table(std::ostream& out, const RunSummary& summary, const Sim
 void write_summary_json(const std::string& path, const RunSummary& summary);
 
 /// The scenario's geometry for the plot (tools/plot_run.py): name, robot radius, obstacles, distance
-/// bounds, offsets, crossing window. std::runtime_error if the file cannot be written.
+/// bounds, half-spaces, offsets, crossing window. std::runtime_error if the file cannot be written.
 void write_scenario_json(const std::string& path, const Scenario& scenario, double duration_s);
 
 }  // namespace tvo_host

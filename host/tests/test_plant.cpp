@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "constraint_metrics.hpp"
@@ -11,6 +13,7 @@
 #include "noise.hpp"
 #include "plant.hpp"
 #include "scenario.hpp"
+#include "summary.hpp"
 
 namespace {
 
@@ -229,6 +232,28 @@ void test_metrics()
     }
     check(std::abs(metrics.rms_error_window_m() - 2.0) < 1e-15, "RMS covers exactly the last 5 s",
           std::abs(metrics.rms_error_window_m() - 2.0), 1e-15);
+    check(!metrics.rms_whole_run(), "a 20 s run's RMS is over its last 5 s, not the whole run", 20.0,
+          tvo_host::kRmsWindowS);
+    // A run of at most the window: every sample counts, and the summary says "whole run".
+    for (const double duration_s : {3.0, tvo_host::kRmsWindowS}) {
+        tvo_host::TrackingMetrics short_run(duration_s, tvo_host::kRmsWindowS);
+        short_run.add_error_sample(0.0, 3.0);
+        short_run.add_error_sample(duration_s, 4.0);
+        tvo_host::RunSummary summary;
+        summary.rms_error_last5s_m = short_run.rms_error_window_m();
+        summary.rms_whole_run = short_run.rms_whole_run();
+        std::ostringstream table;
+        tvo_host::print_summary_table(table, summary, tvo_host::SimOptions{});
+        const bool labelled = table.str().find("RMS tracking error, whole run") != std::string::npos &&
+                              table.str().find("last 5 s") == std::string::npos;
+        check(short_run.rms_whole_run() && labelled && std::abs(summary.rms_error_last5s_m - std::sqrt(12.5)) < 1e-15,
+              "a run <= 5 s: RMS over the whole run, labelled so", duration_s, tvo_host::kRmsWindowS);
+    }
+    tvo_host::RunSummary long_summary;
+    std::ostringstream long_table;
+    tvo_host::print_summary_table(long_table, long_summary, tvo_host::SimOptions{});
+    check(long_table.str().find("RMS tracking error, last 5 s") != std::string::npos, "a longer run's label: last 5 s",
+          0.0, 0.0);
     const double omegas[2] = {0.5, -3.0};
     metrics.add_command(omegas, 2, true);
     check(metrics.max_abs_omega_radps() == 3.0 && metrics.faults() == 1, "max |omega| and faults counted",

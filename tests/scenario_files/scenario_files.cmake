@@ -69,6 +69,30 @@ tvo_scenario_message(NAME scenario_file_bad_robot EXIT 2 ARGS --scenario ${tvo_b
 # A key kept from a base file is that file's: its error names the base, at the key's line.
 tvo_scenario_message(NAME scenario_file_base_error EXIT 2 ARGS --scenario ${tvo_broken}/base_one_robot.yaml
   STDERR "${tvo_broken}/../warehouse.yaml:26:18: distance_bounds[0].robots[1]: must be in [0, 0] (got 1)")
+# Checks between sections (host/README.md, "Scenario file checks"), each at the node of the field at fault.
+tvo_scenario_message(NAME scenario_file_start_in_obstacle EXIT 2 ARGS --scenario ${tvo_broken}/start_in_obstacle.yaml
+  STDERR "${tvo_broken}/start_in_obstacle.yaml:7:25: robots[1].start.position_m: robot 1 starts inside obstacles[1] (${tvo_broken}/start_in_obstacle.yaml:12:5): [2.3, 0] is 0.3 m from its centre [2, 0], less than its radius 0.5 m + robot_radius_m 0.1 m")
+tvo_scenario_message(NAME scenario_file_start_beyond_wall EXIT 2 ARGS --scenario ${tvo_broken}/start_beyond_wall.yaml
+  STDERR "${tvo_broken}/start_beyond_wall.yaml:5:25: robots[0].start.position_m: robot 0 starts beyond the wall halfspaces[1] (${tvo_broken}/start_beyond_wall.yaml:9:5): normal^T [0, 0.5] = 0.5 > bound_m 0 at t = 0")
+tvo_scenario_message(NAME scenario_file_overlapping_obstacles EXIT 2 ARGS --scenario ${tvo_broken}/overlapping_obstacles.yaml
+  STDERR "${tvo_broken}/overlapping_obstacles.yaml:10:5: obstacles[2]: overlaps obstacles[0] (${tvo_broken}/overlapping_obstacles.yaml:8:5): centres 1 m apart, less than the radii's sum 1.2 m")
+tvo_scenario_message(NAME scenario_file_waypoints_out_of_order EXIT 2 ARGS --scenario ${tvo_broken}/waypoints_out_of_order.yaml
+  STDERR "${tvo_broken}/waypoints_out_of_order.yaml:10:17: robots[0].target.through[2].t_s: waypoint times must increase strictly: got 5 after robots[0].target.through[1].t_s = 8")
+# A run past the last waypoint: the file's duration_s, the default 20 s, --duration-s (no hold: refused).
+tvo_scenario_message(NAME scenario_file_duration_past_waypoint EXIT 2 ARGS --scenario ${tvo_broken}/duration_past_waypoint.yaml
+  STDERR "${tvo_broken}/duration_past_waypoint.yaml:3:13: duration_s: must be at most the last waypoint's time, robots[0].target.through[1].t_s = 10 s (${tvo_broken}/duration_past_waypoint.yaml:9:17), got 30")
+tvo_scenario_message(NAME scenario_file_default_duration_past_waypoint EXIT 2
+  ARGS --scenario ${tvo_broken}/default_duration_past_waypoint.yaml
+  STDERR "${tvo_broken}/default_duration_past_waypoint.yaml:8:17: robots[0].target.through[1].t_s: the last waypoint, at 10 s, comes before the run's end, 20 s (the default duration, no duration_s given)")
+tvo_scenario_message(NAME scenario_file_option_duration_past_waypoint EXIT 2
+  ARGS --scenario ${tvo_sf_dir}/warehouse.yaml --duration-s 30 --dry-run
+  STDERR "${tvo_sf_dir}/warehouse.yaml:13:17: robots[0].target.through[2].t_s: the last waypoint, at 16 s, comes before the run's end, 30 s (--duration-s)")
+# The size limit, before parsing (the limit read from scenario_file.hpp).
+add_test(NAME scenario_file_size_limit
+  COMMAND ${CMAKE_COMMAND} -DSIM=$<TARGET_FILE:tvo_sim> -DHEADER=${PROJECT_SOURCE_DIR}/host/src/scenario_file.hpp
+    -DBASE=${tvo_sf_dir}/warehouse.yaml -DOUT_DIR=${CMAKE_CURRENT_BINARY_DIR}/scenario_file_size_limit
+    -P ${tvo_sf_dir}/size_limit.cmake)
+set_tests_properties(scenario_file_size_limit PROPERTIES LABELS "closed_loop;host" TIMEOUT 60)
 # The ranges of tvo_sim's settings are the options' own: sigma as --sigma's [0, 1].
 tvo_scenario_message(NAME scenario_file_option_range EXIT 2 ARGS --scenario ${tvo_broken}/option_range.yaml
   STDERR "${tvo_broken}/option_range.yaml:8:10: sensing.sigma: must be in [0, 1] (got 2)")
@@ -89,6 +113,21 @@ tvo_scenario_message(NAME scenario_file_no_robots_variant EXIT 2 ARGS --scenario
   STDERR "--robots: scenario formation-max has its own robots (its file has no variants.robots)")
 tvo_scenario_message(NAME scenario_file_demo_variants EXIT 0 ARGS --scenario demo --robots 3 --target circle --dry-run
   STDOUT "dry run: scenario demo, 3 robot(s)")
+
+# A run that completes with a collision exits 3, after writing every output; tools/scenario passes the
+# code through. Its 3 s are the whole run of the RMS error.
+tvo_closed_loop_test(NAME scenario_file_collision_exit
+  ARGS --scenario ${tvo_sf_dir}/collision.yaml EXPECT_EXIT 3
+  EXPECT_STDERR "the run ended with [1-9][0-9]* collision\\(s\\) \\(exit code 3\\)"
+  CHECKS "collisions>=1" "steps==300" EXPECT_FILES run.csv summary.json scenario.json)
+tvo_test_lcm_url(tvo_sf_url)
+set(tvo_sf_tool_out ${CMAKE_CURRENT_BINARY_DIR}/scenario_file_collision_exit_tool)
+add_test(NAME scenario_file_collision_exit_tool
+  COMMAND /bin/sh -c "TVO_DEMO_NO_BUILD=1 TVO_BUILD_DIR='${PROJECT_BINARY_DIR}' '${PROJECT_SOURCE_DIR}/tools/scenario' \
+'${tvo_sf_dir}/collision.yaml' --lcm-url '${tvo_sf_url}' --out-dir '${tvo_sf_tool_out}' >'${tvo_sf_tool_out}.log' 2>&1; \
+rc=$?; cat '${tvo_sf_tool_out}.log'; echo \"exit code $rc\"; test $rc -eq 3 && \
+grep -q 'RMS tracking error, whole run' '${tvo_sf_tool_out}.log'")
+set_tests_properties(scenario_file_collision_exit_tool PROPERTIES LABELS closed_loop TIMEOUT 120)
 
 # README.md's complete example is a scenario file that loads as written.
 add_test(NAME scenario_file_readme_example
