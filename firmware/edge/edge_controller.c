@@ -42,16 +42,16 @@ static void unicycle_positions(const tvo_edge_measurement_t *meas, uint8_t robot
     }
 }
 
-static tvo_status_t unicycle_check(const tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas,
-                                   uint32_t apply_tick)
-{
-    return tvo_controller_check(&ctl->u.unicycle, &meas->unicycle, apply_tick);
-}
 
 static tvo_status_t unicycle_step(tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas, uint32_t apply_tick,
                                   tvo_edge_command_t *cmd)
 {
     return tvo_controller_step(&ctl->u.unicycle, &meas->unicycle, apply_tick, &cmd->unicycle);
+}
+
+static tvo_status_t unicycle_miss(tvo_edge_controller_t *ctl, uint32_t apply_tick, tvo_edge_command_t *cmd)
+{
+    return tvo_controller_miss(&ctl->u.unicycle, apply_tick, &cmd->unicycle);
 }
 
 static tvo_status_t unicycle_safe_stop(tvo_edge_controller_t *ctl, tvo_edge_command_t *cmd)
@@ -93,8 +93,8 @@ static const tvo_edge_controller_ops_t unicycle_ops = {
     .init = unicycle_init,
     .measurement = unicycle_measurement,
     .positions = unicycle_positions,
-    .check = unicycle_check,
     .step = unicycle_step,
+    .miss = unicycle_miss,
     .safe_stop = unicycle_safe_stop,
     .holding = unicycle_holding,
     .flags = unicycle_flags,
@@ -146,16 +146,16 @@ static void chain_positions(const tvo_edge_measurement_t *meas, uint8_t robot_co
     }
 }
 
-static tvo_status_t chain_check(const tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas,
-                                uint32_t apply_tick)
-{
-    return tvo_chain_controller_check(&ctl->u.chain, &meas->chain, apply_tick);
-}
 
 static tvo_status_t chain_step(tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas, uint32_t apply_tick,
                                tvo_edge_command_t *cmd)
 {
     return tvo_chain_controller_step(&ctl->u.chain, &meas->chain, apply_tick, &cmd->chain);
+}
+
+static tvo_status_t chain_miss(tvo_edge_controller_t *ctl, uint32_t apply_tick, tvo_edge_command_t *cmd)
+{
+    return tvo_chain_controller_miss(&ctl->u.chain, apply_tick, &cmd->chain);
 }
 
 static tvo_status_t chain_safe_stop(tvo_edge_controller_t *ctl, tvo_edge_command_t *cmd)
@@ -198,32 +198,14 @@ static const tvo_edge_controller_ops_t chain_ops = {
     .init = chain_init,
     .measurement = chain_measurement,
     .positions = chain_positions,
-    .check = chain_check,
     .step = chain_step,
+    .miss = chain_miss,
     .safe_stop = chain_safe_stop,
     .holding = chain_holding,
     .flags = chain_flags,
     .command_to_lcm = chain_command_to_lcm,
     .telemetry_to_lcm = chain_telemetry_to_lcm,
     .clock = chain_clock};
-
-tvo_status_t tvo_edge_controller_step_or_keep(tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas,
-                                              uint32_t apply_tick, tvo_edge_command_t *cmd)
-{
-    if (ctl == NULL || ctl->ops == NULL || meas == NULL || cmd == NULL) {
-        return TVO_ERR_NULL;
-    }
-    /* A step that fails after the check passed (the law) leaves only the clock changed (a missed
-     * period for a controller on its own); restoring the clock keeps nothing of it. The one
-     * exception is the watchdog's: a failed step after watchdog_periods of silence stops the robots. */
-    tvo_sample_clock_t *clock = ctl->ops->clock(ctl);
-    const tvo_sample_clock_t before = *clock;
-    const tvo_status_t st = ctl->ops->step(ctl, meas, apply_tick, cmd);
-    if (st != TVO_OK && st != TVO_ERR_WATCHDOG) {
-        *clock = before;
-    }
-    return st;
-}
 
 void tvo_edge_controller_clear_scratch(tvo_edge_controller_t *ctl)
 {

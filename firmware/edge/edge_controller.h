@@ -43,10 +43,12 @@ typedef struct {
                                 uint32_t stamp_tick, tvo_edge_measurement_t *meas);
     /** The measured positions y (2 per robot), for the slack rule. */
     void (*positions)(const tvo_edge_measurement_t *meas, uint8_t robot_count, tvo_real_t *y);
-    /** What the step would refuse, changing nothing. */
-    tvo_status_t (*check)(const tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas, uint32_t apply_tick);
+    /** The core's step: a transaction (a whole period committed, or nothing changed and the refusal's
+     *  command: the one in force, or the watchdog's stop). */
     tvo_status_t (*step)(tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas, uint32_t apply_tick,
                          tvo_edge_command_t *cmd);
+    /** The core's count of a period without a good step: its watchdog decides hold or stop. */
+    tvo_status_t (*miss)(tvo_edge_controller_t *ctl, uint32_t apply_tick, tvo_edge_command_t *cmd);
     tvo_status_t (*safe_stop)(tvo_edge_controller_t *ctl, tvo_edge_command_t *cmd);
     /** The command in force, flagged TVO_FLAG_HOLDING. */
     void (*holding)(const tvo_edge_controller_t *ctl, tvo_edge_command_t *cmd);
@@ -64,14 +66,6 @@ struct tvo_edge_controller {
         tvo_chain_controller_t chain;
     } u;
 };
-
-/**
- * The controller's step; if it fails, the controller is left exactly as before (its clock included;
- * its law's workspace is scratch, not state),
- * so the edge can treat a failed step as a refused message.
- */
-tvo_status_t tvo_edge_controller_step_or_keep(tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas,
-                                              uint32_t apply_tick, tvo_edge_command_t *cmd);
 
 /**
  * Zeroes the controller's work area (scratch its step writes before reading, holding no state

@@ -297,9 +297,10 @@ static tvo_status_t schedule_measurement(const tvo_node_session_t *s, const tvo_
     return TVO_OK;
 }
 
-/* The refusal's answer: the command in force (or, after watchdog_periods refusals in a row in
- * CLOCK_PLANT, a safe stop; or the stop the core's step answered with, `stepped`, NULL if none),
- * stamped no earlier than the measurement. Nothing of the message is kept. */
+/* The refusal's answer, stamped no earlier than the measurement: the core's answer if it stepped
+ * (`stepped`: the command in force, or its watchdog's stop), else the command in force; in CLOCK_PLANT,
+ * where the plant's samples are the only clock, a safe stop after watchdog_periods refusals in a row.
+ * Nothing of the message is kept. */
 static void refuse_measurement(tvo_node_t *node, tvo_node_session_t *s, const tvo_lcm_measurement_t *msg,
                                tvo_status_t reason, const tvo_edge_command_t *stepped, int64_t now_us)
 {
@@ -314,12 +315,11 @@ static void refuse_measurement(tvo_node_t *node, tvo_node_session_t *s, const tv
     if (s->refused_in_row < UINT32_MAX) {
         s->refused_in_row++;
     }
-    if (stepped != NULL && (s->controller.ops->flags(stepped) & TVO_FLAG_SAFE_STOP) != 0u) {
-        cmd = *stepped; /* the core's watchdog stopped the robots: the answer says so */
-    } else if (s->timing.clock_source == TVO_LCM_SESSION_T_CLOCK_PLANT &&
-               s->refused_in_row >= s->timing.watchdog_periods) {
+    if (s->timing.clock_source == TVO_LCM_SESSION_T_CLOCK_PLANT && s->refused_in_row >= s->timing.watchdog_periods) {
         (void)s->controller.ops->safe_stop(&s->controller, &cmd);
         stamp.status = TVO_ERR_WATCHDOG;
+    } else if (stepped != NULL) {
+        cmd = *stepped;
     } else {
         s->controller.ops->holding(&s->controller, &cmd);
     }
@@ -424,7 +424,7 @@ static int reanchor(tvo_node_session_t *s, const tvo_lcm_measurement_t *msg, tvo
 }
 
 /* Everything the node checks of a measurement before the step: its period, stamp and apply instant
- * on the schedule's clock, the core measurement, and the controller's own check. */
+ * on the schedule's clock, and the core measurement (the core's step checks the rest, once). */
 static tvo_status_t vet_measurement(tvo_node_session_t *s, const tvo_lcm_measurement_t *msg, int64_t now_us,
                                     int64_t *period, int64_t *apply_us, tvo_edge_measurement_t *meas)
 {
@@ -448,8 +448,44 @@ static tvo_status_t vet_measurement(tvo_node_session_t *s, const tvo_lcm_measure
     if (s->has_accepted && (*period - s->last_period) > (int64_t)TVO_MAX_TICK_SPAN / s->timing.period_us) {
         return TVO_ERR_STALE; /* a silence longer than the clock spans: START a new session */
     }
-    st = ops->measurement(&s->controller, msg, s->timing.robot_count, schedule_tick(stamp_us), meas);
-    return (st == TVO_OK) ? ops->check(&s->controller, meas, schedule_tick(*apply_us)) : st;
+    return ops->measurement(&s->controller, msg, s->timing.robot_count, schedule_tick(stamp_us), meas);
+}
+
+/* The node's vetting, the slack rule on the first accepted sample, and the core's step (a transaction).
+ * On a refusal *stepped says whether cmd holds the core's answer. */
+static tvo_status_t serve_measurement(tvo_node_session_t *s, const tvo_lcm_measurement_t *msg, int64_t now_us,
+                                      int64_t *period, int64_t *apply_us, tvo_edge_command_t *cmd, int *stepped)
+{
+    const tvo_edge_controller_ops_t *ops = s->controller.ops;
+    tvo_edge_measurement_t meas;
+    *stepped = 0;
+    tvo_status_t st = vet_measurement(s, msg, now_us, period, apply_us, &meas);
+    if (st != TVO_OK) {
+        return st;
+    }
+    /* The paper's slack rule takes the first accepted sample as the state at t = 0; undone if the step
+     * refuses it, so a refused first sample leaves the rule for the next one. */
+    const uint8_t slack_was_chosen = s->problem.slack_chosen;
+    const tvo_barrier_t barrier_before = s->problem.barrier;
+    if (!slack_was_chosen) {
+        tvo_real_t y[TVO_MAX_OUTPUT_DIM] = {TVO_R(0.0)};
+        ops->positions(&meas, s->timing.robot_count, y);
+        (void)tvo_problem_choose_slack(&s->problem, y, TVO_R(0.0));
+    }
+    st = ops->step(&s->controller, &meas, schedule_tick(*apply_us), cmd);
+    *stepped = 1;
+    if (st != TVO_OK) {
+        s->problem.barrier = barrier_before;
+        s->problem.slack_chosen = slack_was_chosen;
+    }
+    return st;
+}
+
+/* The sample passed every check, the core's included, and only its law could not serve it (a target
+ * sample not there yet). */
+static int law_refused(tvo_status_t st)
+{
+    return st == TVO_ERR_TARGET_NOT_READY || st == TVO_ERR_NUMERIC || st == TVO_ERR_NOT_POSITIVE_DEFINITE;
 }
 
 static void on_measurement(tvo_node_t *node, const tvo_lcm_measurement_t *msg, int64_t now_us)
@@ -466,19 +502,21 @@ static void on_measurement(tvo_node_t *node, const tvo_lcm_measurement_t *msg, i
     const tvo_edge_controller_ops_t *ops = s->controller.ops;
     int64_t period = 0;
     int64_t apply_us = 0;
-    tvo_edge_measurement_t meas;
-    tvo_status_t st = vet_measurement(s, msg, now_us, &period, &apply_us, &meas);
+    tvo_edge_command_t cmd;
+    int stepped = 0;
+    tvo_status_t st = serve_measurement(s, msg, now_us, &period, &apply_us, &cmd, &stepped);
     if (st != TVO_OK) {
-        /* A re-anchor stands only if the measurement that completed the vote is then served: one that
-         * is refused for another reason too (not finite, say) must leave the anchor as it was. */
+        /* A re-anchor stands only if the measurement that completed the vote then passes every check
+         * (its law may still refuse it): one refused for another reason too (not finite, say) must
+         * leave the anchor as it was. */
         const int64_t offset = s->offset_us;
         const int64_t epoch_schedule = s->epoch_schedule_us;
         const int64_t last_sequence = s->last_sequence;
         const int64_t start_utime = s->start_utime;
         const uint32_t epoch_tick = schedule_tick(epoch_schedule);
         if (reanchor(s, msg, st, now_us)) {
-            st = vet_measurement(s, msg, now_us, &period, &apply_us, &meas); /* on the corrected anchor */
-            if (st != TVO_OK) {
+            st = serve_measurement(s, msg, now_us, &period, &apply_us, &cmd, &stepped); /* on the corrected anchor */
+            if (st != TVO_OK && !(stepped && law_refused(st))) {
                 s->offset_us = offset;
                 s->epoch_schedule_us = epoch_schedule;
                 s->last_sequence = last_sequence;
@@ -488,26 +526,7 @@ static void on_measurement(tvo_node_t *node, const tvo_lcm_measurement_t *msg, i
         }
     }
     if (st != TVO_OK) {
-        refuse_measurement(node, s, msg, st, NULL, now_us);
-        return;
-    }
-    /* The paper's slack rule takes the first accepted sample as the state at t = 0; undone with the
-     * step if the step fails, so a refused first sample leaves the rule for the next one. */
-    const uint8_t slack_was_chosen = s->problem.slack_chosen;
-    const tvo_barrier_t barrier_before = s->problem.barrier;
-    if (!slack_was_chosen) {
-        tvo_real_t y[TVO_MAX_OUTPUT_DIM] = {TVO_R(0.0)};
-        ops->positions(&meas, s->timing.robot_count, y);
-        (void)tvo_problem_choose_slack(&s->problem, y, TVO_R(0.0));
-    }
-    tvo_edge_command_t cmd;
-    st = tvo_edge_controller_step_or_keep(&s->controller, &meas, schedule_tick(apply_us), &cmd);
-    if (st != TVO_OK) {
-        /* The law could not use the sample (e.g. a streamed target ahead of it): a refusal like any
-         * other, which keeps nothing and counts toward the watchdog. */
-        s->problem.barrier = barrier_before;
-        s->problem.slack_chosen = slack_was_chosen;
-        refuse_measurement(node, s, msg, st, &cmd, now_us);
+        refuse_measurement(node, s, msg, st, stepped ? &cmd : NULL, now_us);
         return;
     }
     count(&node->counters.accepted);
@@ -515,7 +534,7 @@ static void on_measurement(tvo_node_t *node, const tvo_lcm_measurement_t *msg, i
     s->last_period = period;
     s->last_sequence = msg->sequence;
     s->refused_in_row = 0;
-    s->stop_period = period + (int64_t)s->timing.watchdog_periods;
+    s->next_miss_period = period + 1;
     const tvo_step_stamp_t stamp = {apply_us - s->offset_us, s->session_id, msg->sequence, st, s->timing.robot_count};
     publish_step(node, s, &cmd, &stamp, now_us);
 }
@@ -618,15 +637,23 @@ int64_t tvo_node_poll(tvo_node_t *node, int64_t now_us)
         return TVO_NODE_NO_DEADLINE; /* the watchdog is armed by the first accepted measurement */
     }
     now_us = clamp_time(now_us);
-    if (now_us >= apply_instant(s, s->stop_period)) {
-        /* watchdog_periods periods passed with no accepted measurement: stop, stamped now. */
+    /* The periods since the last served one passed without a measurement. The core counts them all in
+     * one call (every period since its last application) and its watchdog decides; it cannot stop the
+     * robots before watchdog_periods have passed, so the node need not call it sooner. */
+    const int64_t first_due = s->last_period + (int64_t)s->timing.watchdog_periods;
+    const int64_t miss_period = s->next_miss_period > first_due ? s->next_miss_period : first_due;
+    const int64_t due_period = next_period_after(s, now_us) - 1; /* the last apply instant at or before now */
+    if (due_period >= miss_period) {
+        /* A stop is published, stamped now, every period until a measurement is served. */
         tvo_edge_command_t cmd;
-        (void)s->controller.ops->safe_stop(&s->controller, &cmd);
-        const tvo_step_stamp_t stamp = {clamp_time(now_us - s->offset_us), s->session_id, -1, TVO_ERR_WATCHDOG,
-                                        s->timing.robot_count};
-        publish_step(node, s, &cmd, &stamp, now_us);
-        const int64_t next = next_period_after(s, now_us);
-        s->stop_period = next > s->stop_period ? next : s->stop_period + 1;
+        const tvo_status_t st = s->controller.ops->miss(&s->controller, schedule_tick(apply_instant(s, due_period)), &cmd);
+        s->next_miss_period = due_period + 1;
+        if ((s->controller.ops->flags(&cmd) & TVO_FLAG_SAFE_STOP) != 0u) {
+            const tvo_step_stamp_t stamp = {clamp_time(now_us - s->offset_us), s->session_id, -1, st,
+                                            s->timing.robot_count};
+            publish_step(node, s, &cmd, &stamp, now_us);
+        }
+        return apply_instant(s, s->next_miss_period);
     }
-    return apply_instant(s, s->stop_period);
+    return apply_instant(s, miss_period);
 }

@@ -12,7 +12,8 @@
  *                    with the reason; nothing from a refused message is kept. The first accepted
  *                    measurement chooses the barrier slack s0 (the paper's rule).
  *   TVO_TARGET       a streamed target sample.
- *   timer            (CLOCK_NODE) watchdog_periods periods without an accepted measurement: a safe
+ *   timer            (CLOCK_NODE) each period that passed without an accepted measurement is counted
+ *                    by the core (tvo_controller_miss); once its watchdog stops the robots, a safe
  *                    stop stamped now, every period until measurements are accepted again.
  *
  * Times: the node's clock now_us is int64 microseconds, monotonic, in [0, TVO_WIRE_TIME_MAX_US].
@@ -54,7 +55,7 @@ typedef struct {
     int64_t last_period;               /* period index j of the last accepted measurement */
     int64_t last_sequence;             /* its sequence */
     uint32_t refused_in_row;           /* CLOCK_PLANT: refusals since the last accepted measurement */
-    int64_t stop_period;               /* CLOCK_NODE: period at whose apply instant the next safe stop is due */
+    int64_t next_miss_period;          /* CLOCK_NODE: the first period not yet served or counted as missed */
     int64_t anchor_candidate_us;       /* what refused measurements agree on, and how many in a row: */
     uint8_t anchor_votes;              /*   CLOCK_NODE the clock offset, CLOCK_PLANT the sequence numbering */
 } tvo_node_session_t;

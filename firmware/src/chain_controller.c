@@ -161,17 +161,43 @@ static tvo_status_t check_finite(const tvo_chain_controller_t *ctl, const tvo_ch
     return TVO_OK;
 }
 
-static tvo_status_t hold_or_stop(tvo_chain_controller_t *ctl, const tvo_period_t *period, tvo_status_t reason,
-                                 tvo_chain_command_t *cmd)
+/* What a good step after the watchdog's gap takes as the input in force: the chain was stopped. */
+static const tvo_real_t rest_input[TVO_MAX_OUTPUT_DIM] = {TVO_R(0.0)};
+
+static void chain_stop_command(tvo_chain_command_t *cmd)
+{
+    memset(cmd, 0, sizeof(*cmd));
+    cmd->flags = TVO_FLAG_SAFE_STOP;
+}
+
+static void chain_hold_command(const tvo_chain_controller_t *ctl, tvo_chain_command_t *cmd)
+{
+    *cmd = ctl->held;
+    cmd->flags = TVO_FLAG_HOLDING;
+}
+
+/* A period counted without a good step (committed): held, or stopped once the watchdog expires. */
+static tvo_status_t chain_miss_period(tvo_chain_controller_t *ctl, const tvo_period_t *period,
+                                      tvo_chain_command_t *cmd)
 {
     if (tvo_sample_clock_end(&ctl->clock, period, 0, 0u)) {
         memset(&ctl->held, 0, sizeof(ctl->held));
-        memset(cmd, 0, sizeof(*cmd));
-        cmd->flags = TVO_FLAG_SAFE_STOP;
+        chain_stop_command(cmd);
         return TVO_ERR_WATCHDOG;
     }
-    *cmd = ctl->held;
-    cmd->flags = TVO_FLAG_HOLDING;
+    chain_hold_command(ctl, cmd);
+    return TVO_ERR_NO_MEASUREMENT;
+}
+
+/* A refused step, committing nothing: the command in force; or, when counting the period would expire
+ * the watchdog, the period counted and the stop (as tvo_controller_step). */
+static tvo_status_t chain_refuse_step(tvo_chain_controller_t *ctl, const tvo_period_t *period,
+                                      tvo_status_t reason, tvo_chain_command_t *cmd)
+{
+    if (sample_clock_refusal_stops(&ctl->clock, period)) {
+        return chain_miss_period(ctl, period, cmd);
+    }
+    chain_hold_command(ctl, cmd);
     return reason;
 }
 
@@ -197,8 +223,7 @@ tvo_status_t tvo_chain_controller_safe_stop(tvo_chain_controller_t *ctl, tvo_cha
     if (cmd == NULL) {
         return TVO_ERR_NULL;
     }
-    memset(cmd, 0, sizeof(*cmd));
-    cmd->flags = TVO_FLAG_SAFE_STOP;
+    chain_stop_command(cmd);
     if (ctl == NULL || !ctl->initialized) {
         return (ctl == NULL) ? TVO_ERR_NULL : TVO_ERR_NOT_INITIALIZED;
     }
@@ -210,11 +235,11 @@ tvo_status_t tvo_chain_controller_safe_stop(tvo_chain_controller_t *ctl, tvo_cha
 /* The step before the law, for a period the clock has begun: the measurement checked, the filters'
  * trial copies, the state carried to where the law is evaluated, its time; *flags. */
 TVO_OFF_CHAIN_BODY tvo_status_t chain_step_before_law(tvo_chain_controller_t *ctl, const tvo_chain_measurement_t *meas,
-                                                      uint32_t apply_tick, uint32_t *flags)
+                                                      uint32_t apply_tick, int from_rest, uint32_t *flags)
 {
     tvo_chain_controller_work_t *work = &ctl->work;
     tvo_period_t *period = &work->period;
-    tvo_status_t st = (meas == NULL) ? TVO_ERR_NO_MEASUREMENT : check_finite(ctl, meas);
+    tvo_status_t st = check_finite(ctl, meas);
     if (st == TVO_OK) {
         st = sample_clock_check_stamp(&ctl->clock, meas->stamp_tick, apply_tick);
     }
@@ -223,7 +248,7 @@ TVO_OFF_CHAIN_BODY tvo_status_t chain_step_before_law(tvo_chain_controller_t *ct
     if (st == TVO_OK) {
         for (uint8_t j = 0; j + 1u < TVO_MAX_RELATIVE_DEGREE; ++j) {
             filter[j] = ctl->filter[j];
-            if (ctl->clock.stopped) {
+            if (from_rest) {
                 filter[j].primed = 0; /* the gap makes old filter state meaningless */
             }
         }
@@ -240,7 +265,7 @@ TVO_OFF_CHAIN_BODY tvo_status_t chain_step_before_law(tvo_chain_controller_t *ct
     sample_clock_locate(&ctl->clock, period, meas->stamp_tick, ctl->cfg.delay_compensation, ctl->cfg.zoh_aware);
     *flags = (period->carry_s > TVO_R(0.0)) ? TVO_FLAG_PREDICTED : 0u;
     if (period->carry_s > TVO_R(0.0)) {
-        st = tvo_chain_predict(k, m, x, ctl->held.u, period->carry_s, x);
+        st = tvo_chain_predict(k, m, x, from_rest ? rest_input : ctl->held.u, period->carry_s, x);
     }
     time_jet_at_tick_time(&period->law_time, ctl->cfg.tick_hz, TVO_R(1.0), &work->time); /* valid times */
     return st;
@@ -282,19 +307,21 @@ tvo_status_t tvo_chain_controller_step(tvo_chain_controller_t *ctl, const tvo_ch
         return TVO_ERR_NULL;
     }
     if (ctl == NULL || !ctl->initialized) {
-        memset(cmd, 0, sizeof(*cmd));
-        cmd->flags = TVO_FLAG_SAFE_STOP;
+        chain_stop_command(cmd);
         return (ctl == NULL) ? TVO_ERR_NULL : TVO_ERR_NOT_INITIALIZED;
+    }
+    if (meas == NULL) {
+        return tvo_chain_controller_miss(ctl, apply_tick, cmd);
     }
     tvo_chain_controller_work_t *work = &ctl->work;
     if (sample_clock_begin(&ctl->clock, apply_tick, &work->period) != TVO_OK) {
-        *cmd = ctl->held;
-        cmd->flags = TVO_FLAG_HOLDING;
+        chain_hold_command(ctl, cmd);
         return TVO_ERR_OUT_OF_ORDER;
     }
     /* Before the law, the law, after it: only what crosses the law's call in this frame. */
     uint32_t flags = 0u;
-    tvo_status_t st = chain_step_before_law(ctl, meas, apply_tick, &flags);
+    tvo_status_t st =
+        chain_step_before_law(ctl, meas, apply_tick, ctl->clock.stopped, &flags);
     if (st == TVO_OK) {
         tvo_law_report_t *report = &work->report;
         report->gradient = NULL;
@@ -304,7 +331,24 @@ tvo_status_t tvo_chain_controller_step(tvo_chain_controller_t *ctl, const tvo_ch
                                            &work->law);
     }
     if (st != TVO_OK) {
-        return hold_or_stop(ctl, &work->period, st, cmd);
+        return chain_refuse_step(ctl, &work->period, st, cmd);
     }
     return chain_step_after_law(ctl, meas, cmd, flags);
+}
+
+tvo_status_t tvo_chain_controller_miss(tvo_chain_controller_t *ctl, uint32_t apply_tick, tvo_chain_command_t *cmd)
+{
+    if (cmd == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (ctl == NULL || !ctl->initialized) {
+        chain_stop_command(cmd);
+        return (ctl == NULL) ? TVO_ERR_NULL : TVO_ERR_NOT_INITIALIZED;
+    }
+    tvo_period_t period;
+    if (sample_clock_begin(&ctl->clock, apply_tick, &period) != TVO_OK) {
+        chain_hold_command(ctl, cmd);
+        return TVO_ERR_OUT_OF_ORDER;
+    }
+    return chain_miss_period(ctl, &period, cmd);
 }

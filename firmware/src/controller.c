@@ -210,6 +210,9 @@ static inline tvo_status_t check_measurement(const tvo_controller_t *ctl, const 
     return TVO_OK;
 }
 
+/* What a good step after the watchdog's gap takes as the command in force: the robots were stopped. */
+static const tvo_command_t rest_command = {{TVO_R(0.0)}, {TVO_R(0.0)}, 0u};
+
 static void stop_command(tvo_command_t *cmd, uint32_t flags)
 {
     memset(cmd, 0, sizeof(*cmd));
@@ -244,27 +247,47 @@ static void drop_to_rest(tvo_controller_t *ctl, tvo_command_t *cmd)
     stop_command(cmd, TVO_FLAG_SAFE_STOP);
 }
 
-/* A period without a usable measurement (or law result): hold, or stop once the watchdog expires. */
-static tvo_status_t hold_or_stop(tvo_controller_t *ctl, const tvo_period_t *period, tvo_status_t reason,
-                                 tvo_command_t *cmd)
+/* The command in force, flagged HOLDING (zero once the robots were stopped). */
+static void hold_command(const tvo_controller_t *ctl, tvo_command_t *cmd)
+{
+    *cmd = ctl->held;
+    cmd->flags = TVO_FLAG_HOLDING;
+}
+
+/* A period counted without a good step (committed): held, or stopped once the watchdog expires. */
+static tvo_status_t miss_period(tvo_controller_t *ctl, const tvo_period_t *period, tvo_command_t *cmd)
 {
     if (tvo_sample_clock_end(&ctl->clock, period, 0, 0u)) {
         drop_to_rest(ctl, cmd);
         return TVO_ERR_WATCHDOG;
     }
-    *cmd = ctl->held;
-    cmd->flags = TVO_FLAG_HOLDING;
-    return reason;
+    hold_command(ctl, cmd);
+    return TVO_ERR_NO_MEASUREMENT;
 }
 
-/* A step that cannot use its measurement (or its law result): the refusal named, then held or stopped. */
-TVO_COLD_BODY tvo_status_t refuse_step(tvo_controller_t *ctl, const tvo_measurement_t *meas, const tvo_period_t *period,
-                                       tvo_status_t reason, tvo_command_t *cmd)
+/* A step that cannot use its measurement (or its law result), committing nothing: the refusal named
+ * and the command in force. The one exception is the watchdog's stop: when counting the period would
+ * expire it, the period is counted and the robots stop (the stop is the state the plant is left in). */
+TVO_COLD_BODY tvo_status_t refuse_step(tvo_controller_t *ctl, const tvo_measurement_t *meas,
+                                       const tvo_period_t *period, tvo_status_t reason, tvo_command_t *cmd)
 {
-    if (reason == TVO_ERR_IMPLAUSIBLE_MEASUREMENT) {
-        reason = measurement_range_refusal(ctl, meas);
+    if (sample_clock_refusal_stops(&ctl->clock, period)) {
+        (void)miss_period(ctl, period, cmd);
+        return TVO_ERR_WATCHDOG;
     }
-    return hold_or_stop(ctl, period, reason, cmd);
+    hold_command(ctl, cmd);
+    return (reason == TVO_ERR_IMPLAUSIBLE_MEASUREMENT) ? measurement_range_refusal(ctl, meas) : reason;
+}
+
+/* A good step after the watchdog's gap: what the stop leaves at rest (the speed states and the held
+ * command the step read as zero) is committed so. */
+TVO_COLD_BODY void commit_rest(tvo_controller_t *ctl)
+{
+    for (uint8_t q = 0; q < TVO_ARRAY_LEN(TVO_MAX_EQUALITIES); ++q) {
+        ctl->multiplier_rate[q] = TVO_R(0.0);
+    }
+    ctl->speed_mismatch_periods = 0u;
+    ctl->speed_mismatch_holdoff = 0u;
 }
 
 /* The command's speed moved beyond accel_max h from the one in force (a measured speed's re-sync):
@@ -325,6 +348,8 @@ TVO_OFF_CHAIN_BODY tvo_status_t step_before_law(tvo_controller_t *ctl, const tvo
     const int zoh_aware = cfg->zoh_aware != 0u;
     const tvo_real_t carry_s = period->carry_s;
     uint32_t flags = (carry_s > TVO_R(0.0)) ? TVO_FLAG_PREDICTED : 0u;
+    const tvo_command_t *in_force = work->in_force;
+    const int from_rest = work->from_rest;
 
     /* State the law sees: at the sample (no compensation), the application instant, or mid-interval. */
     tvo_output_derivs_t *y = &work->output;
@@ -334,11 +359,11 @@ TVO_OFF_CHAIN_BODY tvo_status_t step_before_law(tvo_controller_t *ctl, const tvo
     tvo_real_t *speed_state = work->speed_state;
     int speed_contradicted = 0;
     for (uint8_t r = 0; r < n && st == TVO_OK; ++r) {
-        speed_state[r] = ctl->speed_state_mps[r];
+        speed_state[r] = from_rest ? TVO_R(0.0) : ctl->speed_state_mps[r];
         if (cfg->velocity_source == TVO_VELOCITY_FROM_POSE && meas->speed_valid) {
             /* Re-sync the extension with what the plant actually does (slip, disturbance): the plant
              * should run at the held speed, so shift the state by the measured departure from it. */
-            const tvo_real_t held_speed = ctl->held.speed_mps[r];
+            const tvo_real_t held_speed = in_force->speed_mps[r];
             const tvo_real_t departure = meas->speed_mps[r] - held_speed;
             const tvo_real_t tolerance = TVO_SPEED_MISMATCH_FRACTION * TVO_FABS(held_speed);
             if (TVO_FABS(departure) > (tolerance > TVO_SPEED_MISMATCH_MPS ? tolerance : TVO_SPEED_MISMATCH_MPS)) {
@@ -351,7 +376,7 @@ TVO_OFF_CHAIN_BODY tvo_status_t step_before_law(tvo_controller_t *ctl, const tvo
         pose.position_m[1] = meas->position_m[r][1];
         pose.heading_rad = heading_at_sample[r];
         if (carry_s > TVO_R(0.0)) {
-            unicycle_predict_unchecked(&pose, ctl->held.speed_mps[r], ctl->held.turn_rate_radps[r], carry_s, &pose,
+            unicycle_predict_unchecked(&pose, in_force->speed_mps[r], in_force->turn_rate_radps[r], carry_s, &pose,
                                        heading_cs[r]);
         } else {
             tvo_sincos(pose.heading_rad, &heading_cs[r][1], &heading_cs[r][0]);
@@ -359,7 +384,7 @@ TVO_OFF_CHAIN_BODY tvo_status_t step_before_law(tvo_controller_t *ctl, const tvo
         heading[r] = pose.heading_rad;
         /* Mid-interval speed: the state plus half a period of the last acceleration (O(h^2)). */
         speed[r] = speed_state[r] +
-                   (zoh_aware ? TVO_R(0.5) * ctl->period_s * ctl->telemetry.accel_mps2[r] : TVO_R(0.0));
+                   (zoh_aware && !from_rest ? TVO_R(0.5) * ctl->period_s * ctl->telemetry.accel_mps2[r] : TVO_R(0.0));
         y->d[0][2u * r] = pose.position_m[0];
         y->d[0][2u * r + 1u] = pose.position_m[1];
         if (position_only) {
@@ -381,7 +406,7 @@ TVO_OFF_CHAIN_BODY tvo_status_t step_before_law(tvo_controller_t *ctl, const tvo
     const uint8_t dual = ctl->objective->dual_dim;
     for (uint8_t q = 0; q < dual && q < TVO_MAX_EQUALITIES; ++q) {
         y->d[0][primal + q] = ctl->multiplier[q];
-        y->d[1][primal + q] = ctl->multiplier_rate[q];
+        y->d[1][primal + q] = from_rest ? TVO_R(0.0) : ctl->multiplier_rate[q];
     }
 #endif
 
@@ -433,8 +458,8 @@ TVO_OFF_CHAIN_BODY tvo_status_t step_after_law(tvo_controller_t *ctl, const tvo_
         next->speed_mps[r] = TVO_R(0.5) * (speed_state[r] + speed_next[r]);
         /* The command in force bounds the new one, whatever a measured speed re-synced: the state moves
          * with the command, so the next period's command stays within a_max h of this one too. */
-        if (!(TVO_FABS(next->speed_mps[r] - ctl->held.speed_mps[r]) <= ctl->speed_step_max_mps)) {
-            flags |= limit_speed_step(ctl, &next->speed_mps[r], &speed_next[r], ctl->held.speed_mps[r]);
+        if (!(TVO_FABS(next->speed_mps[r] - work->in_force->speed_mps[r]) <= ctl->speed_step_max_mps)) {
+            flags |= limit_speed_step(ctl, &next->speed_mps[r], &speed_next[r], work->in_force->speed_mps[r]);
         }
         if (!isfinite(next->speed_mps[r]) || !isfinite(next->turn_rate_radps[r])) {
             st = TVO_ERR_NUMERIC;
@@ -442,16 +467,19 @@ TVO_OFF_CHAIN_BODY tvo_status_t step_after_law(tvo_controller_t *ctl, const tvo_
     }
 
     if (st != TVO_OK) {
-        return hold_or_stop(ctl, period, st, cmd);
+        return refuse_step(ctl, meas, period, st, cmd);
     }
     /* The step succeeded: from here on its working copies become the controller's state. */
+    if (work->from_rest) {
+        commit_rest(ctl);
+    }
     sample_clock_end_good(&ctl->clock, period, meas->stamp_tick);
     if (position_only) {
         ctl->velocity_filter = work->velocity_filter;
         for (uint8_t r = 0; r < n; ++r) {
             /* The estimate lives at the application instant; the next sample dead-reckons from here. */
             ctl->heading_estimate_rad[r] =
-                unicycle_wrap_angle_near(heading[r] + ctl->held.turn_rate_radps[r] * (period->age_s - carry_s));
+                unicycle_wrap_angle_near(heading[r] + work->in_force->turn_rate_radps[r] * (period->age_s - carry_s));
         }
     }
     ctl->speed_mismatch_periods = speed_contradicted ? ctl->speed_mismatch_periods + 1u : 0u;
@@ -507,10 +535,11 @@ TVO_SHAPE_BODY tvo_status_t step_shape(tvo_controller_t *ctl, const tvo_measurem
     /* The period's timing: apply ticks must advance; elapsed time never wraps. */
     tvo_controller_work_t *work = &ctl->work;
     if (sample_clock_begin(&ctl->clock, apply_tick, &work->period) != TVO_OK) {
-        *cmd = ctl->held;
-        cmd->flags = TVO_FLAG_HOLDING;
+        hold_command(ctl, cmd);
         return TVO_ERR_OUT_OF_ORDER;
     }
+    work->from_rest = ctl->clock.stopped;
+    work->in_force = work->from_rest ? &rest_command : &ctl->held;
     uint32_t flags = 0u;
     int speed_contradicted = 0;
     tvo_status_t st = step_before_law(ctl, meas, apply_tick, n, &flags, &speed_contradicted);
@@ -545,6 +574,9 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
         stop_command(cmd, TVO_FLAG_SAFE_STOP);
         return TVO_ERR_NOT_INITIALIZED;
     }
+    if (meas == NULL) {
+        return tvo_controller_miss(ctl, apply_tick, cmd);
+    }
 #if TVO_SHAPE_COPIES
     if (ctl->cfg.robot_count == 1u) {
         return step_shape(ctl, meas, apply_tick, cmd, 1u);
@@ -556,6 +588,23 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
 #endif
 #endif
     return step_shape(ctl, meas, apply_tick, cmd, ctl->cfg.robot_count);
+}
+
+tvo_status_t tvo_controller_miss(tvo_controller_t *ctl, uint32_t apply_tick, tvo_command_t *cmd)
+{
+    if (cmd == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (ctl == NULL || !ctl->initialized) {
+        stop_command(cmd, TVO_FLAG_SAFE_STOP);
+        return (ctl == NULL) ? TVO_ERR_NULL : TVO_ERR_NOT_INITIALIZED;
+    }
+    tvo_period_t period;
+    if (sample_clock_begin(&ctl->clock, apply_tick, &period) != TVO_OK) {
+        hold_command(ctl, cmd);
+        return TVO_ERR_OUT_OF_ORDER;
+    }
+    return miss_period(ctl, &period, cmd);
 }
 
 tvo_status_t tvo_controller_check(const tvo_controller_t *ctl, const tvo_measurement_t *meas, uint32_t apply_tick)

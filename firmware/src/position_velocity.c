@@ -31,8 +31,9 @@ static tvo_status_t estimate_at_sample(const tvo_controller_t *ctl, tvo_dirty_de
             tvo_real_t sin_heading;
             tvo_real_t cos_heading;
             tvo_sincos(heading_at_sample[r], &sin_heading, &cos_heading);
-            rate0[2u * r] = ctl->speed_state_mps[r] * cos_heading;
-            rate0[2u * r + 1u] = ctl->speed_state_mps[r] * sin_heading;
+            const tvo_real_t speed_mps = ctl->work.from_rest ? TVO_R(0.0) : ctl->speed_state_mps[r];
+            rate0[2u * r] = speed_mps * cos_heading;
+            rate0[2u * r + 1u] = speed_mps * sin_heading;
         }
         st = tvo_dirty_derivative_reset(filter, position, rate0);
         for (uint8_t i = 0; i < 2u * n; ++i) {
@@ -52,7 +53,7 @@ static tvo_status_t estimate_at_sample(const tvo_controller_t *ctl, tvo_dirty_de
     for (uint8_t r = 0; r < n; ++r) {
         /* Dead-reckon with the held turn rate, then pull toward the velocity direction when the
          * robot moves fast enough for that direction to mean something. */
-        tvo_real_t heading = ctl->heading_estimate_rad[r] + ctl->held.turn_rate_radps[r] * since_apply_s;
+        tvo_real_t heading = ctl->heading_estimate_rad[r] + ctl->work.in_force->turn_rate_radps[r] * since_apply_s;
         const tvo_real_t vx = rate_at_sample[2u * r];
         const tvo_real_t vy = rate_at_sample[2u * r + 1u];
         if (vx * vx + vy * vy > TVO_R(4.0) * ctl->cfg.min_speed_mps * ctl->cfg.min_speed_mps) {
@@ -72,7 +73,7 @@ tvo_status_t controller_position_velocity(tvo_controller_t *ctl, const tvo_measu
     tvo_controller_work_t *work = &ctl->work;
     tvo_dirty_derivative_t *filter = &work->velocity_filter; /* kept only if the step succeeds */
     *filter = ctl->velocity_filter;
-    if (ctl->clock.stopped) {
+    if (work->from_rest) {
         filter->primed = 0; /* the gap makes old filter state meaningless */
     }
     tvo_real_t *rate = work->rate_filtered;
@@ -81,7 +82,7 @@ tvo_status_t controller_position_velocity(tvo_controller_t *ctl, const tvo_measu
         /* The held turn rate rotates the velocity over the carry to the law's instant, like the heading. */
         tvo_real_t s;
         tvo_real_t c;
-        tvo_sincos(ctl->held.turn_rate_radps[r] * work->period.carry_s, &s, &c);
+        tvo_sincos(work->in_force->turn_rate_radps[r] * work->period.carry_s, &s, &c);
         const tvo_real_t x = rate[2u * r];
         rate[2u * r] = c * x - s * rate[2u * r + 1u];
         rate[2u * r + 1u] = s * x + c * rate[2u * r + 1u];

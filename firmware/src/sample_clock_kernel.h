@@ -113,6 +113,13 @@ static inline tvo_status_t sample_clock_check_stamp(const tvo_sample_clock_t *cl
     return TVO_OK;
 }
 
+/* A refused step commits nothing unless counting its period would expire the watchdog (what
+ * tvo_sample_clock_end would say): then the period is counted and the robots stop. */
+static inline int sample_clock_refusal_stops(const tvo_sample_clock_t *clock, const tvo_period_t *period)
+{
+    return clock->stopped || period->periods >= clock->watchdog_periods - clock->periods_without_measurement;
+}
+
 /* The period's application instant becomes the clock's present. */
 static inline void sample_clock_end_period(tvo_sample_clock_t *clock, const tvo_period_t *period)
 {

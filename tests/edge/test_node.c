@@ -184,7 +184,7 @@ static void assert_session_kept(int line)
     UNITY_TEST_ASSERT_EQUAL_MEMORY(&snapshot.timing, &s->timing, sizeof(s->timing), line, "timing changed");
     UNITY_TEST_ASSERT_EQUAL_INT64(snapshot.last_period, s->last_period, line, "last_period changed");
     UNITY_TEST_ASSERT_EQUAL_INT64(snapshot.last_sequence, s->last_sequence, line, "last_sequence changed");
-    UNITY_TEST_ASSERT_EQUAL_INT64(snapshot.stop_period, s->stop_period, line, "stop_period changed");
+    UNITY_TEST_ASSERT_EQUAL_INT64(snapshot.next_miss_period, s->next_miss_period, line, "next_miss_period changed");
     UNITY_TEST_ASSERT_EQUAL_INT64(snapshot.offset_us, s->offset_us, line, "offset changed");
     UNITY_TEST_ASSERT_EQUAL_UINT8(snapshot.has_accepted, s->has_accepted, line, "has_accepted changed");
     tvo_node_session_t expected;

@@ -688,8 +688,10 @@ void case_implausible_epoch(Context& ctx)
     refused_epoch(start_utime - kEpochLimitUs - 1, -1,
                   "no session: a START whose epoch is 1 us further before it than TVO_SESSION_EPOCH_SPAN_US: refused naming the epoch");
     run.start();
-    ctx.report.check(true, "a START whose epoch is TVO_SESSION_EPOCH_SPAN_US before it (the limit): acked OK",
-                     "epoch " + std::to_string(config.epoch_utime_us) + ", START utime " + std::to_string(start_utime));
+    ctx.report.check(run.start_ack().status == 0 && run.start_ack().running_session_id == run.session().session_id,
+                     "a START whose epoch is TVO_SESSION_EPOCH_SPAN_US before it (the limit): acked OK",
+                     "epoch " + std::to_string(config.epoch_utime_us) + ", START utime " + std::to_string(start_utime) +
+                         ": " + ack_text(run.start_ack()));
     const std::int64_t ours = run.session().session_id;
     run.run([&](LockstepRun& r, std::int64_t n) {
         r.send_genuine(r.measure(n));

@@ -1025,6 +1025,118 @@ static void test_one_good_measurement_resets_the_watchdog_count(void)
     }
 }
 
+/* The controller's state, its scratch work area zeroed (written before it is read in every step). */
+static void state_of(const tvo_controller_t *ctl, tvo_controller_t *state)
+{
+    memcpy(state, ctl, sizeof(*state));
+    memset(&state->work, 0, sizeof(state->work));
+}
+
+static void assert_state_unchanged(const tvo_controller_t *before, const tvo_controller_t *ctl, const char *what)
+{
+    tvo_controller_t after;
+    state_of(ctl, &after);
+    TEST_ASSERT_EQUAL_MEMORY_MESSAGE(before, &after, sizeof(after), what);
+}
+
+static void test_a_refused_step_changes_nothing_its_clock_included(void)
+{
+    fx_running(&fx_a);
+    tvo_controller_t before;
+    state_of(&fx_a.ctl, &before);
+    const uint32_t apply = fx_a.apply;
+    tvo_command_t cmd;
+    tvo_measurement_t m = measure_now(&fx_a, apply - FX_DELAY);
+    m.position_m[0][1] = TEST_NAN;
+    ASSERT_STATUS(TVO_ERR_NOT_FINITE, tvo_controller_step(&fx_a.ctl, &m, apply, &cmd));
+    assert_state_unchanged(&before, &fx_a.ctl, "not finite");
+    assert_same_motion(&before.held, &cmd, 1);
+    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_HOLDING);
+    m = measure_now(&fx_a, apply - FX_PERIOD - 1u);
+    ASSERT_STATUS(TVO_ERR_STALE, tvo_controller_step(&fx_a.ctl, &m, apply, &cmd));
+    assert_state_unchanged(&before, &fx_a.ctl, "stale");
+    m = measure_now(&fx_a, apply + 1u);
+    ASSERT_STATUS(TVO_ERR_FUTURE_STAMP, tvo_controller_step(&fx_a.ctl, &m, apply, &cmd));
+    assert_state_unchanged(&before, &fx_a.ctl, "future");
+    m = measure_now(&fx_a, apply - FX_DELAY);
+    m.speed_valid = 1;
+    m.speed_mps[0] = test_r(1e3);
+    ASSERT_STATUS(TVO_ERR_IMPLAUSIBLE_MEASUREMENT, tvo_controller_step(&fx_a.ctl, &m, apply, &cmd));
+    assert_state_unchanged(&before, &fx_a.ctl, "implausible");
+    m = measure_now(&fx_a, apply - FX_PERIOD - FX_DELAY);
+    ASSERT_STATUS(TVO_ERR_OUT_OF_ORDER, tvo_controller_step(&fx_a.ctl, &m, apply - FX_PERIOD, &cmd));
+    assert_state_unchanged(&before, &fx_a.ctl, "apply tick not advancing");
+    /* The period is still open: a good measurement for it is served, as if nothing had come before. */
+    tvo_controller_t twin;
+    memcpy(&twin, &before, sizeof(twin));
+    m = measure_now(&fx_a, apply - FX_DELAY);
+    tvo_command_t twin_cmd;
+    ASSERT_STATUS(TVO_OK, tvo_controller_step(&fx_a.ctl, &m, apply, &cmd));
+    ASSERT_STATUS(TVO_OK, tvo_controller_step(&twin, &m, apply, &twin_cmd));
+    assert_commands_bit_identical(&twin_cmd, &cmd);
+}
+
+static void test_miss_counts_one_period_and_is_the_step_without_a_measurement(void)
+{
+    fx_running(&fx_a);
+    tvo_controller_t twin;
+    memcpy(&twin, &fx_a.ctl, sizeof(twin));
+    const tvo_command_t in_force = fx_a.ctl.held;
+    const uint32_t apply = fx_a.apply;
+    tvo_command_t cmd;
+    tvo_command_t twin_cmd;
+    ASSERT_STATUS(TVO_ERR_NO_MEASUREMENT, tvo_controller_miss(&fx_a.ctl, apply, &cmd));
+    ASSERT_STATUS(TVO_ERR_NO_MEASUREMENT, tvo_controller_step(&twin, NULL, apply, &twin_cmd));
+    assert_same_motion(&in_force, &cmd, 1);
+    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_HOLDING);
+    assert_commands_bit_identical(&twin_cmd, &cmd);
+    TEST_ASSERT_EQUAL_HEX32(apply, fx_a.ctl.clock.last_apply_tick);
+    TEST_ASSERT_EQUAL_UINT32(1u, fx_a.ctl.clock.periods_without_measurement);
+    /* The period was counted: a measurement for it comes too late; a miss that does not advance
+     * changes nothing. */
+    tvo_controller_t before;
+    state_of(&fx_a.ctl, &before);
+    const tvo_measurement_t m = measure_now(&fx_a, apply - FX_DELAY);
+    ASSERT_STATUS(TVO_ERR_OUT_OF_ORDER, tvo_controller_step(&fx_a.ctl, &m, apply, &cmd));
+    ASSERT_STATUS(TVO_ERR_OUT_OF_ORDER, tvo_controller_miss(&fx_a.ctl, apply, &cmd));
+    assert_state_unchanged(&before, &fx_a.ctl, "miss at a counted period");
+    /* A late miss counts every period since the last application: watchdog_periods - 1 more expire it. */
+    ASSERT_STATUS(TVO_ERR_WATCHDOG,
+                  tvo_controller_miss(&fx_a.ctl, apply + (fx_a.cfg.watchdog_periods - 1u) * FX_PERIOD, &cmd));
+    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_SAFE_STOP);
+    ASSERT_NEAR(0.0, cmd.speed_mps[0], 0.0);
+    TEST_ASSERT_EQUAL_UINT8(1u, fx_a.ctl.clock.stopped);
+    ASSERT_STATUS(TVO_ERR_NULL, tvo_controller_miss(&fx_a.ctl, apply, NULL));
+    ASSERT_STATUS(TVO_ERR_NULL, tvo_controller_miss(NULL, apply, &cmd));
+    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_SAFE_STOP);
+}
+
+/* Refusals commit nothing, so the watchdog reads their span from the clock: the refusal whose period
+ * completes watchdog_periods counts it and stops (the one thing a refusal commits), and the next good
+ * step starts from rest, within a_max h of zero. */
+static void test_refusals_stop_after_the_watchdogs_span_and_the_next_step_starts_from_rest(void)
+{
+    fx_running(&fx_a);
+    TEST_ASSERT_TRUE(fabs(test_d(fx_a.ctl.held.speed_mps[0])) > 2.0 * test_d(fx_a.cfg.accel_max_mps2) * h_s(&fx_a));
+    const uint32_t last_apply = fx_a.ctl.clock.last_apply_tick;
+    fx_a.meas_mode = FX_MEAS_NAN;
+    tvo_command_t cmd;
+    for (uint32_t i = 1; i < fx_a.cfg.watchdog_periods; ++i) {
+        ASSERT_STATUS(TVO_ERR_NOT_FINITE, fx_closed_loop_step(&fx_a, &cmd));
+    }
+    ASSERT_STATUS(TVO_ERR_WATCHDOG, fx_closed_loop_step(&fx_a, &cmd));
+    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_SAFE_STOP);
+    TEST_ASSERT_EQUAL_HEX32(last_apply + fx_a.cfg.watchdog_periods * FX_PERIOD, fx_a.ctl.clock.last_apply_tick);
+    TEST_ASSERT_EQUAL_UINT8(1u, fx_a.ctl.clock.stopped);
+    ASSERT_NEAR(0.0, fx_a.ctl.held.speed_mps[0], 0.0);
+    fx_a.meas_mode = FX_MEAS_NORMAL;
+    ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_a, &cmd));
+    ASSERT_FLAG_CLEAR(cmd.flags, TVO_FLAG_SAFE_STOP | TVO_FLAG_HOLDING);
+    ASSERT_LE(fabs(test_d(cmd.speed_mps[0])), test_d(fx_a.cfg.accel_max_mps2) * h_s(&fx_a) + TEST_TOL(8, 1.0),
+              "the first speed after the refusals' stop");
+    run_ok(&fx_a, 20);
+}
+
 /* ------------------------------------------------------------------------------------------------
  * Wrap-around
  * --------------------------------------------------------------------------------------------- */
@@ -1866,6 +1978,9 @@ int main(void)
     RUN_TEST(test_watchdog_recovers_from_rest_when_measurements_resume);
     RUN_TEST(test_watchdog_counts_rejected_measurements);
     RUN_TEST(test_one_good_measurement_resets_the_watchdog_count);
+    RUN_TEST(test_a_refused_step_changes_nothing_its_clock_included);
+    RUN_TEST(test_miss_counts_one_period_and_is_the_step_without_a_measurement);
+    RUN_TEST(test_refusals_stop_after_the_watchdogs_span_and_the_next_step_starts_from_rest);
     RUN_TEST(test_tick_wrap_gives_bit_identical_commands);
     RUN_TEST(test_pose_mode_tracks_a_circle);
     RUN_TEST(test_pose_mode_tracks_an_ellipse_to_the_sampling_floor);

@@ -86,11 +86,15 @@ tvo_status_t tvo_chain_controller_init(tvo_chain_controller_t *ctl, const tvo_ch
                                        const tvo_objective_t *objective, uint32_t epoch_tick, tvo_param_t *bad_param);
 
 /**
- * One period, as tvo_controller_step: cmd always receives a safe command (new, held with
- * TVO_FLAG_HOLDING, or zero with TVO_FLAG_SAFE_STOP after the watchdog) and the status says why.
+ * One period, as tvo_controller_step (a transaction: commits a whole period or changes nothing): cmd
+ * always receives a safe command (new, held with TVO_FLAG_HOLDING, or zero with TVO_FLAG_SAFE_STOP
+ * after the watchdog) and the status says why. meas NULL: tvo_chain_controller_miss.
  */
 tvo_status_t tvo_chain_controller_step(tvo_chain_controller_t *ctl, const tvo_chain_measurement_t *meas,
                                        uint32_t apply_tick, tvo_chain_command_t *cmd);
+
+/** A period that passed without a good step, counted as tvo_controller_miss counts it. */
+tvo_status_t tvo_chain_controller_miss(tvo_chain_controller_t *ctl, uint32_t apply_tick, tvo_chain_command_t *cmd);
 
 /** What tvo_chain_controller_step would say of this measurement, changing nothing (as tvo_controller_check). */
 tvo_status_t tvo_chain_controller_check(const tvo_chain_controller_t *ctl, const tvo_chain_measurement_t *meas,

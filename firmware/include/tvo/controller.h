@@ -26,11 +26,14 @@
  *     map starts from the first sample's heading if it has one, is dead-reckoned with the held
  *     turn rate, and is pulled toward the filtered velocity direction with time constant 10 T_f.
  *
- * Measurements are rejected (the status says why, the previous command is held) when they carry
- * NaN/Inf, are stamped after apply_tick, are older than one period, or do not advance; a rejected
- * measurement changes nothing but the watchdog's count (filters, speed state, stamps are untouched).
- * After watchdog_periods periods without a valid measurement the controller stops the robots
- * (v = 0, omega = 0, speed state reset) and reports TVO_ERR_WATCHDOG until measurements resume.
+ * A step is a transaction: it commits a whole period (TVO_OK) or changes nothing, its clock included.
+ * Measurements are refused (the status says why, cmd is the command in force, flagged HOLDING) when
+ * they carry NaN/Inf, are stamped after apply_tick, are older than one period, or do not advance, and
+ * so is a step whose law fails. A period that passes without a good step is counted by
+ * tvo_controller_miss (or a step with no measurement): the core's watchdog is the only watchdog. After
+ * watchdog_periods periods without a good step the robots stop (v = 0, omega = 0, speed state reset;
+ * TVO_ERR_WATCHDOG, TVO_FLAG_SAFE_STOP), and the next good step starts from rest. The stop is the one
+ * thing a refusal commits: a refused step whose period would expire the watchdog counts it and stops.
  *
  * A valid measured speed that departs from the held speed by more than
  * max(TVO_SPEED_MISMATCH_MPS, TVO_SPEED_MISMATCH_FRACTION |held|) for TVO_SPEED_MISMATCH_PERIODS
@@ -145,6 +148,8 @@ typedef struct {
     tvo_time_jet_t time;                             /* the objective's time where the law is evaluated */
     tvo_command_t command;                           /* the command the step would hold */
     tvo_law_report_t report;                         /* what the law reports to the step */
+    const tvo_command_t *in_force;                   /* the command applied before apply_tick (zero from rest) */
+    uint8_t from_rest;                               /* the watchdog stopped the robots: start at rest */
     /* Per robot (entries 0..n-1): */
     tvo_real_t heading_at_sample[TVO_MAX_ROBOTS];
     tvo_real_t heading[TVO_MAX_ROBOTS];              /* where the law is evaluated */
@@ -212,12 +217,23 @@ tvo_status_t tvo_controller_init_pose_velocity(tvo_controller_t *ctl, const tvo_
 
 /**
  * One period: computes the command applied at apply_tick from the measurement (NULL when none
- * arrived: the held command is repeated with TVO_FLAG_HOLDING and TVO_ERR_NO_MEASUREMENT). cmd always receives a safe command: the new one on TVO_OK; otherwise the held one
- * (TVO_FLAG_HOLDING) or a stop (TVO_FLAG_SAFE_STOP), with the reason as the status.
- * apply_tick must advance on every call (TVO_ERR_OUT_OF_ORDER otherwise, previous command held).
+ * arrived: tvo_controller_miss). cmd always receives a safe command: the new one on TVO_OK (committed);
+ * otherwise, with nothing changed, the one in force (TVO_FLAG_HOLDING) with the reason as the status,
+ * or, when the period would expire the watchdog, the stop (counted; TVO_FLAG_SAFE_STOP, TVO_ERR_WATCHDOG). apply_tick must advance past
+ * the last committed period (TVO_ERR_OUT_OF_ORDER otherwise). A caller with no other measurement for
+ * the period counts it with tvo_controller_miss.
  */
 tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t *meas,
                                  uint32_t apply_tick, tvo_command_t *cmd);
+
+/**
+ * A period that passed without a good step: the command applied at apply_tick is the one in force
+ * (TVO_ERR_NO_MEASUREMENT, TVO_FLAG_HOLDING), or the watchdog's stop once watchdog_periods periods
+ * passed so (TVO_ERR_WATCHDOG, TVO_FLAG_SAFE_STOP; the robots are at rest until a good step). Counts the
+ * periods since the last application (apply_tick must advance: TVO_ERR_OUT_OF_ORDER otherwise, with
+ * nothing changed). tvo_controller_step with meas NULL is the same call.
+ */
+tvo_status_t tvo_controller_miss(tvo_controller_t *ctl, uint32_t apply_tick, tvo_command_t *cmd);
 
 /**
  * What tvo_controller_step would say of this measurement before computing anything: TVO_OK if it
