@@ -258,7 +258,7 @@ def lcm_constants(message, prefix):
 
 def status_codes(_b=None, _r=None):
     return table(["code", "`command_t.`", "C (`tvo/status.h`)", "meaning"],
-                 [(v, f"`{name}`", f"`TVO_{name[len('STATUS_'):]}`", why)
+                 [(v, f"`{name}`", f"`TVO_{name[len('STATUS_'):]}`", why or "success: the command was computed from this measurement")
                   for name, v, _, why in lcm_constants("command_t", "STATUS_")])
 
 
@@ -296,6 +296,9 @@ WIRE_BLOCKS = {"status-codes": status_codes, "flags": flags, "params": params, "
 
 
 def render(name, bench, runs):
+    if name in BENCH_BLOCKS or name == "key":
+        if bench is None:
+            raise KeyError(str(BENCH_JSON.relative_to(REPO)))
     if name in BENCH_BLOCKS:
         return BENCH_BLOCKS[name](bench)
     if name in RUN_BLOCKS:
@@ -308,7 +311,7 @@ def render(name, bench, runs):
 
 
 def load_inputs():
-    bench = json.loads(BENCH_JSON.read_text())
+    bench = json.loads(BENCH_JSON.read_text()) if BENCH_JSON.exists() else None
     runs = {p.stem: json.loads(p.read_text()) for p in sorted(RUNS_DIR.glob("*.json"))}
     return bench, runs
 
