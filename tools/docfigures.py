@@ -14,7 +14,8 @@
 A block is the text between `<!-- figures:NAME begin -->` and `<!-- figures:NAME end -->` in
 README.md or a folder's README.md; NAME says what fills it (BLOCKS below). Inputs, all committed:
   tools/figures/bench.json        the `tools/bench --json` output the cost and footprint figures come from
-  tools/figures/summaries/*.json       tvo_sim's summary.json of each demo and scenario row (RUNS below)
+  tools/figures/summaries/*.json  tvo_sim's summary.json of each demo and scenario row (RUNS below)
+  tools/figures/study.json        a `tools/study --json tools/figures/study.json` run
   lcm_types/*.lcm                 the wire's constants (status codes, flags, parameter ids, parts)
 """
 import argparse
@@ -31,6 +32,7 @@ REPO = pathlib.Path(__file__).resolve().parent.parent
 FIGURES = REPO / "tools/figures"
 BENCH_JSON = FIGURES / "bench.json"
 RUNS_DIR = FIGURES / "summaries"
+STUDY_JSON = FIGURES / "study.json"
 READMES = ["README.md", "firmware/README.md", "lcm_types/README.md", "host/README.md",
            "tests/README.md", "tools/README.md"]
 MAX_TOP_LINES = 300
@@ -287,6 +289,48 @@ def session_constants(_b=None, _r=None):
     return table(["`session_t.`", "value", "meaning"], rows)
 
 
+# ---- the sampled-data study (tools/study --json tools/figures/study.json) ------------------------
+
+def study(s):
+    def three(values, digits=3):
+        return ", ".join(f"{v:.{digits}f}" for v in values) + " s"
+    tau0 = {row["h_s"]: row["max_err_m"] for row in s["per_tau"][0]["table"]}
+    zoh = {row["h_s"]: row["max_err_m"] for row in s["zoh_aware"][0]["table"]}
+    tf = s["study3"]["tf_search"]
+    rows = [
+        ("order of the τ = 0 error, fit h = 1–20 ms", "`order_tau0`", f"{s['order_tau0']:.3f}", "O(h)"),
+        ("τ = h/2 : τ = 0, τ = h : τ = 0 at h ≤ 20 ms", "`ratio_tau_half`, `ratio_tau_full`",
+         f"{s['ratio_tau_half']:.3f}, {s['ratio_tau_full']:.3f}", "2.0, 3.0"),
+        ("compensated τ = h/2 : τ = 0, τ = h : τ = 0", "`comp_ratio_tau_half`, `comp_ratio_tau_full`",
+         f"{s['comp_ratio_tau_half']:.4f}, {s['comp_ratio_tau_full']:.4f}", ""),
+        ("worst-case error at h = 10 ms, τ = 0; ZOH-aware", "`per_tau`, `zoh_aware` tables",
+         f"{g(tau0[0.01])} m; {g(zoh[0.01])} m", ""),
+        ("ZOH-aware order, fit h = 10–100 ms", "`zoh_aware_order`", f"{s['zoh_aware_order']:.3f}", ""),
+        ("continuous-time baseline (RK4, 0.1 ms)", "`study1.continuous_baseline_m`",
+         f"{g(s['study1']['continuous_baseline_m'])} m", ""),
+        ("stability edge, exact (ρ = 1), τ = 0, h/2, h", "`edge_exact_s`", three(s["edge_exact_s"]),
+         ", ".join(f"{v:g}" for v in s["paper_edge_s"]) + " s"),
+        ("the same, 20 s run, \|e\| > 10 \|e(0)\|", "`edge_sim_s`", three(s["edge_sim_s"]), ""),
+        ("the same, 20 s run, \|e\| > 10³ \|e(0)\|", "`edge_sim_threshold_1e3_s`",
+         three(s["edge_sim_threshold_1e3_s"]), ""),
+        ("the same, 200 s run, \|e\| > 10 \|e(0)\|", "`per_tau[].edge_sim_200s_s`",
+         three([c["edge_sim_200s_s"] for c in s["per_tau"]]), ""),
+        ("compensated edges, τ = 0, h/2, h", "`comp_edge_exact_s`", three(s["comp_edge_exact_s"]), ""),
+        ("ZOH-aware edge (any τ, compensated)", "`zoh_aware[].edge_exact_s`",
+         f"{s['zoh_aware'][-1]['edge_exact_s']:.3f} s", ""),
+        ("bias floor at T_f = 0.05 s, k = 2 / k = 3", "`floor_k2_tf005`, `floor_k3_tf005`",
+         f"{g(s['floor_k2_tf005'], 3)} / {g(s['floor_k3_tf005'], 3)} m", ""),
+        ("floor ratio k = 3 : k = 2 (predicted)", "`floor_ratio_k3_k2_tf005`",
+         f"{s['floor_ratio_k3_k2_tf005']:.3f} ({s['predicted_floor_ratio_k3_k2_tf005']:.3f})", "1.8"),
+        (f"T_f minimising the RMS error at σ = {tf['sigma_m']:g} m, h = 1 ms", "`best_tf_s`, `best_rms_m`",
+         f"{g(tf['best_tf_s'])} s{' (the search’s lower end)' if tf['best_at_lower_bound'] else ''}, "
+         f"{g(tf['best_rms_m'])} m; command noise {tf['best_u_dev_rms_mps2']:.0f} m/s²", ""),
+        (f"the same with command noise ≤ {tf['u_budget_mps2']:g} m/s²", "`budget_tf_s`, `budget_rms_m`",
+         f"{g(tf['budget_tf_s'])} s, {g(tf['budget_rms_m'], 3)} m", ""),
+    ]
+    return table(["figure", "JSON key", "measured", "paper"], rows)
+
+
 BENCH_BLOCKS = {"cost-m4f": cost_m4f, "cost-m0plus": cost_m0plus, "host-callgrind": host_callgrind,
                 "ipopt": ipopt, "core-text": core_text, "footprint": footprint, "stack-written": stack_written}
 RUN_BLOCKS = {"demo-runs": demo_runs, "formation": formation, "obstacles": obstacles,
@@ -307,6 +351,8 @@ def render(name, bench, runs):
         return WIRE_BLOCKS[name]()
     if name == "key":
         return key_figures(bench, runs)
+    if name == "study":
+        return study(json.loads(STUDY_JSON.read_text()))
     raise KeyError(name)
 
 
@@ -326,16 +372,34 @@ def rewritten(text, bench, runs, where):
     return BLOCK.sub(fill, text)
 
 
+def anchors(path):
+    """GitHub's anchors of a Markdown file's headings."""
+    slugs = set()
+    for heading in re.findall(r"^#+ (.*)$", path.read_text(), re.M):
+        slug = re.sub(r"[^\w\- ]", "", heading.strip().lower()).replace(" ", "-")
+        slugs.add(slug)
+    return slugs
+
+
 def structure_problems():
-    """README.md's length and that every local file it links exists."""
+    """README.md's length, its links to the folders' READMEs, and every local link and anchor of them all."""
     problems = []
     top = (REPO / "README.md").read_text()
     lines = top.count("\n")
     if lines > MAX_TOP_LINES:
         problems.append(f"README.md has {lines} lines, more than {MAX_TOP_LINES}")
-    for target in re.findall(r"\]\(([^)#\s]+)", top):
-        if "://" not in target and not (REPO / target).exists():
-            problems.append(f"README.md links {target}, which does not exist")
+    for readme in READMES:
+        path = REPO / readme
+        if not path.exists():
+            continue
+        for target, anchor in re.findall(r"\]\(([^)#\s]*)(?:#([^)\s]+))?\)", path.read_text()):
+            if "://" in target:
+                continue
+            linked = (path.parent / target).resolve() if target else path
+            if not linked.exists():
+                problems.append(f"{readme} links {target}, which does not exist")
+            elif anchor and linked.suffix == ".md" and anchor not in anchors(linked):
+                problems.append(f"{readme} links {target}#{anchor}: no such heading")
     for readme in READMES[1:]:
         if f"]({readme})" not in top:
             problems.append(f"README.md does not link {readme}")
