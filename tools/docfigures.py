@@ -17,6 +17,7 @@ README.md or a folder's README.md; NAME says what fills it (BLOCKS below). Input
   tools/figures/summaries/*.json  tvo_sim's summary.json of each demo and scenario row (RUNS below)
   tools/figures/study.json        a `tools/study --json tools/figures/study.json` run
   lcm_types/*.lcm                 the wire's constants (status codes, flags, parameter ids, parts)
+  firmware/edge/channels.c        the session_t field each parameter id stands for
 """
 import argparse
 import difflib
@@ -270,9 +271,16 @@ def flags(_b=None, _r=None):
                   for name, _, text, why in lcm_constants("command_t", "FLAG_")])
 
 
+def wire_param_names():
+    """tvo_protocol_param_str's text per parameter (firmware/edge/channels.c)."""
+    text = (REPO / "firmware/edge/channels.c").read_text()
+    return dict(re.findall(r'case TVO_(PARAM_\w+): return "([^"]*)";', text))
+
+
 def params(_b=None, _r=None):
-    return table(["`bad_param`", "`session_ack_t.`", "C (`tvo/status.h`)", "note"],
-                 [(v, f"`{name}`", f"`TVO_{name}`", why)
+    fields = wire_param_names()
+    return table(["`bad_param`", "`session_ack_t.`", "C (`tvo/status.h`)", "`session_t` field(s) (`tvo_protocol_param_str`)"],
+                 [(v, f"`{name}`", f"`TVO_{name}`", fields.get(name, why))
                   for name, v, _, why in lcm_constants("session_ack_t", "PARAM_")])
 
 
