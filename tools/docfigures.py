@@ -43,6 +43,8 @@ PROBLEMS = [("unicycle", "unconstrained unicycle (the demo)"),
             ("obstacles4", "one unicycle, 4 obstacles"),
             ("formation2", "two unicycles, 1 ≤ ‖y1 − y2‖ ≤ 3"),
             ("chain_k3", "integrator chain, k = 3")]
+SHORT = {"unicycle": "unicycle", "obstacles4": "4 obstacles", "formation2": "two-robot formation",
+         "chain_k3": "chain k = 3"}
 TARGETS = [("cortex-m4f", "Cortex-M4F"), ("cortex-m0plus", "Cortex-M0+"),
            ("cortex-m7", "Cortex-M7 (double)"), ("rv32imac", "RV32IMAC")]
 
@@ -120,7 +122,7 @@ def cost_m0plus(b):
 def host_callgrind(b):
     h = b["host_callgrind_mean_instr_per_step"]
     return ("x86-64 under `valgrind --tool=callgrind`, mean instructions per step: "
-            + ", ".join(f"{label.split(' (')[0]} {n(h[p])}" for p, label in PROBLEMS) + ".\n")
+            + ", ".join(f"{SHORT[p]} {n(h[p])}" for p, _ in PROBLEMS) + ".\n")
 
 
 def ipopt(b):
@@ -163,8 +165,10 @@ def stack_written(b):
     rows = []
     for p in [p for p, _ in PROBLEMS] + ["hostile"]:
         limit = bound["chain_stack_bytes"] if p == "chain_k3" else bound["stack_bytes"]
-        rows.append((p, *(s["cortex-m4f"][o].get(p, "–") for o in s["cortex-m4f"]),
-                     s["cortex-m0plus"]["O2"].get(p, "–"), limit))
+        def cell(v):
+            return "–" if v is None else n(v)
+        rows.append((p, *(cell(s["cortex-m4f"][o].get(p)) for o in s["cortex-m4f"]),
+                     cell(s["cortex-m0plus"]["O2"].get(p)), n(limit)))
     return table(["problem", *(f"M4F -{o}" for o in s["cortex-m4f"]), "M0+ -O2", "M4F -Os static bound"], rows)
 
 
@@ -173,17 +177,21 @@ def key_figures(b, runs):
     f = b["footprint"]["cortex-m4f"]
     one = f["single_robot"]
     demo = runs["demo"]
-    return (f"- **Step cost, Cortex-M4F** (float32, -{b['instr_per_step_opt']}, median instructions): "
-            + ", ".join(f"{label.split(' (')[0]} {n(m4[p]['median'])}" for p, label in PROBLEMS) + ".\n"
-            f"- **Flash, Cortex-M4F -Os:** a one-robot tracking firmware {n(one['tracking_firmware']['flash_bytes'])} B "
-            f"(step stack {n(one['tracking_firmware']['stack_bytes'])} B); the whole core "
-            f"{n(one['flash_bytes'])} B for one robot, {n(f['flash_bytes'])} B for four. Static RAM "
-            f"{n(f['ram_bytes'])} B: the instances are yours (controller {n(f['controller_instance_bytes'])} B, "
-            f"problem {n(f['problem_instance_bytes'])} B for four robots).\n"
-            f"- **Against Ipopt** on the obstacles problem: "
-            f"{b['host_ipopt_comparison']['instr_ratio_ipopt_over_step']:,}× fewer instructions per period.\n"
-            f"- **The demo** (one unicycle on an ellipse, h = 10 ms): final error {g(demo['final_error_m'])} m, "
-            f"RMS {g(demo['rms_error_last5s_m'])} m over the last 5 s, {demo['faults']} faults.\n")
+    medians = " / ".join(n(m4[p]["median"]) for p, _ in PROBLEMS)
+    return table(["figure", "value"], [
+        (f"control step on Cortex-M4F (float32, -{b['instr_per_step_opt']}), median instructions: "
+         + " / ".join(SHORT[p] for p, _ in PROBLEMS), medians),
+        ("one-robot tracking firmware on Cortex-M4F (-Os): flash, step stack",
+         f"{n(one['tracking_firmware']['flash_bytes'])} B, {n(one['tracking_firmware']['stack_bytes'])} B"),
+        ("the whole core on Cortex-M4F (-Os): flash for one robot / four",
+         f"{n(one['flash_bytes'])} B / {n(f['flash_bytes'])} B"),
+        ("static RAM of the core; your controller and problem instances (four robots)",
+         f"{n(f['ram_bytes'])} B; {n(f['controller_instance_bytes'])} B and {n(f['problem_instance_bytes'])} B"),
+        ("Ipopt's instructions per solve / the step's (obstacles problem, x86-64)",
+         f"{b['host_ipopt_comparison']['instr_ratio_ipopt_over_step']:,}×"),
+        ("the demo (one unicycle on an ellipse, h = 10 ms): final error, RMS over the last 5 s",
+         f"{g(demo['final_error_m'])} m, {g(demo['rms_error_last5s_m'])} m"),
+    ])
 
 
 # ---- the demo and scenario runs (tools/figures/summaries/*.json) -------------------------------------
