@@ -1,8 +1,8 @@
-# The complete example of README.md's "Your own scenario" is a valid scenario file: its first yaml
+# The complete example of host/README.md's "Your own scenario" is a valid scenario file: its first yaml
 # block is written to OUT_DIR/my.yaml and `tvo_sim --scenario my.yaml --dry-run` must accept it,
 # two robots and its 16 s (cmake -P script).
 #
-#   -DSIM=<tvo_sim> -DREADME=<README.md> -DOUT_DIR=<dir>
+#   -DSIM=<tvo_sim> -DREADME=<host/README.md> -DOUT_DIR=<dir>
 file(READ ${README} text)
 string(FIND "${text}" "### Your own scenario" at)
 if(at EQUAL -1)

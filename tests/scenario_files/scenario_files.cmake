@@ -1,4 +1,4 @@
-# Scenario files (README.md, "Your own scenario"); included by tests/closed_loop/CMakeLists.txt. The
+# Scenario files (host/README.md, "Your own scenario"); included by tests/closed_loop/CMakeLists.txt. The
 # built-in runs' figures are checked by the closed-loop scenario tests there, which load the same files
 # by name.
 set(tvo_sf_dir ${PROJECT_SOURCE_DIR}/tests/scenario_files)
@@ -129,8 +129,8 @@ rc=$?; cat '${tvo_sf_tool_out}.log'; echo \"exit code $rc\"; test $rc -eq 3 && \
 grep -q 'RMS tracking error, whole run' '${tvo_sf_tool_out}.log'")
 set_tests_properties(scenario_file_collision_exit_tool PROPERTIES LABELS closed_loop TIMEOUT 120)
 
-# README.md's complete example is a scenario file that loads as written.
+# host/README.md's complete example is a scenario file that loads as written.
 add_test(NAME scenario_file_readme_example
-  COMMAND ${CMAKE_COMMAND} -DSIM=$<TARGET_FILE:tvo_sim> -DREADME=${PROJECT_SOURCE_DIR}/README.md
+  COMMAND ${CMAKE_COMMAND} -DSIM=$<TARGET_FILE:tvo_sim> -DREADME=${PROJECT_SOURCE_DIR}/host/README.md
     -DOUT_DIR=${CMAKE_CURRENT_BINARY_DIR}/scenario_file_readme_example -P ${tvo_sf_dir}/readme_example.cmake)
 set_tests_properties(scenario_file_readme_example PROPERTIES LABELS "closed_loop;host" TIMEOUT 60)

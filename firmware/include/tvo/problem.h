@@ -81,9 +81,11 @@ typedef struct {
 tvo_status_t tvo_problem_desc_default(tvo_problem_desc_t *desc);
 
 /**
- * Validates desc and builds the objective (primal dimension 2N, plus 2 multipliers per offset).
- * relative_degree (k) bounds the barrier's m_r from below. On TVO_ERR_PARAM (or another error)
- * *bad_index, if not NULL, says which part: 0 robots/targets, 1 barrier, 2 distance, 3 half-space,
+ * Validates desc and builds the objective (primal dimension 2N, plus 2 multipliers per offset);
+ * pass &problem->objective to the controller's init (the problem must outlive the controller).
+ * relative_degree (k) is the controller's: 2 for tvo_controller_t, cfg.relative_degree for the
+ * chain; it bounds the barrier's m_r from below (m_r >= k + 1). On TVO_ERR_PARAM (or another error)
+ * *bad_part, if not NULL, says which part: 0 robots/targets, 1 barrier, 2 distance, 3 half-space,
  * 4 obstacles, 5 offsets.
  */
 tvo_status_t tvo_problem_init(tvo_problem_t *problem, const tvo_problem_desc_t *desc, uint8_t relative_degree,
@@ -91,7 +93,9 @@ tvo_status_t tvo_problem_init(tvo_problem_t *problem, const tvo_problem_desc_t *
 
 /**
  * Chooses the barrier slack s0 from the robots' positions at objective time t_s (the paper's rule,
- * from max_i f_i(y(0), 0)); later calls change nothing. No-op without inequalities.
+ * from max_i f_i(y(0), 0)); later calls change nothing. No-op without inequalities. Call it once,
+ * before the first controller step, with the first measured positions (y = x0, y0, x1, y1, ...):
+ * until then s0 = 0, so a start that violates a constraint is not relaxed.
  */
 tvo_status_t tvo_problem_choose_slack(tvo_problem_t *problem, const tvo_real_t *y, tvo_real_t t_s);
 

@@ -1,0 +1,502 @@
+#!/usr/bin/python3
+"""The READMEs' figures and protocol tables, generated: never copied by hand.
+
+  tools/docfigures.py                 rewrite every marked block from the committed inputs
+  tools/docfigures.py --check         change nothing; exit 1 (with a diff) if a block is out of date,
+                                      README.md is over 300 lines or links a file that does not exist
+  tools/docfigures.py --bench PATH    take a new `tools/bench --json PATH` run (copied to
+                                      tools/figures/bench.json), then rewrite
+  tools/docfigures.py --runs          re-run the demo and scenario rows with build/host/tvo_sim
+                                      (tools/demo or tools/build builds it) into tools/figures/summaries/,
+                                      then rewrite
+  tools/docfigures.py --snippet README.md -o FILE.c   write README.md's C snippet to FILE.c
+
+A block is the text between `<!-- figures:NAME begin -->` and `<!-- figures:NAME end -->` in
+README.md or a folder's README.md; NAME says what fills it (BLOCKS below). Inputs, all committed:
+  tools/figures/bench.json        the `tools/bench --json` output the cost and footprint figures come from
+  tools/figures/summaries/*.json  tvo_sim's summary.json of each demo and scenario row (RUNS below)
+  tools/figures/study.json        a `tools/study --json tools/figures/study.json` run
+  lcm_types/*.lcm                 the wire's constants (status codes, flags, parameter ids, parts)
+  firmware/edge/channels.c        the session_t field each parameter id stands for
+"""
+import argparse
+import difflib
+import json
+import pathlib
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+
+REPO = pathlib.Path(__file__).resolve().parent.parent
+FIGURES = REPO / "tools/figures"
+BENCH_JSON = FIGURES / "bench.json"
+RUNS_DIR = FIGURES / "summaries"
+STUDY_JSON = FIGURES / "study.json"
+READMES = ["README.md", "firmware/README.md", "lcm_types/README.md", "host/README.md",
+           "tests/README.md", "tools/README.md"]
+MAX_TOP_LINES = 300
+BLOCK = re.compile(r"(<!-- figures:([\w-]+) begin -->\n)(.*?)(<!-- figures:\2 end -->)", re.S)
+
+PROBLEMS = [("unicycle", "unconstrained unicycle (the demo)"),
+            ("obstacles4", "one unicycle, 4 obstacles"),
+            ("formation2", "two unicycles, 1 ≤ ‖y1 − y2‖ ≤ 3"),
+            ("chain_k3", "integrator chain, k = 3")]
+SHORT = {"unicycle": "unicycle", "obstacles4": "4 obstacles", "formation2": "two-robot formation",
+         "chain_k3": "chain k = 3"}
+TARGETS = [("cortex-m4f", "Cortex-M4F"), ("cortex-m0plus", "Cortex-M0+"),
+           ("cortex-m7", "Cortex-M7 (double)"), ("rv32imac", "RV32IMAC")]
+
+# Each demo and scenario row: (file stem in tools/figures/summaries, tvo_sim arguments).
+RUNS = {
+    "demo": [],
+    "demo-sigma": ["--sigma", "1e-3"],
+    "demo-no-compensation": ["--no-compensation"],
+    "demo-delay0": ["--delay-s", "0"],
+    "demo-position-only": ["--position-only"],
+    "demo-drop": ["--drop-prob", "0.05"],
+    "demo-zoh-aware": ["--zoh-aware"],
+}
+SCENARIOS = ["formation-max", "formation-bilateral", "obstacles", "obstacles-infeasible-target",
+             "infeasible-start", "formation-equality"]
+for _name in SCENARIOS:
+    RUNS[_name] = ["--scenario", _name]
+    RUNS[_name + "-noisy"] = ["--scenario", _name, "--sigma", "1e-3", "--position-only"]
+NOISY = "`--sigma 1e-3 --position-only`"
+
+
+def n(value):
+    """An integer with thousands separators."""
+    return f"{int(value):,}"
+
+
+def g(value, digits=2):
+    """A float in the READMEs' style: 1.3e-4, 0.0193."""
+    if value is None:
+        return "never"
+    if value == 0:
+        return "0"
+    if 1e-2 <= abs(value) < 1e4:
+        return f"{value:.{digits + 1}g}"
+    mantissa, exponent = f"{value:.{digits - 1}e}".split("e")
+    return f"{mantissa}e{int(exponent)}"
+
+
+def table(header, rows):
+    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    lines += ["| " + " | ".join(str(c) for c in row) + " |" for row in rows]
+    return "\n".join(lines) + "\n"
+
+
+# ---- the bench (tools/bench --json) ------------------------------------------------------------
+
+def cost_m4f(b):
+    opt = b["instr_per_step_opt"]
+    other = [o for o in b["instr_per_step_by_opt"] if o != opt]
+    rows = [(label, n(b["instr_per_step"][p]["min"]), n(b["instr_per_step"][p]["median"]),
+             n(b["instr_per_step"][p]["max"])) for p, label in PROBLEMS]
+    text = table(["problem", "min", "median", "max"], rows)
+    for o in other:
+        medians = " / ".join(n(b["instr_per_step_by_opt"][o][p]["median"]) for p, _ in PROBLEMS)
+        text += (f"\nCortex-M4F, float32, -{opt} (the level with the smaller total median), 400 steps each. "
+                 f"At -{o} the medians are {medians}.\n")
+    return text
+
+
+def cost_m0plus(b):
+    m0 = b["instr_per_step_cortex_m0plus"]
+    m4 = b["instr_per_step"]
+    rows = []
+    for p, label in PROBLEMS:
+        f = m0["problems"].get(p)
+        if f is None:
+            rows.append((label, "skipped", "", "", ""))
+        else:
+            rows.append((label, n(f["min"]), n(f["median"]), n(f["max"]),
+                         f"{f['median'] / m4[p]['median']:.1f}×"))
+    return (table(["problem", "min", "median", "max", "M0+/M4F (median)"], rows)
+            + f"\n{m0['limits']} limits, -{m0['opt']}, {m0['float']}.\n")
+
+
+def host_callgrind(b):
+    h = b["host_callgrind_mean_instr_per_step"]
+    return ("x86-64 under `valgrind --tool=callgrind`, mean instructions per step: "
+            + ", ".join(f"{SHORT[p]} {n(h[p])}" for p, _ in PROBLEMS) + ".\n")
+
+
+def ipopt(b):
+    i = b["host_ipopt_comparison"]
+    a = i["agreement"]
+    return (table(["x86-64", "step", "Ipopt solve", "Ipopt / step"],
+                  [("instructions per call (callgrind)", n(i["step_instr_per_call"]),
+                    n(i["ipopt_instr_per_solve"]), f"{i['instr_ratio_ipopt_over_step']:,}×"),
+                   (f"median ns ({i['ns_repetitions']} closed loops; machine and load dependent)",
+                    n(i["step_median_ns"]), n(i["ipopt_median_ns"]), f"{i['ns_ratio_ipopt_over_step']:,}×")])
+            + f"\n{i['problem']}, {i['periods']} periods, Ipopt warm-started each period "
+              f"({i['ipopt_mean_iterations']:g} iterations on mean). Agreement check: from t = "
+              f"{a['window_s'][0]:g} s to {a['window_s'][1]:g} s the robot and Ipopt's minimiser stay within "
+              f"{a['max_distance_m'] * 1e3:.2g} mm (tolerance {a['tolerance_m'] * 1e3:g} mm).\n")
+
+
+def core_text(b):
+    t = b["core_text_bytes_by_opt"]
+    return ("Text of the whole `libtvo_core.a` for Cortex-M4F (every function, before the link drops any): "
+            + ", ".join(f"-{o} {n(v)} B" for o, v in t.items()) + ".\n")
+
+
+def footprint(b):
+    rows = []
+    for key, label in TARGETS:
+        f = b["footprint"][key]
+        for limits, entry in (("default (4 robots)", f), ("one robot", f["single_robot"])):
+            rows.append((label, limits, n(entry["flash_bytes"]), n(entry["ram_bytes"]), n(entry["stack_bytes"]),
+                         n(entry["controller_instance_bytes"]), n(entry["problem_instance_bytes"]),
+                         n(entry["tracking_firmware"]["flash_bytes"]), n(entry["tracking_firmware"]["stack_bytes"]),
+                         n(entry["tracking_firmware_both_sources"]["flash_bytes"])))
+    return table(["target", "limits", "flash (B)", "static RAM (B)", "step stack (B)", "controller (B)",
+                  "problem (B)", "tracking firmware: flash (B)", "its step stack (B)",
+                  "both sources: flash (B)"], rows)
+
+
+def stack_written(b):
+    s = b["step_stack_written_bytes"]
+    bound = b["footprint"]["cortex-m4f"]
+    rows = []
+    for p in [p for p, _ in PROBLEMS] + ["hostile"]:
+        limit = bound["chain_stack_bytes"] if p == "chain_k3" else bound["stack_bytes"]
+        def cell(v):
+            return "–" if v is None else n(v)
+        rows.append((p, *(cell(s["cortex-m4f"][o].get(p)) for o in s["cortex-m4f"]),
+                     cell(s["cortex-m0plus"]["O2"].get(p)), n(limit)))
+    return table(["problem", *(f"M4F -{o}" for o in s["cortex-m4f"]), "M0+ -O2", "M4F -Os static bound"], rows)
+
+
+def key_figures(b, runs):
+    m4 = b["instr_per_step"]
+    f = b["footprint"]["cortex-m4f"]
+    one = f["single_robot"]
+    demo = runs["demo"]
+    medians = " / ".join(n(m4[p]["median"]) for p, _ in PROBLEMS)
+    return table(["figure", "value"], [
+        (f"control step on Cortex-M4F (float32, -{b['instr_per_step_opt']}), median instructions: "
+         + " / ".join(SHORT[p] for p, _ in PROBLEMS), medians),
+        ("one-robot tracking firmware on Cortex-M4F (-Os): flash, step stack",
+         f"{n(one['tracking_firmware']['flash_bytes'])} B, {n(one['tracking_firmware']['stack_bytes'])} B"),
+        ("the whole core on Cortex-M4F (-Os): flash for one robot / four",
+         f"{n(one['flash_bytes'])} B / {n(f['flash_bytes'])} B"),
+        ("static RAM of the core; your controller and problem instances (four robots)",
+         f"{n(f['ram_bytes'])} B; {n(f['controller_instance_bytes'])} B and {n(f['problem_instance_bytes'])} B"),
+        ("Ipopt's instructions per solve / the step's (obstacles problem, x86-64)",
+         f"{b['host_ipopt_comparison']['instr_ratio_ipopt_over_step']:,}×"),
+        ("the demo (one unicycle on an ellipse, h = 10 ms): final error, RMS over the last 5 s",
+         f"{g(demo['final_error_m'])} m, {g(demo['rms_error_last5s_m'])} m"),
+    ])
+
+
+# ---- the demo and scenario runs (tools/figures/summaries/*.json) -------------------------------------
+
+def demo_runs(runs):
+    labels = [("demo", "(defaults)"),
+              ("demo-sigma", "`--sigma 1e-3` (1 mm position, 1 mrad heading, 1 mm/s speed noise)"),
+              ("demo-no-compensation", "`--no-compensation`"),
+              ("demo-delay0", "`--delay-s 0`"),
+              ("demo-position-only", "`--position-only` (dirty-derivative filter, T_f = 0.05 s)"),
+              ("demo-drop", "`--drop-prob 0.05` (5 % of measurements lost)"),
+              ("demo-zoh-aware", "`--zoh-aware`")]
+    rows = [(label, g(runs[k]["final_error_m"]), g(runs[k]["rms_error_last5s_m"]), runs[k]["faults"],
+             runs[k].get("drops", 0)) for k, label in labels]
+    return table(["options", "final error (m)", "RMS error, last 5 s (m)", "faults", "measurements lost"], rows)
+
+
+def scenario_rows(runs, names, columns):
+    rows = []
+    for name in names:
+        for suffix, setting in (("", "defaults"), ("-noisy", NOISY)):
+            s = runs[name + suffix]
+            rows.append((f"{name}, {setting}", *(fmt(s) for _, fmt in columns)))
+    return table(["run", *(h for h, _ in columns)], rows)
+
+
+def formation(runs):
+    return scenario_rows(runs, ["formation-max", "formation-bilateral"], [
+        ("min distance while crossing (m)", lambda s: f"{s['min_distance_crossing_m']:.4f}"),
+        ("final distance (m)", lambda s: f"{s['final_distance_m']:.4f}"),
+        ("max violation", lambda s: g(s["max_violation_frac"])),
+        ("final error (m)", lambda s: f"{s['final_error_m']:.3f}"),
+        ("regularised solves", lambda s: s["regularized_steps"])])
+
+
+def obstacles(runs):
+    return scenario_rows(runs, ["obstacles", "obstacles-infeasible-target"], [
+        ("collisions", lambda s: s["collisions"]),
+        ("min clearance (m)", lambda s: g(s["min_clearance_m"], 3)),
+        ("final error (m)", lambda s: g(s["final_error_m"])),
+        ("RMS error, last 5 s (m)", lambda s: g(s["rms_error_last5s_m"]))])
+
+
+def infeasible_start(runs):
+    return scenario_rows(runs, ["infeasible-start"], [
+        ("violation at the start", lambda s: f"{s['initial_violation_frac']:.2f}"),
+        ("time to feasibility (s)", lambda s: g(s["time_to_feasible_s"])),
+        ("max violation after", lambda s: g(s["max_violation_frac"])),
+        ("min / final distance (m)", lambda s: f"{s['min_distance_m']:.3f} / {s['final_distance_m']:.3f}"),
+        ("regularised solves", lambda s: s["regularized_steps"])])
+
+
+def formation_equality(runs):
+    return scenario_rows(runs, ["formation-equality"], [
+        ("equality residual, t ≥ 5 s (m)", lambda s: g(s["equality_residual_m"])),
+        ("final error (m)", lambda s: g(s["final_error_m"])),
+        ("RMS error, last 5 s (m)", lambda s: g(s["rms_error_last5s_m"]))])
+
+
+# ---- the wire's constants (lcm_types/*.lcm) -----------------------------------------------------
+
+CONST = re.compile(r"^\s*const\s+int\w*\s+(\w+)\s*=\s*(0x[0-9a-fA-F]+|-?\d+)\s*;\s*(?://\s*(.*))?$")
+
+
+def lcm_constants(message, prefix):
+    rows = []
+    for line in (REPO / "lcm_types" / f"{message}.lcm").read_text().splitlines():
+        m = CONST.match(line)
+        if m and m.group(1).startswith(prefix):
+            rows.append((m.group(1), int(m.group(2), 0), m.group(2), (m.group(3) or "").strip()))
+    if not rows:
+        sys.exit(f"docfigures: no {prefix}* constants in lcm_types/{message}.lcm")
+    return rows
+
+
+def status_codes(_b=None, _r=None):
+    return table(["code", "`command_t.`", "C (`tvo/status.h`)", "meaning"],
+                 [(v, f"`{name}`", f"`TVO_{name[len('STATUS_'):]}`", why or "success: the command was computed from this measurement")
+                  for name, v, _, why in lcm_constants("command_t", "STATUS_")])
+
+
+def flags(_b=None, _r=None):
+    return table(["bit", "`command_t.`", "C (`tvo/status.h`)", "meaning"],
+                 [(text, f"`{name}`", f"`TVO_{name}`", why)
+                  for name, _, text, why in lcm_constants("command_t", "FLAG_")])
+
+
+def wire_param_names():
+    """tvo_protocol_param_str's text per parameter (firmware/edge/channels.c)."""
+    text = (REPO / "firmware/edge/channels.c").read_text()
+    return dict(re.findall(r'case TVO_(PARAM_\w+): return "([^"]*)";', text))
+
+
+def params(_b=None, _r=None):
+    fields = wire_param_names()
+    return table(["`bad_param`", "`session_ack_t.`", "C (`tvo/status.h`)", "`session_t` field(s) (`tvo_protocol_param_str`)"],
+                 [(v, f"`{name}`", f"`TVO_{name}`", fields.get(name, why))
+                  for name, v, _, why in lcm_constants("session_ack_t", "PARAM_")])
+
+
+def parts(_b=None, _r=None):
+    return table(["`bad_part`", "`session_ack_t.`", "what"],
+                 [(v, f"`{name}`", why or name[len("PART_"):].lower())
+                  for name, v, _, why in lcm_constants("session_ack_t", "PART_")])
+
+
+def session_constants(_b=None, _r=None):
+    rows = []
+    for prefix in ("ACTION_", "CLOCK_", "PLANT_", "VELOCITY_", "MAX_"):
+        rows += [(f"`{name}`", v, why) for name, v, _, why in lcm_constants("session_t", prefix)]
+    return table(["`session_t.`", "value", "meaning"], rows)
+
+
+# ---- the sampled-data study (tools/study --json tools/figures/study.json) ------------------------
+
+def study(s):
+    def three(values, digits=3):
+        return ", ".join(f"{v:.{digits}f}" for v in values) + " s"
+    tau0 = {row["h_s"]: row["max_err_m"] for row in s["per_tau"][0]["table"]}
+    zoh = {row["h_s"]: row["max_err_m"] for row in s["zoh_aware"][0]["table"]}
+    tf = s["study3"]["tf_search"]
+    rows = [
+        ("order of the τ = 0 error, fit h = 1–20 ms", "`order_tau0`", f"{s['order_tau0']:.3f}", "O(h)"),
+        ("τ = h/2 : τ = 0, τ = h : τ = 0 at h ≤ 20 ms", "`ratio_tau_half`, `ratio_tau_full`",
+         f"{s['ratio_tau_half']:.3f}, {s['ratio_tau_full']:.3f}", "2.0, 3.0"),
+        ("compensated τ = h/2 : τ = 0, τ = h : τ = 0", "`comp_ratio_tau_half`, `comp_ratio_tau_full`",
+         f"{s['comp_ratio_tau_half']:.4f}, {s['comp_ratio_tau_full']:.4f}", ""),
+        ("worst-case error at h = 10 ms, τ = 0; ZOH-aware", "`per_tau`, `zoh_aware` tables",
+         f"{g(tau0[0.01])} m; {g(zoh[0.01])} m", ""),
+        ("ZOH-aware order, fit h = 10–100 ms", "`zoh_aware_order`", f"{s['zoh_aware_order']:.3f}", ""),
+        ("continuous-time baseline (RK4, 0.1 ms)", "`study1.continuous_baseline_m`",
+         f"{g(s['study1']['continuous_baseline_m'])} m", ""),
+        ("stability edge, exact (ρ = 1), τ = 0, h/2, h", "`edge_exact_s`", three(s["edge_exact_s"]),
+         ", ".join(f"{v:g}" for v in s["paper_edge_s"]) + " s"),
+        ("the same, 20 s run, \|e\| > 10 \|e(0)\|", "`edge_sim_s`", three(s["edge_sim_s"]), ""),
+        ("the same, 20 s run, \|e\| > 10³ \|e(0)\|", "`edge_sim_threshold_1e3_s`",
+         three(s["edge_sim_threshold_1e3_s"]), ""),
+        ("the same, 200 s run, \|e\| > 10 \|e(0)\|", "`per_tau[].edge_sim_200s_s`",
+         three([c["edge_sim_200s_s"] for c in s["per_tau"]]), ""),
+        ("compensated edges, τ = 0, h/2, h", "`comp_edge_exact_s`", three(s["comp_edge_exact_s"]), ""),
+        ("ZOH-aware edge (any τ, compensated)", "`zoh_aware[].edge_exact_s`",
+         f"{s['zoh_aware'][-1]['edge_exact_s']:.3f} s", ""),
+        ("bias floor at T_f = 0.05 s, k = 2 / k = 3", "`floor_k2_tf005`, `floor_k3_tf005`",
+         f"{g(s['floor_k2_tf005'], 3)} / {g(s['floor_k3_tf005'], 3)} m", ""),
+        ("floor ratio k = 3 : k = 2 (predicted)", "`floor_ratio_k3_k2_tf005`",
+         f"{s['floor_ratio_k3_k2_tf005']:.3f} ({s['predicted_floor_ratio_k3_k2_tf005']:.3f})", "1.8"),
+        (f"T_f minimising the RMS error at σ = {tf['sigma_m']:g} m, h = 1 ms", "`best_tf_s`, `best_rms_m`",
+         f"{g(tf['best_tf_s'])} s{' (the search’s lower end)' if tf['best_at_lower_bound'] else ''}, "
+         f"{g(tf['best_rms_m'])} m; command noise {tf['best_u_dev_rms_mps2']:.0f} m/s²", ""),
+        (f"the same with command noise ≤ {tf['u_budget_mps2']:g} m/s²", "`budget_tf_s`, `budget_rms_m`",
+         f"{g(tf['budget_tf_s'])} s, {g(tf['budget_rms_m'], 3)} m", ""),
+    ]
+    return table(["figure", "JSON key", "measured", "paper"], rows)
+
+
+BENCH_BLOCKS = {"cost-m4f": cost_m4f, "cost-m0plus": cost_m0plus, "host-callgrind": host_callgrind,
+                "ipopt": ipopt, "core-text": core_text, "footprint": footprint, "stack-written": stack_written}
+RUN_BLOCKS = {"demo-runs": demo_runs, "formation": formation, "obstacles": obstacles,
+              "infeasible-start": infeasible_start, "formation-equality": formation_equality}
+WIRE_BLOCKS = {"status-codes": status_codes, "flags": flags, "params": params, "parts": parts,
+               "session-constants": session_constants}
+
+
+def render(name, bench, runs):
+    if name in BENCH_BLOCKS or name == "key":
+        if bench is None:
+            raise KeyError(str(BENCH_JSON.relative_to(REPO)))
+    if name in BENCH_BLOCKS:
+        return BENCH_BLOCKS[name](bench)
+    if name in RUN_BLOCKS:
+        return RUN_BLOCKS[name](runs)
+    if name in WIRE_BLOCKS:
+        return WIRE_BLOCKS[name]()
+    if name == "key":
+        return key_figures(bench, runs)
+    if name == "study":
+        return study(json.loads(STUDY_JSON.read_text()))
+    raise KeyError(name)
+
+
+def load_inputs():
+    bench = json.loads(BENCH_JSON.read_text()) if BENCH_JSON.exists() else None
+    runs = {p.stem: json.loads(p.read_text()) for p in sorted(RUNS_DIR.glob("*.json"))}
+    return bench, runs
+
+
+def rewritten(text, bench, runs, where):
+    def fill(m):
+        try:
+            body = render(m.group(2), bench, runs)
+        except KeyError as e:
+            sys.exit(f"docfigures: {where}: block '{m.group(2)}': no generator or no input for {e}")
+        return m.group(1) + body + m.group(4)
+    return BLOCK.sub(fill, text)
+
+
+def anchors(path):
+    """GitHub's anchors of a Markdown file's headings."""
+    slugs = set()
+    for heading in re.findall(r"^#+ (.*)$", path.read_text(), re.M):
+        slug = re.sub(r"[^\w\- ]", "", heading.strip().lower()).replace(" ", "-")
+        slugs.add(slug)
+    return slugs
+
+
+def structure_problems():
+    """README.md's length, its links to the folders' READMEs, and every local link and anchor of them all."""
+    problems = []
+    top = (REPO / "README.md").read_text()
+    lines = top.count("\n")
+    if lines > MAX_TOP_LINES:
+        problems.append(f"README.md has {lines} lines, more than {MAX_TOP_LINES}")
+    for readme in READMES:
+        path = REPO / readme
+        if not path.exists():
+            continue
+        for target, anchor in re.findall(r"\]\(([^)#\s]*)(?:#([^)\s]+))?\)", path.read_text()):
+            if "://" in target:
+                continue
+            linked = (path.parent / target).resolve() if target else path
+            if not linked.exists():
+                problems.append(f"{readme} links {target}, which does not exist")
+            elif anchor and linked.suffix == ".md" and anchor not in anchors(linked):
+                problems.append(f"{readme} links {target}#{anchor}: no such heading")
+    for readme in READMES[1:]:
+        if f"]({readme})" not in top:
+            problems.append(f"README.md does not link {readme}")
+    return problems
+
+
+def snippet(readme, out):
+    text = pathlib.Path(readme).read_text()
+    m = re.search(r"<!-- snippet:core begin -->\n```c\n(.*?)```\n<!-- snippet:core end -->", text, re.S)
+    if not m:
+        sys.exit(f"docfigures: {readme} has no C block between <!-- snippet:core begin --> and end")
+    pathlib.Path(out).write_text(m.group(1))
+
+
+def run_rows(sim, firmware):
+    RUNS_DIR.mkdir(parents=True, exist_ok=True)
+    with tempfile.TemporaryDirectory() as tmp:
+        for stem, args in RUNS.items():
+            out = pathlib.Path(tmp) / stem
+            cmd = [sim, "--firmware", firmware, "--lcm-url", "udpm://239.255.76.67:7813?ttl=0",
+                   "--out-dir", out, *args]
+            print("docfigures: tvo_sim", " ".join(map(str, args)), file=sys.stderr)
+            result = subprocess.run(cmd, text=True, capture_output=True)
+            if result.returncode not in (0, 3):
+                sys.exit(f"docfigures: {' '.join(map(str, cmd))} failed (exit {result.returncode}):\n"
+                         + result.stdout + result.stderr)
+            summary = json.loads((out / "summary.json").read_text())
+            summary.pop("steps_per_s", None)  # wall clock: not a figure the READMEs give
+            (RUNS_DIR / f"{stem}.json").write_text(json.dumps(summary, indent=2, sort_keys=True) + "\n")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--check", action="store_true", help="change nothing; exit 1 if anything is out of date")
+    parser.add_argument("--bench", help="a new tools/bench --json output to take (copied to tools/figures/bench.json)")
+    parser.add_argument("--runs", action="store_true", help="re-run the demo and scenario rows (needs build/)")
+    parser.add_argument("--snippet", metavar="README", help="write README's C snippet to -o FILE and exit")
+    parser.add_argument("-o", dest="out", help="output of --snippet")
+    args = parser.parse_args()
+
+    if args.snippet:
+        if not args.out:
+            sys.exit("docfigures: --snippet needs -o FILE")
+        snippet(args.snippet, args.out)
+        return 0
+    if args.bench:
+        shutil.copyfile(args.bench, BENCH_JSON)
+    if args.runs:
+        run_rows(REPO / "build/host/tvo_sim", REPO / "build/firmware/tvo_firmware_node")
+
+    bench, runs = load_inputs()
+    stale = []
+    for rel in READMES:
+        path = REPO / rel
+        if not path.exists():
+            stale.append(f"{rel} does not exist")
+            continue
+        text = path.read_text()
+        new = rewritten(text, bench, runs, rel)
+        if new == text:
+            continue
+        if args.check:
+            diff = difflib.unified_diff(text.splitlines(True), new.splitlines(True), f"{rel} (committed)",
+                                        f"{rel} (from tools/docfigures.py)")
+            sys.stdout.writelines(diff)
+            stale.append(f"{rel}: a figures block differs from what tools/docfigures.py makes of its inputs")
+        else:
+            path.write_text(new)
+            print(f"docfigures: rewrote {rel}")
+    stale += structure_problems()
+    for problem in stale:
+        print(f"docfigures: {problem}", file=sys.stderr)
+    if stale:
+        if args.check:
+            print("docfigures: run tools/docfigures.py to regenerate the blocks", file=sys.stderr)
+        return 1
+    if args.check:
+        print("docfigures: every figures block is up to date; README.md is "
+              f"{(REPO / 'README.md').read_text().count(chr(10))} lines")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
