@@ -118,6 +118,17 @@ tvo_auth_status_t tvo_auth_set_new_sender_floor(tvo_auth_t *auth, uint64_t floor
     return TVO_AUTH_OK;
 }
 
+tvo_auth_status_t tvo_auth_counter_at_least(tvo_auth_t *auth, uint64_t counter)
+{
+    if (auth == NULL) {
+        return TVO_AUTH_ERR_ARGUMENT;
+    }
+    if (counter > auth->next_counter) {
+        auth->next_counter = counter;
+    }
+    return TVO_AUTH_OK;
+}
+
 void tvo_auth_clear(tvo_auth_t *auth)
 {
     if (auth != NULL) {

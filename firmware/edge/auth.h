@@ -37,6 +37,14 @@ extern "C" {
 #if TVO_AUTH_MAX_SENDERS < 1u || TVO_AUTH_MAX_SENDERS > 64u
 #error "TVO_AUTH_MAX_SENDERS must lie in 1 .. 64"
 #endif
+/** Default sender ids: each key holder needs its own (a shared id with overlapping counters would
+ *  reuse a nonce); a fleet gives each node and plant a distinct one. */
+#define TVO_AUTH_SENDER_NODE 1u
+#define TVO_AUTH_SENDER_PLANT 2u
+/** How far a new sender's counter may lag the receiver's clock at start (us): older recordings are
+ *  refused after a restart; two machines' clocks must agree within it. */
+#define TVO_AUTH_NEW_SENDER_WINDOW_US 60000000u
+
 /** Longest channel name authenticated with a message (the protocol's are far shorter). */
 #define TVO_AUTH_MAX_CHANNEL_BYTES 64u
 
@@ -87,6 +95,9 @@ tvo_auth_status_t tvo_auth_init(tvo_auth_t *auth, const uint8_t key[TVO_AUTH_KEY
  * recording from being accepted as new. Senders already heard keep their own, higher, bound.
  */
 tvo_auth_status_t tvo_auth_set_new_sender_floor(tvo_auth_t *auth, uint64_t floor);
+
+/** Raises the next counter signed to at least `counter` (a sender whose counters follow a clock). */
+tvo_auth_status_t tvo_auth_counter_at_least(tvo_auth_t *auth, uint64_t counter);
 
 /** Wipes the key and the senders (a key leaves memory when the context is done with). */
 void tvo_auth_clear(tvo_auth_t *auth);
