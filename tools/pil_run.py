@@ -5,7 +5,10 @@ Cortex-M4F), tvo_pil_bridge between its serial port and LCM, and tvo_sim as the 
   tools/pil_run.py --elf PIL.elf --bridge tvo_pil_bridge --sim tvo_sim [--corrupt-every N]
                    [--lcm-url URL] -- [tvo_sim options...]
 
-tvo_sim runs without --firmware: the node it talks to is the microcontroller. The exit code is
+tvo_sim runs without --firmware: the node it talks to is the microcontroller. With --key-file among
+tvo_sim's options the target is provisioned with the same key: the key region (board.h's layout, at
+the ELF's tvo_board_key_region_start) is written by QEMU's loader at boot, never into the image, with
+the counter base taken from this machine's clock (microseconds since the Unix epoch). The exit code is
 tvo_sim's (non-zero also when QEMU or the bridge fail). Writes <out-dir>/pil.json with the counts the
 target printed on its console at the end (target_<key>: frames, node counters, its clock) and the
 bridge's (bridge_<key>), both as key=value lines, and the run's wall time (wall_s).
@@ -14,7 +17,10 @@ import argparse
 import json
 import os
 import re
+import shutil
 import socket
+import stat
+import struct
 import subprocess
 import sys
 import tempfile
@@ -53,6 +59,30 @@ def counts_after(prefix, text):
     return {key: int(value) for key, value in re.findall(r"(\w+)=(-?\d+)", lines[-1])}
 
 
+KEY_MAGIC = b"TVOK"  # board.h: TVO_BOARD_KEY_MAGIC, then the key, then the counter base (uint64 LE)
+
+
+def key_region_blob(key_file):
+    """board.h's key region for the key in key_file (64 hex digits, owner-only), counter base = now."""
+    mode = os.stat(key_file).st_mode
+    if mode & (stat.S_IRWXG | stat.S_IRWXO):
+        sys.exit(f"pil: key file '{key_file}': group or others may access it (chmod 600)")
+    text = open(key_file, encoding="ascii").read().removesuffix("\n")
+    if not re.fullmatch(r"[0-9a-fA-F]{64}", text):
+        sys.exit(f"pil: key file '{key_file}': expected 64 hexadecimal digits")
+    return KEY_MAGIC + bytes.fromhex(text) + struct.pack("<Q", time.time_ns() // 1000)
+
+
+def key_region_address(elf):
+    """Where the ELF's linker script put the key region."""
+    nm = shutil.which("arm-none-eabi-nm") or sys.exit("pil: arm-none-eabi-nm not found (binutils-arm-none-eabi)")
+    out = subprocess.run([nm, elf], capture_output=True, text=True, check=True).stdout
+    m = re.search(r"^([0-9a-f]+) \w tvo_board_key_region_start$", out, re.M)
+    if not m:
+        sys.exit(f"pil: {elf} has no key region (tvo_board_key_region_start): built without Mbed TLS?")
+    return int(m.group(1), 16)
+
+
 def wait_ready(log, processes):
     """True once the target printed READY_LINE; False if a process ended or READY_TIMEOUT_S passed."""
     deadline = time.monotonic() + READY_TIMEOUT_S
@@ -86,10 +116,19 @@ def main():
     lcm = ["--lcm-url", lcm_url] if lcm_url else []
     qemu_log = tempfile.TemporaryFile(mode="w+")
     bridge_log = tempfile.TemporaryFile(mode="w+")
+    key_file = option_value(args.sim_args, "--key-file", "")
+    provision = []
+    key_dir = tempfile.TemporaryDirectory()  # the key region's bytes, owner-only, gone at exit
+    if key_file:
+        blob_path = os.path.join(key_dir.name, "key_region.bin")
+        fd = os.open(blob_path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
+        with os.fdopen(fd, "wb") as blob:
+            blob.write(key_region_blob(key_file))
+        provision = ["-device", f"loader,file={blob_path},addr={key_region_address(args.elf):#x},force-raw=on"]
     qemu = subprocess.Popen(
         [args.qemu, "-M", "mps2-an386", "-cpu", "cortex-m4", "-nographic", "-monitor", "none",
          "-semihosting-config", "enable=on,target=native",
-         "-serial", f"tcp:127.0.0.1:{port},server=on,wait=on,nodelay=on", "-kernel", args.elf],
+         "-serial", f"tcp:127.0.0.1:{port},server=on,wait=on,nodelay=on", *provision, "-kernel", args.elf],
         stdin=subprocess.DEVNULL, stdout=qemu_log, stderr=subprocess.STDOUT)
     bridge = subprocess.Popen(
         [args.bridge, "--connect", f"127.0.0.1:{port}", "--corrupt-every", str(args.corrupt_every)] + lcm,

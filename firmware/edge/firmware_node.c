@@ -9,6 +9,7 @@
  */
 #define _POSIX_C_SOURCE 200809L
 
+#include <errno.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -19,6 +20,8 @@
 
 #include <lcm/lcm.h>
 
+#include "auth_key_file.h"
+#include "auth_link.h"
 #include "node.h"
 
 /* The only global: set by SIGINT/SIGTERM, polled by the main loop. */
@@ -35,6 +38,8 @@ enum {
     LOG_SAFE_STOP,
     LOG_TARGET,
     LOG_SPEED_MISMATCH,
+    LOG_UNAUTHENTICATED,
+    LOG_REPLAYED,
     LOG_START_DONE,
     LOG_START_REFUSED,
     LOG_STOP,
@@ -51,6 +56,8 @@ typedef struct {
 typedef struct {
     lcm_t *lcm;
     tvo_node_t node;     /* the transport-independent logic (node.h) */
+    tvo_auth_link_t link; /* with --key-file: frames opened before the node, its messages signed */
+    int keyed;
     log_limit_t limits[LOG_KEYS];
 } lcm_node_t;
 
@@ -160,6 +167,10 @@ static void log_changes(lcm_node_t *self, const tvo_lcm_node_counters_t *before,
     log_event(self, LOG_SAFE_STOP, (uint32_t)(after->safe_stops - before->safe_stops), "safe stop published");
     log_event(self, LOG_TARGET, (uint32_t)(after->targets_refused - before->targets_refused),
               "streamed target sample refused");
+    log_event(self, LOG_UNAUTHENTICATED, (uint32_t)(after->unauthenticated - before->unauthenticated),
+              "a frame without a valid tag was dropped (forged, altered, or another key)");
+    log_event(self, LOG_REPLAYED, (uint32_t)(after->replayed - before->replayed),
+              "a frame with a used counter was dropped (a replay)");
     log_event(self, LOG_SPEED_MISMATCH, (uint32_t)(after->speed_mismatch - before->speed_mismatch),
               "measured speed contradicts the commanded speed (stalled wheels?)");
 }
@@ -170,16 +181,25 @@ static void on_message(const lcm_recv_buf_t *rbuf, const char *channel, void *us
     lcm_node_t *self = (lcm_node_t *)user;
     const tvo_lcm_node_counters_t before = self->node.counters;
     const uint32_t acks_before = self->node.acks;
-    (void)tvo_node_handle(&self->node, tvo_node_channel_of(channel), (const uint8_t *)rbuf->data, rbuf->data_size,
-                          monotonic_us());
+    if (self->keyed) {
+        (void)tvo_auth_link_receive(&self->link, &self->node, tvo_node_channel_of(channel),
+                                    (const uint8_t *)rbuf->data, rbuf->data_size, monotonic_us());
+    } else {
+        (void)tvo_node_handle(&self->node, tvo_node_channel_of(channel), (const uint8_t *)rbuf->data,
+                              rbuf->data_size, monotonic_us());
+    }
     log_changes(self, &before, acks_before);
 }
 
 static void print_usage(FILE *out)
 {
     fprintf(out,
-            "Usage: tvo_firmware_node [--lcm-url URL] [--keep-running] [--exit-with-parent]\n"
+            "Usage: tvo_firmware_node [--key-file FILE [--sender-id N]] [--lcm-url URL] [--keep-running]\n"
+            "                         [--exit-with-parent]\n"
             "Runs the TV-O controller behind LCM: sessions on TVO_SESSION, measurements in, commands out.\n"
+            "  --key-file FILE     authenticate every message both ways with this 32-byte key (tools/keygen;\n"
+            "                      mode 0600); without it the bus is unauthenticated (lab use)\n"
+            "  --sender-id N       this node's sender id on a keyed bus (default 1; unique per key holder)\n"
             "  --lcm-url URL       LCM provider URL (default: $LCM_DEFAULT_URL, else LCM's default udpm)\n"
             "  --keep-running      serve session after session (default: exit after a session's STOP)\n"
             "  --exit-with-parent  exit when the process that started this one dies (no orphans)\n"
@@ -187,6 +207,8 @@ static void print_usage(FILE *out)
 }
 
 typedef struct {
+    const char *key_file; /* NULL: unauthenticated */
+    uint32_t sender_id;
     const char *url;      /* NULL: LCM's default */
     int keep_running;
     int exit_with_parent;
@@ -196,8 +218,33 @@ typedef struct {
 static int parse_args(int argc, char **argv, node_options_t *opt)
 {
     memset(opt, 0, sizeof(*opt));
+    opt->sender_id = TVO_AUTH_SENDER_NODE;
+    int sender_id_given = 0;
     for (int i = 1; i < argc; ++i) {
         const char *arg = argv[i];
+        const char *value = NULL;
+        if ((strcmp(arg, "--key-file") == 0 || strcmp(arg, "--sender-id") == 0) && i + 1 < argc) {
+            value = argv[++i];
+        } else if (strncmp(arg, "--key-file=", 11) == 0 || strncmp(arg, "--sender-id=", 12) == 0) {
+            value = strchr(arg, '=') + 1;
+        }
+        if (value != NULL && strncmp(arg, "--key-file", 10) == 0) {
+            opt->key_file = value;
+            continue;
+        }
+        if (value != NULL) {
+            char *end = NULL;
+            errno = 0;
+            const unsigned long id = strtoul(value, &end, 10);
+            if (errno != 0 || end == value || *end != '\0' || value[0] == '-' || id > UINT32_MAX) {
+                fprintf(stderr, "tvo_firmware_node: error: --sender-id takes a whole number 0 .. 4294967295, not '%s'\n",
+                        value);
+                return 2;
+            }
+            opt->sender_id = (uint32_t)id;
+            sender_id_given = 1;
+            continue;
+        }
         if (strcmp(arg, "-h") == 0 || strcmp(arg, "--help") == 0) {
             print_usage(stdout);
             return 1;
@@ -213,6 +260,10 @@ static int parse_args(int argc, char **argv, node_options_t *opt)
             fprintf(stderr, "tvo_firmware_node: error: unexpected argument '%s' (see --help)\n", arg);
             return 2;
         }
+    }
+    if (sender_id_given && opt->key_file == NULL) {
+        fprintf(stderr, "tvo_firmware_node: error: --sender-id needs --key-file (it names this node on a keyed bus)\n");
+        return 2;
     }
     return 0;
 }
@@ -264,7 +315,27 @@ int main(int argc, char **argv)
     const pid_t parent = getppid();
     /* Static: the node holds two session slots, the decoded message and the encode buffer (kilobytes). */
     static lcm_node_t self;
-    tvo_node_init(&self.node, publish, &self);
+    if (opt.key_file != NULL) {
+        uint8_t key[TVO_AUTH_KEY_BYTES];
+        char why[300];
+        if (tvo_auth_key_file_read(opt.key_file, key, why, sizeof(why)) != 0) {
+            fprintf(stderr, "tvo_firmware_node: error: %s\n", why);
+            return 2;
+        }
+        const tvo_auth_status_t keyed = tvo_auth_link_init(&self.link, key, opt.sender_id, 1u, publish, &self);
+        memset(key, 0, sizeof(key));
+        if (keyed != TVO_AUTH_OK ||
+            tvo_auth_link_follow_clock(&self.link, tvo_auth_wall_clock_counter, TVO_AUTH_NEW_SENDER_WINDOW_US) != TVO_AUTH_OK) {
+            fprintf(stderr, "tvo_firmware_node: error: authentication set-up failed\n");
+            return 1;
+        }
+        self.keyed = 1;
+        tvo_node_init(&self.node, tvo_auth_link_publish, &self.link);
+    } else {
+        fprintf(stderr, "tvo_firmware_node: the bus is unauthenticated (no --key-file): anyone on the network can "
+                        "drive, stop or replace this session\n");
+        tvo_node_init(&self.node, publish, &self);
+    }
     for (int k = 0; k < LOG_KEYS; ++k) {
         self.limits[k].last_us = -1;
     }
@@ -299,6 +370,7 @@ int main(int argc, char **argv)
         }
     }
     log_flush(&self);
+    tvo_auth_clear(&self.link.auth);
     lcm_destroy(self.lcm);
     return exit_code;
 }

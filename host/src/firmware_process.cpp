@@ -28,13 +28,17 @@ FirmwareProcess::~FirmwareProcess()
     }
 }
 
-void FirmwareProcess::spawn(const std::string& path, const std::string& lcm_url)
+void FirmwareProcess::spawn(const std::string& path, const std::string& lcm_url, const std::string& key_file)
 {
     if (access(path.c_str(), X_OK) != 0) {
         throw std::runtime_error("--firmware: cannot execute '" + path + "': " + std::strerror(errno));
     }
     // The node ends with us even when we die without a STOP (crash, kill -9); it still exits after STOP.
     std::vector<std::string> args{path, "--exit-with-parent"};
+    if (!key_file.empty()) {
+        args.emplace_back("--key-file");
+        args.push_back(key_file);
+    }
     if (!lcm_url.empty()) {
         args.emplace_back("--lcm-url");
         args.push_back(lcm_url);

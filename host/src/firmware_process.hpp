@@ -18,7 +18,8 @@ public:
 
     /// Starts `path --exit-with-parent --lcm-url url` (no URL argument when url is empty).
     /// std::runtime_error on failure.
-    void spawn(const std::string& path, const std::string& lcm_url);
+    /// With a key_file, also `--key-file key_file`.
+    void spawn(const std::string& path, const std::string& lcm_url, const std::string& key_file = "");
 
     bool spawned() const { return pid_ > 0; }
     /// False once the child has exited (reaps it).

@@ -127,10 +127,10 @@ int run(const tvo_host::SimOptions& options)
     const PlantClock clock(options.start_utime_us);
     Scenario scenario = make_scenario(options.scenario, options.robots, options.target);
     scenario.barrier.apply(options.barrier);
-    LcmTransport transport(options.lcm_url, log_path);
+    LcmTransport transport(options.lcm_url, log_path, options.key_file, options.sender_id);
     FirmwareProcess firmware;
     if (!options.firmware.empty()) {
-        firmware.spawn(options.firmware, options.lcm_url);
+        firmware.spawn(options.firmware, options.lcm_url, options.key_file);
     }
     // Lockstep: START and epoch at --start-utime-us, every START alike (deterministic). Realtime: each
     // START stamped with the plant's current time; the epoch a fixed lead after the first.

@@ -320,6 +320,12 @@ int parse_options(int argc, char** argv, SimOptions* o)
         ->capture_default_str();
     app.add_option("--lcm-url", o->lcm_url, "LCM URL for this run and the spawned firmware [default: "
                    "$LCM_DEFAULT_URL or LCM's udpm default]");
+    app.add_option("--key-file", o->key_file, "authenticate every message both ways with this key file (32 bytes "
+                   "as 64 hex digits, mode 0600: tools/keygen); the spawned firmware gets it too. Without it the "
+                   "bus is unauthenticated (lab use)");
+    app.add_option("--sender-id", o->sender_id, "this plant's sender id on a keyed bus (unique per key holder)")
+        ->check(whole_in<std::uint32_t>(0, UINT32_MAX, ""))
+        ->capture_default_str();
     app.add_option("--firmware", o->firmware, "tvo_firmware_node to spawn as a child process; without it one "
                    "must already be running on the same LCM URL");
     app.add_option("--out-dir", o->out_dir, "directory for run.csv, run.lcmlog (and the demo's run.png)")

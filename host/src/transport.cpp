@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cerrno>
 
+#include "auth_key_file.h"
+
 namespace tvo_host {
 
 namespace {
@@ -14,9 +16,26 @@ namespace {
 constexpr std::size_t kBufferBytes = 4096;
 }  // namespace
 
-LcmTransport::LcmTransport(const std::string& url, const std::string& log_path)
-    : lcm_(url), buffer_(kBufferBytes)
+LcmTransport::LcmTransport(const std::string& url, const std::string& log_path, const std::string& key_file,
+                           std::uint32_t sender_id)
+    : lcm_(url), buffer_(kBufferBytes + TVO_AUTH_TRAILER_BYTES)
 {
+    if (!key_file.empty()) {
+        std::uint8_t key[TVO_AUTH_KEY_BYTES];
+        char why[300];
+        if (tvo_auth_key_file_read(key_file.c_str(), key, why, sizeof(why)) != 0) {
+            throw TransportError(why);
+        }
+        const tvo_auth_status_t status = tvo_auth_init(&auth_, key, sender_id, tvo_auth_wall_clock_counter());
+        std::fill(std::begin(key), std::end(key), std::uint8_t{0});
+        const std::uint64_t now = tvo_auth_wall_clock_counter();
+        if (status != TVO_AUTH_OK ||
+            tvo_auth_set_new_sender_floor(&auth_, now > TVO_AUTH_NEW_SENDER_WINDOW_US ? now - TVO_AUTH_NEW_SENDER_WINDOW_US
+                                                                                     : 0) != TVO_AUTH_OK) {
+            throw TransportError(std::string("authentication set-up failed: ") + tvo_auth_status_str(status));
+        }
+        keyed_ = true;
+    }
     if (!lcm_.good()) {
         throw TransportError(
             "cannot create LCM on '" + (url.empty() ? std::string("LCM default") : url) +
@@ -31,13 +50,18 @@ LcmTransport::LcmTransport(const std::string& url, const std::string& log_path)
     // Fixed-size messages: their encoded sizes are constants, so one check covers every publish.
     const int largest = std::max({tvo_lcm::session_t{}.getEncodedSize(), tvo_lcm::measurement_t{}.getEncodedSize(),
                                   tvo_lcm::target_t{}.getEncodedSize()});
-    if (largest < 0 || static_cast<std::size_t>(largest) > buffer_.size()) {
+    if (largest < 0 || static_cast<std::size_t>(largest) > kBufferBytes) {
         throw TransportError("the encode buffer (" + std::to_string(buffer_.size()) + " bytes) is smaller than a " +
                              std::to_string(largest) + "-byte message");
     }
     lcm_.subscribe(TVO_CHANNEL_COMMAND, &LcmTransport::on_raw, this);
     lcm_.subscribe(TVO_CHANNEL_SESSION_ACK, &LcmTransport::on_raw, this);
     lcm_.subscribe(TVO_CHANNEL_TELEMETRY, &LcmTransport::on_raw, this);
+}
+
+LcmTransport::~LcmTransport()
+{
+    tvo_auth_clear(&auth_);
 }
 
 void LcmTransport::log(const std::string& channel, const void* data, std::int32_t size, std::int64_t utime)
@@ -59,7 +83,17 @@ void LcmTransport::publish_encoded(const std::string& channel, const Msg& msg)
     if (size < 0) {
         throw TransportError("cannot encode a message for " + channel);
     }
-    if (lcm_.publish(channel, buffer_.data(), static_cast<unsigned>(size)) != 0) {
+    std::size_t frame_size = static_cast<std::size_t>(size);
+    if (keyed_) {
+        // Counters follow the wall clock (MAVLink's rule): a restarted plant starts above its old ones.
+        (void)tvo_auth_counter_at_least(&auth_, tvo_auth_wall_clock_counter());
+        const tvo_auth_status_t status = tvo_auth_sign(&auth_, channel.c_str(), buffer_.data(), frame_size,
+                                                       buffer_.size(), &frame_size);
+        if (status != TVO_AUTH_OK) {
+            throw TransportError("cannot sign a message for " + channel + ": " + tvo_auth_status_str(status));
+        }
+    }
+    if (lcm_.publish(channel, buffer_.data(), static_cast<unsigned>(frame_size)) != 0) {
         throw TransportError("LCM publish on " + channel + " failed");
     }
     log(channel, buffer_.data(), size, msg.utime);
@@ -82,7 +116,17 @@ void LcmTransport::publish(const tvo_lcm::target_t& msg)
 
 void LcmTransport::on_raw(const lcm::ReceiveBuffer* rbuf, const std::string& channel)
 {
-    const auto size = static_cast<int>(rbuf->data_size);
+    auto size = static_cast<int>(rbuf->data_size);
+    if (keyed_) {
+        std::size_t message_size = 0;
+        const tvo_auth_status_t status = tvo_auth_open(&auth_, channel.c_str(), static_cast<const std::uint8_t*>(rbuf->data),
+                                                       rbuf->data_size, &message_size);
+        if (status != TVO_AUTH_OK) {
+            ++(status == TVO_AUTH_ERR_REPLAY ? replayed_ : unauthenticated_);
+            return;  // dropped: neither logged nor dispatched
+        }
+        size = static_cast<int>(message_size);
+    }
     log(channel, rbuf->data, size, log_utime_);
     if (listener_ == nullptr) {
         return;

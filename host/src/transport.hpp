@@ -11,6 +11,7 @@
 
 #include <lcm/lcm-cpp.hpp>
 
+#include "auth.h"
 #include "lcm_messages.hpp"
 
 namespace tvo_host {
@@ -34,7 +35,13 @@ enum class WaitResult { Timeout, Handled, Interrupted };
 class LcmTransport {
 public:
     /// Opens LCM on url (empty: LCM's default) and the log at log_path. TransportError with a fix on failure.
-    LcmTransport(const std::string& url, const std::string& log_path);
+    /// With a key_file every message is signed as sender_id and every received one must open (auth.h);
+    /// the log holds the messages without their trailers. Without one the bus is unauthenticated.
+    LcmTransport(const std::string& url, const std::string& log_path, const std::string& key_file = "",
+                 std::uint32_t sender_id = TVO_AUTH_SENDER_PLANT);
+    ~LcmTransport();
+    LcmTransport(const LcmTransport&) = delete;
+    LcmTransport& operator=(const LcmTransport&) = delete;
 
     void set_listener(TransportListener* listener) { listener_ = listener; }
     /// Plant-clock utime stamped on received messages in the log (the sim's notion of "now").
@@ -48,6 +55,10 @@ public:
     WaitResult wait(std::chrono::microseconds timeout);
 
     std::uint64_t logged_events() const { return logged_events_; }
+    /// Keyed: received frames dropped for a missing or wrong tag, and for a used counter.
+    std::uint64_t unauthenticated() const { return unauthenticated_; }
+    std::uint64_t replayed() const { return replayed_; }
+    bool keyed() const { return keyed_; }
     bool log_ok() const { return log_ok_; }
 
 private:
@@ -64,6 +75,10 @@ private:
     std::int64_t log_utime_{0};
     std::uint64_t logged_events_{0};
     bool log_ok_{true};
+    bool keyed_{false};
+    tvo_auth_t auth_{};
+    std::uint64_t unauthenticated_{0};
+    std::uint64_t replayed_{0};
     tvo_lcm::command_t command_{};
     tvo_lcm::session_ack_t ack_{};
     tvo_lcm::telemetry_t telemetry_{};

@@ -13,7 +13,8 @@ add_test(NAME fuzz_build
   COMMAND ${CMAKE_COMMAND} -DSOURCE_DIR=${CMAKE_CURRENT_LIST_DIR} -DBINARY_DIR=${tvo_fuzz_bin}
           -DCLANG=${TVO_FUZZ_CLANG} -P ${CMAKE_CURRENT_LIST_DIR}/build_fuzz.cmake)
 set_tests_properties(fuzz_build PROPERTIES FIXTURES_SETUP tvo_fuzz_harnesses LABELS fuzz TIMEOUT 900)
-foreach(harness IN ITEMS frame node session controller)
+include(${CMAKE_CURRENT_LIST_DIR}/harnesses.cmake)
+foreach(harness IN LISTS tvo_fuzz_harnesses)
   add_test(NAME fuzz_${harness}
     COMMAND ${CMAKE_COMMAND} -DHARNESS=${tvo_fuzz_bin}/fuzz_${harness} -DSEEDS=${CMAKE_CURRENT_LIST_DIR}/corpus/${harness}
             -DWORK=${tvo_fuzz_bin}/run/${harness} -DSECONDS=${TVO_FUZZ_SECONDS}

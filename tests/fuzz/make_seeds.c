@@ -78,10 +78,44 @@ static int node_seed(const char *dir, uint8_t variant, const char *name)
     return save(dir, "node", name);
 }
 
+/* fuzz_auth's seed: the node seed's messages as records the harness signs (mode 1), with one raw,
+ * one altered and one replayed frame among them. */
+static int auth_seed(const char *dir, uint8_t variant, const char *name)
+{
+    static uint8_t message[8192];
+    tvo_lcm_session_t s;
+    fuzz_session(&s, variant);
+    put(&variant, 1);
+    for (int n = 0; n < 30; ++n) {
+        tvo_lcm_measurement_t m;
+        memset(&m, 0, sizeof(m));
+        m.session_id = s.session_id;
+        m.sequence = n;
+        m.utime = s.epoch_utime + (n + 1) * s.period_us - s.delay_us;
+        m.robot_count = s.robot_count;
+        for (int r = 0; r < s.robot_count; ++r) {
+            m.position_m[r][0] = -1.0 + 3.0 * r + 0.01 * n;
+            m.position_m[r][1] = -2.0;
+        }
+        m.heading_valid = 1;
+        const int length = tvo_lcm_measurement_t_encode(message, 0, sizeof(message), &m);
+        const uint8_t mode = (n == 10) ? 0u : (n == 15) ? 2u : (n == 20) ? 3u : 1u;
+        const uint8_t header[5] = {mode, (uint8_t)(TVO_NODE_CH_MEASUREMENT - 1), (uint8_t)length,
+                                   (uint8_t)(length >> 8), 20};
+        put(header, sizeof(header));
+        if (mode == 2u) {
+            const uint8_t flip = 77;
+            put(&flip, 1);
+        }
+        put(message, (size_t)length);
+    }
+    return save(dir, "auth", name);
+}
+
 int main(int argc, char **argv)
 {
     if (argc != 2) {
-        fprintf(stderr, "usage: fuzz_make_seeds CORPUS_DIR (with subfolders node, session, frame, controller)\n");
+        fprintf(stderr, "usage: fuzz_make_seeds CORPUS_DIR (with subfolders node, session, frame, controller, auth)\n");
         return 2;
     }
     const char *dir = argv[1];
@@ -91,6 +125,8 @@ int main(int argc, char **argv)
     failed |= node_seed(dir, 2, "plant_clock_chain");
     failed |= node_seed(dir, 4 | 8 | 16, "position_only_two_robots_distance");
     failed |= node_seed(dir, 32, "obstacle");
+    failed |= auth_seed(dir, 0, "signed_plant_clock");
+    failed |= auth_seed(dir, 1, "signed_node_clock");
 
     for (uint8_t variant = 0; variant < 64; variant = (uint8_t)(variant + 9)) {
         char name[32];

@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """Processor-in-the-loop checks (run by CTest), the firmware on the Cortex-M4F in QEMU behind the bridge:
 
-  clean       lockstep demo: converges like the host build and agrees with it within float32 rounding.
+  clean       lockstep demo on a keyed bus (a key from tools/keygen, provisioned into the board's key
+              region at boot): every frame authenticated both ways, none dropped, and it converges
+              like the unkeyed host build and agrees with it within float32 rounding.
   corrupted   lockstep demo with frames corrupted on the serial link in both directions: each end drops
               and counts every corrupted frame, the plant counts each as a lost answer (it waits
               --answer-timeout-s, then holds its command and goes on), and the loop still converges.
@@ -87,9 +89,16 @@ def check_board_clock(summary, counts):
 
 
 def check_clean(a):
+    key = os.path.join(a.out, "bus.key")
+    os.makedirs(a.out, exist_ok=True)
+    if os.path.exists(key):
+        os.remove(key)
+    run([os.path.join(a.tools, "keygen"), key])
     pil, pil_rows, counts = run_pil(a, os.path.join(a.out, "pil"), ["--duration-s", DURATION_S,
-                                                                     "--answer-timeout-s", "10"])
+                                                                     "--answer-timeout-s", "10", "--key-file", key])
     check_board_clock(pil, counts)
+    expect(counts.get("target_keyed") == 1 and counts.get("target_unauthenticated") == 0 and
+           counts.get("target_replayed") == 0, f"the board did not run keyed, or dropped genuine frames: {counts}")
     expect(counts["target_frames_dropped"] == 0 and counts["target_undecodable"] == 0 and
            counts["bridge_from_target_dropped"] == 0, f"clean link but frames dropped or undecodable: {counts}")
     expect(counts["target_accepted"] == pil["steps"], f"the board accepted {counts['target_accepted']} of "
@@ -109,7 +118,7 @@ def check_clean(a):
            "float32 rounding")
     expect(abs(pil["final_error_m"] - host["final_error_m"]) <= 1e-6, "PIL and host final errors differ by more "
            "than 1e-6 m")
-    print("ok: the PIL loop converges and matches the host build")
+    print("ok: the keyed PIL loop converges and matches the unkeyed host build")
 
 
 def check_corrupted(a):

@@ -11,10 +11,14 @@
  * is 0, and one line of counts (key=value) is printed on the semihosting console.
  */
 #include <stdint.h>
+#include <string.h>
 
 #include "board.h"
 #include "node.h"
 #include "serial_frame.h"
+#if defined(TVO_PIL_AUTH)
+#include "auth_link.h"
+#endif
 
 int main(void);
 
@@ -23,6 +27,10 @@ static tvo_frame_decoder_t decoder;
 static uint8_t payload[TVO_FRAME_MAX_PAYLOAD];
 static uint8_t frame[TVO_FRAME_MAX_ENCODED];
 static uint32_t frames_sent;
+#if defined(TVO_PIL_AUTH)
+static tvo_auth_link_t link;  /* keyed (a provisioned key region): frames opened before the node, its own signed */
+static int keyed;
+#endif
 static uint32_t clock_faults; /* readings that failed or went back: must stay 0 (the node needs monotonic time) */
 
 /*
@@ -75,6 +83,11 @@ static void report(int64_t now_us)
             put_node_count("=", node.counters.refused[status]);
         }
     }
+#if defined(TVO_PIL_AUTH)
+    put_count(" keyed=", (uint64_t)keyed);
+    put_node_count(" unauthenticated=", node.counters.unauthenticated);
+    put_node_count(" replayed=", node.counters.replayed);
+#endif
     put_count(" clock_us=", (uint64_t)now_us);
     put_count(" clock_faults=", clock_faults);
     tvo_board_putc('\n');
@@ -91,7 +104,32 @@ int main(void)
         return 1;
     }
     tvo_board_uart_init();
+#if defined(TVO_PIL_AUTH)
+    /* A provisioned key region: every frame both ways authenticated, never a fallback to plain. */
+    const uint8_t *region = tvo_board_key_region();
+    if (memcmp(region, TVO_BOARD_KEY_MAGIC, 4u) == 0) {
+        uint64_t counter_base = 0u;
+        for (uint32_t i = 0u; i < 8u; ++i) {
+            counter_base |= (uint64_t)region[36u + i] << (8u * i);
+        }
+        if (counter_base == 0u ||
+            tvo_auth_link_init(&link, region + 4u, TVO_AUTH_SENDER_NODE, counter_base, publish, NULL) != TVO_AUTH_OK ||
+            tvo_auth_set_new_sender_floor(&link.auth, counter_base > TVO_AUTH_NEW_SENDER_WINDOW_US
+                                                          ? counter_base - TVO_AUTH_NEW_SENDER_WINDOW_US
+                                                          : 0u) != TVO_AUTH_OK) {
+            tvo_board_puts("PIL: the key region is provisioned but unusable (counter base 0?)\n");
+            return 1;
+        }
+        keyed = 1;
+        tvo_node_init(&node, tvo_auth_link_publish, &link);
+        tvo_board_puts("PIL: keyed: every message is authenticated\n");
+    } else {
+        tvo_board_puts("PIL: the bus is unauthenticated (no key provisioned)\n");
+        tvo_node_init(&node, publish, NULL);
+    }
+#else
     tvo_node_init(&node, publish, NULL);
+#endif
     tvo_frame_decoder_init(&decoder);
     tvo_board_puts("PIL ready\n");
     int64_t last_us = 0;
@@ -127,7 +165,15 @@ int main(void)
             const int64_t arrival_us = frame_start_us > given_us ? frame_start_us : given_us;
             frame_start_us = -1;
             if (st == TVO_FRAME_OK) {
+#if defined(TVO_PIL_AUTH)
+                if (keyed) {
+                    (void)tvo_auth_link_receive(&link, &node, channel, payload, (uint32_t)length, arrival_us);
+                } else {
+                    (void)tvo_node_handle(&node, channel, payload, (uint32_t)length, arrival_us);
+                }
+#else
                 (void)tvo_node_handle(&node, channel, payload, (uint32_t)length, arrival_us);
+#endif
                 given_us = arrival_us;
                 deadline_us = now_us; /* the message may have moved the deadline */
             }

@@ -149,3 +149,11 @@ int tvo_board_uart_read(uint8_t *byte)
     *byte = (uint8_t)UART_DATA;
     return 1;
 }
+
+/* Placed by the linker script at the key region's start (the region no image writes). */
+extern const uint8_t tvo_board_key_region_start[];
+
+const uint8_t *tvo_board_key_region(void)
+{
+    return tvo_board_key_region_start;
+}

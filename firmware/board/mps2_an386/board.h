@@ -46,4 +46,20 @@ void tvo_board_uart_write(const uint8_t *data, uint32_t length);
 /** Non-blocking read: 1 and *byte when a byte was waiting, else 0. */
 int tvo_board_uart_read(uint8_t *byte);
 
+/**
+ * The key region: a 256-byte flash area no image writes (the linker script places it, and names its
+ * address tvo_board_key_region_start for the provisioner), where a provisioned board holds its key. Layout (little-endian; tools/pil_run.py writes it):
+ *   offset 0   "TVOK" (TVO_BOARD_KEY_MAGIC)
+ *   offset 4   the 32-byte key
+ *   offset 36  uint64 counter base: the board signs from it on and refuses senders not heard yet whose
+ *              counters lie more than TVO_AUTH_NEW_SENDER_WINDOW_US below it (a board without a
+ *              clock of the epoch needs it from its provisioner at every boot: QEMU's loader here,
+ *              an RTC or a boot counter kept in flash on hardware)
+ * Blank (no magic): the board runs unauthenticated and says so.
+ */
+#define TVO_BOARD_KEY_MAGIC "TVOK"
+#define TVO_BOARD_KEY_REGION_BYTES 44u
+/** The key region's first byte. */
+const uint8_t *tvo_board_key_region(void);
+
 #endif /* TVO_BOARD_H */
