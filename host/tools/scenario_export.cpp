@@ -17,6 +17,7 @@
 
 #include "options.hpp"
 #include "scenario.hpp"
+#include "scenario_file.hpp"
 #include "session.hpp"
 
 namespace {
@@ -89,7 +90,7 @@ json session_json(const tvo_lcm::session_t& s, const tvo_host::Scenario& scenari
     }
     return {
         {"name", scenario.name},
-        {"duration_s", o.duration_s},
+        {"duration_s", static_cast<double>(o.steps * o.period_us) * 1e-6},
         {"controller",
          {{"period_us", s.period_us},
           {"delay_us", s.delay_us},
@@ -131,6 +132,15 @@ int main(int argc, char** argv)
         const int parsed = tvo_host::parse_options(argc, argv, &options);
         if (parsed >= 0) {
             return parsed;  // --help, --list-scenarios, a bad option (exit 2, message printed)
+        }
+        // tvo_sim's check of the run's duration against the file's last waypoints (exit 2).
+        try {
+            const tvo_host::ScenarioFile file = tvo_host::load_scenario_file(tvo_host::scenario_path(options.scenario));
+            const double duration_s = static_cast<double>(options.steps * options.period_us) * 1e-6;
+            tvo_host::check_run_duration(file, duration_s, "--duration-s");
+        } catch (const tvo_host::ScenarioFileError& e) {
+            std::cerr << "tvo_scenario_export: error: " << e.what() << '\n';
+            return 2;
         }
         tvo_host::Scenario scenario = tvo_host::make_scenario(options.scenario, options.robots, options.target);
         scenario.barrier.apply(options.barrier);

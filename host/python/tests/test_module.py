@@ -3,6 +3,8 @@
 step over numpy arrays, misses and the watchdog, the chain controller, both precisions, scenarios.
 Usage: test_module.py   (PYTHONPATH: <build>/host/python)"""
 import math
+import subprocess
+import sys
 import unittest
 
 import numpy as np
@@ -107,6 +109,16 @@ class ScenarioTest(unittest.TestCase):
         self.assertEqual(len(s.problem.obstacles), 4)
         loop = s.make_controller().run(s.starts, 200)
         self.assertTrue(np.all(loop.status == 0))
+
+    def test_export_command(self):
+        run = subprocess.run([sys.executable, "-m", "tvo", "export", "formation-max", "--gains", "30,11"],
+                             capture_output=True, text=True, check=True)
+        self.assertIn("static inline tvo_status_t formation_max_problem_desc(tvo_problem_desc_t *desc)", run.stdout)
+        self.assertIn("cfg->gain_kp = TVO_R(0x1.e000000000000p+4);", run.stdout)   # 30
+        run = subprocess.run([sys.executable, "-m", "tvo", "export", "obstacles", "--duration-s", "100"],
+                             capture_output=True, text=True)
+        self.assertEqual(run.returncode, 2)
+        self.assertIn("obstacles.yaml:", run.stderr)   # tvo_sim's file:line:col of the last waypoint
 
     def test_bad_scenario_names_the_file(self):
         with self.assertRaises(ValueError) as caught:
