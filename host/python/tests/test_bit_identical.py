@@ -3,10 +3,14 @@
 
 Runs the same closed loops (exact unicycle plants, the core's controller) through Python
 (tvo.UnicycleController.run) and through closed_loop_ref.c linked with the firmware's host build of
-the core (tvo_core in float32, tvo_core_double in float64), and compares every period's status,
-flags, command bits (speed, turn rate as tvo_real_t) and the plant's pose bits.
+the core (tvo_core in float32, tvo_core_double in float64: the core tvo_firmware_node runs) and with
+the shared library the module calls, and compares every period's status, flags, command bits (speed,
+turn rate as tvo_real_t) and the plant's pose bits.
 
-Usage: test_bit_identical.py REF_F32 REF_F64   (PYTHONPATH: <build>/host/python)
+Not compared: the Cortex-M4F build, which links newlib's expf/logf instead of glibc's (the PIL test,
+tests/target/pil_check.py, bounds that difference).
+
+Usage: test_bit_identical.py REF_F32 REF_F64 REF_SO_F32 REF_SO_F64   (PYTHONPATH: <build>/host/python)
 """
 import math
 import subprocess
@@ -62,16 +66,21 @@ def python_lines(precision, case, steps, kp, kd, zoh):
 def main(argv):
     refs = {"float32": argv[1], "float64": argv[2]}
     failures = 0
-    for precision, ref in refs.items():
+    for precision, ref, lib_ref in [("float32", argv[1], argv[3]), ("float64", argv[2], argv[4])]:
         for case, steps, kp, kd, zoh in CASES:
             args = [str(case), str(steps), repr(kp), repr(kd), str(zoh)]
             c_lines = subprocess.run([ref, *args], capture_output=True, text=True, check=True).stdout.splitlines()
+            lib_lines = subprocess.run([lib_ref, *args], capture_output=True, text=True, check=True).stdout.splitlines()
             py_lines, loop = python_lines(precision, case, steps, kp, kd, zoh)
+            if lib_lines != c_lines:
+                print(f"FAIL: {precision} case {case}: the module's shared library and the firmware's host build "
+                      "of the core differ in C")
+                failures += 1
             label = f"{precision} case {case} kp={kp} kd={kd} zoh={zoh}, {steps} periods"
             ok_steps = int(np.sum(loop.status == 0))
             if c_lines == py_lines:
-                print(f"ok: {label}: every period identical (status, flags, command bits, plant bits); "
-                      f"{ok_steps} TVO_OK steps")
+                print(f"ok: {label}: every period identical (status, flags, command bits, plant bits) in "
+                      f"Python, C on the firmware's core build and C on the module's library; {ok_steps} TVO_OK steps")
                 if ok_steps < steps // 2:
                     print(f"FAIL: {label}: fewer than half of the steps were TVO_OK: the loop tests little")
                     failures += 1
