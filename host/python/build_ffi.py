@@ -114,6 +114,9 @@ tvo_status_t tvo_target_init_circle(tvo_target_t *target, const tvo_real_t cente
                                     tvo_real_t omega_radps, tvo_real_t phase_rad);
 tvo_status_t tvo_target_init_ellipse(tvo_target_t *target, const tvo_target_ellipse_t *ellipse);
 uint64_t tvo_target_turns_q64(double omega_radps);
+tvo_status_t tvo_target_init_streamed(tvo_target_t *target);
+tvo_status_t tvo_target_stream_update(tvo_target_t *target, uint64_t stamp_ticks, const void *deriv); /* [D+1][2] */
+tvo_target_t *tvo_problem_target(tvo_problem_t *problem, uint8_t robot);
 tvo_status_t tvo_problem_desc_default(tvo_problem_desc_t *desc);
 tvo_status_t tvo_problem_init(tvo_problem_t *problem, const tvo_problem_desc_t *desc, uint8_t relative_degree,
                               uint8_t *bad_part);
@@ -154,6 +157,7 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
                                  uint32_t apply_tick, tvo_command_t *cmd);
 tvo_status_t tvo_controller_miss(tvo_controller_t *ctl, uint32_t apply_tick, tvo_command_t *cmd);
 tvo_status_t tvo_controller_safe_stop(tvo_controller_t *ctl, tvo_command_t *cmd);
+tvo_status_t tvo_controller_objective_ticks(const tvo_controller_t *ctl, uint32_t tick, uint64_t *objective_ticks);
 
 /* --- the integrator chain (tvo/chain_controller.h): y^(k) = u --- */
 typedef struct {{ ...; }} tvo_output_derivs_t;

@@ -89,6 +89,24 @@ class StepTest(unittest.TestCase):
         d = np.linalg.norm(loop.poses[:, 0, :2] - loop.poses[:, 1, :2], axis=-1)
         self.assertGreater(d.min(), 0.9)
 
+    def test_streamed_target(self):
+        p = tvo.Problem(1).track(0, tvo.streamed())
+        ctl = tvo.UnicycleController(p, period_s=0.01)
+        self.assertEqual(ctl.step([[0.0, 0.0]], [0.0]).status, tvo.Status.TVO_ERR_TARGET_NOT_READY)
+        # A target moving along x at 0.5 m/s from (1, 0), streamed every period, stamped at the sample.
+        for _ in range(100):
+            apply = ctl.next_apply_tick()
+            sample = apply - ctl.delay_ticks
+            ctl.stream_target(0, [[1.0 + 0.5 * sample * 1e-6, 0.0], [0.5, 0.0]], sample)
+            cmd = ctl.step([[0.0, 0.0]], [0.0], apply_tick=apply)
+            self.assertEqual(cmd.status, tvo.Status.TVO_OK)
+        self.assertGreater(cmd.speed_mps[0], 0.0)   # towards the target ahead
+        with self.assertRaises(tvo.TvoError) as caught:
+            ctl.stream_target(0, [[math.inf, 0.0]], ctl.next_apply_tick() - ctl.delay_ticks)
+        self.assertEqual(caught.exception.status, tvo.Status.TVO_ERR_NOT_FINITE)
+        with self.assertRaises(ValueError):
+            tvo.export_c(p)
+
     def test_chain_controller(self):
         p = tvo.Problem(1).track(0, tvo.polynomial([[1.0, 0.2], [-0.5]]))
         ctl = tvo.ChainController(p, relative_degree=2, period_s=0.01)

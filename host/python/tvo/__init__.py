@@ -11,7 +11,7 @@ for bit those of the firmware build of the same precision. See host/python/READM
     loop = ctl.run(start=[[-1, -2, 0]], steps=500)          # closed loop with exact unicycle plants
 """
 from ._lib import PRECISIONS, Flag, Param, Status, TvoError, core
-from ._problem import BuiltProblem, Problem, circle, ellipse, path_position, polynomial
+from ._problem import BuiltProblem, Problem, circle, ellipse, path_position, polynomial, streamed
 from ._controller import ChainCommand, ChainController, ClosedLoop, Command, UnicycleController
 from ._scenario import Scenario, load_scenario
 from ._export import export_c
@@ -20,6 +20,6 @@ VELOCITY_FROM_POSE = core().lib.TVO_VELOCITY_FROM_POSE
 VELOCITY_FROM_POSITION = core().lib.TVO_VELOCITY_FROM_POSITION
 
 __all__ = ["PRECISIONS", "Flag", "Param", "Status", "TvoError", "core", "BuiltProblem", "Problem", "circle",
-           "ellipse", "path_position", "polynomial", "ChainCommand", "ChainController", "ClosedLoop", "Command",
+           "ellipse", "path_position", "polynomial", "streamed", "ChainCommand", "ChainController", "ClosedLoop", "Command",
            "UnicycleController", "Scenario", "load_scenario", "export_c", "VELOCITY_FROM_POSE",
            "VELOCITY_FROM_POSITION"]

@@ -132,6 +132,25 @@ class UnicycleController:
         check(self.core.lib.tvo_controller_safe_stop(self.ctl, self._cmd), "tvo_controller_safe_stop")
         return self._command(0)
 
+    def stream_target(self, robot, derivs, tick):
+        """A new sample of robot's streamed target (tvo.streamed()): derivs (up to 4, 2) = position,
+        velocity, acceleration, jerk, valid at plant tick `tick` (converted to objective ticks by
+        tvo_controller_objective_ticks). Raises TvoError if refused (not finite, not advancing...)."""
+        ffi, lib = self.core.ffi, self.core.lib
+        d = np.asarray(derivs, dtype=np.float64).reshape(-1, 2)
+        rows = lib.TVO_STREAM_MAX_DERIV + 1
+        if d.shape[0] > rows:
+            raise ValueError(f"at most {rows} derivatives (position .. order {rows - 1})")
+        values = np.zeros((rows, 2))
+        values[:d.shape[0]] = d
+        stamp = ffi.new("uint64_t *")
+        check(lib.tvo_controller_objective_ticks(self.ctl, int(tick) % UINT32, stamp), "tvo_controller_objective_ticks")
+        target = lib.tvo_problem_target(self.built.problem, robot)
+        if target == ffi.NULL:
+            raise TvoError(lib.TVO_ERR_PARAM, f"robot {robot}: no such robot")
+        check(lib.tvo_target_stream_update(target, stamp[0], self.core.real_array(values, (rows, 2))),
+              "tvo_target_stream_update")
+
     def run(self, start, steps, measure_speed=False):
         """The closed loop with exact unicycle plants (double) for `steps` periods from the poses
         start (N, 3): x, y, heading, at rest. Each period the plant runs the command in force to the

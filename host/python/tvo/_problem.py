@@ -31,6 +31,12 @@ def ellipse(center_m, semi_axis_m, omega_radps, phase_rad=0.0, rotation_rad=0.0)
             "phase_rad": float(phase_rad), "rotation_rad": float(rotation_rad)}
 
 
+def streamed():
+    """A target streamed at run time (UnicycleController.stream_target): samples of position ..
+    jerk, extrapolated causally by the core. Not exportable (it has no on-board function)."""
+    return {"kind": "streamed"}
+
+
 def path_position(path, t_s):
     """The path's position at times t_s (array), in double: for plots and error figures."""
     t = np.asarray(t_s, dtype=np.float64)
@@ -154,8 +160,10 @@ def _init_path(c, path, target, where):
         check(lib.tvo_target_init_ellipse(target, e), where)
         if is_circle:
             target.kind = lib.TVO_TARGET_CIRCLE
+    elif kind == "streamed":
+        check(lib.tvo_target_init_streamed(target), where)
     else:
-        raise ValueError(f"{where}: a target must be tvo.polynomial, tvo.circle or tvo.ellipse, got {kind}")
+        raise ValueError(f"{where}: a target must be tvo.polynomial, circle, ellipse or streamed, got {kind}")
 
 
 class BuiltProblem:
