@@ -15,7 +15,7 @@ TVO_FLAG_* bits (tvo.Flag) and the status (tvo.Status; not OK: the command in fo
 ChainCommand = collections.namedtuple("ChainCommand", "u flags status")
 
 
-def _configure(c, cfg, config, period_s, delay_s, tick_fields=("tick_hz", "period_ticks", "delay_ticks")):
+def _configure(c, cfg, config, period_s, delay_s):
     """Sets cfg's fields from config (their C names), period_s and delay_s (seconds, in ticks)."""
     ffi = c.ffi
     tick_hz = int(config.pop("tick_hz", cfg.tick_hz))
