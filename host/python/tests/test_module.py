@@ -120,6 +120,23 @@ class StepTest(unittest.TestCase):
         self.assertLess(np.linalg.norm(y[0] - [1.0 + 0.2 * t, -0.5]), 0.05)
 
 
+class ReadmeTest(unittest.TestCase):
+    def test_readme_python_runs(self):
+        """host/python/README.md's Python blocks run as written (the tuning one with its problem)."""
+        import os
+        import re
+        readme = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "README.md")
+        with open(readme, encoding="utf-8") as f:
+            blocks = re.findall(r"```python\n(.*?)```", f.read(), re.S)
+        self.assertGreaterEqual(len(blocks), 2)
+        scope = {}
+        exec(blocks[0], scope)   # pylint: disable=exec-used
+        self.assertEqual(scope["cmd"].status, tvo.Status.TVO_OK)
+        scope["start"] = [[-1.0, -2.0, 0.0]]
+        exec(blocks[1], scope)   # pylint: disable=exec-used
+        self.assertLess(scope["score"](40, 13, seconds=2.0), 1.0)
+
+
 class ScenarioTest(unittest.TestCase):
     def test_builtin_scenario_runs(self):
         s = tvo.load_scenario("obstacles")
