@@ -1,0 +1,165 @@
+#!/usr/bin/python3
+"""The `tvo` module's API: problems, status codes as exceptions and enums with the core's text, one
+step over numpy arrays, misses and the watchdog, the chain controller, both precisions, scenarios.
+Usage: test_module.py   (PYTHONPATH: <build>/host/python)"""
+import math
+import subprocess
+import sys
+import unittest
+
+import numpy as np
+
+import tvo
+
+
+def demo_problem():
+    return tvo.Problem(1).track(0, tvo.ellipse((0.0, 0.0), (3.0, 1.5), 2 * math.pi / 10))
+
+
+class StatusTest(unittest.TestCase):
+    def test_codes_and_text_come_from_the_core(self):
+        self.assertEqual(int(tvo.Status.TVO_OK), 0)
+        self.assertEqual(len(tvo.Status), tvo.core().lib.TVO_STATUS_COUNT)
+        self.assertEqual(tvo.Status.TVO_ERR_WATCHDOG.message,
+                         tvo.core().ffi.string(tvo.core().lib.tvo_status_str(15)).decode())
+        self.assertIn("stale", tvo.Status.TVO_ERR_STALE.message)
+        self.assertEqual(str(tvo.Param.TVO_PARAM_GAINS), "gain_kp/gain_kd")
+        self.assertEqual(tvo.Flag.SAFE_STOP, tvo.core().lib.TVO_FLAG_SAFE_STOP)
+
+    def test_refused_parameter_raises_naming_it(self):
+        with self.assertRaises(tvo.TvoError) as caught:
+            tvo.UnicycleController(demo_problem(), gain_kp=-1.0)
+        self.assertEqual(caught.exception.status, tvo.Status.TVO_ERR_PARAM)
+        self.assertEqual(caught.exception.param, tvo.Param.TVO_PARAM_GAINS)
+        self.assertIn("gain_kp/gain_kd", str(caught.exception))
+        self.assertIn(tvo.Status.TVO_ERR_PARAM.message, str(caught.exception))
+
+    def test_refused_problem_names_the_part(self):
+        p = demo_problem().add_obstacle((1.0, 1.0), -0.5)
+        with self.assertRaises(tvo.TvoError) as caught:
+            tvo.UnicycleController(p)
+        self.assertEqual(caught.exception.part, "obstacles")
+
+    def test_unknown_config_field(self):
+        with self.assertRaises(TypeError):
+            tvo.UnicycleController(demo_problem(), gain_kq=1.0)
+
+
+class StepTest(unittest.TestCase):
+    def test_one_step_over_numpy_arrays(self):
+        for precision in tvo.PRECISIONS:
+            ctl = tvo.UnicycleController(demo_problem(), precision, period_s=0.01)
+            cmd = ctl.step(np.array([[-1.0, -2.0]]), heading=np.array([0.0]))
+            self.assertEqual(cmd.status, tvo.Status.TVO_OK)
+            self.assertEqual(cmd.speed_mps.dtype, np.dtype(precision))
+            self.assertEqual(cmd.speed_mps.shape, (1,))
+            self.assertTrue(np.all(np.isfinite(cmd.turn_rate_radps)))
+            self.assertIn(tvo.Flag.PREDICTED, cmd.flags)
+
+    def test_refusal_is_a_status_not_an_exception(self):
+        ctl = tvo.UnicycleController(demo_problem(), period_s=0.01)
+        cmd = ctl.step([[-1.0, -2.0]], heading=None)   # pose mode needs the heading
+        self.assertEqual(cmd.status, tvo.Status.TVO_ERR_MISSING_FIELD)
+        self.assertIn(tvo.Flag.HOLDING, cmd.flags)
+        cmd = ctl.step([[math.nan, -2.0]], heading=[0.0])
+        self.assertEqual(cmd.status, tvo.Status.TVO_ERR_NOT_FINITE)
+
+    def test_misses_reach_the_watchdog(self):
+        ctl = tvo.UnicycleController(demo_problem(), period_s=0.01, watchdog_periods=3)
+        self.assertEqual(ctl.step([[-1.0, -2.0]], [0.0]).status, tvo.Status.TVO_OK)
+        statuses = [ctl.miss().status for _ in range(3)]
+        self.assertEqual(statuses[:2], [tvo.Status.TVO_ERR_NO_MEASUREMENT] * 2)
+        self.assertEqual(statuses[2], tvo.Status.TVO_ERR_WATCHDOG)
+
+    def test_closed_loop_tracks_in_both_precisions(self):
+        errors = {}
+        for precision in tvo.PRECISIONS:
+            ctl = tvo.UnicycleController(demo_problem(), precision, period_s=0.01)
+            loop = ctl.run([[-1.0, -2.0, 0.0]], 1000)
+            self.assertTrue(np.all(loop.status == 0))
+            errors[precision] = loop.tracking_error(demo_problem())[-1, 0]
+            self.assertLess(errors[precision], 0.01)
+        self.assertNotEqual(errors["float32"], errors["float64"])  # two builds, not one
+
+    def test_two_robots_with_a_distance_bound(self):
+        p = tvo.Problem(2).track(0, tvo.circle((0, 0), 2.0, 0.5)).track(1, tvo.circle((0, 0), 2.0, 0.5, math.pi / 2))
+        p.add_distance_bound(0, 1, min_m=1.0)
+        loop = tvo.UnicycleController(p, period_s=0.01).run([[2.0, 0.0, 1.6], [0.0, 2.0, 3.1]], 300)
+        self.assertTrue(np.all(loop.status == 0))
+        d = np.linalg.norm(loop.poses[:, 0, :2] - loop.poses[:, 1, :2], axis=-1)
+        self.assertGreater(d.min(), 0.9)
+
+    def test_streamed_target(self):
+        p = tvo.Problem(1).track(0, tvo.streamed())
+        ctl = tvo.UnicycleController(p, period_s=0.01)
+        self.assertEqual(ctl.step([[0.0, 0.0]], [0.0]).status, tvo.Status.TVO_ERR_TARGET_NOT_READY)
+        # A target moving along x at 0.5 m/s from (1, 0), streamed every period, stamped at the sample.
+        for _ in range(100):
+            apply = ctl.next_apply_tick()
+            sample = apply - ctl.delay_ticks
+            ctl.stream_target(0, [[1.0 + 0.5 * sample * 1e-6, 0.0], [0.5, 0.0]], sample)
+            cmd = ctl.step([[0.0, 0.0]], [0.0], apply_tick=apply)
+            self.assertEqual(cmd.status, tvo.Status.TVO_OK)
+        self.assertGreater(cmd.speed_mps[0], 0.0)   # towards the target ahead
+        with self.assertRaises(tvo.TvoError) as caught:
+            ctl.stream_target(0, [[math.inf, 0.0]], ctl.next_apply_tick() - ctl.delay_ticks)
+        self.assertEqual(caught.exception.status, tvo.Status.TVO_ERR_NOT_FINITE)
+        with self.assertRaises(ValueError):
+            tvo.export_c(p)
+
+    def test_chain_controller(self):
+        p = tvo.Problem(1).track(0, tvo.polynomial([[1.0, 0.2], [-0.5]]))
+        ctl = tvo.ChainController(p, relative_degree=2, period_s=0.01)
+        y = np.zeros((2, 2))   # y, y' of the double integrator
+        for _ in range(800):
+            cmd = ctl.step(y)
+            self.assertEqual(cmd.status, tvo.Status.TVO_OK)
+            h = 0.01
+            y = np.array([y[0] + y[1] * h + 0.5 * cmd.u * h * h, y[1] + cmd.u * h])
+        t = 800 * 0.01
+        self.assertLess(np.linalg.norm(y[0] - [1.0 + 0.2 * t, -0.5]), 0.05)
+
+
+class ReadmeTest(unittest.TestCase):
+    def test_readme_python_runs(self):
+        """host/python/README.md's Python blocks run as written (the tuning one with its problem)."""
+        import os
+        import re
+        readme = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "README.md")
+        with open(readme, encoding="utf-8") as f:
+            blocks = re.findall(r"```python\n(.*?)```", f.read(), re.S)
+        self.assertGreaterEqual(len(blocks), 2)
+        scope = {}
+        exec(blocks[0], scope)   # pylint: disable=exec-used
+        self.assertEqual(scope["cmd"].status, tvo.Status.TVO_OK)
+        scope["start"] = [[-1.0, -2.0, 0.0]]
+        exec(blocks[1], scope)   # pylint: disable=exec-used
+        self.assertLess(scope["score"](40, 13, seconds=2.0), 1.0)
+
+
+class ScenarioTest(unittest.TestCase):
+    def test_builtin_scenario_runs(self):
+        s = tvo.load_scenario("obstacles")
+        self.assertEqual(s.problem.robots[0]["target"]["kind"], "polynomial")   # its waypoints, solved
+        self.assertEqual(len(s.problem.obstacles), 4)
+        loop = s.make_controller().run(s.starts, 200)
+        self.assertTrue(np.all(loop.status == 0))
+
+    def test_export_command(self):
+        run = subprocess.run([sys.executable, "-m", "tvo", "export", "formation-max", "--gains", "30,11"],
+                             capture_output=True, text=True, check=True)
+        self.assertIn("static inline tvo_status_t formation_max_problem_desc(tvo_problem_desc_t *desc)", run.stdout)
+        self.assertIn("cfg->gain_kp = TVO_R(0x1.e000000000000p+4);", run.stdout)   # 30
+        run = subprocess.run([sys.executable, "-m", "tvo", "export", "obstacles", "--duration-s", "100"],
+                             capture_output=True, text=True)
+        self.assertEqual(run.returncode, 2)
+        self.assertIn("obstacles.yaml:", run.stderr)   # tvo_sim's file:line:col of the last waypoint
+
+    def test_bad_scenario_names_the_file(self):
+        with self.assertRaises(ValueError) as caught:
+            tvo.load_scenario("no-such-scenario")
+        self.assertIn("no-such-scenario", str(caught.exception))
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=2)

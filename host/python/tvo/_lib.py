@@ -1,0 +1,110 @@
+"""The two compiled cores (float32 and float64), their status codes as Python enums and exceptions."""
+import enum
+import importlib
+
+import numpy as np
+
+PRECISIONS = ("float32", "float64")
+_MODULES = {"float32": "tvo._core_f32", "float64": "tvo._core_f64"}
+_cores = {}
+
+
+class Core:
+    """One precision's extension: its ffi, lib and the numpy dtype of tvo_real_t."""
+
+    def __init__(self, precision):
+        if precision not in _MODULES:
+            raise ValueError(f"precision must be one of {PRECISIONS}, got {precision!r}")
+        module = importlib.import_module(_MODULES[precision])
+        self.precision = precision
+        self.ffi = module.ffi
+        self.lib = module.lib
+        size = self.ffi.sizeof("tvo_real_t")
+        self.dtype = np.dtype(np.float32 if size == 4 else np.float64)
+        if self.dtype != np.dtype(precision):
+            raise ImportError(f"{_MODULES[precision]} was built with a {size}-byte tvo_real_t, not {precision}")
+
+    def real_array(self, values, shape):
+        """A new tvo_real_t[] of len prod(shape), filled from values (rounded to tvo_real_t as C does)."""
+        flat = np.asarray(values, dtype=np.float64).reshape(-1)
+        out = self.ffi.new("tvo_real_t[]", int(np.prod(shape)))
+        for i, v in enumerate(flat):
+            out[i] = float(v)
+        return out
+
+
+def core(precision="float32"):
+    if precision not in _cores:
+        _cores[precision] = Core(precision)
+    return _cores[precision]
+
+
+def _constants(*prefixes, strip=""):
+    """The lib's integer constants whose names start with one of prefixes, by value (build_ffi.py
+    declares every enumerator and flag of tvo/status.h; their values come from the compiler)."""
+    lib = core("float32").lib
+    names = [n for n in dir(lib) if n.startswith(prefixes) and isinstance(getattr(lib, n), int)]
+    return {n[len(strip):]: getattr(lib, n) for n in sorted(names, key=lambda n: getattr(lib, n))}
+
+
+# The core's status codes (tvo/status.h, also command_t.status on the wire) and parameter names.
+_StatusBase = enum.IntEnum("_StatusBase", _constants("TVO_OK", "TVO_ERR_"))
+
+
+class Status(enum.IntEnum):
+    """tvo_status_t: 0 is TVO_OK. str() is the core's own text (tvo_status_str)."""
+
+    _ignore_ = ["member"]
+    for member in _StatusBase:
+        locals()[member.name] = int(member)
+
+    @property
+    def message(self):
+        return core().ffi.string(core().lib.tvo_status_str(int(self))).decode()
+
+    def __str__(self):
+        return f"{self.name}: {self.message}"
+
+
+class Param(enum.IntEnum):
+    """tvo_param_t: which parameter an init refused. str() is its name in the config (tvo_param_str)."""
+
+    _ignore_ = ["member"]
+    for member in enum.IntEnum("_ParamBase", _constants("TVO_PARAM_")):
+        locals()[member.name] = int(member)
+
+    @property
+    def field(self):
+        return core().ffi.string(core().lib.tvo_param_str(int(self))).decode()
+
+    def __str__(self):
+        return self.field
+
+
+# TVO_FLAG_*: what shaped a command (tvo_command_t.flags), e.g. Flag.SAFE_STOP in Flag(cmd.flags).
+Flag = enum.IntFlag("Flag", _constants("TVO_FLAG_", strip="TVO_FLAG_"))
+
+# The parts of a problem tvo_problem_init names on failure (bad_part, tvo/problem.h).
+PROBLEM_PARTS = ("robots/targets", "barrier", "distance bounds", "half-spaces", "obstacles", "offsets")
+
+
+class TvoError(Exception):
+    """A status other than TVO_OK from the core: .status (Status), .param (Param, for TVO_ERR_PARAM
+    from an init), .part (the problem's part, from tvo_problem_init); the message is the core's text."""
+
+    def __init__(self, status, where="", param=None, part=None):
+        self.status = Status(status)
+        self.param = Param(param) if param is not None and int(param) != 0 else None
+        self.part = part
+        text = f"{where}: " if where else ""
+        text += f"{self.status.name} ({self.status.message})"
+        if self.param is not None:
+            text += f", parameter {self.param.field}"
+        if part is not None:
+            text += f", part of the problem: {part}"
+        super().__init__(text)
+
+
+def check(status, where="", **kw):
+    if int(status) != 0:
+        raise TvoError(status, where, **kw)
