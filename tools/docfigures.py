@@ -10,6 +10,7 @@
                                       (tools/demo or tools/build builds it) into tools/figures/summaries/,
                                       then rewrite
   tools/docfigures.py --snippet README.md -o FILE.c   write README.md's C snippet to FILE.c
+  tools/docfigures.py --snippet R.md --name N -o F   the block marked <!-- snippet:N begin/end --> instead
 
 A block is the text between `<!-- figures:NAME begin -->` and `<!-- figures:NAME end -->` in
 README.md or a folder's README.md; NAME says what fills it (BLOCKS below). Inputs, all committed:
@@ -422,11 +423,13 @@ def structure_problems():
     return problems
 
 
-def snippet(readme, out):
+def snippet(readme, out, name="core"):
+    """The code block between <!-- snippet:NAME begin --> and end (any language) into out."""
     text = pathlib.Path(readme).read_text()
-    m = re.search(r"<!-- snippet:core begin -->\n```c\n(.*?)```\n<!-- snippet:core end -->", text, re.S)
+    m = re.search(rf"<!-- snippet:{re.escape(name)} begin -->\n```\w+\n(.*?)```\n<!-- snippet:{re.escape(name)} end -->",
+                  text, re.S)
     if not m:
-        sys.exit(f"docfigures: {readme} has no C block between <!-- snippet:core begin --> and end")
+        sys.exit(f"docfigures: {readme} has no code block between <!-- snippet:{name} begin --> and end")
     pathlib.Path(out).write_text(m.group(1))
 
 
@@ -453,13 +456,14 @@ def main():
     parser.add_argument("--bench", help="a new tools/bench --json output to take (copied to tools/figures/bench.json)")
     parser.add_argument("--runs", action="store_true", help="re-run the demo and scenario rows (needs build/)")
     parser.add_argument("--snippet", metavar="README", help="write README's C snippet to -o FILE and exit")
+    parser.add_argument("--name", default="core", help="which snippet of --snippet (default core)")
     parser.add_argument("-o", dest="out", help="output of --snippet")
     args = parser.parse_args()
 
     if args.snippet:
         if not args.out:
             sys.exit("docfigures: --snippet needs -o FILE")
-        snippet(args.snippet, args.out)
+        snippet(args.snippet, args.out, args.name)
         return 0
     if args.bench:
         shutil.copyfile(args.bench, BENCH_JSON)
