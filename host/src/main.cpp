@@ -223,6 +223,10 @@ int run(const tvo_host::SimOptions& options)
     write_scenario_json(scenario_path, scenario, duration_s);
     std::cout << "  outputs: " << csv_path << ", " << log_path << " (" << transport.logged_events()
               << " LCM events), " << options.summary_json << ", " << scenario_path << '\n';
+    if (transport.keyed() && transport.unauthenticated() + transport.replayed() > 0) {
+        std::cerr << "tvo_sim: keyed bus: dropped " << transport.unauthenticated()
+                  << " frame(s) without a valid tag and " << transport.replayed() << " replayed frame(s)\n";
+    }
     if (!transport.log_ok()) {
         std::cerr << "tvo_sim: error: writing " << log_path << " failed\n";
         return 1;

@@ -14,6 +14,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "auth_key_file.h"   // the key file's checks, the node's own
 #include "lcm_messages.hpp"  // TVO_WIRE_TIME_MAX_US
 #include "option_ranges.hpp"
 #include "sim_ranges.hpp"
@@ -322,7 +323,14 @@ int parse_options(int argc, char** argv, SimOptions* o)
                    "$LCM_DEFAULT_URL or LCM's udpm default]");
     app.add_option("--key-file", o->key_file, "authenticate every message both ways with this key file (32 bytes "
                    "as 64 hex digits, mode 0600: tools/keygen); the spawned firmware gets it too. Without it the "
-                   "bus is unauthenticated (lab use)");
+                   "bus is unauthenticated (lab use)")
+        ->check([](const std::string& path) {
+            std::uint8_t key[TVO_AUTH_KEY_BYTES];
+            char why[300];
+            const int rc = tvo_auth_key_file_read(path.c_str(), key, why, sizeof(why));
+            std::fill(std::begin(key), std::end(key), std::uint8_t{0});
+            return rc == 0 ? std::string() : std::string(why);
+        });
     app.add_option("--sender-id", o->sender_id, "this plant's sender id on a keyed bus (unique per key holder)")
         ->check(whole_in<std::uint32_t>(0, UINT32_MAX, ""))
         ->capture_default_str();
