@@ -161,7 +161,9 @@ static void log_changes(lcm_node_t *self, const tvo_lcm_node_counters_t *before,
         }
     }
     log_event(self, LOG_UNDECODABLE, (uint32_t)(after->undecodable - before->undecodable),
-              "a message did not decode (ignored)");
+              self->keyed ? "a message did not decode (ignored)"
+                          : "a message did not decode (ignored; if the plant signs its messages, start the node "
+                            "with the same --key-file)");
     log_event(self, LOG_OTHER_SESSION, (uint32_t)(after->other_session - before->other_session),
               "a message for another session id (ignored)");
     log_event(self, LOG_SAFE_STOP, (uint32_t)(after->safe_stops - before->safe_stops), "safe stop published");

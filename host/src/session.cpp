@@ -277,8 +277,11 @@ bool SessionClient::start(std::chrono::milliseconds timeout, const std::function
             return true;
         }
     }
+    // A keyed node drops what it cannot verify without a word, so a key mismatch looks like silence.
     throw TransportError("no session ack from the firmware node within " + std::to_string(timeout.count()) +
-                         " ms (is tvo_firmware_node running on the same LCM URL? pass --firmware PATH to spawn it)");
+                         " ms (is tvo_firmware_node running on the same LCM URL" +
+                         (transport_.keyed() ? std::string(", with the same --key-file") : std::string()) +
+                         "? pass --firmware PATH to spawn it)");
 }
 
 bool SessionClient::stop(std::int64_t utime, std::chrono::milliseconds timeout)
