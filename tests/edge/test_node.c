@@ -171,29 +171,39 @@ static void take_snapshot(void)
     snapshot_running = node.running;
 }
 
-/* The running session is the snapshot's, byte for byte, but for refused_in_row and the controller's scratch. */
+/* The running session is the snapshot's, byte for byte, but for the CLOCK_PLANT refusal streak, the
+ * anchor votes and the controller's scratch. */
 static void assert_session_kept(int line)
 {
     const tvo_node_session_t *running = tvo_node_session(&node);
     UNITY_TEST_ASSERT_NOT_NULL(running, line, "the session should still run");
     const tvo_node_session_t *s = session_without_scratch(running);
+    const tvo_schedule_t *before = &snapshot.schedule;
+    const tvo_schedule_t *after = &s->schedule;
+    const int clock_node = after->ops->clock_source == TVO_LCM_SESSION_T_CLOCK_NODE;
     UNITY_TEST_ASSERT_EQUAL_UINT8(snapshot_running, node.running, line, "running slot");
     UNITY_TEST_ASSERT_EQUAL_MEMORY(&snapshot.controller, &s->controller, sizeof(s->controller), line,
                                    "controller changed");
     UNITY_TEST_ASSERT_EQUAL_MEMORY(&snapshot.problem, &s->problem, sizeof(s->problem), line, "problem changed");
-    UNITY_TEST_ASSERT_EQUAL_MEMORY(&snapshot.timing, &s->timing, sizeof(s->timing), line, "timing changed");
-    UNITY_TEST_ASSERT_EQUAL_INT64(snapshot.last_period, s->last_period, line, "last_period changed");
-    UNITY_TEST_ASSERT_EQUAL_INT64(snapshot.last_sequence, s->last_sequence, line, "last_sequence changed");
-    UNITY_TEST_ASSERT_EQUAL_INT64(snapshot.next_miss_period, s->next_miss_period, line, "next_miss_period changed");
-    UNITY_TEST_ASSERT_EQUAL_INT64(snapshot.offset_us, s->offset_us, line, "offset changed");
-    UNITY_TEST_ASSERT_EQUAL_UINT8(snapshot.has_accepted, s->has_accepted, line, "has_accepted changed");
+    UNITY_TEST_ASSERT_EQUAL_MEMORY(&before->timing, &after->timing, sizeof(after->timing), line, "timing changed");
+    UNITY_TEST_ASSERT_EQUAL_INT64(before->last_period, after->last_period, line, "last_period changed");
+    UNITY_TEST_ASSERT_EQUAL_INT64(before->anchor.last_sequence, after->anchor.last_sequence, line,
+                                  "last_sequence changed");
+    if (clock_node) {
+        UNITY_TEST_ASSERT_EQUAL_INT64(before->clock.node.next_miss_period, after->clock.node.next_miss_period, line,
+                                      "next_miss_period changed");
+    }
+    UNITY_TEST_ASSERT_EQUAL_INT64(before->anchor.offset_us, after->anchor.offset_us, line, "offset changed");
+    UNITY_TEST_ASSERT_EQUAL_UINT8(before->has_accepted, after->has_accepted, line, "has_accepted changed");
     tvo_node_session_t expected;
     memcpy(&expected, &snapshot, sizeof(expected));
-    expected.refused_in_row = s->refused_in_row;
-    /* The one thing a refused measurement may leave (README "Timing"): a CLOCK_NODE vote on the
-     * plant's clock before the first accepted measurement. */
-    expected.anchor_candidate_us = s->anchor_candidate_us;
-    expected.anchor_votes = s->anchor_votes;
+    if (!clock_node) {
+        expected.schedule.clock.plant.refused_in_row = after->clock.plant.refused_in_row; /* the streak rule */
+    }
+    /* The one thing a refused measurement may leave (README "Timing"): a vote on the plant's clock or
+     * numbering. */
+    expected.schedule.vote_value = after->vote_value;
+    expected.schedule.votes = after->votes;
     UNITY_TEST_ASSERT_EQUAL_MEMORY(&expected, s, sizeof(expected), line, "session changed");
 }
 #define ASSERT_SESSION_KEPT() assert_session_kept(__LINE__)
@@ -274,8 +284,8 @@ static tvo_lcm_command_t expect_refused(const tvo_lcm_measurement_t *m, int64_t 
 {
     const tvo_node_session_t *s = tvo_node_session(&node);
     UNITY_TEST_ASSERT_NOT_NULL(s, line, "no session");
-    const int clock_node = s->timing.clock_source == TVO_LCM_SESSION_T_CLOCK_NODE;
-    const int64_t offset = s->offset_us;
+    const int clock_node = s->schedule.timing.clock_source == TVO_LCM_SESSION_T_CLOCK_NODE;
+    const int64_t offset = s->schedule.anchor.offset_us;
     take_snapshot();
     const int32_t refused_before = node.counters.refused[reason == TVO_ERR_WATCHDOG ? 0 : reason];
     ef_record_clear(&rec);
@@ -349,7 +359,7 @@ static void test_start_when_idle_runs_the_session_and_acks_ok(void)
     const tvo_node_session_t *s = tvo_node_session(&node);
     TEST_ASSERT_NOT_NULL(s);
     TEST_ASSERT_EQUAL_INT64(EF_SESSION_ID, s->session_id);
-    TEST_ASSERT_EQUAL_INT64(0, s->offset_us); /* CLOCK_PLANT: the plant's clock is the schedule's */
+    TEST_ASSERT_EQUAL_INT64(0, s->schedule.anchor.offset_us); /* CLOCK_PLANT: the plant's clock is the schedule's */
     TEST_ASSERT_EQUAL_UINT32(1u, node.acks);
     TEST_ASSERT_EQUAL_UINT8(0u, node.stop_requested);
     TEST_ASSERT_EQUAL_INT64(TVO_NODE_NO_DEADLINE, tvo_node_poll(&node, 0)); /* CLOCK_PLANT has no timer */
@@ -558,7 +568,7 @@ static void test_stop_of_the_running_session_ends_it_and_a_start_begins_anew(voi
     /* The same START again (a plant that re-sends it) starts afresh. */
     start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
     TEST_ASSERT_EQUAL_UINT8(0u, node.stop_requested);
-    TEST_ASSERT_EQUAL_UINT8(0u, tvo_node_session(&node)->has_accepted);
+    TEST_ASSERT_EQUAL_UINT8(0u, tvo_node_session(&node)->schedule.has_accepted);
     plant_meas(&m, 5);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(5));
 }
@@ -672,8 +682,8 @@ static void test_plant_period_is_the_apply_instant_nearest_stamp_plus_tau(void)
         m.utime += jitters[i];
         (void)EXPECT_ACCEPTED(m, 0, plant_apply(3));
         const tvo_node_session_t *s = tvo_node_session(&node);
-        TEST_ASSERT_EQUAL_INT64(3, s->last_period);
-        TEST_ASSERT_EQUAL_INT64(SEQ0 + 3, s->last_sequence);
+        TEST_ASSERT_EQUAL_INT64(3, s->schedule.last_period);
+        TEST_ASSERT_EQUAL_INT64(SEQ0 + 3, s->schedule.anchor.last_sequence);
         plant_meas(&m, 4);
         (void)EXPECT_ACCEPTED(m, 0, plant_apply(4));
     }
@@ -836,7 +846,7 @@ static void test_plant_watchdog_refusals_in_a_row_give_a_safe_stop_until_one_is_
     tvo_lcm_measurement_t m;
     plant_meas(&m, 3);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(3));
-    TEST_ASSERT_EQUAL_UINT32(0u, tvo_node_session(&node)->refused_in_row);
+    TEST_ASSERT_EQUAL_UINT32(0u, tvo_node_session(&node)->schedule.clock.plant.refused_in_row);
     plant_meas(&dup, 3);
     (void)EXPECT_REFUSED(dup, 0, TVO_ERR_OUT_OF_ORDER); /* the count restarted */
 }
@@ -863,8 +873,8 @@ static void test_node_clock_offset_comes_from_the_start_and_commands_are_in_plan
 {
     start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_NODE, NODE_T0);
     const tvo_node_session_t *s = tvo_node_session(&node);
-    TEST_ASSERT_EQUAL_INT64(OFFSET, s->offset_us);
-    TEST_ASSERT_EQUAL_INT64(EF_EPOCH + OFFSET, s->epoch_schedule_us);
+    TEST_ASSERT_EQUAL_INT64(OFFSET, s->schedule.anchor.offset_us);
+    TEST_ASSERT_EQUAL_INT64(EF_EPOCH + OFFSET, s->schedule.anchor.epoch_schedule_us);
     /* Arriving 3 ms after A_0: serves period 1. */
     tvo_lcm_measurement_t m;
     const int64_t now = node_apply(0) + 3000;
@@ -1196,7 +1206,7 @@ static void test_slack_rule_is_undone_when_the_first_step_fails(void)
     TEST_ASSERT_EQUAL_INT32(0, node.counters.accepted);
     const tvo_node_session_t *s = tvo_node_session(&node);
     TEST_ASSERT_EQUAL_UINT8(0u, s->problem.slack_chosen);
-    TEST_ASSERT_EQUAL_UINT8(0u, s->has_accepted);
+    TEST_ASSERT_EQUAL_UINT8(0u, s->schedule.has_accepted);
     (void)send_target(&t, 0);
     EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(2));
@@ -1346,7 +1356,48 @@ static void test_node_clock_reanchors_on_agreeing_measurements_before_tracking(v
             TEST_ASSERT_INT64_WITHIN(latency, sample + TAU, cmd.utime);
         }
     }
-    TEST_ASSERT_INT64_WITHIN(latency, offset, tvo_node_session(&node)->offset_us);
+    TEST_ASSERT_INT64_WITHIN(latency, offset, tvo_node_session(&node)->schedule.anchor.offset_us);
+}
+
+/* The same slow START with a watchdog of one period, and the third sample of the vote not finite: judged
+ * on the moved anchor it reaches the core, which refuses it and, its watchdog expiring with that one
+ * period, stops the robots (its clock starts). The move is not committed; the next three samples move
+ * the anchor again and the third is served on the plant's schedule, the objective's time counted from
+ * the epoch. (Before, the node moved the core's epoch for the trial and could not move it back once
+ * the stop had started the clock, and could never re-anchor after: every sample was refused.) */
+static void test_node_clock_reanchor_whose_trial_the_core_stops_commits_nothing_and_recovers(void)
+{
+    const int64_t start_delay = 150000;
+    const int64_t offset = NODE_T0 - EF_UTIME;
+    const int64_t latency = 100;
+    ef_start(&start, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_NODE, 1);
+    start.watchdog_periods = 1;
+    ef_record_clear(&rec);
+    (void)send_session(&start, NODE_T0 + start_delay);
+    EF_ASSERT_STATUS(TVO_OK, THE_ACK().status);
+    for (int64_t k = 0; k < 6; ++k) {
+        const int64_t sample = EF_EPOCH + (k + 1) * H - TAU;
+        tvo_lcm_measurement_t m;
+        ef_measurement(&m, EF_SESSION_ID, sample, k, 1);
+        if (k == 2) {
+            m.position_m[0][0] = NAN;
+        }
+        ef_record_clear(&rec);
+        (void)send_measurement(&m, sample + offset + latency);
+        const tvo_lcm_command_t cmd = THE_COMMAND();
+        if (k == 2) {
+            EF_ASSERT_STATUS(TVO_ERR_WATCHDOG, cmd.status); /* the core's stop */
+            EXPECT_SAFE_STOP(cmd);
+            TEST_ASSERT_EQUAL_INT64(offset + start_delay, tvo_node_session(&node)->schedule.anchor.offset_us);
+        } else if (k < 5) {
+            EF_ASSERT_STATUS(TVO_ERR_IMPLAUSIBLE_STAMP, cmd.status);
+        } else {
+            EF_ASSERT_STATUS(TVO_OK, cmd.status);
+            TEST_ASSERT_INT64_WITHIN(latency, sample + TAU, cmd.utime);
+            TEST_ASSERT_DOUBLE_WITHIN(1e-6, (double)((k + 1) * H) * 1e-6, last_telemetry.objective_time_s);
+        }
+    }
+    TEST_ASSERT_INT64_WITHIN(latency, offset, tvo_node_session(&node)->schedule.anchor.offset_us);
 }
 
 static void test_plant_target_beyond_the_next_period_is_refused(void)
@@ -1449,11 +1500,11 @@ static void test_plant_samples_past_the_first_window_that_agree_move_it(void)
     plant_meas(&m, j + 2);
     m.sequence += 7; /* a stray: its numbering disagrees, so the vote starts again */
     (void)EXPECT_REFUSED(m, 0, TVO_ERR_WATCHDOG);
-    const int64_t window_start = tvo_node_session(&node)->start_utime;
+    const int64_t window_start = tvo_node_session(&node)->schedule.anchor.first_window_utime;
     for (int64_t k = 3; k <= 4; ++k) {
         plant_meas(&m, j + k);
         (void)EXPECT_REFUSED(m, 0, TVO_ERR_WATCHDOG);
-        TEST_ASSERT_EQUAL_INT64(window_start, tvo_node_session(&node)->start_utime);
+        TEST_ASSERT_EQUAL_INT64(window_start, tvo_node_session(&node)->schedule.anchor.first_window_utime);
     }
     plant_meas(&m, j + 5);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(j + 5));
@@ -1467,7 +1518,7 @@ static void test_plant_strays_the_node_refuses_do_not_move_the_first_window(void
      * stays where it was (a genuine first sample inside it is served). */
     start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
     const int64_t far = first_period_past_window(EF_UTIME) + 48000; /* 8 min ahead */
-    const int64_t window_start = tvo_node_session(&node)->start_utime;
+    const int64_t window_start = tvo_node_session(&node)->schedule.anchor.first_window_utime;
     tvo_lcm_measurement_t m;
     for (int64_t k = 0; k < 3; ++k) {
         plant_meas(&m, far + k);
@@ -1475,7 +1526,7 @@ static void test_plant_strays_the_node_refuses_do_not_move_the_first_window(void
         ef_record_clear(&rec);
         (void)send_measurement(&m, 0);
         TEST_ASSERT_TRUE(THE_COMMAND().status != TVO_OK);
-        TEST_ASSERT_EQUAL_INT64(window_start, tvo_node_session(&node)->start_utime);
+        TEST_ASSERT_EQUAL_INT64(window_start, tvo_node_session(&node)->schedule.anchor.first_window_utime);
     }
     plant_meas(&m, 2);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(2));
@@ -1652,7 +1703,7 @@ static void test_plant_step_refusals_count_toward_the_watchdog(void)
     (void)send_measurement(&m, 0);
     tvo_lcm_command_t cmd = THE_COMMAND();
     EF_ASSERT_STATUS(TVO_ERR_FUTURE_STAMP, cmd.status);
-    TEST_ASSERT_EQUAL_UINT32(1u, tvo_node_session(&node)->refused_in_row);
+    TEST_ASSERT_EQUAL_UINT32(1u, tvo_node_session(&node)->schedule.clock.plant.refused_in_row);
     tvo_lcm_measurement_t dup;
     plant_meas(&dup, 2);
     for (int64_t refusals = 1; refusals < W; ++refusals) {
@@ -2085,7 +2136,7 @@ static void test_node_clock_extremes(void)
         setUp();
         start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_NODE, nows[i]);
         const int64_t clamped = nows[i] < 0 ? 0 : (nows[i] > EF_TWO_POW_60 ? EF_TWO_POW_60 : nows[i]);
-        TEST_ASSERT_EQUAL_INT64(clamped - EF_UTIME, tvo_node_session(&node)->offset_us);
+        TEST_ASSERT_EQUAL_INT64(clamped - EF_UTIME, tvo_node_session(&node)->schedule.anchor.offset_us);
         /* Measurements, polls and a STOP at every extreme: answers stay within the wire range. */
         for (size_t k = 0; k < sizeof(nows) / sizeof(nows[0]); ++k) {
             tvo_lcm_measurement_t m;
@@ -2213,6 +2264,7 @@ int main(void)
     RUN_TEST(test_plant_target_two_to_the_32_us_old_is_not_taken_for_a_new_one);
     RUN_TEST(test_node_clock_sample_two_to_the_32_us_old_is_stale);
     RUN_TEST(test_node_clock_reanchors_on_agreeing_measurements_before_tracking);
+    RUN_TEST(test_node_clock_reanchor_whose_trial_the_core_stops_commits_nothing_and_recovers);
     RUN_TEST(test_plant_step_refusals_count_toward_the_watchdog);
     RUN_TEST(test_node_clock_a_law_failure_after_the_timer_stop_is_answered_with_a_safe_stop);
     RUN_TEST(test_start_utime_extremes);
