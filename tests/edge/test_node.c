@@ -668,6 +668,240 @@ static void test_messages_of_another_session_are_ignored_and_counted(void)
 }
 
 /* ------------------------------------------------------------------------------------------------
+ * The session table (node.c) against README.md "Sessions", row by row
+ * --------------------------------------------------------------------------------------------- */
+
+/* What a row's message is sent to, and what it sends. */
+typedef enum { ROW_IDLE, ROW_RUNNING_A } row_state_t;
+typedef enum {
+    SEND_START_VALID_NEW_ID,    /* a START of an id not running, that passes every check */
+    SEND_START_INVALID,         /* a START of an id not running, that fails a check (period 0) */
+    SEND_START_REPEAT,          /* the running START again, a later utime */
+    SEND_START_OTHER_CONTENT,   /* the running id, another gain */
+    SEND_STOP_RUNNING,          /* STOP of the running id */
+    SEND_STOP_OTHER,            /* STOP of an id not running */
+    SEND_OTHER_ACTION,          /* action 7 */
+    SEND_MEASUREMENT_OWN,       /* a genuine measurement of the running id (idle: of any id) */
+    SEND_MEASUREMENT_OTHER,     /* a measurement of another id */
+    SEND_TARGET_OWN,            /* a target sample of the running id (idle: of any id) */
+    SEND_TARGET_OTHER           /* a target sample of another id */
+} row_message_t;
+
+/* What the row says comes back. */
+typedef enum { ANSWER_NONE, ANSWER_ACK, ANSWER_SAFE_STOP_ONLY, ANSWER_COMMAND } row_answer_t;
+
+typedef struct {
+    const char *readme;         /* the README's row: "state | message | action | ack / answer" */
+    row_state_t state;
+    row_message_t message;
+    tvo_node_event_t event;     /* what the node takes the message for */
+    tvo_node_state_t after;     /* the node's state after it */
+    row_answer_t answer;
+    int32_t status;             /* the ack's or the command's status */
+    int64_t running_after;      /* the ack's running_session_id: an id, or -1 */
+    int kept;                   /* "nothing changes": the running session byte for byte, counters too */
+    int other_session_counted;  /* counters.other_session moved by one */
+} readme_row_t;
+
+#define ID_A EF_SESSION_ID
+#define ID_B OTHER_ID
+
+static const readme_row_t readme_rows[] = {
+    {"idle | START that passes every check | the session is built and runs | status 0, running_session_id = its id",
+     ROW_IDLE, SEND_START_VALID_NEW_ID, TVO_NODE_EVENT_START, TVO_NODE_RUNNING, ANSWER_ACK, TVO_OK, ID_B, 0, 0},
+    {"running A | START of a new id B that passes every check | B replaces A | 0, running B", ROW_RUNNING_A,
+     SEND_START_VALID_NEW_ID, TVO_NODE_EVENT_START, TVO_NODE_RUNNING, ANSWER_ACK, TVO_OK, ID_B, 0, 0},
+    {"any (idle) | START that fails a check | nothing changes | the status, bad_param ...; running -1", ROW_IDLE,
+     SEND_START_INVALID, TVO_NODE_EVENT_START, TVO_NODE_IDLE, ANSWER_ACK, TVO_ERR_PARAM, -1, 0, 0},
+    {"any (running A) | START that fails a check | nothing changes: A keeps running | the status ...; running A",
+     ROW_RUNNING_A, SEND_START_INVALID, TVO_NODE_EVENT_START, TVO_NODE_RUNNING, ANSWER_ACK, TVO_ERR_PARAM, ID_A, 1, 0},
+    {"running A | START of A, the same content (any utime) | nothing: a repeat | 0 again", ROW_RUNNING_A,
+     SEND_START_REPEAT, TVO_NODE_EVENT_START_REPEAT, TVO_NODE_RUNNING, ANSWER_ACK, TVO_OK, ID_A, 1, 0},
+    {"running A | START of A with other content | refused | TVO_ERR_SESSION_CONFLICT (17)", ROW_RUNNING_A,
+     SEND_START_OTHER_CONTENT, TVO_NODE_EVENT_START_CONFLICT, TVO_NODE_RUNNING, ANSWER_ACK, TVO_ERR_SESSION_CONFLICT,
+     ID_A, 1, 0},
+    {"running A | STOP of A | the session ends | 0, running -1", ROW_RUNNING_A, SEND_STOP_RUNNING, TVO_NODE_EVENT_STOP,
+     TVO_NODE_IDLE, ANSWER_ACK, TVO_OK, -1, 0, 0},
+    {"any (idle) | STOP of another id | ignored | TVO_ERR_NO_SESSION (18)", ROW_IDLE, SEND_STOP_OTHER,
+     TVO_NODE_EVENT_STOP_OTHER, TVO_NODE_IDLE, ANSWER_ACK, TVO_ERR_NO_SESSION, -1, 0, 0},
+    {"any (running A) | STOP of another id | ignored | TVO_ERR_NO_SESSION (18)", ROW_RUNNING_A, SEND_STOP_OTHER,
+     TVO_NODE_EVENT_STOP_OTHER, TVO_NODE_RUNNING, ANSWER_ACK, TVO_ERR_NO_SESSION, ID_A, 1, 0},
+    {"any (idle) | another action | ignored | TVO_ERR_PARAM", ROW_IDLE, SEND_OTHER_ACTION, TVO_NODE_EVENT_OTHER_ACTION,
+     TVO_NODE_IDLE, ANSWER_ACK, TVO_ERR_PARAM, -1, 0, 0},
+    {"any (running A) | another action | ignored | TVO_ERR_PARAM", ROW_RUNNING_A, SEND_OTHER_ACTION,
+     TVO_NODE_EVENT_OTHER_ACTION, TVO_NODE_RUNNING, ANSWER_ACK, TVO_ERR_PARAM, ID_A, 1, 0},
+    {"idle | measurement | answered with a safe stop, status TVO_ERR_NO_SESSION | command only", ROW_IDLE,
+     SEND_MEASUREMENT_OWN, TVO_NODE_EVENT_MEASUREMENT, TVO_NODE_IDLE, ANSWER_SAFE_STOP_ONLY, TVO_ERR_NO_SESSION, -1, 0,
+     0},
+    {"running A | measurement of another session id | ignored, counted (other_session) | none", ROW_RUNNING_A,
+     SEND_MEASUREMENT_OTHER, TVO_NODE_EVENT_MEASUREMENT_OTHER, TVO_NODE_RUNNING, ANSWER_NONE, 0, ID_A, 1, 1},
+    {"running A | target of another session id | ignored, counted (other_session) | none", ROW_RUNNING_A,
+     SEND_TARGET_OTHER, TVO_NODE_EVENT_TARGET_OTHER, TVO_NODE_RUNNING, ANSWER_NONE, 0, ID_A, 1, 1},
+    /* Transitions of the table that the README's table leaves to other sections: */
+    {"(Timing) running A | measurement of A | served | command and telemetry", ROW_RUNNING_A, SEND_MEASUREMENT_OWN,
+     TVO_NODE_EVENT_MEASUREMENT, TVO_NODE_RUNNING, ANSWER_COMMAND, TVO_OK, ID_A, 0, 0},
+    {"(Streamed targets) running A | target of A | taken (here refused: A's target is not streamed) | none",
+     ROW_RUNNING_A, SEND_TARGET_OWN, TVO_NODE_EVENT_TARGET, TVO_NODE_RUNNING, ANSWER_NONE, 0, ID_A, 0, 0},
+    {"(not in the README) idle | target | ignored, not counted | none", ROW_IDLE, SEND_TARGET_OWN,
+     TVO_NODE_EVENT_TARGET, TVO_NODE_IDLE, ANSWER_NONE, 0, -1, 0, 0},
+};
+
+static void send_row_message(row_message_t message)
+{
+    tvo_lcm_session_t msg;
+    tvo_lcm_measurement_t m;
+    tvo_lcm_target_t t;
+    switch (message) {
+    case SEND_START_VALID_NEW_ID:
+    case SEND_START_INVALID:
+        ef_start(&msg, ID_B, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+        msg.period_us = (message == SEND_START_INVALID) ? 0 : msg.period_us;
+        (void)send_session(&msg, 0);
+        return;
+    case SEND_START_REPEAT:
+    case SEND_START_OTHER_CONTENT:
+        ef_start(&msg, ID_A, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+        msg.utime += (message == SEND_START_REPEAT) ? 1000 : 0;
+        msg.gain_kp += (message == SEND_START_OTHER_CONTENT) ? 1.0 : 0.0;
+        (void)send_session(&msg, 0);
+        return;
+    case SEND_STOP_RUNNING:
+    case SEND_STOP_OTHER:
+        stop_message(&msg, message == SEND_STOP_RUNNING ? ID_A : ID_B);
+        (void)send_session(&msg, 0);
+        return;
+    case SEND_OTHER_ACTION:
+        stop_message(&msg, ID_A);
+        msg.action = 7;
+        (void)send_session(&msg, 0);
+        return;
+    case SEND_MEASUREMENT_OWN:
+    case SEND_MEASUREMENT_OTHER:
+        plant_meas(&m, 2);
+        m.session_id = (message == SEND_MEASUREMENT_OWN) ? ID_A : ID_B;
+        (void)send_measurement(&m, 0);
+        return;
+    case SEND_TARGET_OWN:
+    case SEND_TARGET_OTHER:
+        memset(&t, 0, sizeof(t));
+        t.utime = EF_EPOCH;
+        t.session_id = (message == SEND_TARGET_OWN) ? ID_A : ID_B;
+        t.robot_count = 1;
+        (void)send_target(&t, 0);
+        return;
+    default:
+        TEST_FAIL_MESSAGE("unknown row message");
+    }
+}
+
+/* Sends each row's message in its state and checks the row: what the node took it for, the table's
+ * cell for it, the state after, and the answer. Every reachable cell of the table is some row's. */
+static void test_each_readme_session_row_is_what_the_table_does(void)
+{
+    uint8_t covered[TVO_NODE_STATE_COUNT][TVO_NODE_EVENT_COUNT];
+    memset(covered, 0, sizeof(covered));
+    for (size_t i = 0; i < sizeof(readme_rows) / sizeof(readme_rows[0]); ++i) {
+        const readme_row_t *row = &readme_rows[i];
+        setUp();
+        tvo_node_state_t before = TVO_NODE_IDLE;
+        if (row->state == ROW_RUNNING_A) {
+            plant_session_after(1);
+            take_snapshot();
+            before = TVO_NODE_RUNNING;
+        }
+        TEST_ASSERT_EQUAL_INT_MESSAGE(before, node.state, row->readme);
+        ef_record_clear(&rec);
+        send_row_message(row->message);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(row->event, node.last_event, row->readme);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(row->after, node.state, row->readme);
+        tvo_node_transition_info_t cell;
+        TEST_ASSERT_TRUE_MESSAGE(tvo_node_transition_info(before, row->event, &cell), row->readme);
+        TEST_ASSERT_TRUE_MESSAGE(cell.reachable, row->readme);
+        TEST_ASSERT_TRUE_MESSAGE(row->after == cell.next_if_taken || row->after == cell.next_if_refused, row->readme);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(row->answer == ANSWER_ACK, cell.acked, row->readme);
+        covered[before][row->event] = 1u;
+        switch (row->answer) {
+        case ANSWER_ACK: {
+            const tvo_lcm_session_ack_t ack = THE_ACK();
+            TEST_ASSERT_EQUAL_INT_MESSAGE(row->status, ack.status, row->readme);
+            TEST_ASSERT_EQUAL_INT64_MESSAGE(row->running_after, ack.running_session_id, row->readme);
+            if (row->message == SEND_START_INVALID) {
+                EF_ASSERT_PARAM(TVO_PARAM_PERIOD, ack.bad_param); /* the check that failed is named */
+            }
+            break;
+        }
+        case ANSWER_SAFE_STOP_ONLY: {
+            const tvo_lcm_command_t cmd = THE_SESSIONLESS_COMMAND();
+            TEST_ASSERT_EQUAL_INT_MESSAGE(row->status, cmd.status, row->readme);
+            EXPECT_SAFE_STOP(cmd);
+            break;
+        }
+        case ANSWER_COMMAND: {
+            const tvo_lcm_command_t cmd = THE_COMMAND();
+            TEST_ASSERT_EQUAL_INT_MESSAGE(row->status, cmd.status, row->readme);
+            break;
+        }
+        case ANSWER_NONE:
+        default:
+            EXPECT_NOTHING_PUBLISHED();
+            break;
+        }
+        const tvo_node_session_t *s = tvo_node_session(&node);
+        TEST_ASSERT_EQUAL_INT64_MESSAGE(row->running_after, s != NULL ? s->session_id : -1, row->readme);
+        if (row->kept) {
+            if (row->other_session_counted) {
+                snapshot_counters.other_session++;
+            }
+            ASSERT_SESSION_AND_COUNTERS_KEPT();
+        }
+        if (row->message == SEND_STOP_RUNNING) {
+            TEST_ASSERT_EQUAL_UINT8_MESSAGE(1u, node.stop_requested, row->readme);
+        }
+    }
+    for (int state = 0; state < (int)TVO_NODE_STATE_COUNT; ++state) {
+        for (int event = TVO_NODE_EVENT_NONE + 1; event < (int)TVO_NODE_EVENT_COUNT; ++event) {
+            tvo_node_transition_info_t cell;
+            TEST_ASSERT_TRUE(tvo_node_transition_info((tvo_node_state_t)state, (tvo_node_event_t)event, &cell));
+            if (cell.reachable && !covered[state][event]) {
+                static char text[96];
+                (void)snprintf(text, sizeof(text), "table cell (state %d, event %d) is no row's", state, event);
+                TEST_FAIL_MESSAGE(text);
+            }
+        }
+    }
+}
+
+/* When idle no id runs: no message is a repeat, a conflict, a STOP of the running id or another
+ * session's, and the table says those cells cannot arise. */
+static void test_idle_cells_the_classification_cannot_reach_are_marked_so(void)
+{
+    const tvo_node_event_t unreachable[] = {TVO_NODE_EVENT_START_REPEAT, TVO_NODE_EVENT_START_CONFLICT,
+                                            TVO_NODE_EVENT_STOP, TVO_NODE_EVENT_MEASUREMENT_OTHER,
+                                            TVO_NODE_EVENT_TARGET_OTHER};
+    for (size_t i = 0; i < sizeof(unreachable) / sizeof(unreachable[0]); ++i) {
+        tvo_node_transition_info_t cell;
+        TEST_ASSERT_TRUE(tvo_node_transition_info(TVO_NODE_IDLE, unreachable[i], &cell));
+        TEST_ASSERT_EQUAL_UINT8(0u, cell.reachable);
+    }
+    /* Every message, whatever its id, when idle: START, STOP_OTHER, OTHER_ACTION, MEASUREMENT, TARGET. */
+    const row_message_t all[] = {SEND_START_INVALID,     SEND_START_REPEAT,      SEND_START_OTHER_CONTENT,
+                                 SEND_STOP_RUNNING,      SEND_STOP_OTHER,        SEND_OTHER_ACTION,
+                                 SEND_MEASUREMENT_OWN,   SEND_MEASUREMENT_OTHER, SEND_TARGET_OWN,
+                                 SEND_TARGET_OTHER};
+    for (size_t i = 0; i < sizeof(all) / sizeof(all[0]); ++i) {
+        setUp();
+        send_row_message(all[i]);
+        tvo_node_transition_info_t cell;
+        TEST_ASSERT_TRUE(tvo_node_transition_info(TVO_NODE_IDLE, node.last_event, &cell));
+        TEST_ASSERT_EQUAL_UINT8(1u, cell.reachable);
+    }
+    tvo_node_transition_info_t cell;
+    TEST_ASSERT_FALSE(tvo_node_transition_info(TVO_NODE_IDLE, TVO_NODE_EVENT_NONE, &cell));
+    TEST_ASSERT_FALSE(tvo_node_transition_info(TVO_NODE_STATE_COUNT, TVO_NODE_EVENT_START, &cell));
+    TEST_ASSERT_FALSE(tvo_node_transition_info(TVO_NODE_RUNNING, TVO_NODE_EVENT_COUNT, &cell));
+}
+
+/* ------------------------------------------------------------------------------------------------
  * CLOCK_PLANT timing
  * --------------------------------------------------------------------------------------------- */
 
@@ -2231,6 +2465,8 @@ int main(void)
     RUN_TEST(test_unknown_actions_are_refused_and_change_nothing);
     RUN_TEST(test_measurement_without_a_session_is_answered_with_a_safe_stop);
     RUN_TEST(test_messages_of_another_session_are_ignored_and_counted);
+    RUN_TEST(test_each_readme_session_row_is_what_the_table_does);
+    RUN_TEST(test_idle_cells_the_classification_cannot_reach_are_marked_so);
     RUN_TEST(test_plant_period_is_the_apply_instant_nearest_stamp_plus_tau);
     RUN_TEST(test_plant_age_outside_zero_to_h_is_refused_by_the_controller);
     RUN_TEST(test_plant_duplicates_and_reordering_are_out_of_order);
