@@ -5,9 +5,6 @@
 
 #include "tvo/sample_clock.h"
 
-extern const tvo_schedule_ops_t tvo_schedule_plant_clock;
-extern const tvo_schedule_ops_t tvo_schedule_node_clock;
-
 const tvo_schedule_ops_t *tvo_schedule_ops(int32_t clock_source)
 {
     switch (clock_source) {

@@ -94,6 +94,10 @@ struct tvo_schedule {
     } clock;
 };
 
+/** The two clock modes (schedule_plant_clock.c, schedule_node_clock.c). */
+extern const tvo_schedule_ops_t tvo_schedule_plant_clock;
+extern const tvo_schedule_ops_t tvo_schedule_node_clock;
+
 /** The clock mode of session_t.clock_source, or NULL. */
 const tvo_schedule_ops_t *tvo_schedule_ops(int32_t clock_source);
 
