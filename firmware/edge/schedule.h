@@ -94,6 +94,24 @@ struct tvo_schedule {
     } clock;
 };
 
+/** A clock mode's table from its functions, named <mode>_start, <mode>_place, ...: every mode
+ *  defines every function, and the list is written once. */
+#define TVO_SCHEDULE_OPS(mode, clock)                                   \
+    {                                                                   \
+        .clock_source = (clock),                                        \
+        .start = mode##_start,                                          \
+        .repeat_start = mode##_repeat_start,                            \
+        .place = mode##_place,                                          \
+        .accepted = mode##_accepted,                                    \
+        .vote = mode##_vote,                                            \
+        .refusal_utime = mode##_refusal_utime,                          \
+        .count_refusal = mode##_count_refusal,                          \
+        .latest_target_us = mode##_latest_target_us,                    \
+        .take_missed = mode##_take_missed,                              \
+        .next_deadline = mode##_next_deadline,                          \
+        .telemetry_node_time_us = mode##_telemetry_node_time_us,        \
+    }
+
 /** The two clock modes (schedule_plant_clock.c, schedule_node_clock.c). */
 extern const tvo_schedule_ops_t tvo_schedule_plant_clock;
 extern const tvo_schedule_ops_t tvo_schedule_node_clock;

@@ -133,16 +133,4 @@ static int64_t node_telemetry_node_time_us(int64_t now_us)
     return now_us;
 }
 
-const tvo_schedule_ops_t tvo_schedule_node_clock = {
-    .clock_source = TVO_LCM_SESSION_T_CLOCK_NODE,
-    .start = node_start,
-    .repeat_start = node_repeat_start,
-    .place = node_place,
-    .accepted = node_accepted,
-    .vote = node_vote,
-    .refusal_utime = node_refusal_utime,
-    .count_refusal = node_count_refusal,
-    .latest_target_us = node_latest_target_us,
-    .take_missed = node_take_missed,
-    .next_deadline = node_next_deadline,
-    .telemetry_node_time_us = node_telemetry_node_time_us};
+const tvo_schedule_ops_t tvo_schedule_node_clock = TVO_SCHEDULE_OPS(node, TVO_LCM_SESSION_T_CLOCK_NODE);

@@ -180,16 +180,4 @@ static int64_t plant_telemetry_node_time_us(int64_t now_us)
     return 0;
 }
 
-const tvo_schedule_ops_t tvo_schedule_plant_clock = {
-    .clock_source = TVO_LCM_SESSION_T_CLOCK_PLANT,
-    .start = plant_start,
-    .repeat_start = plant_repeat_start,
-    .place = plant_place,
-    .accepted = plant_accepted,
-    .vote = plant_vote,
-    .refusal_utime = plant_refusal_utime,
-    .count_refusal = plant_count_refusal,
-    .latest_target_us = plant_latest_target_us,
-    .take_missed = plant_take_missed,
-    .next_deadline = plant_next_deadline,
-    .telemetry_node_time_us = plant_telemetry_node_time_us};
+const tvo_schedule_ops_t tvo_schedule_plant_clock = TVO_SCHEDULE_OPS(plant, TVO_LCM_SESSION_T_CLOCK_PLANT);
