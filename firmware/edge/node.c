@@ -1,5 +1,5 @@
 /*
- * The firmware node's transport-independent logic; see node.h and README.md ("Sessions", "Timing").
+ * The firmware node's transport-independent logic; see node.h and lcm_types/README.md ("Sessions", "Timing").
  * One flow: a message is decoded, classified into an event, and the session table says what it does
  * in the node's state; a measurement's period and times come from the session's schedule (its clock
  * mode's object, schedule.h), and its command from the core's step.
@@ -138,7 +138,7 @@ static tvo_status_t count_other_session(tvo_node_t *node, const node_input_t *in
 #define RUNNING TVO_NODE_RUNNING
 #define CANNOT_ARISE {NULL, TVO_OK, IDLE, IDLE, 0, 0}
 
-/* Every transition of the node, README.md "Sessions" row by row (the README's "any" is both states). */
+/* Every transition of the node, lcm_types/README.md "Sessions" row by row (its "any" is both states). */
 static const node_transition_t session_table[TVO_NODE_STATE_COUNT][TVO_NODE_EVENT_COUNT] = {
     [TVO_NODE_IDLE] = {
         /* idle, START that passes every check: built and runs / any, START that fails: nothing changes */
@@ -359,7 +359,7 @@ typedef struct {
  * The core's step with the paper's slack rule: the first accepted sample is the state at t = 0 and
  * chooses the barrier slack s0. The step reads the barrier from the session's problem, so the choice
  * is made there before it and taken back if the step refuses the sample (the next first sample
- * chooses again): the one piece of a refused step the node itself undoes (README "Timing").
+ * chooses again): the one piece of a refused step the node itself undoes (lcm_types/README.md "Timing").
  */
 static tvo_status_t step_with_slack_rule(tvo_node_session_t *s, const tvo_edge_measurement_t *meas,
                                          uint32_t apply_tick, tvo_edge_command_t *cmd)

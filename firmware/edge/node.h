@@ -2,7 +2,7 @@
  * The firmware node, independent of the transport: encoded LCM messages and the node's own clock
  * in, encoded messages out through a publish callback. tvo_firmware_node runs it behind LCM on the
  * host; the processor-in-the-loop program runs the same code on the microcontroller behind a
- * serial link. README.md ("Sessions", "Timing", "Writing your own plant") is the contract; in short:
+ * serial link. lcm_types/README.md ("Sessions", "Timing", "Writing your own plant") is the contract; in short:
  *
  *   TVO_SESSION      START builds a session in a spare slot and switches to it only if every check
  *                    passed (a refused START changes nothing); a repeat of the running START is
@@ -46,7 +46,7 @@ extern "C" {
 
 typedef void (*tvo_node_publish_fn)(void *context, int channel, const uint8_t *data, uint32_t length);
 
-/** The node's states (README "Sessions"): idle, or running one session. */
+/** The node's states (lcm_types/README.md "Sessions"): idle, or running one session. */
 typedef enum {
     TVO_NODE_IDLE = 0,
     TVO_NODE_RUNNING = 1,

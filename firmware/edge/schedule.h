@@ -11,7 +11,7 @@
  * Times are int64 microseconds on the schedule's clock (the node's in CLOCK_NODE, the plant's in
  * CLOCK_PLANT): schedule time = plant time + anchor.offset_us. The core's ticks are plant time, so a
  * re-anchor (a new offset) moves nothing in the core: it is computed into a copy of the anchor and
- * committed, or not, by one assignment. README.md ("Timing", "The watchdog") is the contract.
+ * committed, or not, by one assignment. lcm_types/README.md ("Timing", "The watchdog") is the contract.
  */
 #ifndef TVO_SCHEDULE_H
 #define TVO_SCHEDULE_H

@@ -1,6 +1,6 @@
 /*
  * CLOCK_NODE (real time): the node's own monotonic clock runs the schedule; see schedule.h and
- * README.md ("Timing", "The watchdog"). The START maps the plant's clock onto the node's; a sample
+ * lcm_types/README.md ("Timing", "The watchdog"). The START maps the plant's clock onto the node's; a sample
  * serves the first period after its arrival that was not served; a timer hands every period that
  * passes without one to the core's watchdog (tvo_controller_miss), which alone decides the stop.
  */

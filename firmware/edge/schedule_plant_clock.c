@@ -1,5 +1,5 @@
 /*
- * CLOCK_PLANT (lockstep): the plant's stamps are the schedule's clock; see schedule.h and README.md
+ * CLOCK_PLANT (lockstep): the plant's stamps are the schedule's clock; see schedule.h and lcm_types/README.md
  * ("Timing", "The watchdog"). A sample stamped s serves the period whose apply instant is nearest
  * s + tau; the first accepted sample anchors the numbering, and later ones must advance sequence and
  * period alike. With no clock of its own the node has no timer: a streak of refusals stops the robots.

@@ -6,7 +6,7 @@
  * message is kept" (byte comparison of the running session before and after), telemetry counters,
  * the slack rule, and one test per integer-from-the-wire site at the int64/int32 extremes (the
  * test_node_ubsan variant runs them all under UBSan and ASan). The contract: /work/edge_spec.md
- * (README "Sessions", "Timing").
+ * (lcm_types/README.md "Sessions", "Timing").
  */
 #include "edge_fixture.h"
 
@@ -668,7 +668,7 @@ static void test_messages_of_another_session_are_ignored_and_counted(void)
 }
 
 /* ------------------------------------------------------------------------------------------------
- * The session table (node.c) against README.md "Sessions", row by row
+ * The session table (node.c) against lcm_types/README.md "Sessions", row by row
  * --------------------------------------------------------------------------------------------- */
 
 /* What a row's message is sent to, and what it sends. */
