@@ -3,6 +3,9 @@
 set(tvo_edge_dir ${CMAKE_CURRENT_LIST_DIR})
 set(tvo_edge_node_sources
   ${tvo_edge_dir}/node.c
+  ${tvo_edge_dir}/schedule.c
+  ${tvo_edge_dir}/schedule_plant_clock.c
+  ${tvo_edge_dir}/schedule_node_clock.c
   ${tvo_edge_dir}/session_codec.c
   ${tvo_edge_dir}/step_codec.c
   ${tvo_edge_dir}/edge_controller.c

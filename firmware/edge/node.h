@@ -2,7 +2,7 @@
  * The firmware node, independent of the transport: encoded LCM messages and the node's own clock
  * in, encoded messages out through a publish callback. tvo_firmware_node runs it behind LCM on the
  * host; the processor-in-the-loop program runs the same code on the microcontroller behind a
- * serial link. README.md ("Sessions", "Timing", "Writing your own plant") is the contract; in short:
+ * serial link. lcm_types/README.md ("Sessions", "Timing", "Writing your own plant") is the contract; in short:
  *
  *   TVO_SESSION      START builds a session in a spare slot and switches to it only if every check
  *                    passed (a refused START changes nothing); a repeat of the running START is
@@ -16,6 +16,10 @@
  *                    by the core (tvo_controller_miss); once its watchdog stops the robots, a safe
  *                    stop stamped now, every period until measurements are accepted again.
  *
+ * What each message does in each state (idle, running) is one table in node.c, the README's
+ * "Sessions" table row by row; which period a measurement serves is the session's schedule, one
+ * object per clock mode (schedule.h).
+ *
  * Times: the node's clock now_us is int64 microseconds, monotonic, in [0, TVO_WIRE_TIME_MAX_US].
  * Every integer from the wire is range-checked before arithmetic (session_codec.h).
  */
@@ -26,6 +30,7 @@
 
 #include "channels.h"
 #include "edge_controller.h"
+#include "schedule.h"
 #include "tvo_lcm_node_counters_t.h"
 #include "tvo_lcm_target_t.h"
 
@@ -37,33 +42,46 @@ extern "C" {
 #define TVO_NODE_BUFFER_BYTES 2048
 
 /** tvo_node_poll's answer when no deadline is pending. */
-#define TVO_NODE_NO_DEADLINE INT64_MAX
+#define TVO_NODE_NO_DEADLINE TVO_SCHEDULE_NO_DEADLINE
 
 typedef void (*tvo_node_publish_fn)(void *context, int channel, const uint8_t *data, uint32_t length);
 
-/** A session: its controller and problem, its timing, and where its schedule stands. */
+/** The node's states (lcm_types/README.md "Sessions"): idle, or running one session. */
+typedef enum {
+    TVO_NODE_IDLE = 0,
+    TVO_NODE_RUNNING = 1,
+    TVO_NODE_STATE_COUNT
+} tvo_node_state_t;
+
+/** What a decoded message is to the node in its state: a row of the session table (node.c). */
+typedef enum {
+    TVO_NODE_EVENT_NONE = 0,           /* nothing handled yet, or a message that did not decode */
+    TVO_NODE_EVENT_START,              /* START of an id that is not running */
+    TVO_NODE_EVENT_START_REPEAT,       /* START of the running id, the same content (any utime) */
+    TVO_NODE_EVENT_START_CONFLICT,     /* START of the running id with other content */
+    TVO_NODE_EVENT_STOP,               /* STOP of the running id */
+    TVO_NODE_EVENT_STOP_OTHER,         /* STOP of an id that is not running */
+    TVO_NODE_EVENT_OTHER_ACTION,       /* a session message that is neither START nor STOP */
+    TVO_NODE_EVENT_MEASUREMENT,        /* of the running session; when idle, of any */
+    TVO_NODE_EVENT_MEASUREMENT_OTHER,  /* of another session id than the running one */
+    TVO_NODE_EVENT_TARGET,             /* a streamed target sample of the running session; when idle, of any */
+    TVO_NODE_EVENT_TARGET_OTHER,       /* of another session id than the running one */
+    TVO_NODE_EVENT_COUNT
+} tvo_node_event_t;
+
+/** A session: its controller and problem, and its schedule (clock mode, timing, where it stands). */
 typedef struct {
     tvo_edge_controller_t controller;
     tvo_problem_t problem;             /* objective, targets and constraint terms the controller points into */
-    tvo_session_timing_t timing;
+    tvo_schedule_t schedule;
     int64_t session_id;
     uint64_t content_hash;             /* of the START past its utime: a repeat is recognised */
-    int64_t start_utime;               /* CLOCK_PLANT: the plant's clock at the START (a repeat's, or the vote's, if later): the first sample's window */
-    int64_t offset_us;                 /* schedule clock minus plant clock: 0 in CLOCK_PLANT */
-    int64_t epoch_schedule_us;         /* the epoch on the schedule's clock */
-    uint8_t has_accepted;              /* a measurement was accepted (anchors sequence and watchdog) */
-    int64_t last_period;               /* period index j of the last accepted measurement */
-    int64_t last_sequence;             /* its sequence */
-    uint32_t refused_in_row;           /* CLOCK_PLANT: refusals since the last accepted measurement */
-    int64_t next_miss_period;          /* CLOCK_NODE: the first period not yet served or counted as missed */
-    int64_t anchor_candidate_us;       /* what refused measurements agree on, and how many in a row: */
-    uint8_t anchor_votes;              /*   CLOCK_NODE the clock offset, CLOCK_PLANT the sequence numbering */
 } tvo_node_session_t;
 
 typedef struct {
     tvo_node_session_t slot[2];              /* the running session and a spare to build a START in */
     uint8_t running;                         /* index of the running slot */
-    uint8_t has_session;
+    uint8_t state;                           /* tvo_node_state_t */
     union {                                  /* the message being handled: decoded in place, not on the stack */
         tvo_lcm_session_t session;
         tvo_lcm_measurement_t measurement;
@@ -76,9 +94,21 @@ typedef struct {
     tvo_lcm_node_counters_t counters;        /* since the running session started (in telemetry) */
     tvo_lcm_session_ack_t last_ack;          /* the last ack published, for the transport's log */
     uint32_t acks;                           /* acks published since init */
+    tvo_node_event_t last_event;             /* what the last decoded message was, for the transport's log */
     tvo_status_t last_refusal;               /* why the last refused measurement was refused */
     tvo_status_t last_target_status;         /* outcome of the last streamed target sample */
 } tvo_node_t;
+
+/** One transition of the session table: the state after a message, if its action took effect or not. */
+typedef struct {
+    tvo_node_state_t next_if_taken;
+    tvo_node_state_t next_if_refused;
+    uint8_t acked;                           /* answered with a session ack */
+    uint8_t reachable;                       /* 0: the event cannot arise in this state */
+} tvo_node_transition_info_t;
+
+/** The session table's cell for (state, event) (tests and logs); 0 unless both are in range. */
+int tvo_node_transition_info(tvo_node_state_t state, tvo_node_event_t event, tvo_node_transition_info_t *info);
 
 /** 0 if the encode buffer holds every message the node publishes (sizes are constants). */
 int tvo_node_check_buffer(void);

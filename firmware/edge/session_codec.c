@@ -89,20 +89,23 @@ tvo_status_t tvo_session_decode_timing(const tvo_lcm_session_t *msg, tvo_session
     return TVO_OK;
 }
 
-tvo_status_t tvo_session_decode_unicycle(const tvo_lcm_session_t *msg, tvo_controller_config_t *cfg,
-                                         tvo_session_reject_t *why)
+/* The sampled-data settings the unicycle's and the chain's configurations both carry under the same
+ * names (tvo/controller.h, tvo/chain_controller.h), from the START and its checked timing: one
+ * mapping for both types. */
+#define SET_SAMPLED_DATA_CONFIG(cfg, msg, timing)                              \
+    do {                                                                       \
+        (cfg)->tick_hz = TVO_EDGE_TICK_HZ;                                     \
+        (cfg)->period_ticks = (uint32_t)(timing)->period_us;                   \
+        (cfg)->delay_ticks = (uint32_t)(timing)->delay_us;                     \
+        (cfg)->delay_compensation = (msg)->delay_compensation ? 1u : 0u;       \
+        (cfg)->zoh_aware = (msg)->zoh_aware ? 1u : 0u;                         \
+        (cfg)->filter_tf_s = tvo_wire_real((msg)->filter_tf_s);                \
+        (cfg)->watchdog_periods = (timing)->watchdog_periods;                  \
+    } while (0)
+
+static tvo_status_t unicycle_config(const tvo_lcm_session_t *msg, const tvo_session_timing_t *timing,
+                                    tvo_controller_config_t *cfg, tvo_session_reject_t *why)
 {
-    if (msg == NULL || cfg == NULL) {
-        return reject(why, TVO_ERR_NULL, TVO_PARAM_NONE, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
-    }
-    tvo_session_timing_t timing;
-    tvo_status_t st = tvo_session_decode_timing(msg, &timing, why);
-    if (st == TVO_OK) {
-        st = tvo_controller_config_default(cfg);
-    }
-    if (st != TVO_OK) {
-        return st;
-    }
     if (msg->velocity_source == TVO_LCM_SESSION_T_VELOCITY_FROM_POSE) {
         cfg->velocity_source = TVO_VELOCITY_FROM_POSE;
     } else if (msg->velocity_source == TVO_LCM_SESSION_T_VELOCITY_FROM_POSITION) {
@@ -110,40 +113,23 @@ tvo_status_t tvo_session_decode_unicycle(const tvo_lcm_session_t *msg, tvo_contr
     } else {
         return reject_param(why, TVO_PARAM_VELOCITY_SOURCE);
     }
-    cfg->tick_hz = TVO_EDGE_TICK_HZ;
-    cfg->period_ticks = (uint32_t)timing.period_us;
-    cfg->delay_ticks = (uint32_t)timing.delay_us;
-    cfg->robot_count = timing.robot_count;
-    cfg->delay_compensation = msg->delay_compensation ? 1u : 0u;
-    cfg->zoh_aware = msg->zoh_aware ? 1u : 0u;
-    cfg->filter_tf_s = tvo_wire_real(msg->filter_tf_s);
+    SET_SAMPLED_DATA_CONFIG(cfg, msg, timing);
+    cfg->robot_count = timing->robot_count;
     cfg->gain_kp = tvo_wire_real(msg->gain_kp);
     cfg->gain_kd = tvo_wire_real(msg->gain_kd);
     cfg->omega_max_radps = tvo_wire_real(msg->omega_max_radps);
     cfg->accel_max_mps2 = tvo_wire_real(msg->accel_max_mps2);
     cfg->speed_max_mps = tvo_wire_real(msg->speed_max_mps);
     cfg->min_speed_mps = tvo_wire_real(msg->min_speed_mps);
-    cfg->watchdog_periods = timing.watchdog_periods;
     for (uint8_t r = 0; r < TVO_MAX_ROBOTS; ++r) {
-        cfg->initial_speed_mps[r] = (r < timing.robot_count) ? tvo_wire_real(msg->robot[r].initial_speed_mps) : TVO_R(0.0);
+        cfg->initial_speed_mps[r] = (r < timing->robot_count) ? tvo_wire_real(msg->robot[r].initial_speed_mps) : TVO_R(0.0);
     }
     return TVO_OK;
 }
 
-tvo_status_t tvo_session_decode_chain(const tvo_lcm_session_t *msg, tvo_chain_config_t *cfg,
-                                      tvo_session_reject_t *why)
+static tvo_status_t chain_config(const tvo_lcm_session_t *msg, const tvo_session_timing_t *timing,
+                                 tvo_chain_config_t *cfg, tvo_session_reject_t *why)
 {
-    if (msg == NULL || cfg == NULL) {
-        return reject(why, TVO_ERR_NULL, TVO_PARAM_NONE, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
-    }
-    tvo_session_timing_t timing;
-    tvo_status_t st = tvo_session_decode_timing(msg, &timing, why);
-    if (st == TVO_OK) {
-        st = tvo_chain_config_default(cfg);
-    }
-    if (st != TVO_OK) {
-        return st;
-    }
     if (msg->chain_relative_degree < 1 || msg->chain_relative_degree > TVO_MAX_RELATIVE_DEGREE) {
         return reject_param(why, TVO_PARAM_GAINS);
     }
@@ -151,20 +137,45 @@ tvo_status_t tvo_session_decode_chain(const tvo_lcm_session_t *msg, tvo_chain_co
         msg->velocity_source != TVO_LCM_SESSION_T_VELOCITY_FROM_POSITION) {
         return reject_param(why, TVO_PARAM_VELOCITY_SOURCE);
     }
-    cfg->tick_hz = TVO_EDGE_TICK_HZ;
-    cfg->period_ticks = (uint32_t)timing.period_us;
-    cfg->delay_ticks = (uint32_t)timing.delay_us;
+    SET_SAMPLED_DATA_CONFIG(cfg, msg, timing);
     cfg->relative_degree = (uint8_t)msg->chain_relative_degree;
-    cfg->delay_compensation = msg->delay_compensation ? 1u : 0u;
-    cfg->zoh_aware = msg->zoh_aware ? 1u : 0u;
     cfg->filtered_derivatives = (msg->velocity_source == TVO_LCM_SESSION_T_VELOCITY_FROM_POSITION) ? 1u : 0u;
-    cfg->filter_tf_s = tvo_wire_real(msg->filter_tf_s);
     for (size_t i = 0; i < TVO_MAX_RELATIVE_DEGREE; ++i) {
         cfg->gain[i] = tvo_wire_real(msg->chain_gains[i]);
     }
     cfg->input_max = tvo_wire_real(msg->chain_input_max);
-    cfg->watchdog_periods = timing.watchdog_periods;
     return TVO_OK;
+}
+
+/* A controller's configuration, the unicycle's or the chain's (the other NULL; both NULL: TVO_ERR_NULL): the arguments, the
+ * START's timing and the core's defaults first, then the plant's own settings. */
+static tvo_status_t decode_controller(const tvo_lcm_session_t *msg, tvo_controller_config_t *unicycle,
+                                      tvo_chain_config_t *chain, tvo_session_reject_t *why)
+{
+    if (msg == NULL || (unicycle == NULL && chain == NULL)) {
+        return reject(why, TVO_ERR_NULL, TVO_PARAM_NONE, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+    }
+    tvo_session_timing_t timing;
+    tvo_status_t st = tvo_session_decode_timing(msg, &timing, why);
+    if (st == TVO_OK) {
+        st = (unicycle != NULL) ? tvo_controller_config_default(unicycle) : tvo_chain_config_default(chain);
+    }
+    if (st != TVO_OK) {
+        return st;
+    }
+    return (unicycle != NULL) ? unicycle_config(msg, &timing, unicycle, why) : chain_config(msg, &timing, chain, why);
+}
+
+tvo_status_t tvo_session_decode_unicycle(const tvo_lcm_session_t *msg, tvo_controller_config_t *cfg,
+                                         tvo_session_reject_t *why)
+{
+    return decode_controller(msg, cfg, NULL, why);
+}
+
+tvo_status_t tvo_session_decode_chain(const tvo_lcm_session_t *msg, tvo_chain_config_t *cfg,
+                                      tvo_session_reject_t *why)
+{
+    return decode_controller(msg, NULL, cfg, why);
 }
 
 tvo_status_t tvo_session_decode_path(const tvo_lcm_path_t *path, tvo_target_t *target)
@@ -217,16 +228,32 @@ tvo_status_t tvo_session_decode_path(const tvo_lcm_path_t *path, tvo_target_t *t
     }
 }
 
-/* A count from the wire, 0 .. both the message's and the core's capacity. */
-static int count_ok(int32_t count, int32_t wire_max, int32_t core_max)
+/* A part's count from the wire: 0 .. both the message's and the core's capacity, narrowed once checked. */
+static tvo_status_t decode_count(int32_t count, int32_t wire_max, int32_t core_max, int32_t part, uint8_t *decoded,
+                                 tvo_session_reject_t *why)
 {
-    return count >= 0 && count <= wire_max && count <= core_max;
+    if (count < 0 || count > wire_max || count > core_max) {
+        return reject_part(why, TVO_ERR_CAPACITY, part, -1);
+    }
+    *decoded = (uint8_t)count;
+    return TVO_OK;
 }
 
 /* A robot index from the wire: 0 .. robot_count - 1 (checked before narrowing to uint8_t). */
 static int robot_ok(int32_t robot, uint8_t robot_count)
 {
     return robot >= 0 && robot < (int32_t)robot_count;
+}
+
+/* The two robots of a pairwise entry (a distance bound, an offset), narrowed once both are checked. */
+static int decode_robot_pair(int32_t robot_a, int32_t robot_b, uint8_t robot_count, uint8_t *a, uint8_t *b)
+{
+    if (!robot_ok(robot_a, robot_count) || !robot_ok(robot_b, robot_count)) {
+        return 0;
+    }
+    *a = (uint8_t)robot_a;
+    *b = (uint8_t)robot_b;
+    return 1;
 }
 
 static tvo_status_t decode_robots(const tvo_lcm_session_t *msg, tvo_problem_desc_t *desc, tvo_session_reject_t *why)
@@ -266,35 +293,29 @@ static tvo_status_t decode_distances(const tvo_lcm_session_t *msg, tvo_problem_d
                                      tvo_session_reject_t *why)
 {
     const int32_t part = TVO_LCM_SESSION_ACK_T_PART_DISTANCE;
-    if (!count_ok(msg->distance_count, TVO_LCM_SESSION_T_MAX_DISTANCE_BOUNDS, TVO_MAX_DISTANCE_BOUNDS)) {
-        return reject_part(why, TVO_ERR_CAPACITY, part, -1);
-    }
-    desc->distance_count = (uint8_t)msg->distance_count;
-    for (uint8_t i = 0; i < desc->distance_count; ++i) {
+    const tvo_status_t st = decode_count(msg->distance_count, TVO_LCM_SESSION_T_MAX_DISTANCE_BOUNDS,
+                                         TVO_MAX_DISTANCE_BOUNDS, part, &desc->distance_count, why);
+    for (uint8_t i = 0; st == TVO_OK && i < desc->distance_count; ++i) {
         const tvo_lcm_distance_bound_t *w = &msg->distance[i];
-        if (!robot_ok(w->robot_a, desc->robot_count) || !robot_ok(w->robot_b, desc->robot_count)) {
+        tvo_distance_bound_desc_t *d = &desc->distance[i];
+        if (!decode_robot_pair(w->robot_a, w->robot_b, desc->robot_count, &d->robot_a, &d->robot_b)) {
             return reject_part(why, TVO_ERR_PARAM, part, (int32_t)i);
         }
-        tvo_distance_bound_desc_t *d = &desc->distance[i];
-        d->robot_a = (uint8_t)w->robot_a;
-        d->robot_b = (uint8_t)w->robot_b;
         d->min_m = tvo_wire_real(w->min_m);
         d->min_rate_mps = tvo_wire_real(w->min_rate_mps);
         d->max_m = tvo_wire_real(w->max_m);
         d->max_rate_mps = tvo_wire_real(w->max_rate_mps);
     }
-    return TVO_OK;
+    return st;
 }
 
 static tvo_status_t decode_halfspaces(const tvo_lcm_session_t *msg, tvo_problem_desc_t *desc,
                                       tvo_session_reject_t *why)
 {
     const int32_t part = TVO_LCM_SESSION_ACK_T_PART_HALFSPACE;
-    if (!count_ok(msg->halfspace_count, TVO_LCM_SESSION_T_MAX_HALFSPACES, TVO_MAX_HALFSPACES)) {
-        return reject_part(why, TVO_ERR_CAPACITY, part, -1);
-    }
-    desc->halfspace_count = (uint8_t)msg->halfspace_count;
-    for (uint8_t i = 0; i < desc->halfspace_count; ++i) {
+    const tvo_status_t st = decode_count(msg->halfspace_count, TVO_LCM_SESSION_T_MAX_HALFSPACES, TVO_MAX_HALFSPACES,
+                                         part, &desc->halfspace_count, why);
+    for (uint8_t i = 0; st == TVO_OK && i < desc->halfspace_count; ++i) {
         const tvo_lcm_halfspace_t *w = &msg->halfspace[i];
         if (!robot_ok(w->robot, desc->robot_count)) {
             return reject_part(why, TVO_ERR_PARAM, part, (int32_t)i);
@@ -308,16 +329,17 @@ static tvo_status_t decode_halfspaces(const tvo_lcm_session_t *msg, tvo_problem_
         h->bound_m = tvo_wire_real(w->bound_m);
         h->bound_rate_mps = tvo_wire_real(w->bound_rate_mps);
     }
-    return TVO_OK;
+    return st;
 }
 
 static tvo_status_t decode_obstacles(const tvo_lcm_session_t *msg, tvo_problem_desc_t *desc,
                                      tvo_session_reject_t *why)
 {
-    if (!count_ok(msg->obstacle_count, TVO_LCM_SESSION_T_MAX_OBSTACLES, TVO_MAX_OBSTACLES)) {
-        return reject_part(why, TVO_ERR_CAPACITY, TVO_LCM_SESSION_ACK_T_PART_OBSTACLES, -1);
+    const tvo_status_t st = decode_count(msg->obstacle_count, TVO_LCM_SESSION_T_MAX_OBSTACLES, TVO_MAX_OBSTACLES,
+                                         TVO_LCM_SESSION_ACK_T_PART_OBSTACLES, &desc->obstacle_count, why);
+    if (st != TVO_OK) {
+        return st;
     }
-    desc->obstacle_count = (uint8_t)msg->obstacle_count;
     desc->robot_radius_m = tvo_wire_real(msg->robot_radius_m);
     for (uint8_t i = 0; i < desc->obstacle_count; ++i) {
         desc->obstacle[i].center_m[0] = tvo_wire_real(msg->obstacle[i].center_m[0]);
@@ -330,26 +352,22 @@ static tvo_status_t decode_obstacles(const tvo_lcm_session_t *msg, tvo_problem_d
 static tvo_status_t decode_offsets(const tvo_lcm_session_t *msg, tvo_problem_desc_t *desc, tvo_session_reject_t *why)
 {
     const int32_t part = TVO_LCM_SESSION_ACK_T_PART_OFFSETS;
-    if (!count_ok(msg->offset_count, TVO_LCM_SESSION_T_MAX_OFFSETS, TVO_MAX_OFFSET_EQUALITIES)) {
-        return reject_part(why, TVO_ERR_CAPACITY, part, -1);
-    }
-    desc->offset_count = (uint8_t)msg->offset_count;
-    for (uint8_t i = 0; i < desc->offset_count; ++i) {
+    const tvo_status_t st = decode_count(msg->offset_count, TVO_LCM_SESSION_T_MAX_OFFSETS, TVO_MAX_OFFSET_EQUALITIES,
+                                         part, &desc->offset_count, why);
+    for (uint8_t i = 0; st == TVO_OK && i < desc->offset_count; ++i) {
         const tvo_lcm_offset_t *w = &msg->offset[i];
+        tvo_offset_desc_t *o = &desc->offset[i];
         /* d(t) has no stream of its own on the wire: only on-board time functions. */
-        if (!robot_ok(w->robot_a, desc->robot_count) || !robot_ok(w->robot_b, desc->robot_count) ||
+        if (!decode_robot_pair(w->robot_a, w->robot_b, desc->robot_count, &o->robot_a, &o->robot_b) ||
             w->offset.kind == TVO_LCM_PATH_T_KIND_STREAMED) {
             return reject_part(why, TVO_ERR_PARAM, part, (int32_t)i);
         }
-        tvo_offset_desc_t *o = &desc->offset[i];
-        o->robot_a = (uint8_t)w->robot_a;
-        o->robot_b = (uint8_t)w->robot_b;
-        const tvo_status_t st = tvo_session_decode_path(&w->offset, &o->offset);
-        if (st != TVO_OK) {
-            return reject_part(why, st, part, (int32_t)i);
+        const tvo_status_t path_st = tvo_session_decode_path(&w->offset, &o->offset);
+        if (path_st != TVO_OK) {
+            return reject_part(why, path_st, part, (int32_t)i);
         }
     }
-    return TVO_OK;
+    return st;
 }
 
 tvo_status_t tvo_session_decode_problem(const tvo_lcm_session_t *msg, tvo_problem_desc_t *desc,

@@ -12,15 +12,29 @@ _Static_assert(sizeof(((tvo_lcm_command_t *)0)->input) / sizeof(double) >= TVO_M
 _Static_assert(sizeof(((tvo_lcm_telemetry_t *)0)->gradient) / sizeof(double) >= TVO_MAX_OUTPUT_DIM,
                "telemetry_t holds every output");
 
-tvo_status_t tvo_step_measurement_from_lcm(const tvo_lcm_measurement_t *msg, uint8_t robot_count, uint32_t stamp_tick,
-                                           tvo_measurement_t *meas)
+/* A robot count from the wire against the session's (at most the build's). */
+static int robot_count_matches(int32_t wire_count, uint8_t robot_count)
+{
+    return robot_count <= TVO_MAX_ROBOTS && wire_count == (int32_t)robot_count;
+}
+
+/* What every measurement decoding starts with: the arguments, the core's measurement (`size` bytes)
+ * zeroed, and the robot count. */
+static tvo_status_t measurement_start(const tvo_lcm_measurement_t *msg, void *meas, size_t size, uint8_t robot_count)
 {
     if (msg == NULL || meas == NULL) {
         return TVO_ERR_NULL;
     }
-    memset(meas, 0, sizeof(*meas));
-    if (robot_count > TVO_MAX_ROBOTS || msg->robot_count != (int32_t)robot_count) {
-        return TVO_ERR_DIMENSION;
+    memset(meas, 0, size);
+    return robot_count_matches(msg->robot_count, robot_count) ? TVO_OK : TVO_ERR_DIMENSION;
+}
+
+tvo_status_t tvo_step_measurement_from_lcm(const tvo_lcm_measurement_t *msg, uint8_t robot_count, uint32_t stamp_tick,
+                                           tvo_measurement_t *meas)
+{
+    const tvo_status_t st = measurement_start(msg, meas, sizeof(*meas), robot_count);
+    if (st != TVO_OK) {
+        return st;
     }
     meas->stamp_tick = stamp_tick;
     for (size_t r = 0; r < robot_count; ++r) {
@@ -37,12 +51,9 @@ tvo_status_t tvo_step_measurement_from_lcm(const tvo_lcm_measurement_t *msg, uin
 tvo_status_t tvo_step_chain_measurement_from_lcm(const tvo_lcm_measurement_t *msg, uint8_t robot_count,
                                                  uint32_t stamp_tick, tvo_chain_measurement_t *meas)
 {
-    if (msg == NULL || meas == NULL) {
-        return TVO_ERR_NULL;
-    }
-    memset(meas, 0, sizeof(*meas));
-    if (robot_count > TVO_MAX_ROBOTS || msg->robot_count != (int32_t)robot_count) {
-        return TVO_ERR_DIMENSION;
+    const tvo_status_t st = measurement_start(msg, meas, sizeof(*meas), robot_count);
+    if (st != TVO_OK) {
+        return st;
     }
     meas->stamp_tick = stamp_tick;
     for (size_t r = 0; r < robot_count; ++r) {
@@ -60,15 +71,22 @@ tvo_status_t tvo_step_chain_measurement_from_lcm(const tvo_lcm_measurement_t *ms
     return TVO_OK;
 }
 
+/* The stamp fields a command and the telemetry that follows it both carry under the same names (the
+ * LCM types share no header struct): one mapping for both. */
+#define SET_STEP_STAMP(msg, stamp, command_flags)                  \
+    do {                                                           \
+        (msg)->utime = (stamp)->utime;                             \
+        (msg)->session_id = (stamp)->session_id;                   \
+        (msg)->measurement_sequence = (stamp)->sequence;           \
+        (msg)->status = (int32_t)(stamp)->status;                  \
+        (msg)->flags = (int32_t)(command_flags);                   \
+    } while (0)
+
 static void command_stamp(const tvo_step_stamp_t *stamp, uint32_t flags, tvo_lcm_command_t *msg)
 {
     memset(msg, 0, sizeof(*msg));
-    msg->utime = stamp->utime;
-    msg->session_id = stamp->session_id;
-    msg->measurement_sequence = stamp->sequence;
+    SET_STEP_STAMP(msg, stamp, flags);
     msg->robot_count = stamp->robot_count;
-    msg->status = (int32_t)stamp->status;
-    msg->flags = (int32_t)flags;
 }
 
 void tvo_step_command_to_lcm(const tvo_command_t *cmd, const tvo_step_stamp_t *stamp, tvo_lcm_command_t *msg)
@@ -100,11 +118,7 @@ void tvo_step_telemetry_stamp(const tvo_step_stamp_t *stamp, uint32_t flags, tvo
     if (stamp == NULL || msg == NULL) {
         return;
     }
-    msg->utime = stamp->utime;
-    msg->session_id = stamp->session_id;
-    msg->measurement_sequence = stamp->sequence;
-    msg->status = (int32_t)stamp->status;
-    msg->flags = (int32_t)flags;
+    SET_STEP_STAMP(msg, stamp, flags);
 }
 
 void tvo_step_telemetry_to_lcm(const tvo_controller_t *ctl, const tvo_problem_t *problem, tvo_lcm_telemetry_t *msg)
@@ -149,7 +163,7 @@ tvo_status_t tvo_step_target_from_lcm(const tvo_lcm_target_t *msg, uint8_t robot
     if (msg == NULL || problem == NULL) {
         return TVO_ERR_NULL;
     }
-    if (robot_count > TVO_MAX_ROBOTS || msg->robot_count != (int32_t)robot_count) {
+    if (!robot_count_matches(msg->robot_count, robot_count)) {
         return TVO_ERR_DIMENSION;
     }
     /* Every robot's target must take the sample: check all before feeding any (nothing half-kept). */

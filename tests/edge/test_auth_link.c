@@ -283,13 +283,13 @@ static void test_a_restarted_node_refuses_recordings_from_before_its_window(void
     fake_wall_us += 120000000u;
     start_node();
     attack(TVO_NODE_CH_SESSION, frame, recorded, EF_UTIME, &node.counters.replayed);
-    TEST_ASSERT_EQUAL_UINT8(0, node.has_session);
+    TEST_ASSERT_EQUAL_INT(TVO_NODE_IDLE, node.state);
     /* The genuine plant, still running, is heard at once: its counters follow the clock. */
     const uint32_t fresh = encode_sign(&plant, TVO_NODE_CH_SESSION, &start, frame);
     acks_seen = 0u;
     deliver(TVO_NODE_CH_SESSION, frame, fresh, EF_UTIME, NULL);
     TEST_ASSERT_EQUAL_UINT32(1u, acks_seen);
-    TEST_ASSERT_EQUAL_UINT8(1, node.has_session);
+    TEST_ASSERT_EQUAL_INT(TVO_NODE_RUNNING, node.state);
 }
 
 static void test_a_node_counter_never_repeats_across_a_restart(void)

@@ -6,7 +6,7 @@
  * message is kept" (byte comparison of the running session before and after), telemetry counters,
  * the slack rule, and one test per integer-from-the-wire site at the int64/int32 extremes (the
  * test_node_ubsan variant runs them all under UBSan and ASan). The contract: /work/edge_spec.md
- * (README "Sessions", "Timing").
+ * (lcm_types/README.md "Sessions", "Timing").
  */
 #include "edge_fixture.h"
 
@@ -171,29 +171,39 @@ static void take_snapshot(void)
     snapshot_running = node.running;
 }
 
-/* The running session is the snapshot's, byte for byte, but for refused_in_row and the controller's scratch. */
+/* The running session is the snapshot's, byte for byte, but for the CLOCK_PLANT refusal streak, the
+ * anchor votes and the controller's scratch. */
 static void assert_session_kept(int line)
 {
     const tvo_node_session_t *running = tvo_node_session(&node);
     UNITY_TEST_ASSERT_NOT_NULL(running, line, "the session should still run");
     const tvo_node_session_t *s = session_without_scratch(running);
+    const tvo_schedule_t *before = &snapshot.schedule;
+    const tvo_schedule_t *after = &s->schedule;
+    const int clock_node = after->ops->clock_source == TVO_LCM_SESSION_T_CLOCK_NODE;
     UNITY_TEST_ASSERT_EQUAL_UINT8(snapshot_running, node.running, line, "running slot");
     UNITY_TEST_ASSERT_EQUAL_MEMORY(&snapshot.controller, &s->controller, sizeof(s->controller), line,
                                    "controller changed");
     UNITY_TEST_ASSERT_EQUAL_MEMORY(&snapshot.problem, &s->problem, sizeof(s->problem), line, "problem changed");
-    UNITY_TEST_ASSERT_EQUAL_MEMORY(&snapshot.timing, &s->timing, sizeof(s->timing), line, "timing changed");
-    UNITY_TEST_ASSERT_EQUAL_INT64(snapshot.last_period, s->last_period, line, "last_period changed");
-    UNITY_TEST_ASSERT_EQUAL_INT64(snapshot.last_sequence, s->last_sequence, line, "last_sequence changed");
-    UNITY_TEST_ASSERT_EQUAL_INT64(snapshot.next_miss_period, s->next_miss_period, line, "next_miss_period changed");
-    UNITY_TEST_ASSERT_EQUAL_INT64(snapshot.offset_us, s->offset_us, line, "offset changed");
-    UNITY_TEST_ASSERT_EQUAL_UINT8(snapshot.has_accepted, s->has_accepted, line, "has_accepted changed");
+    UNITY_TEST_ASSERT_EQUAL_MEMORY(&before->timing, &after->timing, sizeof(after->timing), line, "timing changed");
+    UNITY_TEST_ASSERT_EQUAL_INT64(before->last_period, after->last_period, line, "last_period changed");
+    UNITY_TEST_ASSERT_EQUAL_INT64(before->anchor.last_sequence, after->anchor.last_sequence, line,
+                                  "last_sequence changed");
+    if (clock_node) {
+        UNITY_TEST_ASSERT_EQUAL_INT64(before->clock.node.next_miss_period, after->clock.node.next_miss_period, line,
+                                      "next_miss_period changed");
+    }
+    UNITY_TEST_ASSERT_EQUAL_INT64(before->anchor.offset_us, after->anchor.offset_us, line, "offset changed");
+    UNITY_TEST_ASSERT_EQUAL_UINT8(before->has_accepted, after->has_accepted, line, "has_accepted changed");
     tvo_node_session_t expected;
     memcpy(&expected, &snapshot, sizeof(expected));
-    expected.refused_in_row = s->refused_in_row;
-    /* The one thing a refused measurement may leave (README "Timing"): a CLOCK_NODE vote on the
-     * plant's clock before the first accepted measurement. */
-    expected.anchor_candidate_us = s->anchor_candidate_us;
-    expected.anchor_votes = s->anchor_votes;
+    if (!clock_node) {
+        expected.schedule.clock.plant.refused_in_row = after->clock.plant.refused_in_row; /* the streak rule */
+    }
+    /* The one thing a refused measurement may leave (README "Timing"): a vote on the plant's clock or
+     * numbering. */
+    expected.schedule.vote_value = after->vote_value;
+    expected.schedule.votes = after->votes;
     UNITY_TEST_ASSERT_EQUAL_MEMORY(&expected, s, sizeof(expected), line, "session changed");
 }
 #define ASSERT_SESSION_KEPT() assert_session_kept(__LINE__)
@@ -274,8 +284,8 @@ static tvo_lcm_command_t expect_refused(const tvo_lcm_measurement_t *m, int64_t 
 {
     const tvo_node_session_t *s = tvo_node_session(&node);
     UNITY_TEST_ASSERT_NOT_NULL(s, line, "no session");
-    const int clock_node = s->timing.clock_source == TVO_LCM_SESSION_T_CLOCK_NODE;
-    const int64_t offset = s->offset_us;
+    const int clock_node = s->schedule.timing.clock_source == TVO_LCM_SESSION_T_CLOCK_NODE;
+    const int64_t offset = s->schedule.anchor.offset_us;
     take_snapshot();
     const int32_t refused_before = node.counters.refused[reason == TVO_ERR_WATCHDOG ? 0 : reason];
     ef_record_clear(&rec);
@@ -349,7 +359,7 @@ static void test_start_when_idle_runs_the_session_and_acks_ok(void)
     const tvo_node_session_t *s = tvo_node_session(&node);
     TEST_ASSERT_NOT_NULL(s);
     TEST_ASSERT_EQUAL_INT64(EF_SESSION_ID, s->session_id);
-    TEST_ASSERT_EQUAL_INT64(0, s->offset_us); /* CLOCK_PLANT: the plant's clock is the schedule's */
+    TEST_ASSERT_EQUAL_INT64(0, s->schedule.anchor.offset_us); /* CLOCK_PLANT: the plant's clock is the schedule's */
     TEST_ASSERT_EQUAL_UINT32(1u, node.acks);
     TEST_ASSERT_EQUAL_UINT8(0u, node.stop_requested);
     TEST_ASSERT_EQUAL_INT64(TVO_NODE_NO_DEADLINE, tvo_node_poll(&node, 0)); /* CLOCK_PLANT has no timer */
@@ -558,7 +568,7 @@ static void test_stop_of_the_running_session_ends_it_and_a_start_begins_anew(voi
     /* The same START again (a plant that re-sends it) starts afresh. */
     start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
     TEST_ASSERT_EQUAL_UINT8(0u, node.stop_requested);
-    TEST_ASSERT_EQUAL_UINT8(0u, tvo_node_session(&node)->has_accepted);
+    TEST_ASSERT_EQUAL_UINT8(0u, tvo_node_session(&node)->schedule.has_accepted);
     plant_meas(&m, 5);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(5));
 }
@@ -658,6 +668,240 @@ static void test_messages_of_another_session_are_ignored_and_counted(void)
 }
 
 /* ------------------------------------------------------------------------------------------------
+ * The session table (node.c) against lcm_types/README.md "Sessions", row by row
+ * --------------------------------------------------------------------------------------------- */
+
+/* What a row's message is sent to, and what it sends. */
+typedef enum { ROW_IDLE, ROW_RUNNING_A } row_state_t;
+typedef enum {
+    SEND_START_VALID_NEW_ID,    /* a START of an id not running, that passes every check */
+    SEND_START_INVALID,         /* a START of an id not running, that fails a check (period 0) */
+    SEND_START_REPEAT,          /* the running START again, a later utime */
+    SEND_START_OTHER_CONTENT,   /* the running id, another gain */
+    SEND_STOP_RUNNING,          /* STOP of the running id */
+    SEND_STOP_OTHER,            /* STOP of an id not running */
+    SEND_OTHER_ACTION,          /* action 7 */
+    SEND_MEASUREMENT_OWN,       /* a genuine measurement of the running id (idle: of any id) */
+    SEND_MEASUREMENT_OTHER,     /* a measurement of another id */
+    SEND_TARGET_OWN,            /* a target sample of the running id (idle: of any id) */
+    SEND_TARGET_OTHER           /* a target sample of another id */
+} row_message_t;
+
+/* What the row says comes back. */
+typedef enum { ANSWER_NONE, ANSWER_ACK, ANSWER_SAFE_STOP_ONLY, ANSWER_COMMAND } row_answer_t;
+
+typedef struct {
+    const char *readme;         /* the README's row: "state | message | action | ack / answer" */
+    row_state_t state;
+    row_message_t message;
+    tvo_node_event_t event;     /* what the node takes the message for */
+    tvo_node_state_t after;     /* the node's state after it */
+    row_answer_t answer;
+    int32_t status;             /* the ack's or the command's status */
+    int64_t running_after;      /* the ack's running_session_id: an id, or -1 */
+    int kept;                   /* "nothing changes": the running session byte for byte, counters too */
+    int other_session_counted;  /* counters.other_session moved by one */
+} readme_row_t;
+
+#define ID_A EF_SESSION_ID
+#define ID_B OTHER_ID
+
+static const readme_row_t readme_rows[] = {
+    {"idle | START that passes every check | the session is built and runs | status 0, running_session_id = its id",
+     ROW_IDLE, SEND_START_VALID_NEW_ID, TVO_NODE_EVENT_START, TVO_NODE_RUNNING, ANSWER_ACK, TVO_OK, ID_B, 0, 0},
+    {"running A | START of a new id B that passes every check | B replaces A | 0, running B", ROW_RUNNING_A,
+     SEND_START_VALID_NEW_ID, TVO_NODE_EVENT_START, TVO_NODE_RUNNING, ANSWER_ACK, TVO_OK, ID_B, 0, 0},
+    {"any (idle) | START that fails a check | nothing changes | the status, bad_param ...; running -1", ROW_IDLE,
+     SEND_START_INVALID, TVO_NODE_EVENT_START, TVO_NODE_IDLE, ANSWER_ACK, TVO_ERR_PARAM, -1, 0, 0},
+    {"any (running A) | START that fails a check | nothing changes: A keeps running | the status ...; running A",
+     ROW_RUNNING_A, SEND_START_INVALID, TVO_NODE_EVENT_START, TVO_NODE_RUNNING, ANSWER_ACK, TVO_ERR_PARAM, ID_A, 1, 0},
+    {"running A | START of A, the same content (any utime) | nothing: a repeat | 0 again", ROW_RUNNING_A,
+     SEND_START_REPEAT, TVO_NODE_EVENT_START_REPEAT, TVO_NODE_RUNNING, ANSWER_ACK, TVO_OK, ID_A, 1, 0},
+    {"running A | START of A with other content | refused | TVO_ERR_SESSION_CONFLICT (17)", ROW_RUNNING_A,
+     SEND_START_OTHER_CONTENT, TVO_NODE_EVENT_START_CONFLICT, TVO_NODE_RUNNING, ANSWER_ACK, TVO_ERR_SESSION_CONFLICT,
+     ID_A, 1, 0},
+    {"running A | STOP of A | the session ends | 0, running -1", ROW_RUNNING_A, SEND_STOP_RUNNING, TVO_NODE_EVENT_STOP,
+     TVO_NODE_IDLE, ANSWER_ACK, TVO_OK, -1, 0, 0},
+    {"any (idle) | STOP of another id | ignored | TVO_ERR_NO_SESSION (18)", ROW_IDLE, SEND_STOP_OTHER,
+     TVO_NODE_EVENT_STOP_OTHER, TVO_NODE_IDLE, ANSWER_ACK, TVO_ERR_NO_SESSION, -1, 0, 0},
+    {"any (running A) | STOP of another id | ignored | TVO_ERR_NO_SESSION (18)", ROW_RUNNING_A, SEND_STOP_OTHER,
+     TVO_NODE_EVENT_STOP_OTHER, TVO_NODE_RUNNING, ANSWER_ACK, TVO_ERR_NO_SESSION, ID_A, 1, 0},
+    {"any (idle) | another action | ignored | TVO_ERR_PARAM", ROW_IDLE, SEND_OTHER_ACTION, TVO_NODE_EVENT_OTHER_ACTION,
+     TVO_NODE_IDLE, ANSWER_ACK, TVO_ERR_PARAM, -1, 0, 0},
+    {"any (running A) | another action | ignored | TVO_ERR_PARAM", ROW_RUNNING_A, SEND_OTHER_ACTION,
+     TVO_NODE_EVENT_OTHER_ACTION, TVO_NODE_RUNNING, ANSWER_ACK, TVO_ERR_PARAM, ID_A, 1, 0},
+    {"idle | measurement | answered with a safe stop, status TVO_ERR_NO_SESSION | command only", ROW_IDLE,
+     SEND_MEASUREMENT_OWN, TVO_NODE_EVENT_MEASUREMENT, TVO_NODE_IDLE, ANSWER_SAFE_STOP_ONLY, TVO_ERR_NO_SESSION, -1, 0,
+     0},
+    {"running A | measurement of another session id | ignored, counted (other_session) | none", ROW_RUNNING_A,
+     SEND_MEASUREMENT_OTHER, TVO_NODE_EVENT_MEASUREMENT_OTHER, TVO_NODE_RUNNING, ANSWER_NONE, 0, ID_A, 1, 1},
+    {"running A | target of another session id | ignored, counted (other_session) | none", ROW_RUNNING_A,
+     SEND_TARGET_OTHER, TVO_NODE_EVENT_TARGET_OTHER, TVO_NODE_RUNNING, ANSWER_NONE, 0, ID_A, 1, 1},
+    /* Transitions of the table that the README's table leaves to other sections: */
+    {"(Timing) running A | measurement of A | served | command and telemetry", ROW_RUNNING_A, SEND_MEASUREMENT_OWN,
+     TVO_NODE_EVENT_MEASUREMENT, TVO_NODE_RUNNING, ANSWER_COMMAND, TVO_OK, ID_A, 0, 0},
+    {"(Streamed targets) running A | target of A | taken (here refused: A's target is not streamed) | none",
+     ROW_RUNNING_A, SEND_TARGET_OWN, TVO_NODE_EVENT_TARGET, TVO_NODE_RUNNING, ANSWER_NONE, 0, ID_A, 0, 0},
+    {"(not in the README) idle | target | ignored, not counted | none", ROW_IDLE, SEND_TARGET_OWN,
+     TVO_NODE_EVENT_TARGET, TVO_NODE_IDLE, ANSWER_NONE, 0, -1, 0, 0},
+};
+
+static void send_row_message(row_message_t message)
+{
+    tvo_lcm_session_t msg;
+    tvo_lcm_measurement_t m;
+    tvo_lcm_target_t t;
+    switch (message) {
+    case SEND_START_VALID_NEW_ID:
+    case SEND_START_INVALID:
+        ef_start(&msg, ID_B, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+        msg.period_us = (message == SEND_START_INVALID) ? 0 : msg.period_us;
+        (void)send_session(&msg, 0);
+        return;
+    case SEND_START_REPEAT:
+    case SEND_START_OTHER_CONTENT:
+        ef_start(&msg, ID_A, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+        msg.utime += (message == SEND_START_REPEAT) ? 1000 : 0;
+        msg.gain_kp += (message == SEND_START_OTHER_CONTENT) ? 1.0 : 0.0;
+        (void)send_session(&msg, 0);
+        return;
+    case SEND_STOP_RUNNING:
+    case SEND_STOP_OTHER:
+        stop_message(&msg, message == SEND_STOP_RUNNING ? ID_A : ID_B);
+        (void)send_session(&msg, 0);
+        return;
+    case SEND_OTHER_ACTION:
+        stop_message(&msg, ID_A);
+        msg.action = 7;
+        (void)send_session(&msg, 0);
+        return;
+    case SEND_MEASUREMENT_OWN:
+    case SEND_MEASUREMENT_OTHER:
+        plant_meas(&m, 2);
+        m.session_id = (message == SEND_MEASUREMENT_OWN) ? ID_A : ID_B;
+        (void)send_measurement(&m, 0);
+        return;
+    case SEND_TARGET_OWN:
+    case SEND_TARGET_OTHER:
+        memset(&t, 0, sizeof(t));
+        t.utime = EF_EPOCH;
+        t.session_id = (message == SEND_TARGET_OWN) ? ID_A : ID_B;
+        t.robot_count = 1;
+        (void)send_target(&t, 0);
+        return;
+    default:
+        TEST_FAIL_MESSAGE("unknown row message");
+    }
+}
+
+/* Sends each row's message in its state and checks the row: what the node took it for, the table's
+ * cell for it, the state after, and the answer. Every reachable cell of the table is some row's. */
+static void test_each_readme_session_row_is_what_the_table_does(void)
+{
+    uint8_t covered[TVO_NODE_STATE_COUNT][TVO_NODE_EVENT_COUNT];
+    memset(covered, 0, sizeof(covered));
+    for (size_t i = 0; i < sizeof(readme_rows) / sizeof(readme_rows[0]); ++i) {
+        const readme_row_t *row = &readme_rows[i];
+        setUp();
+        tvo_node_state_t before = TVO_NODE_IDLE;
+        if (row->state == ROW_RUNNING_A) {
+            plant_session_after(1);
+            take_snapshot();
+            before = TVO_NODE_RUNNING;
+        }
+        TEST_ASSERT_EQUAL_INT_MESSAGE(before, node.state, row->readme);
+        ef_record_clear(&rec);
+        send_row_message(row->message);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(row->event, node.last_event, row->readme);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(row->after, node.state, row->readme);
+        tvo_node_transition_info_t cell;
+        TEST_ASSERT_TRUE_MESSAGE(tvo_node_transition_info(before, row->event, &cell), row->readme);
+        TEST_ASSERT_TRUE_MESSAGE(cell.reachable, row->readme);
+        TEST_ASSERT_TRUE_MESSAGE(row->after == cell.next_if_taken || row->after == cell.next_if_refused, row->readme);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(row->answer == ANSWER_ACK, cell.acked, row->readme);
+        covered[before][row->event] = 1u;
+        switch (row->answer) {
+        case ANSWER_ACK: {
+            const tvo_lcm_session_ack_t ack = THE_ACK();
+            TEST_ASSERT_EQUAL_INT_MESSAGE(row->status, ack.status, row->readme);
+            TEST_ASSERT_EQUAL_INT64_MESSAGE(row->running_after, ack.running_session_id, row->readme);
+            if (row->message == SEND_START_INVALID) {
+                EF_ASSERT_PARAM(TVO_PARAM_PERIOD, ack.bad_param); /* the check that failed is named */
+            }
+            break;
+        }
+        case ANSWER_SAFE_STOP_ONLY: {
+            const tvo_lcm_command_t cmd = THE_SESSIONLESS_COMMAND();
+            TEST_ASSERT_EQUAL_INT_MESSAGE(row->status, cmd.status, row->readme);
+            EXPECT_SAFE_STOP(cmd);
+            break;
+        }
+        case ANSWER_COMMAND: {
+            const tvo_lcm_command_t cmd = THE_COMMAND();
+            TEST_ASSERT_EQUAL_INT_MESSAGE(row->status, cmd.status, row->readme);
+            break;
+        }
+        case ANSWER_NONE:
+        default:
+            EXPECT_NOTHING_PUBLISHED();
+            break;
+        }
+        const tvo_node_session_t *s = tvo_node_session(&node);
+        TEST_ASSERT_EQUAL_INT64_MESSAGE(row->running_after, s != NULL ? s->session_id : -1, row->readme);
+        if (row->kept) {
+            if (row->other_session_counted) {
+                snapshot_counters.other_session++;
+            }
+            ASSERT_SESSION_AND_COUNTERS_KEPT();
+        }
+        if (row->message == SEND_STOP_RUNNING) {
+            TEST_ASSERT_EQUAL_UINT8_MESSAGE(1u, node.stop_requested, row->readme);
+        }
+    }
+    for (int state = 0; state < (int)TVO_NODE_STATE_COUNT; ++state) {
+        for (int event = TVO_NODE_EVENT_NONE + 1; event < (int)TVO_NODE_EVENT_COUNT; ++event) {
+            tvo_node_transition_info_t cell;
+            TEST_ASSERT_TRUE(tvo_node_transition_info((tvo_node_state_t)state, (tvo_node_event_t)event, &cell));
+            if (cell.reachable && !covered[state][event]) {
+                static char text[96];
+                (void)snprintf(text, sizeof(text), "table cell (state %d, event %d) is no row's", state, event);
+                TEST_FAIL_MESSAGE(text);
+            }
+        }
+    }
+}
+
+/* When idle no id runs: no message is a repeat, a conflict, a STOP of the running id or another
+ * session's, and the table says those cells cannot arise. */
+static void test_idle_cells_the_classification_cannot_reach_are_marked_so(void)
+{
+    const tvo_node_event_t unreachable[] = {TVO_NODE_EVENT_START_REPEAT, TVO_NODE_EVENT_START_CONFLICT,
+                                            TVO_NODE_EVENT_STOP, TVO_NODE_EVENT_MEASUREMENT_OTHER,
+                                            TVO_NODE_EVENT_TARGET_OTHER};
+    for (size_t i = 0; i < sizeof(unreachable) / sizeof(unreachable[0]); ++i) {
+        tvo_node_transition_info_t cell;
+        TEST_ASSERT_TRUE(tvo_node_transition_info(TVO_NODE_IDLE, unreachable[i], &cell));
+        TEST_ASSERT_EQUAL_UINT8(0u, cell.reachable);
+    }
+    /* Every message, whatever its id, when idle: START, STOP_OTHER, OTHER_ACTION, MEASUREMENT, TARGET. */
+    const row_message_t all[] = {SEND_START_INVALID,     SEND_START_REPEAT,      SEND_START_OTHER_CONTENT,
+                                 SEND_STOP_RUNNING,      SEND_STOP_OTHER,        SEND_OTHER_ACTION,
+                                 SEND_MEASUREMENT_OWN,   SEND_MEASUREMENT_OTHER, SEND_TARGET_OWN,
+                                 SEND_TARGET_OTHER};
+    for (size_t i = 0; i < sizeof(all) / sizeof(all[0]); ++i) {
+        setUp();
+        send_row_message(all[i]);
+        tvo_node_transition_info_t cell;
+        TEST_ASSERT_TRUE(tvo_node_transition_info(TVO_NODE_IDLE, node.last_event, &cell));
+        TEST_ASSERT_EQUAL_UINT8(1u, cell.reachable);
+    }
+    tvo_node_transition_info_t cell;
+    TEST_ASSERT_FALSE(tvo_node_transition_info(TVO_NODE_IDLE, TVO_NODE_EVENT_NONE, &cell));
+    TEST_ASSERT_FALSE(tvo_node_transition_info(TVO_NODE_STATE_COUNT, TVO_NODE_EVENT_START, &cell));
+    TEST_ASSERT_FALSE(tvo_node_transition_info(TVO_NODE_RUNNING, TVO_NODE_EVENT_COUNT, &cell));
+}
+
+/* ------------------------------------------------------------------------------------------------
  * CLOCK_PLANT timing
  * --------------------------------------------------------------------------------------------- */
 
@@ -672,8 +916,8 @@ static void test_plant_period_is_the_apply_instant_nearest_stamp_plus_tau(void)
         m.utime += jitters[i];
         (void)EXPECT_ACCEPTED(m, 0, plant_apply(3));
         const tvo_node_session_t *s = tvo_node_session(&node);
-        TEST_ASSERT_EQUAL_INT64(3, s->last_period);
-        TEST_ASSERT_EQUAL_INT64(SEQ0 + 3, s->last_sequence);
+        TEST_ASSERT_EQUAL_INT64(3, s->schedule.last_period);
+        TEST_ASSERT_EQUAL_INT64(SEQ0 + 3, s->schedule.anchor.last_sequence);
         plant_meas(&m, 4);
         (void)EXPECT_ACCEPTED(m, 0, plant_apply(4));
     }
@@ -836,7 +1080,7 @@ static void test_plant_watchdog_refusals_in_a_row_give_a_safe_stop_until_one_is_
     tvo_lcm_measurement_t m;
     plant_meas(&m, 3);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(3));
-    TEST_ASSERT_EQUAL_UINT32(0u, tvo_node_session(&node)->refused_in_row);
+    TEST_ASSERT_EQUAL_UINT32(0u, tvo_node_session(&node)->schedule.clock.plant.refused_in_row);
     plant_meas(&dup, 3);
     (void)EXPECT_REFUSED(dup, 0, TVO_ERR_OUT_OF_ORDER); /* the count restarted */
 }
@@ -863,8 +1107,8 @@ static void test_node_clock_offset_comes_from_the_start_and_commands_are_in_plan
 {
     start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_NODE, NODE_T0);
     const tvo_node_session_t *s = tvo_node_session(&node);
-    TEST_ASSERT_EQUAL_INT64(OFFSET, s->offset_us);
-    TEST_ASSERT_EQUAL_INT64(EF_EPOCH + OFFSET, s->epoch_schedule_us);
+    TEST_ASSERT_EQUAL_INT64(OFFSET, s->schedule.anchor.offset_us);
+    TEST_ASSERT_EQUAL_INT64(EF_EPOCH + OFFSET, s->schedule.anchor.epoch_schedule_us);
     /* Arriving 3 ms after A_0: serves period 1. */
     tvo_lcm_measurement_t m;
     const int64_t now = node_apply(0) + 3000;
@@ -1196,7 +1440,7 @@ static void test_slack_rule_is_undone_when_the_first_step_fails(void)
     TEST_ASSERT_EQUAL_INT32(0, node.counters.accepted);
     const tvo_node_session_t *s = tvo_node_session(&node);
     TEST_ASSERT_EQUAL_UINT8(0u, s->problem.slack_chosen);
-    TEST_ASSERT_EQUAL_UINT8(0u, s->has_accepted);
+    TEST_ASSERT_EQUAL_UINT8(0u, s->schedule.has_accepted);
     (void)send_target(&t, 0);
     EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(2));
@@ -1346,7 +1590,48 @@ static void test_node_clock_reanchors_on_agreeing_measurements_before_tracking(v
             TEST_ASSERT_INT64_WITHIN(latency, sample + TAU, cmd.utime);
         }
     }
-    TEST_ASSERT_INT64_WITHIN(latency, offset, tvo_node_session(&node)->offset_us);
+    TEST_ASSERT_INT64_WITHIN(latency, offset, tvo_node_session(&node)->schedule.anchor.offset_us);
+}
+
+/* The same slow START with a watchdog of one period, and the third sample of the vote not finite: judged
+ * on the moved anchor it reaches the core, which refuses it and, its watchdog expiring with that one
+ * period, stops the robots (its clock starts). The move is not committed; the next three samples move
+ * the anchor again and the third is served on the plant's schedule, the objective's time counted from
+ * the epoch. (Before, the node moved the core's epoch for the trial and could not move it back once
+ * the stop had started the clock, and could never re-anchor after: every sample was refused.) */
+static void test_node_clock_reanchor_whose_trial_the_core_stops_commits_nothing_and_recovers(void)
+{
+    const int64_t start_delay = 150000;
+    const int64_t offset = NODE_T0 - EF_UTIME;
+    const int64_t latency = 100;
+    ef_start(&start, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_NODE, 1);
+    start.watchdog_periods = 1;
+    ef_record_clear(&rec);
+    (void)send_session(&start, NODE_T0 + start_delay);
+    EF_ASSERT_STATUS(TVO_OK, THE_ACK().status);
+    for (int64_t k = 0; k < 6; ++k) {
+        const int64_t sample = EF_EPOCH + (k + 1) * H - TAU;
+        tvo_lcm_measurement_t m;
+        ef_measurement(&m, EF_SESSION_ID, sample, k, 1);
+        if (k == 2) {
+            m.position_m[0][0] = NAN;
+        }
+        ef_record_clear(&rec);
+        (void)send_measurement(&m, sample + offset + latency);
+        const tvo_lcm_command_t cmd = THE_COMMAND();
+        if (k == 2) {
+            EF_ASSERT_STATUS(TVO_ERR_WATCHDOG, cmd.status); /* the core's stop */
+            EXPECT_SAFE_STOP(cmd);
+            TEST_ASSERT_EQUAL_INT64(offset + start_delay, tvo_node_session(&node)->schedule.anchor.offset_us);
+        } else if (k < 5) {
+            EF_ASSERT_STATUS(TVO_ERR_IMPLAUSIBLE_STAMP, cmd.status);
+        } else {
+            EF_ASSERT_STATUS(TVO_OK, cmd.status);
+            TEST_ASSERT_INT64_WITHIN(latency, sample + TAU, cmd.utime);
+            TEST_ASSERT_DOUBLE_WITHIN(1e-6, (double)((k + 1) * H) * 1e-6, last_telemetry.objective_time_s);
+        }
+    }
+    TEST_ASSERT_INT64_WITHIN(latency, offset, tvo_node_session(&node)->schedule.anchor.offset_us);
 }
 
 static void test_plant_target_beyond_the_next_period_is_refused(void)
@@ -1449,11 +1734,11 @@ static void test_plant_samples_past_the_first_window_that_agree_move_it(void)
     plant_meas(&m, j + 2);
     m.sequence += 7; /* a stray: its numbering disagrees, so the vote starts again */
     (void)EXPECT_REFUSED(m, 0, TVO_ERR_WATCHDOG);
-    const int64_t window_start = tvo_node_session(&node)->start_utime;
+    const int64_t window_start = tvo_node_session(&node)->schedule.anchor.first_window_utime;
     for (int64_t k = 3; k <= 4; ++k) {
         plant_meas(&m, j + k);
         (void)EXPECT_REFUSED(m, 0, TVO_ERR_WATCHDOG);
-        TEST_ASSERT_EQUAL_INT64(window_start, tvo_node_session(&node)->start_utime);
+        TEST_ASSERT_EQUAL_INT64(window_start, tvo_node_session(&node)->schedule.anchor.first_window_utime);
     }
     plant_meas(&m, j + 5);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(j + 5));
@@ -1467,7 +1752,7 @@ static void test_plant_strays_the_node_refuses_do_not_move_the_first_window(void
      * stays where it was (a genuine first sample inside it is served). */
     start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
     const int64_t far = first_period_past_window(EF_UTIME) + 48000; /* 8 min ahead */
-    const int64_t window_start = tvo_node_session(&node)->start_utime;
+    const int64_t window_start = tvo_node_session(&node)->schedule.anchor.first_window_utime;
     tvo_lcm_measurement_t m;
     for (int64_t k = 0; k < 3; ++k) {
         plant_meas(&m, far + k);
@@ -1475,7 +1760,7 @@ static void test_plant_strays_the_node_refuses_do_not_move_the_first_window(void
         ef_record_clear(&rec);
         (void)send_measurement(&m, 0);
         TEST_ASSERT_TRUE(THE_COMMAND().status != TVO_OK);
-        TEST_ASSERT_EQUAL_INT64(window_start, tvo_node_session(&node)->start_utime);
+        TEST_ASSERT_EQUAL_INT64(window_start, tvo_node_session(&node)->schedule.anchor.first_window_utime);
     }
     plant_meas(&m, 2);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(2));
@@ -1652,7 +1937,7 @@ static void test_plant_step_refusals_count_toward_the_watchdog(void)
     (void)send_measurement(&m, 0);
     tvo_lcm_command_t cmd = THE_COMMAND();
     EF_ASSERT_STATUS(TVO_ERR_FUTURE_STAMP, cmd.status);
-    TEST_ASSERT_EQUAL_UINT32(1u, tvo_node_session(&node)->refused_in_row);
+    TEST_ASSERT_EQUAL_UINT32(1u, tvo_node_session(&node)->schedule.clock.plant.refused_in_row);
     tvo_lcm_measurement_t dup;
     plant_meas(&dup, 2);
     for (int64_t refusals = 1; refusals < W; ++refusals) {
@@ -2085,7 +2370,7 @@ static void test_node_clock_extremes(void)
         setUp();
         start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_NODE, nows[i]);
         const int64_t clamped = nows[i] < 0 ? 0 : (nows[i] > EF_TWO_POW_60 ? EF_TWO_POW_60 : nows[i]);
-        TEST_ASSERT_EQUAL_INT64(clamped - EF_UTIME, tvo_node_session(&node)->offset_us);
+        TEST_ASSERT_EQUAL_INT64(clamped - EF_UTIME, tvo_node_session(&node)->schedule.anchor.offset_us);
         /* Measurements, polls and a STOP at every extreme: answers stay within the wire range. */
         for (size_t k = 0; k < sizeof(nows) / sizeof(nows[0]); ++k) {
             tvo_lcm_measurement_t m;
@@ -2180,6 +2465,8 @@ int main(void)
     RUN_TEST(test_unknown_actions_are_refused_and_change_nothing);
     RUN_TEST(test_measurement_without_a_session_is_answered_with_a_safe_stop);
     RUN_TEST(test_messages_of_another_session_are_ignored_and_counted);
+    RUN_TEST(test_each_readme_session_row_is_what_the_table_does);
+    RUN_TEST(test_idle_cells_the_classification_cannot_reach_are_marked_so);
     RUN_TEST(test_plant_period_is_the_apply_instant_nearest_stamp_plus_tau);
     RUN_TEST(test_plant_age_outside_zero_to_h_is_refused_by_the_controller);
     RUN_TEST(test_plant_duplicates_and_reordering_are_out_of_order);
@@ -2213,6 +2500,7 @@ int main(void)
     RUN_TEST(test_plant_target_two_to_the_32_us_old_is_not_taken_for_a_new_one);
     RUN_TEST(test_node_clock_sample_two_to_the_32_us_old_is_stale);
     RUN_TEST(test_node_clock_reanchors_on_agreeing_measurements_before_tracking);
+    RUN_TEST(test_node_clock_reanchor_whose_trial_the_core_stops_commits_nothing_and_recovers);
     RUN_TEST(test_plant_step_refusals_count_toward_the_watchdog);
     RUN_TEST(test_node_clock_a_law_failure_after_the_timer_stop_is_answered_with_a_safe_stop);
     RUN_TEST(test_start_utime_extremes);

@@ -98,7 +98,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         static tvo_node_session_t slots_before[2];
         static tvo_auth_t auth_before;
         memcpy(slots_before, node.slot, sizeof(slots_before));
-        const uint8_t had_session = node.has_session;
+        const uint8_t state_before = node.state;
         auth_before = link.auth;
         const int published_before = published;
         link.last_refusal = TVO_AUTH_OK;
@@ -113,7 +113,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             if (memcmp(&link.auth, &auth_before, sizeof(auth_before)) != 0) {
                 fuzz_fail("a dropped frame changed the link's counters");
             }
-            if (memcmp(slots_before, node.slot, sizeof(slots_before)) != 0 || had_session != node.has_session) {
+            if (memcmp(slots_before, node.slot, sizeof(slots_before)) != 0 || state_before != node.state) {
                 fuzz_fail("a dropped frame changed the node");
             }
         }
