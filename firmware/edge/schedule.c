@@ -78,6 +78,7 @@ void tvo_schedule_accept(tvo_schedule_t *schedule, const tvo_schedule_placement_
     schedule->has_accepted = 1;
     schedule->last_period = placement->period;
     schedule->anchor.last_sequence = sequence;
+    schedule->votes = 0u; /* votes count refusals in a row: a served sample ends a streak of strays */
     schedule->ops->accepted(schedule, placement);
 }
 

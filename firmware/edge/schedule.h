@@ -31,6 +31,7 @@ typedef struct {
     int64_t epoch_schedule_us;    /* the epoch on the schedule's clock */
     int64_t first_window_utime;   /* CLOCK_PLANT: the plant time the first sample's window opens at */
     int64_t last_sequence;        /* the sequence of the last accepted measurement (CLOCK_PLANT: by period) */
+    uint8_t jump_agreed;          /* CLOCK_PLANT: samples agreed on a jump past the watchdog's span (vote) */
 } tvo_schedule_anchor_t;
 
 /** Where a measurement stands on the schedule: the period it serves and its times (schedule clock). */

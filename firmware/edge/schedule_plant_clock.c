@@ -3,6 +3,10 @@
  * ("Timing", "The watchdog"). A sample stamped s serves the period whose apply instant is nearest
  * s + tau; the first accepted sample anchors the numbering, and later ones must advance sequence and
  * period alike. With no clock of its own the node has no timer: a streak of refusals stops the robots.
+ * A sample more than watchdog_periods periods ahead of the last accepted one is a jump: a plant's clock
+ * fault or a stray, refused until TVO_SCHEDULE_ANCHOR_VOTES samples in a row agree on it (a genuine
+ * stream after a silence longer than the watchdog's span). One wild sample costs its own refusal, not
+ * the periods it jumped.
  */
 #include "schedule.h"
 
@@ -84,6 +88,11 @@ static tvo_status_t plant_place(const tvo_schedule_t *schedule, const tvo_lcm_me
     if (msg->sequence - schedule->anchor.last_sequence != placement->period - schedule->last_period) {
         return TVO_ERR_IMPLAUSIBLE_STAMP; /* stamp and sequence disagree: a stray, or a wild number */
     }
+    const int64_t jump = placement->period - schedule->last_period;
+    if (jump > (int64_t)schedule->timing.watchdog_periods && !schedule->anchor.jump_agreed &&
+        jump <= (int64_t)TVO_MAX_TICK_SPAN / schedule->timing.period_us) { /* beyond: stale, for the caller to say */
+        return TVO_ERR_IMPLAUSIBLE_STAMP; /* a jump past the watchdog's span: served once samples agree */
+    }
     return TVO_OK;
 }
 
@@ -91,6 +100,7 @@ static void plant_accepted(tvo_schedule_t *schedule, const tvo_schedule_placemen
 {
     (void)placement;
     schedule->clock.plant.refused_in_row = 0;
+    schedule->anchor.jump_agreed = 0u;
 }
 
 /*
@@ -125,6 +135,7 @@ static int plant_vote(tvo_schedule_t *schedule, const tvo_lcm_measurement_t *msg
     }
     if (schedule->has_accepted) {
         moved->last_sequence = msg->sequence - (period - schedule->last_period); /* the samples' own numbering */
+        moved->jump_agreed = 1u;                                                  /* and their period */
     } else {
         moved->first_window_utime = msg->utime; /* the first window opens at the plant's samples */
     }

@@ -1044,18 +1044,60 @@ static void test_plant_huge_sequences_are_refused(void)
     }
 }
 
+/* CLOCK_PLANT: a jump past the watchdog's span (from the last accepted period to j) is served once
+ * three samples in a row agree on it: j and j + 1 refused, j + 2 served. */
+static void plant_jump_to(int64_t j)
+{
+    tvo_lcm_measurement_t m;
+    plant_meas(&m, j);
+    (void)EXPECT_REFUSED(m, 0, TVO_ERR_IMPLAUSIBLE_STAMP);
+    plant_meas(&m, j + 1);
+    (void)EXPECT_REFUSED(m, 0, TVO_ERR_IMPLAUSIBLE_STAMP);
+    plant_meas(&m, j + 2);
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(j + 2));
+}
+
 static void test_plant_gap_with_consistent_sequence_is_accepted(void)
 {
     plant_session_after(1);
     tvo_lcm_measurement_t m;
-    plant_meas(&m, 1 + 7);
-    (void)EXPECT_ACCEPTED(m, 0, plant_apply(8));
+    /* A gap within the watchdog's span is served at once. */
+    plant_meas(&m, 1 + EF_WATCHDOG);
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(1 + EF_WATCHDOG));
+    /* A longer one once three samples agree on it (a plant back from a silence it stopped itself in). */
+    plant_jump_to(1 + EF_WATCHDOG + 7);
+    const int64_t last = 1 + EF_WATCHDOG + 7 + 2;
     /* A gap beyond the controller's tick span is stale: the plant must START anew. */
-    const int64_t beyond = 8 + (int64_t)TVO_MAX_TICK_SPAN / H + 1;
+    const int64_t beyond = last + (int64_t)TVO_MAX_TICK_SPAN / H + 1;
     plant_meas(&m, beyond);
     (void)EXPECT_REFUSED(m, 0, TVO_ERR_STALE);
-    plant_meas(&m, beyond - 1);
-    (void)EXPECT_ACCEPTED(m, 0, plant_apply(beyond - 1));
+    plant_meas(&m, last + 1); /* ends the streak of refusals before the next jump's two */
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(last + 1));
+    /* The longest gap the span holds, once three samples agree on it. */
+    plant_jump_to(beyond - 3);
+}
+
+/* Issue 25's bound: one genuine sample stamped 20 s ahead with a sequence that agrees (a plant's clock
+ * fault) costs its own refusal, not 20 s of safe stops; the stream after it is served at once. */
+static void test_plant_one_sample_far_ahead_costs_one_refusal(void)
+{
+    plant_session_after(5);
+    tvo_lcm_measurement_t m;
+    plant_meas(&m, 5 + 2000);
+    const tvo_lcm_command_t refused = EXPECT_REFUSED(m, 0, TVO_ERR_IMPLAUSIBLE_STAMP);
+    TEST_ASSERT_TRUE(((uint32_t)refused.flags & TVO_FLAG_HOLDING) != 0u);
+    TEST_ASSERT_TRUE(((uint32_t)refused.flags & TVO_FLAG_SAFE_STOP) == 0u);
+    for (int64_t j = 6; j < 6 + 50; ++j) {
+        plant_meas(&m, j);
+        (void)EXPECT_ACCEPTED(m, 0, plant_apply(j));
+    }
+    /* Strays interleaved with the genuine stream never add up to a vote: each served sample ends the streak. */
+    for (int64_t j = 56; j < 56 + 6; ++j) {
+        plant_meas(&m, j + 2000);
+        (void)EXPECT_REFUSED(m, 0, TVO_ERR_IMPLAUSIBLE_STAMP);
+        plant_meas(&m, j);
+        (void)EXPECT_ACCEPTED(m, 0, plant_apply(j));
+    }
 }
 
 static void test_plant_watchdog_refusals_in_a_row_give_a_safe_stop_until_one_is_accepted(void)
@@ -1820,15 +1862,21 @@ static void test_plant_target_two_to_the_32_us_old_is_not_taken_for_a_new_one(vo
     const int64_t jump = (int64_t)TVO_MAX_TICK_SPAN / H; /* the longest silence a session spans */
     int64_t j = 1;
     tvo_lcm_measurement_t m;
+    int64_t last = 0;
     while (plant_apply(j) - EF_EPOCH <= ((int64_t)1 << 32) + 120000000) {
-        plant_meas(&m, j);
-        (void)EXPECT_ACCEPTED(m, 0, plant_apply(j));
+        if (j == 1) {
+            plant_meas(&m, j);
+            (void)EXPECT_ACCEPTED(m, 0, plant_apply(j));
+            last = j;
+        } else {
+            plant_jump_to(j - 2); /* a jump past the watchdog's span: served once three samples agree */
+            last = j;
+        }
         t.utime = plant_apply(j + 1) - TAU;
         (void)send_target(&t, 0);
         EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
         j += jump;
     }
-    const int64_t last = j - jump;
     tvo_lcm_target_t stray = t;
     stray.utime = plant_apply(last) + 60000000 - ((int64_t)1 << 32);
     stray.position_m[0][0] = 99.0;
@@ -2473,6 +2521,7 @@ int main(void)
     RUN_TEST(test_plant_stray_stamps_cost_the_genuine_stream_nothing);
     RUN_TEST(test_plant_huge_sequences_are_refused);
     RUN_TEST(test_plant_gap_with_consistent_sequence_is_accepted);
+    RUN_TEST(test_plant_one_sample_far_ahead_costs_one_refusal);
     RUN_TEST(test_plant_watchdog_refusals_in_a_row_give_a_safe_stop_until_one_is_accepted);
     RUN_TEST(test_plant_wrong_robot_count_and_non_finite_values_are_refused);
     RUN_TEST(test_node_clock_offset_comes_from_the_start_and_commands_are_in_plant_time);
