@@ -3,6 +3,59 @@
 
 #include <string.h>
 
+/*
+ * The core's sampled-data loop behind the edge's unions: the same six operations for every plant,
+ * written once and stamped out per plant (member: the unions' member, api: the core's prefix). The
+ * step, the miss and the safe stop are the core's own public calls (its loop decides hold, refusal
+ * and stop); holding answers with the command in force, clock is the clock the node rebases.
+ */
+#define EDGE_LOOP_OPS(member, api)                                                                             \
+    static tvo_status_t member##_step(tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas,         \
+                                      uint32_t apply_tick, tvo_edge_command_t *cmd)                           \
+    {                                                                                                          \
+        return api##_step(&ctl->u.member, &meas->member, apply_tick, &cmd->member);                          \
+    }                                                                                                          \
+    static tvo_status_t member##_miss(tvo_edge_controller_t *ctl, uint32_t apply_tick,                        \
+                                      tvo_edge_command_t *cmd)                                                \
+    {                                                                                                          \
+        return api##_miss(&ctl->u.member, apply_tick, &cmd->member);                                         \
+    }                                                                                                          \
+    static tvo_status_t member##_safe_stop(tvo_edge_controller_t *ctl, tvo_edge_command_t *cmd)               \
+    {                                                                                                          \
+        return api##_safe_stop(&ctl->u.member, &cmd->member);                                                \
+    }                                                                                                          \
+    static void member##_holding(const tvo_edge_controller_t *ctl, tvo_edge_command_t *cmd)                   \
+    {                                                                                                          \
+        cmd->member = ctl->u.member.held;                                                                      \
+        cmd->member.flags = TVO_FLAG_HOLDING;                                                                  \
+    }                                                                                                          \
+    static uint32_t member##_flags(const tvo_edge_command_t *cmd)                                             \
+    {                                                                                                          \
+        return cmd->member.flags;                                                                              \
+    }                                                                                                          \
+    static tvo_sample_clock_t *member##_clock(tvo_edge_controller_t *ctl)                                     \
+    {                                                                                                          \
+        return &ctl->u.member.clock;                                                                           \
+    }
+
+/* The six in a table's initialiser. */
+#define EDGE_LOOP_ENTRIES(member)                                                                              \
+    .step = member##_step, .miss = member##_miss, .safe_stop = member##_safe_stop, .holding = member##_holding, \
+    .flags = member##_flags, .clock = member##_clock
+
+EDGE_LOOP_OPS(unicycle, tvo_controller)
+EDGE_LOOP_OPS(chain, tvo_chain_controller)
+
+/* The core's init's answer to a decoded START: a refusal names its culprit in *why (may be NULL). */
+static tvo_status_t rejected_by_core(tvo_status_t st, tvo_param_t bad, tvo_session_reject_t *why)
+{
+    if (st != TVO_OK && why != NULL) {
+        why->status = st;
+        why->param = bad;
+    }
+    return st;
+}
+
 /* ---- unicycle (controller.h) ---------------------------------------------------------------- */
 
 static uint8_t unicycle_relative_degree(const tvo_lcm_session_t *msg)
@@ -15,14 +68,11 @@ static tvo_status_t unicycle_init(tvo_edge_controller_t *ctl, const tvo_lcm_sess
                                   const tvo_objective_t *objective, uint32_t epoch_tick, tvo_session_reject_t *why)
 {
     tvo_controller_config_t cfg;
+    tvo_param_t bad = TVO_PARAM_NONE;
     tvo_status_t st = tvo_session_decode_unicycle(msg, &cfg, why);
     if (st == TVO_OK) {
-        tvo_param_t bad = TVO_PARAM_NONE;
         st = tvo_controller_init(&ctl->u.unicycle, &cfg, objective, epoch_tick, &bad);
-        if (st != TVO_OK && why != NULL) {
-            why->status = st;
-            why->param = bad;
-        }
+        st = rejected_by_core(st, bad, why);
     }
     return st;
 }
@@ -42,34 +92,6 @@ static void unicycle_positions(const tvo_edge_measurement_t *meas, uint8_t robot
     }
 }
 
-
-static tvo_status_t unicycle_step(tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas, uint32_t apply_tick,
-                                  tvo_edge_command_t *cmd)
-{
-    return tvo_controller_step(&ctl->u.unicycle, &meas->unicycle, apply_tick, &cmd->unicycle);
-}
-
-static tvo_status_t unicycle_miss(tvo_edge_controller_t *ctl, uint32_t apply_tick, tvo_edge_command_t *cmd)
-{
-    return tvo_controller_miss(&ctl->u.unicycle, apply_tick, &cmd->unicycle);
-}
-
-static tvo_status_t unicycle_safe_stop(tvo_edge_controller_t *ctl, tvo_edge_command_t *cmd)
-{
-    return tvo_controller_safe_stop(&ctl->u.unicycle, &cmd->unicycle);
-}
-
-static void unicycle_holding(const tvo_edge_controller_t *ctl, tvo_edge_command_t *cmd)
-{
-    cmd->unicycle = ctl->u.unicycle.held;
-    cmd->unicycle.flags = TVO_FLAG_HOLDING;
-}
-
-static uint32_t unicycle_flags(const tvo_edge_command_t *cmd)
-{
-    return cmd->unicycle.flags;
-}
-
 static void unicycle_command_to_lcm(const tvo_edge_command_t *cmd, const tvo_step_stamp_t *stamp,
                                     tvo_lcm_command_t *msg)
 {
@@ -82,25 +104,10 @@ static void unicycle_telemetry_to_lcm(const tvo_edge_controller_t *ctl, const tv
     tvo_step_telemetry_to_lcm(&ctl->u.unicycle, problem, msg);
 }
 
-static tvo_sample_clock_t *unicycle_clock(tvo_edge_controller_t *ctl)
-{
-    return &ctl->u.unicycle.clock;
-}
-
 static const tvo_edge_controller_ops_t unicycle_ops = {
-    .name = "unicycle",
-    .relative_degree = unicycle_relative_degree,
-    .init = unicycle_init,
-    .measurement = unicycle_measurement,
-    .positions = unicycle_positions,
-    .step = unicycle_step,
-    .miss = unicycle_miss,
-    .safe_stop = unicycle_safe_stop,
-    .holding = unicycle_holding,
-    .flags = unicycle_flags,
-    .command_to_lcm = unicycle_command_to_lcm,
-    .telemetry_to_lcm = unicycle_telemetry_to_lcm,
-    .clock = unicycle_clock};
+    .name = "unicycle", EDGE_LOOP_ENTRIES(unicycle), .relative_degree = unicycle_relative_degree, .init = unicycle_init,
+    .measurement = unicycle_measurement, .positions = unicycle_positions, .command_to_lcm = unicycle_command_to_lcm,
+    .telemetry_to_lcm = unicycle_telemetry_to_lcm};
 
 /* ---- integrator chain (chain_controller.h) ---------------------------------------------------- */
 
@@ -115,14 +122,11 @@ static tvo_status_t chain_init(tvo_edge_controller_t *ctl, const tvo_lcm_session
                                const tvo_objective_t *objective, uint32_t epoch_tick, tvo_session_reject_t *why)
 {
     tvo_chain_config_t cfg;
+    tvo_param_t bad = TVO_PARAM_NONE;
     tvo_status_t st = tvo_session_decode_chain(msg, &cfg, why);
     if (st == TVO_OK) {
-        tvo_param_t bad = TVO_PARAM_NONE;
         st = tvo_chain_controller_init(&ctl->u.chain, &cfg, objective, epoch_tick, &bad);
-        if (st != TVO_OK && why != NULL) {
-            why->status = st;
-            why->param = bad;
-        }
+        st = rejected_by_core(st, bad, why);
     }
     return st;
 }
@@ -146,34 +150,6 @@ static void chain_positions(const tvo_edge_measurement_t *meas, uint8_t robot_co
     }
 }
 
-
-static tvo_status_t chain_step(tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas, uint32_t apply_tick,
-                               tvo_edge_command_t *cmd)
-{
-    return tvo_chain_controller_step(&ctl->u.chain, &meas->chain, apply_tick, &cmd->chain);
-}
-
-static tvo_status_t chain_miss(tvo_edge_controller_t *ctl, uint32_t apply_tick, tvo_edge_command_t *cmd)
-{
-    return tvo_chain_controller_miss(&ctl->u.chain, apply_tick, &cmd->chain);
-}
-
-static tvo_status_t chain_safe_stop(tvo_edge_controller_t *ctl, tvo_edge_command_t *cmd)
-{
-    return tvo_chain_controller_safe_stop(&ctl->u.chain, &cmd->chain);
-}
-
-static void chain_holding(const tvo_edge_controller_t *ctl, tvo_edge_command_t *cmd)
-{
-    cmd->chain = ctl->u.chain.held;
-    cmd->chain.flags = TVO_FLAG_HOLDING;
-}
-
-static uint32_t chain_flags(const tvo_edge_command_t *cmd)
-{
-    return cmd->chain.flags;
-}
-
 static void chain_command_to_lcm(const tvo_edge_command_t *cmd, const tvo_step_stamp_t *stamp, tvo_lcm_command_t *msg)
 {
     tvo_step_chain_command_to_lcm(&cmd->chain, stamp, msg);
@@ -187,25 +163,10 @@ static void chain_telemetry_to_lcm(const tvo_edge_controller_t *ctl, const tvo_p
     (void)msg;
 }
 
-static tvo_sample_clock_t *chain_clock(tvo_edge_controller_t *ctl)
-{
-    return &ctl->u.chain.clock;
-}
-
 static const tvo_edge_controller_ops_t chain_ops = {
-    .name = "chain",
-    .relative_degree = chain_relative_degree,
-    .init = chain_init,
-    .measurement = chain_measurement,
-    .positions = chain_positions,
-    .step = chain_step,
-    .miss = chain_miss,
-    .safe_stop = chain_safe_stop,
-    .holding = chain_holding,
-    .flags = chain_flags,
-    .command_to_lcm = chain_command_to_lcm,
-    .telemetry_to_lcm = chain_telemetry_to_lcm,
-    .clock = chain_clock};
+    .name = "chain", EDGE_LOOP_ENTRIES(chain), .relative_degree = chain_relative_degree, .init = chain_init,
+    .measurement = chain_measurement, .positions = chain_positions, .command_to_lcm = chain_command_to_lcm,
+    .telemetry_to_lcm = chain_telemetry_to_lcm};
 
 void tvo_edge_controller_clear_scratch(tvo_edge_controller_t *ctl)
 {

@@ -43,6 +43,8 @@ typedef struct {
                                 uint32_t stamp_tick, tvo_edge_measurement_t *meas);
     /** The measured positions y (2 per robot), for the slack rule. */
     void (*positions)(const tvo_edge_measurement_t *meas, uint8_t robot_count, tvo_real_t *y);
+    /* The core's sampled-data loop, the same six for every plant (edge_controller.c's EDGE_LOOP_OPS):
+     * step, miss, safe_stop, holding, flags, clock. The others map the wire to the plant. */
     /** The core's step: a transaction (a whole period committed, or nothing changed and the refusal's
      *  command: the one in force, or the watchdog's stop). */
     tvo_status_t (*step)(tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas, uint32_t apply_tick,

@@ -4,25 +4,18 @@
 #include <string.h>
 
 #include "law_step.h"
-#include "sample_clock_kernel.h"
-#include "shape.h"
+#include "sampled_loop.h"
 
 tvo_status_t tvo_chain_config_default(tvo_chain_config_t *cfg)
 {
+    static const tvo_chain_config_t defaults = {
+        TVO_LOOP_CONFIG_DEFAULTS, .relative_degree = 2u, .filter_tf_s = TVO_R(0.05),
+        .gain = {TVO_R(2.56), TVO_R(3.2)}, /* (s + 1.6)^2 */
+        .input_max = TVO_R(1e3)};
     if (cfg == NULL) {
         return TVO_ERR_NULL;
     }
-    memset(cfg, 0, sizeof(*cfg));
-    cfg->tick_hz = 1000000u;
-    cfg->period_ticks = 10000u;
-    cfg->delay_ticks = 5000u;
-    cfg->relative_degree = 2u;
-    cfg->delay_compensation = 1u;
-    cfg->filter_tf_s = TVO_R(0.05);
-    cfg->gain[0] = TVO_R(2.56); /* (s + 1.6)^2 */
-    cfg->gain[1] = TVO_R(3.2);
-    cfg->input_max = TVO_R(1e3);
-    cfg->watchdog_periods = 10u;
+    *cfg = defaults;
     return TVO_OK;
 }
 
@@ -52,41 +45,42 @@ static tvo_param_t first_bad_param(const tvo_chain_config_t *cfg, const tvo_obje
     return TVO_PARAM_NONE;
 }
 
-tvo_status_t tvo_chain_controller_init(tvo_chain_controller_t *ctl, const tvo_chain_config_t *cfg,
-                                       const tvo_objective_t *objective, uint32_t epoch_tick, tvo_param_t *bad_param)
+static const tvo_loop_plant_t chain_plant; /* the loop's table, below its pieces */
+
+/* Validates and binds the controller, all but the loop's clock: TVO_PARAM_NONE, or the culprit. */
+static tvo_param_t chain_setup(tvo_chain_controller_t *ctl, const tvo_chain_config_t *cfg,
+                               const tvo_objective_t *objective)
 {
-    if (bad_param != NULL) {
-        *bad_param = TVO_PARAM_NONE;
+    const tvo_param_t bad = first_bad_param(cfg, objective);
+    if (bad != TVO_PARAM_NONE) {
+        return bad;
     }
-    if (ctl == NULL || cfg == NULL || objective == NULL) {
-        return TVO_ERR_NULL;
-    }
-    memset(ctl, 0, sizeof(*ctl));
-    tvo_param_t bad = first_bad_param(cfg, objective);
-    tvo_status_t st = TVO_OK;
-    if (bad == TVO_PARAM_NONE) {
-        st = tvo_law_init(&ctl->law, cfg->relative_degree, objective->primal_dim, cfg->gain);
-        bad = (st == TVO_OK) ? TVO_PARAM_NONE : TVO_PARAM_GAINS;
+    if (tvo_law_init(&ctl->law, cfg->relative_degree, objective->primal_dim, cfg->gain) != TVO_OK) {
+        return TVO_PARAM_GAINS;
     }
     ctl->period_s = tvo_ticks_to_seconds32(cfg->period_ticks, cfg->tick_hz);
-    for (uint8_t j = 0; bad == TVO_PARAM_NONE && j + 1u < cfg->relative_degree; ++j) {
-        st = tvo_dirty_derivative_init(&ctl->filter[j], objective->primal_dim,
-                                       cfg->filtered_derivatives ? cfg->filter_tf_s : TVO_R(1.0), ctl->period_s);
-        bad = (st == TVO_OK) ? TVO_PARAM_NONE : TVO_PARAM_FILTER_TF;
-    }
-    if (bad != TVO_PARAM_NONE) {
-        if (bad_param != NULL) {
-            *bad_param = bad;
+    for (uint8_t j = 0; j + 1u < cfg->relative_degree; ++j) {
+        if (tvo_dirty_derivative_init(&ctl->filter[j], objective->primal_dim,
+                                      cfg->filtered_derivatives ? cfg->filter_tf_s : TVO_R(1.0),
+                                      ctl->period_s) != TVO_OK) {
+            return TVO_PARAM_FILTER_TF;
         }
-        memset(ctl, 0, sizeof(*ctl));
-        return TVO_ERR_PARAM;
     }
     ctl->cfg = *cfg;
     ctl->objective = objective;
-    /* The timing was validated above: the clock cannot reject it. */
-    (void)tvo_sample_clock_init(&ctl->clock, cfg->tick_hz, cfg->period_ticks, cfg->watchdog_periods, epoch_tick);
-    ctl->initialized = 1;
-    return TVO_OK;
+    return TVO_PARAM_NONE;
+}
+
+tvo_status_t tvo_chain_controller_init(tvo_chain_controller_t *ctl, const tvo_chain_config_t *cfg,
+                                       const tvo_objective_t *objective, uint32_t epoch_tick, tvo_param_t *bad_param)
+{
+    const tvo_status_t st = loop_init_begin(&chain_plant, ctl, cfg, objective, bad_param);
+    if (st != TVO_OK) {
+        return st;
+    }
+    const tvo_param_t bad = chain_setup(ctl, cfg, objective);
+    return loop_init_end(&chain_plant, ctl, (bad == TVO_PARAM_NONE) ? TVO_OK : TVO_ERR_PARAM, bad, bad_param,
+                         cfg->tick_hz, cfg->period_ticks, cfg->watchdog_periods, epoch_tick);
 }
 
 tvo_status_t tvo_chain_predict(uint8_t relative_degree, uint8_t dim, const tvo_output_derivs_t *state,
@@ -148,8 +142,11 @@ static tvo_status_t derivatives_at_sample(const tvo_chain_controller_t *ctl, tvo
     return st;
 }
 
-static tvo_status_t check_finite(const tvo_chain_controller_t *ctl, const tvo_chain_measurement_t *meas)
+/* The loop's check piece: the values the configuration reads, and the stamp. */
+static tvo_status_t chain_check(const void *ctl_any, const void *meas_any, uint32_t apply_tick)
 {
+    const tvo_chain_controller_t *ctl = ctl_any;
+    const tvo_chain_measurement_t *meas = meas_any;
     const uint8_t read = ctl->cfg.filtered_derivatives ? 1u : ctl->cfg.relative_degree;
     for (uint8_t j = 0; j < read; ++j) {
         for (uint8_t i = 0; i < ctl->objective->primal_dim; ++i) {
@@ -158,97 +155,35 @@ static tvo_status_t check_finite(const tvo_chain_controller_t *ctl, const tvo_ch
             }
         }
     }
-    return TVO_OK;
+    return sample_clock_check_stamp(&ctl->clock, meas->stamp_tick, apply_tick);
+}
+
+/* The loop's refuse piece: its refusal, out of line (a cold path). */
+TVO_COLD_BODY tvo_status_t chain_refuse(void *ctl, const void *meas, const tvo_period_t *period,
+                                        tvo_status_t reason, void *cmd)
+{
+    return loop_refuse(&chain_plant, ctl, meas, period, reason, cmd);
 }
 
 /* What a good step after the watchdog's gap takes as the input in force: the chain was stopped. */
 static const tvo_real_t rest_input[TVO_MAX_OUTPUT_DIM] = {TVO_R(0.0)};
 
-static void chain_stop_command(tvo_chain_command_t *cmd)
+/* The loop's prepare piece, for a period the clock has begun: the measurement checked, the filters'
+ * trial copies, the state carried to where the law is evaluated, its time; the frame's flags. */
+TVO_OFF_CHAIN_BODY tvo_status_t chain_prepare(void *ctl_any, const void *meas_any, uint32_t apply_tick,
+                                              tvo_loop_frame_t *frame)
 {
-    memset(cmd, 0, sizeof(*cmd));
-    cmd->flags = TVO_FLAG_SAFE_STOP;
-}
-
-static void chain_hold_command(const tvo_chain_controller_t *ctl, tvo_chain_command_t *cmd)
-{
-    *cmd = ctl->held;
-    cmd->flags = TVO_FLAG_HOLDING;
-}
-
-/* A period counted without a good step (committed): held, or stopped once the watchdog expires. */
-static tvo_status_t chain_miss_period(tvo_chain_controller_t *ctl, const tvo_period_t *period,
-                                      tvo_chain_command_t *cmd)
-{
-    if (tvo_sample_clock_end(&ctl->clock, period, 0, 0u)) {
-        memset(&ctl->held, 0, sizeof(ctl->held));
-        chain_stop_command(cmd);
-        return TVO_ERR_WATCHDOG;
-    }
-    chain_hold_command(ctl, cmd);
-    return TVO_ERR_NO_MEASUREMENT;
-}
-
-/* A refused step, committing nothing: the command in force; or, when counting the period would expire
- * the watchdog, the period counted and the stop (as tvo_controller_step). */
-static tvo_status_t chain_refuse_step(tvo_chain_controller_t *ctl, const tvo_period_t *period,
-                                      tvo_status_t reason, tvo_chain_command_t *cmd)
-{
-    if (sample_clock_refusal_stops(&ctl->clock, period)) {
-        return chain_miss_period(ctl, period, cmd);
-    }
-    chain_hold_command(ctl, cmd);
-    return reason;
-}
-
-tvo_status_t tvo_chain_controller_check(const tvo_chain_controller_t *ctl, const tvo_chain_measurement_t *meas,
-                                        uint32_t apply_tick)
-{
-    if (ctl == NULL) {
-        return TVO_ERR_NULL;
-    }
-    if (!ctl->initialized) {
-        return TVO_ERR_NOT_INITIALIZED;
-    }
-    tvo_period_t period;
-    if (tvo_sample_clock_begin(&ctl->clock, apply_tick, &period) != TVO_OK) {
-        return TVO_ERR_OUT_OF_ORDER;
-    }
-    const tvo_status_t st = (meas == NULL) ? TVO_ERR_NO_MEASUREMENT : check_finite(ctl, meas);
-    return (st == TVO_OK) ? tvo_sample_clock_check_stamp(&ctl->clock, meas->stamp_tick, apply_tick) : st;
-}
-
-tvo_status_t tvo_chain_controller_safe_stop(tvo_chain_controller_t *ctl, tvo_chain_command_t *cmd)
-{
-    if (cmd == NULL) {
-        return TVO_ERR_NULL;
-    }
-    chain_stop_command(cmd);
-    if (ctl == NULL || !ctl->initialized) {
-        return (ctl == NULL) ? TVO_ERR_NULL : TVO_ERR_NOT_INITIALIZED;
-    }
-    (void)tvo_sample_clock_expire(&ctl->clock);
-    memset(&ctl->held, 0, sizeof(ctl->held));
-    return TVO_OK;
-}
-
-/* The step before the law, for a period the clock has begun: the measurement checked, the filters'
- * trial copies, the state carried to where the law is evaluated, its time; *flags. */
-TVO_OFF_CHAIN_BODY tvo_status_t chain_step_before_law(tvo_chain_controller_t *ctl, const tvo_chain_measurement_t *meas,
-                                                      uint32_t apply_tick, int from_rest, uint32_t *flags)
-{
+    tvo_chain_controller_t *ctl = ctl_any;
+    const tvo_chain_measurement_t *meas = meas_any;
     tvo_chain_controller_work_t *work = &ctl->work;
     tvo_period_t *period = &work->period;
-    tvo_status_t st = check_finite(ctl, meas);
-    if (st == TVO_OK) {
-        st = sample_clock_check_stamp(&ctl->clock, meas->stamp_tick, apply_tick);
-    }
+    tvo_status_t st = chain_check(ctl, meas, apply_tick);
     tvo_output_derivs_t *x = &work->state;
     tvo_dirty_derivative_t *filter = work->filter; /* kept on success */
     if (st == TVO_OK) {
         for (uint8_t j = 0; j + 1u < TVO_MAX_RELATIVE_DEGREE; ++j) {
             filter[j] = ctl->filter[j];
-            if (from_rest) {
+            if (frame->from_rest) {
                 filter[j].primed = 0; /* the gap makes old filter state meaningless */
             }
         }
@@ -263,24 +198,38 @@ TVO_OFF_CHAIN_BODY tvo_status_t chain_step_before_law(tvo_chain_controller_t *ct
     /* Where the law is evaluated (the sample, the application instant, or the middle of the held
      * interval); the state is carried there with the held command. */
     sample_clock_locate(&ctl->clock, period, meas->stamp_tick, ctl->cfg.delay_compensation, ctl->cfg.zoh_aware);
-    *flags = (period->carry_s > TVO_R(0.0)) ? TVO_FLAG_PREDICTED : 0u;
+    frame->flags = (period->carry_s > TVO_R(0.0)) ? TVO_FLAG_PREDICTED : 0u;
     if (period->carry_s > TVO_R(0.0)) {
-        st = tvo_chain_predict(k, m, x, from_rest ? rest_input : ctl->held.u, period->carry_s, x);
+        st = tvo_chain_predict(k, m, x, frame->from_rest ? rest_input : ctl->held.u, period->carry_s, x);
     }
     time_jet_at_tick_time(&period->law_time, ctl->cfg.tick_hz, TVO_R(1.0), &work->time); /* valid times */
     return st;
 }
 
-/* The step after the law: the input's limit, and the period's commit. */
-TVO_OFF_CHAIN_BODY tvo_status_t chain_step_after_law(tvo_chain_controller_t *ctl, const tvo_chain_measurement_t *meas,
-                                                     tvo_chain_command_t *cmd, uint32_t flags)
+/* The loop's law piece, in the step's own frame. */
+TVO_LOOP_ENTRY tvo_status_t chain_law(void *ctl_any, tvo_loop_frame_t *frame)
 {
+    tvo_chain_controller_t *ctl = ctl_any;
+    tvo_chain_controller_work_t *work = &ctl->work;
+    tvo_law_report_t *report = &work->report;
+    (void)frame;
+    report->gradient = NULL;
+    report->gradient_rate = NULL;
+    report->count = 0u;
+    return law_evaluate_report_unchecked(&ctl->law, ctl->objective, &work->state, &work->time, work->input, report,
+                                         &work->law);
+}
+
+/* The loop's command piece: u is the law's y^(k), clipped to the input's limit (work->command). */
+TVO_OFF_CHAIN_BODY tvo_status_t chain_command(void *ctl_any, tvo_loop_frame_t *frame)
+{
+    tvo_chain_controller_t *ctl = ctl_any;
     tvo_chain_controller_work_t *work = &ctl->work;
     const uint8_t m = ctl->objective->primal_dim;
     const tvo_real_t *u = work->input;
     tvo_chain_command_t *next = &work->command;
     memset(next, 0, sizeof(*next));
-    next->flags = flags;
+    next->flags = frame->flags;
     for (uint8_t i = 0; i < m; ++i) {
         next->u[i] = u[i];
         if (next->u[i] > ctl->cfg.input_max) {
@@ -291,64 +240,50 @@ TVO_OFF_CHAIN_BODY tvo_status_t chain_step_after_law(tvo_chain_controller_t *ctl
             next->flags |= TVO_FLAG_ACCEL_SATURATED;
         }
     }
-    sample_clock_end_good(&ctl->clock, &work->period, meas->stamp_tick);
-    for (uint8_t j = 0; j + 1u < TVO_MAX_RELATIVE_DEGREE; ++j) {
-        ctl->filter[j] = work->filter[j];
-    }
-    ctl->held = *next;
-    *cmd = *next;
     return TVO_OK;
 }
+
+/* The loop's commit piece (the clock committed): the filters and the held input. */
+TVO_OFF_CHAIN_BODY tvo_status_t chain_commit(void *ctl_any, const tvo_loop_frame_t *frame)
+{
+    tvo_chain_controller_t *ctl = ctl_any;
+    (void)frame;
+    for (uint8_t j = 0; j + 1u < TVO_MAX_RELATIVE_DEGREE; ++j) {
+        ctl->filter[j] = ctl->work.filter[j];
+    }
+    ctl->held = ctl->work.command;
+    return TVO_OK;
+}
+
+/* No refusal piece (the chain's refusals are final) and no rest piece (the held input is all its
+ * state at rest; the filters restart from the gap). */
+static const tvo_loop_plant_t chain_plant = {
+    TVO_LOOP_LAYOUT(tvo_chain_controller_t, tvo_chain_measurement_t, tvo_chain_command_t),
+    .check = chain_check, .refusal = NULL, .prepare = chain_prepare, .law = chain_law, .command = chain_command,
+    .commit = chain_commit, .refuse = chain_refuse, .rest = NULL};
 
 tvo_status_t tvo_chain_controller_step(tvo_chain_controller_t *ctl, const tvo_chain_measurement_t *meas,
                                        uint32_t apply_tick, tvo_chain_command_t *cmd)
 {
-    if (cmd == NULL) {
-        return TVO_ERR_NULL;
-    }
-    if (ctl == NULL || !ctl->initialized) {
-        chain_stop_command(cmd);
-        return (ctl == NULL) ? TVO_ERR_NULL : TVO_ERR_NOT_INITIALIZED;
-    }
     if (meas == NULL) {
-        return tvo_chain_controller_miss(ctl, apply_tick, cmd);
+        return tvo_chain_controller_miss(ctl, apply_tick, cmd); /* its period record in its own frame */
     }
-    tvo_chain_controller_work_t *work = &ctl->work;
-    if (sample_clock_begin(&ctl->clock, apply_tick, &work->period) != TVO_OK) {
-        chain_hold_command(ctl, cmd);
-        return TVO_ERR_OUT_OF_ORDER;
-    }
-    /* Before the law, the law, after it: only what crosses the law's call in this frame. */
-    uint32_t flags = 0u;
-    tvo_status_t st =
-        chain_step_before_law(ctl, meas, apply_tick, ctl->clock.stopped, &flags);
-    if (st == TVO_OK) {
-        tvo_law_report_t *report = &work->report;
-        report->gradient = NULL;
-        report->gradient_rate = NULL;
-        report->count = 0u;
-        st = law_evaluate_report_unchecked(&ctl->law, ctl->objective, &work->state, &work->time, work->input, report,
-                                           &work->law);
-    }
-    if (st != TVO_OK) {
-        return chain_refuse_step(ctl, &work->period, st, cmd);
-    }
-    return chain_step_after_law(ctl, meas, cmd, flags);
+    const tvo_status_t st = loop_ready(&chain_plant, ctl, cmd);
+    return (st != TVO_OK) ? st : loop_period(&chain_plant, ctl, meas, apply_tick, cmd, 0u);
 }
 
 tvo_status_t tvo_chain_controller_miss(tvo_chain_controller_t *ctl, uint32_t apply_tick, tvo_chain_command_t *cmd)
 {
-    if (cmd == NULL) {
-        return TVO_ERR_NULL;
-    }
-    if (ctl == NULL || !ctl->initialized) {
-        chain_stop_command(cmd);
-        return (ctl == NULL) ? TVO_ERR_NULL : TVO_ERR_NOT_INITIALIZED;
-    }
-    tvo_period_t period;
-    if (sample_clock_begin(&ctl->clock, apply_tick, &period) != TVO_OK) {
-        chain_hold_command(ctl, cmd);
-        return TVO_ERR_OUT_OF_ORDER;
-    }
-    return chain_miss_period(ctl, &period, cmd);
+    return loop_miss(&chain_plant, ctl, apply_tick, cmd);
+}
+
+tvo_status_t tvo_chain_controller_check(const tvo_chain_controller_t *ctl, const tvo_chain_measurement_t *meas,
+                                        uint32_t apply_tick)
+{
+    return loop_check(&chain_plant, ctl, meas, apply_tick);
+}
+
+tvo_status_t tvo_chain_controller_safe_stop(tvo_chain_controller_t *ctl, tvo_chain_command_t *cmd)
+{
+    return loop_safe_stop(&chain_plant, ctl, cmd);
 }

@@ -11,32 +11,22 @@
 
 #include "law_step.h"
 #include "position_velocity.h"
-#include "sample_clock_kernel.h"
-#include "shape.h"
+#include "sampled_loop.h"
 #include "unicycle_kernel.h"
 #include "tvo/trig.h"
 
 tvo_status_t tvo_controller_config_default(tvo_controller_config_t *cfg)
 {
+    /* The paper's: its gains and limits, one robot, the pose velocity source. */
+    static const tvo_controller_config_t defaults = {
+        TVO_LOOP_CONFIG_DEFAULTS, .robot_count = 1u, .zoh_aware = 0u, .velocity_source = TVO_VELOCITY_FROM_POSE,
+        .filter_tf_s = TVO_R(0.05), .gain_kp = TVO_R(40.0), .gain_kd = TVO_R(13.0),
+        .omega_max_radps = TVO_R(2.0) * TVO_PI, .accel_max_mps2 = TVO_R(15.0), .speed_max_mps = TVO_R(5.0),
+        .min_speed_mps = TVO_R(0.05)};
     if (cfg == NULL) {
         return TVO_ERR_NULL;
     }
-    memset(cfg, 0, sizeof(*cfg));
-    cfg->tick_hz = 1000000u;
-    cfg->period_ticks = 10000u;
-    cfg->delay_ticks = 5000u;
-    cfg->robot_count = 1u;
-    cfg->delay_compensation = 1u;
-    cfg->zoh_aware = 0u;
-    cfg->velocity_source = TVO_VELOCITY_FROM_POSE;
-    cfg->filter_tf_s = TVO_R(0.05);
-    cfg->gain_kp = TVO_R(40.0);
-    cfg->gain_kd = TVO_R(13.0);
-    cfg->omega_max_radps = TVO_R(2.0) * TVO_PI;
-    cfg->accel_max_mps2 = TVO_R(15.0);
-    cfg->speed_max_mps = TVO_R(5.0);
-    cfg->min_speed_mps = TVO_R(0.05);
-    cfg->watchdog_periods = 10u;
+    *cfg = defaults;
     return TVO_OK;
 }
 
@@ -99,24 +89,17 @@ static tvo_param_t first_bad_param(const tvo_controller_config_t *cfg, const tvo
     return TVO_PARAM_NONE;
 }
 
-/* Validates, binds and starts the controller, all but marking it initialised and the position-only
- * source's filter (position_velocity: that source's estimate, NULL when the caller does not link it). */
+static const tvo_loop_plant_t unicycle_plant; /* the loop's table, below its pieces */
+
+/* Validates and binds the controller, all but the loop's clock and the position-only source's filter
+ * (position_velocity: that source's estimate, NULL when the caller does not link it); *bad names the
+ * culprit of a refusal. */
 static tvo_status_t controller_setup(tvo_controller_t *ctl, const tvo_controller_config_t *cfg,
-                                     const tvo_objective_t *objective, uint32_t epoch_tick,
-                                     tvo_param_t *bad_param, tvo_position_velocity_fn position_velocity)
+                                     const tvo_objective_t *objective, tvo_param_t *bad,
+                                     tvo_position_velocity_fn position_velocity)
 {
-    if (bad_param != NULL) {
-        *bad_param = TVO_PARAM_NONE;
-    }
-    if (ctl == NULL || cfg == NULL || objective == NULL) {
-        return TVO_ERR_NULL;
-    }
-    memset(ctl, 0, sizeof(*ctl));
-    const tvo_param_t bad = first_bad_param(cfg, objective, position_velocity);
-    if (bad != TVO_PARAM_NONE) {
-        if (bad_param != NULL) {
-            *bad_param = bad;
-        }
+    *bad = first_bad_param(cfg, objective, position_velocity);
+    if (*bad != TVO_PARAM_NONE) {
         return TVO_ERR_PARAM;
     }
     ctl->cfg = *cfg;
@@ -125,47 +108,48 @@ static tvo_status_t controller_setup(tvo_controller_t *ctl, const tvo_controller
     ctl->period_s = tvo_ticks_to_seconds32(cfg->period_ticks, cfg->tick_hz);
     ctl->speed_step_max_mps = cfg->accel_max_mps2 * ctl->period_s;
     ctl->measured_speed_limit_mps = TVO_MEASURED_SPEED_FACTOR * cfg->speed_max_mps + TVO_MEASURED_SPEED_MARGIN_MPS;
-    const tvo_real_t gains[2] = {cfg->gain_kp, cfg->gain_kd};
-    const tvo_status_t st = tvo_law_init(&ctl->law, 2u, objective->dim, gains);
-    if (st != TVO_OK) {
-        if (bad_param != NULL) {
-            *bad_param = TVO_PARAM_OBJECTIVE;
-        }
-        return st;
-    }
-    /* The timing was validated above: the clock cannot reject it. */
-    (void)tvo_sample_clock_init(&ctl->clock, cfg->tick_hz, cfg->period_ticks, cfg->watchdog_periods, epoch_tick);
     for (uint8_t r = 0; r < cfg->robot_count; ++r) {
         ctl->speed_state_mps[r] = cfg->initial_speed_mps[r];
         ctl->held.speed_mps[r] = cfg->initial_speed_mps[r];
     }
-    return TVO_OK;
+    const tvo_real_t gains[2] = {cfg->gain_kp, cfg->gain_kd};
+    const tvo_status_t st = tvo_law_init(&ctl->law, 2u, objective->dim, gains);
+    *bad = (st == TVO_OK) ? TVO_PARAM_NONE : TVO_PARAM_OBJECTIVE;
+    return st;
+}
+
+/* Both inits: the loop's begin and end around the plant's setup; in each, so the pose-only one links
+ * no filter. */
+TVO_LOOP_ENTRY tvo_status_t controller_init(tvo_controller_t *ctl, const tvo_controller_config_t *cfg,
+                                            const tvo_objective_t *objective, uint32_t epoch_tick,
+                                            tvo_param_t *bad_param, tvo_position_velocity_fn position_velocity)
+{
+    tvo_status_t st = loop_init_begin(&unicycle_plant, ctl, cfg, objective, bad_param);
+    if (st != TVO_OK) {
+        return st;
+    }
+    tvo_param_t bad = TVO_PARAM_NONE;
+    st = controller_setup(ctl, cfg, objective, &bad, position_velocity);
+    if (st == TVO_OK && position_velocity != NULL) {
+        st = tvo_dirty_derivative_init(&ctl->velocity_filter, objective->primal_dim, cfg->filter_tf_s, ctl->period_s);
+        bad = (st == TVO_OK) ? TVO_PARAM_NONE : TVO_PARAM_OBJECTIVE;
+    }
+    return loop_init_end(&unicycle_plant, ctl, st, bad, bad_param, cfg->tick_hz, cfg->period_ticks,
+                         cfg->watchdog_periods, epoch_tick);
 }
 
 tvo_status_t tvo_controller_init(tvo_controller_t *ctl, const tvo_controller_config_t *cfg,
                                  const tvo_objective_t *objective, uint32_t epoch_tick,
                                  tvo_param_t *bad_param)
 {
-    tvo_status_t st = controller_setup(ctl, cfg, objective, epoch_tick, bad_param, controller_position_velocity);
-    if (st == TVO_OK) {
-        st = tvo_dirty_derivative_init(&ctl->velocity_filter, objective->primal_dim, cfg->filter_tf_s, ctl->period_s);
-        if (st != TVO_OK && bad_param != NULL) {
-            *bad_param = TVO_PARAM_OBJECTIVE;
-        }
-        ctl->initialized = st == TVO_OK;
-    }
-    return st;
+    return controller_init(ctl, cfg, objective, epoch_tick, bad_param, controller_position_velocity);
 }
 
 tvo_status_t tvo_controller_init_pose_velocity(tvo_controller_t *ctl, const tvo_controller_config_t *cfg,
                                                const tvo_objective_t *objective, uint32_t epoch_tick,
                                                tvo_param_t *bad_param)
 {
-    const tvo_status_t st = controller_setup(ctl, cfg, objective, epoch_tick, bad_param, NULL);
-    if (st == TVO_OK) {
-        ctl->initialized = 1;
-    }
-    return st;
+    return controller_init(ctl, cfg, objective, epoch_tick, bad_param, NULL);
 }
 
 /* Why a measurement failed the range check, off the common path: not finite if the sum of the robots'
@@ -179,12 +163,24 @@ TVO_COLD_BODY tvo_status_t measurement_range_refusal(const tvo_controller_t *ctl
     return isfinite(probe - probe) ? TVO_ERR_IMPLAUSIBLE_MEASUREMENT : TVO_ERR_NOT_FINITE;
 }
 
-static inline tvo_status_t check_measurement(const tvo_controller_t *ctl, const tvo_measurement_t *meas,
-                                      uint32_t apply_tick)
+/* The loop's refusal piece: the range check's refusal told apart (implausible, or not finite). */
+static tvo_status_t unicycle_refusal(const void *ctl, const void *meas, tvo_status_t reason)
 {
-    if (meas == NULL) {
-        return TVO_ERR_NO_MEASUREMENT;
-    }
+    return (reason == TVO_ERR_IMPLAUSIBLE_MEASUREMENT) ? measurement_range_refusal(ctl, meas) : reason;
+}
+
+/* The loop's refuse piece: its refusal, out of line (a cold path). */
+TVO_COLD_BODY tvo_status_t unicycle_refuse(void *ctl, const void *meas, const tvo_period_t *period,
+                                           tvo_status_t reason, void *cmd)
+{
+    return loop_refuse(&unicycle_plant, ctl, meas, period, reason, cmd);
+}
+
+/* The loop's check piece: the measurement's values, its stamp and the fields the source reads. */
+static inline tvo_status_t check_measurement(const void *ctl_any, const void *meas_any, uint32_t apply_tick)
+{
+    const tvo_controller_t *ctl = ctl_any;
+    const tvo_measurement_t *meas = meas_any;
     const uint8_t n = ctl->cfg.robot_count;
     const tvo_real_t speed_limit = ctl->measured_speed_limit_mps;
     for (uint8_t r = 0; r < n; ++r) {
@@ -193,7 +189,7 @@ static inline tvo_status_t check_measurement(const tvo_controller_t *ctl, const 
             !(TVO_FABS(meas->position_m[r][1]) <= TVO_POSITION_LIMIT_M) ||
             (meas->heading_valid && !(TVO_FABS(meas->heading_rad[r]) <= TVO_HEADING_LIMIT_RAD)) ||
             (meas->speed_valid && !(TVO_FABS(meas->speed_mps[r]) <= speed_limit))) {
-            return TVO_ERR_IMPLAUSIBLE_MEASUREMENT; /* or not finite: measurement_range_refusal says which */
+            return TVO_ERR_IMPLAUSIBLE_MEASUREMENT; /* or not finite: unicycle_refusal says which */
         }
     }
     const tvo_status_t st = sample_clock_check_stamp(&ctl->clock, meas->stamp_tick, apply_tick);
@@ -213,12 +209,6 @@ static inline tvo_status_t check_measurement(const tvo_controller_t *ctl, const 
 /* What a good step after the watchdog's gap takes as the command in force: the robots were stopped. */
 static const tvo_command_t rest_command = {{TVO_R(0.0)}, {TVO_R(0.0)}, 0u};
 
-static void stop_command(tvo_command_t *cmd, uint32_t flags)
-{
-    memset(cmd, 0, sizeof(*cmd));
-    cmd->flags = flags;
-}
-
 static tvo_real_t clamp(tvo_real_t v, tvo_real_t limit, uint32_t flag, uint32_t *flags)
 {
     if (v > limit) {
@@ -232,57 +222,14 @@ static tvo_real_t clamp(tvo_real_t v, tvo_real_t limit, uint32_t flag, uint32_t 
     return v;
 }
 
-/* The robots stop: speed states, the dual dynamics and the held command go to zero. */
-static void drop_to_rest(tvo_controller_t *ctl, tvo_command_t *cmd)
+/* The loop's rest piece: speed states, the dual dynamics and the mismatch counts at rest (the robots
+ * stop; a good step after the watchdog's gap commits from here). */
+TVO_COLD_BODY void unicycle_rest(void *ctl_any)
 {
+    tvo_controller_t *ctl = ctl_any;
     for (uint8_t r = 0; r < TVO_MAX_ROBOTS; ++r) {
         ctl->speed_state_mps[r] = TVO_R(0.0);
     }
-    for (uint8_t q = 0; q < TVO_ARRAY_LEN(TVO_MAX_EQUALITIES); ++q) {
-        ctl->multiplier_rate[q] = TVO_R(0.0);
-    }
-    ctl->speed_mismatch_periods = 0u;
-    ctl->speed_mismatch_holdoff = 0u;
-    stop_command(&ctl->held, 0u);
-    stop_command(cmd, TVO_FLAG_SAFE_STOP);
-}
-
-/* The command in force, flagged HOLDING (zero once the robots were stopped). */
-static void hold_command(const tvo_controller_t *ctl, tvo_command_t *cmd)
-{
-    *cmd = ctl->held;
-    cmd->flags = TVO_FLAG_HOLDING;
-}
-
-/* A period counted without a good step (committed): held, or stopped once the watchdog expires. */
-static tvo_status_t miss_period(tvo_controller_t *ctl, const tvo_period_t *period, tvo_command_t *cmd)
-{
-    if (tvo_sample_clock_end(&ctl->clock, period, 0, 0u)) {
-        drop_to_rest(ctl, cmd);
-        return TVO_ERR_WATCHDOG;
-    }
-    hold_command(ctl, cmd);
-    return TVO_ERR_NO_MEASUREMENT;
-}
-
-/* A step that cannot use its measurement (or its law result), committing nothing: the refusal named
- * and the command in force. The one exception is the watchdog's stop: when counting the period would
- * expire it, the period is counted and the robots stop (the stop is the state the plant is left in). */
-TVO_COLD_BODY tvo_status_t refuse_step(tvo_controller_t *ctl, const tvo_measurement_t *meas,
-                                       const tvo_period_t *period, tvo_status_t reason, tvo_command_t *cmd)
-{
-    if (sample_clock_refusal_stops(&ctl->clock, period)) {
-        (void)miss_period(ctl, period, cmd);
-        return TVO_ERR_WATCHDOG;
-    }
-    hold_command(ctl, cmd);
-    return (reason == TVO_ERR_IMPLAUSIBLE_MEASUREMENT) ? measurement_range_refusal(ctl, meas) : reason;
-}
-
-/* A good step after the watchdog's gap: what the stop leaves at rest (the speed states and the held
- * command the step read as zero) is committed so. */
-TVO_COLD_BODY void commit_rest(tvo_controller_t *ctl)
-{
     for (uint8_t q = 0; q < TVO_ARRAY_LEN(TVO_MAX_EQUALITIES); ++q) {
         ctl->multiplier_rate[q] = TVO_R(0.0);
     }
@@ -305,7 +252,7 @@ TVO_COLD_BODY uint32_t limit_speed_step(const tvo_controller_t *ctl, tvo_real_t 
 
 /* A period of the speed mismatch's stop, after the period's commit: accepted (clock, filters,
  * multipliers move on), but the robots stand still. */
-TVO_COLD_BODY tvo_status_t hold_mismatch_stop(tvo_controller_t *ctl, tvo_command_t *cmd)
+TVO_COLD_BODY tvo_status_t hold_mismatch_stop(tvo_controller_t *ctl)
 {
     ctl->speed_mismatch_holdoff--;
     for (uint8_t r = 0; r < TVO_MAX_ROBOTS; ++r) {
@@ -315,20 +262,25 @@ TVO_COLD_BODY tvo_status_t hold_mismatch_stop(tvo_controller_t *ctl, tvo_command
     for (uint8_t q = 0; q < TVO_ARRAY_LEN(TVO_MAX_EQUALITIES); ++q) {
         ctl->multiplier_rate[q] = TVO_R(0.0);
     }
-    stop_command(&ctl->held, TVO_FLAG_SAFE_STOP | TVO_FLAG_SPEED_MISMATCH);
-    *cmd = ctl->held;
+    memset(&ctl->held, 0, sizeof(ctl->held));
+    ctl->held.flags = TVO_FLAG_SAFE_STOP | TVO_FLAG_SPEED_MISMATCH;
     return TVO_OK;
 }
 
-/* The step before the law, for a period the clock has begun: the measurement checked, the state and
- * time the law is evaluated at (work->output, work->time), *flags and *speed_contradicted. */
-TVO_OFF_CHAIN_BODY tvo_status_t step_before_law(tvo_controller_t *ctl, const tvo_measurement_t *meas,
-                                                uint32_t apply_tick, const uint8_t n, uint32_t *flags_out,
-                                                int *speed_contradicted_out)
+/* The loop's prepare piece, for a period the clock has begun: the measurement checked, the state and
+ * time the law is evaluated at (work->output, work->time); the frame's flags, its note (the measured
+ * speed contradicted the held one) and the stamp. */
+TVO_OFF_CHAIN_BODY tvo_status_t unicycle_prepare(void *ctl_any, const void *meas_any, uint32_t apply_tick,
+                                                 tvo_loop_frame_t *frame)
 {
+    tvo_controller_t *ctl = ctl_any;
+    const tvo_measurement_t *meas = meas_any;
+    const uint8_t n = frame->shape;
     const tvo_controller_config_t *cfg = &ctl->cfg;
     tvo_controller_work_t *work = &ctl->work;
     tvo_period_t *period = &work->period;
+    work->from_rest = frame->from_rest;
+    work->in_force = work->from_rest ? &rest_command : &ctl->held;
     tvo_status_t st = check_measurement(ctl, meas, apply_tick);
     if (st != TVO_OK) {
         return st;
@@ -410,34 +362,42 @@ TVO_OFF_CHAIN_BODY tvo_status_t step_before_law(tvo_controller_t *ctl, const tvo
     }
 #endif
 
-    *flags_out = flags;
-    *speed_contradicted_out = speed_contradicted;
+    frame->flags = flags;
+    frame->note = (uint8_t)speed_contradicted;
     return st;
 }
 
-/* The step after the law: the flat map, the limits, and on success the period's commit. */
-TVO_OFF_CHAIN_BODY tvo_status_t step_after_law(tvo_controller_t *ctl, const tvo_measurement_t *meas,
-                                               tvo_command_t *cmd, const uint8_t n, uint32_t flags,
-                                               int speed_contradicted)
+/* The loop's law piece, in the step's own frame (the law's call chain is the step's deepest). */
+TVO_LOOP_ENTRY tvo_status_t unicycle_law(void *ctl_any, tvo_loop_frame_t *frame)
 {
+    tvo_controller_t *ctl = ctl_any;
+    tvo_controller_work_t *work = &ctl->work;
+    tvo_law_report_t *report = &work->report;
+    report->gradient = work->gradient;
+    report->gradient_rate = work->gradient_rate;
+    report->count = ctl->objective->primal_dim;
+    const tvo_status_t st = law_evaluate_report_unchecked(&ctl->law, ctl->objective, &work->output, &work->time,
+                                                          work->output_accel, report, &work->law);
+    if (report->regularization > TVO_R(0.0)) {
+        frame->flags |= TVO_FLAG_REGULARIZED;
+    }
+    return st;
+}
+
+/* The loop's command piece: the flat map and the limits, into work->command (nothing committed). */
+TVO_OFF_CHAIN_BODY tvo_status_t unicycle_command(void *ctl_any, tvo_loop_frame_t *frame)
+{
+    tvo_controller_t *ctl = ctl_any;
+    const uint8_t n = frame->shape;
     const tvo_controller_config_t *cfg = &ctl->cfg;
     tvo_controller_work_t *work = &ctl->work;
-    tvo_period_t *period = &work->period;
-    const int position_only = cfg->velocity_source == TVO_VELOCITY_FROM_POSITION;
-    const tvo_output_derivs_t *y = &work->output;
-    const tvo_time_jet_t *t = &work->time;
     const tvo_real_t *y_accel = work->output_accel;
-    const tvo_real_t *heading = work->heading;
     tvo_real_t(*heading_cs)[2] = work->heading_cs;
     const tvo_real_t *speed = work->speed;
     const tvo_real_t *speed_state = work->speed_state;
-#if TVO_MAX_EQUALITIES > 0
-    const uint8_t primal = work->report.count; /* the objective's primal_dim */
-    const uint8_t dual = ctl->objective->dual_dim;
-#endif
-    const tvo_real_t carry_s = period->carry_s;
     tvo_command_t *next = &work->command; /* robots 0..n-1; the held command's others stay zero */
     tvo_status_t st = TVO_OK;
+    uint32_t flags = frame->flags;
     tvo_real_t *speed_next = work->speed_next;
     tvo_real_t *accel = work->accel;
     for (uint8_t r = 0; r < n && st == TVO_OK; ++r) {
@@ -465,24 +425,39 @@ TVO_OFF_CHAIN_BODY tvo_status_t step_after_law(tvo_controller_t *ctl, const tvo_
             st = TVO_ERR_NUMERIC;
         }
     }
+    frame->flags = flags;
+    return st;
+}
 
-    if (st != TVO_OK) {
-        return refuse_step(ctl, meas, period, st, cmd);
-    }
-    /* The step succeeded: from here on its working copies become the controller's state. */
+/* The loop's commit piece (the clock committed): the filter, the mismatch count, the multipliers, the
+ * speed states, the held command and the telemetry. */
+TVO_OFF_CHAIN_BODY tvo_status_t unicycle_commit(void *ctl_any, const tvo_loop_frame_t *frame)
+{
+    tvo_controller_t *ctl = ctl_any;
+    const uint8_t n = frame->shape;
+    uint32_t flags = frame->flags;
+    const tvo_controller_config_t *cfg = &ctl->cfg;
+    tvo_controller_work_t *work = &ctl->work;
+    const tvo_period_t *period = &work->period;
+    const tvo_output_derivs_t *y = &work->output;
+    const tvo_real_t *y_accel = work->output_accel;
+    const tvo_command_t *next = &work->command;
+#if TVO_MAX_EQUALITIES > 0
+    const uint8_t primal = work->report.count; /* the objective's primal_dim */
+    const uint8_t dual = ctl->objective->dual_dim;
+#endif
     if (work->from_rest) {
-        commit_rest(ctl);
+        unicycle_rest(ctl);
     }
-    sample_clock_end_good(&ctl->clock, period, meas->stamp_tick);
-    if (position_only) {
+    if (cfg->velocity_source == TVO_VELOCITY_FROM_POSITION) {
         ctl->velocity_filter = work->velocity_filter;
         for (uint8_t r = 0; r < n; ++r) {
             /* The estimate lives at the application instant; the next sample dead-reckons from here. */
-            ctl->heading_estimate_rad[r] =
-                unicycle_wrap_angle_near(heading[r] + work->in_force->turn_rate_radps[r] * (period->age_s - carry_s));
+            ctl->heading_estimate_rad[r] = unicycle_wrap_angle_near(
+                work->heading[r] + work->in_force->turn_rate_radps[r] * (period->age_s - period->carry_s));
         }
     }
-    ctl->speed_mismatch_periods = speed_contradicted ? ctl->speed_mismatch_periods + 1u : 0u;
+    ctl->speed_mismatch_periods = frame->note ? ctl->speed_mismatch_periods + 1u : 0u;
     if (ctl->speed_mismatch_periods >= TVO_SPEED_MISMATCH_PERIODS) {
         flags |= TVO_FLAG_SPEED_MISMATCH;
         if (ctl->speed_mismatch_periods >= TVO_SPEED_MISMATCH_STOP_PERIODS) {
@@ -501,18 +476,17 @@ TVO_OFF_CHAIN_BODY tvo_status_t step_after_law(tvo_controller_t *ctl, const tvo_
     }
 #endif
     for (uint8_t r = 0; r < n; ++r) {
-        ctl->speed_state_mps[r] = speed_next[r];
-        tm->accel_mps2[r] = accel[r];
+        ctl->speed_state_mps[r] = work->speed_next[r];
+        tm->accel_mps2[r] = work->accel[r];
     }
     for (uint8_t r = 0; r < n; ++r) {
         ctl->held.speed_mps[r] = next->speed_mps[r];
         ctl->held.turn_rate_radps[r] = next->turn_rate_radps[r];
     }
     ctl->held.flags = flags;
-    *cmd = ctl->held;
 
     /* Telemetry of the entries this problem uses (the rest stay zero from init). */
-    tm->objective_time_s = t->t_s;
+    tm->objective_time_s = work->time.t_s;
     for (uint8_t i = 0; i < 2u * n; ++i) {
         tm->output_m[i] = y->d[0][i];
         tm->output_rate_mps[i] = y->d[1][i];
@@ -522,119 +496,52 @@ TVO_OFF_CHAIN_BODY tvo_status_t step_after_law(tvo_controller_t *ctl, const tvo_
     }
     tm->regularization = work->report.regularization;
     if (ctl->speed_mismatch_holdoff > 0u) {
-        return hold_mismatch_stop(ctl, cmd);
+        return hold_mismatch_stop(ctl);
     }
     return TVO_OK;
 }
 
-/* The step of an initialised controller driving n robots (n = cfg.robot_count): before the law, the
- * law, after it, with only what crosses the law's call in this frame. */
-TVO_SHAPE_BODY tvo_status_t step_shape(tvo_controller_t *ctl, const tvo_measurement_t *meas, uint32_t apply_tick,
-                                       tvo_command_t *cmd, const uint8_t n)
-{
-    /* The period's timing: apply ticks must advance; elapsed time never wraps. */
-    tvo_controller_work_t *work = &ctl->work;
-    if (sample_clock_begin(&ctl->clock, apply_tick, &work->period) != TVO_OK) {
-        hold_command(ctl, cmd);
-        return TVO_ERR_OUT_OF_ORDER;
-    }
-    work->from_rest = ctl->clock.stopped;
-    work->in_force = work->from_rest ? &rest_command : &ctl->held;
-    uint32_t flags = 0u;
-    int speed_contradicted = 0;
-    tvo_status_t st = step_before_law(ctl, meas, apply_tick, n, &flags, &speed_contradicted);
-    if (st == TVO_OK) {
-        tvo_law_report_t *report = &work->report;
-        report->gradient = work->gradient;
-        report->gradient_rate = work->gradient_rate;
-        report->count = ctl->objective->primal_dim;
-        st = law_evaluate_report_unchecked(&ctl->law, ctl->objective, &work->output, &work->time,
-                                           work->output_accel, report, &work->law);
-        if (report->regularization > TVO_R(0.0)) {
-            flags |= TVO_FLAG_REGULARIZED;
-        }
-    }
-    if (st != TVO_OK) {
-        return refuse_step(ctl, meas, &work->period, st, cmd);
-    }
-    return step_after_law(ctl, meas, cmd, n, flags, speed_contradicted);
-}
+static const tvo_loop_plant_t unicycle_plant = {
+    TVO_LOOP_LAYOUT(tvo_controller_t, tvo_measurement_t, tvo_command_t),
+    .check = check_measurement, .refusal = unicycle_refusal, .prepare = unicycle_prepare, .law = unicycle_law,
+    .command = unicycle_command, .commit = unicycle_commit, .refuse = unicycle_refuse, .rest = unicycle_rest};
 
 tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t *meas,
                                  uint32_t apply_tick, tvo_command_t *cmd)
 {
-    if (cmd == NULL) {
-        return TVO_ERR_NULL;
-    }
-    if (ctl == NULL) {
-        stop_command(cmd, TVO_FLAG_SAFE_STOP);
-        return TVO_ERR_NULL;
-    }
-    if (!ctl->initialized) {
-        stop_command(cmd, TVO_FLAG_SAFE_STOP);
-        return TVO_ERR_NOT_INITIALIZED;
-    }
     if (meas == NULL) {
-        return tvo_controller_miss(ctl, apply_tick, cmd);
+        return tvo_controller_miss(ctl, apply_tick, cmd); /* its period record in its own frame */
+    }
+    const tvo_status_t st = loop_ready(&unicycle_plant, ctl, cmd);
+    if (st != TVO_OK) {
+        return st;
     }
 #if TVO_SHAPE_COPIES
     if (ctl->cfg.robot_count == 1u) {
-        return step_shape(ctl, meas, apply_tick, cmd, 1u);
+        return loop_period(&unicycle_plant, ctl, meas, apply_tick, cmd, 1u);
     }
 #if TVO_MAX_ROBOTS >= 2
     if (ctl->cfg.robot_count == 2u) {
-        return step_shape(ctl, meas, apply_tick, cmd, 2u);
+        return loop_period(&unicycle_plant, ctl, meas, apply_tick, cmd, 2u);
     }
 #endif
 #endif
-    return step_shape(ctl, meas, apply_tick, cmd, ctl->cfg.robot_count);
+    return loop_period(&unicycle_plant, ctl, meas, apply_tick, cmd, ctl->cfg.robot_count);
 }
 
 tvo_status_t tvo_controller_miss(tvo_controller_t *ctl, uint32_t apply_tick, tvo_command_t *cmd)
 {
-    if (cmd == NULL) {
-        return TVO_ERR_NULL;
-    }
-    if (ctl == NULL || !ctl->initialized) {
-        stop_command(cmd, TVO_FLAG_SAFE_STOP);
-        return (ctl == NULL) ? TVO_ERR_NULL : TVO_ERR_NOT_INITIALIZED;
-    }
-    tvo_period_t period;
-    if (sample_clock_begin(&ctl->clock, apply_tick, &period) != TVO_OK) {
-        hold_command(ctl, cmd);
-        return TVO_ERR_OUT_OF_ORDER;
-    }
-    return miss_period(ctl, &period, cmd);
+    return loop_miss(&unicycle_plant, ctl, apply_tick, cmd);
 }
 
 tvo_status_t tvo_controller_check(const tvo_controller_t *ctl, const tvo_measurement_t *meas, uint32_t apply_tick)
 {
-    if (ctl == NULL) {
-        return TVO_ERR_NULL;
-    }
-    if (!ctl->initialized) {
-        return TVO_ERR_NOT_INITIALIZED;
-    }
-    tvo_period_t period;
-    if (tvo_sample_clock_begin(&ctl->clock, apply_tick, &period) != TVO_OK) {
-        return TVO_ERR_OUT_OF_ORDER;
-    }
-    const tvo_status_t st = check_measurement(ctl, meas, apply_tick);
-    return (st == TVO_ERR_IMPLAUSIBLE_MEASUREMENT) ? measurement_range_refusal(ctl, meas) : st;
+    return loop_check(&unicycle_plant, ctl, meas, apply_tick);
 }
 
 tvo_status_t tvo_controller_safe_stop(tvo_controller_t *ctl, tvo_command_t *cmd)
 {
-    if (cmd == NULL) {
-        return TVO_ERR_NULL;
-    }
-    if (ctl == NULL || !ctl->initialized) {
-        stop_command(cmd, TVO_FLAG_SAFE_STOP);
-        return (ctl == NULL) ? TVO_ERR_NULL : TVO_ERR_NOT_INITIALIZED;
-    }
-    (void)tvo_sample_clock_expire(&ctl->clock);
-    drop_to_rest(ctl, cmd);
-    return TVO_OK;
+    return loop_safe_stop(&unicycle_plant, ctl, cmd);
 }
 
 tvo_status_t tvo_controller_sample_tick(const tvo_controller_t *ctl, uint32_t apply_tick, uint32_t *sample_tick)

@@ -122,9 +122,12 @@ static void expect_not_initialized(fx_t *fx)
 
 static void expect_rejected(fx_t *fx, tvo_param_t param)
 {
+    static const tvo_controller_t zeroed; /* a refused init leaves the instance so */
+    memset(&fx->ctl, 0x5A, sizeof(fx->ctl));
     const tvo_status_t st = fx_init_controller(fx, 0);
     ASSERT_STATUS(TVO_ERR_PARAM, st);
     ASSERT_PARAM(param, fx->bad_param);
+    TEST_ASSERT_EQUAL_MEMORY(&zeroed, &fx->ctl, sizeof(zeroed));
     expect_not_initialized(fx);
 }
 

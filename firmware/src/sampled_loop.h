@@ -1,0 +1,305 @@
+/*
+ * Private to the core: the sampled-data loop, written once for every plant's controller.
+ *
+ * The loop owns the period's clock, the command in force (held), the watchdog and the commit. A step
+ * begins the period of its application instant; the plant prepares the law's state from the
+ * measurement (checking it), computes the command it would hold (the law, its output mapped to the
+ * plant's input, the limits); then either the whole period is committed (the clock, the plant's
+ * state, the held command) or nothing changes and the answer is the command in force. The one thing
+ * a refusal commits is the watchdog's stop: a refused step whose period would expire it counts the
+ * period and stops (tvo/controller.h states the contract).
+ *
+ * A plant (unicycle, integrator chain) supplies a tvo_loop_plant_t: where the loop's state lives in
+ * its controller, the size of its command, and its pieces. Each controller calls the loop with its
+ * own static const table, so the compiler folds the table and calls the pieces directly (no indirect
+ * call is left: tools/footprint.py refuses one it does not know of, the check that it was folded).
+ */
+#ifndef TVO_SAMPLED_LOOP_H
+#define TVO_SAMPLED_LOOP_H
+
+#include <stddef.h>
+#include <string.h>
+
+#include "sample_clock_kernel.h"
+#include "shape.h"
+
+/* A body compiled into each of its callers, so that a constant argument folds there: a NULL option,
+ * or a plant's table (folded before the compiler decides which functions to emit, so the pieces the
+ * table names are not emitted again beside their inlined copies). */
+#if defined(__GNUC__)
+#define TVO_LOOP_ENTRY static inline __attribute__((always_inline))
+#else
+#define TVO_LOOP_ENTRY static inline
+#endif
+
+/* What a period's pieces pass each other, in registers when the loop is compiled into the step. */
+typedef struct {
+    uint32_t flags;    /* the command's TVO_FLAG_* so far */
+    uint8_t note;      /* the plant's own, from prepare to commit */
+    uint8_t from_rest; /* the watchdog stopped the plant: the command in force is zero */
+    uint8_t shape;     /* the plant's count for its loops (a constant in the shape copies) */
+} tvo_loop_frame_t;
+
+typedef struct {
+    /* Where the loop's state lives in the plant's controller (offsetof). */
+    size_t controller_size;
+    size_t clock_at;       /* tvo_sample_clock_t */
+    size_t held_at;        /* the command in force */
+    size_t period_at;      /* the step's tvo_period_t (its work area) */
+    size_t initialized_at; /* uint8_t */
+    size_t stamp_at;       /* the measurement's uint32_t stamp_tick */
+    /* The plant's command: its size and where its uint32_t TVO_FLAG_* are. */
+    size_t command_size;
+    size_t command_flags_at;
+    /** The measurement's checks, clock's stamp rules included (NULL measurements never reach it):
+     *  TVO_OK or the refusal, before any refinement by refusal. */
+    tvo_status_t (*check)(const void *ctl, const void *meas, uint32_t apply_tick);
+    /** The refusal's status as the caller sees it (e.g. implausible or not finite); NULL: as it is. */
+    tvo_status_t (*refusal)(const void *ctl, const void *meas, tvo_status_t reason);
+    /** For a begun period: the measurement checked, the state and time the law is evaluated at, the
+     *  frame's flags and note (nothing committed). */
+    tvo_status_t (*prepare)(void *ctl, const void *meas, uint32_t apply_tick, tvo_loop_frame_t *frame);
+    /** The law, evaluated there (in the step's frame: its call chain is the step's deepest). */
+    tvo_status_t (*law)(void *ctl, tvo_loop_frame_t *frame);
+    /** The law's output mapped to the command the step would hold, limits applied (in the plant's work
+     *  area; nothing committed). */
+    tvo_status_t (*command)(void *ctl, tvo_loop_frame_t *frame);
+    /** The period accepted (the clock already committed): the plant's state and the held command.
+     *  Returns the step's status. */
+    tvo_status_t (*commit)(void *ctl, const tvo_loop_frame_t *frame);
+    /** loop_refuse with this table, kept out of line in the plant (a cold path: the step's registers
+     *  and layout do not pay for it). */
+    tvo_status_t (*refuse)(void *ctl, const void *meas, const tvo_period_t *period, tvo_status_t reason, void *cmd);
+    /** The plant stops: its states at rest (the loop zeroes the held command); NULL: nothing more. */
+    void (*rest)(void *ctl);
+} tvo_loop_plant_t;
+
+/* The layout part of a plant's table: the loop's members must carry these names (clock, held,
+ * initialized, work.period in the controller; stamp_tick in the measurement; flags in the command). */
+#define TVO_LOOP_LAYOUT(controller_type, measurement_type, command_type)                                     \
+    .controller_size = sizeof(controller_type), .clock_at = offsetof(controller_type, clock),                \
+    .held_at = offsetof(controller_type, held), .period_at = offsetof(controller_type, work.period),          \
+    .initialized_at = offsetof(controller_type, initialized), .stamp_at = offsetof(measurement_type, stamp_tick), \
+    .command_size = sizeof(command_type), .command_flags_at = offsetof(command_type, flags)
+
+/* A command's storage holds a uint32_t, so it is word-aligned: its copies may move whole words
+ * (ldm/stm on Arm) as a typed struct assignment would. */
+#if defined(__GNUC__)
+#define LOOP_WORDS(ptr) __builtin_assume_aligned((ptr), sizeof(uint32_t))
+#else
+#define LOOP_WORDS(ptr) (ptr)
+#endif
+
+/* The member at offset_bytes (an offsetof) in a plant's object: aligned as that member is. */
+TVO_LOOP_ENTRY void *loop_at(void *object, size_t offset_bytes)
+{
+    return (char *)object + offset_bytes;
+}
+
+TVO_LOOP_ENTRY const void *loop_at_const(const void *object, size_t offset_bytes)
+{
+    return (const char *)object + offset_bytes;
+}
+
+TVO_LOOP_ENTRY tvo_sample_clock_t *loop_clock(const tvo_loop_plant_t *p, void *ctl)
+{
+    return loop_at(ctl, p->clock_at);
+}
+
+TVO_LOOP_ENTRY const tvo_sample_clock_t *loop_clock_const(const tvo_loop_plant_t *p, const void *ctl)
+{
+    return loop_at_const(ctl, p->clock_at);
+}
+
+TVO_LOOP_ENTRY int loop_initialized(const tvo_loop_plant_t *p, const void *ctl)
+{
+    return *(const uint8_t *)loop_at_const(ctl, p->initialized_at) != 0u;
+}
+
+TVO_LOOP_ENTRY void loop_set_flags(const tvo_loop_plant_t *p, void *cmd, uint32_t flags)
+{
+    *(uint32_t *)loop_at(cmd, p->command_flags_at) = flags;
+}
+
+/* The safe stop: every input zero, flagged so. */
+TVO_LOOP_ENTRY void loop_stop_command(const tvo_loop_plant_t *p, void *cmd, uint32_t flags)
+{
+    memset(LOOP_WORDS(cmd), 0, p->command_size);
+    loop_set_flags(p, cmd, flags);
+}
+
+/* The command in force, flagged HOLDING (zero once the plant was stopped). */
+TVO_LOOP_ENTRY void loop_hold(const tvo_loop_plant_t *p, const void *ctl, void *cmd)
+{
+    memcpy(LOOP_WORDS(cmd), LOOP_WORDS(loop_at_const(ctl, p->held_at)), p->command_size);
+    loop_set_flags(p, cmd, TVO_FLAG_HOLDING);
+}
+
+/* The plant stops: its states, and the held command, at rest; cmd the safe stop. */
+TVO_LOOP_ENTRY void loop_drop_to_rest(const tvo_loop_plant_t *p, void *ctl, void *cmd)
+{
+    if (p->rest != NULL) {
+        p->rest(ctl);
+    }
+    loop_stop_command(p, loop_at(ctl, p->held_at), 0u);
+    loop_stop_command(p, cmd, TVO_FLAG_SAFE_STOP);
+}
+
+/* A public call's guard: cmd NULL is TVO_ERR_NULL; an instance NULL or not initialised answers with
+ * the safe stop and names which. TVO_OK when the call may go on. */
+TVO_LOOP_ENTRY tvo_status_t loop_ready(const tvo_loop_plant_t *p, const void *ctl, void *cmd)
+{
+    if (cmd == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (ctl == NULL || !loop_initialized(p, ctl)) {
+        loop_stop_command(p, cmd, TVO_FLAG_SAFE_STOP);
+        return (ctl == NULL) ? TVO_ERR_NULL : TVO_ERR_NOT_INITIALIZED;
+    }
+    return TVO_OK;
+}
+
+/* A period counted without a good step (committed): held, or stopped once the watchdog expires. */
+TVO_LOOP_ENTRY tvo_status_t loop_miss_period(const tvo_loop_plant_t *p, void *ctl, const tvo_period_t *period,
+                                             void *cmd)
+{
+    if (tvo_sample_clock_end(loop_clock(p, ctl), period, 0, 0u)) {
+        loop_drop_to_rest(p, ctl, cmd);
+        return TVO_ERR_WATCHDOG;
+    }
+    loop_hold(p, ctl, cmd);
+    return TVO_ERR_NO_MEASUREMENT;
+}
+
+/* tvo_*_miss (and a step without a measurement, which calls it: its period record is in its own
+ * frame, not on the step's deepest chain). */
+TVO_LOOP_ENTRY tvo_status_t loop_miss(const tvo_loop_plant_t *p, void *ctl, uint32_t apply_tick, void *cmd)
+{
+    const tvo_status_t ready = loop_ready(p, ctl, cmd);
+    if (ready != TVO_OK) {
+        return ready;
+    }
+    tvo_period_t period;
+    if (sample_clock_begin(loop_clock(p, ctl), apply_tick, &period) != TVO_OK) {
+        loop_hold(p, ctl, cmd);
+        return TVO_ERR_OUT_OF_ORDER;
+    }
+    return loop_miss_period(p, ctl, &period, cmd);
+}
+
+/* A step that cannot use its measurement (or its law's result), committing nothing: the refusal named
+ * and the command in force; or, when counting the period would expire the watchdog, the period
+ * counted and the stop (the state the plant is left in). The body of the plant's refuse piece. */
+TVO_LOOP_ENTRY tvo_status_t loop_refuse(const tvo_loop_plant_t *p, void *ctl, const void *meas,
+                                       const tvo_period_t *period, tvo_status_t reason, void *cmd)
+{
+    if (sample_clock_refusal_stops(loop_clock(p, ctl), period)) {
+        (void)loop_miss_period(p, ctl, period, cmd);
+        return TVO_ERR_WATCHDOG;
+    }
+    loop_hold(p, ctl, cmd);
+    return (p->refusal != NULL) ? p->refusal(ctl, meas, reason) : reason;
+}
+
+/* One period with a measurement, for an instance loop_ready passed: begin, prepare, command, and the
+ * commit or the refusal. shape: the plant's loop count, a constant in the shape copies. */
+TVO_LOOP_ENTRY tvo_status_t loop_period(const tvo_loop_plant_t *p, void *ctl, const void *meas, uint32_t apply_tick,
+                                        void *cmd, const uint8_t shape)
+{
+    tvo_sample_clock_t *clock = loop_clock(p, ctl);
+    tvo_period_t *period = loop_at(ctl, p->period_at);
+    if (sample_clock_begin(clock, apply_tick, period) != TVO_OK) {
+        loop_hold(p, ctl, cmd);
+        return TVO_ERR_OUT_OF_ORDER;
+    }
+    tvo_loop_frame_t frame = {0u, 0u, clock->stopped, shape};
+    tvo_status_t st = p->prepare(ctl, meas, apply_tick, &frame);
+    if (st == TVO_OK) {
+        st = p->law(ctl, &frame);
+    }
+    if (st == TVO_OK) {
+        st = p->command(ctl, &frame);
+    }
+    if (st != TVO_OK) {
+        return p->refuse(ctl, meas, period, st, cmd);
+    }
+    /* The step succeeded: from here on its working copies become the controller's state. */
+    sample_clock_end_good(clock, period, *(const uint32_t *)loop_at_const(meas, p->stamp_at));
+    st = p->commit(ctl, &frame);
+    memcpy(LOOP_WORDS(cmd), LOOP_WORDS(loop_at_const(ctl, p->held_at)), p->command_size);
+    return st;
+}
+
+/* tvo_*_check: what the step would say of this measurement, changing nothing. */
+TVO_LOOP_ENTRY tvo_status_t loop_check(const tvo_loop_plant_t *p, const void *ctl, const void *meas,
+                                       uint32_t apply_tick)
+{
+    if (ctl == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (!loop_initialized(p, ctl)) {
+        return TVO_ERR_NOT_INITIALIZED;
+    }
+    tvo_period_t period;
+    if (sample_clock_begin(loop_clock_const(p, ctl), apply_tick, &period) != TVO_OK) {
+        return TVO_ERR_OUT_OF_ORDER;
+    }
+    if (meas == NULL) {
+        return TVO_ERR_NO_MEASUREMENT;
+    }
+    const tvo_status_t st = p->check(ctl, meas, apply_tick);
+    return (st == TVO_OK || p->refusal == NULL) ? st : p->refusal(ctl, meas, st);
+}
+
+/* tvo_*_safe_stop: the plant at rest now, as the watchdog leaves it; the clock does not advance. */
+TVO_LOOP_ENTRY tvo_status_t loop_safe_stop(const tvo_loop_plant_t *p, void *ctl, void *cmd)
+{
+    const tvo_status_t st = loop_ready(p, ctl, cmd);
+    if (st != TVO_OK) {
+        return st;
+    }
+    (void)tvo_sample_clock_expire(loop_clock(p, ctl));
+    loop_drop_to_rest(p, ctl, cmd);
+    return TVO_OK;
+}
+
+/* The first half of an init: *bad_param cleared, the pointers checked, the instance zeroed. */
+TVO_LOOP_ENTRY tvo_status_t loop_init_begin(const tvo_loop_plant_t *p, void *ctl, const void *cfg,
+                                           const tvo_objective_t *objective, tvo_param_t *bad_param)
+{
+    if (bad_param != NULL) {
+        *bad_param = TVO_PARAM_NONE;
+    }
+    if (ctl == NULL || cfg == NULL || objective == NULL) {
+        return TVO_ERR_NULL;
+    }
+    memset(ctl, 0, p->controller_size);
+    return TVO_OK;
+}
+
+/* The second half: a refused init leaves the instance zeroed and names its culprit (bad); else the
+ * clock starts at epoch_tick (its timing validated by the plant) and the instance is initialised. */
+TVO_LOOP_ENTRY tvo_status_t loop_init_end(const tvo_loop_plant_t *p, void *ctl, tvo_status_t st, tvo_param_t bad,
+                                         tvo_param_t *bad_param, uint32_t tick_hz, uint32_t period_ticks,
+                                         uint32_t watchdog_periods, uint32_t epoch_tick)
+{
+    if (st != TVO_OK) {
+        memset(ctl, 0, p->controller_size);
+        if (bad_param != NULL) {
+            *bad_param = bad;
+        }
+        return st;
+    }
+    (void)tvo_sample_clock_init(loop_clock(p, ctl), tick_hz, period_ticks, watchdog_periods, epoch_tick);
+    *(uint8_t *)loop_at(ctl, p->initialized_at) = 1u;
+    return TVO_OK;
+}
+
+/* The loop's parameters at their defaults, designated initialisers of a plant's configuration (its
+ * fields carry these names): 1 MHz ticks, h = 10 ms, tau = h/2 with delay compensation, the stop after
+ * 10 periods without a good step. */
+#define TVO_LOOP_CONFIG_DEFAULTS                                                                               \
+    .tick_hz = 1000000u, .period_ticks = 10000u, .delay_ticks = 5000u, .delay_compensation = 1u,               \
+    .watchdog_periods = 10u
+
+#endif /* TVO_SAMPLED_LOOP_H */
