@@ -348,8 +348,33 @@ def study(s):
     return table(["figure", "JSON key", "measured", "paper"], rows)
 
 
+def scaling(b):
+    s = b["instr_per_step_scaling"]
+    text = ""
+    for family, label in (("formation", "robots (a ring of distance bounds)"), ("obstacles", "obstacles (one robot)")):
+        rows = [r for r in s["rows"] if r["family"] == family]
+        text += table([label] + [str(r["count"]) for r in rows],
+                      [["median instructions per step"] + [n(r["median"]) for r in rows]]) + "\n"
+    verdict = "meets" if s["formation8_meets_target"] else "misses"
+    return text + (f"Cortex-M4F, float32, -{s['opt']}, one build with `{s['limits']}`, 400 steps each. "
+                   f"formation8 {verdict} its target of {n(s['formation8_target_instr'])} instructions.\n")
+
+
+def auth(b):
+    a = b["auth"]
+    if "skipped" in a:
+        return f"Not measured: {a['skipped']}.\n"
+    rows = [(name, n(f["message_bytes"]), n(f["sign_instr"]), n(f["verify_instr"])) for name, f in a["messages"].items()]
+    verdict = "within" if a["meets_target"] else "over"
+    return (table(["message (LCM-encoded)", "bytes", "sign", "verify"], rows)
+            + f"\n{a['primitive']} on {a['board']}; median instructions of 33. Flash of the authentication "
+              f"code in that link: {n(a['flash_bytes'])} B. A one-robot measurement and a command are {verdict} "
+              f"the target of {n(a['target_instr'])} instructions each.\n")
+
+
 BENCH_BLOCKS = {"cost-m4f": cost_m4f, "cost-m0plus": cost_m0plus, "host-callgrind": host_callgrind,
-                "ipopt": ipopt, "core-text": core_text, "footprint": footprint, "stack-written": stack_written}
+                "ipopt": ipopt, "core-text": core_text, "footprint": footprint, "stack-written": stack_written,
+                "scaling": scaling, "auth": auth}
 RUN_BLOCKS = {"demo-runs": demo_runs, "formation": formation, "obstacles": obstacles,
               "infeasible-start": infeasible_start, "formation-equality": formation_equality}
 WIRE_BLOCKS = {"status-codes": status_codes, "flags": flags, "params": params, "parts": parts,

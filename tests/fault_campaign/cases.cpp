@@ -545,6 +545,15 @@ void case_refusal_watchdog(Context& ctx)
                              " in a row (sample 299 repeated)");
             return;
         }
+        if (n >= 300 + wd + 2 && n < 300 + wd + 4) {
+            // The stream jumped wd + 3 periods past sample 299, more than the watchdog's span: served
+            // once three samples agree on it, so its first two are refused, after the streak with a stop.
+            r.send_genuine_refused(m, TVO_ERR_WATCHDOG,
+                                   "after the streak, genuine sample " + std::to_string(n - 300 - wd - 1) +
+                                       " of 2 before three agree on the jump: a safe stop");
+            previous = m;
+            return;
+        }
         r.send_genuine(m);
         previous = m;
     });
@@ -561,7 +570,8 @@ void case_refusal_watchdog(Context& ctx)
                      "after watchdog_periods consecutive refusals the answer is a safe stop",
                      "first safe stop answers refusal " + std::to_string(first_safe_stop) + ", watchdog_periods " +
                          std::to_string(wd));
-    finish(ctx, run, {300}, nullptr);
+    // The two genuine samples refused while three agree on the jump are held periods of their own.
+    finish(ctx, run, {300, 300 + wd + 2, 300 + wd + 3}, nullptr, run.genuine_sent - 2);
 }
 
 // ---- Sessions ------------------------------------------------------------------------------------
