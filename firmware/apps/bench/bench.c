@@ -226,6 +226,32 @@ static tvo_status_t bench_formation2(void)
     return bench_unicycle_problem(BENCH_FORMATION2);
 }
 
+/* The scaling families (bench_problems.h): each a closed loop like the three above. */
+static tvo_status_t bench_formation4(void)
+{
+    return bench_unicycle_problem(BENCH_FORMATION4);
+}
+
+static tvo_status_t bench_formation8(void)
+{
+    return bench_unicycle_problem(BENCH_FORMATION8);
+}
+
+static tvo_status_t bench_obstacles0(void)
+{
+    return bench_unicycle_problem(BENCH_OBSTACLES0);
+}
+
+static tvo_status_t bench_obstacles8(void)
+{
+    return bench_unicycle_problem(BENCH_OBSTACLES8);
+}
+
+static tvo_status_t bench_obstacles16(void)
+{
+    return bench_unicycle_problem(BENCH_OBSTACLES16);
+}
+
 static tvo_status_t bench_chain_k3(void)
 {
     tvo_problem_desc_t desc;
@@ -281,7 +307,12 @@ static int bench_run(const char *only)
                    {"obstacles4", bench_obstacles4},
                    {"formation2", bench_formation2},
                    {"chain_k3", bench_chain_k3},
-                   {"hostile", bench_hostile}};
+                   {"hostile", bench_hostile},
+                   {"formation4", bench_formation4},
+                   {"formation8", bench_formation8},
+                   {"obstacles0", bench_obstacles0},
+                   {"obstacles8", bench_obstacles8},
+                   {"obstacles16", bench_obstacles16}};
     tvo_board_cycle_counter_start();
     int failures = 0;
     for (uint32_t i = 0; i < sizeof(benches) / sizeof(benches[0]); ++i) {

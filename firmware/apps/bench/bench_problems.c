@@ -1,6 +1,7 @@
 /* The bench's closed-loop problems; see bench_problems.h. */
 #include "bench_problems.h"
 
+#include <math.h>
 #include <string.h>
 
 #define BENCH_PI 3.14159265358979f
@@ -18,7 +19,8 @@ static void polynomial_target(tvo_target_t *target, float x0, float vx, float y0
 
 const char *bench_problem_name(bench_unicycle_problem_t which)
 {
-    static const char *const names[BENCH_UNICYCLE_PROBLEM_COUNT] = {"unicycle", "obstacles4", "formation2"};
+    static const char *const names[BENCH_UNICYCLE_PROBLEM_COUNT] = {
+        "unicycle", "obstacles4", "formation2", "formation4", "formation8", "obstacles0", "obstacles8", "obstacles16"};
     return ((unsigned)which < (unsigned)BENCH_UNICYCLE_PROBLEM_COUNT) ? names[which] : NULL;
 }
 
@@ -45,6 +47,56 @@ static void obstacles4_desc(tvo_problem_desc_t *desc, tvo_pose_t *start)
     }
     const tvo_pose_t pose = {{TVO_R(-6.0), TVO_R(-4.2)}, TVO_R(-10.0)};
     start[0] = pose;
+}
+
+/* N robots on a circle of radius 2 m turning at 0.2 rad/s, each tracking its own point; distance bounds
+ * between neighbours in a ring (one bound for two); each starts 0.3 m off its point, at rest. */
+static tvo_status_t ring_formation_desc(tvo_problem_desc_t *desc, tvo_pose_t *start, uint8_t robots)
+{
+    const uint8_t bounds = (robots == 2u) ? 1u : robots;
+    if (robots > TVO_MAX_ROBOTS || bounds > TVO_MAX_DISTANCE_BOUNDS) {
+        return TVO_ERR_DIMENSION; /* the build's limits cannot hold it */
+    }
+    const float radius_m = 2.0f;
+    const float spacing_m = 2.0f * radius_m * sinf(BENCH_PI / (float)robots);
+    const tvo_real_t center[2] = {TVO_R(0.0), TVO_R(0.0)};
+    for (uint8_t r = 0; r < robots; ++r) {
+        const float phase = 2.0f * BENCH_PI * (float)r / (float)robots;
+        (void)tvo_target_init_circle(&desc->target[r], center, radius_m, TVO_R(0.2), phase);
+        start[r].position_m[0] = (radius_m + 0.3f) * cosf(phase);
+        start[r].position_m[1] = (radius_m + 0.3f) * sinf(phase);
+        start[r].heading_rad = phase + 0.5f * BENCH_PI;
+    }
+    desc->distance_count = bounds;
+    for (uint8_t b = 0; b < bounds; ++b) {
+        desc->distance[b].robot_a = b;
+        desc->distance[b].robot_b = (uint8_t)((b + 1u) % robots);
+        desc->distance[b].min_m = 0.5f * spacing_m;
+        desc->distance[b].max_m = 1.5f * spacing_m;
+    }
+    return TVO_OK;
+}
+
+/* obstacles4's robot and path with N disks of radius 0.35 m, alternately 1 m left and right of it,
+ * 0.9 m apart along it from 1.5 m ahead of the target's start (the robot starts 1 m off the path). */
+static tvo_status_t obstacles_row_desc(tvo_problem_desc_t *desc, tvo_pose_t *start, uint8_t obstacles)
+{
+    if (obstacles > TVO_MAX_OBSTACLES) {
+        return TVO_ERR_DIMENSION; /* the build's limits cannot hold it */
+    }
+    polynomial_target(&desc->target[0], -5.0f, 0.8f, -5.0f, 0.6f);
+    desc->obstacle_count = obstacles;
+    desc->robot_radius_m = TVO_R(0.2);
+    for (uint8_t i = 0; i < obstacles; ++i) {
+        const float along_m = 1.5f + 0.9f * (float)i;
+        const float side_m = (i % 2u == 0u) ? 1.0f : -1.0f;
+        desc->obstacle[i].center_m[0] = -5.0f + 0.8f * along_m - 0.6f * side_m;
+        desc->obstacle[i].center_m[1] = -5.0f + 0.6f * along_m + 0.8f * side_m;
+        desc->obstacle[i].radius_m = TVO_R(0.35);
+    }
+    const tvo_pose_t pose = {{TVO_R(-5.6), TVO_R(-4.2)}, TVO_R(0.6)};
+    start[0] = pose;
+    return TVO_OK;
 }
 
 static tvo_status_t formation2_desc(tvo_problem_desc_t *desc, tvo_pose_t *start)
@@ -88,6 +140,20 @@ tvo_status_t bench_problem_desc(bench_unicycle_problem_t which, tvo_problem_desc
     case BENCH_FORMATION2:
         *robots = 2u;
         st = formation2_desc(desc, start);
+        break;
+    case BENCH_FORMATION4:
+    case BENCH_FORMATION8:
+        *robots = (which == BENCH_FORMATION4) ? 4u : 8u;
+        st = ring_formation_desc(desc, start, *robots);
+        break;
+    case BENCH_OBSTACLES0:
+        st = obstacles_row_desc(desc, start, 0u);
+        break;
+    case BENCH_OBSTACLES8:
+        st = obstacles_row_desc(desc, start, 8u);
+        break;
+    case BENCH_OBSTACLES16:
+        st = obstacles_row_desc(desc, start, 16u);
         break;
     case BENCH_UNICYCLE_PROBLEM_COUNT:
     default:

@@ -18,7 +18,12 @@
 extern "C" {
 #endif
 
+#ifndef TVO_MAX_DISTANCE_BOUNDS /* a size limit like those of tvo/config.h (TVO_LIMITS can raise it) */
 #define TVO_MAX_DISTANCE_BOUNDS 6
+#endif
+#if TVO_MAX_DISTANCE_BOUNDS < 1 || TVO_MAX_DISTANCE_BOUNDS > 32
+#error "TVO_MAX_DISTANCE_BOUNDS must be 1 .. 32"
+#endif
 #define TVO_MAX_HALFSPACES 4
 #define TVO_MAX_OFFSET_EQUALITIES (TVO_MAX_EQUALITIES / 2)
 
