@@ -488,11 +488,16 @@ static tvo_status_t take_target(tvo_node_t *node, const node_input_t *in, tvo_se
     /* The objective's time of the sample, in ticks (us) since the epoch, from 64-bit times: a
      * uint32 tick would alias a sample 2^32 us old with one from the future. */
     const int64_t since_epoch_us = (st == TVO_OK) ? stamp_us - schedule->anchor.epoch_schedule_us : 0;
-    if (st == TVO_OK && since_epoch_us < 0) {
-        st = TVO_ERR_OUT_OF_ORDER; /* before the epoch */
+    if (st == TVO_OK && since_epoch_us < -schedule->timing.period_us) {
+        st = TVO_ERR_OUT_OF_ORDER; /* more than a period before the epoch */
     }
     if (st == TVO_OK) {
-        st = tvo_step_target_from_lcm(msg, schedule->timing.robot_count, (uint64_t)since_epoch_us, &s->problem);
+        /* A sample from the period before the epoch (a plant samples its target with the measurement,
+         * at epoch - tau) is carried forward to the epoch: the objective's time starts there. */
+        const int64_t carry_us = since_epoch_us < 0 ? -since_epoch_us : 0;
+        st = tvo_step_target_from_lcm_carried(msg, schedule->timing.robot_count,
+                                              (uint64_t)(since_epoch_us + carry_us), (double)carry_us * 1e-6,
+                                              &s->problem);
     }
     node->last_target_status = st;
     if (st != TVO_OK) {

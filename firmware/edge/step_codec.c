@@ -160,8 +160,17 @@ void tvo_step_telemetry_to_lcm(const tvo_controller_t *ctl, const tvo_problem_t 
 tvo_status_t tvo_step_target_from_lcm(const tvo_lcm_target_t *msg, uint8_t robot_count, uint64_t objective_ticks,
                                       tvo_problem_t *problem)
 {
+    return tvo_step_target_from_lcm_carried(msg, robot_count, objective_ticks, 0.0, problem);
+}
+
+tvo_status_t tvo_step_target_from_lcm_carried(const tvo_lcm_target_t *msg, uint8_t robot_count,
+                                              uint64_t objective_ticks, double carry_s, tvo_problem_t *problem)
+{
     if (msg == NULL || problem == NULL) {
         return TVO_ERR_NULL;
+    }
+    if (!(carry_s >= 0.0 && carry_s <= 1.0)) {
+        return TVO_ERR_PARAM;
     }
     if (!robot_count_matches(msg->robot_count, robot_count)) {
         return TVO_ERR_DIMENSION;
@@ -188,10 +197,13 @@ tvo_status_t tvo_step_target_from_lcm(const tvo_lcm_target_t *msg, uint8_t robot
     for (uint8_t r = 0; st == TVO_OK && r < robot_count; ++r) {
         tvo_real_t deriv[TVO_STREAM_MAX_DERIV + 1][2];
         for (size_t axis = 0; axis < 2; ++axis) {
-            deriv[0][axis] = tvo_wire_real(msg->position_m[r][axis]);
-            deriv[1][axis] = tvo_wire_real(msg->velocity_mps[r][axis]);
-            deriv[2][axis] = tvo_wire_real(msg->acceleration_mps2[r][axis]);
-            deriv[3][axis] = tvo_wire_real(msg->jerk_mps3[r][axis]);
+            const double p = msg->position_m[r][axis], v = msg->velocity_mps[r][axis];
+            const double a = msg->acceleration_mps2[r][axis], j = msg->jerk_mps3[r][axis];
+            const double dt = carry_s;
+            deriv[0][axis] = tvo_wire_real(p + dt * (v + dt * (a / 2.0 + dt * j / 6.0)));
+            deriv[1][axis] = tvo_wire_real(v + dt * (a + dt * j / 2.0));
+            deriv[2][axis] = tvo_wire_real(a + dt * j);
+            deriv[3][axis] = tvo_wire_real(j);
         }
         st = tvo_target_stream_update(tvo_problem_target(problem, r), objective_ticks,
                                       (const tvo_real_t(*)[2])deriv); /* adds const only (C11) */

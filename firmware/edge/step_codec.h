@@ -59,6 +59,14 @@ void tvo_step_telemetry_to_lcm(const tvo_controller_t *ctl, const tvo_problem_t 
 tvo_status_t tvo_step_target_from_lcm(const tvo_lcm_target_t *msg, uint8_t robot_count, uint64_t objective_ticks,
                                       tvo_problem_t *problem);
 
+/**
+ * The same for a sample stamped carry_s seconds before objective_ticks (0 <= carry_s <= 1 s): its
+ * derivatives are first carried forward along their own cubic Taylor series, as the target would
+ * evaluate the sample there anyway (a plant samples its target with the measurement, at epoch - tau).
+ */
+tvo_status_t tvo_step_target_from_lcm_carried(const tvo_lcm_target_t *msg, uint8_t robot_count,
+                                              uint64_t objective_ticks, double carry_s, tvo_problem_t *problem);
+
 #ifdef __cplusplus
 }
 #endif

@@ -1500,6 +1500,40 @@ static void streamed_session(int32_t clock_source, int64_t now_us)
     EF_ASSERT_STATUS(TVO_OK, THE_ACK().status);
 }
 
+/* Issue 27: a target sampled with the first measurement, at epoch - tau, is taken, carried forward to
+ * the epoch along its own Taylor series; one from more than a period before the epoch is refused. */
+static void test_target_stamped_at_epoch_minus_tau_is_carried_to_the_epoch(void)
+{
+    streamed_session(TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
+    tvo_lcm_target_t t;
+    target_at_epoch(&t);
+    t.utime = EF_EPOCH - H - 1;
+    (void)send_target(&t, 0);
+    EF_ASSERT_STATUS(TVO_ERR_OUT_OF_ORDER, node.last_target_status);
+    t.utime = EF_EPOCH - TAU;
+    t.position_m[0][0] = 1.0;
+    t.velocity_mps[0][0] = 2.0;
+    t.acceleration_mps2[0][0] = 0.5;
+    t.jerk_mps3[0][0] = 0.25;
+    t.position_m[0][1] = -1.0;
+    (void)send_target(&t, 0);
+    EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
+    const tvo_target_t *target = &tvo_node_session(&node)->problem.target[0];
+    TEST_ASSERT_NOT_NULL(target);
+    const tvo_target_streamed_t *sample = &target->u.streamed;
+    const double dt = (double)TAU * 1e-6;
+    TEST_ASSERT_EQUAL_UINT64(0u, sample->stamp_ticks);
+    TEST_ASSERT_EQUAL_FLOAT((float)(1.0 + 2.0 * dt + 0.25 * dt * dt + 0.25 * dt * dt * dt / 6.0), (float)sample->deriv[0][0]);
+    TEST_ASSERT_EQUAL_FLOAT((float)(2.0 + 0.5 * dt + 0.125 * dt * dt), (float)sample->deriv[1][0]);
+    TEST_ASSERT_EQUAL_FLOAT((float)(0.5 + 0.25 * dt), (float)sample->deriv[2][0]);
+    TEST_ASSERT_EQUAL_FLOAT(0.25f, (float)sample->deriv[3][0]);
+    TEST_ASSERT_EQUAL_FLOAT(-1.0f, (float)sample->deriv[0][1]);
+    /* The first measurement, stamped at the same instant, is served with it. */
+    tvo_lcm_measurement_t m;
+    plant_meas(&m, 0);
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(0));
+}
+
 /* ------------------------------------------------------------------------------------------------
  * More timing: the tick span, chain sessions, refusals by the controller's step
  * --------------------------------------------------------------------------------------------- */
@@ -2522,6 +2556,7 @@ int main(void)
     RUN_TEST(test_plant_huge_sequences_are_refused);
     RUN_TEST(test_plant_gap_with_consistent_sequence_is_accepted);
     RUN_TEST(test_plant_one_sample_far_ahead_costs_one_refusal);
+    RUN_TEST(test_target_stamped_at_epoch_minus_tau_is_carried_to_the_epoch);
     RUN_TEST(test_plant_watchdog_refusals_in_a_row_give_a_safe_stop_until_one_is_accepted);
     RUN_TEST(test_plant_wrong_robot_count_and_non_finite_values_are_refused);
     RUN_TEST(test_node_clock_offset_comes_from_the_start_and_commands_are_in_plant_time);
