@@ -243,6 +243,29 @@ static void dispatch(tvo_node_t *node, tvo_node_event_t event, const node_input_
 
 /* ---- session actions --------------------------------------------------------------------------- */
 
+/* A refused problem's culprit entry, where tvo_problem_init names only the part: the first robot whose
+ * tracking weight, or the first obstacle that (with those before it) the core's own term init refuses;
+ * -1 if none alone is to blame. A refusal's cold path. */
+static int32_t problem_culprit(const tvo_problem_desc_t *desc, const tvo_barrier_t *barrier, int32_t part)
+{
+    if (part == TVO_LCM_SESSION_ACK_T_PART_ROBOTS) {
+        for (uint8_t r = 0; r < desc->robot_count && r < TVO_MAX_ROBOTS; ++r) {
+            tvo_tracking_term_t term;
+            if (tvo_tracking_init(&term, &desc->target[r], desc->tracking_weight[r], (uint8_t)(2u * r)) != TVO_OK) {
+                return (int32_t)r;
+            }
+        }
+    } else if (part == TVO_LCM_SESSION_ACK_T_PART_OBSTACLES) {
+        for (uint8_t count = 1u; count <= desc->obstacle_count && count <= TVO_MAX_OBSTACLES; ++count) {
+            tvo_free_space_term_t term;
+            if (tvo_free_space_term_init(&term, barrier, 0u, desc->robot_radius_m, desc->obstacle, count) != TVO_OK) {
+                return (int32_t)count - 1; /* a bad disk, or the later of an overlapping pair */
+            }
+        }
+    }
+    return -1;
+}
+
 /* Builds a session from a START into `s` (the spare slot); the running one is not touched. */
 static tvo_status_t build_session(tvo_node_session_t *s, const tvo_lcm_session_t *msg, uint64_t content_hash,
                                   int64_t now_us, tvo_session_reject_t *why)
@@ -269,7 +292,7 @@ static tvo_status_t build_session(tvo_node_session_t *s, const tvo_lcm_session_t
             why->status = st;
             why->param = TVO_PARAM_OBJECTIVE;
             why->part = tvo_session_part_from_problem(problem_part);
-            why->index = -1;
+            why->index = problem_culprit(&desc, &s->problem.barrier, why->part);
         }
     }
     if (st != TVO_OK) {

@@ -428,6 +428,24 @@ static void make_invalid(tvo_lcm_session_t *m, int which)
         m->halfspace[0].bound_m = 1.0;
         m->halfspace[0].bound_rate_mps = -1e6; /* the fuzzer's -inf telemetry came from such a wall */
         break;
+    case 10: /* robot 1's weight is negative: the ack names robot 1 */
+        m->robot_count = 2;
+        ef_line_path(&m->robot[1].target, 0.5, 1.0, 0.2);
+        m->robot[1].tracking_weight[0] = 1.0;
+        m->robot[1].tracking_weight[1] = -1.0;
+        break;
+    case 11: /* obstacle 2 overlaps obstacle 0: the ack names the later of the pair */
+        m->obstacle_count = 3;
+        m->obstacle[0].center_m[0] = 3.0;
+        m->obstacle[0].center_m[1] = 3.0;
+        m->obstacle[0].radius_m = 0.5;
+        m->obstacle[1].center_m[0] = -3.0;
+        m->obstacle[1].center_m[1] = 3.0;
+        m->obstacle[1].radius_m = 0.5;
+        m->obstacle[2].center_m[0] = 3.4;
+        m->obstacle[2].center_m[1] = 3.0;
+        m->obstacle[2].radius_m = 0.5;
+        break;
     default: m->robot[0].target.kind = 9; break;
     }
 }
@@ -441,8 +459,10 @@ static const refusal_t invalid_starts[] = {
     {"gain 3e38", TVO_ERR_PARAM, TVO_PARAM_GAINS, TVO_LCM_SESSION_ACK_T_PART_NONE, -1},
     {"target coefficient 1e30", TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 0},
     {"target 2e4 m out", TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 0},
-    {"obstacle 1e5 m out", TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_OBSTACLES, -1},
+    {"obstacle 1e5 m out", TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_OBSTACLES, 0},
     {"wall moving at 1e6 m/s", TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_HALFSPACE, -1},
+    {"robot 1's weight -1", TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 1},
+    {"obstacles 0 and 2 overlap", TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_OBSTACLES, 2},
     {"target kind 9", TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 0},
 };
 
