@@ -1710,7 +1710,7 @@ static void test_node_clock_reanchor_whose_trial_the_core_stops_commits_nothing_
         tvo_lcm_measurement_t m;
         ef_measurement(&m, EF_SESSION_ID, sample, k, 1);
         if (k == 2) {
-            m.position_m[0][0] = NAN;
+            m.position_m[0][0] = (double)NAN;
         }
         ef_record_clear(&rec);
         (void)send_measurement(&m, sample + offset + latency);
