@@ -129,6 +129,24 @@ tvo_auth_status_t tvo_auth_counter_at_least(tvo_auth_t *auth, uint64_t counter)
     return TVO_AUTH_OK;
 }
 
+tvo_auth_status_t tvo_auth_start_at(tvo_auth_t *auth, uint64_t start, uint64_t window)
+{
+    if (auth == NULL) {
+        return TVO_AUTH_ERR_ARGUMENT;
+    }
+    (void)tvo_auth_counter_at_least(auth, start);
+    return tvo_auth_set_new_sender_floor(auth, start > window ? start - window : 0u);
+}
+
+tvo_auth_status_t tvo_auth_follow_clock(tvo_auth_t *auth, uint64_t (*clock)(void), uint64_t window)
+{
+    if (auth == NULL || clock == NULL) {
+        return TVO_AUTH_ERR_ARGUMENT;
+    }
+    auth->counter_clock = clock;
+    return tvo_auth_start_at(auth, clock(), window);
+}
+
 void tvo_auth_clear(tvo_auth_t *auth)
 {
     if (auth != NULL) {
@@ -151,6 +169,9 @@ tvo_auth_status_t tvo_auth_sign(tvo_auth_t *auth, const char *channel, uint8_t *
     const size_t name_length = channel_bytes(channel);
     if (name_length == 0u || capacity < TVO_AUTH_TRAILER_BYTES || length > capacity - TVO_AUTH_TRAILER_BYTES) {
         return TVO_AUTH_ERR_ARGUMENT;
+    }
+    if (auth->counter_clock != NULL) {
+        (void)tvo_auth_counter_at_least(auth, auth->counter_clock());
     }
     if (auth->next_counter == UINT64_MAX) {
         return TVO_AUTH_ERR_COUNTER_SPENT;

@@ -77,6 +77,7 @@ typedef struct {
     uint32_t own_sender_id;
     uint64_t next_counter;                          /* the counter of the next message signed */
     uint64_t new_sender_floor;                      /* a sender not yet heard must start above it */
+    uint64_t (*counter_clock)(void);                /* optional: every counter signed is at least its reading */
     tvo_auth_sender_t senders[TVO_AUTH_MAX_SENDERS];
     uint32_t sender_count;
 } tvo_auth_t;
@@ -98,6 +99,19 @@ tvo_auth_status_t tvo_auth_set_new_sender_floor(tvo_auth_t *auth, uint64_t floor
 
 /** Raises the next counter signed to at least `counter` (a sender whose counters follow a clock). */
 tvo_auth_status_t tvo_auth_counter_at_least(tvo_auth_t *auth, uint64_t counter);
+
+/**
+ * A (re)started end whose counters continue from `start` (MAVLink's rule): it signs from at least
+ * start, and accepts a sender not heard yet only above start - window, so a recording older than that
+ * is refused after the restart. `start` comes from a clock or from storage (a board's key region).
+ */
+tvo_auth_status_t tvo_auth_start_at(tvo_auth_t *auth, uint64_t start, uint64_t window);
+
+/**
+ * tvo_auth_start_at(clock()), and every counter signed from then on at least clock()'s reading (the
+ * host's wall clock in us: tvo_auth_wall_clock_counter). Both ends' clocks must agree within window.
+ */
+tvo_auth_status_t tvo_auth_follow_clock(tvo_auth_t *auth, uint64_t (*clock)(void), uint64_t window);
 
 /** Wipes the key and the senders (a key leaves memory when the context is done with). */
 void tvo_auth_clear(tvo_auth_t *auth);

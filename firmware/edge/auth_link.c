@@ -30,17 +30,6 @@ tvo_auth_status_t tvo_auth_link_init(tvo_auth_link_t *link, const uint8_t key[TV
     return TVO_AUTH_OK;
 }
 
-tvo_auth_status_t tvo_auth_link_follow_clock(tvo_auth_link_t *link, uint64_t (*counter_clock)(void), uint64_t window)
-{
-    if (link == NULL || counter_clock == NULL) {
-        return TVO_AUTH_ERR_ARGUMENT;
-    }
-    link->counter_clock = counter_clock;
-    const uint64_t now = counter_clock();
-    (void)tvo_auth_counter_at_least(&link->auth, now);
-    return tvo_auth_set_new_sender_floor(&link->auth, now > window ? now - window : 0u);
-}
-
 void tvo_auth_link_publish(void *context, int channel, const uint8_t *data, uint32_t length)
 {
     tvo_auth_link_t *link = (tvo_auth_link_t *)context;
@@ -53,9 +42,6 @@ void tvo_auth_link_publish(void *context, int channel, const uint8_t *data, uint
         return;
     }
     memcpy(link->frame, data, length);
-    if (link->counter_clock != NULL) {
-        (void)tvo_auth_counter_at_least(&link->auth, link->counter_clock());
-    }
     if (tvo_auth_sign(&link->auth, name, link->frame, length, sizeof(link->frame), &signed_length) != TVO_AUTH_OK) {
         link->unsigned_drops += 1u; /* never sent unsigned: a keyed node does not fall back */
         return;

@@ -21,7 +21,6 @@ typedef struct {
     tvo_auth_t auth;
     tvo_node_publish_fn transport_publish;   /* where signed frames go (LCM, a serial link) */
     void *transport_context;
-    uint64_t (*counter_clock)(void);         /* optional: counters follow it (the host's wall clock in us) */
     uint8_t frame[TVO_NODE_BUFFER_BYTES + TVO_AUTH_TRAILER_BYTES];
     uint32_t unsigned_drops;                 /* outgoing messages that could not be signed (not sent) */
     tvo_auth_status_t last_refusal;          /* why the last received frame was dropped */
@@ -29,19 +28,12 @@ typedef struct {
 
 /**
  * A keyed link that signs as own_sender_id from first_counter on and forwards to transport_publish.
- * Give tvo_node_init tvo_auth_link_publish and the link as its publisher.
+ * Give tvo_node_init tvo_auth_link_publish and the link as its publisher; counters that continue over
+ * restarts: tvo_auth_start_at or tvo_auth_follow_clock on link->auth.
  */
 tvo_auth_status_t tvo_auth_link_init(tvo_auth_link_t *link, const uint8_t key[TVO_AUTH_KEY_BYTES],
                                      uint32_t own_sender_id, uint64_t first_counter,
                                      tvo_node_publish_fn transport_publish, void *transport_context);
-
-/**
- * Counters that follow a clock (MAVLink's rule): each signed counter is at least counter_clock(), and
- * a sender not heard yet is accepted only with a counter above counter_clock() at this call minus
- * window (so a recording older than that is refused after a restart). Both ends' clocks must then
- * agree within window.
- */
-tvo_auth_status_t tvo_auth_link_follow_clock(tvo_auth_link_t *link, uint64_t (*counter_clock)(void), uint64_t window);
 
 /** The node's publisher (tvo_node_publish_fn; context: the link): signs and forwards, or drops and counts. */
 void tvo_auth_link_publish(void *link, int channel, const uint8_t *data, uint32_t length);

@@ -327,7 +327,7 @@ int main(int argc, char **argv)
         const tvo_auth_status_t keyed = tvo_auth_link_init(&self.link, key, opt.sender_id, 1u, publish, &self);
         memset(key, 0, sizeof(key));
         if (keyed != TVO_AUTH_OK ||
-            tvo_auth_link_follow_clock(&self.link, tvo_auth_wall_clock_counter, TVO_AUTH_NEW_SENDER_WINDOW_US) != TVO_AUTH_OK) {
+            tvo_auth_follow_clock(&self.link.auth, tvo_auth_wall_clock_counter, TVO_AUTH_NEW_SENDER_WINDOW_US) != TVO_AUTH_OK) {
             fprintf(stderr, "tvo_firmware_node: error: authentication set-up failed\n");
             return 1;
         }

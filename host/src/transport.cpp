@@ -26,12 +26,13 @@ LcmTransport::LcmTransport(const std::string& url, const std::string& log_path, 
         if (tvo_auth_key_file_read(key_file.c_str(), key, why, sizeof(why)) != 0) {
             throw TransportError(why);
         }
-        const tvo_auth_status_t status = tvo_auth_init(&auth_, key, sender_id, tvo_auth_wall_clock_counter());
+        tvo_auth_status_t status = tvo_auth_init(&auth_, key, sender_id, 1u);
         std::fill(std::begin(key), std::end(key), std::uint8_t{0});
-        const std::uint64_t now = tvo_auth_wall_clock_counter();
-        if (status != TVO_AUTH_OK ||
-            tvo_auth_set_new_sender_floor(&auth_, now > TVO_AUTH_NEW_SENDER_WINDOW_US ? now - TVO_AUTH_NEW_SENDER_WINDOW_US
-                                                                                     : 0) != TVO_AUTH_OK) {
+        if (status == TVO_AUTH_OK) {
+            // Counters follow the wall clock (MAVLink's rule): a restarted plant starts above its old ones.
+            status = tvo_auth_follow_clock(&auth_, tvo_auth_wall_clock_counter, TVO_AUTH_NEW_SENDER_WINDOW_US);
+        }
+        if (status != TVO_AUTH_OK) {
             throw TransportError(std::string("authentication set-up failed: ") + tvo_auth_status_str(status));
         }
         keyed_ = true;
@@ -85,8 +86,6 @@ void LcmTransport::publish_encoded(const std::string& channel, const Msg& msg)
     }
     std::size_t frame_size = static_cast<std::size_t>(size);
     if (keyed_) {
-        // Counters follow the wall clock (MAVLink's rule): a restarted plant starts above its old ones.
-        (void)tvo_auth_counter_at_least(&auth_, tvo_auth_wall_clock_counter());
         const tvo_auth_status_t status = tvo_auth_sign(&auth_, channel.c_str(), buffer_.data(), frame_size,
                                                        buffer_.size(), &frame_size);
         if (status != TVO_AUTH_OK) {

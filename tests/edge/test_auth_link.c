@@ -118,7 +118,7 @@ static void start_node(void)
     ef_record_clear(&rec);
     TEST_ASSERT_EQUAL(TVO_AUTH_OK,
                       tvo_auth_link_init(&link, genuine_key, TVO_AUTH_SENDER_NODE, 1u, ef_record_publish, &rec));
-    TEST_ASSERT_EQUAL(TVO_AUTH_OK, tvo_auth_link_follow_clock(&link, fake_wall, TVO_AUTH_NEW_SENDER_WINDOW_US));
+    TEST_ASSERT_EQUAL(TVO_AUTH_OK, tvo_auth_follow_clock(&link.auth, fake_wall, TVO_AUTH_NEW_SENDER_WINDOW_US));
     tvo_node_init(&node, tvo_auth_link_publish, &link);
 }
 

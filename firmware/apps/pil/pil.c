@@ -114,9 +114,7 @@ int main(void)
         }
         if (counter_base == 0u ||
             tvo_auth_link_init(&link, region + 4u, TVO_AUTH_SENDER_NODE, counter_base, publish, NULL) != TVO_AUTH_OK ||
-            tvo_auth_set_new_sender_floor(&link.auth, counter_base > TVO_AUTH_NEW_SENDER_WINDOW_US
-                                                          ? counter_base - TVO_AUTH_NEW_SENDER_WINDOW_US
-                                                          : 0u) != TVO_AUTH_OK) {
+            tvo_auth_start_at(&link.auth, counter_base, TVO_AUTH_NEW_SENDER_WINDOW_US) != TVO_AUTH_OK) {
             tvo_board_puts("PIL: the key region is provisioned but unusable (counter base 0?)\n");
             return 1;
         }
