@@ -44,6 +44,24 @@ static void node_record(int channel, const uint8_t *message, int length, uint8_t
     put(message, (size_t)length);
 }
 
+/* The reference session's genuine sample n: on schedule, numbered by period, every field valid. */
+static void genuine_measurement(const tvo_lcm_session_t *s, int n, tvo_lcm_measurement_t *m)
+{
+    memset(m, 0, sizeof(*m));
+    m->session_id = s->session_id;
+    m->sequence = n;
+    m->utime = s->epoch_utime + (n + 1) * s->period_us - s->delay_us;
+    m->robot_count = s->robot_count;
+    for (int r = 0; r < s->robot_count; ++r) {
+        m->position_m[r][0] = -1.0 + 3.0 * r + 0.01 * n;
+        m->position_m[r][1] = -2.0;
+        m->speed_mps[r] = 0.01 * n;
+    }
+    m->heading_valid = 1;
+    m->speed_valid = 1;
+    m->derivatives_valid = 1;
+}
+
 static int node_seed(const char *dir, uint8_t variant, const char *name)
 {
     static uint8_t message[8192];
@@ -52,19 +70,7 @@ static int node_seed(const char *dir, uint8_t variant, const char *name)
     put(&variant, 1);
     for (int n = 0; n < 40; ++n) {
         tvo_lcm_measurement_t m;
-        memset(&m, 0, sizeof(m));
-        m.session_id = s.session_id;
-        m.sequence = n;
-        m.utime = s.epoch_utime + (n + 1) * s.period_us - s.delay_us;
-        m.robot_count = s.robot_count;
-        for (int r = 0; r < s.robot_count; ++r) {
-            m.position_m[r][0] = -1.0 + 3.0 * r + 0.01 * n;
-            m.position_m[r][1] = -2.0;
-            m.speed_mps[r] = 0.01 * n;
-        }
-        m.heading_valid = 1;
-        m.speed_valid = 1;
-        m.derivatives_valid = 1;
+        genuine_measurement(&s, n, &m);
         const int length = tvo_lcm_measurement_t_encode(message, 0, sizeof(message), &m);
         node_record(TVO_NODE_CH_MEASUREMENT, message, length, 20);
         if (n == 20) {
@@ -88,16 +94,7 @@ static int auth_seed(const char *dir, uint8_t variant, const char *name)
     put(&variant, 1);
     for (int n = 0; n < 30; ++n) {
         tvo_lcm_measurement_t m;
-        memset(&m, 0, sizeof(m));
-        m.session_id = s.session_id;
-        m.sequence = n;
-        m.utime = s.epoch_utime + (n + 1) * s.period_us - s.delay_us;
-        m.robot_count = s.robot_count;
-        for (int r = 0; r < s.robot_count; ++r) {
-            m.position_m[r][0] = -1.0 + 3.0 * r + 0.01 * n;
-            m.position_m[r][1] = -2.0;
-        }
-        m.heading_valid = 1;
+        genuine_measurement(&s, n, &m);
         const int length = tvo_lcm_measurement_t_encode(message, 0, sizeof(message), &m);
         const uint8_t mode = (n == 10) ? 0u : (n == 15) ? 2u : (n == 20) ? 3u : 1u;
         const uint8_t header[5] = {mode, (uint8_t)(TVO_NODE_CH_MEASUREMENT - 1), (uint8_t)length,
