@@ -34,6 +34,9 @@ void case_implausible_epoch(Context& ctx);
 void case_node_restart(Context& ctx);
 void case_plant_restart(Context& ctx);
 void case_clock_plant_limits(Context& ctx);
+// The keyed bus under attack (case_auth.cpp).
+void case_auth_attacks(Context& ctx);
+void case_auth_node_restart(Context& ctx);
 // The wall-clock case (case_node_clock.cpp).
 void case_link_loss_node_clock(Context& ctx);
 

@@ -81,7 +81,7 @@ void LockstepRun::prepare()
     }
     prepared_ = true;
     if (config_.spawn_node && !ctx_.node_path.empty()) {
-        node_ = std::make_unique<NodeProcess>(ctx_.node_path, ctx_.lcm_url);
+        node_ = std::make_unique<NodeProcess>(ctx_.node_path, ctx_.lcm_url, ctx_.key_file);
         node_->spawn(config_.keep_running, config_.node_stderr_path);
     }
     ctx_.bus.clear();

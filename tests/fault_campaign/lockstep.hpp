@@ -62,6 +62,7 @@ struct Context {
     std::string node_path;            // empty: a node is already running on the URL (--keep-running)
     std::string lcm_url;
     std::int64_t next_session_id{1};
+    std::string key_file;             // non-empty: nodes start with --key-file (the case keys the bus too)
 
     /// A fresh session id per run (the plant rule).
     std::int64_t new_session_id() { return next_session_id++; }

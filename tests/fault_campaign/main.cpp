@@ -47,6 +47,12 @@ const std::vector<Case>& all_cases()
         {"node-restart", "the node killed (SIGKILL) mid-run and started again", case_node_restart, true},
         {"plant-restart", "a new session id mid-run (--keep-running); the old session's messages still arrive",
          case_plant_restart, false},
+        {"auth-attacks",
+         "keyed bus: forged START/STOP/measurement/target (unsigned, another key), replays, a flipped tag, "
+         "truncated tags, a forged vote of three",
+         case_auth_attacks, false},
+        {"auth-node-restart", "keyed bus: the node restarted, then the old node's recording replayed to the new one",
+         case_auth_node_restart, true},
         {"clock-plant-limits", "NOTES only: strays CLOCK_PLANT cannot tell from genuine samples",
          case_clock_plant_limits, false},
     };
@@ -135,7 +141,7 @@ int main(int argc, char** argv)
             CommandAudit audit;
             audit.omega_max_radps = demo_session(0, 0, 0, Timing{}).omega_max_radps;
             audit.speed_max_mps = demo_session(0, 0, 0, Timing{}).speed_max_mps;
-            Context ctx{bus, report, audit, node_path, url, first_id * 1000};
+            Context ctx{bus, report, audit, node_path, url, first_id * 1000, ""};
             try {
                 if (c->needs_spawn && node_path.empty()) {
                     report.check(false, "case needs --node PATH", "it kills and restarts the node");

@@ -21,6 +21,10 @@
 #include "target_path.hpp"
 
 extern "C" {
+#include "auth_key_file.h"
+}
+
+extern "C" {
 #include "tvo/barrier.h"
 }
 
@@ -85,14 +89,67 @@ Bus::Bus(const std::string& url) : lcm_(url)
     if (!lcm_.good()) {
         throw std::runtime_error("cannot open LCM at '" + url + "'");
     }
-    lcm_.subscribe(TVO_CHANNEL_COMMAND, &Bus::on_command, this);
-    lcm_.subscribe(TVO_CHANNEL_TELEMETRY, &Bus::on_telemetry, this);
-    lcm_.subscribe(TVO_CHANNEL_SESSION_ACK, &Bus::on_ack, this);
+    lcm_.subscribe(TVO_CHANNEL_COMMAND, &Bus::on_frame, this);
+    lcm_.subscribe(TVO_CHANNEL_TELEMETRY, &Bus::on_frame, this);
+    lcm_.subscribe(TVO_CHANNEL_SESSION_ACK, &Bus::on_frame, this);
 }
 
-void Bus::publish(const tvo_lcm::measurement_t& msg) { lcm_.publish(TVO_CHANNEL_MEASUREMENT, &msg); }
-void Bus::publish(const tvo_lcm::session_t& msg) { lcm_.publish(TVO_CHANNEL_SESSION, &msg); }
-void Bus::publish(const tvo_lcm::target_t& msg) { lcm_.publish(TVO_CHANNEL_TARGET, &msg); }
+Bus::~Bus()
+{
+    tvo_auth_clear(&auth_);
+}
+
+void Bus::set_key(const std::uint8_t (&key)[TVO_AUTH_KEY_BYTES], std::uint32_t sender_id)
+{
+    // As tvo_sim's transport: counters follow the wall clock, so every run of a case (and a restarted
+    // node) sees this plant's counters rise.
+    tvo_auth_status_t status = tvo_auth_init(&auth_, key, sender_id, 1u);
+    if (status == TVO_AUTH_OK) {
+        status = tvo_auth_follow_clock(&auth_, tvo_auth_wall_clock_counter, TVO_AUTH_NEW_SENDER_WINDOW_US);
+    }
+    if (status != TVO_AUTH_OK) {
+        throw std::runtime_error(std::string("authentication set-up failed: ") + tvo_auth_status_str(status));
+    }
+    sent.clear();
+    dropped_unauthenticated = 0;
+    dropped_replayed = 0;
+}
+
+void Bus::clear_key()
+{
+    tvo_auth_clear(&auth_);
+    sent.clear();
+}
+
+std::vector<std::uint8_t> Bus::sign(const char* channel, std::vector<std::uint8_t> message)
+{
+    const std::size_t length = message.size();
+    message.resize(length + TVO_AUTH_TRAILER_BYTES);
+    std::size_t signed_length = 0;
+    const tvo_auth_status_t status =
+        tvo_auth_sign(&auth_, channel, message.data(), length, message.size(), &signed_length);
+    if (status != TVO_AUTH_OK) {
+        throw std::runtime_error(std::string("cannot sign for ") + channel + ": " + tvo_auth_status_str(status));
+    }
+    message.resize(signed_length);
+    return message;
+}
+
+template <class M>
+void Bus::publish_message(const char* channel, const M& msg)
+{
+    if (!keyed()) {
+        lcm_.publish(channel, &msg);
+        return;
+    }
+    std::vector<std::uint8_t> frame = sign(channel, encode(msg));
+    publish_raw(channel, frame);
+    sent.push_back(Frame{channel, std::move(frame)});
+}
+
+void Bus::publish(const tvo_lcm::measurement_t& msg) { publish_message(TVO_CHANNEL_MEASUREMENT, msg); }
+void Bus::publish(const tvo_lcm::session_t& msg) { publish_message(TVO_CHANNEL_SESSION, msg); }
+void Bus::publish(const tvo_lcm::target_t& msg) { publish_message(TVO_CHANNEL_TARGET, msg); }
 
 void Bus::publish_raw(const char* channel, const std::vector<std::uint8_t>& bytes)
 {
@@ -126,24 +183,42 @@ void Bus::clear()
     acks.clear();
 }
 
-void Bus::on_command(const lcm::ReceiveBuffer*, const std::string&, const tvo_lcm::command_t* msg)
+void Bus::on_frame(const lcm::ReceiveBuffer* rbuf, const std::string& channel)
 {
-    commands.push_back(ReceivedCommand{*msg, monotonic_us()});
-}
-
-void Bus::on_telemetry(const lcm::ReceiveBuffer*, const std::string&, const tvo_lcm::telemetry_t* msg)
-{
-    telemetry.push_back(*msg);
-}
-
-void Bus::on_ack(const lcm::ReceiveBuffer*, const std::string&, const tvo_lcm::session_ack_t* msg)
-{
-    acks.push_back(*msg);
+    const auto* data = static_cast<const std::uint8_t*>(rbuf->data);
+    std::size_t size = rbuf->data_size;
+    if (keyed()) {
+        const tvo_auth_status_t status = tvo_auth_open(&auth_, channel.c_str(), data, size, &size);
+        if (status != TVO_AUTH_OK) {
+            ++(status == TVO_AUTH_ERR_REPLAY ? dropped_replayed : dropped_unauthenticated);
+            return;
+        }
+    }
+    const int length = static_cast<int>(size);
+    if (channel == TVO_CHANNEL_COMMAND) {
+        tvo_lcm::command_t msg{};
+        if (msg.decode(data, 0, length) >= 0) {
+            commands.push_back(ReceivedCommand{msg, monotonic_us()});
+        }
+    } else if (channel == TVO_CHANNEL_TELEMETRY) {
+        tvo_lcm::telemetry_t msg{};
+        if (msg.decode(data, 0, length) >= 0) {
+            telemetry.push_back(msg);
+        }
+    } else if (channel == TVO_CHANNEL_SESSION_ACK) {
+        tvo_lcm::session_ack_t msg{};
+        if (msg.decode(data, 0, length) >= 0) {
+            acks.push_back(msg);
+        }
+    }
 }
 
 // ---- NodeProcess ---------------------------------------------------------------------------------
 
-NodeProcess::NodeProcess(std::string path, std::string url) : path_(std::move(path)), url_(std::move(url)) {}
+NodeProcess::NodeProcess(std::string path, std::string url, std::string key_file)
+    : path_(std::move(path)), url_(std::move(url)), key_file_(std::move(key_file))
+{
+}
 
 NodeProcess::~NodeProcess()
 {
@@ -158,6 +233,10 @@ void NodeProcess::spawn(bool keep_running, const std::string& stderr_path)
     std::vector<std::string> args{path_, "--lcm-url", url_, "--exit-with-parent"};
     if (keep_running) {
         args.emplace_back("--keep-running");
+    }
+    if (!key_file_.empty()) {
+        args.emplace_back("--key-file");
+        args.emplace_back(key_file_);
     }
     std::vector<char*> argv;
     for (std::string& arg : args) {

@@ -20,6 +20,7 @@
 #include "tvo_lcm/telemetry_t.hpp"
 
 extern "C" {
+#include "auth.h"
 #include "channels.h"
 #include "tvo/status.h"
 }
@@ -54,16 +55,40 @@ struct ReceivedCommand {
     std::int64_t arrival_mono_us{0};
 };
 
+/// One frame as it went on the wire: a channel and its bytes (with the trailer on a keyed bus).
+struct Frame {
+    std::string channel;
+    std::vector<std::uint8_t> bytes;
+};
+
 /// The plant's LCM endpoint: publishes on the protocol's channels, keeps every command, telemetry
-/// and ack in arrival order.
+/// and ack in arrival order. Keyed (set_key), it is a genuine key holder as tvo_sim is: it signs what
+/// it publishes (counters following the wall clock), drops what does not open, and records the
+/// frames it sent (for the replay attacks).
 class Bus {
 public:
     explicit Bus(const std::string& url);
+    ~Bus();
+    Bus(const Bus&) = delete;
+    Bus& operator=(const Bus&) = delete;
 
     void publish(const tvo_lcm::measurement_t& msg);
     void publish(const tvo_lcm::session_t& msg);
     void publish(const tvo_lcm::target_t& msg);
+    /// Bytes exactly as given: neither signed nor recorded (garbage, and an attacker's frames).
     void publish_raw(const char* channel, const std::vector<std::uint8_t>& bytes);
+
+    /// From now on sign as sender_id with key and open what arrives; clear_key: unkeyed again.
+    void set_key(const std::uint8_t (&key)[TVO_AUTH_KEY_BYTES], std::uint32_t sender_id);
+    void clear_key();
+    bool keyed() const { return auth_.keyed != 0; }
+    /// The signed frame of message bytes on channel (consumes one counter); not published.
+    std::vector<std::uint8_t> sign(const char* channel, std::vector<std::uint8_t> message);
+    /// Keyed: every frame publish() sent, in order.
+    std::vector<Frame> sent;
+    /// Keyed: the node's frames that did not open, by reason (none is expected).
+    long dropped_unauthenticated{0};
+    long dropped_replayed{0};
 
     /// Handles messages until done() holds (true) or timeout passes (false).
     bool wait_until(const std::function<bool()>& done, std::chrono::microseconds timeout);
@@ -77,17 +102,19 @@ public:
     std::vector<tvo_lcm::session_ack_t> acks;
 
 private:
-    void on_command(const lcm::ReceiveBuffer*, const std::string&, const tvo_lcm::command_t* msg);
-    void on_telemetry(const lcm::ReceiveBuffer*, const std::string&, const tvo_lcm::telemetry_t* msg);
-    void on_ack(const lcm::ReceiveBuffer*, const std::string&, const tvo_lcm::session_ack_t* msg);
+    void on_frame(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
+    template <class M>
+    void publish_message(const char* channel, const M& msg);
 
     lcm::LCM lcm_;
+    tvo_auth_t auth_{};
 };
 
-/// tvo_firmware_node as a child: `path --lcm-url URL --exit-with-parent [--keep-running]`.
+/// tvo_firmware_node as a child: `path --lcm-url URL --exit-with-parent [--keep-running]
+/// [--key-file FILE]`.
 class NodeProcess {
 public:
-    NodeProcess(std::string path, std::string url);
+    NodeProcess(std::string path, std::string url, std::string key_file = "");
     NodeProcess(const NodeProcess&) = delete;
     NodeProcess& operator=(const NodeProcess&) = delete;
     ~NodeProcess();
@@ -103,6 +130,7 @@ public:
 private:
     std::string path_;
     std::string url_;
+    std::string key_file_;
     pid_t pid_{-1};
     int exit_code_{-1};
 };

@@ -1,0 +1,463 @@
+// The keyed bus under attack (issue 25): the campaign's plant and the node hold the key, as tvo_sim
+// and tvo_firmware_node --key-file do; an attacker on the same bus has no key (it sends plain LCM,
+// or signs with a key of its own) or only recordings of genuine frames. Each attack is injected in
+// a period of its own, before that period's genuine sample, and each must be: not answered (no
+// command, no ack: the period's only command answers the genuine sample), counted (the node's
+// telemetry counters move by exactly the frames sent, as unauthenticated or replayed, and nothing
+// else moves), and without effect (every genuine answer bit for bit as in a keyed run without the
+// attacks). Without the key, each of these frames would be answered (or win a re-anchor vote).
+#include "cases.hpp"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+
+extern "C" {
+#include "auth_key_file.h"
+}
+
+namespace campaign {
+
+namespace {
+constexpr std::int64_t kUsPerS = 1000000;
+constexpr char kKeyPath[] = "fault_campaign_auth.key";
+
+/// The genuine key (a test key, written to the key file the node reads) and the attacker's own.
+void fill_key(std::uint8_t (&key)[TVO_AUTH_KEY_BYTES], std::uint8_t seed)
+{
+    for (unsigned i = 0; i < TVO_AUTH_KEY_BYTES; ++i) {
+        key[i] = static_cast<std::uint8_t>(seed + 29u * i);
+    }
+}
+
+/// Keys the bus and the nodes of the case for its duration: the key file (mode 0600, as the node
+/// requires) and the plant's signing context; unkeyed again at the end of the case.
+class KeyedCase {
+public:
+    explicit KeyedCase(Context& ctx) : ctx_(ctx)
+    {
+        std::uint8_t key[TVO_AUTH_KEY_BYTES];
+        fill_key(key, 0x5a);
+        std::remove(kKeyPath);
+        const int fd = open(kKeyPath, O_WRONLY | O_CREAT | O_EXCL, S_IRUSR | S_IWUSR);
+        if (fd < 0) {
+            throw std::runtime_error(std::string("cannot write the key file ") + kKeyPath);
+        }
+        std::string hex;
+        char digits[3];
+        for (const std::uint8_t b : key) {
+            std::snprintf(digits, sizeof(digits), "%02x", b);
+            hex += digits;
+        }
+        hex += "\n";
+        const bool written = write(fd, hex.data(), hex.size()) == static_cast<ssize_t>(hex.size());
+        close(fd);
+        if (!written) {
+            throw std::runtime_error(std::string("cannot write the key file ") + kKeyPath);
+        }
+        ctx_.bus.set_key(key, TVO_AUTH_SENDER_PLANT);
+        ctx_.key_file = kKeyPath;
+    }
+    ~KeyedCase()
+    {
+        ctx_.bus.clear_key();
+        ctx_.key_file.clear();
+    }
+    KeyedCase(const KeyedCase&) = delete;
+    KeyedCase& operator=(const KeyedCase&) = delete;
+
+private:
+    Context& ctx_;
+};
+
+/// The attacker's signer: another key, and the plant's own sender id with a counter far ahead (were
+/// it accepted, every genuine frame after it would look like a replay).
+class Forger {
+public:
+    Forger()
+    {
+        std::uint8_t key[TVO_AUTH_KEY_BYTES];
+        fill_key(key, 0xa5);
+        if (tvo_auth_init(&auth_, key, TVO_AUTH_SENDER_PLANT, tvo_auth_wall_clock_counter() + 1000 * kUsPerS) !=
+            TVO_AUTH_OK) {
+            throw std::runtime_error("forger set-up failed");
+        }
+    }
+    ~Forger() { tvo_auth_clear(&auth_); }
+    Forger(const Forger&) = delete;
+    Forger& operator=(const Forger&) = delete;
+
+    std::vector<std::uint8_t> sign(const char* channel, std::vector<std::uint8_t> message)
+    {
+        const std::size_t length = message.size();
+        message.resize(length + TVO_AUTH_TRAILER_BYTES);
+        std::size_t signed_length = 0;
+        if (tvo_auth_sign(&auth_, channel, message.data(), length, message.size(), &signed_length) != TVO_AUTH_OK) {
+            throw std::runtime_error("the forger cannot sign");
+        }
+        message.resize(signed_length);
+        return message;
+    }
+
+private:
+    tvo_auth_t auth_{};
+};
+
+/// One attack: what it sends in its period and how the node must count it.
+struct Attack {
+    std::string what;
+    std::vector<Frame> frames;
+    int unauthenticated{0};
+    int replayed{0};
+};
+
+std::optional<tvo_lcm::node_counters_t> counters_of(Context& ctx, std::int64_t session_id, std::int64_t sequence)
+{
+    std::optional<tvo_lcm::node_counters_t> found;
+    ctx.bus.wait_until(
+        [&] {
+            for (auto it = ctx.bus.telemetry.rbegin(); it != ctx.bus.telemetry.rend(); ++it) {
+                if (it->session_id == session_id && it->measurement_sequence == sequence) {
+                    found = it->counters;
+                    return true;
+                }
+            }
+            return false;
+        },
+        std::chrono::seconds(10));
+    return found;
+}
+
+long refused_total(const tvo_lcm::node_counters_t& c)
+{
+    long total = 0;
+    for (const std::int32_t r : c.refused) {
+        total += r;
+    }
+    return total;
+}
+
+/// Runs one period with an attack before its genuine sample and checks it: not answered, counted,
+/// nothing else moved.
+void attack_period(Context& ctx, LockstepRun& r, std::int64_t n, const Attack& attack)
+{
+    const std::int64_t id = r.session().session_id;
+    const auto before = counters_of(ctx, id, n - 1);
+    const std::size_t commands_before = ctx.bus.commands.size();
+    const std::size_t acks_before = ctx.bus.acks.size();
+    for (const Frame& f : attack.frames) {
+        ctx.bus.publish_raw(f.channel.c_str(), f.bytes);
+    }
+    r.send_genuine(r.measure(n));
+    r.settle();
+    const auto after = counters_of(ctx, id, n);   // the node answers in order: all attack frames handled
+    const std::size_t commands = ctx.bus.commands.size() - commands_before;
+    const std::size_t acks = ctx.bus.acks.size() - acks_before;
+    std::ostringstream figure;
+    figure << attack.frames.size() << " frames; " << commands << " commands in the period (the genuine sample's: 1), "
+           << acks << " acks";
+    ctx.report.check(commands == 1 && acks == 0, attack.what + ": not answered", figure.str());
+    if (!before || !after) {
+        ctx.report.check(false, attack.what + ": counted", "no telemetry for the periods around it");
+        return;
+    }
+    const long unauth = after->unauthenticated - before->unauthenticated;
+    const long replayed = after->replayed - before->replayed;
+    const long others = (after->undecodable - before->undecodable) + (after->other_session - before->other_session) +
+                        (after->targets_refused - before->targets_refused) + (after->safe_stops - before->safe_stops) +
+                        (refused_total(*after) - refused_total(*before));
+    const long accepted = after->accepted - before->accepted;
+    std::ostringstream counted;
+    counted << "unauthenticated +" << unauth << " (want +" << attack.unauthenticated << "), replayed +" << replayed
+            << " (want +" << attack.replayed << "), accepted +" << accepted << " (the genuine sample), other counters +"
+            << others;
+    ctx.report.check(unauth == attack.unauthenticated && replayed == attack.replayed && accepted == 1 && others == 0,
+                     attack.what + ": counted, nothing else moved", counted.str());
+}
+
+LockstepConfig keyed_config(Context& ctx)
+{
+    LockstepConfig c;
+    c.session_id = ctx.new_session_id();
+    c.start_pose.position_m = Eigen::Vector2d(-1.0, -2.0);
+    c.start_pose.heading_rad = 0.0;
+    return c;
+}
+
+/// The genuine plant opened every frame of the node (none forged, none a used counter).
+void check_plant_opened_all(Context& ctx)
+{
+    ctx.report.check(ctx.bus.dropped_unauthenticated == 0 && ctx.bus.dropped_replayed == 0,
+                     "the plant opened every frame the node sent (tags verify, counters rise)",
+                     std::to_string(ctx.bus.dropped_unauthenticated) + " unauthenticated, " +
+                         std::to_string(ctx.bus.dropped_replayed) + " replayed");
+}
+
+/// A keyed run of the default session; hook as LockstepRun::run's.
+std::unique_ptr<LockstepRun> keyed_run(Context& ctx, const LockstepRun::Hook& hook)
+{
+    auto run = std::make_unique<LockstepRun>(ctx, keyed_config(ctx));
+    run->start();
+    run->run(hook);
+    run->stop();
+    return run;
+}
+
+std::vector<std::uint8_t> flipped(std::vector<std::uint8_t> frame, std::size_t from_end, std::uint8_t mask)
+{
+    frame[frame.size() - from_end] ^= mask;
+    return frame;
+}
+
+/// A frame whose trailer counter is one higher (the tag, computed over the old nonce, no longer verifies).
+std::vector<std::uint8_t> counter_raised(std::vector<std::uint8_t> frame)
+{
+    const std::size_t last = frame.size() - TVO_AUTH_TAG_BYTES - 1;   // the counter's lowest byte
+    for (std::size_t i = 0; i < 8; ++i) {
+        if (++frame[last - i] != 0) {
+            break;
+        }
+    }
+    return frame;
+}
+
+std::vector<std::uint8_t> truncated(std::vector<std::uint8_t> frame, std::size_t bytes)
+{
+    frame.resize(frame.size() - bytes);
+    return frame;
+}
+
+/// The last frame the plant sent on channel.
+const Frame& last_sent(const Context& ctx, const char* channel)
+{
+    for (auto it = ctx.bus.sent.rbegin(); it != ctx.bus.sent.rend(); ++it) {
+        if (it->channel == channel) {
+            return *it;
+        }
+    }
+    throw std::runtime_error(std::string("the plant sent nothing on ") + channel);
+}
+}  // namespace
+
+void case_auth_attacks(Context& ctx)
+{
+    KeyedCase keyed(ctx);
+    Forger forger;
+    const auto reference = keyed_run(ctx, {});
+    check_tracking(ctx.report, *reference, "keyed reference run without the attacks");
+    std::vector<std::int64_t> steps;
+    long unauthenticated = 0;
+    long replayed = 0;
+    // Every attack as the attacker builds it in its period n (m: the genuine sample of period n).
+    const auto build = [&](LockstepRun& r, std::int64_t n) -> std::optional<Attack> {
+        const tvo_lcm::measurement_t m = r.measure(n);
+        const char* session_ch = TVO_CHANNEL_SESSION;
+        const char* measurement_ch = TVO_CHANNEL_MEASUREMENT;
+        const char* target_ch = TVO_CHANNEL_TARGET;
+        tvo_lcm::session_t start = r.session();   // a new id (only an attack's period draws one)
+        start.session_id = (n == 300 || n == 310) ? ctx.new_session_id() : 0;
+        start.utime = r.now_us();
+        tvo_lcm::session_t stop = r.session();
+        stop.action = tvo_lcm::session_t::ACTION_STOP;
+        stop.utime = r.now_us();
+        tvo_lcm::measurement_t next = m;   // the next period's sequence, 0.5 m off, a plausible stamp
+        next.sequence = n + 1;
+        next.position_m[0][0] += 0.5;
+        tvo_lcm::target_t target{};
+        target.utime = r.now_us();
+        target.session_id = r.session().session_id;
+        target.robot_count = 1;
+        target.position_m[0][0] = 10.0;
+        // Three samples that agree with each other, 20 s ahead: without a key they win the re-anchor vote.
+        std::vector<tvo_lcm::measurement_t> vote;
+        for (int k = 1; k <= 3; ++k) {
+            tvo_lcm::measurement_t v = m;
+            v.sequence = n + 2000 + k;
+            v.utime = m.utime + 20 * kUsPerS + k * r.session().period_us;
+            vote.push_back(v);
+        }
+        Attack a;
+        switch (n) {
+        case 300:
+            a = {"a forged START (new id), unsigned", {{session_ch, encode(start)}}, 1, 0};
+            break;
+        case 310:
+            a = {"a forged START (new id) signed with another key",
+                 {{session_ch, forger.sign(session_ch, encode(start))}}, 1, 0};
+            break;
+        case 320:
+            a = {"a forged STOP of the running session, unsigned", {{session_ch, encode(stop)}}, 1, 0};
+            break;
+        case 330:
+            a = {"a forged STOP signed with another key", {{session_ch, forger.sign(session_ch, encode(stop))}}, 1, 0};
+            break;
+        case 340:
+            a = {"a forged measurement (next sequence, 0.5 m off), unsigned", {{measurement_ch, encode(next)}}, 1, 0};
+            break;
+        case 350:
+            a = {"a forged measurement signed with another key",
+                 {{measurement_ch, forger.sign(measurement_ch, encode(next))}}, 1, 0};
+            break;
+        case 360:
+            a = {"a forged target, unsigned", {{target_ch, encode(target)}}, 1, 0};
+            break;
+        case 370:
+            a = {"a forged target signed with another key", {{target_ch, forger.sign(target_ch, encode(target))}}, 1,
+                 0};
+            break;
+        case 380:
+            a = {"the genuine sample of the last period replayed", {last_sent(ctx, measurement_ch)}, 0, 1};
+            break;
+        case 390:
+            a = {"the genuine START of the running session replayed", {last_sent(ctx, session_ch)}, 0, 1};
+            break;
+        case 400: {
+            // A genuine frame of this period's sample, altered in flight (the genuine one follows).
+            const auto frame = ctx.bus.sign(measurement_ch, encode(m));
+            a = {"a genuine frame with one bit of its tag flipped (first, then last tag byte)",
+                 {{measurement_ch, flipped(frame, TVO_AUTH_TAG_BYTES, 0x80)}, {measurement_ch, flipped(frame, 1, 0x01)}},
+                 2,
+                 0};
+            break;
+        }
+        case 410: {
+            const auto replay = last_sent(ctx, measurement_ch).bytes;
+            a = {"the last genuine sample replayed with its counter raised by one (the tag no longer verifies)",
+                 {{measurement_ch, counter_raised(replay)}},
+                 1,
+                 0};
+            break;
+        }
+        case 420: {
+            const auto frame = ctx.bus.sign(measurement_ch, encode(m));
+            a = {"a genuine frame truncated by 1, 8, 16, 27 and 28 bytes, and a 10-byte frame",
+                 {{measurement_ch, truncated(frame, 1)},
+                  {measurement_ch, truncated(frame, 8)},
+                  {measurement_ch, truncated(frame, 16)},
+                  {measurement_ch, truncated(frame, 27)},
+                  {measurement_ch, truncated(frame, 28)},
+                  {measurement_ch, std::vector<std::uint8_t>(frame.begin(), frame.begin() + 10)}},
+                 6,
+                 0};
+            break;
+        }
+        case 440:
+            a = {"a forged vote of three (agreeing samples 20 s ahead), unsigned",
+                 {{measurement_ch, encode(vote[0])}, {measurement_ch, encode(vote[1])}, {measurement_ch, encode(vote[2])}},
+                 3,
+                 0};
+            break;
+        case 450:
+            a = {"a forged vote of three signed with another key",
+                 {{measurement_ch, forger.sign(measurement_ch, encode(vote[0]))},
+                  {measurement_ch, forger.sign(measurement_ch, encode(vote[1]))},
+                  {measurement_ch, forger.sign(measurement_ch, encode(vote[2]))}},
+                 3,
+                 0};
+            break;
+        default:
+            return std::nullopt;
+        }
+        return a;
+    };
+    auto run = keyed_run(ctx, [&](LockstepRun& r, std::int64_t n) {
+        if (const auto attack = build(r, n)) {
+            steps.push_back(n);
+            unauthenticated += attack->unauthenticated;
+            replayed += attack->replayed;
+            attack_period(ctx, r, n, *attack);
+            return;
+        }
+        r.send_genuine(r.measure(n));
+    });
+    ctx.report.check(steps.size() == 15, "every attack was injected", std::to_string(steps.size()) + " of 15");
+    check_genuine(ctx.report, *run, {});
+    check_same_as_reference(ctx.report, *reference, *run);
+    check_counters(ctx.report, *run);
+    check_tracking(ctx.report, *run, "after the attacks");
+    const tvo_lcm::telemetry_t* t = run->last_telemetry();
+    ctx.report.check(t != nullptr && t->counters.unauthenticated == unauthenticated && t->counters.replayed == replayed,
+                     "the session's counters: every forged or altered frame unauthenticated, every replay replayed",
+                     t == nullptr ? "no telemetry"
+                                  : "unauthenticated " + std::to_string(t->counters.unauthenticated) + " of " +
+                                        std::to_string(unauthenticated) + ", replayed " +
+                                        std::to_string(t->counters.replayed) + " of " + std::to_string(replayed));
+    check_plant_opened_all(ctx);
+}
+
+void case_auth_node_restart(Context& ctx)
+{
+    if (ctx.node_path.empty()) {
+        throw std::runtime_error("auth-node-restart kills and restarts the node: it needs --node PATH");
+    }
+    KeyedCase keyed(ctx);
+    constexpr std::int64_t kCrashAt = 400;
+    constexpr std::int64_t kReplayAt = 420;
+    // Genuine samples of the old node's time, replayed with its START: fewer than the 30 messages a
+    // subscriber of LCM queues per channel (lcm_subscription_set_queue_capacity's default), so the
+    // burst reaches the node whole with the period's genuine sample behind it.
+    constexpr std::size_t kRecorded = 20;
+    // The plant's frames before the crash: the recording an attacker made.
+    std::vector<Frame> recording;
+    const auto restart = [&](LockstepRun& r, std::int64_t n, bool replay) {
+        if (n == kCrashAt) {
+            r.settle();
+            // The START the plant sent this run and its last kRecorded samples.
+            const std::size_t first = ctx.bus.sent.size() - std::min(ctx.bus.sent.size(), kRecorded);
+            recording.clear();
+            for (auto it = ctx.bus.sent.rbegin(); it != ctx.bus.sent.rend(); ++it) {
+                if (it->channel == TVO_CHANNEL_SESSION) {
+                    recording.push_back(*it);
+                    break;
+                }
+            }
+            recording.insert(recording.end(), ctx.bus.sent.begin() + static_cast<std::ptrdiff_t>(first),
+                             ctx.bus.sent.end());
+            r.crash_node_and_restart();
+            r.send_until_answered(r.measure(n), Expect::Kind::NoSession,
+                                  "keyed node killed and restarted: the next sample is answered NO_SESSION");
+            r.settle();
+            r.restart_session();
+            return;
+        }
+        if (n == kReplayAt && replay) {
+            Attack a;
+            a.what = "the old node's START and " + std::to_string(recording.size() - 1) +
+                     " genuine samples replayed to the restarted node";
+            a.frames = recording;
+            a.replayed = static_cast<int>(recording.size());
+            attack_period(ctx, r, n, a);
+            return;
+        }
+        r.send_genuine(r.measure(n));
+    };
+    auto reference = std::make_unique<LockstepRun>(ctx, keyed_config(ctx));
+    reference->start();
+    reference->run([&](LockstepRun& r, std::int64_t n) { restart(r, n, false); });
+    reference->stop();
+    LockstepConfig config = keyed_config(ctx);
+    config.node_stderr_path = "fault_campaign_auth_node_restart_node.stderr";
+    std::remove(config.node_stderr_path.c_str());
+    LockstepRun run(ctx, config);
+    run.start();
+    run.run([&](LockstepRun& r, std::int64_t n) { restart(r, n, true); });
+    run.stop();
+    ctx.report.check(recording.size() == kRecorded + 1 && recording.front().channel == TVO_CHANNEL_SESSION,
+                     "the recording: the START and the samples before the crash",
+                     std::to_string(recording.size()) + " frames");
+    check_outcomes(ctx.report, run);
+    check_genuine(ctx.report, run, {kCrashAt}, run.genuine_sent - 1);
+    check_same_as_reference(ctx.report, *reference, run);
+    check_tracking(ctx.report, run, "after the node restart and the replay");
+    // The restarted node's counters continue above its old ones (they follow the wall clock): the
+    // plant, which remembers the old node's last counter, opens every frame of the new one.
+    check_plant_opened_all(ctx);
+}
+
+}  // namespace campaign
