@@ -71,27 +71,21 @@ static size_t channel_bytes(const char *channel)
     return 0u;
 }
 
-/* The tag of (channel, message) under the nonce (sender_id, counter). */
-static tvo_auth_status_t compute_tag(const tvo_auth_t *auth, const char *channel, size_t channel_length,
+/* The tag of (channel, message) under the nonce (sender_id, counter): the keyed cipher restarted. */
+static tvo_auth_status_t compute_tag(tvo_auth_t *auth, const char *channel, size_t channel_length,
                                      const uint8_t *message, size_t length, const uint8_t trailer_head[12],
                                      uint8_t tag[TVO_AUTH_TAG_BYTES])
 {
-    mbedtls_chachapoly_context ctx;
-    mbedtls_chachapoly_init(&ctx);
-    int rc = mbedtls_chachapoly_setkey(&ctx, auth->key);
+    int rc = mbedtls_chachapoly_starts(&auth->cipher, trailer_head, MBEDTLS_CHACHAPOLY_ENCRYPT);
     if (rc == 0) {
-        rc = mbedtls_chachapoly_starts(&ctx, trailer_head, MBEDTLS_CHACHAPOLY_ENCRYPT);
-    }
-    if (rc == 0) {
-        rc = mbedtls_chachapoly_update_aad(&ctx, (const unsigned char *)channel, channel_length);
+        rc = mbedtls_chachapoly_update_aad(&auth->cipher, (const unsigned char *)channel, channel_length);
     }
     if (rc == 0 && length > 0u) {
-        rc = mbedtls_chachapoly_update_aad(&ctx, message, length);
+        rc = mbedtls_chachapoly_update_aad(&auth->cipher, message, length);
     }
     if (rc == 0) {
-        rc = mbedtls_chachapoly_finish(&ctx, tag);
+        rc = mbedtls_chachapoly_finish(&auth->cipher, tag);
     }
-    mbedtls_chachapoly_free(&ctx); /* zeroes the key schedule */
     return (rc == 0) ? TVO_AUTH_OK : TVO_AUTH_ERR_CRYPTO;
 }
 
@@ -103,6 +97,11 @@ tvo_auth_status_t tvo_auth_init(tvo_auth_t *auth, const uint8_t key[TVO_AUTH_KEY
     }
     memset(auth, 0, sizeof(*auth));
     memcpy(auth->key, key, TVO_AUTH_KEY_BYTES);
+    mbedtls_chachapoly_init(&auth->cipher);
+    if (mbedtls_chachapoly_setkey(&auth->cipher, key) != 0) {
+        mbedtls_platform_zeroize(auth, sizeof(*auth));
+        return TVO_AUTH_ERR_CRYPTO;
+    }
     auth->keyed = 1u;
     auth->own_sender_id = own_sender_id;
     auth->next_counter = first_counter;
