@@ -10,6 +10,9 @@
 //              did not answer keeps the previous answer (what the plant holds) and is counted
 //   telemetry  of the step that answered it, else the previous one
 // Messages that do not decode, duplicates and other sessions are counted and reported, not fatal.
+// A keyed bus's recording (lcm-logger's; its frames end in a 28-byte authentication trailer) converts
+// as it is, the trailers ignored and unchecked (reported); with --key-file only the frames that open
+// are read, the others counted (forged or altered: unauthenticated; a used counter: replayed).
 //
 // Exit codes: 0 done; 1 the output cannot be written or the session has no measurement;
 // 2 bad command line, or a log that is missing, unreadable or holds no LCM event.
@@ -32,6 +35,7 @@
 #include <CLI/CLI.hpp>
 #include <lcm/lcm-cpp.hpp>
 
+#include "auth_key_file.h"
 #include "lcm_messages.hpp"
 #include "run_recorder.hpp"
 #include "scenario.hpp"
@@ -70,6 +74,54 @@ struct Counts {
     std::uint64_t late_answers{0};  // answers to rows already written
     std::uint64_t safe_stops{0};
     std::uint64_t rows{0};
+    std::uint64_t unchecked_trailers{0};  // without --key-file: frames one trailer longer than their message
+    std::uint64_t unauthenticated{0};     // with --key-file: frames whose tag did not verify (dropped)
+    std::uint64_t replayed{0};            // with --key-file: frames with a counter already used (dropped)
+};
+
+/// A log's events, in order. With a key, only the frames that open (auth.h: tag, then the counter
+/// per sender, from a fresh receiver each pass), their trailers stripped; the others counted once.
+class EventReader {
+public:
+    EventReader(const std::string& path, const tvo_auth_t* key, Counts* counts) : log_(path, "r"), counts_(counts)
+    {
+        if (key != nullptr) {
+            auth_ = *key;
+        }
+    }
+    ~EventReader() { tvo_auth_clear(&auth_); }
+    EventReader(const EventReader&) = delete;
+    EventReader& operator=(const EventReader&) = delete;
+
+    bool good() const { return log_.good(); }
+
+    const lcm::LogEvent* next()
+    {
+        for (const lcm::LogEvent* event = log_.readNextEvent(); event != nullptr; event = log_.readNextEvent()) {
+            if (auth_.keyed == 0u || tvo_node_channel_of(event->channel.c_str()) == 0) {
+                return event;   // unkeyed; or another channel, which is not ours to check
+            }
+            std::size_t length = 0;
+            const tvo_auth_status_t status =
+                tvo_auth_open(&auth_, event->channel.c_str(), static_cast<const std::uint8_t*>(event->data),
+                              static_cast<std::size_t>(std::max<std::int32_t>(event->datalen, 0)), &length);
+            if (status == TVO_AUTH_OK) {
+                event_ = *event;
+                event_.datalen = static_cast<std::int32_t>(length);
+                return &event_;
+            }
+            if (counts_ != nullptr) {
+                ++(status == TVO_AUTH_ERR_REPLAY ? counts_->replayed : counts_->unauthenticated);
+            }
+        }
+        return nullptr;
+    }
+
+private:
+    lcm::LogFile log_;
+    Counts* counts_;
+    tvo_auth_t auth_{};
+    lcm::LogEvent event_{};
 };
 
 template <class Msg>
@@ -167,13 +219,30 @@ bool decodes(int channel, const lcm::LogEvent& event)
     }
 }
 
+/// The encoded size of the fixed-size message of a protocol channel (0 for another channel).
+int encoded_size(int channel)
+{
+    switch (channel) {
+    case TVO_NODE_CH_SESSION: return tvo_lcm::session_t{}.getEncodedSize();
+    case TVO_NODE_CH_MEASUREMENT: return tvo_lcm::measurement_t{}.getEncodedSize();
+    case TVO_NODE_CH_TARGET: return tvo_lcm::target_t{}.getEncodedSize();
+    case TVO_NODE_CH_SESSION_ACK: return tvo_lcm::session_ack_t{}.getEncodedSize();
+    case TVO_NODE_CH_COMMAND: return tvo_lcm::command_t{}.getEncodedSize();
+    case TVO_NODE_CH_TELEMETRY: return tvo_lcm::telemetry_t{}.getEncodedSize();
+    default: return 0;
+    }
+}
+
 /// First pass: the sessions in the log (by their measurements and STARTs) and what does not decode.
-std::map<std::int64_t, SessionInfo> scan_sessions(lcm::LogFile& log, Counts* counts)
+std::map<std::int64_t, SessionInfo> scan_sessions(EventReader& log, Counts* counts)
 {
     std::map<std::int64_t, SessionInfo> sessions;
-    for (const lcm::LogEvent* event = log.readNextEvent(); event != nullptr; event = log.readNextEvent()) {
+    for (const lcm::LogEvent* event = log.next(); event != nullptr; event = log.next()) {
         ++counts->events;
         const int channel = tvo_node_channel_of(event->channel.c_str());
+        if (channel != 0 && event->datalen == encoded_size(channel) + static_cast<int>(TVO_AUTH_TRAILER_BYTES)) {
+            ++counts->unchecked_trailers;   // LCM's decoders read the message and leave the trailer
+        }
         bool ok = decodes(channel, *event);
         if (channel == TVO_NODE_CH_MEASUREMENT) {
             tvo_lcm::measurement_t m{};
@@ -419,6 +488,9 @@ int main(int argc, char** argv)
                                           "several (the error message lists them)");
     app.add_option("--scenario-json", scenario_json, "also write the session's geometry (obstacles, bounds, "
                    "offsets, from its START) here; name it scenario.json next to the CSV for plot_run.py");
+    std::string key_file;
+    app.add_option("--key-file", key_file, "a keyed bus's key (tools/keygen): read only the frames whose "
+                   "authentication trailer verifies, and count the others");
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp&) {
@@ -442,14 +514,40 @@ int main(int argc, char** argv)
     }
     std::fclose(probe);
 
+    tvo_auth_t key{};
+    const tvo_auth_t* keyed = nullptr;
+    if (!key_file.empty()) {
+        std::uint8_t bytes[TVO_AUTH_KEY_BYTES];
+        char why[300];
+        if (tvo_auth_key_file_read(key_file.c_str(), bytes, why, sizeof(why)) != 0) {
+            return usage_error(why);
+        }
+        const tvo_auth_status_t status = tvo_auth_init(&key, bytes, 0u, 1u);   // opens only: its own id unused
+        std::fill(std::begin(bytes), std::end(bytes), std::uint8_t{0});
+        if (status != TVO_AUTH_OK) {
+            return usage_error(std::string("authentication set-up failed: ") + tvo_auth_status_str(status));
+        }
+        keyed = &key;
+    }
+    struct KeyWipe {
+        tvo_auth_t* key;
+        ~KeyWipe() { tvo_auth_clear(key); }
+    } wipe{&key};
+
     Counts counts;
     std::map<std::int64_t, SessionInfo> sessions;
     {
-        lcm::LogFile log(log_path, "r");
+        EventReader log(log_path, keyed, &counts);
         if (!log.good()) {
             return usage_error("cannot open " + log_path + " as an LCM log");
         }
         sessions = scan_sessions(log, &counts);
+    }
+    if (counts.events == 0 && counts.unauthenticated + counts.replayed > 0) {
+        std::cerr << "log2csv: error: no frame of " << log_path << " opens with " << key_file << " ("
+                  << counts.unauthenticated << " unauthenticated, " << counts.replayed
+                  << " replayed): another key, or an unkeyed recording\n";
+        return 1;
     }
     if (counts.events == 0) {
         return usage_error(log_path + " holds no LCM event (not an LCM event log, or empty)");
@@ -478,8 +576,8 @@ int main(int argc, char** argv)
     try {
         tvo_host::RunRecorder out(csv_path);
         Converter converter(session_id, info.start, out, counts);
-        lcm::LogFile log(log_path, "r");
-        for (const lcm::LogEvent* event = log.readNextEvent(); event != nullptr; event = log.readNextEvent()) {
+        EventReader log(log_path, keyed, nullptr);   // counted in the first pass
+        for (const lcm::LogEvent* event = log.next(); event != nullptr; event = log.next()) {
             converter.on_event(*event);
         }
         converter.finish();
@@ -513,6 +611,11 @@ int main(int argc, char** argv)
         {"measurements with a robot count out of range (ignored)", counts.bad_robot_count},
         {"commands and telemetry of other sessions (ignored)", counts.other_session},
         {"safe stops of the node", counts.safe_stops},
+        {"frames dropped by --key-file: their tag did not verify (forged, altered, another key)",
+         counts.unauthenticated},
+        {"frames dropped by --key-file: a counter already used (replays)", counts.replayed},
+        {"frames carry an authentication trailer, not checked (a keyed bus: give --key-file to check them)",
+         counts.unchecked_trailers},
     };
     for (const auto& [what, n] : notes) {
         if (n > 0) {

@@ -2,10 +2,14 @@
 // two sessions, a measurement the node did not answer, a refusal then a computed answer, a refusal
 // alone, a duplicate measurement, a message that does not decode, a channel of someone else, a START
 // and a measurement naming robots that are not there, and a log without the session's START
-// (streamed targets). Plain checks (no framework): exit 0 = pass.
+// (streamed targets), and a keyed bus's recording (frames with authentication trailers, a forged and a
+// replayed one among them), with and without --key-file. Plain checks (no framework): exit 0 = pass.
 //
 // Usage: tvo_log2csv_cases TVO_LOG2CSV WORK_DIR
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -20,6 +24,7 @@
 
 #include <lcm/lcm-cpp.hpp>
 
+#include "auth.h"
 #include "lcm_messages.hpp"
 
 namespace {
@@ -46,9 +51,29 @@ public:
     template <class Msg>
     void put(const char* channel, const Msg& msg)
     {
+        raw(channel, encoded(msg));
+    }
+    /// As put, the frame signed by signer (a keyed bus's frame as lcm-logger records it).
+    template <class Msg>
+    std::vector<char> put_signed(const char* channel, const Msg& msg, tvo_auth_t* signer)
+    {
+        std::vector<char> data = encoded(msg);
+        const std::size_t length = data.size();
+        data.resize(length + TVO_AUTH_TRAILER_BYTES);
+        std::size_t signed_length = 0;
+        if (tvo_auth_sign(signer, channel, reinterpret_cast<std::uint8_t*>(data.data()), length, data.size(),
+                          &signed_length) != TVO_AUTH_OK) {
+            check(false, std::string("signing for ") + channel);
+        }
+        raw(channel, data);
+        return data;
+    }
+    template <class Msg>
+    static std::vector<char> encoded(const Msg& msg)
+    {
         std::vector<char> data(static_cast<std::size_t>(msg.getEncodedSize()));
         msg.encode(data.data(), 0, static_cast<int>(data.size()));
-        raw(channel, data);
+        return data;
     }
     void raw(const char* channel, std::vector<char> data)
     {
@@ -263,6 +288,96 @@ void without_start(const std::string& program, const std::string& dir)
     }
 }
 
+/// A key file as tools/keygen writes it (64 hex digits, mode 0600).
+void write_key_file(const std::string& path, const std::uint8_t (&key)[TVO_AUTH_KEY_BYTES])
+{
+    std::remove(path.c_str());
+    const int fd = open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL, S_IRUSR | S_IWUSR);
+    std::string hex;
+    char digits[3];
+    for (const std::uint8_t b : key) {
+        std::snprintf(digits, sizeof(digits), "%02x", b);
+        hex += digits;
+    }
+    hex += "\n";
+    const bool ok = fd >= 0 && write(fd, hex.data(), hex.size()) == static_cast<ssize_t>(hex.size());
+    if (fd >= 0) {
+        close(fd);
+    }
+    check(ok, "the key file " + path + " can be written");
+}
+
+void keyed_bus(const std::string& program, const std::string& dir)
+{
+    std::uint8_t key[TVO_AUTH_KEY_BYTES];
+    std::uint8_t other[TVO_AUTH_KEY_BYTES];
+    for (unsigned i = 0; i < TVO_AUTH_KEY_BYTES; ++i) {
+        key[i] = static_cast<std::uint8_t>(3u + 7u * i);
+        other[i] = static_cast<std::uint8_t>(key[i] ^ 0x40u);
+    }
+    const std::string key_path = dir + "/robot.key";
+    const std::string other_path = dir + "/other.key";
+    write_key_file(key_path, key);
+    write_key_file(other_path, other);
+    tvo_auth_t plant{};
+    tvo_auth_t node{};
+    tvo_auth_init(&plant, key, TVO_AUTH_SENDER_PLANT, 1u);
+    tvo_auth_init(&node, key, TVO_AUTH_SENDER_NODE, 1u);
+    // The same run twice: plain (the reference) and as a keyed bus's recording, where an attacker also
+    // sent an unsigned measurement of the next sequence and replayed a genuine one.
+    const std::string plain_path = dir + "/plain.lcmlog";
+    const std::string keyed_path = dir + "/keyed.lcmlog";
+    {
+        LogWriter plain(plain_path);
+        LogWriter keyed(keyed_path);
+        plain.put(TVO_CHANNEL_SESSION, start(kSession, 1.0, 2.0));
+        keyed.put_signed(TVO_CHANNEL_SESSION, start(kSession, 1.0, 2.0), &plant);
+        std::vector<char> first;
+        for (std::int64_t seq = 0; seq < 4; ++seq) {
+            plain.put(TVO_CHANNEL_MEASUREMENT, measurement(kSession, seq));
+            const auto frame = keyed.put_signed(TVO_CHANNEL_MEASUREMENT, measurement(kSession, seq), &plant);
+            if (seq == 0) {
+                first = frame;
+            }
+            plain.put(TVO_CHANNEL_COMMAND, command(seq, 1.0 + static_cast<double>(seq), TVO_OK));
+            keyed.put_signed(TVO_CHANNEL_COMMAND, command(seq, 1.0 + static_cast<double>(seq), TVO_OK), &node);
+            if (seq == 1) {
+                tvo_lcm::measurement_t forged = measurement(kSession, 2);
+                forged.position_m[0][0] = 50.0;
+                keyed.put(TVO_CHANNEL_MEASUREMENT, forged);
+                keyed.raw(TVO_CHANNEL_MEASUREMENT, first);
+            }
+        }
+    }
+    tvo_auth_clear(&plant);
+    tvo_auth_clear(&node);
+    const Run plain = log2csv(program, "'" + plain_path + "' -o '" + dir + "/plain.csv'", dir);
+    const auto reference = read_csv(dir + "/plain.csv");
+    check(plain.exit_code == 0 && reference.size() == 4, "the plain recording converts (4 rows)");
+
+    const Run unchecked = log2csv(program, "'" + keyed_path + "' -o '" + dir + "/unchecked.csv'", dir);
+    check(unchecked.exit_code == 0 && contains(unchecked.output, "10 frames carry an authentication trailer, not checked"),
+          "without --key-file a keyed recording converts, its trailers ignored and reported unchecked");
+    const auto unchecked_rows = read_csv(dir + "/unchecked.csv");
+    check(unchecked_rows.size() == 4 && num(unchecked_rows[2], "x_m") == 50.0,
+          "without --key-file the forged sample is read as genuine (what the key file is for)");
+
+    const Run opened = log2csv(program, "'" + keyed_path + "' --key-file '" + key_path + "' -o '" + dir +
+                                            "/keyed.csv'", dir);
+    const auto rows = read_csv(dir + "/keyed.csv");
+    check(opened.exit_code == 0 && rows == reference,
+          "with --key-file the keyed recording converts to the plain recording's CSV, cell for cell");
+    check(contains(opened.output, "1 frames dropped by --key-file: their tag did not verify") &&
+              contains(opened.output, "1 frames dropped by --key-file: a counter already used") &&
+              !contains(opened.output, "not checked"),
+          "the forged and the replayed frame are dropped and counted");
+
+    const Run wrong = log2csv(program, "'" + keyed_path + "' --key-file '" + other_path + "' -o '" + dir +
+                                           "/wrong.csv'", dir);
+    check(wrong.exit_code == 1 && contains(wrong.output, "no frame") && contains(wrong.output, "11 unauthenticated"),
+          "another key: no frame opens, exit 1, said so");
+}
+
 void bad_files(const std::string& program, const std::string& dir)
 {
     const Run absent = log2csv(program, "'" + dir + "/absent.lcmlog'", dir);
@@ -290,6 +405,7 @@ int main(int argc, char** argv)
     std::filesystem::create_directories(argv[2], error);
     two_sessions(argv[1], argv[2]);
     without_start(argv[1], argv[2]);
+    keyed_bus(argv[1], argv[2]);
     bad_files(argv[1], argv[2]);
     std::cout << (g_failures == 0 ? "all passed\n" : std::to_string(g_failures) + " failed\n");
     return g_failures == 0 ? 0 : 1;
