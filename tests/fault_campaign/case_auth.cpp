@@ -8,15 +8,13 @@
 // attacks). Without the key, each of these frames would be answered (or win a re-anchor vote).
 #include "cases.hpp"
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <cstdio>
 #include <memory>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+
+#include "test_key_file.hpp"
 
 extern "C" {
 #include "auth_key_file.h"
@@ -26,7 +24,6 @@ namespace campaign {
 
 namespace {
 constexpr std::int64_t kUsPerS = 1000000;
-constexpr char kKeyPath[] = "fault_campaign_auth.key";
 
 /// The genuine key (a test key, written to the key file the node reads) and the attacker's own.
 void fill_key(std::uint8_t (&key)[TVO_AUTH_KEY_BYTES], std::uint8_t seed)
@@ -40,29 +37,16 @@ void fill_key(std::uint8_t (&key)[TVO_AUTH_KEY_BYTES], std::uint8_t seed)
 /// requires) and the plant's signing context; unkeyed again at the end of the case.
 class KeyedCase {
 public:
-    explicit KeyedCase(Context& ctx) : ctx_(ctx)
+    /// name: the case's, so cases run side by side (CTest -j) each have their own file.
+    KeyedCase(Context& ctx, const std::string& name) : ctx_(ctx), path_("fault_campaign_" + name + ".key")
     {
         std::uint8_t key[TVO_AUTH_KEY_BYTES];
         fill_key(key, 0x5a);
-        std::remove(kKeyPath);
-        const int fd = open(kKeyPath, O_WRONLY | O_CREAT | O_EXCL, S_IRUSR | S_IWUSR);
-        if (fd < 0) {
-            throw std::runtime_error(std::string("cannot write the key file ") + kKeyPath);
-        }
-        std::string hex;
-        char digits[3];
-        for (const std::uint8_t b : key) {
-            std::snprintf(digits, sizeof(digits), "%02x", b);
-            hex += digits;
-        }
-        hex += "\n";
-        const bool written = write(fd, hex.data(), hex.size()) == static_cast<ssize_t>(hex.size());
-        close(fd);
-        if (!written) {
-            throw std::runtime_error(std::string("cannot write the key file ") + kKeyPath);
+        if (!tvo_test::write_key_file(path_, key)) {
+            throw std::runtime_error("cannot write the key file " + path_);
         }
         ctx_.bus.set_key(key, TVO_AUTH_SENDER_PLANT);
-        ctx_.key_file = kKeyPath;
+        ctx_.key_file = path_;
     }
     ~KeyedCase()
     {
@@ -74,6 +58,7 @@ public:
 
 private:
     Context& ctx_;
+    std::string path_;
 };
 
 /// The attacker's signer: another key, and the plant's own sender id with a counter far ahead (were
@@ -95,14 +80,7 @@ public:
 
     std::vector<std::uint8_t> sign(const char* channel, std::vector<std::uint8_t> message)
     {
-        const std::size_t length = message.size();
-        message.resize(length + TVO_AUTH_TRAILER_BYTES);
-        std::size_t signed_length = 0;
-        if (tvo_auth_sign(&auth_, channel, message.data(), length, message.size(), &signed_length) != TVO_AUTH_OK) {
-            throw std::runtime_error("the forger cannot sign");
-        }
-        message.resize(signed_length);
-        return message;
+        return signed_frame(&auth_, channel, std::move(message));
     }
 
 private:
@@ -181,15 +159,6 @@ void attack_period(Context& ctx, LockstepRun& r, std::int64_t n, const Attack& a
                      attack.what + ": counted, nothing else moved", counted.str());
 }
 
-LockstepConfig keyed_config(Context& ctx)
-{
-    LockstepConfig c;
-    c.session_id = ctx.new_session_id();
-    c.start_pose.position_m = Eigen::Vector2d(-1.0, -2.0);
-    c.start_pose.heading_rad = 0.0;
-    return c;
-}
-
 /// The genuine plant opened every frame of the node (none forged, none a used counter).
 void check_plant_opened_all(Context& ctx)
 {
@@ -202,7 +171,7 @@ void check_plant_opened_all(Context& ctx)
 /// A keyed run of the default session; hook as LockstepRun::run's.
 std::unique_ptr<LockstepRun> keyed_run(Context& ctx, const LockstepRun::Hook& hook)
 {
-    auto run = std::make_unique<LockstepRun>(ctx, keyed_config(ctx));
+    auto run = std::make_unique<LockstepRun>(ctx, base_config(ctx));
     run->start();
     run->run(hook);
     run->stop();
@@ -247,7 +216,7 @@ const Frame& last_sent(const Context& ctx, const char* channel)
 
 void case_auth_attacks(Context& ctx)
 {
-    KeyedCase keyed(ctx);
+    KeyedCase keyed(ctx, "auth-attacks");
     Forger forger;
     const auto reference = keyed_run(ctx, {});
     check_tracking(ctx.report, *reference, "keyed reference run without the attacks");
@@ -255,67 +224,69 @@ void case_auth_attacks(Context& ctx)
     long unauthenticated = 0;
     long replayed = 0;
     // Every attack as the attacker builds it in its period n (m: the genuine sample of period n).
+    // Every attack as the attacker builds it in its period n (m: the genuine sample of period n).
+    // Forgeries go twice: unsigned in period `at`, signed with another key in period at + 10.
     const auto build = [&](LockstepRun& r, std::int64_t n) -> std::optional<Attack> {
         const tvo_lcm::measurement_t m = r.measure(n);
-        const char* session_ch = TVO_CHANNEL_SESSION;
         const char* measurement_ch = TVO_CHANNEL_MEASUREMENT;
-        const char* target_ch = TVO_CHANNEL_TARGET;
-        tvo_lcm::session_t start = r.session();   // a new id (only an attack's period draws one)
-        start.session_id = (n == 300 || n == 310) ? ctx.new_session_id() : 0;
-        start.utime = r.now_us();
-        tvo_lcm::session_t stop = r.session();
-        stop.action = tvo_lcm::session_t::ACTION_STOP;
-        stop.utime = r.now_us();
-        tvo_lcm::measurement_t next = m;   // the next period's sequence, 0.5 m off, a plausible stamp
-        next.sequence = n + 1;
-        next.position_m[0][0] += 0.5;
-        tvo_lcm::target_t target{};
-        target.utime = r.now_us();
-        target.session_id = r.session().session_id;
-        target.robot_count = 1;
-        target.position_m[0][0] = 10.0;
-        // Three samples that agree with each other, 20 s ahead: without a key they win the re-anchor vote.
-        std::vector<tvo_lcm::measurement_t> vote;
-        for (int k = 1; k <= 3; ++k) {
-            tvo_lcm::measurement_t v = m;
-            v.sequence = n + 2000 + k;
-            v.utime = m.utime + 20 * kUsPerS + k * r.session().period_us;
-            vote.push_back(v);
+        const std::int64_t at = n - n % 20;
+        std::string what;
+        const char* channel = measurement_ch;
+        std::vector<std::vector<std::uint8_t>> forged;
+        if (at == 300) {
+            tvo_lcm::session_t start = r.session();
+            start.session_id = ctx.new_session_id();
+            start.utime = r.now_us();
+            what = "a forged START (new id)";
+            channel = TVO_CHANNEL_SESSION;
+            forged.push_back(encode(start));
+        } else if (at == 320) {
+            tvo_lcm::session_t stop = r.session();
+            stop.action = tvo_lcm::session_t::ACTION_STOP;
+            stop.utime = r.now_us();
+            what = "a forged STOP of the running session";
+            channel = TVO_CHANNEL_SESSION;
+            forged.push_back(encode(stop));
+        } else if (at == 340) {
+            tvo_lcm::measurement_t next = m;   // the next period's sequence, 0.5 m off, a plausible stamp
+            next.sequence = n + 1;
+            next.position_m[0][0] += 0.5;
+            what = "a forged measurement (next sequence, 0.5 m off)";
+            forged.push_back(encode(next));
+        } else if (at == 360) {
+            tvo_lcm::target_t target{};
+            target.utime = r.now_us();
+            target.session_id = r.session().session_id;
+            target.robot_count = 1;
+            target.position_m[0][0] = 10.0;
+            what = "a forged target";
+            channel = TVO_CHANNEL_TARGET;
+            forged.push_back(encode(target));
+        } else if (at == 440) {
+            // Three samples that agree with each other, 20 s ahead: without a key they win the re-anchor vote.
+            for (int k = 1; k <= 3; ++k) {
+                tvo_lcm::measurement_t v = m;
+                v.sequence = n + 2000 + k;
+                v.utime = m.utime + 20 * kUsPerS + k * r.session().period_us;
+                forged.push_back(encode(v));
+            }
+            what = "a forged vote of three (agreeing samples 20 s ahead)";
         }
         Attack a;
+        if (!forged.empty() && (n == at || n == at + 10)) {
+            a.what = what + (n == at ? ", unsigned" : ", signed with another key");
+            for (auto& bytes : forged) {
+                a.frames.push_back({channel, n == at ? bytes : forger.sign(channel, bytes)});
+            }
+            a.unauthenticated = static_cast<int>(forged.size());
+            return a;
+        }
         switch (n) {
-        case 300:
-            a = {"a forged START (new id), unsigned", {{session_ch, encode(start)}}, 1, 0};
-            break;
-        case 310:
-            a = {"a forged START (new id) signed with another key",
-                 {{session_ch, forger.sign(session_ch, encode(start))}}, 1, 0};
-            break;
-        case 320:
-            a = {"a forged STOP of the running session, unsigned", {{session_ch, encode(stop)}}, 1, 0};
-            break;
-        case 330:
-            a = {"a forged STOP signed with another key", {{session_ch, forger.sign(session_ch, encode(stop))}}, 1, 0};
-            break;
-        case 340:
-            a = {"a forged measurement (next sequence, 0.5 m off), unsigned", {{measurement_ch, encode(next)}}, 1, 0};
-            break;
-        case 350:
-            a = {"a forged measurement signed with another key",
-                 {{measurement_ch, forger.sign(measurement_ch, encode(next))}}, 1, 0};
-            break;
-        case 360:
-            a = {"a forged target, unsigned", {{target_ch, encode(target)}}, 1, 0};
-            break;
-        case 370:
-            a = {"a forged target signed with another key", {{target_ch, forger.sign(target_ch, encode(target))}}, 1,
-                 0};
-            break;
         case 380:
             a = {"the genuine sample of the last period replayed", {last_sent(ctx, measurement_ch)}, 0, 1};
             break;
         case 390:
-            a = {"the genuine START of the running session replayed", {last_sent(ctx, session_ch)}, 0, 1};
+            a = {"the genuine START of the running session replayed", {last_sent(ctx, TVO_CHANNEL_SESSION)}, 0, 1};
             break;
         case 400: {
             // A genuine frame of this period's sample, altered in flight (the genuine one follows).
@@ -326,14 +297,12 @@ void case_auth_attacks(Context& ctx)
                  0};
             break;
         }
-        case 410: {
-            const auto replay = last_sent(ctx, measurement_ch).bytes;
+        case 410:
             a = {"the last genuine sample replayed with its counter raised by one (the tag no longer verifies)",
-                 {{measurement_ch, counter_raised(replay)}},
+                 {{measurement_ch, counter_raised(last_sent(ctx, measurement_ch).bytes)}},
                  1,
                  0};
             break;
-        }
         case 420: {
             const auto frame = ctx.bus.sign(measurement_ch, encode(m));
             a = {"a genuine frame truncated by 1, 8, 16, 27 and 28 bytes, and a 10-byte frame",
@@ -347,20 +316,6 @@ void case_auth_attacks(Context& ctx)
                  0};
             break;
         }
-        case 440:
-            a = {"a forged vote of three (agreeing samples 20 s ahead), unsigned",
-                 {{measurement_ch, encode(vote[0])}, {measurement_ch, encode(vote[1])}, {measurement_ch, encode(vote[2])}},
-                 3,
-                 0};
-            break;
-        case 450:
-            a = {"a forged vote of three signed with another key",
-                 {{measurement_ch, forger.sign(measurement_ch, encode(vote[0]))},
-                  {measurement_ch, forger.sign(measurement_ch, encode(vote[1]))},
-                  {measurement_ch, forger.sign(measurement_ch, encode(vote[2]))}},
-                 3,
-                 0};
-            break;
         default:
             return std::nullopt;
         }
@@ -396,7 +351,7 @@ void case_auth_node_restart(Context& ctx)
     if (ctx.node_path.empty()) {
         throw std::runtime_error("auth-node-restart kills and restarts the node: it needs --node PATH");
     }
-    KeyedCase keyed(ctx);
+    KeyedCase keyed(ctx, "auth-node-restart");
     constexpr std::int64_t kCrashAt = 400;
     constexpr std::int64_t kReplayAt = 420;
     // Genuine samples of the old node's time, replayed with its START: fewer than the 30 messages a
@@ -437,11 +392,11 @@ void case_auth_node_restart(Context& ctx)
         }
         r.send_genuine(r.measure(n));
     };
-    auto reference = std::make_unique<LockstepRun>(ctx, keyed_config(ctx));
+    auto reference = std::make_unique<LockstepRun>(ctx, base_config(ctx));
     reference->start();
     reference->run([&](LockstepRun& r, std::int64_t n) { restart(r, n, false); });
     reference->stop();
-    LockstepConfig config = keyed_config(ctx);
+    LockstepConfig config = base_config(ctx);
     config.node_stderr_path = "fault_campaign_auth_node_restart_node.stderr";
     std::remove(config.node_stderr_path.c_str());
     LockstepRun run(ctx, config);

@@ -29,6 +29,8 @@ constexpr std::uint64_t kSeed = 20240609;
 constexpr std::size_t kSessionIdOffset = 16;
 constexpr std::size_t kActionOffset = 24;
 
+}  // namespace
+
 LockstepConfig base_config(Context& ctx)
 {
     LockstepConfig c;
@@ -37,6 +39,8 @@ LockstepConfig base_config(Context& ctx)
     c.start_pose.heading_rad = 0.0;
     return c;
 }
+
+namespace {
 
 /// The same run without the faults (hook: what it sends instead, e.g. the same drops).
 std::unique_ptr<LockstepRun> run_reference(Context& ctx, const LockstepRun::Hook& hook = {})

@@ -18,6 +18,9 @@ struct Case {
 
 const std::vector<Case>& all_cases();
 
+/// The default session of a run: a fresh id, the robot starting at (-1, -2) heading 0.
+LockstepConfig base_config(Context& ctx);
+
 // Lockstep cases (cases.cpp).
 void case_stray_future_stamp(Context& ctx);
 void case_stray_past_stamp(Context& ctx);

@@ -121,18 +121,23 @@ void Bus::clear_key()
     sent.clear();
 }
 
-std::vector<std::uint8_t> Bus::sign(const char* channel, std::vector<std::uint8_t> message)
+std::vector<std::uint8_t> signed_frame(tvo_auth_t* signer, const char* channel, std::vector<std::uint8_t> message)
 {
     const std::size_t length = message.size();
     message.resize(length + TVO_AUTH_TRAILER_BYTES);
     std::size_t signed_length = 0;
     const tvo_auth_status_t status =
-        tvo_auth_sign(&auth_, channel, message.data(), length, message.size(), &signed_length);
+        tvo_auth_sign(signer, channel, message.data(), length, message.size(), &signed_length);
     if (status != TVO_AUTH_OK) {
         throw std::runtime_error(std::string("cannot sign for ") + channel + ": " + tvo_auth_status_str(status));
     }
     message.resize(signed_length);
     return message;
+}
+
+std::vector<std::uint8_t> Bus::sign(const char* channel, std::vector<std::uint8_t> message)
+{
+    return signed_frame(&auth_, channel, std::move(message));
 }
 
 template <class M>

@@ -61,6 +61,9 @@ struct Frame {
     std::vector<std::uint8_t> bytes;
 };
 
+/// message followed by its authentication trailer from signer (consumes one of its counters).
+std::vector<std::uint8_t> signed_frame(tvo_auth_t* signer, const char* channel, std::vector<std::uint8_t> message);
+
 /// The plant's LCM endpoint: publishes on the protocol's channels, keeps every command, telemetry
 /// and ack in arrival order. Keyed (set_key), it is a genuine key holder as tvo_sim is: it signs what
 /// it publishes (counters following the wall clock), drops what does not open, and records the

@@ -6,10 +6,7 @@
 // replayed one among them), with and without --key-file. Plain checks (no framework): exit 0 = pass.
 //
 // Usage: tvo_log2csv_cases TVO_LOG2CSV WORK_DIR
-#include <fcntl.h>
-#include <sys/stat.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -26,6 +23,7 @@
 
 #include "auth.h"
 #include "lcm_messages.hpp"
+#include "test_key_file.hpp"
 
 namespace {
 
@@ -288,23 +286,9 @@ void without_start(const std::string& program, const std::string& dir)
     }
 }
 
-/// A key file as tools/keygen writes it (64 hex digits, mode 0600).
 void write_key_file(const std::string& path, const std::uint8_t (&key)[TVO_AUTH_KEY_BYTES])
 {
-    std::remove(path.c_str());
-    const int fd = open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL, S_IRUSR | S_IWUSR);
-    std::string hex;
-    char digits[3];
-    for (const std::uint8_t b : key) {
-        std::snprintf(digits, sizeof(digits), "%02x", b);
-        hex += digits;
-    }
-    hex += "\n";
-    const bool ok = fd >= 0 && write(fd, hex.data(), hex.size()) == static_cast<ssize_t>(hex.size());
-    if (fd >= 0) {
-        close(fd);
-    }
-    check(ok, "the key file " + path + " can be written");
+    check(tvo_test::write_key_file(path, key), "the key file " + path + " can be written");
 }
 
 void keyed_bus(const std::string& program, const std::string& dir)
