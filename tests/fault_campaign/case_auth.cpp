@@ -52,6 +52,7 @@ public:
     {
         ctx_.bus.clear_key();
         ctx_.key_file.clear();
+        std::remove(path_.c_str());  // a test's key is not left behind
     }
     KeyedCase(const KeyedCase&) = delete;
     KeyedCase& operator=(const KeyedCase&) = delete;
