@@ -378,6 +378,8 @@ int main(int argc, char **argv)
             return 1;
         }
         self.fleet_member = 1;
+        fprintf(stderr, "tvo_firmware_node: fleet node of robot %d on %s (unauthenticated bus)\n", (int)opt.own_robot,
+                self.fleet_sample_channel);
         tvo_node_init(&self.node, tvo_fleet_link_publish, &self.fleet);
     } else {
         fprintf(stderr, "tvo_firmware_node: the bus is unauthenticated (no --key-file): anyone on the network can "
@@ -418,6 +420,13 @@ int main(int argc, char **argv)
         }
     }
     log_flush(&self);
+    if (self.fleet_member) {
+        fprintf(stderr,
+                "tvo_firmware_node: fleet: %u samples taken (%u late), %u refused; %u robot-periods predicted; "
+                "%u own samples answered before every robot was heard\n",
+                self.fleet.samples_taken, self.fleet.samples_late, self.fleet.samples_refused, self.fleet.predictions,
+                self.fleet.unheard_steps);
+    }
     tvo_auth_clear(&self.link.auth);
     lcm_destroy(self.lcm);
     return exit_code;

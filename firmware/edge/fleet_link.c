@@ -275,6 +275,10 @@ static void step(tvo_fleet_link_t *link, tvo_node_t *node, const tvo_lcm_fleet_s
                 state_of(own, &next[r]);
                 continue;
             }
+            /* A sample stamped more than a period ahead is a stray: it would hold back the genuine ones. */
+            if (link->has_pending[r] && link->pending[r].sequence > n + 1) {
+                link->has_pending[r] = 0u;
+            }
             /* A sample of an earlier period than n (its own robot's step was missed) is still news. */
             if (link->has_pending[r] && link->pending[r].sequence <= n && link->pending[r].sequence > next[r].sequence) {
                 state_of(&link->pending[r], &next[r]);

@@ -206,6 +206,20 @@ static void test_a_robot_never_heard_is_not_invented(void)
     TEST_ASSERT_EQUAL_INT32(1, member.counters.accepted);
 }
 
+static void test_a_stray_from_the_future_costs_one_period(void)
+{
+    tvo_lcm_fleet_command_t got;
+    member_step(0, 1, &got);
+    member_step(1, 1, &got);
+    ef_record_clear(&member_rec);
+    send_sample(0, 1000); /* a stray far ahead: kept until the next step, then dropped */
+    member_step(2, 0, &got);
+    TEST_ASSERT_EQUAL_INT(1, got.predicted);
+    member_step(3, 1, &got); /* the genuine sample is used again */
+    EF_ASSERT_STATUS(TVO_OK, got.status);
+    TEST_ASSERT_EQUAL_INT(0, got.predicted);
+}
+
 static void test_bad_samples_are_refused(void)
 {
     tvo_lcm_fleet_sample_t s;
@@ -229,6 +243,7 @@ int main(void)
     RUN_TEST(test_member_computes_the_central_command);
     RUN_TEST(test_missing_sample_is_predicted_along_the_nodes_commands);
     RUN_TEST(test_a_robot_never_heard_is_not_invented);
+    RUN_TEST(test_a_stray_from_the_future_costs_one_period);
     RUN_TEST(test_bad_samples_are_refused);
     return UNITY_END();
 }
