@@ -396,7 +396,7 @@ private:
                 check_limits(r, a.row, h_s);
                 held_[static_cast<std::size_t>(r)] = {a.row.speed_mps, a.row.turn_rate_radps};
                 cmd.flags |= a.row.flags;
-            } else if ((a.row.flags & TVO_FLAG_SAFE_STOP) != 0 && came && !lost) {
+            } else if ((static_cast<std::uint32_t>(a.row.flags) & TVO_FLAG_SAFE_STOP) != 0u && came && !lost) {
                 held_[static_cast<std::size_t>(r)] = {0.0, 0.0};
             } else {
                 ++held_rows_;

@@ -224,7 +224,7 @@ static void test_bad_samples_are_refused(void)
 {
     tvo_lcm_fleet_sample_t s;
     sample_of(0, 0, &s);
-    s.position_m[1] = NAN;
+    s.position_m[1] = (double)NAN;
     int len = tvo_lcm_fleet_sample_t_encode(wire, 0, (int)sizeof(wire), &s);
     TEST_ASSERT_EQUAL_INT(0, tvo_fleet_link_receive(&link, &member, TVO_FLEET_CH_SAMPLE, wire, (uint32_t)len, 0));
     sample_of(0, 0, &s);
