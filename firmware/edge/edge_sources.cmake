@@ -12,3 +12,5 @@ set(tvo_edge_node_sources
   ${tvo_edge_dir}/channels.c)
 # The authenticated link in front of the node (auth_link.c; link tvo_auth, which brings Mbed TLS).
 set(tvo_edge_auth_link_sources ${tvo_edge_dir}/auth_link.c)
+# The fleet link in front of the node (fleet_link.c): one robot's node of a fleet, per-robot samples in.
+set(tvo_edge_fleet_link_sources ${tvo_edge_dir}/fleet_link.c)

@@ -22,6 +22,7 @@
 
 #include "auth_key_file.h"
 #include "auth_link.h"
+#include "fleet_link.h"
 #include "node.h"
 
 /* The only global: set by SIGINT/SIGTERM, polled by the main loop. */
@@ -58,6 +59,9 @@ typedef struct {
     tvo_node_t node;     /* the transport-independent logic (node.h) */
     tvo_auth_link_t link; /* with --key-file: frames opened before the node, its messages signed */
     int keyed;
+    tvo_fleet_link_t fleet; /* with --own-robot: one robot's node of a fleet (fleet_link.h) */
+    int fleet_member;
+    char fleet_sample_channel[TVO_FLEET_CHANNEL_NAME_BYTES];
     log_limit_t limits[LOG_KEYS];
 } lcm_node_t;
 
@@ -79,6 +83,16 @@ static void publish(void *context, int channel, const uint8_t *data, uint32_t le
 {
     lcm_node_t *self = (lcm_node_t *)context;
     lcm_publish(self->lcm, tvo_node_channel_name(channel), data, length);
+}
+
+/* The fleet link's channels carry the own robot's number (fleet_link.h). */
+static void fleet_publish(void *context, int channel, const uint8_t *data, uint32_t length)
+{
+    lcm_node_t *self = (lcm_node_t *)context;
+    char name[TVO_FLEET_CHANNEL_NAME_BYTES];
+    if (tvo_fleet_channel_name(channel, self->fleet.own_robot, name, sizeof(name)) == 0) {
+        lcm_publish(self->lcm, name, data, length);
+    }
 }
 
 /* Whether a line of this kind may be written now; *suppressed gets how many were not. */
@@ -183,7 +197,12 @@ static void on_message(const lcm_recv_buf_t *rbuf, const char *channel, void *us
     lcm_node_t *self = (lcm_node_t *)user;
     const tvo_lcm_node_counters_t before = self->node.counters;
     const uint32_t acks_before = self->node.acks;
-    if (self->keyed) {
+    if (self->fleet_member) {
+        const int fleet_channel = strcmp(channel, self->fleet_sample_channel) == 0 ? (int)TVO_FLEET_CH_SAMPLE
+                                                                                   : tvo_node_channel_of(channel);
+        (void)tvo_fleet_link_receive(&self->fleet, &self->node, fleet_channel, (const uint8_t *)rbuf->data,
+                                     rbuf->data_size, monotonic_us());
+    } else if (self->keyed) {
         (void)tvo_auth_link_receive(&self->link, &self->node, tvo_node_channel_of(channel),
                                     (const uint8_t *)rbuf->data, rbuf->data_size, monotonic_us());
     } else {
@@ -196,12 +215,14 @@ static void on_message(const lcm_recv_buf_t *rbuf, const char *channel, void *us
 static void print_usage(FILE *out)
 {
     fprintf(out,
-            "Usage: tvo_firmware_node [--key-file FILE [--sender-id N]] [--lcm-url URL] [--keep-running]\n"
-            "                         [--exit-with-parent]\n"
+            "Usage: tvo_firmware_node [--key-file FILE [--sender-id N]] [--own-robot I] [--lcm-url URL]\n"
+            "                         [--keep-running] [--exit-with-parent]\n"
             "Runs the TV-O controller behind LCM: sessions on TVO_SESSION, measurements in, commands out.\n"
             "  --key-file FILE     authenticate every message both ways with this 32-byte key (tools/keygen;\n"
             "                      mode 0600); without it the bus is unauthenticated (lab use)\n"
             "  --sender-id N       this node's sender id on a keyed bus (default 1; unique per key holder)\n"
+            "  --own-robot I       a fleet node: drive robot I only, from per-robot samples on TVO_FLEET_SAMPLE_RI\n"
+            "                      (every robot's), answering on TVO_FLEET_COMMAND_RI (lcm_types/README.md, \"A fleet\")\n"
             "  --lcm-url URL       LCM provider URL (default: $LCM_DEFAULT_URL, else LCM's default udpm)\n"
             "  --keep-running      serve session after session (default: exit after a session's STOP)\n"
             "  --exit-with-parent  exit when the process that started this one dies (no orphans)\n"
@@ -214,6 +235,7 @@ typedef struct {
     const char *url;      /* NULL: LCM's default */
     int keep_running;
     int exit_with_parent;
+    int32_t own_robot;    /* -1: the whole joint command (no fleet) */
 } node_options_t;
 
 /* Returns 0 and fills *opt, 1 after --help, or 2 after printing why the arguments are bad. */
@@ -221,6 +243,7 @@ static int parse_args(int argc, char **argv, node_options_t *opt)
 {
     memset(opt, 0, sizeof(*opt));
     opt->sender_id = TVO_AUTH_SENDER_NODE;
+    opt->own_robot = -1;
     int sender_id_given = 0;
     for (int i = 1; i < argc; ++i) {
         const char *arg = argv[i];
@@ -254,6 +277,16 @@ static int parse_args(int argc, char **argv, node_options_t *opt)
             opt->url = argv[++i];
         } else if (strncmp(arg, "--lcm-url=", 10) == 0) {
             opt->url = arg + 10;
+        } else if ((strcmp(arg, "--own-robot") == 0 && i + 1 < argc) || strncmp(arg, "--own-robot=", 12) == 0) {
+            const char *robot = arg[11] == '=' ? arg + 12 : argv[++i];
+            char *end = NULL;
+            const long r = strtol(robot, &end, 10);
+            if (end == robot || *end != '\0' || r < 0 || r >= TVO_FLEET_MAX_ROBOTS) {
+                fprintf(stderr, "tvo_firmware_node: error: --own-robot takes a robot 0 .. %d, not '%s'\n",
+                        TVO_FLEET_MAX_ROBOTS - 1, robot);
+                return 2;
+            }
+            opt->own_robot = (int32_t)r;
         } else if (strcmp(arg, "--keep-running") == 0) {
             opt->keep_running = 1;
         } else if (strcmp(arg, "--exit-with-parent") == 0) {
@@ -262,6 +295,10 @@ static int parse_args(int argc, char **argv, node_options_t *opt)
             fprintf(stderr, "tvo_firmware_node: error: unexpected argument '%s' (see --help)\n", arg);
             return 2;
         }
+    }
+    if (opt->own_robot >= 0 && opt->key_file != NULL) {
+        fprintf(stderr, "tvo_firmware_node: error: --own-robot with --key-file is not supported yet (a fleet bus is unkeyed)\n");
+        return 2;
     }
     if (sender_id_given && opt->key_file == NULL) {
         fprintf(stderr, "tvo_firmware_node: error: --sender-id needs --key-file (it names this node on a keyed bus)\n");
@@ -333,6 +370,17 @@ int main(int argc, char **argv)
         }
         self.keyed = 1;
         tvo_node_init(&self.node, tvo_auth_link_publish, &self.link);
+    } else if (opt.own_robot >= 0) {
+        if (tvo_fleet_link_init(&self.fleet, opt.own_robot, fleet_publish, &self) != 0 ||
+            tvo_fleet_channel_name(TVO_FLEET_CH_SAMPLE, opt.own_robot, self.fleet_sample_channel,
+                                   sizeof(self.fleet_sample_channel)) != 0) {
+            fprintf(stderr, "tvo_firmware_node: error: fleet link set-up failed\n");
+            return 1;
+        }
+        self.fleet_member = 1;
+        fprintf(stderr, "tvo_firmware_node: fleet node of robot %d on %s (unauthenticated bus)\n", (int)opt.own_robot,
+                self.fleet_sample_channel);
+        tvo_node_init(&self.node, tvo_fleet_link_publish, &self.fleet);
     } else {
         fprintf(stderr, "tvo_firmware_node: the bus is unauthenticated (no --key-file): anyone on the network can "
                         "drive, stop or replace this session\n");
@@ -352,7 +400,7 @@ int main(int argc, char **argv)
         return 1;
     }
     lcm_subscribe(self.lcm, TVO_CHANNEL_SESSION, on_message, &self);
-    lcm_subscribe(self.lcm, TVO_CHANNEL_MEASUREMENT, on_message, &self);
+    lcm_subscribe(self.lcm, self.fleet_member ? self.fleet_sample_channel : TVO_CHANNEL_MEASUREMENT, on_message, &self);
     lcm_subscribe(self.lcm, TVO_CHANNEL_TARGET, on_message, &self);
 
     int exit_code = 0;
@@ -372,6 +420,13 @@ int main(int argc, char **argv)
         }
     }
     log_flush(&self);
+    if (self.fleet_member) {
+        fprintf(stderr,
+                "tvo_firmware_node: fleet: %u samples taken (%u late), %u refused; %u robot-periods predicted; "
+                "%u own samples answered before every robot was heard\n",
+                self.fleet.samples_taken, self.fleet.samples_late, self.fleet.samples_refused, self.fleet.predictions,
+                self.fleet.unheard_steps);
+    }
     tvo_auth_clear(&self.link.auth);
     lcm_destroy(self.lcm);
     return exit_code;

@@ -1,0 +1,492 @@
+// tvo_fleet_hub: the radio between tvo_sim and a fleet of nodes (tvo_firmware_node --own-robot k),
+// so that tvo_sim's plant, metrics and outputs serve a fleet unchanged (host/README.md, "A fleet").
+//
+// Plant bus (tvo_sim's URL)               Fleet bus (the nodes' URL)
+//   TVO_SESSION, TVO_TARGET       ->        the same, to every node
+//   TVO_MEASUREMENT (joint)       ->        fleet_sample_t per robot and node on TVO_FLEET_SAMPLE_R<k>:
+//                                           the other robots' first, node k's own robot last (its step)
+//   TVO_COMMAND (joint)           <-        fleet_command_t on TVO_FLEET_COMMAND_R<k>: row k from node k;
+//                                           a robot whose row did not come holds its last (zero-order hold)
+//   TVO_TELEMETRY                 <-        TVO_TELEMETRY_R<k>: the lowest-numbered answering node's
+//   TVO_SESSION_ACK               <-        TVO_SESSION_ACK_R<k>: once every node acked (a refusal at once)
+//
+// Loss per link (--loss P): each sample link (robot j -> node k) and each command link (node k ->
+// plant) drops a period's message with probability P, decided by a seeded hash of (link, period),
+// so the hub knows which answers to await and the run stays lockstep and repeatable.
+// Agreement: per period, the digests of the nodes that computed a command are compared, and the
+// largest spread of any robot's row across them is recorded (--json).
+#include <sys/select.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdint>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <lcm/lcm-cpp.hpp>
+#include <nlohmann/json.hpp>
+
+#include "channels.h"
+#include "lcm_messages.hpp"
+#include "tvo/status.h"
+#include "tvo_lcm/fleet_command_t.hpp"
+#include "tvo_lcm/fleet_sample_t.hpp"
+
+namespace {
+
+volatile std::sig_atomic_t g_stop = 0;
+extern "C" void on_signal(int) { g_stop = 1; }
+
+constexpr int kMaxRobots = tvo_lcm::measurement_t::MAX_ROBOTS;
+
+std::string robot_channel(const char* base, int robot) { return std::string(base) + "_R" + std::to_string(robot); }
+
+std::uint64_t splitmix64(std::uint64_t x)
+{
+    x += 0x9e3779b97f4a7c15ull;
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+    return x ^ (x >> 31);
+}
+
+struct Options {
+    std::string plant_url;
+    std::string fleet_url;
+    int robots{0};
+    double loss{0.0};
+    double loss_until_s{-1.0};  // < 0: loss for the whole run
+    std::uint64_t seed{1};
+    std::string json_path;
+};
+
+struct Answer {
+    bool command{false};
+    bool telemetry{false};
+    tvo_lcm::fleet_command_t row{};
+    tvo_lcm::telemetry_t tel{};
+};
+
+class Hub {
+public:
+    explicit Hub(const Options& o) : o_(o), plant_(o.plant_url), fleet_(o.fleet_url)
+    {
+        if (!plant_.good() || !fleet_.good()) {
+            throw std::runtime_error("cannot open LCM on " + o.plant_url + " or " + o.fleet_url);
+        }
+        plant_.subscribe(TVO_CHANNEL_SESSION, &Hub::on_plant_raw, this);
+        plant_.subscribe(TVO_CHANNEL_TARGET, &Hub::on_plant_raw, this);
+        plant_.subscribe(TVO_CHANNEL_MEASUREMENT, &Hub::on_measurement, this);
+        fleet_.subscribe("TVO_SESSION_ACK_R[0-9]+", &Hub::on_ack, this);
+        fleet_.subscribe("TVO_FLEET_COMMAND_R[0-9]+", &Hub::on_row, this);
+        fleet_.subscribe("TVO_TELEMETRY_R[0-9]+", &Hub::on_telemetry, this);
+        sample_channels_.resize(static_cast<std::size_t>(o.robots));
+        for (int k = 0; k < o.robots; ++k) {
+            sample_channels_[static_cast<std::size_t>(k)] = robot_channel("TVO_FLEET_SAMPLE", k);
+        }
+    }
+
+    bool finished() const { return stopped_; }
+
+    void run()
+    {
+        const int fds[2] = {plant_.getFileno(), fleet_.getFileno()};
+        while (!g_stop && !stopped_) {
+            fd_set readable;
+            FD_ZERO(&readable);
+            FD_SET(fds[0], &readable);
+            FD_SET(fds[1], &readable);
+            timeval tv{0, 100000};
+            const int ready = select(std::max(fds[0], fds[1]) + 1, &readable, nullptr, nullptr, &tv);
+            if (ready > 0 && FD_ISSET(fds[1], &readable)) {
+                fleet_.handle();
+            }
+            if (ready > 0 && FD_ISSET(fds[0], &readable)) {
+                plant_.handle();
+            }
+        }
+    }
+
+    void write_json() const
+    {
+        nlohmann::json j;
+        j["robots"] = robots_;
+        j["nodes"] = o_.robots;
+        j["loss"] = o_.loss;
+        j["periods"] = periods_;
+        j["compared_periods"] = compared_periods_;
+        j["max_command_disagreement"] = max_disagreement_;
+        j["digest_mismatch_periods"] = mismatch_periods_;
+        j["max_speed_disagreement_mps"] = max_speed_spread_;
+        j["max_speed_disagreement_period"] = max_speed_spread_period_;
+        j["max_turn_rate_disagreement_radps"] = max_turn_spread_;
+        j["max_turn_rate_disagreement_period"] = max_turn_spread_period_;
+        std::vector<double> sorted = spreads_;
+        std::sort(sorted.begin(), sorted.end());
+        const auto quantile = [&sorted](double q) {
+            return sorted.empty() ? 0.0 : sorted[static_cast<std::size_t>(q * static_cast<double>(sorted.size() - 1))];
+        };
+        j["median_command_disagreement"] = quantile(0.5);
+        j["p99_command_disagreement"] = quantile(0.99);
+        j["last_mismatch_period"] = last_mismatch_period_;
+        if (o_.loss_until_s >= 0.0) {
+            j["loss_end_period"] = loss_end_period();
+            // Periods after the loss ended until the digests agree for good (0: at once).
+            j["periods_to_reagree"] = std::max<std::int64_t>(0, last_mismatch_period_ + 1 - loss_end_period());
+        }
+        j["longest_disagreement_periods"] = longest_streak_;
+        j["predicted_samples"] = predicted_;
+        j["dropped_samples"] = dropped_samples_;
+        j["dropped_commands"] = dropped_commands_;
+        j["held_rows"] = held_rows_;
+        j["refused_rows"] = refused_rows_;
+        j["limit_violations"] = limit_violations_;
+        j["max_speed_mps"] = max_speed_;
+        j["max_abs_turn_rate_radps"] = max_turn_;
+        j["max_speed_step_mps"] = max_speed_step_;
+        j["min_pair_distance_sampled_m"] =
+            std::isfinite(min_pair_m_) ? nlohmann::json(min_pair_m_) : nlohmann::json(nullptr);
+        if (o_.json_path.empty()) {
+            std::cout << j.dump(2) << '\n';
+            return;
+        }
+        std::ofstream out(o_.json_path);
+        out << j.dump(2) << '\n';
+    }
+
+private:
+    bool dropped(int kind, int from, int to, std::int64_t period) const
+    {
+        if (o_.loss <= 0.0 || (o_.loss_until_s >= 0.0 && period >= loss_end_period())) {
+            return false;
+        }
+        const std::uint64_t key = o_.seed * 0x100000001b3ull ^ (static_cast<std::uint64_t>(kind) << 56) ^
+                                  (static_cast<std::uint64_t>(from) << 48) ^ (static_cast<std::uint64_t>(to) << 40) ^
+                                  static_cast<std::uint64_t>(period);
+        return static_cast<double>(splitmix64(key) >> 11) * 0x1.0p-53 < o_.loss;
+    }
+
+    std::int64_t loss_end_period() const
+    {
+        return start_.period_us > 0 ? static_cast<std::int64_t>(std::llround(o_.loss_until_s * 1e6 /
+                                                                              static_cast<double>(start_.period_us)))
+                                    : 0;
+    }
+
+    void on_plant_raw(const lcm::ReceiveBuffer* rbuf, const std::string& channel)
+    {
+        if (channel == TVO_CHANNEL_SESSION) {
+            tvo_lcm::session_t s;
+            if (s.decode(rbuf->data, 0, static_cast<int>(rbuf->data_size)) == static_cast<int>(rbuf->data_size) &&
+                s.action == tvo_lcm::session_t::ACTION_START) {
+                start_ = s;
+                robots_ = s.robot_count;
+            }
+        }
+        fleet_.publish(channel, rbuf->data, static_cast<unsigned int>(rbuf->data_size));
+    }
+
+    void on_ack(const lcm::ReceiveBuffer* rbuf, const std::string& channel)
+    {
+        tvo_lcm::session_ack_t ack;
+        if (ack.decode(rbuf->data, 0, static_cast<int>(rbuf->data_size)) != static_cast<int>(rbuf->data_size)) {
+            return;
+        }
+        const int k = std::stoi(channel.substr(channel.rfind('R') + 1));
+        if (k < 0 || k >= o_.robots) {
+            return;
+        }
+        if (ack.session_id != ack_session_ || ack.action != ack_action_) {
+            ack_session_ = ack.session_id;
+            ack_action_ = ack.action;
+            ack_mask_ = 0u;
+        }
+        ack_mask_ |= 1u << k;
+        if (ack.status != TVO_OK || ack_mask_ == (1u << o_.robots) - 1u) {
+            plant_.publish(TVO_CHANNEL_SESSION_ACK, &ack);
+            ack_mask_ = 0u;
+            if (ack.action == tvo_lcm::session_t::ACTION_STOP && ack.status == TVO_OK) {
+                stopped_ = true;
+            }
+        }
+    }
+
+    void on_measurement(const lcm::ReceiveBuffer* rbuf, const std::string&)
+    {
+        tvo_lcm::measurement_t m;
+        if (m.decode(rbuf->data, 0, static_cast<int>(rbuf->data_size)) != static_cast<int>(rbuf->data_size) ||
+            m.robot_count != o_.robots) {
+            std::cerr << "tvo_fleet_hub: a measurement that does not decode or is not of " << o_.robots
+                      << " robots (ignored)\n";
+            return;
+        }
+        measurement_ = m;
+        answers_.assign(static_cast<std::size_t>(o_.robots), Answer{});
+        expected_.assign(static_cast<std::size_t>(o_.robots), false);
+        awaiting_ = true;
+        for (int a = 0; a < m.robot_count; ++a) {
+            for (int b = a + 1; b < m.robot_count; ++b) {
+                min_pair_m_ = std::min(min_pair_m_, std::hypot(m.position_m[a][0] - m.position_m[b][0],
+                                                               m.position_m[a][1] - m.position_m[b][1]));
+            }
+        }
+        for (int k = 0; k < o_.robots; ++k) {
+            for (int step = 1; step <= o_.robots; ++step) {
+                const int j = (k + step) % o_.robots;  // the own robot (j == k) last: it steps the node
+                if (dropped(0, j, k, m.sequence)) {
+                    ++dropped_samples_;
+                    continue;
+                }
+                tvo_lcm::fleet_sample_t s{};
+                s.utime = m.utime;
+                s.session_id = m.session_id;
+                s.sequence = m.sequence;
+                s.robot = j;
+                s.robot_count = m.robot_count;
+                s.position_m[0] = m.position_m[j][0];
+                s.position_m[1] = m.position_m[j][1];
+                s.heading_rad = m.heading_rad[j];
+                s.speed_mps = m.speed_mps[j];
+                s.heading_valid = m.heading_valid;
+                s.speed_valid = m.speed_valid;
+                fleet_.publish(sample_channels_[static_cast<std::size_t>(k)], &s);
+                if (j == k) {
+                    expected_[static_cast<std::size_t>(k)] = true;
+                }
+            }
+        }
+        complete_if_answered();
+    }
+
+    int answering_node(const std::string& channel, std::int64_t sequence) const
+    {
+        const int k = std::stoi(channel.substr(channel.rfind('R') + 1));
+        if (!awaiting_ || k < 0 || k >= o_.robots || !expected_[static_cast<std::size_t>(k)] ||
+            sequence != measurement_.sequence) {
+            return -1;
+        }
+        return k;
+    }
+
+    void on_row(const lcm::ReceiveBuffer* rbuf, const std::string& channel)
+    {
+        tvo_lcm::fleet_command_t row;
+        if (row.decode(rbuf->data, 0, static_cast<int>(rbuf->data_size)) != static_cast<int>(rbuf->data_size)) {
+            return;
+        }
+        const int k = answering_node(channel, row.measurement_sequence);
+        if (k < 0 || row.robot != k) {
+            return;
+        }
+        answers_[static_cast<std::size_t>(k)].command = true;
+        answers_[static_cast<std::size_t>(k)].row = row;
+        complete_if_answered();
+    }
+
+    void on_telemetry(const lcm::ReceiveBuffer* rbuf, const std::string& channel)
+    {
+        tvo_lcm::telemetry_t tel;
+        if (tel.decode(rbuf->data, 0, static_cast<int>(rbuf->data_size)) != static_cast<int>(rbuf->data_size)) {
+            return;
+        }
+        const int k = answering_node(channel, tel.measurement_sequence);
+        if (k < 0) {
+            return;
+        }
+        answers_[static_cast<std::size_t>(k)].telemetry = true;
+        answers_[static_cast<std::size_t>(k)].tel = tel;
+        complete_if_answered();
+    }
+
+    void complete_if_answered()
+    {
+        if (!awaiting_) {
+            return;
+        }
+        for (int k = 0; k < o_.robots; ++k) {
+            const Answer& a = answers_[static_cast<std::size_t>(k)];
+            if (expected_[static_cast<std::size_t>(k)] && !(a.command && a.telemetry)) {
+                return;
+            }
+        }
+        awaiting_ = false;
+        ++periods_;
+        compare();
+        answer_plant();
+    }
+
+    // Agreement among the nodes that computed a command this period (status 0).
+    void compare()
+    {
+        std::vector<const tvo_lcm::fleet_command_t*> computed;
+        for (int k = 0; k < o_.robots; ++k) {
+            const Answer& a = answers_[static_cast<std::size_t>(k)];
+            if (expected_[static_cast<std::size_t>(k)] && a.row.status == TVO_OK) {
+                computed.push_back(&a.row);
+                predicted_ += static_cast<std::uint64_t>(std::max(a.row.predicted, 0));
+            }
+        }
+        if (computed.size() < 2) {
+            return;
+        }
+        ++compared_periods_;
+        double spread_v = 0.0;
+        double spread_w = 0.0;
+        bool same = true;
+        for (const auto* c : computed) {
+            same = same && c->joint_digest == computed.front()->joint_digest;
+        }
+        for (int r = 0; r < robots_; ++r) {
+            double v_lo = std::numeric_limits<double>::infinity(), v_hi = -v_lo, w_lo = v_lo, w_hi = -v_lo;
+            for (const auto* c : computed) {
+                v_lo = std::min(v_lo, c->joint_speed_mps[r]);
+                v_hi = std::max(v_hi, c->joint_speed_mps[r]);
+                w_lo = std::min(w_lo, c->joint_turn_rate_radps[r]);
+                w_hi = std::max(w_hi, c->joint_turn_rate_radps[r]);
+            }
+            spread_v = std::max(spread_v, v_hi - v_lo);
+            spread_w = std::max(spread_w, w_hi - w_lo);
+        }
+        if (spread_v > max_speed_spread_) {
+            max_speed_spread_ = spread_v;
+            max_speed_spread_period_ = measurement_.sequence;
+        }
+        if (spread_w > max_turn_spread_) {
+            max_turn_spread_ = spread_w;
+            max_turn_spread_period_ = measurement_.sequence;
+        }
+        max_disagreement_ = std::max({max_disagreement_, spread_v, spread_w});
+        spreads_.push_back(std::max(spread_v, spread_w));
+        if (!same) {
+            last_mismatch_period_ = measurement_.sequence;
+            ++mismatch_periods_;
+            ++streak_;
+            longest_streak_ = std::max(longest_streak_, streak_);
+        } else {
+            streak_ = 0;
+        }
+    }
+
+    // The joint command tvo_sim applies: each robot's row from its own node, else the row it holds.
+    void answer_plant()
+    {
+        const double h_s = static_cast<double>(start_.period_us) * 1e-6;
+        tvo_lcm::command_t cmd{};
+        cmd.utime = measurement_.utime + start_.delay_us;
+        cmd.session_id = measurement_.session_id;
+        cmd.measurement_sequence = measurement_.sequence;
+        cmd.robot_count = measurement_.robot_count;
+        cmd.status = TVO_OK;
+        std::optional<tvo_lcm::telemetry_t> tel;
+        for (int r = 0; r < o_.robots; ++r) {
+            const Answer& a = answers_[static_cast<std::size_t>(r)];
+            const bool came = expected_[static_cast<std::size_t>(r)] && a.command;
+            const bool lost = came && dropped(1, r, o_.robots, measurement_.sequence);
+            dropped_commands_ += lost ? 1u : 0u;
+            const bool fresh = came && !lost && a.row.status == TVO_OK;
+            refused_rows_ += (came && a.row.status != TVO_OK) ? 1u : 0u;
+            if (fresh) {
+                check_limits(r, a.row, h_s);
+                held_[static_cast<std::size_t>(r)] = {a.row.speed_mps, a.row.turn_rate_radps};
+                cmd.flags |= a.row.flags;
+            } else if ((static_cast<std::uint32_t>(a.row.flags) & TVO_FLAG_SAFE_STOP) != 0u && came && !lost) {
+                held_[static_cast<std::size_t>(r)] = {0.0, 0.0};
+            } else {
+                ++held_rows_;
+            }
+            cmd.speed_mps[r] = held_[static_cast<std::size_t>(r)][0];
+            cmd.turn_rate_radps[r] = held_[static_cast<std::size_t>(r)][1];
+            if (!tel && came && !lost) {
+                tel = a.tel;
+            }
+        }
+        tvo_lcm::telemetry_t out = tel.value_or(tvo_lcm::telemetry_t{});
+        out.utime = cmd.utime;
+        out.session_id = cmd.session_id;
+        out.measurement_sequence = cmd.measurement_sequence;
+        out.status = cmd.status;
+        out.flags = cmd.flags;
+        plant_.publish(TVO_CHANNEL_COMMAND, &cmd);
+        plant_.publish(TVO_CHANNEL_TELEMETRY, &out);
+    }
+
+    // A computed row against the session's limits; the speed step against the same node's last row.
+    void check_limits(int r, const tvo_lcm::fleet_command_t& row, double h_s)
+    {
+        const double v = row.speed_mps;
+        const double w = row.turn_rate_radps;
+        max_speed_ = std::max(max_speed_, std::fabs(v));
+        max_turn_ = std::max(max_turn_, std::fabs(w));
+        const double tol = 1e-6;
+        bool bad = std::fabs(v) > start_.speed_max_mps * (1.0 + tol) || std::fabs(w) > start_.omega_max_radps * (1.0 + tol);
+        auto& last = last_row_[static_cast<std::size_t>(r)];
+        if (last && last->first == row.measurement_sequence - 1) {
+            const double dv = std::fabs(v - last->second);
+            max_speed_step_ = std::max(max_speed_step_, dv);
+            bad = bad || dv > start_.accel_max_mps2 * h_s * (1.0 + tol) + 1e-9;
+        }
+        last = std::make_pair(row.measurement_sequence, v);
+        limit_violations_ += bad ? 1u : 0u;
+    }
+
+    const Options& o_;
+    lcm::LCM plant_;
+    lcm::LCM fleet_;
+    std::vector<std::string> sample_channels_;
+    tvo_lcm::session_t start_{};
+    int robots_{0};
+    std::int64_t ack_session_{-2};
+    std::int8_t ack_action_{0};
+    std::uint32_t ack_mask_{0};
+    bool stopped_{false};
+    bool awaiting_{false};
+    tvo_lcm::measurement_t measurement_{};
+    std::vector<Answer> answers_;
+    std::vector<bool> expected_;
+    std::array<std::array<double, 2>, kMaxRobots> held_{};
+    std::array<std::optional<std::pair<std::int64_t, double>>, kMaxRobots> last_row_{};
+    std::uint64_t periods_{0}, compared_periods_{0}, mismatch_periods_{0}, streak_{0}, longest_streak_{0};
+    std::uint64_t predicted_{0}, dropped_samples_{0}, dropped_commands_{0}, held_rows_{0}, refused_rows_{0};
+    std::uint64_t limit_violations_{0};
+    double max_speed_spread_{0.0}, max_turn_spread_{0.0};
+    std::int64_t max_speed_spread_period_{-1}, max_turn_spread_period_{-1}, last_mismatch_period_{-1};
+    std::vector<double> spreads_;
+    double max_disagreement_{0.0}, max_speed_{0.0}, max_turn_{0.0}, max_speed_step_{0.0};
+    double min_pair_m_{std::numeric_limits<double>::infinity()};
+};
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+    Options o;
+    CLI::App app{"tvo_fleet_hub: tvo_sim's joint messages to and from a fleet of per-robot nodes"};
+    app.add_option("--plant-url", o.plant_url, "LCM URL shared with tvo_sim")->required();
+    app.add_option("--fleet-url", o.fleet_url, "LCM URL shared with the nodes")->required();
+    app.add_option("--robots", o.robots, "nodes, one per robot (robot k's node: --own-robot k)")
+        ->required()
+        ->check(CLI::Range(1, kMaxRobots));
+    app.add_option("--loss", o.loss, "probability that a link drops a period's message")->check(CLI::Range(0.0, 1.0));
+    app.add_option("--loss-until-s", o.loss_until_s, "the links lose nothing from this plant time on (re-agreement)");
+    app.add_option("--seed", o.seed, "seed of the loss pattern");
+    app.add_option("--json", o.json_path, "write the agreement figures here (default: stdout)");
+    CLI11_PARSE(app, argc, argv);
+    std::signal(SIGINT, on_signal);
+    std::signal(SIGTERM, on_signal);
+    try {
+        Hub hub(o);
+        hub.run();
+        hub.write_json();
+        return hub.finished() ? 0 : 1;
+    } catch (const std::exception& e) {
+        std::cerr << "tvo_fleet_hub: error: " << e.what() << '\n';
+        return 1;
+    }
+}
