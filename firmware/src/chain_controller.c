@@ -1,5 +1,5 @@
 /* Sampled-data controller of the integrator-chain testbed; see tvo/chain_controller.h. */
-#include "tvo/chain_controller.h"
+#include "internal/chain_controller.h"
 
 #include <string.h>
 

@@ -9,11 +9,12 @@
 
 #include <string.h>
 
+#include "internal/dirty_derivative.h"
 #include "law_step.h"
 #include "position_velocity.h"
 #include "sampled_loop.h"
 #include "unicycle_kernel.h"
-#include "tvo/trig.h"
+#include "internal/trig.h"
 
 tvo_status_t tvo_controller_config_default(tvo_controller_config_t *cfg)
 {
@@ -526,7 +527,8 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     }
 #endif
 #endif
-    return loop_period(&unicycle_plant, ctl, meas, apply_tick, cmd, ctl->cfg.robot_count);
+    /* A one-robot build's count is 1 (init refuses others): a constant, so the loops fold. */
+    return loop_period(&unicycle_plant, ctl, meas, apply_tick, cmd, TVO_MAX_ROBOTS == 1 ? 1u : ctl->cfg.robot_count);
 }
 
 tvo_status_t tvo_controller_miss(tvo_controller_t *ctl, uint32_t apply_tick, tvo_command_t *cmd)

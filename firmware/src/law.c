@@ -5,7 +5,7 @@
  * grad^(k); one pass per two unit directions (time frozen) gives two Hessian columns.
  * Then y^(k) = -H^{-1} (r + sum_i a_i grad^(i)).
  */
-#include "tvo/law.h"
+#include "internal/law.h"
 
 #include <string.h>
 
@@ -13,7 +13,7 @@
 #include "objective_kernel.h"
 #include "shape.h"
 #include "tracking_kernel.h"
-#include "tvo/linsolve.h"
+#include "internal/linsolve.h"
 
 /* 0! .. 3! (k <= TVO_MAX_RELATIVE_DEGREE <= 3). */
 static const tvo_real_t factorial[4] = {TVO_R(1.0), TVO_R(1.0), TVO_R(2.0), TVO_R(6.0)};

@@ -6,7 +6,7 @@
 #ifndef TVO_LAW_STEP_H
 #define TVO_LAW_STEP_H
 
-#include "tvo/law.h"
+#include "internal/law.h"
 
 /* tvo_law_evaluate_report without the pointer checks; everything else is checked as there. */
 tvo_status_t law_evaluate_report_unchecked(const tvo_law_t *law, const tvo_objective_t *objective,

@@ -1,5 +1,5 @@
 /* The objective as a sum of gradient-jet terms; see tvo/objective.h. */
-#include "tvo/objective.h"
+#include "internal/objective.h"
 
 #include "law_step.h"
 #include "objective_kernel.h"

@@ -6,7 +6,9 @@
 #include "position_velocity.h"
 
 #include "sample_clock_kernel.h"
-#include "tvo/trig.h"
+#include "internal/dirty_derivative.h"
+#include "internal/trig.h"
+#include "internal/unicycle.h"
 
 /* The velocity direction corrects dead reckoning with this many T_f. */
 #define TVO_HEADING_CORRECTION_TF_MULTIPLE TVO_R(10.0)

@@ -1,5 +1,5 @@
 /* Sampled-data timing shared by the controllers; see tvo/sample_clock.h. */
-#include "tvo/sample_clock.h"
+#include "internal/sample_clock.h"
 
 #include <string.h>
 

@@ -6,8 +6,8 @@
 #ifndef TVO_SAMPLE_CLOCK_KERNEL_H
 #define TVO_SAMPLE_CLOCK_KERNEL_H
 
-#include "tvo/objective.h"
-#include "tvo/sample_clock.h"
+#include "internal/objective.h"
+#include "internal/sample_clock.h"
 
 static inline tvo_tick_time_t tick_time_after(const tvo_tick_time_t *t, uint32_t delta_ticks, uint32_t tick_hz)
 {

@@ -1,5 +1,5 @@
 /* Unicycle flat map and exact held-command motion; see tvo/unicycle.h. */
-#include "tvo/unicycle.h"
+#include "internal/unicycle.h"
 
 #include "unicycle_kernel.h"
 

@@ -6,8 +6,8 @@
 #ifndef TVO_UNICYCLE_KERNEL_H
 #define TVO_UNICYCLE_KERNEL_H
 
-#include "tvo/trig.h"
-#include "tvo/unicycle.h"
+#include "internal/trig.h"
+#include "internal/unicycle.h"
 
 /* Whether an angle is in tvo_wrap_angle's range (-pi, pi] already (false for NaN and infinities). */
 static inline int unicycle_angle_in_range(tvo_real_t angle_rad)

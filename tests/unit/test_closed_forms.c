@@ -14,6 +14,10 @@
 
 #include "tvo/law.h"
 #include "tvo/problem.h"
+#include "internal/jet.h"
+#include "internal/law.h"
+#include "internal/linsolve.h"
+#include "internal/objective.h"
 
 void setUp(void) {}
 void tearDown(void) {}

@@ -6,6 +6,10 @@
  */
 #include "test_support.h"
 #include "tvo/trig.h"
+#include "internal/dirty_derivative.h"
+#include "internal/sample_clock.h"
+#include "internal/trig.h"
+#include "internal/unicycle.h"
 
 void setUp(void) {}
 void tearDown(void) {}

@@ -8,6 +8,9 @@
 
 #include "tvo/equality.h"
 #include "tvo/law.h"
+#include "internal/equality.h"
+#include "internal/jet.h"
+#include "internal/law.h"
 
 void setUp(void) {}
 void tearDown(void) {}

@@ -14,6 +14,8 @@
 #include "test_support.h"
 
 #include "tvo/law.h"
+#include "internal/jet.h"
+#include "internal/law.h"
 
 void setUp(void) {}
 void tearDown(void) {}

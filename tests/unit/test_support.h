@@ -22,6 +22,9 @@
 #include "tvo/target.h"
 #include "tvo/tracking.h"
 #include "tvo/unicycle.h"
+#include "internal/objective.h"
+#include "internal/target.h"
+#include "internal/unicycle.h"
 
 /* ------------------------------------------------------------------------------------------------
  * Precision

@@ -9,6 +9,10 @@
 #include "test_support.h"
 
 #include "tvo/law.h"
+#include "internal/jet.h"
+#include "internal/law.h"
+#include "internal/objective.h"
+#include "internal/target.h"
 
 void setUp(void) {}
 void tearDown(void) {}

@@ -12,6 +12,7 @@
 #include "test_support.h"
 #include "tvo/law.h"
 #include "tvo/tracking.h"
+#include "internal/law.h"
 #include "unity.h"
 
 void setUp(void);

@@ -12,6 +12,7 @@
  *   (v/w)(sin(th + w dt) - sin th) = v dt sinc(w dt / 2) cos(th + w dt / 2), likewise for y.
  */
 #include "test_support.h"
+#include "internal/unicycle.h"
 
 void setUp(void) {}
 void tearDown(void) {}

@@ -1,5 +1,7 @@
 /* The bench's closed-loop problems; see bench_problems.h. */
 #include "bench_problems.h"
+#include "internal/objective.h"
+#include "internal/unicycle.h"
 
 #include <math.h>
 #include <string.h>
