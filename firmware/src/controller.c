@@ -13,7 +13,7 @@
 #include "law_step.h"
 #include "position_velocity.h"
 #include "sampled_loop.h"
-#include "unicycle_kernel.h"
+#include "internal/unicycle.h"
 #include "internal/trig.h"
 
 tvo_status_t tvo_controller_config_default(tvo_controller_config_t *cfg)
@@ -329,8 +329,8 @@ TVO_OFF_CHAIN_BODY tvo_status_t unicycle_prepare(void *ctl_any, const void *meas
         pose.position_m[1] = meas->position_m[r][1];
         pose.heading_rad = heading_at_sample[r];
         if (carry_s > TVO_R(0.0)) {
-            unicycle_predict_unchecked(&pose, in_force->speed_mps[r], in_force->turn_rate_radps[r], carry_s, &pose,
-                                       heading_cs[r]);
+            tvo_unicycle_predict_cs(&pose, in_force->speed_mps[r], in_force->turn_rate_radps[r], carry_s, &pose,
+                                    heading_cs[r]);
         } else {
             tvo_sincos(pose.heading_rad, &heading_cs[r][1], &heading_cs[r][0]);
         }
@@ -404,8 +404,8 @@ TVO_OFF_CHAIN_BODY tvo_status_t unicycle_command(void *ctl_any, tvo_loop_frame_t
     for (uint8_t r = 0; r < n && st == TVO_OK; ++r) {
         uint8_t low_speed = 0;
         tvo_real_t turn_rate;
-        unicycle_flat_map_unchecked(heading_cs[r], speed[r], &y_accel[2u * r], cfg->min_speed_mps, &accel[r],
-                                    &turn_rate, &low_speed);
+        tvo_unicycle_flat_map_cs(heading_cs[r], speed[r], &y_accel[2u * r], cfg->min_speed_mps, &accel[r],
+                                 &turn_rate, &low_speed);
         if (low_speed) {
             flags |= TVO_FLAG_LOW_SPEED;
         }

@@ -3,7 +3,7 @@
 
 #include "law_step.h"
 #include "objective_kernel.h"
-#include "sample_clock_kernel.h"
+#include "internal/sample_clock.h"
 #include "tvo/tracking.h"
 
 tvo_status_t tvo_objective_init(tvo_objective_t *objective, uint8_t primal_dim)

@@ -5,7 +5,7 @@
  */
 #include "position_velocity.h"
 
-#include "sample_clock_kernel.h"
+#include "internal/sample_clock.h"
 #include "internal/dirty_derivative.h"
 #include "internal/trig.h"
 #include "internal/unicycle.h"

@@ -1,12 +1,14 @@
 /*
- * Internal: sample_clock's functions (the types are in tvo/sample_clock.h, which the instance structs need).
- * Not installed; unchecked: callers pass valid arguments (TVO_ASSERT in debug builds).
+ * Internal: the sample clock's functions (the types are in tvo/sample_clock.h: the controllers hold them).
+ * Not installed; unchecked: callers pass valid arguments (TVO_ASSERT in debug builds). The arithmetic of
+ * a period is inline, for the controllers' steps (their own clock and period records).
  */
 #ifndef TVO_INTERNAL_SAMPLE_CLOCK_H
 #define TVO_INTERNAL_SAMPLE_CLOCK_H
 
 #include "tvo/sample_clock.h"
 #include "internal/assert.h"
+#include "tvo/objective.h" /* tvo_time_jet_t */
 
 #ifdef __cplusplus
 extern "C" {
@@ -21,37 +23,12 @@ tvo_param_t tvo_sample_clock_check_timing(uint32_t tick_hz, uint32_t period_tick
 /** 1 if watchdog_periods >= 1 and the watchdog's span stays within TVO_MAX_TICK_SPAN ticks. */
 int tvo_sample_clock_watchdog_ok(uint32_t period_ticks, uint32_t watchdog_periods);
 
-/** TVO_ERR_PARAM unless the timing and watchdog pass the two checks above. */
-tvo_status_t tvo_sample_clock_init(tvo_sample_clock_t *clock, uint32_t tick_hz, uint32_t period_ticks,
-                           uint32_t watchdog_periods, uint32_t epoch_tick);
-
-/** t + delta ticks (32-bit arithmetic: delta <= TVO_MAX_TICK_SPAN, tick_hz > 0). */
-tvo_tick_time_t tvo_tick_time_after(const tvo_tick_time_t *t, uint32_t delta_ticks, uint32_t tick_hz);
-
-/** t - delta ticks, or the epoch if t is closer to it than delta. */
-tvo_tick_time_t tvo_tick_time_before(const tvo_tick_time_t *t, uint32_t delta_ticks, uint32_t tick_hz);
-
-/** Seconds since the epoch: whole_s + frac_ticks / tick_hz (rounded once, to tvo_real_t). */
-tvo_real_t tvo_tick_time_seconds(const tvo_tick_time_t *t, uint32_t tick_hz);
+/** A clock at the epoch, before its first period; the timing and watchdog must pass the two checks above. */
+void tvo_sample_clock_init(tvo_sample_clock_t *clock, uint32_t tick_hz, uint32_t period_ticks, uint32_t watchdog_periods,
+                           uint32_t epoch_tick);
 
 /** Seconds of a short tick count (a period, a measurement's age): 32-bit arithmetic. */
 tvo_real_t tvo_ticks_to_seconds32(uint32_t ticks, uint32_t tick_hz);
-
-/**
- * Begins the period whose command applies at apply_tick: its timing record (elapsed time, periods
- * since the last one). TVO_ERR_OUT_OF_ORDER if apply_tick does not advance (or precedes the epoch on
- * the first call); the clock is not changed until tvo_sample_clock_end.
- */
-tvo_status_t tvo_sample_clock_begin(const tvo_sample_clock_t *clock, uint32_t apply_tick, tvo_period_t *period);
-
-/**
- * Where this period's law is evaluated, for a measurement stamped stamp_tick (already checked):
- * at the sample (no compensation), at the application instant (delay compensation), and half a
- * period later when ZOH-aware (the middle of the held interval). Fills the period's age, law_time
- * and carry_s (the state's carry: the age if compensating, plus half a period if ZOH-aware).
- */
-tvo_status_t tvo_sample_clock_locate(const tvo_sample_clock_t *clock, tvo_period_t *period, uint32_t stamp_tick,
-                                     uint8_t delay_compensation, uint8_t zoh_aware);
 
 /**
  * Ends a begun period: with good = 1 a step used stamp_tick (recorded; the watchdog restarts);
@@ -61,26 +38,155 @@ tvo_status_t tvo_sample_clock_locate(const tvo_sample_clock_t *clock, tvo_period
 int tvo_sample_clock_end(tvo_sample_clock_t *clock, const tvo_period_t *period, int good, uint32_t stamp_tick);
 
 /**
- * A stamp is usable for the command applied at apply_tick when it is not after it
- * (TVO_ERR_FUTURE_STAMP), at most one period before it (TVO_ERR_STALE) and newer than the last
- * accepted stamp (TVO_ERR_OUT_OF_ORDER).
- */
-tvo_status_t tvo_sample_clock_check_stamp(const tvo_sample_clock_t *clock, uint32_t stamp_tick, uint32_t apply_tick);
-
-/**
  * Ticks from the epoch to a tick near the clock's present (within TVO_MAX_TICK_SPAN either way):
  * the objective time of a stamp. TVO_ERR_OUT_OF_ORDER if it lies before the epoch.
  */
 tvo_status_t tvo_sample_clock_objective_ticks(const tvo_sample_clock_t *clock, uint32_t tick, uint64_t *objective_ticks);
 
-/**
- * Moves the epoch before the first period has ended (an edge that learned the plant's clock better);
- * TVO_ERR_OUT_OF_ORDER once a period has ended, when the objective's time is already counting.
- */
-tvo_status_t tvo_sample_clock_rebase(tvo_sample_clock_t *clock, uint32_t epoch_tick);
-
 /** Expires the watchdog now (a safe stop ordered from outside the step, e.g. the edge's timer). */
-tvo_status_t tvo_sample_clock_expire(tvo_sample_clock_t *clock);
+void tvo_sample_clock_expire(tvo_sample_clock_t *clock);
+
+static inline tvo_tick_time_t tick_time_after(const tvo_tick_time_t *t, uint32_t delta_ticks, uint32_t tick_hz)
+{
+    tvo_tick_time_t out = *t;
+    out.ticks += delta_ticks;
+    out.whole_s += delta_ticks / tick_hz;
+    out.frac_ticks += delta_ticks % tick_hz;
+    if (out.frac_ticks >= tick_hz) {
+        out.frac_ticks -= tick_hz;
+        out.whole_s += 1u;
+    }
+    return out;
+}
+
+static inline tvo_tick_time_t tick_time_before(const tvo_tick_time_t *t, uint32_t delta_ticks, uint32_t tick_hz)
+{
+    tvo_tick_time_t out = {0u, 0u, 0u};
+    if ((uint64_t)delta_ticks >= t->ticks) {
+        return out;
+    }
+    out.ticks = t->ticks - delta_ticks;
+    const uint32_t whole = delta_ticks / tick_hz;
+    const uint32_t frac = delta_ticks % tick_hz;
+    out.whole_s = t->whole_s - whole;
+    if (t->frac_ticks >= frac) {
+        out.frac_ticks = t->frac_ticks - frac;
+    } else {
+        out.frac_ticks = t->frac_ticks + (tick_hz - frac);
+        out.whole_s -= 1u; /* cannot go below 0: ticks > delta */
+    }
+    return out;
+}
+
+static inline tvo_real_t tick_time_seconds(const tvo_tick_time_t *t, uint32_t tick_hz)
+{
+    return (tvo_real_t)t->whole_s + (tvo_real_t)t->frac_ticks / (tvo_real_t)tick_hz;
+}
+
+static inline tvo_real_t ticks_to_seconds32(uint32_t ticks, uint32_t tick_hz)
+{
+    if (tick_hz == 0u) {
+        return TVO_R(0.0);
+    }
+    /* Whole seconds and the rest separately, so only the final sum rounds. */
+    return (tvo_real_t)(ticks / tick_hz) + (tvo_real_t)(ticks % tick_hz) / (tvo_real_t)tick_hz;
+}
+
+static inline tvo_status_t sample_clock_begin(const tvo_sample_clock_t *clock, uint32_t apply_tick,
+                                              tvo_period_t *period)
+{
+    period->apply_tick = apply_tick;
+    period->periods = 1u;
+    if (!clock->started) {
+        const uint32_t since_epoch = apply_tick - clock->epoch_tick;
+        if (since_epoch > TVO_MAX_TICK_SPAN) {
+            return TVO_ERR_OUT_OF_ORDER; /* first application before the epoch */
+        }
+        const tvo_tick_time_t epoch = {0u, 0u, 0u};
+        period->elapsed = tick_time_after(&epoch, since_epoch, clock->tick_hz);
+        return TVO_OK;
+    }
+    const uint32_t advance = apply_tick - clock->last_apply_tick;
+    if (advance == 0u || advance > TVO_MAX_TICK_SPAN) {
+        return TVO_ERR_OUT_OF_ORDER;
+    }
+    period->elapsed = tick_time_after(&clock->elapsed, advance, clock->tick_hz);
+    if (advance / clock->period_ticks > 1u) {
+        period->periods = advance / clock->period_ticks;
+    }
+    return TVO_OK;
+}
+
+static inline void sample_clock_locate(const tvo_sample_clock_t *clock, tvo_period_t *period, uint32_t stamp_tick,
+                                       uint8_t delay_compensation, uint8_t zoh_aware)
+{
+    const uint32_t hz = clock->tick_hz;
+    period->age_ticks = period->apply_tick - stamp_tick;
+    period->age_s = ticks_to_seconds32(period->age_ticks, hz);
+    period->law_time = delay_compensation ? period->elapsed : tick_time_before(&period->elapsed, period->age_ticks, hz);
+    period->carry_s = delay_compensation ? period->age_s : TVO_R(0.0);
+    if (zoh_aware) {
+        period->law_time = tick_time_after(&period->law_time, clock->period_ticks / 2u, hz);
+        period->carry_s += TVO_R(0.5) * ticks_to_seconds32(clock->period_ticks, hz);
+    }
+}
+
+static inline tvo_status_t sample_clock_check_stamp(const tvo_sample_clock_t *clock, uint32_t stamp_tick,
+                                                    uint32_t apply_tick)
+{
+    const uint32_t age = apply_tick - stamp_tick;
+    if (age > TVO_MAX_TICK_SPAN) {
+        return TVO_ERR_FUTURE_STAMP; /* negative age in wrap-around arithmetic */
+    }
+    if (age > clock->period_ticks) {
+        return TVO_ERR_STALE;
+    }
+    if (clock->has_stamp) {
+        const uint32_t advance = stamp_tick - clock->last_stamp_tick;
+        if (advance == 0u || advance > TVO_MAX_TICK_SPAN) {
+            return TVO_ERR_OUT_OF_ORDER;
+        }
+    }
+    return TVO_OK;
+}
+
+/* A refused step commits nothing unless counting its period would expire the watchdog (what
+ * tvo_sample_clock_end would say): then the period is counted and the robots stop. */
+static inline int sample_clock_refusal_stops(const tvo_sample_clock_t *clock, const tvo_period_t *period)
+{
+    return clock->stopped || period->periods >= clock->watchdog_periods - clock->periods_without_measurement;
+}
+
+/* The period's application instant becomes the clock's present. */
+static inline void sample_clock_end_period(tvo_sample_clock_t *clock, const tvo_period_t *period)
+{
+    clock->started = 1;
+    clock->last_apply_tick = period->apply_tick;
+    clock->elapsed = period->elapsed;
+}
+
+/* A period with a good step ends: stamp_tick is recorded and the watchdog restarts. The watchdog's
+ * count after a period without one is tvo_sample_clock_end's. */
+static inline void sample_clock_end_good(tvo_sample_clock_t *clock, const tvo_period_t *period, uint32_t stamp_tick)
+{
+    sample_clock_end_period(clock, period);
+    clock->last_stamp_tick = stamp_tick;
+    clock->has_stamp = 1;
+    clock->periods_without_measurement = 0;
+    clock->stopped = 0;
+}
+
+/* The objective's time at a tick time of the clock (frac_ticks < tick_hz, tick_hz > 0). */
+static inline void time_jet_at_tick_time(const tvo_tick_time_t *time, uint32_t tick_hz, tvo_real_t rate,
+                                         tvo_time_jet_t *t)
+{
+    t->ticks = time->ticks;
+    t->tick_hz = tick_hz;
+    t->whole_s = time->whole_s;
+    t->frac_ticks = time->frac_ticks;
+    t->t_s = tick_time_seconds(time, tick_hz);
+    t->rate = rate;
+}
 
 #ifdef __cplusplus
 }
