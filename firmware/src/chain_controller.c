@@ -3,7 +3,7 @@
 
 #include <string.h>
 
-#include "law_step.h"
+#include "internal/law.h"
 #include "sampled_loop.h"
 
 tvo_status_t tvo_chain_config_default(tvo_chain_config_t *cfg)
@@ -216,8 +216,8 @@ TVO_LOOP_ENTRY tvo_status_t chain_law(void *ctl_any, tvo_loop_frame_t *frame)
     report->gradient = NULL;
     report->gradient_rate = NULL;
     report->count = 0u;
-    return law_evaluate_report_unchecked(&ctl->law, ctl->objective, &work->state, &work->time, work->input, report,
-                                         &work->law);
+    return tvo_law_evaluate_report(&ctl->law, ctl->objective, &work->state, &work->time, work->input, report,
+                                   &work->law);
 }
 
 /* The loop's command piece: u is the law's y^(k), clipped to the input's limit (work->command). */

@@ -10,7 +10,7 @@
 #include <string.h>
 
 #include "internal/dirty_derivative.h"
-#include "law_step.h"
+#include "internal/law.h"
 #include "position_velocity.h"
 #include "sampled_loop.h"
 #include "internal/unicycle.h"
@@ -377,8 +377,8 @@ TVO_LOOP_ENTRY tvo_status_t unicycle_law(void *ctl_any, tvo_loop_frame_t *frame)
     report->gradient = work->gradient;
     report->gradient_rate = work->gradient_rate;
     report->count = ctl->objective->primal_dim;
-    const tvo_status_t st = law_evaluate_report_unchecked(&ctl->law, ctl->objective, &work->output, &work->time,
-                                                          work->output_accel, report, &work->law);
+    const tvo_status_t st = tvo_law_evaluate_report(&ctl->law, ctl->objective, &work->output, &work->time,
+                                                    work->output_accel, report, &work->law);
     if (report->regularization > TVO_R(0.0)) {
         frame->flags |= TVO_FLAG_REGULARIZED;
     }

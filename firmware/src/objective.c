@@ -1,7 +1,7 @@
 /* The objective as a sum of gradient-jet terms; see tvo/objective.h. */
 #include "internal/objective.h"
 
-#include "law_step.h"
+#include "internal/law.h"
 #include "objective_kernel.h"
 #include "internal/sample_clock.h"
 #include "tvo/tracking.h"
