@@ -36,9 +36,9 @@ static int positive_finite(tvo_real_t v)
     return isfinite(v) && v > TVO_R(0.0);
 }
 
-/* position_velocity: the position-only source's estimate, NULL if the caller does not offer it. */
+/* position_velocity: the position-only source's plan, NULL if the caller does not offer it. */
 static tvo_param_t first_bad_param(const tvo_controller_config_t *cfg, const tvo_objective_t *objective,
-                                   tvo_position_velocity_fn position_velocity)
+                                   const tvo_position_velocity_t *position_velocity)
 {
     const tvo_param_t timing = tvo_sample_clock_check_timing(cfg->tick_hz, cfg->period_ticks, cfg->delay_ticks);
     if (timing != TVO_PARAM_NONE) {
@@ -93,11 +93,11 @@ static tvo_param_t first_bad_param(const tvo_controller_config_t *cfg, const tvo
 static const tvo_loop_plant_t unicycle_plant; /* the loop's table, below its pieces */
 
 /* Validates and binds the controller, all but the loop's clock and the position-only source's filter
- * (position_velocity: that source's estimate, NULL when the caller does not link it); *bad names the
+ * (position_velocity: that source's plan, NULL when the caller does not link it); *bad names the
  * culprit of a refusal. */
 static tvo_status_t controller_setup(tvo_controller_t *ctl, const tvo_controller_config_t *cfg,
                                      const tvo_objective_t *objective, tvo_param_t *bad,
-                                     tvo_position_velocity_fn position_velocity)
+                                     const tvo_position_velocity_t *position_velocity)
 {
     *bad = first_bad_param(cfg, objective, position_velocity);
     if (*bad != TVO_PARAM_NONE) {
@@ -123,7 +123,7 @@ static tvo_status_t controller_setup(tvo_controller_t *ctl, const tvo_controller
  * no filter. */
 TVO_LOOP_ENTRY tvo_status_t controller_init(tvo_controller_t *ctl, const tvo_controller_config_t *cfg,
                                             const tvo_objective_t *objective, uint32_t epoch_tick,
-                                            tvo_param_t *bad_param, tvo_position_velocity_fn position_velocity)
+                                            tvo_param_t *bad_param, const tvo_position_velocity_t *position_velocity)
 {
     tvo_status_t st = loop_init_begin(&unicycle_plant, ctl, cfg, objective, bad_param);
     if (st != TVO_OK) {
@@ -143,7 +143,7 @@ tvo_status_t tvo_controller_init(tvo_controller_t *ctl, const tvo_controller_con
                                  const tvo_objective_t *objective, uint32_t epoch_tick,
                                  tvo_param_t *bad_param)
 {
-    return controller_init(ctl, cfg, objective, epoch_tick, bad_param, controller_position_velocity);
+    return controller_init(ctl, cfg, objective, epoch_tick, bad_param, &controller_position_velocity_plan);
 }
 
 tvo_status_t tvo_controller_init_pose_velocity(tvo_controller_t *ctl, const tvo_controller_config_t *cfg,
@@ -291,7 +291,7 @@ TVO_OFF_CHAIN_BODY tvo_status_t unicycle_prepare(void *ctl_any, const void *meas
     sample_clock_locate(&ctl->clock, period, meas->stamp_tick, cfg->delay_compensation, cfg->zoh_aware);
     const int position_only = cfg->velocity_source == TVO_VELOCITY_FROM_POSITION;
     if (position_only) {
-        st = ctl->position_velocity(ctl, meas); /* init set it for this source */
+        st = ctl->position_velocity->estimate(ctl, meas); /* init set it for this source */
         if (st != TVO_OK) {
             return st;
         }
@@ -439,7 +439,6 @@ TVO_OFF_CHAIN_BODY tvo_status_t unicycle_commit(void *ctl_any, const tvo_loop_fr
     uint32_t flags = frame->flags;
     const tvo_controller_config_t *cfg = &ctl->cfg;
     tvo_controller_work_t *work = &ctl->work;
-    const tvo_period_t *period = &work->period;
     const tvo_output_derivs_t *y = &work->output;
     const tvo_real_t *y_accel = work->output_accel;
     const tvo_command_t *next = &work->command;
@@ -451,12 +450,7 @@ TVO_OFF_CHAIN_BODY tvo_status_t unicycle_commit(void *ctl_any, const tvo_loop_fr
         unicycle_rest(ctl);
     }
     if (cfg->velocity_source == TVO_VELOCITY_FROM_POSITION) {
-        ctl->velocity_filter = work->velocity_filter;
-        for (uint8_t r = 0; r < n; ++r) {
-            /* The estimate lives at the application instant; the next sample dead-reckons from here. */
-            ctl->heading_estimate_rad[r] = unicycle_wrap_angle_near(
-                work->heading[r] + work->in_force->turn_rate_radps[r] * (period->age_s - period->carry_s));
-        }
+        ctl->position_velocity->commit(ctl); /* init set it for this source */
     }
     ctl->speed_mismatch_periods = frame->note ? ctl->speed_mismatch_periods + 1u : 0u;
     if (ctl->speed_mismatch_periods >= TVO_SPEED_MISMATCH_PERIODS) {
