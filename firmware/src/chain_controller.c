@@ -55,9 +55,11 @@ static tvo_param_t chain_setup(tvo_chain_controller_t *ctl, const tvo_chain_conf
     if (bad != TVO_PARAM_NONE) {
         return bad;
     }
-    if (tvo_law_init(&ctl->law, cfg->relative_degree, objective->primal_dim, cfg->gain) != TVO_OK) {
+    if (!tvo_law_gains_hurwitz(cfg->relative_degree, cfg->gain) || objective->primal_dim == 0u ||
+        objective->primal_dim > TVO_MAX_Z_DIM) {
         return TVO_PARAM_GAINS;
     }
+    tvo_law_init(&ctl->law, cfg->relative_degree, objective->primal_dim, cfg->gain);
     ctl->period_s = tvo_ticks_to_seconds32(cfg->period_ticks, cfg->tick_hz);
     for (uint8_t j = 0; j + 1u < cfg->relative_degree; ++j) {
         if (tvo_dirty_derivative_init(&ctl->filter[j], objective->primal_dim,

@@ -92,6 +92,10 @@ static tvo_param_t first_bad_param(const tvo_controller_config_t *cfg, const tvo
 
 static const tvo_loop_plant_t unicycle_plant; /* the loop's table, below its pieces */
 
+/* The robots a step loops over: a one-robot build's count is 1 (init refuses others), a constant, so
+ * its loops fold. */
+#define STEP_ROBOTS(count) ((uint8_t)(TVO_MAX_ROBOTS == 1 ? 1u : (count)))
+
 /* Validates and binds the controller, all but the loop's clock and the position-only source's filter
  * (position_velocity: that source's plan, NULL when the caller does not link it); *bad names the
  * culprit of a refusal. */
@@ -113,10 +117,13 @@ static tvo_status_t controller_setup(tvo_controller_t *ctl, const tvo_controller
         ctl->speed_state_mps[r] = cfg->initial_speed_mps[r];
         ctl->held.speed_mps[r] = cfg->initial_speed_mps[r];
     }
-    const tvo_real_t gains[2] = {cfg->gain_kp, cfg->gain_kd};
-    const tvo_status_t st = tvo_law_init(&ctl->law, 2u, objective->dim, gains);
-    *bad = (st == TVO_OK) ? TVO_PARAM_NONE : TVO_PARAM_OBJECTIVE;
-    return st;
+    if (objective->dim > TVO_MAX_Z_DIM) {
+        *bad = TVO_PARAM_OBJECTIVE; /* an objective changed by hand: the law cannot hold its size */
+        return TVO_ERR_DIMENSION;
+    }
+    const tvo_real_t gains[2] = {cfg->gain_kp, cfg->gain_kd}; /* positive: Hurwitz (first_bad_param) */
+    tvo_law_init(&ctl->law, 2u, objective->dim, gains);
+    return TVO_OK;
 }
 
 /* Both inits: the loop's begin and end around the plant's setup; in each, so the pose-only one links
@@ -158,7 +165,7 @@ tvo_status_t tvo_controller_init_pose_velocity(tvo_controller_t *ctl, const tvo_
 TVO_COLD_BODY tvo_status_t measurement_range_refusal(const tvo_controller_t *ctl, const tvo_measurement_t *meas)
 {
     tvo_real_t probe = TVO_R(0.0);
-    for (uint8_t r = 0; r < ctl->cfg.robot_count && r < TVO_MAX_ROBOTS; ++r) {
+    for (uint8_t r = 0; r < STEP_ROBOTS(ctl->cfg.robot_count) && r < TVO_MAX_ROBOTS; ++r) {
         probe += meas->position_m[r][0] + meas->position_m[r][1] + meas->heading_rad[r] + meas->speed_mps[r];
     }
     return isfinite(probe - probe) ? TVO_ERR_IMPLAUSIBLE_MEASUREMENT : TVO_ERR_NOT_FINITE;
@@ -182,7 +189,7 @@ static inline tvo_status_t check_measurement(const void *ctl_any, const void *me
 {
     const tvo_controller_t *ctl = ctl_any;
     const tvo_measurement_t *meas = meas_any;
-    const uint8_t n = ctl->cfg.robot_count;
+    const uint8_t n = STEP_ROBOTS(ctl->cfg.robot_count);
     const tvo_real_t speed_limit = ctl->measured_speed_limit_mps;
     for (uint8_t r = 0; r < n; ++r) {
         /* One comparison per value refuses NaN, infinities and the impossible alike (NaN compares false). */
@@ -276,7 +283,7 @@ TVO_OFF_CHAIN_BODY tvo_status_t unicycle_prepare(void *ctl_any, const void *meas
 {
     tvo_controller_t *ctl = ctl_any;
     const tvo_measurement_t *meas = meas_any;
-    const uint8_t n = frame->shape;
+    const uint8_t n = STEP_ROBOTS(frame->shape);
     const tvo_controller_config_t *cfg = &ctl->cfg;
     tvo_controller_work_t *work = &ctl->work;
     tvo_period_t *period = &work->period;
@@ -389,7 +396,7 @@ TVO_LOOP_ENTRY tvo_status_t unicycle_law(void *ctl_any, tvo_loop_frame_t *frame)
 TVO_OFF_CHAIN_BODY tvo_status_t unicycle_command(void *ctl_any, tvo_loop_frame_t *frame)
 {
     tvo_controller_t *ctl = ctl_any;
-    const uint8_t n = frame->shape;
+    const uint8_t n = STEP_ROBOTS(frame->shape);
     const tvo_controller_config_t *cfg = &ctl->cfg;
     tvo_controller_work_t *work = &ctl->work;
     const tvo_real_t *y_accel = work->output_accel;
@@ -435,7 +442,7 @@ TVO_OFF_CHAIN_BODY tvo_status_t unicycle_command(void *ctl_any, tvo_loop_frame_t
 TVO_OFF_CHAIN_BODY tvo_status_t unicycle_commit(void *ctl_any, const tvo_loop_frame_t *frame)
 {
     tvo_controller_t *ctl = ctl_any;
-    const uint8_t n = frame->shape;
+    const uint8_t n = STEP_ROBOTS(frame->shape);
     uint32_t flags = frame->flags;
     const tvo_controller_config_t *cfg = &ctl->cfg;
     tvo_controller_work_t *work = &ctl->work;
@@ -521,8 +528,7 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     }
 #endif
 #endif
-    /* A one-robot build's count is 1 (init refuses others): a constant, so the loops fold. */
-    return loop_period(&unicycle_plant, ctl, meas, apply_tick, cmd, TVO_MAX_ROBOTS == 1 ? 1u : ctl->cfg.robot_count);
+    return loop_period(&unicycle_plant, ctl, meas, apply_tick, cmd, STEP_ROBOTS(ctl->cfg.robot_count));
 }
 
 tvo_status_t tvo_controller_miss(tvo_controller_t *ctl, uint32_t apply_tick, tvo_command_t *cmd)

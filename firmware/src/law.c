@@ -17,8 +17,9 @@
 /* 0! .. 3! (k <= TVO_MAX_RELATIVE_DEGREE <= 3). */
 static const tvo_real_t factorial[4] = {TVO_R(1.0), TVO_R(1.0), TVO_R(2.0), TVO_R(6.0)};
 
-static int gains_are_hurwitz(uint8_t k, const tvo_real_t *a)
+int tvo_law_gains_hurwitz(uint8_t k, const tvo_real_t *a)
 {
+    TVO_ASSERT(a != NULL && k <= TVO_MAX_RELATIVE_DEGREE);
     for (uint8_t i = 0; i < k; ++i) {
         if (!isfinite(a[i]) || !(a[i] > TVO_R(0.0))) {
             return 0;
@@ -31,26 +32,19 @@ static int gains_are_hurwitz(uint8_t k, const tvo_real_t *a)
     return 1;
 }
 
-tvo_status_t tvo_law_init(tvo_law_t *law, uint8_t relative_degree, uint8_t dim, const tvo_real_t *gain)
+void tvo_law_init(tvo_law_t *law, uint8_t relative_degree, uint8_t dim, const tvo_real_t *gain)
 {
     TVO_ASSERT(law != NULL && gain != NULL);
+    TVO_ASSERT(relative_degree >= 1u && relative_degree <= TVO_MAX_RELATIVE_DEGREE);
+    TVO_ASSERT(dim >= 1u && dim <= TVO_MAX_Z_DIM);
+    TVO_ASSERT(tvo_law_gains_hurwitz(relative_degree, gain));
     memset(law, 0, sizeof(*law));
-    if (relative_degree == 0u || relative_degree > TVO_MAX_RELATIVE_DEGREE) {
-        return TVO_ERR_PARAM;
-    }
-    if (dim == 0u || dim > TVO_MAX_Z_DIM) {
-        return TVO_ERR_DIMENSION;
-    }
-    if (!gains_are_hurwitz(relative_degree, gain)) {
-        return TVO_ERR_PARAM;
-    }
-    for (uint8_t i = 0; i < relative_degree; ++i) {
+    for (uint8_t i = 0; i < relative_degree && i < TVO_MAX_RELATIVE_DEGREE; ++i) {
         law->gain[i] = gain[i];
         law->gain_by_factorial[i] = gain[i] * factorial[i];
     }
     law->relative_degree = relative_degree;
     law->dim = dim;
-    return TVO_OK;
 }
 
 tvo_status_t tvo_law_check_sampling_reach(uint8_t relative_degree, const tvo_real_t *gain, tvo_real_t period_s)
@@ -63,10 +57,8 @@ tvo_status_t tvo_law_check_sampling_reach(uint8_t relative_degree, const tvo_rea
         {TVO_R(1.0), TVO_R(3.0), TVO_R(3.0)},
     };
     TVO_ASSERT(gain != NULL);
-    if (relative_degree == 0u || relative_degree > TVO_MAX_RELATIVE_DEGREE || !isfinite(period_s) ||
-        !(period_s > TVO_R(0.0))) {
-        return TVO_ERR_PARAM;
-    }
+    TVO_ASSERT(relative_degree >= 1u && relative_degree <= TVO_MAX_RELATIVE_DEGREE);
+    TVO_ASSERT(isfinite(period_s) && period_s > TVO_R(0.0));
     const tvo_real_t nyquist_radps = TVO_PI / period_s;
     tvo_real_t power = TVO_R(1.0); /* R^(k-j), j descending from k - 1 */
     for (uint8_t n = 0; n < relative_degree; ++n) {

@@ -13,21 +13,15 @@
 extern "C" {
 #endif
 
-/**
- * law must not be NULL, nor gain. Validates k in 1..TVO_MAX_RELATIVE_DEGREE (TVO_ERR_PARAM), 1 <= dim <= TVO_MAX_Z_DIM
- * (TVO_ERR_DIMENSION) and that the gains make s^k + a_{k-1}s^{k-1} + ... + a_0 Hurwitz
- * (Routh-Hurwitz; TVO_ERR_PARAM otherwise).
- */
-tvo_status_t tvo_law_init(tvo_law_t *law, uint8_t relative_degree, uint8_t dim, const tvo_real_t *gain);
+/** 1 if the gains a_0 .. a_{k-1} are finite and make s^k + a_{k-1}s^{k-1} + ... + a_0 Hurwitz (Routh-Hurwitz). */
+int tvo_law_gains_hurwitz(uint8_t relative_degree, const tvo_real_t *gain);
 
 /**
- * Whether the gains a_0 .. a_{k-1} are within reach of a loop sampled every period_s: a pole faster
- * than the Nyquist rate R = pi / period_s is one the sampled loop cannot follow, and a polynomial
- * s^k + a_{k-1}s^{k-1} + ... + a_0 whose roots all lie within R has a_j <= C(k, j) R^(k-j). TVO_OK
- * when every gain is within that bound; TVO_ERR_PARAM beyond it or for a gain that is not finite
- * (the controllers name TVO_PARAM_GAINS); TVO_ERR_PARAM for k outside
- * 1..TVO_MAX_RELATIVE_DEGREE or a period that is not positive and finite.
+ * The law for k in 1..TVO_MAX_RELATIVE_DEGREE, 1 <= dim <= TVO_MAX_Z_DIM and Hurwitz gains (the
+ * controllers' inits check them and name the culprit).
  */
+void tvo_law_init(tvo_law_t *law, uint8_t relative_degree, uint8_t dim, const tvo_real_t *gain);
+
 tvo_status_t tvo_law_check_sampling_reach(uint8_t relative_degree, const tvo_real_t *gain, tvo_real_t period_s);
 
 /**
