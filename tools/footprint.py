@@ -17,8 +17,8 @@ callbacks (tvo_gradient_jet_fn, tvo_constraint_max_fn), charged the deepest of t
 implement them (names ending in _gradient_jet, _gradient_hessian or _constraint_max) that the link
 kept; law.c calls the objective's general path (tvo_general_path_fn), charged law_general_path if
 the link kept it and nothing if not (then no add function stored it: the pointer is NULL);
-controller.c calls the position-only velocity source (tvo_position_velocity_fn), charged
-controller_position_velocity if the link kept it and nothing if not (then only
+controller.c calls the position-only velocity source's plan (tvo_position_velocity_t), charged
+the deeper of controller_position_velocity and its _commit if the link kept them and nothing if not (then only
 tvo_controller_init_pose_velocity initialised controllers, and it refuses that source). Calls into libc/libm/libgcc (no .ci of
 ours) are measured in the linked ELF (--elf, disassembled by --objdump): each library function's
 frame is the sum of its stack-pointer decrements (pushes, stack adjustments), its callees are its
@@ -43,7 +43,7 @@ CALLBACK_SUFFIXES = ("_gradient_jet", "_gradient_hessian", "_constraint_max")
 INDIRECT_TARGETS = {
     "objective.c": {"suffixes": CALLBACK_SUFFIXES, "names": (), "may_be_absent": False},
     "law.c": {"suffixes": (), "names": ("law_general_path",), "may_be_absent": True},
-    "controller.c": {"suffixes": (), "names": ("controller_position_velocity",), "may_be_absent": True},
+    "controller.c": {"suffixes": (), "names": ("controller_position_velocity", "controller_position_velocity_commit"), "may_be_absent": True},
 }
 INDIRECT = "__indirect_call"
 

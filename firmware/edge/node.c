@@ -5,6 +5,7 @@
  * mode's object, schedule.h), and its command from the core's step.
  */
 #include "node.h"
+#include "internal/constraints.h"
 
 #include <string.h>
 

@@ -6,6 +6,9 @@
 #include <string.h>
 
 #include "tvo/sample_clock.h"
+#include "internal/barrier.h"
+#include "internal/constraints.h"
+#include "internal/sample_clock.h"
 #include "wire_real.h"
 
 /* The wire's fixed arrays must hold what the core can use (the reverse is checked per count). */

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "wire_real.h"
+#include "internal/barrier.h"
 
 /* The wire's arrays must hold every robot and output the core can have. */
 _Static_assert(TVO_LCM_MEASUREMENT_T_MAX_ROBOTS >= TVO_MAX_ROBOTS, "measurement_t holds every robot");

@@ -1,5 +1,5 @@
 /* Relaxed logarithmic barrier and its schedules; see tvo/barrier.h. */
-#include "tvo/barrier.h"
+#include "internal/barrier.h"
 
 #include <string.h>
 

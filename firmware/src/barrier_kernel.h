@@ -7,7 +7,7 @@
 #define TVO_BARRIER_KERNEL_H
 
 #include "shape.h"
-#include "tvo/barrier.h"
+#include "internal/barrier.h"
 
 /* tvo_barrier_weight_on_schedule for valid arguments (order <= TVO_JET_MAX_ORDER). */
 TVO_SHAPE_BODY tvo_status_t barrier_weight_unchecked(const tvo_barrier_t *barrier,

@@ -1,9 +1,9 @@
 /* Sampled-data controller of the integrator-chain testbed; see tvo/chain_controller.h. */
-#include "tvo/chain_controller.h"
+#include "internal/chain_controller.h"
 
 #include <string.h>
 
-#include "law_step.h"
+#include "internal/law.h"
 #include "sampled_loop.h"
 
 tvo_status_t tvo_chain_config_default(tvo_chain_config_t *cfg)
@@ -55,9 +55,11 @@ static tvo_param_t chain_setup(tvo_chain_controller_t *ctl, const tvo_chain_conf
     if (bad != TVO_PARAM_NONE) {
         return bad;
     }
-    if (tvo_law_init(&ctl->law, cfg->relative_degree, objective->primal_dim, cfg->gain) != TVO_OK) {
+    if (!tvo_law_gains_hurwitz(cfg->relative_degree, cfg->gain) || objective->primal_dim == 0u ||
+        objective->primal_dim > TVO_MAX_Z_DIM) {
         return TVO_PARAM_GAINS;
     }
+    tvo_law_init(&ctl->law, cfg->relative_degree, objective->primal_dim, cfg->gain);
     ctl->period_s = tvo_ticks_to_seconds32(cfg->period_ticks, cfg->tick_hz);
     for (uint8_t j = 0; j + 1u < cfg->relative_degree; ++j) {
         if (tvo_dirty_derivative_init(&ctl->filter[j], objective->primal_dim,
@@ -216,8 +218,8 @@ TVO_LOOP_ENTRY tvo_status_t chain_law(void *ctl_any, tvo_loop_frame_t *frame)
     report->gradient = NULL;
     report->gradient_rate = NULL;
     report->count = 0u;
-    return law_evaluate_report_unchecked(&ctl->law, ctl->objective, &work->state, &work->time, work->input, report,
-                                         &work->law);
+    return tvo_law_evaluate_report(&ctl->law, ctl->objective, &work->state, &work->time, work->input, report,
+                                   &work->law);
 }
 
 /* The loop's command piece: u is the law's y^(k), clipped to the input's limit (work->command). */

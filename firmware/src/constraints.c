@@ -1,5 +1,5 @@
 /* Inequality-constraint terms through the relaxed barrier; see tvo/constraints.h. */
-#include "tvo/constraints.h"
+#include "internal/constraints.h"
 
 #include <string.h>
 

@@ -9,11 +9,12 @@
 
 #include <string.h>
 
-#include "law_step.h"
+#include "internal/dirty_derivative.h"
+#include "internal/law.h"
 #include "position_velocity.h"
 #include "sampled_loop.h"
-#include "unicycle_kernel.h"
-#include "tvo/trig.h"
+#include "internal/unicycle.h"
+#include "internal/trig.h"
 
 tvo_status_t tvo_controller_config_default(tvo_controller_config_t *cfg)
 {
@@ -35,9 +36,9 @@ static int positive_finite(tvo_real_t v)
     return isfinite(v) && v > TVO_R(0.0);
 }
 
-/* position_velocity: the position-only source's estimate, NULL if the caller does not offer it. */
+/* position_velocity: the position-only source's plan, NULL if the caller does not offer it. */
 static tvo_param_t first_bad_param(const tvo_controller_config_t *cfg, const tvo_objective_t *objective,
-                                   tvo_position_velocity_fn position_velocity)
+                                   const tvo_position_velocity_t *position_velocity)
 {
     const tvo_param_t timing = tvo_sample_clock_check_timing(cfg->tick_hz, cfg->period_ticks, cfg->delay_ticks);
     if (timing != TVO_PARAM_NONE) {
@@ -91,12 +92,16 @@ static tvo_param_t first_bad_param(const tvo_controller_config_t *cfg, const tvo
 
 static const tvo_loop_plant_t unicycle_plant; /* the loop's table, below its pieces */
 
+/* The robots a step loops over: a one-robot build's count is 1 (init refuses others), a constant, so
+ * its loops fold. */
+#define STEP_ROBOTS(count) ((uint8_t)(TVO_MAX_ROBOTS == 1 ? 1u : (count)))
+
 /* Validates and binds the controller, all but the loop's clock and the position-only source's filter
- * (position_velocity: that source's estimate, NULL when the caller does not link it); *bad names the
+ * (position_velocity: that source's plan, NULL when the caller does not link it); *bad names the
  * culprit of a refusal. */
 static tvo_status_t controller_setup(tvo_controller_t *ctl, const tvo_controller_config_t *cfg,
                                      const tvo_objective_t *objective, tvo_param_t *bad,
-                                     tvo_position_velocity_fn position_velocity)
+                                     const tvo_position_velocity_t *position_velocity)
 {
     *bad = first_bad_param(cfg, objective, position_velocity);
     if (*bad != TVO_PARAM_NONE) {
@@ -112,17 +117,20 @@ static tvo_status_t controller_setup(tvo_controller_t *ctl, const tvo_controller
         ctl->speed_state_mps[r] = cfg->initial_speed_mps[r];
         ctl->held.speed_mps[r] = cfg->initial_speed_mps[r];
     }
-    const tvo_real_t gains[2] = {cfg->gain_kp, cfg->gain_kd};
-    const tvo_status_t st = tvo_law_init(&ctl->law, 2u, objective->dim, gains);
-    *bad = (st == TVO_OK) ? TVO_PARAM_NONE : TVO_PARAM_OBJECTIVE;
-    return st;
+    if (objective->dim > TVO_MAX_Z_DIM) {
+        *bad = TVO_PARAM_OBJECTIVE; /* an objective changed by hand: the law cannot hold its size */
+        return TVO_ERR_DIMENSION;
+    }
+    const tvo_real_t gains[2] = {cfg->gain_kp, cfg->gain_kd}; /* positive: Hurwitz (first_bad_param) */
+    tvo_law_init(&ctl->law, 2u, objective->dim, gains);
+    return TVO_OK;
 }
 
 /* Both inits: the loop's begin and end around the plant's setup; in each, so the pose-only one links
  * no filter. */
 TVO_LOOP_ENTRY tvo_status_t controller_init(tvo_controller_t *ctl, const tvo_controller_config_t *cfg,
                                             const tvo_objective_t *objective, uint32_t epoch_tick,
-                                            tvo_param_t *bad_param, tvo_position_velocity_fn position_velocity)
+                                            tvo_param_t *bad_param, const tvo_position_velocity_t *position_velocity)
 {
     tvo_status_t st = loop_init_begin(&unicycle_plant, ctl, cfg, objective, bad_param);
     if (st != TVO_OK) {
@@ -142,7 +150,7 @@ tvo_status_t tvo_controller_init(tvo_controller_t *ctl, const tvo_controller_con
                                  const tvo_objective_t *objective, uint32_t epoch_tick,
                                  tvo_param_t *bad_param)
 {
-    return controller_init(ctl, cfg, objective, epoch_tick, bad_param, controller_position_velocity);
+    return controller_init(ctl, cfg, objective, epoch_tick, bad_param, &controller_position_velocity_plan);
 }
 
 tvo_status_t tvo_controller_init_pose_velocity(tvo_controller_t *ctl, const tvo_controller_config_t *cfg,
@@ -157,7 +165,7 @@ tvo_status_t tvo_controller_init_pose_velocity(tvo_controller_t *ctl, const tvo_
 TVO_COLD_BODY tvo_status_t measurement_range_refusal(const tvo_controller_t *ctl, const tvo_measurement_t *meas)
 {
     tvo_real_t probe = TVO_R(0.0);
-    for (uint8_t r = 0; r < ctl->cfg.robot_count && r < TVO_MAX_ROBOTS; ++r) {
+    for (uint8_t r = 0; r < STEP_ROBOTS(ctl->cfg.robot_count) && r < TVO_MAX_ROBOTS; ++r) {
         probe += meas->position_m[r][0] + meas->position_m[r][1] + meas->heading_rad[r] + meas->speed_mps[r];
     }
     return isfinite(probe - probe) ? TVO_ERR_IMPLAUSIBLE_MEASUREMENT : TVO_ERR_NOT_FINITE;
@@ -176,19 +184,45 @@ TVO_COLD_BODY tvo_status_t unicycle_refuse(void *ctl, const void *meas, const tv
     return loop_refuse(&unicycle_plant, ctl, meas, period, reason, cmd);
 }
 
+/* |a| <= limit and |b| <= limit (limit > 0), false for NaN and the infinities. In float32 by the bits:
+ * positive floats order as their bit patterns, and NaN's and the infinities' lie above every finite
+ * one's, so one integer comparison of the larger magnitude decides both (cheaper than the FPU's). */
+#if TVO_USE_DOUBLE
+#define within(a, limit) (TVO_FABS(a) <= (limit))
+#define within2(a, b, limit) (within(a, limit) && within(b, limit))
+#else
+static inline uint32_t magnitude_bits(float value)
+{
+    uint32_t bits;
+    memcpy(&bits, &value, sizeof(bits));
+    return bits & 0x7FFFFFFFu;
+}
+
+static inline int within2(float a, float b, float limit)
+{
+    const uint32_t a_bits = magnitude_bits(a);
+    const uint32_t b_bits = magnitude_bits(b);
+    return (a_bits > b_bits ? a_bits : b_bits) <= magnitude_bits(limit);
+}
+
+static inline int within(float value, float limit)
+{
+    return magnitude_bits(value) <= magnitude_bits(limit);
+}
+#endif
+
 /* The loop's check piece: the measurement's values, its stamp and the fields the source reads. */
 static inline tvo_status_t check_measurement(const void *ctl_any, const void *meas_any, uint32_t apply_tick)
 {
     const tvo_controller_t *ctl = ctl_any;
     const tvo_measurement_t *meas = meas_any;
-    const uint8_t n = ctl->cfg.robot_count;
+    const uint8_t n = STEP_ROBOTS(ctl->cfg.robot_count);
     const tvo_real_t speed_limit = ctl->measured_speed_limit_mps;
     for (uint8_t r = 0; r < n; ++r) {
         /* One comparison per value refuses NaN, infinities and the impossible alike (NaN compares false). */
-        if (!(TVO_FABS(meas->position_m[r][0]) <= TVO_POSITION_LIMIT_M) ||
-            !(TVO_FABS(meas->position_m[r][1]) <= TVO_POSITION_LIMIT_M) ||
-            (meas->heading_valid && !(TVO_FABS(meas->heading_rad[r]) <= TVO_HEADING_LIMIT_RAD)) ||
-            (meas->speed_valid && !(TVO_FABS(meas->speed_mps[r]) <= speed_limit))) {
+        if (!within2(meas->position_m[r][0], meas->position_m[r][1], TVO_POSITION_LIMIT_M) ||
+            (meas->heading_valid && !within(meas->heading_rad[r], TVO_HEADING_LIMIT_RAD)) ||
+            (meas->speed_valid && !within(meas->speed_mps[r], speed_limit))) {
             return TVO_ERR_IMPLAUSIBLE_MEASUREMENT; /* or not finite: unicycle_refusal says which */
         }
     }
@@ -275,7 +309,7 @@ TVO_OFF_CHAIN_BODY tvo_status_t unicycle_prepare(void *ctl_any, const void *meas
 {
     tvo_controller_t *ctl = ctl_any;
     const tvo_measurement_t *meas = meas_any;
-    const uint8_t n = frame->shape;
+    const uint8_t n = STEP_ROBOTS(frame->shape);
     const tvo_controller_config_t *cfg = &ctl->cfg;
     tvo_controller_work_t *work = &ctl->work;
     tvo_period_t *period = &work->period;
@@ -290,7 +324,7 @@ TVO_OFF_CHAIN_BODY tvo_status_t unicycle_prepare(void *ctl_any, const void *meas
     sample_clock_locate(&ctl->clock, period, meas->stamp_tick, cfg->delay_compensation, cfg->zoh_aware);
     const int position_only = cfg->velocity_source == TVO_VELOCITY_FROM_POSITION;
     if (position_only) {
-        st = ctl->position_velocity(ctl, meas); /* init set it for this source */
+        st = ctl->position_velocity->estimate(ctl, meas); /* init set it for this source */
         if (st != TVO_OK) {
             return st;
         }
@@ -328,8 +362,8 @@ TVO_OFF_CHAIN_BODY tvo_status_t unicycle_prepare(void *ctl_any, const void *meas
         pose.position_m[1] = meas->position_m[r][1];
         pose.heading_rad = heading_at_sample[r];
         if (carry_s > TVO_R(0.0)) {
-            unicycle_predict_unchecked(&pose, in_force->speed_mps[r], in_force->turn_rate_radps[r], carry_s, &pose,
-                                       heading_cs[r]);
+            tvo_unicycle_predict_cs(&pose, in_force->speed_mps[r], in_force->turn_rate_radps[r], carry_s, &pose,
+                                    heading_cs[r]);
         } else {
             tvo_sincos(pose.heading_rad, &heading_cs[r][1], &heading_cs[r][0]);
         }
@@ -376,8 +410,8 @@ TVO_LOOP_ENTRY tvo_status_t unicycle_law(void *ctl_any, tvo_loop_frame_t *frame)
     report->gradient = work->gradient;
     report->gradient_rate = work->gradient_rate;
     report->count = ctl->objective->primal_dim;
-    const tvo_status_t st = law_evaluate_report_unchecked(&ctl->law, ctl->objective, &work->output, &work->time,
-                                                          work->output_accel, report, &work->law);
+    const tvo_status_t st = tvo_law_evaluate_report(&ctl->law, ctl->objective, &work->output, &work->time,
+                                                    work->output_accel, report, &work->law);
     if (report->regularization > TVO_R(0.0)) {
         frame->flags |= TVO_FLAG_REGULARIZED;
     }
@@ -388,7 +422,7 @@ TVO_LOOP_ENTRY tvo_status_t unicycle_law(void *ctl_any, tvo_loop_frame_t *frame)
 TVO_OFF_CHAIN_BODY tvo_status_t unicycle_command(void *ctl_any, tvo_loop_frame_t *frame)
 {
     tvo_controller_t *ctl = ctl_any;
-    const uint8_t n = frame->shape;
+    const uint8_t n = STEP_ROBOTS(frame->shape);
     const tvo_controller_config_t *cfg = &ctl->cfg;
     tvo_controller_work_t *work = &ctl->work;
     const tvo_real_t *y_accel = work->output_accel;
@@ -403,8 +437,8 @@ TVO_OFF_CHAIN_BODY tvo_status_t unicycle_command(void *ctl_any, tvo_loop_frame_t
     for (uint8_t r = 0; r < n && st == TVO_OK; ++r) {
         uint8_t low_speed = 0;
         tvo_real_t turn_rate;
-        unicycle_flat_map_unchecked(heading_cs[r], speed[r], &y_accel[2u * r], cfg->min_speed_mps, &accel[r],
-                                    &turn_rate, &low_speed);
+        tvo_unicycle_flat_map_cs(heading_cs[r], speed[r], &y_accel[2u * r], cfg->min_speed_mps, &accel[r],
+                                 &turn_rate, &low_speed);
         if (low_speed) {
             flags |= TVO_FLAG_LOW_SPEED;
         }
@@ -434,11 +468,10 @@ TVO_OFF_CHAIN_BODY tvo_status_t unicycle_command(void *ctl_any, tvo_loop_frame_t
 TVO_OFF_CHAIN_BODY tvo_status_t unicycle_commit(void *ctl_any, const tvo_loop_frame_t *frame)
 {
     tvo_controller_t *ctl = ctl_any;
-    const uint8_t n = frame->shape;
+    const uint8_t n = STEP_ROBOTS(frame->shape);
     uint32_t flags = frame->flags;
     const tvo_controller_config_t *cfg = &ctl->cfg;
     tvo_controller_work_t *work = &ctl->work;
-    const tvo_period_t *period = &work->period;
     const tvo_output_derivs_t *y = &work->output;
     const tvo_real_t *y_accel = work->output_accel;
     const tvo_command_t *next = &work->command;
@@ -450,12 +483,7 @@ TVO_OFF_CHAIN_BODY tvo_status_t unicycle_commit(void *ctl_any, const tvo_loop_fr
         unicycle_rest(ctl);
     }
     if (cfg->velocity_source == TVO_VELOCITY_FROM_POSITION) {
-        ctl->velocity_filter = work->velocity_filter;
-        for (uint8_t r = 0; r < n; ++r) {
-            /* The estimate lives at the application instant; the next sample dead-reckons from here. */
-            ctl->heading_estimate_rad[r] = unicycle_wrap_angle_near(
-                work->heading[r] + work->in_force->turn_rate_radps[r] * (period->age_s - period->carry_s));
-        }
+        ctl->position_velocity->commit(ctl); /* init set it for this source */
     }
     ctl->speed_mismatch_periods = frame->note ? ctl->speed_mismatch_periods + 1u : 0u;
     if (ctl->speed_mismatch_periods >= TVO_SPEED_MISMATCH_PERIODS) {
@@ -526,7 +554,7 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
     }
 #endif
 #endif
-    return loop_period(&unicycle_plant, ctl, meas, apply_tick, cmd, ctl->cfg.robot_count);
+    return loop_period(&unicycle_plant, ctl, meas, apply_tick, cmd, STEP_ROBOTS(ctl->cfg.robot_count));
 }
 
 tvo_status_t tvo_controller_miss(tvo_controller_t *ctl, uint32_t apply_tick, tvo_command_t *cmd)

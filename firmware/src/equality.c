@@ -1,5 +1,5 @@
 /* Formation-offset equality through Lagrange multipliers; see tvo/equality.h. */
-#include "tvo/equality.h"
+#include "internal/equality.h"
 
 tvo_status_t tvo_offset_equality_add(tvo_offset_equality_term_t *term, tvo_objective_t *objective,
                                      const tvo_target_t *offset, uint8_t robot_a, uint8_t robot_b)

@@ -1,6 +1,6 @@
 /* Truncated Taylor arithmetic; see tvo/jet.h. Recurrences are the standard ones of
  * automatic differentiation (Griewank & Walther, ch. 13). */
-#include "tvo/jet.h"
+#include "internal/jet.h"
 
 static unsigned clamp_order(uint8_t order)
 {

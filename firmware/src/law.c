@@ -5,21 +5,21 @@
  * grad^(k); one pass per two unit directions (time frozen) gives two Hessian columns.
  * Then y^(k) = -H^{-1} (r + sum_i a_i grad^(i)).
  */
-#include "tvo/law.h"
+#include "internal/law.h"
 
 #include <string.h>
 
-#include "law_step.h"
 #include "objective_kernel.h"
 #include "shape.h"
 #include "tracking_kernel.h"
-#include "tvo/linsolve.h"
+#include "internal/linsolve.h"
 
 /* 0! .. 3! (k <= TVO_MAX_RELATIVE_DEGREE <= 3). */
 static const tvo_real_t factorial[4] = {TVO_R(1.0), TVO_R(1.0), TVO_R(2.0), TVO_R(6.0)};
 
-static int gains_are_hurwitz(uint8_t k, const tvo_real_t *a)
+int tvo_law_gains_hurwitz(uint8_t k, const tvo_real_t *a)
 {
+    TVO_ASSERT(a != NULL && k <= TVO_MAX_RELATIVE_DEGREE);
     for (uint8_t i = 0; i < k; ++i) {
         if (!isfinite(a[i]) || !(a[i] > TVO_R(0.0))) {
             return 0;
@@ -32,28 +32,19 @@ static int gains_are_hurwitz(uint8_t k, const tvo_real_t *a)
     return 1;
 }
 
-tvo_status_t tvo_law_init(tvo_law_t *law, uint8_t relative_degree, uint8_t dim, const tvo_real_t *gain)
+void tvo_law_init(tvo_law_t *law, uint8_t relative_degree, uint8_t dim, const tvo_real_t *gain)
 {
-    if (law == NULL || gain == NULL) {
-        return TVO_ERR_NULL;
-    }
+    TVO_ASSERT(law != NULL && gain != NULL);
+    TVO_ASSERT(relative_degree >= 1u && relative_degree <= TVO_MAX_RELATIVE_DEGREE);
+    TVO_ASSERT(dim >= 1u && dim <= TVO_MAX_Z_DIM);
+    TVO_ASSERT(tvo_law_gains_hurwitz(relative_degree, gain));
     memset(law, 0, sizeof(*law));
-    if (relative_degree == 0u || relative_degree > TVO_MAX_RELATIVE_DEGREE) {
-        return TVO_ERR_PARAM;
-    }
-    if (dim == 0u || dim > TVO_MAX_Z_DIM) {
-        return TVO_ERR_DIMENSION;
-    }
-    if (!gains_are_hurwitz(relative_degree, gain)) {
-        return TVO_ERR_PARAM;
-    }
-    for (uint8_t i = 0; i < relative_degree; ++i) {
+    for (uint8_t i = 0; i < relative_degree && i < TVO_MAX_RELATIVE_DEGREE; ++i) {
         law->gain[i] = gain[i];
         law->gain_by_factorial[i] = gain[i] * factorial[i];
     }
     law->relative_degree = relative_degree;
     law->dim = dim;
-    return TVO_OK;
 }
 
 tvo_status_t tvo_law_check_sampling_reach(uint8_t relative_degree, const tvo_real_t *gain, tvo_real_t period_s)
@@ -65,13 +56,9 @@ tvo_status_t tvo_law_check_sampling_reach(uint8_t relative_degree, const tvo_rea
         {TVO_R(1.0), TVO_R(2.0), TVO_R(0.0)},
         {TVO_R(1.0), TVO_R(3.0), TVO_R(3.0)},
     };
-    if (gain == NULL) {
-        return TVO_ERR_NULL;
-    }
-    if (relative_degree == 0u || relative_degree > TVO_MAX_RELATIVE_DEGREE || !isfinite(period_s) ||
-        !(period_s > TVO_R(0.0))) {
-        return TVO_ERR_PARAM;
-    }
+    TVO_ASSERT(gain != NULL);
+    TVO_ASSERT(relative_degree >= 1u && relative_degree <= TVO_MAX_RELATIVE_DEGREE);
+    TVO_ASSERT(isfinite(period_s) && period_s > TVO_R(0.0));
     const tvo_real_t nyquist_radps = TVO_PI / period_s;
     tvo_real_t power = TVO_R(1.0); /* R^(k-j), j descending from k - 1 */
     for (uint8_t n = 0; n < relative_degree; ++n) {
@@ -555,7 +542,7 @@ ENTRY_BODY tvo_status_t evaluate_recorded(tvo_law_workspace_t *work, tvo_general
     return general(work);
 }
 
-/* Records the call (pointers checked by the entries; the rest by evaluate_recorded). */
+/* Records the call (pointers valid, as the callers assert; the rest checked by evaluate_recorded). */
 static inline void record_call(const tvo_law_t *law, const tvo_objective_t *objective, const tvo_output_derivs_t *y,
                                const tvo_time_jet_t *t, tvo_real_t *y_k, tvo_law_workspace_t *work)
 {
@@ -581,18 +568,18 @@ tvo_status_t tvo_law_evaluate(const tvo_law_t *law, const tvo_objective_t *objec
         work.outputs.hessian = eval->hessian;
         work.outputs.regularization = &eval->regularization;
     }
-    if (law == NULL || objective == NULL || y == NULL || t == NULL || y_k == NULL) {
-        return TVO_ERR_NULL;
-    }
+    TVO_ASSERT(law != NULL && objective != NULL && y != NULL && t != NULL && y_k != NULL);
     record_call(law, objective, y, t, y_k, &work);
     /* The tools' entry (a Hessian on request): the general path always, whatever the objective links. */
     return evaluate_recorded(&work, law_general_path);
 }
 
-tvo_status_t law_evaluate_report_unchecked(const tvo_law_t *law, const tvo_objective_t *objective,
-                                           const tvo_output_derivs_t *y, const tvo_time_jet_t *t, tvo_real_t *y_k,
-                                           tvo_law_report_t *report, tvo_law_workspace_t *work)
+tvo_status_t tvo_law_evaluate_report(const tvo_law_t *law, const tvo_objective_t *objective,
+                                     const tvo_output_derivs_t *y, const tvo_time_jet_t *t, tvo_real_t *y_k,
+                                     tvo_law_report_t *report, tvo_law_workspace_t *work)
 {
+    TVO_ASSERT(law != NULL && objective != NULL && y != NULL && t != NULL && y_k != NULL && report != NULL &&
+               work != NULL);
     report->regularization = TVO_R(0.0);
     tvo_law_outputs_t *out = &work->outputs;
     out->grad_rows[0] = report->gradient;
@@ -617,18 +604,4 @@ tvo_status_t law_evaluate_report_unchecked(const tvo_law_t *law, const tvo_objec
     }
 #endif
     return evaluate_recorded(work, objective->general_path);
-}
-
-tvo_status_t tvo_law_evaluate_report(const tvo_law_t *law, const tvo_objective_t *objective,
-                                     const tvo_output_derivs_t *y, const tvo_time_jet_t *t, tvo_real_t *y_k,
-                                     tvo_law_report_t *report, tvo_law_workspace_t *work)
-{
-    if (report == NULL) {
-        return TVO_ERR_NULL;
-    }
-    if (law == NULL || objective == NULL || y == NULL || t == NULL || y_k == NULL || work == NULL) {
-        report->regularization = TVO_R(0.0);
-        return TVO_ERR_NULL;
-    }
-    return law_evaluate_report_unchecked(law, objective, y, t, y_k, report, work);
 }

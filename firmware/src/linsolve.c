@@ -1,5 +1,5 @@
 /* Fixed-size Cholesky and saddle-point solves; see tvo/linsolve.h. */
-#include "tvo/linsolve.h"
+#include "internal/linsolve.h"
 
 #include "shape.h"
 

@@ -1,9 +1,9 @@
 /* The objective as a sum of gradient-jet terms; see tvo/objective.h. */
-#include "tvo/objective.h"
+#include "internal/objective.h"
 
-#include "law_step.h"
+#include "internal/law.h"
 #include "objective_kernel.h"
-#include "sample_clock_kernel.h"
+#include "internal/sample_clock.h"
 #include "tvo/tracking.h"
 
 tvo_status_t tvo_objective_init(tvo_objective_t *objective, uint8_t primal_dim)

@@ -5,7 +5,7 @@
 #ifndef TVO_OBJECTIVE_KERNEL_H
 #define TVO_OBJECTIVE_KERNEL_H
 
-#include "tvo/objective.h"
+#include "internal/objective.h"
 
 /* Which terms a pass sums, and how. */
 typedef enum {

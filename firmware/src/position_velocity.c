@@ -5,8 +5,10 @@
  */
 #include "position_velocity.h"
 
-#include "sample_clock_kernel.h"
-#include "tvo/trig.h"
+#include "internal/sample_clock.h"
+#include "internal/dirty_derivative.h"
+#include "internal/trig.h"
+#include "internal/unicycle.h"
 
 /* The velocity direction corrects dead reckoning with this many T_f. */
 #define TVO_HEADING_CORRECTION_TF_MULTIPLE TVO_R(10.0)
@@ -89,3 +91,17 @@ tvo_status_t controller_position_velocity(tvo_controller_t *ctl, const tvo_measu
     }
     return st;
 }
+
+void controller_position_velocity_commit(tvo_controller_t *ctl)
+{
+    const tvo_controller_work_t *work = &ctl->work;
+    const tvo_period_t *period = &work->period;
+    ctl->velocity_filter = work->velocity_filter;
+    for (uint8_t r = 0; r < ctl->cfg.robot_count; ++r) {
+        ctl->heading_estimate_rad[r] = unicycle_wrap_angle_near(work->heading[r] + work->in_force->turn_rate_radps[r] *
+                                                                                  (period->age_s - period->carry_s));
+    }
+}
+
+const tvo_position_velocity_t controller_position_velocity_plan = {controller_position_velocity,
+                                                                    controller_position_velocity_commit};

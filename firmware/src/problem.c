@@ -1,6 +1,11 @@
 /* A whole planning problem assembled from a plain description; see tvo/problem.h. */
 #include "tvo/problem.h"
 
+#include "internal/barrier.h"
+#include "internal/constraints.h"
+#include "internal/equality.h"
+#include "internal/objective.h"
+
 #include <string.h>
 
 enum {

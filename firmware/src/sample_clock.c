@@ -1,9 +1,7 @@
-/* Sampled-data timing shared by the controllers; see tvo/sample_clock.h. */
-#include "tvo/sample_clock.h"
+/* Sampled-data timing shared by the controllers; see internal/sample_clock.h. */
+#include "internal/sample_clock.h"
 
 #include <string.h>
-
-#include "sample_clock_kernel.h"
 
 tvo_param_t tvo_sample_clock_check_timing(uint32_t tick_hz, uint32_t period_ticks, uint32_t delay_ticks)
 {
@@ -24,37 +22,17 @@ int tvo_sample_clock_watchdog_ok(uint32_t period_ticks, uint32_t watchdog_period
     return period_ticks > 0u && watchdog_periods >= 1u && watchdog_periods <= TVO_MAX_TICK_SPAN / period_ticks;
 }
 
-tvo_status_t tvo_sample_clock_init(tvo_sample_clock_t *clock, uint32_t tick_hz, uint32_t period_ticks,
-                                   uint32_t watchdog_periods, uint32_t epoch_tick)
+void tvo_sample_clock_init(tvo_sample_clock_t *clock, uint32_t tick_hz, uint32_t period_ticks, uint32_t watchdog_periods,
+                           uint32_t epoch_tick)
 {
-    if (clock == NULL) {
-        return TVO_ERR_NULL;
-    }
+    TVO_ASSERT(clock != NULL);
+    TVO_ASSERT(tvo_sample_clock_check_timing(tick_hz, period_ticks, 0u) == TVO_PARAM_NONE);
+    TVO_ASSERT(tvo_sample_clock_watchdog_ok(period_ticks, watchdog_periods));
     memset(clock, 0, sizeof(*clock));
-    if (tvo_sample_clock_check_timing(tick_hz, period_ticks, 0u) != TVO_PARAM_NONE ||
-        !tvo_sample_clock_watchdog_ok(period_ticks, watchdog_periods)) {
-        return TVO_ERR_PARAM;
-    }
     clock->tick_hz = tick_hz;
     clock->period_ticks = period_ticks;
     clock->watchdog_periods = watchdog_periods;
     clock->epoch_tick = epoch_tick;
-    return TVO_OK;
-}
-
-tvo_tick_time_t tvo_tick_time_after(const tvo_tick_time_t *t, uint32_t delta_ticks, uint32_t tick_hz)
-{
-    return tick_time_after(t, delta_ticks, tick_hz);
-}
-
-tvo_tick_time_t tvo_tick_time_before(const tvo_tick_time_t *t, uint32_t delta_ticks, uint32_t tick_hz)
-{
-    return tick_time_before(t, delta_ticks, tick_hz);
-}
-
-tvo_real_t tvo_tick_time_seconds(const tvo_tick_time_t *t, uint32_t tick_hz)
-{
-    return tick_time_seconds(t, tick_hz);
 }
 
 tvo_real_t tvo_ticks_to_seconds32(uint32_t ticks, uint32_t tick_hz)
@@ -62,38 +40,10 @@ tvo_real_t tvo_ticks_to_seconds32(uint32_t ticks, uint32_t tick_hz)
     return ticks_to_seconds32(ticks, tick_hz);
 }
 
-tvo_status_t tvo_sample_clock_begin(const tvo_sample_clock_t *clock, uint32_t apply_tick, tvo_period_t *period)
-{
-    if (clock == NULL || period == NULL) {
-        return TVO_ERR_NULL;
-    }
-    return sample_clock_begin(clock, apply_tick, period);
-}
-
-tvo_status_t tvo_sample_clock_locate(const tvo_sample_clock_t *clock, tvo_period_t *period, uint32_t stamp_tick,
-                                     uint8_t delay_compensation, uint8_t zoh_aware)
-{
-    if (clock == NULL || period == NULL) {
-        return TVO_ERR_NULL;
-    }
-    sample_clock_locate(clock, period, stamp_tick, delay_compensation, zoh_aware);
-    return TVO_OK;
-}
-
-tvo_status_t tvo_sample_clock_check_stamp(const tvo_sample_clock_t *clock, uint32_t stamp_tick, uint32_t apply_tick)
-{
-    if (clock == NULL) {
-        return TVO_ERR_NULL;
-    }
-    return sample_clock_check_stamp(clock, stamp_tick, apply_tick);
-}
-
 
 int tvo_sample_clock_end(tvo_sample_clock_t *clock, const tvo_period_t *period, int good, uint32_t stamp_tick)
 {
-    if (clock == NULL || period == NULL) {
-        return 1;
-    }
+    TVO_ASSERT(clock != NULL && period != NULL);
     if (good) {
         sample_clock_end_good(clock, period, stamp_tick);
         return 0;
@@ -109,33 +59,16 @@ int tvo_sample_clock_end(tvo_sample_clock_t *clock, const tvo_period_t *period, 
     return clock->stopped;
 }
 
-tvo_status_t tvo_sample_clock_rebase(tvo_sample_clock_t *clock, uint32_t epoch_tick)
+void tvo_sample_clock_expire(tvo_sample_clock_t *clock)
 {
-    if (clock == NULL) {
-        return TVO_ERR_NULL;
-    }
-    if (clock->started) {
-        return TVO_ERR_OUT_OF_ORDER;
-    }
-    clock->epoch_tick = epoch_tick;
-    return TVO_OK;
-}
-
-tvo_status_t tvo_sample_clock_expire(tvo_sample_clock_t *clock)
-{
-    if (clock == NULL) {
-        return TVO_ERR_NULL;
-    }
+    TVO_ASSERT(clock != NULL);
     clock->periods_without_measurement = clock->watchdog_periods;
     clock->stopped = 1;
-    return TVO_OK;
 }
 
 tvo_status_t tvo_sample_clock_objective_ticks(const tvo_sample_clock_t *clock, uint32_t tick, uint64_t *objective_ticks)
 {
-    if (clock == NULL || objective_ticks == NULL) {
-        return TVO_ERR_NULL;
-    }
+    TVO_ASSERT(clock != NULL && objective_ticks != NULL);
     const uint32_t ref_tick = clock->started ? clock->last_apply_tick : clock->epoch_tick;
     const uint64_t ref_elapsed = clock->started ? clock->elapsed.ticks : 0u;
     const uint32_t forward = tick - ref_tick;

@@ -20,7 +20,7 @@
 #include <stddef.h>
 #include <string.h>
 
-#include "sample_clock_kernel.h"
+#include "internal/sample_clock.h"
 #include "shape.h"
 
 /* A body compiled into each of its callers, so that a constant argument folds there: a NULL option,

@@ -1,11 +1,11 @@
 /* Moving targets and their time derivatives; see tvo/target.h. */
-#include "tvo/target.h"
+#include "internal/target.h"
 
 #include <string.h>
 
 #include "shape.h"
 #include "target_kernel.h"
-#include "tvo/trig.h"
+#include "internal/trig.h"
 
 static int all_finite(const tvo_real_t *v, size_t n)
 {

@@ -6,7 +6,7 @@
 #ifndef TVO_TARGET_KERNEL_H
 #define TVO_TARGET_KERNEL_H
 
-#include "tvo/target.h"
+#include "internal/target.h"
 
 /* tvo_target_derivatives without those checks: an order above TVO_JET_MAX_ORDER and the kind's errors
  * (a streamed target without a sample or with a future one, a time jet without the exact split a

@@ -1,5 +1,5 @@
 /* Sine and cosine together; see tvo/trig.h. */
-#include "tvo/trig.h"
+#include "internal/trig.h"
 
 #include "shape.h"
 

@@ -1,7 +1,5 @@
-/* Unicycle flat map and exact held-command motion; see tvo/unicycle.h. */
-#include "tvo/unicycle.h"
-
-#include "unicycle_kernel.h"
+/* Unicycle flat map and exact held-command motion; see internal/unicycle.h. */
+#include "internal/unicycle.h"
 
 /* 2 pi = HI + LO with HI = 6.28125 (8 significant bits: n * HI is exact for |n| < 2^16). */
 #define UNICYCLE_TWO_PI_HI TVO_R(6.28125)
@@ -25,59 +23,19 @@ tvo_real_t tvo_wrap_angle(tvo_real_t angle_rad)
     return wrapped;
 }
 
-tvo_status_t tvo_unicycle_flat_map_cs(const tvo_real_t heading_cs[2], tvo_real_t speed_mps,
-                                      const tvo_real_t output_accel_mps2[2], tvo_real_t min_speed_mps,
-                                      tvo_real_t *accel_mps2, tvo_real_t *turn_rate_radps, uint8_t *low_speed)
-{
-    if (heading_cs == NULL || output_accel_mps2 == NULL || accel_mps2 == NULL || turn_rate_radps == NULL ||
-        low_speed == NULL) {
-        return TVO_ERR_NULL;
-    }
-    *accel_mps2 = TVO_R(0.0);
-    *turn_rate_radps = TVO_R(0.0);
-    *low_speed = 0;
-    if (!isfinite(heading_cs[0]) || !isfinite(heading_cs[1]) || !isfinite(speed_mps) ||
-        !isfinite(output_accel_mps2[0]) || !isfinite(output_accel_mps2[1]) || !isfinite(min_speed_mps)) {
-        return TVO_ERR_NOT_FINITE;
-    }
-    if (!(min_speed_mps > TVO_R(0.0))) {
-        return TVO_ERR_PARAM;
-    }
-    unicycle_flat_map_unchecked(heading_cs, speed_mps, output_accel_mps2, min_speed_mps, accel_mps2, turn_rate_radps,
-                                low_speed);
-    return TVO_OK;
-}
-
-tvo_status_t tvo_unicycle_flat_map(tvo_real_t heading_rad, tvo_real_t speed_mps,
-                                   const tvo_real_t output_accel_mps2[2], tvo_real_t min_speed_mps,
-                                   tvo_real_t *accel_mps2, tvo_real_t *turn_rate_radps, uint8_t *low_speed)
+void tvo_unicycle_flat_map(tvo_real_t heading_rad, tvo_real_t speed_mps, const tvo_real_t output_accel_mps2[2],
+                           tvo_real_t min_speed_mps, tvo_real_t *accel_mps2, tvo_real_t *turn_rate_radps,
+                           uint8_t *low_speed)
 {
     tvo_real_t cs[2];
     tvo_sincos(heading_rad, &cs[1], &cs[0]);
-    return tvo_unicycle_flat_map_cs(cs, speed_mps, output_accel_mps2, min_speed_mps, accel_mps2, turn_rate_radps,
-                                    low_speed);
+    *low_speed = 0u;
+    tvo_unicycle_flat_map_cs(cs, speed_mps, output_accel_mps2, min_speed_mps, accel_mps2, turn_rate_radps, low_speed);
 }
 
-tvo_status_t tvo_unicycle_predict_cs(const tvo_pose_t *start, tvo_real_t speed_mps, tvo_real_t turn_rate_radps,
-                                     tvo_real_t dt_s, tvo_pose_t *out, tvo_real_t heading_cs[2])
-{
-    if (start == NULL || out == NULL || heading_cs == NULL) {
-        return TVO_ERR_NULL;
-    }
-    if (!isfinite(start->position_m[0]) || !isfinite(start->position_m[1]) || !isfinite(start->heading_rad) ||
-        !isfinite(speed_mps) || !isfinite(turn_rate_radps) || !isfinite(dt_s)) {
-        return TVO_ERR_NOT_FINITE;
-    }
-    if (dt_s < TVO_R(0.0)) {
-        return TVO_ERR_PARAM;
-    }
-    unicycle_predict_unchecked(start, speed_mps, turn_rate_radps, dt_s, out, heading_cs);
-    return TVO_OK;
-}
-
-tvo_status_t tvo_unicycle_predict(const tvo_pose_t *start, tvo_real_t speed_mps, tvo_real_t turn_rate_radps,
-                                  tvo_real_t dt_s, tvo_pose_t *out)
+void tvo_unicycle_predict(const tvo_pose_t *start, tvo_real_t speed_mps, tvo_real_t turn_rate_radps, tvo_real_t dt_s,
+                          tvo_pose_t *out)
 {
     tvo_real_t heading_cs[2];
-    return tvo_unicycle_predict_cs(start, speed_mps, turn_rate_radps, dt_s, out, heading_cs);
+    tvo_unicycle_predict_cs(start, speed_mps, turn_rate_radps, dt_s, out, heading_cs);
 }

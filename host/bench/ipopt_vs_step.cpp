@@ -28,6 +28,8 @@
 #include <vector>
 
 #include "bench_problems.h"
+#include "internal/objective.h"
+#include "internal/target.h"
 
 namespace {
 

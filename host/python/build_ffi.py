@@ -179,8 +179,6 @@ tvo_status_t tvo_chain_controller_init(tvo_chain_controller_t *ctl, const tvo_ch
 tvo_status_t tvo_chain_controller_step(tvo_chain_controller_t *ctl, const tvo_chain_measurement_t *meas,
                                        uint32_t apply_tick, tvo_chain_command_t *cmd);
 tvo_status_t tvo_chain_controller_miss(tvo_chain_controller_t *ctl, uint32_t apply_tick, tvo_chain_command_t *cmd);
-tvo_status_t tvo_chain_predict(uint8_t relative_degree, uint8_t dim, const tvo_output_derivs_t *state,
-                               const tvo_real_t *u, tvo_real_t dt_s, tvo_output_derivs_t *out);
 
 /* --- the closed loop's plant (host/python/src/plant.h): exact unicycle arcs in double --- */
 void tvo_py_unicycle_arc(double *pose, double speed_mps, double turn_rate_radps, uint32_t ticks, uint32_t tick_hz);

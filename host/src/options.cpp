@@ -25,6 +25,7 @@
 extern "C" {
 #include "tvo/config.h"        // TVO_BARRIER_MAX_DEGREE
 #include "tvo/sample_clock.h"  // TVO_MAX_TICK_SPAN, tvo_sample_clock_watchdog_ok
+#include "internal/sample_clock.h"
 }
 
 namespace tvo_host {

@@ -7,6 +7,8 @@
 #include "edge_fixture.h"
 
 #include "tvo/target.h"
+#include "internal/objective.h"
+#include "internal/target.h"
 
 void setUp(void);
 void tearDown(void);

@@ -7,6 +7,7 @@
 #include "edge_fixture.h"
 
 #include "tvo/target.h"
+#include "internal/barrier.h"
 
 void setUp(void);
 void tearDown(void);

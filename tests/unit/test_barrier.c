@@ -11,6 +11,8 @@
 #include "fd_support.h"
 
 #include "tvo/barrier.h"
+#include "internal/barrier.h"
+#include "internal/jet.h"
 
 void setUp(void) {}
 void tearDown(void) {}

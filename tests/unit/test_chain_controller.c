@@ -16,6 +16,7 @@
 #include "test_support.h"
 
 #include "tvo/chain_controller.h"
+#include "internal/chain_controller.h"
 
 void setUp(void) {}
 void tearDown(void) {}

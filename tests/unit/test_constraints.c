@@ -16,6 +16,9 @@
 #include "fd_support.h"
 
 #include "tvo/constraints.h"
+#include "internal/barrier.h"
+#include "internal/constraints.h"
+#include "internal/jet.h"
 
 void setUp(void) {}
 void tearDown(void) {}

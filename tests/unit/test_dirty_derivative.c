@@ -12,6 +12,7 @@
 #include "test_support.h"
 
 #include "tvo/dirty_derivative.h"
+#include "internal/dirty_derivative.h"
 
 void setUp(void) {}
 void tearDown(void) {}

@@ -5,6 +5,7 @@
 #include "test_support.h"
 
 #include "tvo/jet.h"
+#include "internal/jet.h"
 
 void setUp(void) {}
 void tearDown(void) {}

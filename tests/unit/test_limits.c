@@ -13,6 +13,8 @@
 #include "test_support.h"
 #include "tvo/linsolve.h"
 #include "tvo/objective.h"
+#include "internal/linsolve.h"
+#include "internal/objective.h"
 #include "unity.h"
 
 void setUp(void);

@@ -5,6 +5,7 @@
 #include "test_support.h"
 
 #include "tvo/linsolve.h"
+#include "internal/linsolve.h"
 
 void setUp(void) {}
 void tearDown(void) {}

@@ -2,6 +2,8 @@
  * The objective as a sum of gradient-jet terms, and the tick -> seconds conversion.
  */
 #include "test_support.h"
+#include "internal/jet.h"
+#include "internal/objective.h"
 
 void setUp(void) {}
 void tearDown(void) {}

@@ -8,6 +8,8 @@
 #include "test_support.h"
 
 #include "tvo/linsolve.h"
+#include "internal/jet.h"
+#include "internal/linsolve.h"
 
 void setUp(void) {}
 void tearDown(void) {}

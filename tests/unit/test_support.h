@@ -22,6 +22,9 @@
 #include "tvo/target.h"
 #include "tvo/tracking.h"
 #include "tvo/unicycle.h"
+#include "internal/objective.h"
+#include "internal/target.h"
+#include "internal/unicycle.h"
 
 /* ------------------------------------------------------------------------------------------------
  * Precision
@@ -231,8 +234,8 @@ static inline void fx_predict_all(const fx_t *fx, const tvo_command_t *cmd, cons
 {
     const tvo_real_t dt = test_r((double)ticks / (double)fx->cfg.tick_hz);
     for (uint8_t i = 0; i < fx->cfg.robot_count; ++i) {
-        ASSERT_STATUS(TVO_OK, tvo_unicycle_predict(&from[i], cmd->speed_mps[i], cmd->turn_rate_radps[i],
-                                                           dt, &to[i]));
+        tvo_unicycle_predict(&from[i], cmd->speed_mps[i], cmd->turn_rate_radps[i],
+                                                           dt, &to[i]);
     }
 }
 

@@ -6,6 +6,8 @@
  * target's, so the same values come out whatever the rate.
  */
 #include "test_support.h"
+#include "internal/objective.h"
+#include "internal/target.h"
 
 void setUp(void) {}
 void tearDown(void) {}

@@ -6,6 +6,7 @@
 #include "test_support.h"
 
 #include "tvo/trig.h"
+#include "internal/trig.h"
 
 #include <float.h>
 #include <string.h>

@@ -20,6 +20,8 @@
 #include "bench_problems.h"
 #include "board.h"
 #include "tvo/chain_controller.h"
+#include "internal/chain_controller.h"
+#include "internal/objective.h"
 
 #define BENCH_PI 3.14159265358979f
 

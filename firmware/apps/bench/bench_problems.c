@@ -1,5 +1,7 @@
 /* The bench's closed-loop problems; see bench_problems.h. */
 #include "bench_problems.h"
+#include "internal/objective.h"
+#include "internal/unicycle.h"
 
 #include <math.h>
 #include <string.h>
@@ -191,7 +193,7 @@ tvo_status_t bench_loop_init(bench_loop_t *loop, bench_unicycle_problem_t which)
 static void plant_half_period(bench_loop_t *loop)
 {
     for (uint8_t r = 0; r < loop->robots && r < TVO_MAX_ROBOTS; ++r) {
-        (void)tvo_unicycle_predict(&loop->pose[r], loop->cmd.speed_mps[r], loop->cmd.turn_rate_radps[r],
+        tvo_unicycle_predict(&loop->pose[r], loop->cmd.speed_mps[r], loop->cmd.turn_rate_radps[r],
                                    loop->half_period_s, &loop->pose[r]);
     }
 }

@@ -53,50 +53,11 @@ typedef struct {
 /** Defaults: c0 = 1, alpha_c = 1/s, c_max = 1e4, delta0 = 0.05, alpha_s = 1/s, eps_s = 0.1, m_r = 4. */
 tvo_status_t tvo_barrier_config_default(tvo_barrier_config_t *cfg);
 
-/** Validates cfg (TVO_ERR_PARAM names nothing finer: every field's range is above) against k. */
-tvo_status_t tvo_barrier_init(tvo_barrier_t *barrier, const tvo_barrier_config_t *cfg, uint8_t relative_degree);
-
-/**
- * The paper's s0 rule from max_i f_i(y(0), 0): s0 = 0 if it is < 0 (strictly feasible start),
- * else max + slack_margin.
- */
-tvo_status_t tvo_barrier_choose_slack(tvo_barrier_t *barrier, tvo_real_t max_constraint_value);
-
-/** c(t), s(t), delta(t) at t_s >= 0. */
-tvo_status_t tvo_barrier_schedule(const tvo_barrier_t *barrier, tvo_real_t t_s, tvo_real_t *c,
-                                  tvo_real_t *slack, tvo_real_t *delta);
-
-/**
- * derivs[n] = d^n/dsigma^n B_delta(sigma), n = 0..order (order <= TVO_BARRIER_MAX_DEGREE), for a
- * relaxation of degree m_r. A scalar reference, for tests and tools.
- */
-tvo_status_t tvo_barrier_derivatives(uint8_t relaxation_degree, tvo_real_t sigma, tvo_real_t delta, uint8_t order,
-                                     tvo_real_t *derivs);
-
 /** c(t) and s(t) along a time jet: computed once per evaluation, shared by a term's constraints. */
 typedef struct {
     tvo_jet_t c;
     tvo_jet_t slack;
 } tvo_barrier_schedule_jet_t;
-
-/** The schedules c(t + rate tau), s(t + rate tau) to the given order. */
-tvo_status_t tvo_barrier_schedule_jet(const tvo_barrier_t *barrier, const tvo_time_jet_t *t, uint8_t order,
-                                      tvo_barrier_schedule_jet_t *schedule);
-
-/**
- * w_jet = w(tau) for f_jet on the schedule, and, if dw_df is not NULL, dw/df at tau = 0 with time
- * frozen (the barrier's curvature along grad f, for closed-form Hessians).
- */
-tvo_status_t tvo_barrier_weight_on_schedule(const tvo_barrier_t *barrier, const tvo_barrier_schedule_jet_t *schedule,
-                                            const tvo_jet_t *f_jet, uint8_t order, tvo_jet_t *w_jet,
-                                            tvo_real_t *dw_df);
-
-/**
- * The barrier weight w = -(1/c) B'_delta(s - f) along a jet: f_jet is f_i(y(tau), t(tau)), t the
- * time jet (rate 0 freezes the schedules, as in Hessian columns). w_jet receives w(tau).
- */
-tvo_status_t tvo_barrier_weight_jet(const tvo_barrier_t *barrier, const tvo_jet_t *f_jet, const tvo_time_jet_t *t,
-                                    uint8_t order, tvo_jet_t *w_jet);
 
 #ifdef __cplusplus
 }

@@ -103,13 +103,6 @@ tvo_status_t tvo_chain_controller_check(const tvo_chain_controller_t *ctl, const
 /** Drops to rest now (held u = 0, watchdog expired, filters restart); cmd receives the safe stop. */
 tvo_status_t tvo_chain_controller_safe_stop(tvo_chain_controller_t *ctl, tvo_chain_command_t *cmd);
 
-/**
- * The chain's exact flow over dt >= 0 with u held: d[j] <- sum_{i>=j} d[i] dt^(i-j)/(i-j)! +
- * u dt^(k-j)/(k-j)! for j < k, per output (state may alias out). Used for prediction, and by simulators of the testbed.
- */
-tvo_status_t tvo_chain_predict(uint8_t relative_degree, uint8_t dim, const tvo_output_derivs_t *state,
-                               const tvo_real_t *u, tvo_real_t dt_s, tvo_output_derivs_t *out);
-
 #ifdef __cplusplus
 }
 #endif

@@ -162,9 +162,14 @@ typedef struct {
 
 typedef struct tvo_controller tvo_controller_t;
 
-/** The position-only velocity source: from the measurement, the step's trial filter, the heading at
- *  the sample and y' where the law is evaluated (work's velocity_filter, heading_at_sample, rate_filtered). */
-typedef tvo_status_t (*tvo_position_velocity_fn)(tvo_controller_t *ctl, const tvo_measurement_t *meas);
+/** The position-only velocity source's plan, which tvo_controller_init picks (and so links): estimate
+ *  makes, from the measurement, the step's trial filter, the heading at the sample and y' where the law
+ *  is evaluated (work's velocity_filter, heading_at_sample, rate_filtered); commit keeps the accepted
+ *  period's filter and heading estimate. */
+typedef struct {
+    tvo_status_t (*estimate)(tvo_controller_t *ctl, const tvo_measurement_t *meas);
+    void (*commit)(tvo_controller_t *ctl);
+} tvo_position_velocity_t;
 
 struct tvo_controller {
     tvo_controller_config_t cfg;
@@ -184,7 +189,7 @@ struct tvo_controller {
     uint32_t speed_mismatch_holdoff; /* accepted periods the mismatch stop still lasts */
     tvo_real_t speed_step_max_mps;   /* accel_max h: the most a command's speed may differ from the one in force */
     tvo_real_t measured_speed_limit_mps; /* a measured speed beyond it is refused (TVO_MEASURED_SPEED_FACTOR) */
-    tvo_position_velocity_fn position_velocity; /* set by tvo_controller_init only: NULL links none */
+    const tvo_position_velocity_t *position_velocity; /* set by tvo_controller_init only: NULL links none */
     uint8_t initialized;
 };
 

@@ -75,40 +75,6 @@ typedef struct {
     } call;
 } tvo_law_workspace_t;
 
-/**
- * Validates k in 1..TVO_MAX_RELATIVE_DEGREE (TVO_ERR_PARAM), 1 <= dim <= TVO_MAX_Z_DIM
- * (TVO_ERR_DIMENSION) and that the gains make s^k + a_{k-1}s^{k-1} + ... + a_0 Hurwitz
- * (Routh-Hurwitz; TVO_ERR_PARAM otherwise).
- */
-tvo_status_t tvo_law_init(tvo_law_t *law, uint8_t relative_degree, uint8_t dim, const tvo_real_t *gain);
-
-/**
- * Whether the gains a_0 .. a_{k-1} are within reach of a loop sampled every period_s: a pole faster
- * than the Nyquist rate R = pi / period_s is one the sampled loop cannot follow, and a polynomial
- * s^k + a_{k-1}s^{k-1} + ... + a_0 whose roots all lie within R has a_j <= C(k, j) R^(k-j). TVO_OK
- * when every gain is within that bound; TVO_ERR_PARAM beyond it or for a gain that is not finite
- * (the controllers name TVO_PARAM_GAINS); TVO_ERR_NULL, or TVO_ERR_PARAM for k outside
- * 1..TVO_MAX_RELATIVE_DEGREE or a period that is not positive and finite.
- */
-tvo_status_t tvo_law_check_sampling_reach(uint8_t relative_degree, const tvo_real_t *gain, tvo_real_t period_s);
-
-/**
- * y_k[0..dim-1] = z^(k) demanded by the law at (z^[k-1], t). eval may be NULL. Its workspace is an
- * automatic tvo_law_workspace_t (tests and tools); the controllers use tvo_law_evaluate_report.
- * An indefinite or singular primal Hessian is regularised (eval->regularization > 0, see
- * tvo/linsolve.h); TVO_ERR_NOT_POSITIVE_DEFINITE if even that fails or the equality constraints are
- * dependent; TVO_ERR_NUMERIC if a result is not finite. On error y_k is zeroed, but where its length
- * is unknown: a NULL argument (TVO_ERR_NULL) or a law that is not initialised (TVO_ERR_NOT_INITIALIZED).
- */
-tvo_status_t tvo_law_evaluate(const tvo_law_t *law, const tvo_objective_t *objective,
-                              const tvo_output_derivs_t *y, const tvo_time_jet_t *t,
-                              tvo_real_t *y_k, tvo_law_eval_t *eval);
-
-/** The same evaluation for the step, in the caller's workspace: only the report's outputs are written. */
-tvo_status_t tvo_law_evaluate_report(const tvo_law_t *law, const tvo_objective_t *objective,
-                                     const tvo_output_derivs_t *y, const tvo_time_jet_t *t, tvo_real_t *y_k,
-                                     tvo_law_report_t *report, tvo_law_workspace_t *work);
-
 #ifdef __cplusplus
 }
 #endif

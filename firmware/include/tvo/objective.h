@@ -42,12 +42,6 @@ typedef struct {
     uint32_t frac_ticks;
 } tvo_time_jet_t;
 
-/** The time jet at an exact instant (the step's way: no division beyond one in tvo_real_t). */
-tvo_status_t tvo_time_jet_at(const tvo_tick_time_t *time, uint32_t tick_hz, tvo_real_t rate, tvo_time_jet_t *t);
-
-/** The time jet at a tick count since the epoch (64-bit division: for tools and tests). */
-tvo_status_t tvo_time_jet_at_ticks(uint64_t ticks, uint32_t tick_hz, tvo_real_t rate, tvo_time_jet_t *t);
-
 /**
  * Adds a term's gradient jets into grad[0..dim-1] (dim = the objective's z dimension). Returns
  * TVO_OK or an error; must not write past dim and must leave grad finite on success.
@@ -109,50 +103,8 @@ tvo_status_t tvo_objective_init(tvo_objective_t *objective, uint8_t primal_dim);
 tvo_status_t tvo_objective_add_term(tvo_objective_t *objective, tvo_gradient_jet_fn gradient_jet,
                                     const void *term);
 
-/** Appends an inequality-constraint term (constraint_max must not be NULL). */
-tvo_status_t tvo_objective_add_constraint(tvo_objective_t *objective, tvo_gradient_jet_fn gradient_jet,
-                                          tvo_constraint_max_fn constraint_max, const void *term);
-
 /** Appends a term described in full (gradient_jet and term required; the rest may be NULL). */
 tvo_status_t tvo_objective_add(tvo_objective_t *objective, const tvo_term_t *term);
-
-/**
- * Reserves count Lagrange multipliers; *first_index is the z index of the first one. Total at most
- * TVO_MAX_EQUALITIES (TVO_ERR_CAPACITY), and fewer than primal_dim (TVO_ERR_DIMENSION: more
- * independent equalities than outputs leave nothing to optimise).
- */
-tvo_status_t tvo_objective_reserve_multipliers(tvo_objective_t *objective, uint8_t count, uint8_t *first_index);
-
-/**
- * grad[0..dim-1] = sum over terms of their gradient jets at (z, t), to the given order.
- * Returns the first failing term's status, or TVO_ERR_NUMERIC if the sum is not finite.
- */
-tvo_status_t tvo_objective_gradient_jet(const tvo_objective_t *objective, const tvo_jet_t *z,
-                                        const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad);
-
-/**
- * The law's pass: grad[0..dim-1] = sum of every term's gradient jets at (z, t); terms with a closed
- * form (unless jets_only) also add their Hessian into hessian (which the caller clears).
- * *jet_terms = how many terms contributed no Hessian (the law differentiates those by jets).
- * Unlike tvo_objective_gradient_jet it does not check the sum for finiteness: the caller does.
- */
-tvo_status_t tvo_objective_gradient_hessian(const tvo_objective_t *objective, const tvo_jet_t *z,
-                                            const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
-                                            tvo_hessian_t *hessian, uint8_t *jet_terms);
-
-/** grad = the sum of the gradient jets of only the terms tvo_objective_gradient_hessian left to jets. */
-tvo_status_t tvo_objective_gradient_jet_of_jet_terms(const tvo_objective_t *objective, const tvo_jet_t *z,
-                                                     const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad);
-
-/**
- * *max_value = max over all inequality constraints of f_i(y, t) (y: primal_dim values);
- * *has_constraints = 0 (and *max_value = 0) when the objective has none.
- */
-tvo_status_t tvo_objective_constraint_max(const tvo_objective_t *objective, const tvo_real_t *y, tvo_real_t t_s,
-                                          tvo_real_t *max_value, uint8_t *has_constraints);
-
-/** Seconds since the epoch for an exact tick count (integer part split off to keep precision). */
-tvo_real_t tvo_ticks_to_seconds(uint64_t ticks, uint32_t tick_hz);
 
 #ifdef __cplusplus
 }

@@ -86,17 +86,6 @@ tvo_status_t tvo_target_init_streamed(tvo_target_t *target);
 tvo_status_t tvo_target_stream_update(tvo_target_t *target, uint64_t stamp_ticks,
                                       const tvo_real_t deriv[TVO_STREAM_MAX_DERIV + 1][2]);
 
-/**
- * deriv[j][axis] = j-th time derivative of y_d at time t, j = 0..order (order <= TVO_JET_MAX_ORDER).
- * A streamed target evaluated before its stamp reports TVO_ERR_FUTURE_STAMP (extrapolation is
- * causal only).
- */
-tvo_status_t tvo_target_derivatives(const tvo_target_t *target, const tvo_time_jet_t *t, uint8_t order,
-                                    tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2]);
-
-/** y_d(t(tau)) as one jet per axis, to the given order (c_j = y_d^(j)(t) rate^j / j!). */
-tvo_status_t tvo_target_jet(const tvo_target_t *target, const tvo_time_jet_t *t, uint8_t order, tvo_jet_t out[2]);
-
 #ifdef __cplusplus
 }
 #endif

@@ -1,13 +1,50 @@
 /*
- * Private to the core: the sample clock's arithmetic without pointer checks, inline, for the
- * controllers' steps (their own clock and period records). The functions of tvo/sample_clock.h
- * check their pointers, then run the same code.
+ * Internal: the sample clock's functions (the types are in tvo/sample_clock.h: the controllers hold them).
+ * Not installed; unchecked: callers pass valid arguments (TVO_ASSERT in debug builds). The arithmetic of
+ * a period is inline, for the controllers' steps (their own clock and period records).
  */
-#ifndef TVO_SAMPLE_CLOCK_KERNEL_H
-#define TVO_SAMPLE_CLOCK_KERNEL_H
+#ifndef TVO_INTERNAL_SAMPLE_CLOCK_H
+#define TVO_INTERNAL_SAMPLE_CLOCK_H
 
-#include "tvo/objective.h"
 #include "tvo/sample_clock.h"
+#include "internal/assert.h"
+#include "tvo/objective.h" /* tvo_time_jet_t */
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/**
+ * The timing parameters every controller validates: TVO_PARAM_TICK_HZ (zero), TVO_PARAM_PERIOD
+ * (zero or beyond TVO_MAX_TICK_SPAN), TVO_PARAM_DELAY (beyond the period), or TVO_PARAM_NONE.
+ */
+tvo_param_t tvo_sample_clock_check_timing(uint32_t tick_hz, uint32_t period_ticks, uint32_t delay_ticks);
+
+/** 1 if watchdog_periods >= 1 and the watchdog's span stays within TVO_MAX_TICK_SPAN ticks. */
+int tvo_sample_clock_watchdog_ok(uint32_t period_ticks, uint32_t watchdog_periods);
+
+/** A clock at the epoch, before its first period; the timing and watchdog must pass the two checks above. */
+void tvo_sample_clock_init(tvo_sample_clock_t *clock, uint32_t tick_hz, uint32_t period_ticks, uint32_t watchdog_periods,
+                           uint32_t epoch_tick);
+
+/** Seconds of a short tick count (a period, a measurement's age): 32-bit arithmetic. */
+tvo_real_t tvo_ticks_to_seconds32(uint32_t ticks, uint32_t tick_hz);
+
+/**
+ * Ends a begun period: with good = 1 a step used stamp_tick (recorded; the watchdog restarts);
+ * with good = 0 nothing usable arrived (stamp_tick ignored). Returns 1 when the watchdog has
+ * expired (stop the plant).
+ */
+int tvo_sample_clock_end(tvo_sample_clock_t *clock, const tvo_period_t *period, int good, uint32_t stamp_tick);
+
+/**
+ * Ticks from the epoch to a tick near the clock's present (within TVO_MAX_TICK_SPAN either way):
+ * the objective time of a stamp. TVO_ERR_OUT_OF_ORDER if it lies before the epoch.
+ */
+tvo_status_t tvo_sample_clock_objective_ticks(const tvo_sample_clock_t *clock, uint32_t tick, uint64_t *objective_ticks);
+
+/** Expires the watchdog now (a safe stop ordered from outside the step, e.g. the edge's timer). */
+void tvo_sample_clock_expire(tvo_sample_clock_t *clock);
 
 static inline tvo_tick_time_t tick_time_after(const tvo_tick_time_t *t, uint32_t delta_ticks, uint32_t tick_hz)
 {
@@ -151,4 +188,8 @@ static inline void time_jet_at_tick_time(const tvo_tick_time_t *time, uint32_t t
     t->rate = rate;
 }
 
-#endif /* TVO_SAMPLE_CLOCK_KERNEL_H */
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* TVO_INTERNAL_SAMPLE_CLOCK_H */

@@ -1,13 +1,20 @@
 /*
- * Private to the core: the unicycle's flat map and held-command motion without input checks, inline,
- * for a caller that has validated its inputs (the controller's step: a checked measurement, a
- * committed command, the clock's times). The functions of tvo/unicycle.h check, then call these.
+ * Internal: unicycle's functions (the types are in tvo/unicycle.h, which the instance structs need).
+ * Not installed; unchecked: callers pass valid arguments (TVO_ASSERT in debug builds).
  */
-#ifndef TVO_UNICYCLE_KERNEL_H
-#define TVO_UNICYCLE_KERNEL_H
+#ifndef TVO_INTERNAL_UNICYCLE_H
+#define TVO_INTERNAL_UNICYCLE_H
 
-#include "tvo/trig.h"
 #include "tvo/unicycle.h"
+#include "internal/assert.h"
+#include "internal/trig.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Wraps an angle to (-pi, pi] (non-finite angles are returned as they are). */
+tvo_real_t tvo_wrap_angle(tvo_real_t angle_rad);
 
 /* Whether an angle is in tvo_wrap_angle's range (-pi, pi] already (false for NaN and infinities). */
 static inline int unicycle_angle_in_range(tvo_real_t angle_rad)
@@ -21,12 +28,17 @@ static inline tvo_real_t unicycle_wrap_angle_near(tvo_real_t angle_rad)
     return unicycle_angle_in_range(angle_rad) ? angle_rad : tvo_wrap_angle(angle_rad);
 }
 
-/* tvo_unicycle_flat_map_cs for finite inputs, min_speed_mps > 0; *low_speed is only ever set to 1. */
-static inline void unicycle_flat_map_unchecked(const tvo_real_t heading_cs[2], tvo_real_t speed_mps,
-                                               const tvo_real_t output_accel_mps2[2], tvo_real_t min_speed_mps,
-                                               tvo_real_t *accel_mps2, tvo_real_t *turn_rate_radps,
-                                               uint8_t *low_speed)
+/**
+ * The flat map (paper, "Unicycle"): y'' -> (v', omega) at the heading's (cos, sin) heading_cs and
+ * speed v: v' = e_theta . y'', omega = (e_theta x y'') / v, |v| floored at min_speed_mps > 0 (keeping
+ * v's sign, zero counts as positive) for the division; *low_speed is set to 1 (only ever set) when
+ * the floor acts.
+ */
+static inline void tvo_unicycle_flat_map_cs(const tvo_real_t heading_cs[2], tvo_real_t speed_mps,
+                                            const tvo_real_t output_accel_mps2[2], tvo_real_t min_speed_mps,
+                                            tvo_real_t *accel_mps2, tvo_real_t *turn_rate_radps, uint8_t *low_speed)
 {
+    TVO_ASSERT(min_speed_mps > TVO_R(0.0));
     const tvo_real_t c = heading_cs[0];
     const tvo_real_t s = heading_cs[1];
     /* Along-track part drives the speed state; cross-track part, divided by v, turns. */
@@ -41,11 +53,14 @@ static inline void unicycle_flat_map_unchecked(const tvo_real_t heading_cs[2], t
     *turn_rate_radps = across / v;
 }
 
-/* tvo_unicycle_predict_cs for finite inputs and dt_s >= 0; out may alias start. */
-static inline void unicycle_predict_unchecked(const tvo_pose_t *start, tvo_real_t speed_mps,
-                                              tvo_real_t turn_rate_radps, tvo_real_t dt_s, tvo_pose_t *out,
-                                              tvo_real_t heading_cs[2])
+/**
+ * The pose after dt_s >= 0 of constant (v, omega) (exact arc; straight line for omega = 0); out may
+ * alias start. heading_cs receives the new heading's (cos, sin).
+ */
+static inline void tvo_unicycle_predict_cs(const tvo_pose_t *start, tvo_real_t speed_mps, tvo_real_t turn_rate_radps,
+                                           tvo_real_t dt_s, tvo_pose_t *out, tvo_real_t heading_cs[2])
 {
+    TVO_ASSERT(!(dt_s < TVO_R(0.0)));
     const tvo_real_t th = start->heading_rad;
     const tvo_real_t dth = turn_rate_radps * dt_s;
     /* Two (sin, cos) pairs serve the arc and the new heading: th, and half the turn
@@ -81,4 +96,17 @@ static inline void unicycle_predict_unchecked(const tvo_pose_t *start, tvo_real_
     heading_cs[1] = s + (c * sin_turn - s * one_minus_cos_turn);
 }
 
-#endif /* TVO_UNICYCLE_KERNEL_H */
+/** tvo_unicycle_flat_map_cs at a heading given as an angle. */
+void tvo_unicycle_flat_map(tvo_real_t heading_rad, tvo_real_t speed_mps, const tvo_real_t output_accel_mps2[2],
+                           tvo_real_t min_speed_mps, tvo_real_t *accel_mps2, tvo_real_t *turn_rate_radps,
+                           uint8_t *low_speed);
+
+/** tvo_unicycle_predict_cs without the new heading's (cos, sin) (a plant model's step). */
+void tvo_unicycle_predict(const tvo_pose_t *start, tvo_real_t speed_mps, tvo_real_t turn_rate_radps, tvo_real_t dt_s,
+                          tvo_pose_t *out);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* TVO_INTERNAL_UNICYCLE_H */
