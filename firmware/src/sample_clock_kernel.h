@@ -63,7 +63,7 @@ static inline tvo_status_t sample_clock_begin(const tvo_sample_clock_t *clock, u
     if (!clock->started) {
         const uint32_t since_epoch = apply_tick - clock->epoch_tick;
         if (since_epoch > TVO_MAX_TICK_SPAN) {
-            return TVO_ERR_OUT_OF_ORDER; /* first application before the epoch */
+            return TVO_ERR_BEFORE_EPOCH; /* first application before the epoch */
         }
         const tvo_tick_time_t epoch = {0u, 0u, 0u};
         period->elapsed = tick_time_after(&epoch, since_epoch, clock->tick_hz);
@@ -71,7 +71,7 @@ static inline tvo_status_t sample_clock_begin(const tvo_sample_clock_t *clock, u
     }
     const uint32_t advance = apply_tick - clock->last_apply_tick;
     if (advance == 0u || advance > TVO_MAX_TICK_SPAN) {
-        return TVO_ERR_OUT_OF_ORDER;
+        return TVO_ERR_TICK_NOT_ADVANCING;
     }
     period->elapsed = tick_time_after(&clock->elapsed, advance, clock->tick_hz);
     if (advance / clock->period_ticks > 1u) {
@@ -107,7 +107,7 @@ static inline tvo_status_t sample_clock_check_stamp(const tvo_sample_clock_t *cl
     if (clock->has_stamp) {
         const uint32_t advance = stamp_tick - clock->last_stamp_tick;
         if (advance == 0u || advance > TVO_MAX_TICK_SPAN) {
-            return TVO_ERR_OUT_OF_ORDER;
+            return TVO_ERR_STAMP_NOT_NEWER;
         }
     }
     return TVO_OK;

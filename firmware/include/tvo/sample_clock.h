@@ -83,8 +83,8 @@ tvo_real_t tvo_ticks_to_seconds32(uint32_t ticks, uint32_t tick_hz);
 
 /**
  * Begins the period whose command applies at apply_tick: its timing record (elapsed time, periods
- * since the last one). TVO_ERR_OUT_OF_ORDER if apply_tick does not advance (or precedes the epoch on
- * the first call); the clock is not changed until tvo_sample_clock_end.
+ * since the last one). TVO_ERR_TICK_NOT_ADVANCING if apply_tick does not advance (TVO_ERR_BEFORE_EPOCH if it
+ * precedes the epoch on the first call); the clock is not changed until tvo_sample_clock_end.
  */
 tvo_status_t tvo_sample_clock_begin(const tvo_sample_clock_t *clock, uint32_t apply_tick, tvo_period_t *period);
 
@@ -107,19 +107,19 @@ int tvo_sample_clock_end(tvo_sample_clock_t *clock, const tvo_period_t *period, 
 /**
  * A stamp is usable for the command applied at apply_tick when it is not after it
  * (TVO_ERR_FUTURE_STAMP), at most one period before it (TVO_ERR_STALE) and newer than the last
- * accepted stamp (TVO_ERR_OUT_OF_ORDER).
+ * accepted stamp (TVO_ERR_STAMP_NOT_NEWER).
  */
 tvo_status_t tvo_sample_clock_check_stamp(const tvo_sample_clock_t *clock, uint32_t stamp_tick, uint32_t apply_tick);
 
 /**
  * Ticks from the epoch to a tick near the clock's present (within TVO_MAX_TICK_SPAN either way):
- * the objective time of a stamp. TVO_ERR_OUT_OF_ORDER if it lies before the epoch.
+ * the objective time of a stamp. TVO_ERR_BEFORE_EPOCH if it lies before the epoch.
  */
 tvo_status_t tvo_sample_clock_objective_ticks(const tvo_sample_clock_t *clock, uint32_t tick, uint64_t *objective_ticks);
 
 /**
  * Moves the epoch before the first period has ended (an edge that learned the plant's clock better);
- * TVO_ERR_OUT_OF_ORDER once a period has ended, when the objective's time is already counting.
+ * TVO_ERR_CLOCK_STARTED once a period has ended, when the objective's time is already counting.
  */
 tvo_status_t tvo_sample_clock_rebase(tvo_sample_clock_t *clock, uint32_t epoch_tick);
 
