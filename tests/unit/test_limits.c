@@ -53,7 +53,7 @@ static void setup_one_robot(int how)
     fx.pose[0].position_m[0] = TVO_R(1.5);
     fx.pose[0].position_m[1] = TVO_R(-0.5);
     fx.pose[0].heading_rad = TVO_R(0.3);
-    tvo_param_t bad = TVO_PARAM_EPOCH;
+    tvo_param_t bad = TVO_PARAM_INITIAL_SPEED;
     ASSERT_STATUS(TVO_OK, tvo_controller_init(&fx.ctl, &fx.cfg, &fx.objective, fx.epoch, &bad));
     ASSERT_PARAM(TVO_PARAM_NONE, bad);
 }
