@@ -48,8 +48,8 @@ def _constants(*prefixes, strip=""):
 
 
 def _named_enum(name, doc, prefix, text_fn, strip=""):
-    """An IntEnum of the lib's constants named prefix* (but the *_COUNT), str() the core's text."""
-    values = {n: v for n, v in _constants(prefix, strip=strip).items() if not n.endswith("_COUNT")}
+    """An IntEnum of the lib's constants named prefix* (but prefix + COUNT), str() the core's text."""
+    values = {n: v for n, v in _constants(prefix, strip=strip).items() if n != (prefix + "COUNT")[len(strip):]}
 
     def message(self):
         return core().ffi.string(getattr(core().lib, text_fn)(int(self))).decode()
@@ -93,7 +93,7 @@ class Param(enum.IntEnum):
 
     _ignore_ = ["member"]
     for member in enum.IntEnum("_ParamBase", {n: v for n, v in _constants("TVO_PARAM_").items()
-                                              if not n.endswith("_COUNT")}):
+                                              if n != "TVO_PARAM_COUNT"}):
         locals()[member.name] = int(member)
 
     @property
@@ -109,7 +109,7 @@ class ChainParam(enum.IntEnum):
 
     _ignore_ = ["member"]
     for member in enum.IntEnum("_ChainParamBase", {n: v for n, v in _constants("TVO_CHAIN_PARAM_").items()
-                                                   if not n.endswith("_COUNT")}):
+                                                   if n != "TVO_CHAIN_PARAM_COUNT"}):
         locals()[member.name] = int(member)
 
     @property
