@@ -54,7 +54,7 @@ def _named_enum(name, doc, prefix, text_fn, strip=""):
     def message(self):
         return core().ffi.string(getattr(core().lib, text_fn)(int(self))).decode()
 
-    cls = enum.IntEnum(name, values)
+    cls = enum.IntEnum(name, values, module=__name__)
     cls.__doc__ = doc
     cls.message = property(message)
     cls.__str__ = lambda self: f"{self.name}: {self.message}"
@@ -88,36 +88,20 @@ Reason = _named_enum("Reason", "tvo_reason_t: why a period held or stopped, NONE
                      "TVO_REASON_", "tvo_reason_str", strip="TVO_REASON_")
 
 
-class Param(enum.IntEnum):
-    """tvo_param_t: which parameter an init refused. str() is its name in the config (tvo_param_str)."""
-
-    _ignore_ = ["member"]
-    for member in enum.IntEnum("_ParamBase", {n: v for n, v in _constants("TVO_PARAM_").items()
-                                              if n != "TVO_PARAM_COUNT"}):
-        locals()[member.name] = int(member)
-
-    @property
-    def field(self):
-        return core().ffi.string(core().lib.tvo_param_str(int(self))).decode()
-
-    def __str__(self):
-        return self.field
+def _param_enum(name, doc, prefix, text_fn):
+    """An IntEnum of a configuration's parameter names (prefix*, but prefix + COUNT); .field and str()
+    are the field's name in the config (text_fn: tvo_param_str or tvo_chain_param_str)."""
+    cls = enum.IntEnum(name, {n: v for n, v in _constants(prefix).items() if n != prefix + "COUNT"}, module=__name__)
+    cls.__doc__ = doc
+    cls.field = property(lambda self: core().ffi.string(getattr(core().lib, text_fn)(int(self))).decode())
+    cls.__str__ = lambda self: self.field
+    return cls
 
 
-class ChainParam(enum.IntEnum):
-    """tvo_chain_param_t: which field of the chain's configuration its init refused (tvo_chain_param_str)."""
-
-    _ignore_ = ["member"]
-    for member in enum.IntEnum("_ChainParamBase", {n: v for n, v in _constants("TVO_CHAIN_PARAM_").items()
-                                                   if n != "TVO_CHAIN_PARAM_COUNT"}):
-        locals()[member.name] = int(member)
-
-    @property
-    def field(self):
-        return core().ffi.string(core().lib.tvo_chain_param_str(int(self))).decode()
-
-    def __str__(self):
-        return self.field
+Param = _param_enum("Param", "tvo_param_t: which field of tvo_controller_config_t an init refused (tvo_param_str).",
+                    "TVO_PARAM_", "tvo_param_str")
+ChainParam = _param_enum("ChainParam", "tvo_chain_param_t: which field of tvo_chain_config_t an init refused "
+                         "(tvo_chain_param_str).", "TVO_CHAIN_PARAM_", "tvo_chain_param_str")
 
 
 # TVO_FLAG_*: what shaped an applied command (tvo_command_t.flags), e.g. Flag.PREDICTED in Flag(cmd.flags).
