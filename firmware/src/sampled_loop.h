@@ -69,7 +69,7 @@ typedef struct {
      *  area; nothing committed). */
     tvo_reason_t (*command)(void *ctl, tvo_loop_frame_t *frame);
     /** The period accepted (the clock already committed, the held command marked applied): the plant's
-     *  state and the held command (which a plant's own stop may mark otherwise). */
+     *  state and the held command with the frame's flags (a plant's own stop may mark it otherwise). */
     void (*commit)(void *ctl, const tvo_loop_frame_t *frame);
     /** loop_refuse with this table, kept out of line in the plant (a cold path: the step's registers
      *  and layout do not pay for it). */
@@ -273,7 +273,9 @@ TVO_LOOP_ENTRY tvo_status_t loop_period(const tvo_loop_plant_t *p, void *ctl, co
     /* The step succeeded: from here on its working copies become the controller's state. */
     sample_clock_end_good(clock, period, *(const uint32_t *)loop_at_const(meas, p->stamp_at));
     void *held = loop_at(ctl, p->held_at);
-    loop_mark(p, held, frame.flags, TVO_OUTCOME_APPLIED, TVO_REASON_NONE);
+    uint8_t *held_outcome = loop_at(held, p->command_outcome_at);
+    held_outcome[0] = (uint8_t)TVO_OUTCOME_APPLIED; /* the commit sets the flags (and may stop) */
+    held_outcome[1] = (uint8_t)TVO_REASON_NONE;
     p->commit(ctl, &frame);
     memcpy(LOOP_WORDS(cmd), LOOP_WORDS(held), p->command_size);
     return TVO_OK;
