@@ -35,7 +35,7 @@ typedef enum {
     TVO_ERR_NOT_INITIALIZED = 6,       /* the instance was not (successfully) initialised */
     TVO_ERR_TICK_NOT_ADVANCING = 7,    /* apply_tick does not advance past the last period */
     TVO_ERR_BEFORE_EPOCH = 8,          /* a time before the epoch (objective time 0) */
-    TVO_ERR_CLOCK_STARTED = 9,        /* the clock cannot be rebased: a period has ended */
+    TVO_ERR_CLOCK_STARTED = 9,         /* the clock cannot be rebased: a period has ended */
     /* The core's checks and computations that produced no result (a controller's step never returns
      * these: it holds or stops, and its command's tvo_reason_t says why): */
     TVO_ERR_NOT_POSITIVE_DEFINITE = 10, /* the Hessian is not positive definite: no Newton step */
