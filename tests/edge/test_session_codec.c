@@ -50,8 +50,8 @@ static void expect_timing_refused(tvo_session_param_t param, int line)
         why.part != TVO_LCM_SESSION_ACK_T_PART_NONE || why.index != -1) {
         static char text[200];
         (void)snprintf(text, sizeof(text), "expected PARAM/%s, got status %d why {%d, %s, part %d, index %d}",
-                       tvo_protocol_param_str(param), (int)st, (int)why.status, tvo_protocol_param_str(why.param), (int)why.part,
-                       (int)why.index);
+                       tvo_protocol_param_str((int32_t)param), (int)st, (int)why.status,
+                       tvo_protocol_param_str((int32_t)why.param), (int)why.part, (int)why.index);
         UNITY_TEST_FAIL(line, text);
     }
 }
