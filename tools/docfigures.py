@@ -19,6 +19,7 @@ README.md or a folder's README.md; NAME says what fills it (BLOCKS below). Input
   tools/figures/study.json        a `tools/study --json tools/figures/study.json` run
   lcm_types/*.lcm                 the wire's constants (status codes, flags, parameter ids, parts)
   firmware/edge/channels.c        the session_t field each parameter id stands for
+  firmware/edge/step_codec.c      which core reasons, edge statuses and core errors map to each status
 """
 import argparse
 import difflib
@@ -268,28 +269,44 @@ def lcm_constants(message, prefix):
     return rows
 
 
+def codec_sources():
+    """The codec's tables (firmware/edge/step_codec.c): each wire status's C sources, in table order: the
+    core's reasons (TVO_REASON_*), the edge's statuses (TVO_NODE_*) and the core's call errors (TVO_ERR_*)."""
+    text = (REPO / "firmware/edge/step_codec.c").read_text()
+    sources = {}
+    for kind in ("TVO_REASON_", "TVO_NODE_", "TVO_ERR_"):
+        for c_name, wire in re.findall(r"\[(" + kind + r"\w+)\] = WIRE\((\w+)\)", text):
+            sources.setdefault("STATUS_" + wire, []).append(c_name)
+    if not sources:
+        sys.exit("docfigures: no WIRE(...) table rows in firmware/edge/step_codec.c")
+    return sources
+
+
 def status_codes(_b=None, _r=None):
-    return table(["code", "`command_t.`", "C (`tvo/status.h`)", "meaning"],
-                 [(v, f"`{name}`", f"`TVO_{name[len('STATUS_'):]}`", why or "success: the command was computed from this measurement")
+    sources = codec_sources()
+    return table(["code", "`command_t.`", "from (C, `step_codec.c`'s tables)", "meaning"],
+                 [(v, f"`{name}`", ", ".join(f"`{c}`" for c in sources.get(name, [])) or "(none)",
+                   why or "success: the command was computed from this measurement")
                   for name, v, _, why in lcm_constants("command_t", "STATUS_")])
 
 
 def flags(_b=None, _r=None):
+    outcome = {"FLAG_HOLDING": "`TVO_OUTCOME_HELD`", "FLAG_SAFE_STOP": "`TVO_OUTCOME_STOPPED`"}
     return table(["bit", "`command_t.`", "C (`tvo/status.h`)", "meaning"],
-                 [(text, f"`{name}`", f"`TVO_{name}`", why)
+                 [(text, f"`{name}`", outcome.get(name, f"`TVO_{name}`"), why)
                   for name, _, text, why in lcm_constants("command_t", "FLAG_")])
 
 
 def wire_param_names():
     """tvo_protocol_param_str's text per parameter (firmware/edge/channels.c)."""
     text = (REPO / "firmware/edge/channels.c").read_text()
-    return dict(re.findall(r'case TVO_(PARAM_\w+): return "([^"]*)";', text))
+    return dict(re.findall(r'case TVO_LCM_SESSION_ACK_T_(PARAM_\w+): return "([^"]*)";', text))
 
 
 def params(_b=None, _r=None):
     fields = wire_param_names()
-    return table(["`bad_param`", "`session_ack_t.`", "C (`tvo/status.h`)", "`session_t` field(s) (`tvo_protocol_param_str`)"],
-                 [(v, f"`{name}`", f"`TVO_{name}`", fields.get(name, why))
+    return table(["`bad_param`", "`session_ack_t.`", "C (`session_codec.h`)", "`session_t` field(s) (`tvo_protocol_param_str`)"],
+                 [(v, f"`{name}`", f"`TVO_SESSION_{name}`", fields.get(name, why))
                   for name, v, _, why in lcm_constants("session_ack_t", "PARAM_")])
 
 

@@ -46,12 +46,38 @@ const char *tvo_node_channel_name(int channel);
 /** Channel of an LCM channel name, or 0. */
 int tvo_node_channel_of(const char *name);
 
+/**
+ * The edge's own answers, apart from the core's (tvo/status.h): what the node refuses or answers with
+ * before, beside or instead of the core's step. The codec maps them, with the core's errors and
+ * reasons, to command_t.status (step_codec.c: tvo_step_wire_status).
+ */
+typedef enum {
+    TVO_NODE_OK = 0,
+    TVO_NODE_WRONG_ROBOT_COUNT = 1,   /* a measurement's robot_count is not the session's */
+    TVO_NODE_IMPLAUSIBLE_STAMP = 2,   /* the stamp (or stamp and sequence) does not fit the schedule */
+    TVO_NODE_NOT_LATER_PERIOD = 3,    /* the sample serves no later period than the last accepted one */
+    TVO_NODE_STALE = 4,               /* the sample is too old for the period it would serve */
+    TVO_NODE_MISSING_DERIVATIVES = 5, /* a chain session reads derivatives the sample does not carry */
+    TVO_NODE_REFUSAL_STREAK = 6,      /* CLOCK_PLANT: watchdog_periods refusals in a row stop the robots */
+    TVO_NODE_SESSION_CONFLICT = 7,    /* a START reuses the running session's id with other content */
+    TVO_NODE_NO_SESSION = 8,          /* no such session is running (send START) */
+    TVO_NODE_UNKNOWN_ACTION = 9,      /* a session message that is neither START nor STOP */
+    TVO_NODE_STATUS_COUNT
+} tvo_node_status_t;
+
+/** Short English description of an edge status, for logs. */
+const char *tvo_node_status_str(tvo_node_status_t status);
+
+/** Short English description of a wire status (command_t.STATUS_*), for a plant's or the node's logs. */
+const char *tvo_protocol_status_str(int32_t status);
+
 /** Short name of a problem part named by a session ack (session_ack_t.PART_*), for logs. */
 const char *tvo_protocol_part_str(int32_t part);
 
 /**
- * The session_t field(s) a session ack's bad_param (a tvo_param_t) stands for, as a plant writes
- * them: "epoch_utime", "period_us", ... (the core's own names are tick-based: tvo_param_str).
+ * The session_t field(s) a session ack's bad_param (session_ack_t.PARAM_*, tvo_session_param_t) stands
+ * for, as a plant writes them: "epoch_utime", "period_us", ... (the core's configurations name their
+ * own fields: tvo_param_str, tvo_chain_param_str).
  */
 const char *tvo_protocol_param_str(int32_t param);
 

@@ -27,11 +27,15 @@
     static void member##_holding(const tvo_edge_controller_t *ctl, tvo_edge_command_t *cmd)                   \
     {                                                                                                          \
         cmd->member = ctl->u.member.held;                                                                      \
-        cmd->member.flags = TVO_FLAG_HOLDING;                                                                  \
+        cmd->member.flags = 0u;                                                                                \
+        cmd->member.outcome = TVO_OUTCOME_HELD;                                                                \
+        cmd->member.reason = TVO_REASON_NONE;                                                                  \
     }                                                                                                          \
-    static uint32_t member##_flags(const tvo_edge_command_t *cmd)                                             \
+    static tvo_edge_mark_t member##_mark(const tvo_edge_command_t *cmd)                                       \
     {                                                                                                          \
-        return cmd->member.flags;                                                                              \
+        const tvo_edge_mark_t mark = {cmd->member.flags, (tvo_outcome_t)cmd->member.outcome,                   \
+                                      (tvo_reason_t)cmd->member.reason};                                       \
+        return mark;                                                                                           \
     }                                                                                                          \
     static tvo_sample_clock_t *member##_clock(tvo_edge_controller_t *ctl)                                     \
     {                                                                                                          \
@@ -41,15 +45,17 @@
 /* The six in a table's initialiser. */
 #define EDGE_LOOP_ENTRIES(member)                                                                              \
     .step = member##_step, .miss = member##_miss, .safe_stop = member##_safe_stop, .holding = member##_holding, \
-    .flags = member##_flags, .clock = member##_clock
+    .mark = member##_mark, .clock = member##_clock
 
 EDGE_LOOP_OPS(unicycle, tvo_controller)
 EDGE_LOOP_OPS(chain, tvo_chain_controller)
 
-/* The core's init's answer to a decoded START: a refusal names its culprit in *why (may be NULL). */
-static tvo_status_t rejected_by_core(tvo_status_t st, tvo_param_t bad, tvo_session_reject_t *why)
+/* The core's init's answer to a decoded START: a refusal names its culprit, as the START names it, in
+ * *why (may be NULL). */
+static tvo_status_t rejected_by_core(tvo_status_t st, tvo_session_param_t bad, tvo_session_reject_t *why)
 {
     if (st != TVO_OK && why != NULL) {
+        why->node = TVO_NODE_OK;
         why->status = st;
         why->param = bad;
     }
@@ -72,16 +78,18 @@ static tvo_status_t unicycle_init(tvo_edge_controller_t *ctl, const tvo_lcm_sess
     tvo_status_t st = tvo_session_decode_unicycle(msg, &cfg, why);
     if (st == TVO_OK) {
         st = tvo_controller_init(&ctl->u.unicycle, &cfg, objective, epoch_tick, &bad);
-        st = rejected_by_core(st, bad, why);
+        st = rejected_by_core(st, tvo_session_param_of_unicycle(bad), why);
     }
     return st;
 }
 
-static tvo_status_t unicycle_measurement(const tvo_edge_controller_t *ctl, const tvo_lcm_measurement_t *msg,
-                                         uint8_t robot_count, uint32_t stamp_tick, tvo_edge_measurement_t *meas)
+static tvo_node_status_t unicycle_measurement(const tvo_edge_controller_t *ctl, const tvo_lcm_measurement_t *msg,
+                                              uint8_t robot_count, uint32_t stamp_tick, tvo_edge_measurement_t *meas)
 {
     (void)ctl; /* the core's check says which fields its configuration needs (heading_valid) */
-    return tvo_step_measurement_from_lcm(msg, robot_count, stamp_tick, &meas->unicycle);
+    return (tvo_step_measurement_from_lcm(msg, robot_count, stamp_tick, &meas->unicycle) == TVO_OK)
+               ? TVO_NODE_OK
+               : TVO_NODE_WRONG_ROBOT_COUNT; /* the one refusal of the decoding (the node checked it first) */
 }
 
 static void unicycle_positions(const tvo_edge_measurement_t *meas, uint8_t robot_count, tvo_real_t *y)
@@ -122,25 +130,27 @@ static tvo_status_t chain_init(tvo_edge_controller_t *ctl, const tvo_lcm_session
                                const tvo_objective_t *objective, uint32_t epoch_tick, tvo_session_reject_t *why)
 {
     tvo_chain_config_t cfg;
-    tvo_param_t bad = TVO_PARAM_NONE;
+    tvo_chain_param_t bad = TVO_CHAIN_PARAM_NONE;
     tvo_status_t st = tvo_session_decode_chain(msg, &cfg, why);
     if (st == TVO_OK) {
         st = tvo_chain_controller_init(&ctl->u.chain, &cfg, objective, epoch_tick, &bad);
-        st = rejected_by_core(st, bad, why);
+        st = rejected_by_core(st, tvo_session_param_of_chain(bad), why);
     }
     return st;
 }
 
-static tvo_status_t chain_measurement(const tvo_edge_controller_t *ctl, const tvo_lcm_measurement_t *msg,
-                                      uint8_t robot_count, uint32_t stamp_tick, tvo_edge_measurement_t *meas)
+static tvo_node_status_t chain_measurement(const tvo_edge_controller_t *ctl, const tvo_lcm_measurement_t *msg,
+                                           uint8_t robot_count, uint32_t stamp_tick, tvo_edge_measurement_t *meas)
 {
-    const tvo_status_t st = tvo_step_chain_measurement_from_lcm(msg, robot_count, stamp_tick, &meas->chain);
+    if (tvo_step_chain_measurement_from_lcm(msg, robot_count, stamp_tick, &meas->chain) != TVO_OK) {
+        return TVO_NODE_WRONG_ROBOT_COUNT; /* the one refusal of the decoding (the node checked it first) */
+    }
     /* The core's chain measurement has no validity flag: y' (and y'') read as measured must be. */
     const tvo_chain_config_t *cfg = &ctl->u.chain.cfg;
-    if (st == TVO_OK && !msg->derivatives_valid && cfg->relative_degree >= 2u && !cfg->filtered_derivatives) {
-        return TVO_ERR_MISSING_FIELD;
+    if (!msg->derivatives_valid && cfg->relative_degree >= 2u && !cfg->filtered_derivatives) {
+        return TVO_NODE_MISSING_DERIVATIVES;
     }
-    return st;
+    return TVO_NODE_OK;
 }
 
 static void chain_positions(const tvo_edge_measurement_t *meas, uint8_t robot_count, tvo_real_t *y)

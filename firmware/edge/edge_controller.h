@@ -31,6 +31,13 @@ typedef union {
 
 typedef struct tvo_edge_controller tvo_edge_controller_t;
 
+/** What a command says of its period, whichever the plant. */
+typedef struct {
+    uint32_t flags;         /* TVO_FLAG_* */
+    tvo_outcome_t outcome;
+    tvo_reason_t reason;
+} tvo_edge_mark_t;
+
 typedef struct {
     const char *name;
     /** Relative degree of the flat output (bounds the barrier's m_r below). */
@@ -38,13 +45,14 @@ typedef struct {
     /** Configuration from the START, then the core's init (which names the culprit in *why). */
     tvo_status_t (*init)(tvo_edge_controller_t *ctl, const tvo_lcm_session_t *msg, const tvo_objective_t *objective,
                          uint32_t epoch_tick, tvo_session_reject_t *why);
-    /** The wire's measurement for the core; TVO_ERR_MISSING_FIELD if it lacks what ctl's configuration reads. */
-    tvo_status_t (*measurement)(const tvo_edge_controller_t *ctl, const tvo_lcm_measurement_t *msg, uint8_t robot_count,
+    /** The wire's measurement for the core: TVO_NODE_OK, or the edge's refusal (it lacks what ctl's
+     *  configuration reads: TVO_NODE_MISSING_DERIVATIVES; another robot count). */
+    tvo_node_status_t (*measurement)(const tvo_edge_controller_t *ctl, const tvo_lcm_measurement_t *msg, uint8_t robot_count,
                                 uint32_t stamp_tick, tvo_edge_measurement_t *meas);
     /** The measured positions y (2 per robot), for the slack rule. */
     void (*positions)(const tvo_edge_measurement_t *meas, uint8_t robot_count, tvo_real_t *y);
     /* The core's sampled-data loop, the same six for every plant (edge_controller.c's EDGE_LOOP_OPS):
-     * step, miss, safe_stop, holding, flags, clock. The others map the wire to the plant. */
+     * step, miss, safe_stop, holding, mark, clock. The others map the wire to the plant. */
     /** The core's step: a transaction (a whole period committed, or nothing changed and the refusal's
      *  command: the one in force, or the watchdog's stop). */
     tvo_status_t (*step)(tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas, uint32_t apply_tick,
@@ -52,9 +60,10 @@ typedef struct {
     /** The core's count of a period without a good step: its watchdog decides hold or stop. */
     tvo_status_t (*miss)(tvo_edge_controller_t *ctl, uint32_t apply_tick, tvo_edge_command_t *cmd);
     tvo_status_t (*safe_stop)(tvo_edge_controller_t *ctl, tvo_edge_command_t *cmd);
-    /** The command in force, flagged TVO_FLAG_HOLDING. */
+    /** The command in force, held (TVO_OUTCOME_HELD, TVO_REASON_NONE: the edge's status says why). */
     void (*holding)(const tvo_edge_controller_t *ctl, tvo_edge_command_t *cmd);
-    uint32_t (*flags)(const tvo_edge_command_t *cmd);
+    /** A command's flags, outcome and reason. */
+    tvo_edge_mark_t (*mark)(const tvo_edge_command_t *cmd);
     void (*command_to_lcm)(const tvo_edge_command_t *cmd, const tvo_step_stamp_t *stamp, tvo_lcm_command_t *msg);
     /** The controller's part of the telemetry (its last good step). */
     void (*telemetry_to_lcm)(const tvo_edge_controller_t *ctl, const tvo_problem_t *problem, tvo_lcm_telemetry_t *msg);

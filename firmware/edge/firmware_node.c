@@ -149,7 +149,7 @@ static void log_ack(lcm_node_t *self)
                  (long long)ack->running_session_id);
     } else {
         snprintf(line, sizeof(line), "%s of session %lld refused: %s (parameter %s, part %s, entry %d; running: %lld)",
-                 action, (long long)ack->session_id, tvo_status_str((tvo_status_t)ack->status),
+                 action, (long long)ack->session_id, tvo_protocol_status_str(ack->status),
                  tvo_protocol_param_str(ack->bad_param), tvo_protocol_part_str(ack->bad_part), (int)ack->bad_index,
                  (long long)ack->running_session_id);
     }
@@ -170,7 +170,7 @@ static void log_changes(lcm_node_t *self, const tvo_lcm_node_counters_t *before,
     }
     for (int s = 0; s < TVO_LCM_NODE_COUNTERS_T_STATUS_SLOTS; ++s) {
         if (after->refused[s] > before->refused[s]) {
-            snprintf(line, sizeof(line), "measurement refused: %s", tvo_status_str((tvo_status_t)s));
+            snprintf(line, sizeof(line), "measurement refused: %s", tvo_protocol_status_str(s));
             log_event(self, s, (uint32_t)(after->refused[s] - before->refused[s]), line);
         }
     }

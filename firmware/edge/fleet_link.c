@@ -175,9 +175,9 @@ static void take_command(tvo_fleet_link_t *link, const uint8_t *data, uint32_t l
         return;
     }
     const int in_step = link->answering >= 0 && cmd->measurement_sequence == link->answering;
-    const int followed = cmd->status == TVO_OK || ((uint32_t)cmd->flags & TVO_FLAG_SAFE_STOP) != 0u;
+    const int followed = cmd->status == TVO_LCM_COMMAND_T_STATUS_OK || ((uint32_t)cmd->flags & TVO_LCM_COMMAND_T_FLAG_SAFE_STOP) != 0u;
     if (in_step) {
-        link->answered_ok = (uint8_t)(cmd->status == TVO_OK);
+        link->answered_ok = (uint8_t)(cmd->status == TVO_LCM_COMMAND_T_STATUS_OK);
     }
     if (followed && cmd->robot_count > 0 && cmd->robot_count <= TVO_FLEET_MAX_ROBOTS) {
         link->commands[1] = link->commands[0];
@@ -225,7 +225,7 @@ static void state_of(const tvo_lcm_fleet_sample_t *s, tvo_fleet_robot_t *robot)
 }
 
 /* No joint measurement could be built (a robot never heard, or unheard too long): the command in
- * force, HOLDING, with TVO_ERR_NO_MEASUREMENT, and a telemetry of the same answer (the plant awaits both). */
+ * force, HOLDING, with the wire's ERR_NO_MEASUREMENT, and a telemetry of the same answer (the plant awaits both). */
 static void answer_unheard(tvo_fleet_link_t *link, const tvo_lcm_fleet_sample_t *own, int64_t delay_us)
 {
     tvo_lcm_command_t *cmd = &link->rx.command;
@@ -234,8 +234,8 @@ static void answer_unheard(tvo_fleet_link_t *link, const tvo_lcm_fleet_sample_t 
     cmd->session_id = own->session_id;
     cmd->measurement_sequence = own->sequence;
     cmd->robot_count = own->robot_count;
-    cmd->status = TVO_ERR_NO_MEASUREMENT;
-    cmd->flags = TVO_FLAG_HOLDING;
+    cmd->status = TVO_LCM_COMMAND_T_STATUS_ERR_NO_MEASUREMENT;
+    cmd->flags = TVO_LCM_COMMAND_T_FLAG_HOLDING;
     const tvo_fleet_joint_command_t *held = in_force(link, own->sequence);
     for (int32_t r = 0; r < own->robot_count; ++r) {
         cmd->speed_mps[r] = held != NULL ? held->speed_mps[r] : 0.0;

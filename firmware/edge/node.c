@@ -9,7 +9,8 @@
 
 #include <string.h>
 
-_Static_assert(TVO_STATUS_COUNT <= TVO_LCM_NODE_COUNTERS_T_STATUS_SLOTS, "node_counters_t.refused has a slot per status");
+_Static_assert(TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_MEASUREMENT < TVO_LCM_NODE_COUNTERS_T_STATUS_SLOTS,
+               "node_counters_t.refused has a slot per wire status");
 
 int tvo_node_check_buffer(void)
 {
@@ -84,8 +85,9 @@ static void publish_step(tvo_node_t *node, tvo_node_session_t *s, const tvo_edge
                          const tvo_step_stamp_t *stamp, int64_t now_us)
 {
     const tvo_edge_controller_ops_t *ops = s->controller.ops;
-    const uint32_t flags = ops->flags(cmd);
-    if ((flags & TVO_FLAG_SAFE_STOP) != 0u) {
+    const tvo_edge_mark_t mark = ops->mark(cmd);
+    const uint32_t flags = tvo_step_wire_flags(mark.flags, mark.outcome);
+    if (mark.outcome == TVO_OUTCOME_STOPPED) {
         count(&node->counters.safe_stops);
     }
     if ((flags & TVO_FLAG_SPEED_MISMATCH) != 0u) {
@@ -120,7 +122,7 @@ typedef tvo_status_t (*node_action_fn)(tvo_node_t *node, const node_input_t *in,
 
 typedef struct {
     node_action_fn action;                     /* NULL: the message changes nothing but its answer's */
-    tvo_status_t answer;                       /* ... which says this (TVO_OK: ignored, unanswered if not acked) */
+    tvo_node_status_t answer;                  /* ... which says this (TVO_NODE_OK: ignored, unanswered if not acked) */
     uint8_t next_if_taken;                     /* tvo_node_state_t */
     uint8_t next_if_refused;
     uint8_t acked;                             /* answered with a session ack, after the state changed */
@@ -137,21 +139,21 @@ static tvo_status_t count_other_session(tvo_node_t *node, const node_input_t *in
 
 #define IDLE TVO_NODE_IDLE
 #define RUNNING TVO_NODE_RUNNING
-#define CANNOT_ARISE {NULL, TVO_OK, IDLE, IDLE, 0, 0}
+#define CANNOT_ARISE {NULL, TVO_NODE_OK, IDLE, IDLE, 0, 0}
 
 /* Every transition of the node, lcm_types/README.md "Sessions" row by row (its "any" is both states). */
 static const node_transition_t session_table[TVO_NODE_STATE_COUNT][TVO_NODE_EVENT_COUNT] = {
     [TVO_NODE_IDLE] = {
         /* idle, START that passes every check: built and runs / any, START that fails: nothing changes */
-        [TVO_NODE_EVENT_START] = {start_session, TVO_OK, RUNNING, IDLE, 1, 1},
+        [TVO_NODE_EVENT_START] = {start_session, TVO_NODE_OK, RUNNING, IDLE, 1, 1},
         /* any, STOP of another id: ignored */
-        [TVO_NODE_EVENT_STOP_OTHER] = {NULL, TVO_ERR_NO_SESSION, IDLE, IDLE, 1, 1},
+        [TVO_NODE_EVENT_STOP_OTHER] = {NULL, TVO_NODE_NO_SESSION, IDLE, IDLE, 1, 1},
         /* any, another action: ignored */
-        [TVO_NODE_EVENT_OTHER_ACTION] = {NULL, TVO_ERR_PARAM, IDLE, IDLE, 1, 1},
-        /* idle, measurement: a safe stop, TVO_ERR_NO_SESSION (START again) */
-        [TVO_NODE_EVENT_MEASUREMENT] = {answer_without_session, TVO_OK, IDLE, IDLE, 0, 1},
+        [TVO_NODE_EVENT_OTHER_ACTION] = {NULL, TVO_NODE_UNKNOWN_ACTION, IDLE, IDLE, 1, 1},
+        /* idle, measurement: a safe stop, TVO_NODE_NO_SESSION (START again) */
+        [TVO_NODE_EVENT_MEASUREMENT] = {answer_without_session, TVO_NODE_OK, IDLE, IDLE, 0, 1},
         /* idle, target: nothing to feed (not in the README's table) */
-        [TVO_NODE_EVENT_TARGET] = {NULL, TVO_OK, IDLE, IDLE, 0, 1},
+        [TVO_NODE_EVENT_TARGET] = {NULL, TVO_NODE_OK, IDLE, IDLE, 0, 1},
         /* no id runs, so none repeats, conflicts, stops or is another's */
         [TVO_NODE_EVENT_START_REPEAT] = CANNOT_ARISE,
         [TVO_NODE_EVENT_START_CONFLICT] = CANNOT_ARISE,
@@ -161,24 +163,24 @@ static const node_transition_t session_table[TVO_NODE_STATE_COUNT][TVO_NODE_EVEN
     },
     [TVO_NODE_RUNNING] = {
         /* running A, START of a new id B that passes: B replaces A / any, START that fails: A runs on */
-        [TVO_NODE_EVENT_START] = {start_session, TVO_OK, RUNNING, RUNNING, 1, 1},
+        [TVO_NODE_EVENT_START] = {start_session, TVO_NODE_OK, RUNNING, RUNNING, 1, 1},
         /* running A, START of A, the same content: a repeat, acked 0 again */
-        [TVO_NODE_EVENT_START_REPEAT] = {repeat_start, TVO_OK, RUNNING, RUNNING, 1, 1},
+        [TVO_NODE_EVENT_START_REPEAT] = {repeat_start, TVO_NODE_OK, RUNNING, RUNNING, 1, 1},
         /* running A, START of A with other content: a session's parameters never change under it */
-        [TVO_NODE_EVENT_START_CONFLICT] = {NULL, TVO_ERR_SESSION_CONFLICT, RUNNING, RUNNING, 1, 1},
+        [TVO_NODE_EVENT_START_CONFLICT] = {NULL, TVO_NODE_SESSION_CONFLICT, RUNNING, RUNNING, 1, 1},
         /* running A, STOP of A: the session ends, acked 0, running -1 */
-        [TVO_NODE_EVENT_STOP] = {end_session, TVO_OK, IDLE, RUNNING, 1, 1},
+        [TVO_NODE_EVENT_STOP] = {end_session, TVO_NODE_OK, IDLE, RUNNING, 1, 1},
         /* any, STOP of another id: not ours to obey, whatever runs runs on */
-        [TVO_NODE_EVENT_STOP_OTHER] = {NULL, TVO_ERR_NO_SESSION, RUNNING, RUNNING, 1, 1},
+        [TVO_NODE_EVENT_STOP_OTHER] = {NULL, TVO_NODE_NO_SESSION, RUNNING, RUNNING, 1, 1},
         /* any, another action: ignored */
-        [TVO_NODE_EVENT_OTHER_ACTION] = {NULL, TVO_ERR_PARAM, RUNNING, RUNNING, 1, 1},
+        [TVO_NODE_EVENT_OTHER_ACTION] = {NULL, TVO_NODE_UNKNOWN_ACTION, RUNNING, RUNNING, 1, 1},
         /* running A, measurement of A: served or refused ("Timing") */
-        [TVO_NODE_EVENT_MEASUREMENT] = {serve_measurement, TVO_OK, RUNNING, RUNNING, 0, 1},
+        [TVO_NODE_EVENT_MEASUREMENT] = {serve_measurement, TVO_NODE_OK, RUNNING, RUNNING, 0, 1},
         /* running A, measurement or target of another session id: ignored, counted */
-        [TVO_NODE_EVENT_MEASUREMENT_OTHER] = {count_other_session, TVO_OK, RUNNING, RUNNING, 0, 1},
+        [TVO_NODE_EVENT_MEASUREMENT_OTHER] = {count_other_session, TVO_NODE_OK, RUNNING, RUNNING, 0, 1},
         /* running A, target of A: taken or refused ("Streamed targets") */
-        [TVO_NODE_EVENT_TARGET] = {take_target, TVO_OK, RUNNING, RUNNING, 0, 1},
-        [TVO_NODE_EVENT_TARGET_OTHER] = {count_other_session, TVO_OK, RUNNING, RUNNING, 0, 1},
+        [TVO_NODE_EVENT_TARGET] = {take_target, TVO_NODE_OK, RUNNING, RUNNING, 0, 1},
+        [TVO_NODE_EVENT_TARGET_OTHER] = {count_other_session, TVO_NODE_OK, RUNNING, RUNNING, 0, 1},
     },
 };
 
@@ -234,9 +236,9 @@ static void dispatch(tvo_node_t *node, tvo_node_event_t event, const node_input_
     if (!t->reachable) {
         return; /* the classification, which knows the state, does not give it */
     }
-    tvo_session_reject_t why = {t->answer, TVO_PARAM_NONE, TVO_LCM_SESSION_ACK_T_PART_NONE, -1};
-    const tvo_status_t st = (t->action != NULL) ? t->action(node, in, &why) : t->answer;
-    node->state = (st == TVO_OK) ? t->next_if_taken : t->next_if_refused;
+    tvo_session_reject_t why = {t->answer, TVO_OK, TVO_SESSION_PARAM_NONE, TVO_LCM_SESSION_ACK_T_PART_NONE, -1};
+    const int taken = (t->action != NULL) ? t->action(node, in, &why) == TVO_OK : t->answer == TVO_NODE_OK;
+    node->state = taken ? t->next_if_taken : t->next_if_refused;
     if (t->acked) {
         publish_ack(node, in->session, &why);
     }
@@ -281,7 +283,7 @@ static tvo_status_t build_session(tvo_node_session_t *s, const tvo_lcm_session_t
     const tvo_schedule_ops_t *clock = tvo_schedule_ops(timing.clock_source);
     if (ops == NULL || clock == NULL) {
         why->status = TVO_ERR_PARAM;
-        why->param = (ops == NULL) ? TVO_PARAM_PLANT_KIND : TVO_PARAM_CLOCK_SOURCE;
+        why->param = (ops == NULL) ? TVO_SESSION_PARAM_PLANT_KIND : TVO_SESSION_PARAM_CLOCK_SOURCE;
         return TVO_ERR_PARAM;
     }
     tvo_problem_desc_t desc;
@@ -291,7 +293,7 @@ static tvo_status_t build_session(tvo_node_session_t *s, const tvo_lcm_session_t
         st = tvo_problem_init(&s->problem, &desc, ops->relative_degree(msg), &problem_part);
         if (st != TVO_OK) {
             why->status = st;
-            why->param = TVO_PARAM_OBJECTIVE;
+            why->param = TVO_SESSION_PARAM_OBJECTIVE;
             why->part = tvo_session_part_from_problem(problem_part);
             why->index = problem_culprit(&desc, &s->problem.barrier, why->part);
         }
@@ -321,7 +323,7 @@ static tvo_status_t start_session(tvo_node_t *node, const node_input_t *in, tvo_
     node->running = spare;
     node->stop_requested = 0;
     memset(&node->counters, 0, sizeof(node->counters));
-    node->last_target_status = TVO_OK;
+    node->last_target_status = TVO_LCM_COMMAND_T_STATUS_OK;
     return TVO_OK;
 }
 
@@ -357,36 +359,44 @@ static tvo_status_t answer_without_session(tvo_node_t *node, const node_input_t 
 {
     (void)why;
     const tvo_lcm_measurement_t *msg = in->measurement;
-    count(&node->counters.refused[TVO_ERR_NO_SESSION]);
-    node->last_refusal = TVO_ERR_NO_SESSION;
+    const uint8_t robot_count =
+        (msg->robot_count >= 1 && msg->robot_count <= TVO_MAX_ROBOTS) ? (uint8_t)msg->robot_count : 0u;
+    const tvo_step_stamp_t stamp = {tvo_schedule_clamp_time(msg->utime), msg->session_id, msg->sequence,
+                                    {TVO_NODE_NO_SESSION, TVO_OK, TVO_REASON_NONE}, robot_count};
+    tvo_command_t stop;
+    memset(&stop, 0, sizeof(stop));
+    stop.outcome = TVO_OUTCOME_STOPPED;
     tvo_lcm_command_t out;
-    memset(&out, 0, sizeof(out));
-    out.utime = tvo_schedule_clamp_time(msg->utime);
-    out.session_id = msg->session_id;
-    out.measurement_sequence = msg->sequence;
-    out.robot_count = (msg->robot_count >= 1 && msg->robot_count <= TVO_MAX_ROBOTS) ? msg->robot_count : 0;
-    out.status = (int32_t)TVO_ERR_NO_SESSION;
-    out.flags = (int32_t)TVO_FLAG_SAFE_STOP;
+    tvo_step_command_to_lcm(&stop, &stamp, &out);
+    count(&node->counters.refused[out.status]);
+    node->last_refusal = out.status;
     publish_encoded(node, TVO_NODE_CH_COMMAND, tvo_lcm_command_t_encode(node->buffer, 0, TVO_NODE_BUFFER_BYTES, &out));
-    return TVO_ERR_NO_SESSION;
+    return TVO_OK;
 }
 
 /* What one attempt to serve a measurement on a schedule came to. */
 typedef struct {
-    tvo_status_t status;
+    tvo_step_why_t why;                        /* the edge's refusal, the core's error, or the command's reason */
     tvo_schedule_placement_t placement;
     tvo_edge_command_t cmd;                    /* the core's answer, when it stepped */
     int stepped;
 } node_attempt_t;
 
+/* The core took the measurement: its period committed (applied, or the speed mismatch's stop). */
+static int attempt_taken(const node_attempt_t *attempt)
+{
+    return attempt->stepped && attempt->why.error == TVO_OK &&
+           (attempt->why.reason == TVO_REASON_NONE || attempt->why.reason == TVO_REASON_SPEED_MISMATCH);
+}
+
 /*
  * The core's step with the paper's slack rule: the first accepted sample is the state at t = 0 and
  * chooses the barrier slack s0. The step reads the barrier from the session's problem, so the choice
- * is made there before it and taken back if the step refuses the sample (the next first sample
+ * is made there before it and taken back if the step does not take the sample (the next first sample
  * chooses again): the one piece of a refused step the node itself undoes (lcm_types/README.md "Timing").
  */
-static tvo_status_t step_with_slack_rule(tvo_node_session_t *s, const tvo_edge_measurement_t *meas,
-                                         uint32_t apply_tick, tvo_edge_command_t *cmd)
+static void step_with_slack_rule(tvo_node_session_t *s, const tvo_edge_measurement_t *meas, uint32_t apply_tick,
+                                 node_attempt_t *attempt)
 {
     const tvo_edge_controller_ops_t *ops = s->controller.ops;
     const uint8_t slack_was_chosen = s->problem.slack_chosen;
@@ -396,12 +406,13 @@ static tvo_status_t step_with_slack_rule(tvo_node_session_t *s, const tvo_edge_m
         ops->positions(meas, s->schedule.timing.robot_count, y);
         (void)tvo_problem_choose_slack(&s->problem, y, TVO_R(0.0));
     }
-    const tvo_status_t st = ops->step(&s->controller, meas, apply_tick, cmd);
-    if (st != TVO_OK) {
+    attempt->why.error = ops->step(&s->controller, meas, apply_tick, &attempt->cmd);
+    attempt->why.reason = ops->mark(&attempt->cmd).reason;
+    attempt->stepped = 1;
+    if (!attempt_taken(attempt)) {
         s->problem.barrier = barrier_in_force;
         s->problem.slack_chosen = slack_was_chosen;
     }
-    return st;
 }
 
 /* The node's checks of a measurement judged on `schedule` (the wire's and its schedule's), then the
@@ -411,29 +422,31 @@ static void attempt_measurement(tvo_node_session_t *s, const tvo_schedule_t *sch
 {
     const tvo_edge_controller_ops_t *ops = s->controller.ops;
     const uint8_t robot_count = schedule->timing.robot_count;
+    const tvo_step_why_t none = {TVO_NODE_OK, TVO_OK, TVO_REASON_NONE};
     attempt->stepped = 0;
-    attempt->status = (msg->robot_count == (int32_t)robot_count) ? TVO_OK : TVO_ERR_DIMENSION;
-    if (attempt->status == TVO_OK) {
-        attempt->status = tvo_schedule_place(schedule, msg, now_us, &attempt->placement);
+    attempt->why = none;
+    attempt->why.node = (msg->robot_count == (int32_t)robot_count) ? TVO_NODE_OK : TVO_NODE_WRONG_ROBOT_COUNT;
+    if (attempt->why.node == TVO_NODE_OK) {
+        attempt->why.node = tvo_schedule_place(schedule, msg, now_us, &attempt->placement);
     }
     tvo_edge_measurement_t meas;
-    if (attempt->status == TVO_OK) {
+    if (attempt->why.node == TVO_NODE_OK) {
         const uint32_t stamp_tick = tvo_schedule_tick(schedule, attempt->placement.stamp_us);
-        attempt->status = ops->measurement(&s->controller, msg, robot_count, stamp_tick, &meas);
+        attempt->why.node = ops->measurement(&s->controller, msg, robot_count, stamp_tick, &meas);
     }
-    if (attempt->status != TVO_OK) {
+    if (attempt->why.node != TVO_NODE_OK) {
         return;
     }
-    const uint32_t apply_tick = tvo_schedule_tick(schedule, attempt->placement.apply_us);
-    attempt->status = step_with_slack_rule(s, &meas, apply_tick, &attempt->cmd);
-    attempt->stepped = 1;
+    step_with_slack_rule(s, &meas, tvo_schedule_tick(schedule, attempt->placement.apply_us), attempt);
 }
 
 /* The sample passed every check, the core's included, and only its law could not serve it (a target
  * sample not there yet). */
-static int law_refused(tvo_status_t st)
+static int law_refused(const node_attempt_t *attempt)
 {
-    return st == TVO_ERR_TARGET_NOT_READY || st == TVO_ERR_NUMERIC || st == TVO_ERR_NOT_POSITIVE_DEFINITE;
+    const tvo_reason_t r = attempt->why.reason;
+    return attempt->stepped && attempt->why.error == TVO_OK &&
+           (r == TVO_REASON_TARGET_NOT_READY || r == TVO_REASON_NUMERIC || r == TVO_REASON_NOT_POSITIVE_DEFINITE);
 }
 
 /* The refusal's answer, stamped no earlier than the measurement: the core's answer if it stepped (the
@@ -442,15 +455,16 @@ static int law_refused(tvo_status_t st)
 static void refuse_measurement(tvo_node_t *node, tvo_node_session_t *s, const tvo_lcm_measurement_t *msg,
                                const node_attempt_t *attempt, int64_t now_us)
 {
-    const tvo_status_t reason = attempt->status;
-    count(&node->counters.refused[(uint32_t)reason < (uint32_t)TVO_LCM_NODE_COUNTERS_T_STATUS_SLOTS ? reason : 0]);
-    node->last_refusal = reason;
+    const int32_t wire = tvo_step_wire_status(&attempt->why);
+    count(&node->counters.refused[(uint32_t)wire < (uint32_t)TVO_LCM_NODE_COUNTERS_T_STATUS_SLOTS ? wire : 0]);
+    node->last_refusal = wire;
     tvo_step_stamp_t stamp = {s->schedule.ops->refusal_utime(&s->schedule, msg, now_us), s->session_id,
-                              msg->sequence, reason, s->schedule.timing.robot_count};
+                              msg->sequence, attempt->why, s->schedule.timing.robot_count};
     tvo_edge_command_t cmd;
     if (s->schedule.ops->count_refusal(&s->schedule)) {
         (void)s->controller.ops->safe_stop(&s->controller, &cmd);
-        stamp.status = TVO_ERR_WATCHDOG;
+        const tvo_step_why_t streak = {TVO_NODE_REFUSAL_STREAK, TVO_OK, TVO_REASON_NONE};
+        stamp.why = streak;
     } else if (attempt->stepped) {
         cmd = attempt->cmd;
     } else {
@@ -473,23 +487,23 @@ static tvo_status_t serve_measurement(tvo_node_t *node, const node_input_t *in, 
     const tvo_lcm_measurement_t *msg = in->measurement;
     node_attempt_t attempt;
     attempt_measurement(s, &s->schedule, msg, in->now_us, &attempt);
-    if (attempt.status != TVO_OK) {
+    if (!attempt_taken(&attempt)) {
         tvo_schedule_t moved = s->schedule;
-        if (s->schedule.ops->vote(&s->schedule, msg, attempt.status, in->now_us, &moved.anchor)) {
+        if (s->schedule.ops->vote(&s->schedule, msg, &attempt.why, in->now_us, &moved.anchor)) {
             attempt_measurement(s, &moved, msg, in->now_us, &attempt);
-            if (attempt.status == TVO_OK || (attempt.stepped && law_refused(attempt.status))) {
+            if (attempt_taken(&attempt) || law_refused(&attempt)) {
                 s->schedule.anchor = moved.anchor;
             }
         }
     }
-    if (attempt.status != TVO_OK) {
+    if (!attempt_taken(&attempt)) {
         refuse_measurement(node, s, msg, &attempt, in->now_us);
-        return attempt.status;
+        return TVO_OK;
     }
     count(&node->counters.accepted);
     tvo_schedule_accept(&s->schedule, &attempt.placement, msg->sequence);
     const tvo_step_stamp_t stamp = {attempt.placement.apply_us - s->schedule.anchor.offset_us, s->session_id,
-                                    msg->sequence, TVO_OK, s->schedule.timing.robot_count};
+                                    msg->sequence, attempt.why, s->schedule.timing.robot_count};
     publish_step(node, s, &attempt.cmd, &stamp, in->now_us);
     return TVO_OK;
 }
@@ -504,30 +518,32 @@ static tvo_status_t take_target(tvo_node_t *node, const node_input_t *in, tvo_se
     tvo_node_session_t *s = running_slot(node);
     const tvo_schedule_t *schedule = &s->schedule;
     const tvo_lcm_target_t *msg = in->target;
-    tvo_status_t st = tvo_schedule_wire_time_ok(msg->utime) ? TVO_OK : TVO_ERR_IMPLAUSIBLE_STAMP;
-    const int64_t stamp_us = (st == TVO_OK) ? msg->utime + schedule->anchor.offset_us : 0;
-    if (st == TVO_OK && stamp_us > schedule->ops->latest_target_us(schedule, in->now_us)) {
-        st = TVO_ERR_IMPLAUSIBLE_STAMP;
+    tvo_step_why_t answer = {tvo_schedule_wire_time_ok(msg->utime) ? TVO_NODE_OK : TVO_NODE_IMPLAUSIBLE_STAMP, TVO_OK,
+                             TVO_REASON_NONE};
+    const int64_t stamp_us = (answer.node == TVO_NODE_OK) ? msg->utime + schedule->anchor.offset_us : 0;
+    if (answer.node == TVO_NODE_OK && stamp_us > schedule->ops->latest_target_us(schedule, in->now_us)) {
+        answer.node = TVO_NODE_IMPLAUSIBLE_STAMP;
     }
     /* The objective's time of the sample, in ticks (us) since the epoch, from 64-bit times: a
      * uint32 tick would alias a sample 2^32 us old with one from the future. */
-    const int64_t since_epoch_us = (st == TVO_OK) ? stamp_us - schedule->anchor.epoch_schedule_us : 0;
-    if (st == TVO_OK && since_epoch_us < -schedule->timing.period_us) {
-        st = TVO_ERR_OUT_OF_ORDER; /* more than a period before the epoch */
+    const int64_t since_epoch_us = (answer.node == TVO_NODE_OK) ? stamp_us - schedule->anchor.epoch_schedule_us : 0;
+    if (answer.node == TVO_NODE_OK && since_epoch_us < -schedule->timing.period_us) {
+        answer.error = TVO_ERR_BEFORE_EPOCH; /* more than a period before the epoch */
     }
-    if (st == TVO_OK) {
+    if (answer.node == TVO_NODE_OK && answer.error == TVO_OK) {
         /* A sample from the period before the epoch (a plant samples its target with the measurement,
          * at epoch - tau) is carried forward to the epoch: the objective's time starts there. */
         const int64_t carry_us = since_epoch_us < 0 ? -since_epoch_us : 0;
-        st = tvo_step_target_from_lcm_carried(msg, schedule->timing.robot_count,
-                                              (uint64_t)(since_epoch_us + carry_us), (double)carry_us * 1e-6,
-                                              &s->problem);
+        answer.error = tvo_step_target_from_lcm_carried(msg, schedule->timing.robot_count,
+                                                        (uint64_t)(since_epoch_us + carry_us),
+                                                        (double)carry_us * 1e-6, &s->problem);
     }
-    node->last_target_status = st;
-    if (st != TVO_OK) {
+    node->last_target_status = tvo_step_wire_status(&answer);
+    if (node->last_target_status != TVO_LCM_COMMAND_T_STATUS_OK) {
         count(&node->counters.targets_refused);
+        return TVO_ERR_PARAM; /* not taken */
     }
-    return st;
+    return TVO_OK;
 }
 
 /* ---- entry points ------------------------------------------------------------------------------ */
@@ -590,9 +606,12 @@ int64_t tvo_node_poll(tvo_node_t *node, int64_t now_us)
          * now, every period until a measurement is served. */
         tvo_edge_command_t cmd;
         const uint32_t apply_tick = tvo_schedule_tick(schedule, tvo_schedule_apply_us(schedule, period));
-        const tvo_status_t st = s->controller.ops->miss(&s->controller, apply_tick, &cmd);
-        if ((s->controller.ops->flags(&cmd) & TVO_FLAG_SAFE_STOP) != 0u) {
-            const tvo_step_stamp_t stamp = {tvo_schedule_plant_utime(schedule, now_us), s->session_id, -1, st,
+        tvo_step_why_t why = {TVO_NODE_OK, TVO_OK, TVO_REASON_NONE};
+        why.error = s->controller.ops->miss(&s->controller, apply_tick, &cmd);
+        const tvo_edge_mark_t mark = s->controller.ops->mark(&cmd);
+        why.reason = mark.reason;
+        if (mark.outcome == TVO_OUTCOME_STOPPED) {
+            const tvo_step_stamp_t stamp = {tvo_schedule_plant_utime(schedule, now_us), s->session_id, -1, why,
                                             schedule->timing.robot_count};
             publish_step(node, s, &cmd, &stamp, now_us);
         }

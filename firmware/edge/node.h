@@ -95,8 +95,8 @@ typedef struct {
     tvo_lcm_session_ack_t last_ack;          /* the last ack published, for the transport's log */
     uint32_t acks;                           /* acks published since init */
     tvo_node_event_t last_event;             /* what the last decoded message was, for the transport's log */
-    tvo_status_t last_refusal;               /* why the last refused measurement was refused */
-    tvo_status_t last_target_status;         /* outcome of the last streamed target sample */
+    int32_t last_refusal;                    /* why the last measurement was refused (command_t.STATUS_*) */
+    int32_t last_target_status;              /* how the last streamed target sample was taken (command_t.STATUS_*) */
 } tvo_node_t;
 
 /** One transition of the session table: the state after a message, if its action took effect or not. */

@@ -48,29 +48,29 @@ int64_t tvo_schedule_plant_utime(const tvo_schedule_t *schedule, int64_t schedul
     return tvo_schedule_clamp_time(schedule_us - schedule->anchor.offset_us);
 }
 
-tvo_status_t tvo_schedule_place(const tvo_schedule_t *schedule, const tvo_lcm_measurement_t *msg, int64_t now_us,
+tvo_node_status_t tvo_schedule_place(const tvo_schedule_t *schedule, const tvo_lcm_measurement_t *msg, int64_t now_us,
                                 tvo_schedule_placement_t *placement)
 {
     memset(placement, 0, sizeof(*placement));
     if (!tvo_schedule_wire_time_ok(msg->utime) || !tvo_schedule_wire_time_ok(msg->sequence)) {
-        return TVO_ERR_IMPLAUSIBLE_STAMP; /* only wire-range-checked values enter the arithmetic */
+        return TVO_NODE_IMPLAUSIBLE_STAMP; /* only wire-range-checked values enter the arithmetic */
     }
-    const tvo_status_t st = schedule->ops->place(schedule, msg, now_us, placement);
-    if (st != TVO_OK) {
+    const tvo_node_status_t st = schedule->ops->place(schedule, msg, now_us, placement);
+    if (st != TVO_NODE_OK) {
         return st;
     }
     placement->apply_us = tvo_schedule_apply_us(schedule, placement->period);
     if (!tvo_schedule_wire_time_ok(placement->apply_us - schedule->anchor.offset_us)) {
-        return TVO_ERR_IMPLAUSIBLE_STAMP; /* its command could not be stamped on the wire */
+        return TVO_NODE_IMPLAUSIBLE_STAMP; /* its command could not be stamped on the wire */
     }
     if (placement->apply_us - placement->stamp_us > (int64_t)TVO_MAX_TICK_SPAN) {
-        return TVO_ERR_STALE; /* older than the controller's ticks span: as uint32 it could look fresh */
+        return TVO_NODE_STALE; /* older than the controller's ticks span: as uint32 it could look fresh */
     }
     if (schedule->has_accepted &&
         (placement->period - schedule->last_period) > (int64_t)TVO_MAX_TICK_SPAN / schedule->timing.period_us) {
-        return TVO_ERR_STALE; /* a silence longer than the clock spans: START a new session */
+        return TVO_NODE_STALE; /* a silence longer than the clock spans: START a new session */
     }
-    return TVO_OK;
+    return TVO_NODE_OK;
 }
 
 void tvo_schedule_accept(tvo_schedule_t *schedule, const tvo_schedule_placement_t *placement, int64_t sequence)

@@ -35,16 +35,16 @@ static void node_repeat_start(tvo_schedule_t *schedule, const tvo_lcm_session_t 
     (void)msg;
 }
 
-static tvo_status_t node_place(const tvo_schedule_t *schedule, const tvo_lcm_measurement_t *msg, int64_t now_us,
+static tvo_node_status_t node_place(const tvo_schedule_t *schedule, const tvo_lcm_measurement_t *msg, int64_t now_us,
                                tvo_schedule_placement_t *placement)
 {
     placement->stamp_us = msg->utime + schedule->anchor.offset_us;
     if (placement->stamp_us > now_us + schedule->timing.period_us / NODE_FUTURE_TOLERANCE_DIVISOR) {
-        return TVO_ERR_IMPLAUSIBLE_STAMP; /* from the future by the node's own clock */
+        return TVO_NODE_IMPLAUSIBLE_STAMP; /* from the future by the node's own clock */
     }
     const int64_t next = next_period_after(schedule, now_us);
     placement->period = (schedule->has_accepted && next <= schedule->last_period) ? schedule->last_period + 1 : next;
-    return TVO_OK; /* its age at the apply instant: the core's step judges it */
+    return TVO_NODE_OK; /* its age at the apply instant: the core's step judges it */
 }
 
 static void node_accepted(tvo_schedule_t *schedule, const tvo_schedule_placement_t *placement)
@@ -59,14 +59,16 @@ static void node_accepted(tvo_schedule_t *schedule, const tvo_schedule_placement
  * one offset, TVO_SCHEDULE_ANCHOR_VOTES in a row, re-anchor the schedule to it. Once tracking started
  * the offset is fixed (the objective's time is counting).
  */
-static int node_vote(tvo_schedule_t *schedule, const tvo_lcm_measurement_t *msg, tvo_status_t refusal, int64_t now_us,
+static int node_vote(tvo_schedule_t *schedule, const tvo_lcm_measurement_t *msg, const tvo_step_why_t *refusal, int64_t now_us,
                      tvo_schedule_anchor_t *moved)
 {
     *moved = schedule->anchor;
     const int in_range = tvo_schedule_wire_time_ok(msg->utime) && tvo_schedule_wire_time_ok(msg->sequence) &&
                          msg->robot_count == (int32_t)schedule->timing.robot_count;
     const int timing_refusal =
-        refusal == TVO_ERR_IMPLAUSIBLE_STAMP || refusal == TVO_ERR_STALE || refusal == TVO_ERR_FUTURE_STAMP;
+        refusal->node == TVO_NODE_IMPLAUSIBLE_STAMP || refusal->node == TVO_NODE_STALE ||
+        (refusal->node == TVO_NODE_OK && refusal->error == TVO_OK &&
+         (refusal->reason == TVO_REASON_STALE || refusal->reason == TVO_REASON_FUTURE_STAMP));
     if (!in_range || schedule->has_accepted || !timing_refusal) {
         schedule->votes = 0u;
         return 0;

@@ -65,35 +65,35 @@ static void plant_repeat_start(tvo_schedule_t *schedule, const tvo_lcm_session_t
     }
 }
 
-static tvo_status_t plant_place(const tvo_schedule_t *schedule, const tvo_lcm_measurement_t *msg, int64_t now_us,
+static tvo_node_status_t plant_place(const tvo_schedule_t *schedule, const tvo_lcm_measurement_t *msg, int64_t now_us,
                                 tvo_schedule_placement_t *placement)
 {
     (void)now_us;
     placement->stamp_us = msg->utime;
     const int64_t to_apply = to_apply_us(schedule, placement->stamp_us);
     if (to_apply < 0) {
-        return TVO_ERR_IMPLAUSIBLE_STAMP; /* before the epoch */
+        return TVO_NODE_IMPLAUSIBLE_STAMP; /* before the epoch */
     }
     placement->period = to_apply / schedule->timing.period_us;
     if (!schedule->has_accepted) {
         /* The first sample anchors the numbering: it must follow the START (or the epoch) closely, or a
          * stray from far ahead would anchor it. */
         return (placement->stamp_us <= first_sample_deadline(schedule) && within_tick_span(schedule, placement->period))
-                   ? TVO_OK
-                   : TVO_ERR_IMPLAUSIBLE_STAMP;
+                   ? TVO_NODE_OK
+                   : TVO_NODE_IMPLAUSIBLE_STAMP;
     }
     if (placement->period <= schedule->last_period) {
-        return TVO_ERR_OUT_OF_ORDER; /* a duplicate, or older than the last accepted */
+        return TVO_NODE_NOT_LATER_PERIOD; /* a duplicate, or older than the last accepted */
     }
     if (msg->sequence - schedule->anchor.last_sequence != placement->period - schedule->last_period) {
-        return TVO_ERR_IMPLAUSIBLE_STAMP; /* stamp and sequence disagree: a stray, or a wild number */
+        return TVO_NODE_IMPLAUSIBLE_STAMP; /* stamp and sequence disagree: a stray, or a wild number */
     }
     const int64_t jump = placement->period - schedule->last_period;
     if (jump > (int64_t)schedule->timing.watchdog_periods && !schedule->anchor.jump_agreed &&
         jump <= (int64_t)TVO_MAX_TICK_SPAN / schedule->timing.period_us) { /* beyond: stale, for the caller to say */
-        return TVO_ERR_IMPLAUSIBLE_STAMP; /* a jump past the watchdog's span: served once samples agree */
+        return TVO_NODE_IMPLAUSIBLE_STAMP; /* a jump past the watchdog's span: served once samples agree */
     }
-    return TVO_OK;
+    return TVO_NODE_OK;
 }
 
 static void plant_accepted(tvo_schedule_t *schedule, const tvo_schedule_placement_t *placement)
@@ -110,14 +110,14 @@ static void plant_accepted(tvo_schedule_t *schedule, const tvo_schedule_placemen
  * window move the window to the last of them (a plant that could not be served within it, its
  * robot inside an obstacle or its target stream late, is not refused for ever).
  */
-static int plant_vote(tvo_schedule_t *schedule, const tvo_lcm_measurement_t *msg, tvo_status_t refusal, int64_t now_us,
+static int plant_vote(tvo_schedule_t *schedule, const tvo_lcm_measurement_t *msg, const tvo_step_why_t *refusal, int64_t now_us,
                       tvo_schedule_anchor_t *moved)
 {
     (void)now_us;
     *moved = schedule->anchor;
     const int in_range = tvo_schedule_wire_time_ok(msg->utime) && tvo_schedule_wire_time_ok(msg->sequence) &&
                          msg->robot_count == (int32_t)schedule->timing.robot_count;
-    if (!in_range || refusal != TVO_ERR_IMPLAUSIBLE_STAMP) {
+    if (!in_range || refusal->node != TVO_NODE_IMPLAUSIBLE_STAMP) {
         schedule->votes = 0u;
         return 0;
     }

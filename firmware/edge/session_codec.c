@@ -9,6 +9,7 @@
 #include "internal/barrier.h"
 #include "internal/constraints.h"
 #include "internal/sample_clock.h"
+#include "step_codec.h"
 #include "wire_real.h"
 
 /* The wire's fixed arrays must hold what the core can use (the reverse is checked per count). */
@@ -16,10 +17,51 @@ _Static_assert(TVO_LCM_PATH_T_MAX_COEFFS >= TVO_POLY_MAX_DEGREE + 1, "path_t.coe
 _Static_assert(TVO_LCM_SESSION_T_MAX_ROBOTS >= TVO_MAX_ROBOTS, "session_t.robot holds every robot");
 _Static_assert(TVO_SESSION_EPOCH_SPAN_US == (int64_t)(TVO_MAX_TICK_SPAN / 2u), "the epoch span is half the clock span");
 
-static tvo_status_t reject(tvo_session_reject_t *why, tvo_status_t status, tvo_param_t param, int32_t part,
+/* The session's parameters are the wire's numbers (session_ack_t.PARAM_*). */
+#define SESSION_PARAM_ON_WIRE(name) \
+    _Static_assert(TVO_SESSION_PARAM_##name == TVO_LCM_SESSION_ACK_T_PARAM_##name, "session_ack_t.PARAM_" #name)
+SESSION_PARAM_ON_WIRE(NONE); SESSION_PARAM_ON_WIRE(TICK_HZ); SESSION_PARAM_ON_WIRE(PERIOD); SESSION_PARAM_ON_WIRE(DELAY);
+SESSION_PARAM_ON_WIRE(FILTER_TF); SESSION_PARAM_ON_WIRE(GAINS); SESSION_PARAM_ON_WIRE(OMEGA_MAX);
+SESSION_PARAM_ON_WIRE(ACCEL_MAX); SESSION_PARAM_ON_WIRE(SPEED_MAX); SESSION_PARAM_ON_WIRE(MIN_SPEED);
+SESSION_PARAM_ON_WIRE(WATCHDOG); SESSION_PARAM_ON_WIRE(ROBOT_COUNT); SESSION_PARAM_ON_WIRE(OBJECTIVE);
+SESSION_PARAM_ON_WIRE(VELOCITY_SOURCE); SESSION_PARAM_ON_WIRE(INITIAL_SPEED); SESSION_PARAM_ON_WIRE(EPOCH);
+SESSION_PARAM_ON_WIRE(CLOCK_SOURCE); SESSION_PARAM_ON_WIRE(PLANT_KIND); SESSION_PARAM_ON_WIRE(SESSION_ID);
+
+/* Each configuration's fields onto the START's (the wire's ids), one table each. */
+static const uint8_t session_param_of_unicycle[TVO_PARAM_COUNT] = {
+    [TVO_PARAM_NONE] = TVO_SESSION_PARAM_NONE, [TVO_PARAM_TICK_HZ] = TVO_SESSION_PARAM_TICK_HZ,
+    [TVO_PARAM_PERIOD] = TVO_SESSION_PARAM_PERIOD, [TVO_PARAM_DELAY] = TVO_SESSION_PARAM_DELAY,
+    [TVO_PARAM_FILTER_TF] = TVO_SESSION_PARAM_FILTER_TF, [TVO_PARAM_GAINS] = TVO_SESSION_PARAM_GAINS,
+    [TVO_PARAM_OMEGA_MAX] = TVO_SESSION_PARAM_OMEGA_MAX, [TVO_PARAM_ACCEL_MAX] = TVO_SESSION_PARAM_ACCEL_MAX,
+    [TVO_PARAM_SPEED_MAX] = TVO_SESSION_PARAM_SPEED_MAX, [TVO_PARAM_MIN_SPEED] = TVO_SESSION_PARAM_MIN_SPEED,
+    [TVO_PARAM_WATCHDOG] = TVO_SESSION_PARAM_WATCHDOG, [TVO_PARAM_ROBOT_COUNT] = TVO_SESSION_PARAM_ROBOT_COUNT,
+    [TVO_PARAM_OBJECTIVE] = TVO_SESSION_PARAM_OBJECTIVE, [TVO_PARAM_VELOCITY_SOURCE] = TVO_SESSION_PARAM_VELOCITY_SOURCE,
+    [TVO_PARAM_INITIAL_SPEED] = TVO_SESSION_PARAM_INITIAL_SPEED};
+
+static const uint8_t session_param_of_chain[TVO_CHAIN_PARAM_COUNT] = {
+    [TVO_CHAIN_PARAM_NONE] = TVO_SESSION_PARAM_NONE, [TVO_CHAIN_PARAM_TICK_HZ] = TVO_SESSION_PARAM_TICK_HZ,
+    [TVO_CHAIN_PARAM_PERIOD] = TVO_SESSION_PARAM_PERIOD, [TVO_CHAIN_PARAM_DELAY] = TVO_SESSION_PARAM_DELAY,
+    [TVO_CHAIN_PARAM_RELATIVE_DEGREE] = TVO_SESSION_PARAM_GAINS, [TVO_CHAIN_PARAM_GAIN] = TVO_SESSION_PARAM_GAINS,
+    [TVO_CHAIN_PARAM_FILTER_TF] = TVO_SESSION_PARAM_FILTER_TF, [TVO_CHAIN_PARAM_INPUT_MAX] = TVO_SESSION_PARAM_ACCEL_MAX,
+    [TVO_CHAIN_PARAM_WATCHDOG] = TVO_SESSION_PARAM_WATCHDOG, [TVO_CHAIN_PARAM_OBJECTIVE] = TVO_SESSION_PARAM_OBJECTIVE};
+
+tvo_session_param_t tvo_session_param_of_unicycle(tvo_param_t param)
+{
+    return ((uint32_t)param < TVO_PARAM_COUNT) ? (tvo_session_param_t)session_param_of_unicycle[param]
+                                               : TVO_SESSION_PARAM_NONE;
+}
+
+tvo_session_param_t tvo_session_param_of_chain(tvo_chain_param_t param)
+{
+    return ((uint32_t)param < TVO_CHAIN_PARAM_COUNT) ? (tvo_session_param_t)session_param_of_chain[param]
+                                                     : TVO_SESSION_PARAM_NONE;
+}
+
+static tvo_status_t reject(tvo_session_reject_t *why, tvo_status_t status, tvo_session_param_t param, int32_t part,
                            int32_t index)
 {
     if (why != NULL) {
+        why->node = TVO_NODE_OK;
         why->status = status;
         why->param = param;
         why->part = part;
@@ -28,14 +70,14 @@ static tvo_status_t reject(tvo_session_reject_t *why, tvo_status_t status, tvo_p
     return status;
 }
 
-static tvo_status_t reject_param(tvo_session_reject_t *why, tvo_param_t param)
+static tvo_status_t reject_param(tvo_session_reject_t *why, tvo_session_param_t param)
 {
     return reject(why, TVO_ERR_PARAM, param, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
 }
 
 static tvo_status_t reject_part(tvo_session_reject_t *why, tvo_status_t status, int32_t part, int32_t index)
 {
-    return reject(why, status, TVO_PARAM_OBJECTIVE, part, index);
+    return reject(why, status, TVO_SESSION_PARAM_OBJECTIVE, part, index);
 }
 
 static int wire_time_ok(int64_t t)
@@ -46,41 +88,41 @@ static int wire_time_ok(int64_t t)
 tvo_status_t tvo_session_decode_timing(const tvo_lcm_session_t *msg, tvo_session_timing_t *timing,
                                        tvo_session_reject_t *why)
 {
-    (void)reject(why, TVO_OK, TVO_PARAM_NONE, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+    (void)reject(why, TVO_OK, TVO_SESSION_PARAM_NONE, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
     if (msg == NULL || timing == NULL) {
-        return reject(why, TVO_ERR_NULL, TVO_PARAM_NONE, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+        return reject(why, TVO_ERR_NULL, TVO_SESSION_PARAM_NONE, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
     }
     memset(timing, 0, sizeof(*timing));
     if (msg->session_id < 0) {
-        return reject_param(why, TVO_PARAM_SESSION_ID); /* -1 means "none" in acks and commands */
+        return reject_param(why, TVO_SESSION_PARAM_SESSION_ID); /* -1 means "none" in acks and commands */
     }
     if (!wire_time_ok(msg->utime) || !wire_time_ok(msg->epoch_utime)) {
-        return reject_param(why, TVO_PARAM_EPOCH);
+        return reject_param(why, TVO_SESSION_PARAM_EPOCH);
     }
     /* The controller's clock reaches 2^30-1 ticks from the epoch on its first step: half of that for
      * the epoch's distance from the START, half for the plant's first sample after it. */
     const int64_t epoch_lead = msg->epoch_utime - msg->utime;
     if (epoch_lead < -TVO_SESSION_EPOCH_SPAN_US || epoch_lead > TVO_SESSION_EPOCH_SPAN_US) {
-        return reject_param(why, TVO_PARAM_EPOCH);
+        return reject_param(why, TVO_SESSION_PARAM_EPOCH);
     }
     if (msg->clock_source != TVO_LCM_SESSION_T_CLOCK_PLANT && msg->clock_source != TVO_LCM_SESSION_T_CLOCK_NODE) {
-        return reject_param(why, TVO_PARAM_CLOCK_SOURCE);
+        return reject_param(why, TVO_SESSION_PARAM_CLOCK_SOURCE);
     }
     if (msg->period_us < 1 || msg->period_us > (int64_t)TVO_MAX_TICK_SPAN) {
-        return reject_param(why, TVO_PARAM_PERIOD);
+        return reject_param(why, TVO_SESSION_PARAM_PERIOD);
     }
     if (msg->delay_us < 0 || msg->delay_us > msg->period_us) {
-        return reject_param(why, TVO_PARAM_DELAY);
+        return reject_param(why, TVO_SESSION_PARAM_DELAY);
     }
     if (msg->watchdog_periods < 1 ||
         !tvo_sample_clock_watchdog_ok((uint32_t)msg->period_us, (uint32_t)msg->watchdog_periods)) {
-        return reject_param(why, TVO_PARAM_WATCHDOG);
+        return reject_param(why, TVO_SESSION_PARAM_WATCHDOG);
     }
     if (msg->robot_count < 1 || msg->robot_count > TVO_MAX_ROBOTS) {
-        return reject_param(why, TVO_PARAM_ROBOT_COUNT);
+        return reject_param(why, TVO_SESSION_PARAM_ROBOT_COUNT);
     }
     if (msg->plant_kind != TVO_LCM_SESSION_T_PLANT_UNICYCLE && msg->plant_kind != TVO_LCM_SESSION_T_PLANT_CHAIN) {
-        return reject_param(why, TVO_PARAM_PLANT_KIND);
+        return reject_param(why, TVO_SESSION_PARAM_PLANT_KIND);
     }
     timing->clock_source = msg->clock_source;
     timing->epoch_utime = msg->epoch_utime;
@@ -114,7 +156,7 @@ static tvo_status_t unicycle_config(const tvo_lcm_session_t *msg, const tvo_sess
     } else if (msg->velocity_source == TVO_LCM_SESSION_T_VELOCITY_FROM_POSITION) {
         cfg->velocity_source = TVO_VELOCITY_FROM_POSITION;
     } else {
-        return reject_param(why, TVO_PARAM_VELOCITY_SOURCE);
+        return reject_param(why, TVO_SESSION_PARAM_VELOCITY_SOURCE);
     }
     SET_SAMPLED_DATA_CONFIG(cfg, msg, timing);
     cfg->robot_count = timing->robot_count;
@@ -134,11 +176,11 @@ static tvo_status_t chain_config(const tvo_lcm_session_t *msg, const tvo_session
                                  tvo_chain_config_t *cfg, tvo_session_reject_t *why)
 {
     if (msg->chain_relative_degree < 1 || msg->chain_relative_degree > TVO_MAX_RELATIVE_DEGREE) {
-        return reject_param(why, TVO_PARAM_GAINS);
+        return reject_param(why, TVO_SESSION_PARAM_GAINS);
     }
     if (msg->velocity_source != TVO_LCM_SESSION_T_VELOCITY_FROM_POSE &&
         msg->velocity_source != TVO_LCM_SESSION_T_VELOCITY_FROM_POSITION) {
-        return reject_param(why, TVO_PARAM_VELOCITY_SOURCE);
+        return reject_param(why, TVO_SESSION_PARAM_VELOCITY_SOURCE);
     }
     SET_SAMPLED_DATA_CONFIG(cfg, msg, timing);
     cfg->relative_degree = (uint8_t)msg->chain_relative_degree;
@@ -156,7 +198,7 @@ static tvo_status_t decode_controller(const tvo_lcm_session_t *msg, tvo_controll
                                       tvo_chain_config_t *chain, tvo_session_reject_t *why)
 {
     if (msg == NULL || (unicycle == NULL && chain == NULL)) {
-        return reject(why, TVO_ERR_NULL, TVO_PARAM_NONE, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+        return reject(why, TVO_ERR_NULL, TVO_SESSION_PARAM_NONE, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
     }
     tvo_session_timing_t timing;
     tvo_status_t st = tvo_session_decode_timing(msg, &timing, why);
@@ -262,7 +304,7 @@ static int decode_robot_pair(int32_t robot_a, int32_t robot_b, uint8_t robot_cou
 static tvo_status_t decode_robots(const tvo_lcm_session_t *msg, tvo_problem_desc_t *desc, tvo_session_reject_t *why)
 {
     if (msg->robot_count < 1 || msg->robot_count > TVO_MAX_ROBOTS) {
-        return reject_param(why, TVO_PARAM_ROBOT_COUNT);
+        return reject_param(why, TVO_SESSION_PARAM_ROBOT_COUNT);
     }
     desc->robot_count = (uint8_t)msg->robot_count;
     for (uint8_t r = 0; r < desc->robot_count; ++r) {
@@ -376,9 +418,9 @@ static tvo_status_t decode_offsets(const tvo_lcm_session_t *msg, tvo_problem_des
 tvo_status_t tvo_session_decode_problem(const tvo_lcm_session_t *msg, tvo_problem_desc_t *desc,
                                         tvo_session_reject_t *why)
 {
-    (void)reject(why, TVO_OK, TVO_PARAM_NONE, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+    (void)reject(why, TVO_OK, TVO_SESSION_PARAM_NONE, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
     if (msg == NULL || desc == NULL) {
-        return reject(why, TVO_ERR_NULL, TVO_PARAM_NONE, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+        return reject(why, TVO_ERR_NULL, TVO_SESSION_PARAM_NONE, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
     }
     tvo_status_t st = tvo_problem_desc_default(desc);
     if (st == TVO_OK) {
@@ -435,7 +477,9 @@ void tvo_session_ack(const tvo_lcm_session_t *msg, const tvo_session_reject_t *w
         ack->session_id = msg->session_id;
         ack->action = msg->action;
     }
-    ack->status = (why != NULL) ? (int32_t)why->status : 0;
+    const tvo_step_why_t answer = {(why != NULL) ? why->node : TVO_NODE_OK, (why != NULL) ? why->status : TVO_OK,
+                                   TVO_REASON_NONE};
+    ack->status = tvo_step_wire_status(&answer);
     ack->bad_param = (why != NULL) ? (int32_t)why->param : 0;
     ack->bad_part = (why != NULL) ? why->part : TVO_LCM_SESSION_ACK_T_PART_NONE;
     ack->bad_index = (why != NULL) ? why->index : -1;

@@ -24,13 +24,45 @@ extern "C" {
 /** Ticks of the core's clock per second: ticks are microseconds, like LCM's utime. */
 #define TVO_EDGE_TICK_HZ 1000000u
 
-/** Why a START was refused: the status, the parameter, the problem part and its entry. */
+/** A START's parameters as the wire names them (session_ack_t.PARAM_*, the same numbers): the session's
+ *  own fields, and the fields of both controllers' configurations mapped onto them (session_codec.c). */
+typedef enum {
+    TVO_SESSION_PARAM_NONE = 0,
+    TVO_SESSION_PARAM_TICK_HZ = 1,
+    TVO_SESSION_PARAM_PERIOD = 2,
+    TVO_SESSION_PARAM_DELAY = 3,
+    TVO_SESSION_PARAM_FILTER_TF = 4,
+    TVO_SESSION_PARAM_GAINS = 5,
+    TVO_SESSION_PARAM_OMEGA_MAX = 6,
+    TVO_SESSION_PARAM_ACCEL_MAX = 7,
+    TVO_SESSION_PARAM_SPEED_MAX = 8,
+    TVO_SESSION_PARAM_MIN_SPEED = 9,
+    TVO_SESSION_PARAM_WATCHDOG = 10,
+    TVO_SESSION_PARAM_ROBOT_COUNT = 11,
+    TVO_SESSION_PARAM_OBJECTIVE = 12,
+    TVO_SESSION_PARAM_VELOCITY_SOURCE = 13,
+    TVO_SESSION_PARAM_INITIAL_SPEED = 14,
+    TVO_SESSION_PARAM_EPOCH = 15,
+    TVO_SESSION_PARAM_CLOCK_SOURCE = 16,
+    TVO_SESSION_PARAM_PLANT_KIND = 17,
+    TVO_SESSION_PARAM_SESSION_ID = 18
+} tvo_session_param_t;
+
+/** Why a session message was refused: the edge's status, else the core's error, the parameter, the
+ *  problem part and its entry (the ack carries their wire values: tvo_session_ack). */
 typedef struct {
-    tvo_status_t status;
-    tvo_param_t param;      /* TVO_PARAM_OBJECTIVE when the problem was at fault */
-    int32_t part;           /* TVO_LCM_SESSION_ACK_T_PART_*, PART_NONE if not the problem */
-    int32_t index;          /* entry of that part (robot, bound, obstacle, offset), -1 if none */
+    tvo_node_status_t node;       /* the edge's own refusal (conflict, no session, unknown action) */
+    tvo_status_t status;          /* else the core's (or the codec's) error */
+    tvo_session_param_t param;    /* TVO_SESSION_PARAM_OBJECTIVE when the problem was at fault */
+    int32_t part;                 /* TVO_LCM_SESSION_ACK_T_PART_*, PART_NONE if not the problem */
+    int32_t index;                /* entry of that part (robot, bound, obstacle, offset), -1 if none */
 } tvo_session_reject_t;
+
+/** The session parameter a unicycle controller's init names. */
+tvo_session_param_t tvo_session_param_of_unicycle(tvo_param_t param);
+
+/** The session parameter a chain controller's init names. */
+tvo_session_param_t tvo_session_param_of_chain(tvo_chain_param_t param);
 
 /** The session's timing, checked: period 1 .. 2^30-1 us, delay 0 .. period, watchdog within the span. */
 typedef struct {

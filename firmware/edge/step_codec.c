@@ -13,6 +13,82 @@ _Static_assert(sizeof(((tvo_lcm_command_t *)0)->input) / sizeof(double) >= TVO_M
 _Static_assert(sizeof(((tvo_lcm_telemetry_t *)0)->gradient) / sizeof(double) >= TVO_MAX_OUTPUT_DIM,
                "telemetry_t holds every output");
 
+/* The wire's numbers of the core's call errors, the core's reasons and the edge's statuses: every
+ * status a command, telemetry or ack carries comes from these three tables (lcm_types/README.md). */
+#define WIRE(name) TVO_LCM_COMMAND_T_STATUS_##name
+static const int8_t wire_of_error[TVO_STATUS_COUNT] = {
+    [TVO_OK] = WIRE(OK),
+    [TVO_ERR_NULL] = WIRE(ERR_NULL),
+    [TVO_ERR_NOT_FINITE] = WIRE(ERR_NOT_FINITE),
+    [TVO_ERR_DIMENSION] = WIRE(ERR_DIMENSION),
+    [TVO_ERR_PARAM] = WIRE(ERR_PARAM),
+    [TVO_ERR_CAPACITY] = WIRE(ERR_CAPACITY),
+    [TVO_ERR_NOT_INITIALIZED] = WIRE(ERR_NOT_INITIALIZED),
+    [TVO_ERR_TICK_NOT_ADVANCING] = WIRE(ERR_OUT_OF_ORDER),
+    [TVO_ERR_BEFORE_EPOCH] = WIRE(ERR_OUT_OF_ORDER),
+    [TVO_ERR_CLOCK_STARTED] = WIRE(ERR_OUT_OF_ORDER),
+    [TVO_ERR_NOT_POSITIVE_DEFINITE] = WIRE(ERR_NOT_POSITIVE_DEFINITE),
+    [TVO_ERR_NUMERIC] = WIRE(ERR_NUMERIC),
+    [TVO_ERR_STALE] = WIRE(ERR_STALE),
+    [TVO_ERR_FUTURE_STAMP] = WIRE(ERR_FUTURE_STAMP),
+    [TVO_ERR_STAMP_NOT_NEWER] = WIRE(ERR_OUT_OF_ORDER),
+    [TVO_ERR_TARGET_NOT_READY] = WIRE(ERR_TARGET_NOT_READY),
+};
+static const int8_t wire_of_reason[TVO_REASON_COUNT] = {
+    [TVO_REASON_NONE] = WIRE(OK),
+    [TVO_REASON_NOT_FINITE] = WIRE(ERR_NOT_FINITE),
+    [TVO_REASON_IMPLAUSIBLE_MEASUREMENT] = WIRE(ERR_IMPLAUSIBLE_MEASUREMENT),
+    [TVO_REASON_STALE] = WIRE(ERR_STALE),
+    [TVO_REASON_FUTURE_STAMP] = WIRE(ERR_FUTURE_STAMP),
+    [TVO_REASON_STAMP_NOT_NEWER] = WIRE(ERR_OUT_OF_ORDER),
+    [TVO_REASON_MISSING_FIELD] = WIRE(ERR_MISSING_FIELD),
+    [TVO_REASON_SOURCE_NOT_LINKED] = WIRE(ERR_NOT_INITIALIZED),
+    [TVO_REASON_TARGET_NOT_READY] = WIRE(ERR_TARGET_NOT_READY),
+    [TVO_REASON_NUMERIC] = WIRE(ERR_NUMERIC),
+    [TVO_REASON_NOT_POSITIVE_DEFINITE] = WIRE(ERR_NOT_POSITIVE_DEFINITE),
+    [TVO_REASON_NO_MEASUREMENT] = WIRE(ERR_NO_MEASUREMENT),
+    [TVO_REASON_WATCHDOG] = WIRE(ERR_WATCHDOG),
+    [TVO_REASON_SPEED_MISMATCH] = WIRE(OK), /* the measurement was taken: the stop is its flag */
+    [TVO_REASON_STOP_REQUESTED] = WIRE(ERR_WATCHDOG),
+};
+static const int8_t wire_of_node[TVO_NODE_STATUS_COUNT] = {
+    [TVO_NODE_OK] = WIRE(OK),
+    [TVO_NODE_WRONG_ROBOT_COUNT] = WIRE(ERR_DIMENSION),
+    [TVO_NODE_IMPLAUSIBLE_STAMP] = WIRE(ERR_IMPLAUSIBLE_STAMP),
+    [TVO_NODE_NOT_LATER_PERIOD] = WIRE(ERR_OUT_OF_ORDER),
+    [TVO_NODE_STALE] = WIRE(ERR_STALE),
+    [TVO_NODE_MISSING_DERIVATIVES] = WIRE(ERR_MISSING_FIELD),
+    [TVO_NODE_REFUSAL_STREAK] = WIRE(ERR_WATCHDOG),
+    [TVO_NODE_SESSION_CONFLICT] = WIRE(ERR_SESSION_CONFLICT),
+    [TVO_NODE_NO_SESSION] = WIRE(ERR_NO_SESSION),
+    [TVO_NODE_UNKNOWN_ACTION] = WIRE(ERR_PARAM),
+};
+#undef WIRE
+
+int32_t tvo_step_wire_status(const tvo_step_why_t *why)
+{
+    if (why == NULL) {
+        return TVO_LCM_COMMAND_T_STATUS_ERR_NULL;
+    }
+    if (why->node != TVO_NODE_OK) {
+        return ((uint32_t)why->node < TVO_NODE_STATUS_COUNT) ? wire_of_node[why->node]
+                                                             : TVO_LCM_COMMAND_T_STATUS_ERR_PARAM;
+    }
+    if (why->error != TVO_OK) {
+        return ((uint32_t)why->error < TVO_STATUS_COUNT) ? wire_of_error[why->error]
+                                                         : TVO_LCM_COMMAND_T_STATUS_ERR_PARAM;
+    }
+    return ((uint32_t)why->reason < TVO_REASON_COUNT) ? wire_of_reason[why->reason]
+                                                      : TVO_LCM_COMMAND_T_STATUS_ERR_PARAM;
+}
+
+uint32_t tvo_step_wire_flags(uint32_t flags, tvo_outcome_t outcome)
+{
+    const uint32_t shaping = flags & ~(uint32_t)(TVO_LCM_COMMAND_T_FLAG_HOLDING | TVO_LCM_COMMAND_T_FLAG_SAFE_STOP);
+    return shaping | (outcome == TVO_OUTCOME_HELD ? (uint32_t)TVO_LCM_COMMAND_T_FLAG_HOLDING : 0u) |
+           (outcome == TVO_OUTCOME_STOPPED ? (uint32_t)TVO_LCM_COMMAND_T_FLAG_SAFE_STOP : 0u);
+}
+
 /* A robot count from the wire against the session's (at most the build's). */
 static int robot_count_matches(int32_t wire_count, uint8_t robot_count)
 {
@@ -74,19 +150,19 @@ tvo_status_t tvo_step_chain_measurement_from_lcm(const tvo_lcm_measurement_t *ms
 
 /* The stamp fields a command and the telemetry that follows it both carry under the same names (the
  * LCM types share no header struct): one mapping for both. */
-#define SET_STEP_STAMP(msg, stamp, command_flags)                  \
+#define SET_STEP_STAMP(msg, stamp, wire_flags)                     \
     do {                                                           \
         (msg)->utime = (stamp)->utime;                             \
         (msg)->session_id = (stamp)->session_id;                   \
         (msg)->measurement_sequence = (stamp)->sequence;           \
-        (msg)->status = (int32_t)(stamp)->status;                  \
-        (msg)->flags = (int32_t)(command_flags);                   \
+        (msg)->status = tvo_step_wire_status(&(stamp)->why);       \
+        (msg)->flags = (int32_t)(wire_flags);                      \
     } while (0)
 
-static void command_stamp(const tvo_step_stamp_t *stamp, uint32_t flags, tvo_lcm_command_t *msg)
+static void command_stamp(const tvo_step_stamp_t *stamp, uint32_t flags, uint8_t outcome, tvo_lcm_command_t *msg)
 {
     memset(msg, 0, sizeof(*msg));
-    SET_STEP_STAMP(msg, stamp, flags);
+    SET_STEP_STAMP(msg, stamp, tvo_step_wire_flags(flags, (tvo_outcome_t)outcome));
     msg->robot_count = stamp->robot_count;
 }
 
@@ -95,7 +171,7 @@ void tvo_step_command_to_lcm(const tvo_command_t *cmd, const tvo_step_stamp_t *s
     if (cmd == NULL || stamp == NULL || msg == NULL) {
         return;
     }
-    command_stamp(stamp, cmd->flags, msg);
+    command_stamp(stamp, cmd->flags, cmd->outcome, msg);
     for (size_t r = 0; r < stamp->robot_count && r < TVO_MAX_ROBOTS; ++r) {
         msg->speed_mps[r] = (double)cmd->speed_mps[r];
         msg->turn_rate_radps[r] = (double)cmd->turn_rate_radps[r];
@@ -108,18 +184,18 @@ void tvo_step_chain_command_to_lcm(const tvo_chain_command_t *cmd, const tvo_ste
     if (cmd == NULL || stamp == NULL || msg == NULL) {
         return;
     }
-    command_stamp(stamp, cmd->flags, msg);
+    command_stamp(stamp, cmd->flags, cmd->outcome, msg);
     for (size_t i = 0; i < 2u * (size_t)stamp->robot_count && i < TVO_MAX_OUTPUT_DIM; ++i) {
         msg->input[i] = (double)cmd->u[i];
     }
 }
 
-void tvo_step_telemetry_stamp(const tvo_step_stamp_t *stamp, uint32_t flags, tvo_lcm_telemetry_t *msg)
+void tvo_step_telemetry_stamp(const tvo_step_stamp_t *stamp, uint32_t wire_flags, tvo_lcm_telemetry_t *msg)
 {
     if (stamp == NULL || msg == NULL) {
         return;
     }
-    SET_STEP_STAMP(msg, stamp, flags);
+    SET_STEP_STAMP(msg, stamp, wire_flags);
 }
 
 void tvo_step_telemetry_to_lcm(const tvo_controller_t *ctl, const tvo_problem_t *problem, tvo_lcm_telemetry_t *msg)

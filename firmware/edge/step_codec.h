@@ -12,6 +12,7 @@
 #include "tvo/controller.h"
 #include "tvo/problem.h"
 
+#include "channels.h"
 #include "tvo_lcm_command_t.h"
 #include "tvo_lcm_measurement_t.h"
 #include "tvo_lcm_target_t.h"
@@ -29,12 +30,28 @@ tvo_status_t tvo_step_measurement_from_lcm(const tvo_lcm_measurement_t *msg, uin
 tvo_status_t tvo_step_chain_measurement_from_lcm(const tvo_lcm_measurement_t *msg, uint8_t robot_count,
                                                  uint32_t stamp_tick, tvo_chain_measurement_t *meas);
 
+/** Why a command (or an ack) went out as it did: the edge's own status if not TVO_NODE_OK, else the
+ *  core's call error if not TVO_OK, else the command's reason. */
+typedef struct {
+    tvo_node_status_t node;
+    tvo_status_t error;
+    tvo_reason_t reason;
+} tvo_step_why_t;
+
+/** command_t.status (also session_ack_t's and telemetry_t's) for `why`: the one mapping from the core's
+ *  and the edge's vocabularies to the wire's numbers (a table per vocabulary, step_codec.c). */
+int32_t tvo_step_wire_status(const tvo_step_why_t *why);
+
+/** command_t.flags of a command: the core's flags with the wire's HOLDING and SAFE_STOP bits, which
+ *  say the command's outcome (held, stopped). */
+uint32_t tvo_step_wire_flags(uint32_t flags, tvo_outcome_t outcome);
+
 /** The wire fields every command carries: when, which session, which measurement, why. */
 typedef struct {
     int64_t utime;
     int64_t session_id;
     int64_t sequence;       /* measurement answered, -1 for the node's own safe stop */
-    tvo_status_t status;
+    tvo_step_why_t why;
     uint8_t robot_count;
 } tvo_step_stamp_t;
 
@@ -45,8 +62,9 @@ void tvo_step_command_to_lcm(const tvo_command_t *cmd, const tvo_step_stamp_t *s
 void tvo_step_chain_command_to_lcm(const tvo_chain_command_t *cmd, const tvo_step_stamp_t *stamp,
                                    tvo_lcm_command_t *msg);
 
-/** The stamp fields of the telemetry that follows a command (the controller's part is separate). */
-void tvo_step_telemetry_stamp(const tvo_step_stamp_t *stamp, uint32_t flags, tvo_lcm_telemetry_t *msg);
+/** The stamp fields of the telemetry that follows a command (wire_flags: the command's, as
+ *  tvo_step_wire_flags gives them; the controller's part is separate). */
+void tvo_step_telemetry_stamp(const tvo_step_stamp_t *stamp, uint32_t wire_flags, tvo_lcm_telemetry_t *msg);
 
 /** Telemetry of the unicycle controller's last good step (state, gradient, multipliers, barrier). */
 void tvo_step_telemetry_to_lcm(const tvo_controller_t *ctl, const tvo_problem_t *problem, tvo_lcm_telemetry_t *msg);

@@ -19,45 +19,67 @@ tvo_status_t tvo_chain_config_default(tvo_chain_config_t *cfg)
     return TVO_OK;
 }
 
-static tvo_param_t first_bad_param(const tvo_chain_config_t *cfg, const tvo_objective_t *objective)
+const char *tvo_chain_param_str(tvo_chain_param_t param)
 {
+    switch (param) {
+    case TVO_CHAIN_PARAM_NONE: return "none";
+    case TVO_CHAIN_PARAM_TICK_HZ: return "tick_hz";
+    case TVO_CHAIN_PARAM_PERIOD: return "period_ticks";
+    case TVO_CHAIN_PARAM_DELAY: return "delay_ticks";
+    case TVO_CHAIN_PARAM_RELATIVE_DEGREE: return "relative_degree";
+    case TVO_CHAIN_PARAM_GAIN: return "gain";
+    case TVO_CHAIN_PARAM_FILTER_TF: return "filter_tf_s";
+    case TVO_CHAIN_PARAM_INPUT_MAX: return "input_max";
+    case TVO_CHAIN_PARAM_WATCHDOG: return "watchdog_periods";
+    case TVO_CHAIN_PARAM_OBJECTIVE: return "objective";
+    default: return "unknown parameter";
+    }
+}
+
+static tvo_chain_param_t first_bad_param(const tvo_chain_config_t *cfg, const tvo_objective_t *objective)
+{
+    /* The sample clock names the timing fields the controllers share in tvo_param_t's words. */
     const tvo_param_t timing = tvo_sample_clock_check_timing(cfg->tick_hz, cfg->period_ticks, cfg->delay_ticks);
     if (timing != TVO_PARAM_NONE) {
-        return timing;
+        return (timing == TVO_PARAM_TICK_HZ) ? TVO_CHAIN_PARAM_TICK_HZ
+               : (timing == TVO_PARAM_PERIOD) ? TVO_CHAIN_PARAM_PERIOD
+                                              : TVO_CHAIN_PARAM_DELAY;
     }
-    if (cfg->relative_degree == 0u || cfg->relative_degree > TVO_MAX_RELATIVE_DEGREE ||
-        tvo_law_check_sampling_reach(cfg->relative_degree, cfg->gain,
+    if (cfg->relative_degree == 0u || cfg->relative_degree > TVO_MAX_RELATIVE_DEGREE) {
+        return TVO_CHAIN_PARAM_RELATIVE_DEGREE;
+    }
+    if (tvo_law_check_sampling_reach(cfg->relative_degree, cfg->gain,
                                      tvo_ticks_to_seconds32(cfg->period_ticks, cfg->tick_hz)) != TVO_OK) {
-        return TVO_PARAM_GAINS;
+        return TVO_CHAIN_PARAM_GAIN;
     }
     if (cfg->filtered_derivatives && !(isfinite(cfg->filter_tf_s) && cfg->filter_tf_s > TVO_R(0.0))) {
-        return TVO_PARAM_FILTER_TF;
+        return TVO_CHAIN_PARAM_FILTER_TF;
     }
     if (!(isfinite(cfg->input_max) && cfg->input_max > TVO_R(0.0))) {
-        return TVO_PARAM_ACCEL_MAX;
+        return TVO_CHAIN_PARAM_INPUT_MAX;
     }
     if (!tvo_sample_clock_watchdog_ok(cfg->period_ticks, cfg->watchdog_periods)) {
-        return TVO_PARAM_WATCHDOG;
+        return TVO_CHAIN_PARAM_WATCHDOG;
     }
     if (objective->dual_dim != 0u || objective->term_count == 0u) {
-        return TVO_PARAM_OBJECTIVE;
+        return TVO_CHAIN_PARAM_OBJECTIVE;
     }
-    return TVO_PARAM_NONE;
+    return TVO_CHAIN_PARAM_NONE;
 }
 
 static const tvo_loop_plant_t chain_plant; /* the loop's table, below its pieces */
 
-/* Validates and binds the controller, all but the loop's clock: TVO_PARAM_NONE, or the culprit. */
-static tvo_param_t chain_setup(tvo_chain_controller_t *ctl, const tvo_chain_config_t *cfg,
-                               const tvo_objective_t *objective)
+/* Validates and binds the controller, all but the loop's clock: TVO_CHAIN_PARAM_NONE, or the culprit. */
+static tvo_chain_param_t chain_setup(tvo_chain_controller_t *ctl, const tvo_chain_config_t *cfg,
+                                     const tvo_objective_t *objective)
 {
-    const tvo_param_t bad = first_bad_param(cfg, objective);
-    if (bad != TVO_PARAM_NONE) {
+    const tvo_chain_param_t bad = first_bad_param(cfg, objective);
+    if (bad != TVO_CHAIN_PARAM_NONE) {
         return bad;
     }
     if (!tvo_law_gains_hurwitz(cfg->relative_degree, cfg->gain) || objective->primal_dim == 0u ||
         objective->primal_dim > TVO_MAX_Z_DIM) {
-        return TVO_PARAM_GAINS;
+        return TVO_CHAIN_PARAM_GAIN;
     }
     tvo_law_init(&ctl->law, cfg->relative_degree, objective->primal_dim, cfg->gain);
     ctl->period_s = tvo_ticks_to_seconds32(cfg->period_ticks, cfg->tick_hz);
@@ -65,24 +87,31 @@ static tvo_param_t chain_setup(tvo_chain_controller_t *ctl, const tvo_chain_conf
         if (tvo_dirty_derivative_init(&ctl->filter[j], objective->primal_dim,
                                       cfg->filtered_derivatives ? cfg->filter_tf_s : TVO_R(1.0),
                                       ctl->period_s) != TVO_OK) {
-            return TVO_PARAM_FILTER_TF;
+            return TVO_CHAIN_PARAM_FILTER_TF;
         }
     }
     ctl->cfg = *cfg;
     ctl->objective = objective;
-    return TVO_PARAM_NONE;
+    return TVO_CHAIN_PARAM_NONE;
 }
 
 tvo_status_t tvo_chain_controller_init(tvo_chain_controller_t *ctl, const tvo_chain_config_t *cfg,
-                                       const tvo_objective_t *objective, uint32_t epoch_tick, tvo_param_t *bad_param)
+                                       const tvo_objective_t *objective, uint32_t epoch_tick,
+                                       tvo_chain_param_t *bad_param)
 {
-    const tvo_status_t st = loop_init_begin(&chain_plant, ctl, cfg, objective, bad_param);
+    if (bad_param != NULL) {
+        *bad_param = TVO_CHAIN_PARAM_NONE;
+    }
+    const tvo_status_t st = loop_init_begin(&chain_plant, ctl, cfg, objective);
     if (st != TVO_OK) {
         return st;
     }
-    const tvo_param_t bad = chain_setup(ctl, cfg, objective);
-    return loop_init_end(&chain_plant, ctl, (bad == TVO_PARAM_NONE) ? TVO_OK : TVO_ERR_PARAM, bad, bad_param,
-                         cfg->tick_hz, cfg->period_ticks, cfg->watchdog_periods, epoch_tick);
+    const tvo_chain_param_t bad = chain_setup(ctl, cfg, objective);
+    if (bad != TVO_CHAIN_PARAM_NONE && bad_param != NULL) {
+        *bad_param = bad;
+    }
+    return loop_init_end(&chain_plant, ctl, (bad == TVO_CHAIN_PARAM_NONE) ? TVO_OK : TVO_ERR_PARAM, cfg->tick_hz,
+                         cfg->period_ticks, cfg->watchdog_periods, epoch_tick);
 }
 
 tvo_status_t tvo_chain_predict(uint8_t relative_degree, uint8_t dim, const tvo_output_derivs_t *state,
@@ -145,7 +174,7 @@ static tvo_status_t derivatives_at_sample(const tvo_chain_controller_t *ctl, tvo
 }
 
 /* The loop's check piece: the values the configuration reads, and the stamp. */
-static tvo_status_t chain_check(const void *ctl_any, const void *meas_any, uint32_t apply_tick)
+static tvo_reason_t chain_check(const void *ctl_any, const void *meas_any, uint32_t apply_tick)
 {
     const tvo_chain_controller_t *ctl = ctl_any;
     const tvo_chain_measurement_t *meas = meas_any;
@@ -153,18 +182,18 @@ static tvo_status_t chain_check(const void *ctl_any, const void *meas_any, uint3
     for (uint8_t j = 0; j < read; ++j) {
         for (uint8_t i = 0; i < ctl->objective->primal_dim; ++i) {
             if (!isfinite(meas->y.d[j][i])) {
-                return TVO_ERR_NOT_FINITE;
+                return TVO_REASON_NOT_FINITE;
             }
         }
     }
-    return sample_clock_check_stamp(&ctl->clock, meas->stamp_tick, apply_tick);
+    return loop_reason_of(sample_clock_check_stamp(&ctl->clock, meas->stamp_tick, apply_tick));
 }
 
 /* The loop's refuse piece: its refusal, out of line (a cold path). */
-TVO_COLD_BODY tvo_status_t chain_refuse(void *ctl, const void *meas, const tvo_period_t *period,
-                                        tvo_status_t reason, void *cmd)
+TVO_COLD_BODY void chain_refuse(void *ctl, const void *meas, const tvo_period_t *period, tvo_reason_t reason,
+                                void *cmd)
 {
-    return loop_refuse(&chain_plant, ctl, meas, period, reason, cmd);
+    loop_refuse(&chain_plant, ctl, meas, period, reason, cmd);
 }
 
 /* What a good step after the watchdog's gap takes as the input in force: the chain was stopped. */
@@ -172,17 +201,21 @@ static const tvo_real_t rest_input[TVO_MAX_OUTPUT_DIM] = {TVO_R(0.0)};
 
 /* The loop's prepare piece, for a period the clock has begun: the measurement checked, the filters'
  * trial copies, the state carried to where the law is evaluated, its time; the frame's flags. */
-TVO_OFF_CHAIN_BODY tvo_status_t chain_prepare(void *ctl_any, const void *meas_any, uint32_t apply_tick,
+TVO_OFF_CHAIN_BODY tvo_reason_t chain_prepare(void *ctl_any, const void *meas_any, uint32_t apply_tick,
                                               tvo_loop_frame_t *frame)
 {
     tvo_chain_controller_t *ctl = ctl_any;
     const tvo_chain_measurement_t *meas = meas_any;
     tvo_chain_controller_work_t *work = &ctl->work;
     tvo_period_t *period = &work->period;
-    tvo_status_t st = chain_check(ctl, meas, apply_tick);
+    const tvo_reason_t refused = chain_check(ctl, meas, apply_tick);
+    if (refused != TVO_REASON_NONE) {
+        return refused;
+    }
     tvo_output_derivs_t *x = &work->state;
     tvo_dirty_derivative_t *filter = work->filter; /* kept on success */
-    if (st == TVO_OK) {
+    tvo_status_t st;
+    {
         for (uint8_t j = 0; j + 1u < TVO_MAX_RELATIVE_DEGREE; ++j) {
             filter[j] = ctl->filter[j];
             if (frame->from_rest) {
@@ -192,7 +225,7 @@ TVO_OFF_CHAIN_BODY tvo_status_t chain_prepare(void *ctl_any, const void *meas_an
         st = derivatives_at_sample(ctl, filter, meas, x);
     }
     if (st != TVO_OK) {
-        return st;
+        return loop_reason_of(st);
     }
 
     const uint8_t k = ctl->cfg.relative_degree;
@@ -205,11 +238,11 @@ TVO_OFF_CHAIN_BODY tvo_status_t chain_prepare(void *ctl_any, const void *meas_an
         st = tvo_chain_predict(k, m, x, frame->from_rest ? rest_input : ctl->held.u, period->carry_s, x);
     }
     time_jet_at_tick_time(&period->law_time, ctl->cfg.tick_hz, TVO_R(1.0), &work->time); /* valid times */
-    return st;
+    return loop_reason_of(st);
 }
 
 /* The loop's law piece, in the step's own frame. */
-TVO_LOOP_ENTRY tvo_status_t chain_law(void *ctl_any, tvo_loop_frame_t *frame)
+TVO_LOOP_ENTRY tvo_reason_t chain_law(void *ctl_any, tvo_loop_frame_t *frame)
 {
     tvo_chain_controller_t *ctl = ctl_any;
     tvo_chain_controller_work_t *work = &ctl->work;
@@ -218,12 +251,13 @@ TVO_LOOP_ENTRY tvo_status_t chain_law(void *ctl_any, tvo_loop_frame_t *frame)
     report->gradient = NULL;
     report->gradient_rate = NULL;
     report->count = 0u;
-    return tvo_law_evaluate_report(&ctl->law, ctl->objective, &work->state, &work->time, work->input, report,
-                                   &work->law);
+    const tvo_status_t st = tvo_law_evaluate_report(&ctl->law, ctl->objective, &work->state, &work->time,
+                                                    work->input, report, &work->law);
+    return (st == TVO_OK) ? TVO_REASON_NONE : loop_reason_of(st);
 }
 
 /* The loop's command piece: u is the law's y^(k), clipped to the input's limit (work->command). */
-TVO_OFF_CHAIN_BODY tvo_status_t chain_command(void *ctl_any, tvo_loop_frame_t *frame)
+TVO_OFF_CHAIN_BODY tvo_reason_t chain_command(void *ctl_any, tvo_loop_frame_t *frame)
 {
     tvo_chain_controller_t *ctl = ctl_any;
     tvo_chain_controller_work_t *work = &ctl->work;
@@ -242,19 +276,18 @@ TVO_OFF_CHAIN_BODY tvo_status_t chain_command(void *ctl_any, tvo_loop_frame_t *f
             next->flags |= TVO_FLAG_ACCEL_SATURATED;
         }
     }
-    return TVO_OK;
+    return TVO_REASON_NONE;
 }
 
 /* The loop's commit piece (the clock committed): the filters and the held input. */
-TVO_OFF_CHAIN_BODY tvo_status_t chain_commit(void *ctl_any, const tvo_loop_frame_t *frame)
+TVO_OFF_CHAIN_BODY void chain_commit(void *ctl_any, const tvo_loop_frame_t *frame)
 {
     tvo_chain_controller_t *ctl = ctl_any;
     (void)frame;
     for (uint8_t j = 0; j + 1u < TVO_MAX_RELATIVE_DEGREE; ++j) {
         ctl->filter[j] = ctl->work.filter[j];
     }
-    ctl->held = ctl->work.command;
-    return TVO_OK;
+    ctl->held = ctl->work.command; /* applied: chain_command zeroed its outcome and reason */
 }
 
 /* No refusal piece (the chain's refusals are final) and no rest piece (the held input is all its
@@ -280,9 +313,9 @@ tvo_status_t tvo_chain_controller_miss(tvo_chain_controller_t *ctl, uint32_t app
 }
 
 tvo_status_t tvo_chain_controller_check(const tvo_chain_controller_t *ctl, const tvo_chain_measurement_t *meas,
-                                        uint32_t apply_tick)
+                                        uint32_t apply_tick, tvo_reason_t *reason)
 {
-    return loop_check(&chain_plant, ctl, meas, apply_tick);
+    return loop_check(&chain_plant, ctl, meas, apply_tick, reason);
 }
 
 tvo_status_t tvo_chain_controller_safe_stop(tvo_chain_controller_t *ctl, tvo_chain_command_t *cmd)

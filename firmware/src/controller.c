@@ -132,7 +132,10 @@ TVO_LOOP_ENTRY tvo_status_t controller_init(tvo_controller_t *ctl, const tvo_con
                                             const tvo_objective_t *objective, uint32_t epoch_tick,
                                             tvo_param_t *bad_param, const tvo_position_velocity_t *position_velocity)
 {
-    tvo_status_t st = loop_init_begin(&unicycle_plant, ctl, cfg, objective, bad_param);
+    if (bad_param != NULL) {
+        *bad_param = TVO_PARAM_NONE;
+    }
+    tvo_status_t st = loop_init_begin(&unicycle_plant, ctl, cfg, objective);
     if (st != TVO_OK) {
         return st;
     }
@@ -142,8 +145,10 @@ TVO_LOOP_ENTRY tvo_status_t controller_init(tvo_controller_t *ctl, const tvo_con
         st = tvo_dirty_derivative_init(&ctl->velocity_filter, objective->primal_dim, cfg->filter_tf_s, ctl->period_s);
         bad = (st == TVO_OK) ? TVO_PARAM_NONE : TVO_PARAM_OBJECTIVE;
     }
-    return loop_init_end(&unicycle_plant, ctl, st, bad, bad_param, cfg->tick_hz, cfg->period_ticks,
-                         cfg->watchdog_periods, epoch_tick);
+    if (st != TVO_OK && bad_param != NULL) {
+        *bad_param = bad;
+    }
+    return loop_init_end(&unicycle_plant, ctl, st, cfg->tick_hz, cfg->period_ticks, cfg->watchdog_periods, epoch_tick);
 }
 
 tvo_status_t tvo_controller_init(tvo_controller_t *ctl, const tvo_controller_config_t *cfg,
@@ -162,26 +167,26 @@ tvo_status_t tvo_controller_init_pose_velocity(tvo_controller_t *ctl, const tvo_
 
 /* Why a measurement failed the range check, off the common path: not finite if the sum of the robots'
  * values is not (a field the configuration does not read included), else out of range. */
-TVO_COLD_BODY tvo_status_t measurement_range_refusal(const tvo_controller_t *ctl, const tvo_measurement_t *meas)
+TVO_COLD_BODY tvo_reason_t measurement_range_refusal(const tvo_controller_t *ctl, const tvo_measurement_t *meas)
 {
     tvo_real_t probe = TVO_R(0.0);
     for (uint8_t r = 0; r < STEP_ROBOTS(ctl->cfg.robot_count) && r < TVO_MAX_ROBOTS; ++r) {
         probe += meas->position_m[r][0] + meas->position_m[r][1] + meas->heading_rad[r] + meas->speed_mps[r];
     }
-    return isfinite(probe - probe) ? TVO_ERR_IMPLAUSIBLE_MEASUREMENT : TVO_ERR_NOT_FINITE;
+    return isfinite(probe - probe) ? TVO_REASON_IMPLAUSIBLE_MEASUREMENT : TVO_REASON_NOT_FINITE;
 }
 
 /* The loop's refusal piece: the range check's refusal told apart (implausible, or not finite). */
-static tvo_status_t unicycle_refusal(const void *ctl, const void *meas, tvo_status_t reason)
+static tvo_reason_t unicycle_refusal(const void *ctl, const void *meas, tvo_reason_t reason)
 {
-    return (reason == TVO_ERR_IMPLAUSIBLE_MEASUREMENT) ? measurement_range_refusal(ctl, meas) : reason;
+    return (reason == TVO_REASON_IMPLAUSIBLE_MEASUREMENT) ? measurement_range_refusal(ctl, meas) : reason;
 }
 
 /* The loop's refuse piece: its refusal, out of line (a cold path). */
-TVO_COLD_BODY tvo_status_t unicycle_refuse(void *ctl, const void *meas, const tvo_period_t *period,
-                                           tvo_status_t reason, void *cmd)
+TVO_COLD_BODY void unicycle_refuse(void *ctl, const void *meas, const tvo_period_t *period, tvo_reason_t reason,
+                                   void *cmd)
 {
-    return loop_refuse(&unicycle_plant, ctl, meas, period, reason, cmd);
+    loop_refuse(&unicycle_plant, ctl, meas, period, reason, cmd);
 }
 
 /* |a| <= limit and |b| <= limit (limit > 0), false for NaN and the infinities. In float32 by the bits:
@@ -212,7 +217,7 @@ static inline int within(float value, float limit)
 #endif
 
 /* The loop's check piece: the measurement's values, its stamp and the fields the source reads. */
-static inline tvo_status_t check_measurement(const void *ctl_any, const void *meas_any, uint32_t apply_tick)
+static inline tvo_reason_t check_measurement(const void *ctl_any, const void *meas_any, uint32_t apply_tick)
 {
     const tvo_controller_t *ctl = ctl_any;
     const tvo_measurement_t *meas = meas_any;
@@ -223,25 +228,25 @@ static inline tvo_status_t check_measurement(const void *ctl_any, const void *me
         if (!within2(meas->position_m[r][0], meas->position_m[r][1], TVO_POSITION_LIMIT_M) ||
             (meas->heading_valid && !within(meas->heading_rad[r], TVO_HEADING_LIMIT_RAD)) ||
             (meas->speed_valid && !within(meas->speed_mps[r], speed_limit))) {
-            return TVO_ERR_IMPLAUSIBLE_MEASUREMENT; /* or not finite: unicycle_refusal says which */
+            return TVO_REASON_IMPLAUSIBLE_MEASUREMENT; /* or not finite: unicycle_refusal says which */
         }
     }
     const tvo_status_t st = sample_clock_check_stamp(&ctl->clock, meas->stamp_tick, apply_tick);
     if (st != TVO_OK) {
-        return st;
+        return loop_reason_of(st);
     }
     if (ctl->cfg.velocity_source == TVO_VELOCITY_FROM_POSE) {
         if (!meas->heading_valid) {
-            return TVO_ERR_MISSING_FIELD;
+            return TVO_REASON_MISSING_FIELD;
         }
     } else if (ctl->position_velocity == NULL) {
-        return TVO_ERR_NOT_INITIALIZED; /* the source was set by hand after tvo_controller_init_pose_velocity */
+        return TVO_REASON_SOURCE_NOT_LINKED; /* set by hand after tvo_controller_init_pose_velocity */
     }
-    return TVO_OK;
+    return TVO_REASON_NONE;
 }
 
 /* What a good step after the watchdog's gap takes as the command in force: the robots were stopped. */
-static const tvo_command_t rest_command = {{TVO_R(0.0)}, {TVO_R(0.0)}, 0u};
+static const tvo_command_t rest_command = {{TVO_R(0.0)}, {TVO_R(0.0)}, 0u, TVO_OUTCOME_STOPPED, TVO_REASON_NONE};
 
 static tvo_real_t clamp(tvo_real_t v, tvo_real_t limit, uint32_t flag, uint32_t *flags)
 {
@@ -286,7 +291,7 @@ TVO_COLD_BODY uint32_t limit_speed_step(const tvo_controller_t *ctl, tvo_real_t 
 
 /* A period of the speed mismatch's stop, after the period's commit: accepted (clock, filters,
  * multipliers move on), but the robots stand still. */
-TVO_COLD_BODY tvo_status_t hold_mismatch_stop(tvo_controller_t *ctl)
+TVO_COLD_BODY void hold_mismatch_stop(tvo_controller_t *ctl)
 {
     ctl->speed_mismatch_holdoff--;
     for (uint8_t r = 0; r < TVO_MAX_ROBOTS; ++r) {
@@ -297,14 +302,15 @@ TVO_COLD_BODY tvo_status_t hold_mismatch_stop(tvo_controller_t *ctl)
         ctl->multiplier_rate[q] = TVO_R(0.0);
     }
     memset(&ctl->held, 0, sizeof(ctl->held));
-    ctl->held.flags = TVO_FLAG_SAFE_STOP | TVO_FLAG_SPEED_MISMATCH;
-    return TVO_OK;
+    ctl->held.flags = TVO_FLAG_SPEED_MISMATCH;
+    ctl->held.outcome = TVO_OUTCOME_STOPPED;
+    ctl->held.reason = TVO_REASON_SPEED_MISMATCH;
 }
 
 /* The loop's prepare piece, for a period the clock has begun: the measurement checked, the state and
  * time the law is evaluated at (work->output, work->time); the frame's flags, its note (the measured
  * speed contradicted the held one) and the stamp. */
-TVO_OFF_CHAIN_BODY tvo_status_t unicycle_prepare(void *ctl_any, const void *meas_any, uint32_t apply_tick,
+TVO_OFF_CHAIN_BODY tvo_reason_t unicycle_prepare(void *ctl_any, const void *meas_any, uint32_t apply_tick,
                                                  tvo_loop_frame_t *frame)
 {
     tvo_controller_t *ctl = ctl_any;
@@ -315,18 +321,18 @@ TVO_OFF_CHAIN_BODY tvo_status_t unicycle_prepare(void *ctl_any, const void *meas
     tvo_period_t *period = &work->period;
     work->from_rest = frame->from_rest;
     work->in_force = work->from_rest ? &rest_command : &ctl->held;
-    tvo_status_t st = check_measurement(ctl, meas, apply_tick);
-    if (st != TVO_OK) {
-        return st;
+    const tvo_reason_t refused = check_measurement(ctl, meas, apply_tick);
+    if (refused != TVO_REASON_NONE) {
+        return refused;
     }
     /* Where the law is evaluated and how far the sampled state is carried there (the age to the
      * application instant with compensation, half a period on when ZOH-aware). */
     sample_clock_locate(&ctl->clock, period, meas->stamp_tick, cfg->delay_compensation, cfg->zoh_aware);
     const int position_only = cfg->velocity_source == TVO_VELOCITY_FROM_POSITION;
     if (position_only) {
-        st = ctl->position_velocity->estimate(ctl, meas); /* init set it for this source */
+        const tvo_status_t st = ctl->position_velocity->estimate(ctl, meas); /* init set it for this source */
         if (st != TVO_OK) {
-            return st;
+            return loop_reason_of(st);
         }
     }
     const tvo_real_t *heading_at_sample = position_only ? work->heading_at_sample : meas->heading_rad;
@@ -344,7 +350,7 @@ TVO_OFF_CHAIN_BODY tvo_status_t unicycle_prepare(void *ctl_any, const void *meas
     tvo_real_t *speed = work->speed;
     tvo_real_t *speed_state = work->speed_state;
     int speed_contradicted = 0;
-    for (uint8_t r = 0; r < n && st == TVO_OK; ++r) {
+    for (uint8_t r = 0; r < n; ++r) {
         speed_state[r] = from_rest ? TVO_R(0.0) : ctl->speed_state_mps[r];
         if (cfg->velocity_source == TVO_VELOCITY_FROM_POSE && meas->speed_valid) {
             /* Re-sync the extension with what the plant actually does (slip, disturbance): the plant
@@ -398,11 +404,11 @@ TVO_OFF_CHAIN_BODY tvo_status_t unicycle_prepare(void *ctl_any, const void *meas
 
     frame->flags = flags;
     frame->note = (uint8_t)speed_contradicted;
-    return st;
+    return TVO_REASON_NONE;
 }
 
 /* The loop's law piece, in the step's own frame (the law's call chain is the step's deepest). */
-TVO_LOOP_ENTRY tvo_status_t unicycle_law(void *ctl_any, tvo_loop_frame_t *frame)
+TVO_LOOP_ENTRY tvo_reason_t unicycle_law(void *ctl_any, tvo_loop_frame_t *frame)
 {
     tvo_controller_t *ctl = ctl_any;
     tvo_controller_work_t *work = &ctl->work;
@@ -415,11 +421,11 @@ TVO_LOOP_ENTRY tvo_status_t unicycle_law(void *ctl_any, tvo_loop_frame_t *frame)
     if (report->regularization > TVO_R(0.0)) {
         frame->flags |= TVO_FLAG_REGULARIZED;
     }
-    return st;
+    return (st == TVO_OK) ? TVO_REASON_NONE : loop_reason_of(st);
 }
 
 /* The loop's command piece: the flat map and the limits, into work->command (nothing committed). */
-TVO_OFF_CHAIN_BODY tvo_status_t unicycle_command(void *ctl_any, tvo_loop_frame_t *frame)
+TVO_OFF_CHAIN_BODY tvo_reason_t unicycle_command(void *ctl_any, tvo_loop_frame_t *frame)
 {
     tvo_controller_t *ctl = ctl_any;
     const uint8_t n = STEP_ROBOTS(frame->shape);
@@ -430,11 +436,11 @@ TVO_OFF_CHAIN_BODY tvo_status_t unicycle_command(void *ctl_any, tvo_loop_frame_t
     const tvo_real_t *speed = work->speed;
     const tvo_real_t *speed_state = work->speed_state;
     tvo_command_t *next = &work->command; /* robots 0..n-1; the held command's others stay zero */
-    tvo_status_t st = TVO_OK;
+    tvo_reason_t st = TVO_REASON_NONE;
     uint32_t flags = frame->flags;
     tvo_real_t *speed_next = work->speed_next;
     tvo_real_t *accel = work->accel;
-    for (uint8_t r = 0; r < n && st == TVO_OK; ++r) {
+    for (uint8_t r = 0; r < n && st == TVO_REASON_NONE; ++r) {
         uint8_t low_speed = 0;
         tvo_real_t turn_rate;
         tvo_unicycle_flat_map_cs(heading_cs[r], speed[r], &y_accel[2u * r], cfg->min_speed_mps, &accel[r],
@@ -456,7 +462,7 @@ TVO_OFF_CHAIN_BODY tvo_status_t unicycle_command(void *ctl_any, tvo_loop_frame_t
             flags |= limit_speed_step(ctl, &next->speed_mps[r], &speed_next[r], work->in_force->speed_mps[r]);
         }
         if (!isfinite(next->speed_mps[r]) || !isfinite(next->turn_rate_radps[r])) {
-            st = TVO_ERR_NUMERIC;
+            st = TVO_REASON_NUMERIC;
         }
     }
     frame->flags = flags;
@@ -465,7 +471,7 @@ TVO_OFF_CHAIN_BODY tvo_status_t unicycle_command(void *ctl_any, tvo_loop_frame_t
 
 /* The loop's commit piece (the clock committed): the filter, the mismatch count, the multipliers, the
  * speed states, the held command and the telemetry. */
-TVO_OFF_CHAIN_BODY tvo_status_t unicycle_commit(void *ctl_any, const tvo_loop_frame_t *frame)
+TVO_OFF_CHAIN_BODY void unicycle_commit(void *ctl_any, const tvo_loop_frame_t *frame)
 {
     tvo_controller_t *ctl = ctl_any;
     const uint8_t n = STEP_ROBOTS(frame->shape);
@@ -524,9 +530,8 @@ TVO_OFF_CHAIN_BODY tvo_status_t unicycle_commit(void *ctl_any, const tvo_loop_fr
     }
     tm->regularization = work->report.regularization;
     if (ctl->speed_mismatch_holdoff > 0u) {
-        return hold_mismatch_stop(ctl);
+        hold_mismatch_stop(ctl);
     }
-    return TVO_OK;
 }
 
 static const tvo_loop_plant_t unicycle_plant = {
@@ -562,9 +567,10 @@ tvo_status_t tvo_controller_miss(tvo_controller_t *ctl, uint32_t apply_tick, tvo
     return loop_miss(&unicycle_plant, ctl, apply_tick, cmd);
 }
 
-tvo_status_t tvo_controller_check(const tvo_controller_t *ctl, const tvo_measurement_t *meas, uint32_t apply_tick)
+tvo_status_t tvo_controller_check(const tvo_controller_t *ctl, const tvo_measurement_t *meas, uint32_t apply_tick,
+                                  tvo_reason_t *reason)
 {
-    return loop_check(&unicycle_plant, ctl, meas, apply_tick);
+    return loop_check(&unicycle_plant, ctl, meas, apply_tick, reason);
 }
 
 tvo_status_t tvo_controller_safe_stop(tvo_controller_t *ctl, tvo_command_t *cmd)

@@ -78,7 +78,7 @@ tvo_status_t tvo_sample_clock_objective_ticks(const tvo_sample_clock_t *clock, u
     }
     const uint32_t backward = ref_tick - tick;
     if ((uint64_t)backward > ref_elapsed) {
-        return TVO_ERR_OUT_OF_ORDER; /* before the epoch */
+        return TVO_ERR_BEFORE_EPOCH; /* before the epoch */
     }
     *objective_ticks = ref_elapsed - backward;
     return TVO_OK;

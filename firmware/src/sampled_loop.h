@@ -7,7 +7,9 @@
  * plant's input, the limits); then either the whole period is committed (the clock, the plant's
  * state, the held command) or nothing changes and the answer is the command in force. The one thing
  * a refusal commits is the watchdog's stop: a refused step whose period would expire it counts the
- * period and stops (tvo/controller.h states the contract).
+ * period and stops (tvo/controller.h states the contract). Every command the loop delivers carries
+ * its outcome and reason (tvo/status.h); the public calls return an error only when they changed
+ * nothing, and this file is the one place that writes an outcome.
  *
  * A plant (unicycle, integrator chain) supplies a tvo_loop_plant_t: where the loop's state lives in
  * its controller, the size of its command, and its pieces. Each controller calls the loop with its
@@ -48,39 +50,43 @@ typedef struct {
     size_t period_at;      /* the step's tvo_period_t (its work area) */
     size_t initialized_at; /* uint8_t */
     size_t stamp_at;       /* the measurement's uint32_t stamp_tick */
-    /* The plant's command: its size and where its uint32_t TVO_FLAG_* are. */
+    /* The plant's command: its size, where its uint32_t TVO_FLAG_* are, and its uint8_t outcome and
+     * reason (adjacent: outcome first). */
     size_t command_size;
     size_t command_flags_at;
+    size_t command_outcome_at;
     /** The measurement's checks, clock's stamp rules included (NULL measurements never reach it):
-     *  TVO_OK or the refusal, before any refinement by refusal. */
-    tvo_status_t (*check)(const void *ctl, const void *meas, uint32_t apply_tick);
-    /** The refusal's status as the caller sees it (e.g. implausible or not finite); NULL: as it is. */
-    tvo_status_t (*refusal)(const void *ctl, const void *meas, tvo_status_t reason);
+     *  TVO_REASON_NONE or the refusal, before any refinement by refusal. */
+    tvo_reason_t (*check)(const void *ctl, const void *meas, uint32_t apply_tick);
+    /** The refusal's reason as the caller sees it (e.g. implausible or not finite); NULL: as it is. */
+    tvo_reason_t (*refusal)(const void *ctl, const void *meas, tvo_reason_t reason);
     /** For a begun period: the measurement checked, the state and time the law is evaluated at, the
      *  frame's flags and note (nothing committed). */
-    tvo_status_t (*prepare)(void *ctl, const void *meas, uint32_t apply_tick, tvo_loop_frame_t *frame);
+    tvo_reason_t (*prepare)(void *ctl, const void *meas, uint32_t apply_tick, tvo_loop_frame_t *frame);
     /** The law, evaluated there (in the step's frame: its call chain is the step's deepest). */
-    tvo_status_t (*law)(void *ctl, tvo_loop_frame_t *frame);
+    tvo_reason_t (*law)(void *ctl, tvo_loop_frame_t *frame);
     /** The law's output mapped to the command the step would hold, limits applied (in the plant's work
      *  area; nothing committed). */
-    tvo_status_t (*command)(void *ctl, tvo_loop_frame_t *frame);
-    /** The period accepted (the clock already committed): the plant's state and the held command.
-     *  Returns the step's status. */
-    tvo_status_t (*commit)(void *ctl, const tvo_loop_frame_t *frame);
+    tvo_reason_t (*command)(void *ctl, tvo_loop_frame_t *frame);
+    /** The period accepted (the clock already committed, the held command marked applied): the plant's
+     *  state and the held command with the frame's flags (a plant's own stop may mark it otherwise). */
+    void (*commit)(void *ctl, const tvo_loop_frame_t *frame);
     /** loop_refuse with this table, kept out of line in the plant (a cold path: the step's registers
      *  and layout do not pay for it). */
-    tvo_status_t (*refuse)(void *ctl, const void *meas, const tvo_period_t *period, tvo_status_t reason, void *cmd);
+    void (*refuse)(void *ctl, const void *meas, const tvo_period_t *period, tvo_reason_t reason, void *cmd);
     /** The plant stops: its states at rest (the loop zeroes the held command); NULL: nothing more. */
     void (*rest)(void *ctl);
 } tvo_loop_plant_t;
 
 /* The layout part of a plant's table: the loop's members must carry these names (clock, held,
- * initialized, work.period in the controller; stamp_tick in the measurement; flags in the command). */
+ * initialized, work.period in the controller; stamp_tick in the measurement; flags, outcome and
+ * reason in the command). */
 #define TVO_LOOP_LAYOUT(controller_type, measurement_type, command_type)                                     \
     .controller_size = sizeof(controller_type), .clock_at = offsetof(controller_type, clock),                \
     .held_at = offsetof(controller_type, held), .period_at = offsetof(controller_type, work.period),          \
     .initialized_at = offsetof(controller_type, initialized), .stamp_at = offsetof(measurement_type, stamp_tick), \
-    .command_size = sizeof(command_type), .command_flags_at = offsetof(command_type, flags)
+    .command_size = sizeof(command_type), .command_flags_at = offsetof(command_type, flags),                  \
+    .command_outcome_at = offsetof(command_type, outcome)
 
 /* A command's storage holds a uint32_t, so it is word-aligned: its copies may move whole words
  * (ldm/stm on Arm) as a typed struct assignment would. */
@@ -116,139 +122,188 @@ TVO_LOOP_ENTRY int loop_initialized(const tvo_loop_plant_t *p, const void *ctl)
     return *(const uint8_t *)loop_at_const(ctl, p->initialized_at) != 0u;
 }
 
-TVO_LOOP_ENTRY void loop_set_flags(const tvo_loop_plant_t *p, void *cmd, uint32_t flags)
+/* A command's flags, outcome and reason. */
+TVO_LOOP_ENTRY void loop_mark(const tvo_loop_plant_t *p, void *cmd, uint32_t flags, tvo_outcome_t outcome,
+                              tvo_reason_t reason)
 {
+    uint8_t *outcome_at = loop_at(cmd, p->command_outcome_at);
     *(uint32_t *)loop_at(cmd, p->command_flags_at) = flags;
+    outcome_at[0] = (uint8_t)outcome;
+    outcome_at[1] = (uint8_t)reason;
 }
 
-/* The safe stop: every input zero, flagged so. */
-TVO_LOOP_ENTRY void loop_stop_command(const tvo_loop_plant_t *p, void *cmd, uint32_t flags)
+/* The stop: every input zero. */
+TVO_LOOP_ENTRY void loop_stop_command(const tvo_loop_plant_t *p, void *cmd, tvo_reason_t reason)
 {
     memset(LOOP_WORDS(cmd), 0, p->command_size);
-    loop_set_flags(p, cmd, flags);
+    loop_mark(p, cmd, 0u, TVO_OUTCOME_STOPPED, reason);
 }
 
-/* The command in force, flagged HOLDING (zero once the plant was stopped). */
-TVO_LOOP_ENTRY void loop_hold(const tvo_loop_plant_t *p, const void *ctl, void *cmd)
+/* The command in force, held (zero once the plant was stopped). */
+TVO_LOOP_ENTRY void loop_hold(const tvo_loop_plant_t *p, const void *ctl, void *cmd, tvo_reason_t reason)
 {
     memcpy(LOOP_WORDS(cmd), LOOP_WORDS(loop_at_const(ctl, p->held_at)), p->command_size);
-    loop_set_flags(p, cmd, TVO_FLAG_HOLDING);
+    loop_mark(p, cmd, 0u, TVO_OUTCOME_HELD, reason);
 }
 
-/* The plant stops: its states, and the held command, at rest; cmd the safe stop. */
-TVO_LOOP_ENTRY void loop_drop_to_rest(const tvo_loop_plant_t *p, void *ctl, void *cmd)
+/* The plant stops: its states, and the held command, at rest; cmd the stop, for `reason`. */
+TVO_LOOP_ENTRY void loop_drop_to_rest(const tvo_loop_plant_t *p, void *ctl, void *cmd, tvo_reason_t reason)
 {
     if (p->rest != NULL) {
         p->rest(ctl);
     }
-    loop_stop_command(p, loop_at(ctl, p->held_at), 0u);
-    loop_stop_command(p, cmd, TVO_FLAG_SAFE_STOP);
+    loop_stop_command(p, loop_at(ctl, p->held_at), reason);
+    loop_stop_command(p, cmd, reason);
 }
 
 /* A public call's guard: cmd NULL is TVO_ERR_NULL; an instance NULL or not initialised answers with
- * the safe stop and names which. TVO_OK when the call may go on. */
+ * the stop (a command safe to apply) and the error naming which. TVO_OK when the call may go on. */
 TVO_LOOP_ENTRY tvo_status_t loop_ready(const tvo_loop_plant_t *p, const void *ctl, void *cmd)
 {
     if (cmd == NULL) {
         return TVO_ERR_NULL;
     }
     if (ctl == NULL || !loop_initialized(p, ctl)) {
-        loop_stop_command(p, cmd, TVO_FLAG_SAFE_STOP);
+        loop_stop_command(p, cmd, TVO_REASON_NONE);
         return (ctl == NULL) ? TVO_ERR_NULL : TVO_ERR_NOT_INITIALIZED;
     }
     return TVO_OK;
 }
 
 /* A period counted without a good step (committed): held, or stopped once the watchdog expires. */
-TVO_LOOP_ENTRY tvo_status_t loop_miss_period(const tvo_loop_plant_t *p, void *ctl, const tvo_period_t *period,
-                                             void *cmd)
+TVO_LOOP_ENTRY void loop_miss_period(const tvo_loop_plant_t *p, void *ctl, const tvo_period_t *period, void *cmd,
+                                     tvo_reason_t reason)
 {
     if (tvo_sample_clock_end(loop_clock(p, ctl), period, 0, 0u)) {
-        loop_drop_to_rest(p, ctl, cmd);
-        return TVO_ERR_WATCHDOG;
+        loop_drop_to_rest(p, ctl, cmd, TVO_REASON_WATCHDOG);
+    } else {
+        loop_hold(p, ctl, cmd, reason);
     }
-    loop_hold(p, ctl, cmd);
-    return TVO_ERR_NO_MEASUREMENT;
+}
+
+/* A period the clock cannot begin (apply_tick does not advance, or precedes the epoch): a call error,
+ * nothing changed, cmd the command in force. */
+TVO_LOOP_ENTRY tvo_status_t loop_begin(const tvo_loop_plant_t *p, void *ctl, uint32_t apply_tick,
+                                       tvo_period_t *period, void *cmd)
+{
+    const tvo_status_t st = sample_clock_begin(loop_clock(p, ctl), apply_tick, period);
+    if (st != TVO_OK) {
+        loop_hold(p, ctl, cmd, TVO_REASON_NONE);
+    }
+    return st;
 }
 
 /* tvo_*_miss (and a step without a measurement, which calls it: its period record is in its own
  * frame, not on the step's deepest chain). */
 TVO_LOOP_ENTRY tvo_status_t loop_miss(const tvo_loop_plant_t *p, void *ctl, uint32_t apply_tick, void *cmd)
 {
-    const tvo_status_t ready = loop_ready(p, ctl, cmd);
-    if (ready != TVO_OK) {
-        return ready;
-    }
+    tvo_status_t st = loop_ready(p, ctl, cmd);
     tvo_period_t period;
-    if (sample_clock_begin(loop_clock(p, ctl), apply_tick, &period) != TVO_OK) {
-        loop_hold(p, ctl, cmd);
-        return TVO_ERR_OUT_OF_ORDER;
+    if (st == TVO_OK) {
+        st = loop_begin(p, ctl, apply_tick, &period, cmd);
     }
-    return loop_miss_period(p, ctl, &period, cmd);
+    if (st == TVO_OK) {
+        loop_miss_period(p, ctl, &period, cmd, TVO_REASON_NO_MEASUREMENT);
+    }
+    return st;
 }
 
-/* A step that cannot use its measurement (or its law's result), committing nothing: the refusal named
- * and the command in force; or, when counting the period would expire the watchdog, the period
- * counted and the stop (the state the plant is left in). The body of the plant's refuse piece. */
-TVO_LOOP_ENTRY tvo_status_t loop_refuse(const tvo_loop_plant_t *p, void *ctl, const void *meas,
-                                       const tvo_period_t *period, tvo_status_t reason, void *cmd)
+/* What a piece reports when one of the core's checks or computations produced nothing (a cold path):
+ * its reason; the misuses the unchecked pieces cannot meet, a numeric failure. */
+TVO_LOOP_ENTRY tvo_reason_t loop_reason_of(tvo_status_t st)
+{
+    static const uint8_t reason_of[TVO_STATUS_COUNT] = {
+        [TVO_OK] = TVO_REASON_NONE,
+        [TVO_ERR_NULL] = TVO_REASON_NUMERIC,
+        [TVO_ERR_NOT_FINITE] = TVO_REASON_NOT_FINITE,
+        [TVO_ERR_DIMENSION] = TVO_REASON_NUMERIC,
+        [TVO_ERR_PARAM] = TVO_REASON_NUMERIC,
+        [TVO_ERR_CAPACITY] = TVO_REASON_NUMERIC,
+        [TVO_ERR_NOT_INITIALIZED] = TVO_REASON_NUMERIC,
+        [TVO_ERR_TICK_NOT_ADVANCING] = TVO_REASON_NUMERIC,
+        [TVO_ERR_BEFORE_EPOCH] = TVO_REASON_NUMERIC,
+        [TVO_ERR_CLOCK_STARTED] = TVO_REASON_NUMERIC,
+        [TVO_ERR_NOT_POSITIVE_DEFINITE] = TVO_REASON_NOT_POSITIVE_DEFINITE,
+        [TVO_ERR_NUMERIC] = TVO_REASON_NUMERIC,
+        [TVO_ERR_STALE] = TVO_REASON_STALE,
+        [TVO_ERR_FUTURE_STAMP] = TVO_REASON_FUTURE_STAMP,
+        [TVO_ERR_STAMP_NOT_NEWER] = TVO_REASON_STAMP_NOT_NEWER,
+        [TVO_ERR_TARGET_NOT_READY] = TVO_REASON_TARGET_NOT_READY,
+    };
+    return ((uint32_t)st < TVO_STATUS_COUNT) ? (tvo_reason_t)reason_of[st] : TVO_REASON_NUMERIC;
+}
+
+/* A step that cannot use its measurement (or its law's result), committing nothing: the command in
+ * force, held for the refusal's reason; or, when counting the period would expire the watchdog, the
+ * period counted and the stop (the state the plant is left in). The body of the plant's refuse piece. */
+TVO_LOOP_ENTRY void loop_refuse(const tvo_loop_plant_t *p, void *ctl, const void *meas, const tvo_period_t *period,
+                                tvo_reason_t reason, void *cmd)
 {
     if (sample_clock_refusal_stops(loop_clock(p, ctl), period)) {
-        (void)loop_miss_period(p, ctl, period, cmd);
-        return TVO_ERR_WATCHDOG;
+        loop_miss_period(p, ctl, period, cmd, reason);
+    } else {
+        loop_hold(p, ctl, cmd, (p->refusal != NULL) ? p->refusal(ctl, meas, reason) : reason);
     }
-    loop_hold(p, ctl, cmd);
-    return (p->refusal != NULL) ? p->refusal(ctl, meas, reason) : reason;
 }
 
 /* One period with a measurement, for an instance loop_ready passed: begin, prepare, command, and the
- * commit or the refusal. shape: the plant's loop count, a constant in the shape copies. */
+ * commit or the refusal. shape: the plant's loop count, a constant in the shape copies. TVO_OK when
+ * cmd is the period's answer (its outcome says which), else the clock could not begin the period. */
 TVO_LOOP_ENTRY tvo_status_t loop_period(const tvo_loop_plant_t *p, void *ctl, const void *meas, uint32_t apply_tick,
                                         void *cmd, const uint8_t shape)
 {
     tvo_sample_clock_t *clock = loop_clock(p, ctl);
     tvo_period_t *period = loop_at(ctl, p->period_at);
-    if (sample_clock_begin(clock, apply_tick, period) != TVO_OK) {
-        loop_hold(p, ctl, cmd);
-        return TVO_ERR_OUT_OF_ORDER;
+    const tvo_status_t begun = loop_begin(p, ctl, apply_tick, period, cmd);
+    if (begun != TVO_OK) {
+        return begun;
     }
     tvo_loop_frame_t frame = {0u, 0u, clock->stopped, shape};
-    tvo_status_t st = p->prepare(ctl, meas, apply_tick, &frame);
-    if (st == TVO_OK) {
-        st = p->law(ctl, &frame);
+    tvo_reason_t reason = p->prepare(ctl, meas, apply_tick, &frame);
+    if (reason == TVO_REASON_NONE) {
+        reason = p->law(ctl, &frame);
     }
-    if (st == TVO_OK) {
-        st = p->command(ctl, &frame);
+    if (reason == TVO_REASON_NONE) {
+        reason = p->command(ctl, &frame);
     }
-    if (st != TVO_OK) {
-        return p->refuse(ctl, meas, period, st, cmd);
+    if (reason != TVO_REASON_NONE) {
+        p->refuse(ctl, meas, period, reason, cmd);
+        return TVO_OK;
     }
     /* The step succeeded: from here on its working copies become the controller's state. */
     sample_clock_end_good(clock, period, *(const uint32_t *)loop_at_const(meas, p->stamp_at));
-    st = p->commit(ctl, &frame);
-    memcpy(LOOP_WORDS(cmd), LOOP_WORDS(loop_at_const(ctl, p->held_at)), p->command_size);
-    return st;
+    void *held = loop_at(ctl, p->held_at);
+    uint8_t *held_outcome = loop_at(held, p->command_outcome_at);
+    held_outcome[0] = (uint8_t)TVO_OUTCOME_APPLIED; /* the commit sets the flags (and may stop) */
+    held_outcome[1] = (uint8_t)TVO_REASON_NONE;
+    p->commit(ctl, &frame);
+    memcpy(LOOP_WORDS(cmd), LOOP_WORDS(held), p->command_size);
+    return TVO_OK;
 }
 
-/* tvo_*_check: what the step would say of this measurement, changing nothing. */
+/* tvo_*_check: what the step would say of this measurement (*reason), changing nothing. */
 TVO_LOOP_ENTRY tvo_status_t loop_check(const tvo_loop_plant_t *p, const void *ctl, const void *meas,
-                                       uint32_t apply_tick)
+                                       uint32_t apply_tick, tvo_reason_t *reason)
 {
-    if (ctl == NULL) {
+    if (ctl == NULL || reason == NULL) {
         return TVO_ERR_NULL;
     }
+    *reason = TVO_REASON_NONE;
     if (!loop_initialized(p, ctl)) {
         return TVO_ERR_NOT_INITIALIZED;
     }
     tvo_period_t period;
-    if (sample_clock_begin(loop_clock_const(p, ctl), apply_tick, &period) != TVO_OK) {
-        return TVO_ERR_OUT_OF_ORDER;
+    const tvo_status_t st = sample_clock_begin(loop_clock_const(p, ctl), apply_tick, &period);
+    if (st != TVO_OK) {
+        return st;
     }
     if (meas == NULL) {
-        return TVO_ERR_NO_MEASUREMENT;
+        *reason = TVO_REASON_NO_MEASUREMENT;
+        return TVO_OK;
     }
-    const tvo_status_t st = p->check(ctl, meas, apply_tick);
-    return (st == TVO_OK || p->refusal == NULL) ? st : p->refusal(ctl, meas, st);
+    const tvo_reason_t why = p->check(ctl, meas, apply_tick);
+    *reason = (why == TVO_REASON_NONE || p->refusal == NULL) ? why : p->refusal(ctl, meas, why);
+    return TVO_OK;
 }
 
 /* tvo_*_safe_stop: the plant at rest now, as the watchdog leaves it; the clock does not advance. */
@@ -259,17 +314,15 @@ TVO_LOOP_ENTRY tvo_status_t loop_safe_stop(const tvo_loop_plant_t *p, void *ctl,
         return st;
     }
     (void)tvo_sample_clock_expire(loop_clock(p, ctl));
-    loop_drop_to_rest(p, ctl, cmd);
+    loop_drop_to_rest(p, ctl, cmd, TVO_REASON_STOP_REQUESTED);
     return TVO_OK;
 }
 
-/* The first half of an init: *bad_param cleared, the pointers checked, the instance zeroed. */
+/* The first half of an init: the pointers checked, the instance zeroed (the caller clears its
+ * bad_param: each configuration names its own). */
 TVO_LOOP_ENTRY tvo_status_t loop_init_begin(const tvo_loop_plant_t *p, void *ctl, const void *cfg,
-                                           const tvo_objective_t *objective, tvo_param_t *bad_param)
+                                           const tvo_objective_t *objective)
 {
-    if (bad_param != NULL) {
-        *bad_param = TVO_PARAM_NONE;
-    }
     if (ctl == NULL || cfg == NULL || objective == NULL) {
         return TVO_ERR_NULL;
     }
@@ -277,17 +330,14 @@ TVO_LOOP_ENTRY tvo_status_t loop_init_begin(const tvo_loop_plant_t *p, void *ctl
     return TVO_OK;
 }
 
-/* The second half: a refused init leaves the instance zeroed and names its culprit (bad); else the
- * clock starts at epoch_tick (its timing validated by the plant) and the instance is initialised. */
-TVO_LOOP_ENTRY tvo_status_t loop_init_end(const tvo_loop_plant_t *p, void *ctl, tvo_status_t st, tvo_param_t bad,
-                                         tvo_param_t *bad_param, uint32_t tick_hz, uint32_t period_ticks,
-                                         uint32_t watchdog_periods, uint32_t epoch_tick)
+/* The second half: a refused init leaves the instance zeroed; else the clock starts at epoch_tick (its
+ * timing validated by the plant), the command in force is marked applied and the instance is
+ * initialised. */
+TVO_LOOP_ENTRY tvo_status_t loop_init_end(const tvo_loop_plant_t *p, void *ctl, tvo_status_t st, uint32_t tick_hz,
+                                         uint32_t period_ticks, uint32_t watchdog_periods, uint32_t epoch_tick)
 {
     if (st != TVO_OK) {
         memset(ctl, 0, p->controller_size);
-        if (bad_param != NULL) {
-            *bad_param = bad;
-        }
         return st;
     }
     (void)tvo_sample_clock_init(loop_clock(p, ctl), tick_hz, period_ticks, watchdog_periods, epoch_tick);

@@ -1,4 +1,4 @@
-/* Human-readable names of status codes and parameters, for the edge's logs. */
+/* Human-readable names of statuses, outcomes, reasons and parameters, for the edge's logs. */
 #include "tvo/status.h"
 
 const char *tvo_status_str(tvo_status_t status)
@@ -6,25 +6,53 @@ const char *tvo_status_str(tvo_status_t status)
     switch (status) {
     case TVO_OK: return "ok";
     case TVO_ERR_NULL: return "null pointer";
-    case TVO_ERR_NOT_FINITE: return "input not finite (NaN or Inf)";
+    case TVO_ERR_NOT_FINITE: return "argument not finite (NaN or Inf)";
     case TVO_ERR_DIMENSION: return "dimension out of range";
     case TVO_ERR_PARAM: return "parameter out of range";
     case TVO_ERR_CAPACITY: return "fixed-size table full";
     case TVO_ERR_NOT_INITIALIZED: return "not initialised";
+    case TVO_ERR_TICK_NOT_ADVANCING: return "apply tick does not advance past the last period";
+    case TVO_ERR_BEFORE_EPOCH: return "time before the epoch";
+    case TVO_ERR_CLOCK_STARTED: return "clock already started: cannot rebase";
     case TVO_ERR_NOT_POSITIVE_DEFINITE: return "Hessian not positive definite";
     case TVO_ERR_NUMERIC: return "result not finite";
-    case TVO_ERR_STALE: return "measurement stale (older than one period)";
-    case TVO_ERR_OUT_OF_ORDER: return "timestamp did not advance";
-    case TVO_ERR_FUTURE_STAMP: return "timestamp in the future";
-    case TVO_ERR_NO_MEASUREMENT: return "no measurement this period";
-    case TVO_ERR_MISSING_FIELD: return "measurement lacks a field the configuration needs";
+    case TVO_ERR_STALE: return "stamp older than one period";
+    case TVO_ERR_FUTURE_STAMP: return "stamp in the future";
+    case TVO_ERR_STAMP_NOT_NEWER: return "stamp not newer than the last one taken";
     case TVO_ERR_TARGET_NOT_READY: return "streamed target has no sample yet";
-    case TVO_ERR_WATCHDOG: return "watchdog expired: safe stop";
-    case TVO_ERR_IMPLAUSIBLE_STAMP: return "stamp does not fit the session's schedule";
-    case TVO_ERR_SESSION_CONFLICT: return "session id already running with other parameters";
-    case TVO_ERR_NO_SESSION: return "no such session running (send START)";
-    case TVO_ERR_IMPLAUSIBLE_MEASUREMENT: return "measurement beyond the robot's workspace, heading range or speed";
     default: return "unknown status";
+    }
+}
+
+const char *tvo_outcome_str(tvo_outcome_t outcome)
+{
+    switch (outcome) {
+    case TVO_OUTCOME_APPLIED: return "applied";
+    case TVO_OUTCOME_HELD: return "held";
+    case TVO_OUTCOME_STOPPED: return "stopped";
+    default: return "unknown outcome";
+    }
+}
+
+const char *tvo_reason_str(tvo_reason_t reason)
+{
+    switch (reason) {
+    case TVO_REASON_NONE: return "none";
+    case TVO_REASON_NOT_FINITE: return "measurement not finite (NaN or Inf)";
+    case TVO_REASON_IMPLAUSIBLE_MEASUREMENT: return "measurement beyond the robot's workspace, heading range or speed";
+    case TVO_REASON_STALE: return "measurement stale (older than one period)";
+    case TVO_REASON_FUTURE_STAMP: return "measurement stamped after the application time";
+    case TVO_REASON_STAMP_NOT_NEWER: return "measurement not newer than the last accepted one";
+    case TVO_REASON_MISSING_FIELD: return "measurement lacks a field the configuration needs";
+    case TVO_REASON_SOURCE_NOT_LINKED: return "velocity source not linked by the init";
+    case TVO_REASON_TARGET_NOT_READY: return "streamed target has no sample yet";
+    case TVO_REASON_NUMERIC: return "law result not finite";
+    case TVO_REASON_NOT_POSITIVE_DEFINITE: return "Hessian not positive definite";
+    case TVO_REASON_NO_MEASUREMENT: return "no measurement this period";
+    case TVO_REASON_WATCHDOG: return "watchdog expired: safe stop";
+    case TVO_REASON_SPEED_MISMATCH: return "measured speed contradicted the command: stop";
+    case TVO_REASON_STOP_REQUESTED: return "safe stop requested";
+    default: return "unknown reason";
     }
 }
 
@@ -46,10 +74,6 @@ const char *tvo_param_str(tvo_param_t param)
     case TVO_PARAM_OBJECTIVE: return "objective";
     case TVO_PARAM_VELOCITY_SOURCE: return "velocity_source";
     case TVO_PARAM_INITIAL_SPEED: return "initial_speed_mps";
-    case TVO_PARAM_EPOCH: return "epoch_tick";
-    case TVO_PARAM_CLOCK_SOURCE: return "clock_source";
-    case TVO_PARAM_PLANT_KIND: return "plant_kind";
-    case TVO_PARAM_SESSION_ID: return "session_id";
     default: return "unknown parameter";
     }
 }

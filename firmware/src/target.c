@@ -164,7 +164,7 @@ tvo_status_t tvo_target_stream_update(tvo_target_t *target, uint64_t stamp_ticks
     }
     tvo_target_streamed_t *s = &target->u.streamed;
     if (s->has_sample && stamp_ticks <= s->stamp_ticks) {
-        return TVO_ERR_OUT_OF_ORDER;
+        return TVO_ERR_STAMP_NOT_NEWER;
     }
     s->stamp_ticks = stamp_ticks;
     memcpy(s->deriv, deriv, sizeof(s->deriv));

@@ -301,7 +301,7 @@ int main(int argc, char** argv)
                 step_ns.push_back(step_time_ns);
                 ++steps;
             }
-            step_errors += (status != TVO_OK) ? 1 : 0;
+            step_errors += (status != TVO_OK || loop->cmd.outcome != TVO_OUTCOME_APPLIED) ? 1 : 0;
             if (!solve) {
                 continue;
             }

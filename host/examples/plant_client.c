@@ -13,7 +13,6 @@
 #include <lcm/lcm.h>
 
 #include "channels.h"     /* TVO_CHANNEL_*: the protocol's channel names */
-#include "tvo/status.h"   /* status codes and command flags (wire values) */
 #include "tvo_lcm_command_t.h"
 #include "tvo_lcm_measurement_t.h"
 #include "tvo_lcm_session_ack_t.h"
@@ -68,9 +67,9 @@ static void on_command(const lcm_recv_buf_t *rb, const char *ch, const tvo_lcm_c
     plant_t *p = user;
     (void)rb, (void)ch;
     if (c->session_id != p->session_id) return; /* another plant's */
-    const int safe_stop = ((uint32_t)c->flags & TVO_FLAG_SAFE_STOP) != 0u;
+    const int safe_stop = ((uint32_t)c->flags & TVO_LCM_COMMAND_T_FLAG_SAFE_STOP) != 0u;
     p->answered |= c->measurement_sequence == p->sent;
-    p->restart |= c->status == TVO_ERR_NO_SESSION; /* the node restarted: START again */
+    p->restart |= c->status == TVO_LCM_COMMAND_T_STATUS_ERR_NO_SESSION; /* the node restarted: START again */
     /* Apply a computed answer (status 0) to a newer sequence we sent, or a safe stop at once. */
     if ((c->status == 0 && c->measurement_sequence <= p->sent && c->measurement_sequence > p->in_force) || safe_stop) {
         p->in_force = c->measurement_sequence > p->in_force ? c->measurement_sequence : p->in_force;
@@ -119,7 +118,7 @@ int main(int argc, char **argv)
         .semi_axis_m = {3.0, 1.5}, .omega_radps = 2.0 * PI / 10.0}};
     if (!request(lcm, &p, &s, TVO_LCM_SESSION_T_ACTION_START, r.now_us) || p.ack.status != 0) {
         fprintf(stderr, "plant_client: START %s: %s, parameter %s, part %s, index %d\n",
-                p.acked ? "refused" : "not acknowledged", tvo_status_str((tvo_status_t)p.ack.status),
+                p.acked ? "refused" : "not acknowledged", tvo_protocol_status_str((int32_t)p.ack.status),
                 tvo_protocol_param_str(p.ack.bad_param), tvo_protocol_part_str(p.ack.bad_part), p.ack.bad_index);
         return 1;
     }

@@ -6,8 +6,9 @@ project's CMake against them, so every struct size and field offset comes from t
 from a copy here. The declarations below name only the public fields Python reads or writes; each
 struct ends in "...;" (the rest, whatever it becomes, is the compiler's business), arrays are sized
 "[...]" and tvo_real_t is "float..." (float or double, as TVO_USE_DOUBLE says). The names of the
-status codes, parameter names and flags are read from tvo/status.h (enumerators and macros become
-integer constants whose values the compiler supplies), so a code added there is picked up.
+status codes, outcomes, reasons, parameter names and flags are read from tvo/status.h (and the chain's
+parameter names from tvo/chain_controller.h): enumerators and macros become integer constants whose
+values the compiler supplies, so a code added there is picked up.
 
 Usage: build_ffi.py INCLUDE_DIR MODULE_NAME OUT_C
 """
@@ -22,7 +23,7 @@ def enum_names(header, type_name):
     """The enumerators of `typedef enum { ... } type_name;` in header, in order."""
     m = re.search(r"typedef\s+enum\s*\{(.*?)\}\s*" + type_name + r"\s*;", header, re.S)
     if not m:
-        raise SystemExit(f"build_ffi.py: no enum {type_name} in tvo/status.h")
+        raise SystemExit(f"build_ffi.py: no enum {type_name} in its header")
     body = re.sub(r"/\*.*?\*/", "", m.group(1), flags=re.S)
     return re.findall(r"\b(TVO_[A-Z0-9_]+)\s*=", body)
 
@@ -34,16 +35,27 @@ def flag_names(header):
 def cdef_text(include_dir):
     with open(f"{include_dir}/tvo/status.h", encoding="utf-8") as f:
         status_h = f.read()
-    names = enum_names(status_h, "tvo_status_t") + enum_names(status_h, "tvo_param_t") + flag_names(status_h)
+    with open(f"{include_dir}/tvo/chain_controller.h", encoding="utf-8") as f:
+        chain_h = f.read()
+    names = (enum_names(status_h, "tvo_status_t") + enum_names(status_h, "tvo_outcome_t") +
+             enum_names(status_h, "tvo_reason_t") + enum_names(status_h, "tvo_param_t") +
+             enum_names(chain_h, "tvo_chain_param_t") + flag_names(status_h))
     constants = "\n".join(f"#define {name} ..." for name in names)
     return f"""
 typedef float... tvo_real_t;
 typedef int... tvo_status_t;
+typedef int... tvo_outcome_t;
+typedef int... tvo_reason_t;
 typedef int... tvo_param_t;
+typedef int... tvo_chain_param_t;
 typedef int... tvo_velocity_source_t;
 typedef int... tvo_target_kind_t;
 {constants}
 #define TVO_STATUS_COUNT ...
+#define TVO_OUTCOME_COUNT ...
+#define TVO_REASON_COUNT ...
+#define TVO_PARAM_COUNT ...
+#define TVO_CHAIN_PARAM_COUNT ...
 #define TVO_VELOCITY_FROM_POSE ...
 #define TVO_VELOCITY_FROM_POSITION ...
 #define TVO_TARGET_CIRCLE ...
@@ -60,7 +72,10 @@ typedef int... tvo_target_kind_t;
 #define TVO_STREAM_MAX_DERIV ...
 
 const char *tvo_status_str(tvo_status_t status);
+const char *tvo_outcome_str(tvo_outcome_t outcome);
+const char *tvo_reason_str(tvo_reason_t reason);
 const char *tvo_param_str(tvo_param_t param);
+const char *tvo_chain_param_str(tvo_chain_param_t param);
 
 /* --- the problem (tvo/problem.h, tvo/target.h, tvo/barrier.h, tvo/constraints.h) --- */
 typedef struct {{ tvo_target_kind_t kind; ...; }} tvo_target_t;
@@ -146,6 +161,8 @@ typedef struct {{
     tvo_real_t speed_mps[...];
     tvo_real_t turn_rate_radps[...];
     uint32_t flags;
+    uint8_t outcome;
+    uint8_t reason;
     ...;
 }} tvo_command_t;
 typedef struct {{ ...; }} tvo_controller_t;
@@ -171,11 +188,12 @@ typedef struct {{
     ...;
 }} tvo_chain_config_t;
 typedef struct {{ uint32_t stamp_tick; tvo_output_derivs_t y; ...; }} tvo_chain_measurement_t;
-typedef struct {{ tvo_real_t u[...]; uint32_t flags; ...; }} tvo_chain_command_t;
+typedef struct {{ tvo_real_t u[...]; uint32_t flags; uint8_t outcome; uint8_t reason; ...; }} tvo_chain_command_t;
 typedef struct {{ ...; }} tvo_chain_controller_t;
 tvo_status_t tvo_chain_config_default(tvo_chain_config_t *cfg);
 tvo_status_t tvo_chain_controller_init(tvo_chain_controller_t *ctl, const tvo_chain_config_t *cfg,
-                                       const tvo_objective_t *objective, uint32_t epoch_tick, tvo_param_t *bad_param);
+                                       const tvo_objective_t *objective, uint32_t epoch_tick,
+                                       tvo_chain_param_t *bad_param);
 tvo_status_t tvo_chain_controller_step(tvo_chain_controller_t *ctl, const tvo_chain_measurement_t *meas,
                                        uint32_t apply_tick, tvo_chain_command_t *cmd);
 tvo_status_t tvo_chain_controller_miss(tvo_chain_controller_t *ctl, uint32_t apply_tick, tvo_chain_command_t *cmd);

@@ -116,7 +116,7 @@ LogContents read_log(const std::string& path, const std::optional<tvo_lcm::sessi
     const std::int64_t id = out.start->session_id;
     out.timer_safe_stops = static_cast<std::uint64_t>(std::count_if(commands.begin(), commands.end(), [id](const auto& c) {
         return c.session_id == id && c.measurement_sequence < 0 &&
-               (c.flags & static_cast<std::int32_t>(TVO_FLAG_SAFE_STOP)) != 0;
+               (c.flags & static_cast<std::int32_t>(tvo_lcm::command_t::FLAG_SAFE_STOP)) != 0;
     }));
     out.telemetry.erase(std::remove_if(out.telemetry.begin(), out.telemetry.end(),
                                        [id](const auto& t) { return t.session_id != id; }),

@@ -535,7 +535,7 @@ private:
         figures_.unexpected_answers += (one_each && ours && on_time && telemetry_matches) ? 0u : 1u;
         if (out_.commands >= 1) {
             wraps_.see(out_.command.utime);
-            const auto bad_flags = static_cast<std::int32_t>(TVO_FLAG_HOLDING | TVO_FLAG_SAFE_STOP);
+            const auto bad_flags = static_cast<std::int32_t>(tvo_lcm::command_t::FLAG_HOLDING | tvo_lcm::command_t::FLAG_SAFE_STOP);
             figures_.faults += (out_.command.status != TVO_OK || (out_.command.flags & bad_flags) != 0) ? 1u : 0u;
             figures_.nonfinite += command_finite(out_.command, 1) ? 0u : 1u;
         }

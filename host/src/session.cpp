@@ -137,17 +137,17 @@ std::string option_for(std::int32_t param, const SimOptions& o)
 {
     std::ostringstream out;
     switch (param) {
-    case TVO_PARAM_PERIOD: out << "--period-s " << o.period_s; break;
-    case TVO_PARAM_DELAY: out << "--delay-s " << o.delay_s; break;
-    case TVO_PARAM_FILTER_TF: out << "--filter-tf-s " << o.filter_tf_s; break;
-    case TVO_PARAM_GAINS: out << "--gains " << o.gain_kp << ',' << o.gain_kd; break;
-    case TVO_PARAM_OMEGA_MAX: out << "--omega-max-radps " << o.omega_max_radps; break;
-    case TVO_PARAM_ACCEL_MAX: out << "--accel-max-mps2 " << o.accel_max_mps2; break;
-    case TVO_PARAM_SPEED_MAX: out << "--speed-max-mps " << o.speed_max_mps; break;
-    case TVO_PARAM_MIN_SPEED: out << "--min-speed-mps " << o.min_speed_mps; break;
-    case TVO_PARAM_WATCHDOG: out << "--watchdog-periods " << o.watchdog_periods; break;
-    case TVO_PARAM_ROBOT_COUNT: out << "--robots " << o.robots; break;
-    case TVO_PARAM_EPOCH: out << "--start-utime-us " << o.start_utime_us; break;
+    case tvo_lcm::session_ack_t::PARAM_PERIOD: out << "--period-s " << o.period_s; break;
+    case tvo_lcm::session_ack_t::PARAM_DELAY: out << "--delay-s " << o.delay_s; break;
+    case tvo_lcm::session_ack_t::PARAM_FILTER_TF: out << "--filter-tf-s " << o.filter_tf_s; break;
+    case tvo_lcm::session_ack_t::PARAM_GAINS: out << "--gains " << o.gain_kp << ',' << o.gain_kd; break;
+    case tvo_lcm::session_ack_t::PARAM_OMEGA_MAX: out << "--omega-max-radps " << o.omega_max_radps; break;
+    case tvo_lcm::session_ack_t::PARAM_ACCEL_MAX: out << "--accel-max-mps2 " << o.accel_max_mps2; break;
+    case tvo_lcm::session_ack_t::PARAM_SPEED_MAX: out << "--speed-max-mps " << o.speed_max_mps; break;
+    case tvo_lcm::session_ack_t::PARAM_MIN_SPEED: out << "--min-speed-mps " << o.min_speed_mps; break;
+    case tvo_lcm::session_ack_t::PARAM_WATCHDOG: out << "--watchdog-periods " << o.watchdog_periods; break;
+    case tvo_lcm::session_ack_t::PARAM_ROBOT_COUNT: out << "--robots " << o.robots; break;
+    case tvo_lcm::session_ack_t::PARAM_EPOCH: out << "--start-utime-us " << o.start_utime_us; break;
     default: break;
     }
     return out.str();
@@ -187,8 +187,8 @@ tvo_lcm::session_t make_start_session(const SimOptions& o, const Scenario& scena
 std::string describe_rejection(const tvo_lcm::session_ack_t& ack, const SimOptions& options)
 {
     std::ostringstream out;
-    out << "the firmware rejected the session (" << tvo_status_str(static_cast<tvo_status_t>(ack.status)) << ")";
-    if (ack.bad_param != TVO_PARAM_NONE) {
+    out << "the firmware rejected the session (" << tvo_protocol_status_str(ack.status) << ")";
+    if (ack.bad_param != tvo_lcm::session_ack_t::PARAM_NONE) {
         out << ": parameter " << tvo_protocol_param_str(ack.bad_param);
         const std::string option = option_for(ack.bad_param, options);
         if (!option.empty()) {

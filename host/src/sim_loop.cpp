@@ -24,13 +24,13 @@ constexpr std::chrono::milliseconds kRestartTimeout{5000};
 
 bool is_fault(std::int32_t status, std::int32_t flags)
 {
-    const auto bad_flags = static_cast<std::int32_t>(TVO_FLAG_HOLDING | TVO_FLAG_SAFE_STOP);
+    const auto bad_flags = static_cast<std::int32_t>(tvo_lcm::command_t::FLAG_HOLDING | tvo_lcm::command_t::FLAG_SAFE_STOP);
     return status != 0 || (flags & bad_flags) != 0;
 }
 
 bool is_safe_stop(std::int32_t flags)
 {
-    return (flags & static_cast<std::int32_t>(TVO_FLAG_SAFE_STOP)) != 0;
+    return (flags & static_cast<std::int32_t>(tvo_lcm::command_t::FLAG_SAFE_STOP)) != 0;
 }
 
 /// A command the plant can act on: a time within the wire's range (so no arithmetic on it can
@@ -98,7 +98,7 @@ void SimLoop::on_command(const tvo_lcm::command_t& command)
     metrics_.add_command(command.turn_rate_radps, usable ? robots : 0,
                          !usable || is_fault(command.status, command.flags),
                          (command.flags & static_cast<std::int32_t>(TVO_FLAG_REGULARIZED)) != 0);
-    if (command.status == static_cast<std::int32_t>(TVO_ERR_NO_SESSION) && !restart_pending_ &&
+    if (command.status == static_cast<std::int32_t>(tvo_lcm::command_t::STATUS_ERR_NO_SESSION) && !restart_pending_ &&
         command.measurement_sequence > restart_acked_through_sequence_) {
         // The node lost our session (it restarted): START again, from the loop (not from inside LCM's handler).
         restart_pending_ = true;
@@ -165,7 +165,7 @@ void SimLoop::on_session_ack(const tvo_lcm::session_ack_t& ack)
     }
     restart_pending_ = false;
     // Measurements sent until now may still reach the node before this START did: their
-    // TVO_ERR_NO_SESSION answers belong to this restart, not to a new one.
+    // tvo_lcm::command_t::STATUS_ERR_NO_SESSION answers belong to this restart, not to a new one.
     restart_acked_through_sequence_ = last_sent_sequence_;
     if (ack.status != TVO_OK) {
         restart_refused_ = ack;
@@ -285,13 +285,13 @@ bool SimLoop::publish_sample(std::int64_t sequence, std::int64_t sample_us)
 SimLoop::Answer SimLoop::await_answer(std::int64_t sequence)
 {
     // The telemetry follows its command: waiting for both keeps the CSV's telemetry columns in step.
-    // A node without our session answers TVO_ERR_NO_SESSION and has no telemetry to send.
+    // A node without our session answers tvo_lcm::command_t::STATUS_ERR_NO_SESSION and has no telemetry to send.
     const auto timeout = std::chrono::duration_cast<std::chrono::microseconds>(
         std::chrono::duration<double>(options_.answer_timeout_s));
     const auto deadline = std::chrono::steady_clock::now() + timeout;
     const auto answered = [&] {
         return answered_sequence_ >= sequence &&
-               (telemetry_sequence_ >= sequence || answered_status_ == static_cast<std::int32_t>(TVO_ERR_NO_SESSION));
+               (telemetry_sequence_ >= sequence || answered_status_ == static_cast<std::int32_t>(tvo_lcm::command_t::STATUS_ERR_NO_SESSION));
     };
     while (!answered()) {
         if (stopping()) {

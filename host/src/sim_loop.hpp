@@ -9,7 +9,7 @@
 //   the run ends at T = steps h.
 // Commands (edge_spec, "the plant's rules"): one is applied only if it carries our session id and
 //   either answers a measurement we sent that is newer than the command in force, or is a safe stop.
-//   A command with status TVO_ERR_NO_SESSION means the node lost our session (it restarted): the
+//   A command with status tvo_lcm::command_t::STATUS_ERR_NO_SESSION means the node lost our session (it restarted): the
 //   START is sent again (repeated until acknowledged) and the run goes on.
 // Lockstep (session CLOCK_PLANT): after publishing measurement n the loop blocks (wall-clock
 //   timeout) until the command and the telemetry answering n arrive, so the run is deterministic
@@ -60,7 +60,7 @@ struct LoopResult {
     std::uint64_t link_lost_measurements{0};  // not sent because of --link-loss
     std::uint64_t ignored_commands{0};        // ours by id but answering nothing we sent (newer), or malformed
     std::uint64_t other_session_commands{0};  // for another session id
-    std::uint64_t session_restarts{0};        // TVO_ERR_NO_SESSION seen: START sent again
+    std::uint64_t session_restarts{0};        // tvo_lcm::command_t::STATUS_ERR_NO_SESSION seen: START sent again
     std::uint64_t safe_stop_commands{0};      // safe stops applied to the plant
     std::optional<double> first_safe_stop_after_loss_s;  // realtime with --link-loss, see README
     std::optional<tvo_lcm::node_counters_t> node_counters;  // from the newest telemetry of our session
@@ -132,7 +132,7 @@ private:
     StepTelemetry telemetry_{};              // newest received (lockstep: of the command in force)
     LoopResult counts_{};                    // the counters of the result, filled as the run goes
 
-    // Session restart (the node answered TVO_ERR_NO_SESSION).
+    // Session restart (the node answered tvo_lcm::command_t::STATUS_ERR_NO_SESSION).
     bool restart_pending_{false};
     StartRepeats restart_repeats_;              // the restart's START copies, backing off as the first session's
     std::optional<tvo_lcm::session_ack_t> restart_refused_;

@@ -328,7 +328,7 @@ private:
         std::vector<const tvo_lcm::fleet_command_t*> computed;
         for (int k = 0; k < o_.robots; ++k) {
             const Answer& a = answers_[static_cast<std::size_t>(k)];
-            if (expected_[static_cast<std::size_t>(k)] && a.row.status == TVO_OK) {
+            if (expected_[static_cast<std::size_t>(k)] && a.row.status == tvo_lcm::command_t::STATUS_OK) {
                 computed.push_back(&a.row);
                 predicted_ += static_cast<std::uint64_t>(std::max(a.row.predicted, 0));
             }
@@ -383,20 +383,20 @@ private:
         cmd.session_id = measurement_.session_id;
         cmd.measurement_sequence = measurement_.sequence;
         cmd.robot_count = measurement_.robot_count;
-        cmd.status = TVO_OK;
+        cmd.status = tvo_lcm::command_t::STATUS_OK;
         std::optional<tvo_lcm::telemetry_t> tel;
         for (int r = 0; r < o_.robots; ++r) {
             const Answer& a = answers_[static_cast<std::size_t>(r)];
             const bool came = expected_[static_cast<std::size_t>(r)] && a.command;
             const bool lost = came && dropped(1, r, o_.robots, measurement_.sequence);
             dropped_commands_ += lost ? 1u : 0u;
-            const bool fresh = came && !lost && a.row.status == TVO_OK;
-            refused_rows_ += (came && a.row.status != TVO_OK) ? 1u : 0u;
+            const bool fresh = came && !lost && a.row.status == tvo_lcm::command_t::STATUS_OK;
+            refused_rows_ += (came && a.row.status != tvo_lcm::command_t::STATUS_OK) ? 1u : 0u;
             if (fresh) {
                 check_limits(r, a.row, h_s);
                 held_[static_cast<std::size_t>(r)] = {a.row.speed_mps, a.row.turn_rate_radps};
                 cmd.flags |= a.row.flags;
-            } else if ((static_cast<std::uint32_t>(a.row.flags) & TVO_FLAG_SAFE_STOP) != 0u && came && !lost) {
+            } else if ((static_cast<std::uint32_t>(a.row.flags) & static_cast<std::uint32_t>(tvo_lcm::command_t::FLAG_SAFE_STOP)) != 0u && came && !lost) {
                 held_[static_cast<std::size_t>(r)] = {0.0, 0.0};
             } else {
                 ++held_rows_;

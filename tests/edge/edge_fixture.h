@@ -41,7 +41,7 @@ static inline void ef_assert_status(int expected, int actual, int line)
     if (expected != actual) {
         static char msg[160];
         (void)snprintf(msg, sizeof(msg), "expected status %d (%s), got %d (%s)", expected,
-                       tvo_status_str((tvo_status_t)expected), actual, tvo_status_str((tvo_status_t)actual));
+                       tvo_protocol_status_str((int32_t)expected), actual, tvo_protocol_status_str((int32_t)actual));
         UNITY_TEST_FAIL(line, msg);
     }
 }
@@ -52,7 +52,7 @@ static inline void ef_assert_param(int expected, int actual, int line)
     if (expected != actual) {
         static char msg[160];
         (void)snprintf(msg, sizeof(msg), "expected bad_param %d (%s), got %d (%s)", expected,
-                       tvo_param_str((tvo_param_t)expected), actual, tvo_param_str((tvo_param_t)actual));
+                       tvo_protocol_param_str((int32_t)expected), actual, tvo_protocol_param_str((int32_t)actual));
         UNITY_TEST_FAIL(line, msg);
     }
 }

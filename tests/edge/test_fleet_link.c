@@ -150,7 +150,7 @@ static void test_member_computes_the_central_command(void)
         tvo_lcm_fleet_command_t got;
         central_step(n, &want);
         member_step(n, 1, &got);
-        EF_ASSERT_STATUS(TVO_OK, want.status);
+        TEST_ASSERT_EQUAL_INT32(TVO_LCM_COMMAND_T_STATUS_OK, want.status);
         EF_ASSERT_STATUS(want.status, got.status);
         TEST_ASSERT_EQUAL_INT(0, got.predicted);
         TEST_ASSERT_EQUAL_INT(OWN, got.robot);
@@ -165,10 +165,10 @@ static void test_missing_sample_is_predicted_along_the_nodes_commands(void)
     tvo_lcm_fleet_command_t answer[8];
     for (int64_t n = 0; n < 6; ++n) {
         member_step(n, 1, &answer[n]);
-        EF_ASSERT_STATUS(TVO_OK, answer[n].status);
+        TEST_ASSERT_EQUAL_INT32(TVO_LCM_COMMAND_T_STATUS_OK, answer[n].status);
     }
     member_step(6, 0, &answer[6]); /* robot 0's sample of period 6 lost */
-    EF_ASSERT_STATUS(TVO_OK, answer[6].status);
+    TEST_ASSERT_EQUAL_INT32(TVO_LCM_COMMAND_T_STATUS_OK, answer[6].status);
     TEST_ASSERT_EQUAL_INT(1, answer[6].predicted);
     double x = 0.0, y = 0.0, heading = 0.0;
     pose(0, 5, &x, &y, &heading);
@@ -196,13 +196,13 @@ static void test_a_robot_never_heard_is_not_invented(void)
 {
     tvo_lcm_fleet_command_t got;
     member_step(0, 0, &got);
-    EF_ASSERT_STATUS(TVO_ERR_NO_MEASUREMENT, got.status);
-    TEST_ASSERT_TRUE(((uint32_t)got.flags & TVO_FLAG_HOLDING) != 0u);
+    TEST_ASSERT_EQUAL_INT32(TVO_LCM_COMMAND_T_STATUS_ERR_NO_MEASUREMENT, got.status);
+    TEST_ASSERT_TRUE(((uint32_t)got.flags & TVO_LCM_COMMAND_T_FLAG_HOLDING) != 0u);
     TEST_ASSERT_TRUE(got.speed_mps == 0.0 && got.turn_rate_radps == 0.0);
     TEST_ASSERT_EQUAL_INT32(0, member.counters.accepted); /* the node never stepped */
     TEST_ASSERT_EQUAL_UINT32(1u, link.unheard_steps);
     member_step(1, 1, &got); /* heard: steps */
-    EF_ASSERT_STATUS(TVO_OK, got.status);
+    TEST_ASSERT_EQUAL_INT32(TVO_LCM_COMMAND_T_STATUS_OK, got.status);
     TEST_ASSERT_EQUAL_INT32(1, member.counters.accepted);
 }
 
@@ -216,7 +216,7 @@ static void test_a_stray_from_the_future_costs_one_period(void)
     member_step(2, 0, &got);
     TEST_ASSERT_EQUAL_INT(1, got.predicted);
     member_step(3, 1, &got); /* the genuine sample is used again */
-    EF_ASSERT_STATUS(TVO_OK, got.status);
+    TEST_ASSERT_EQUAL_INT32(TVO_LCM_COMMAND_T_STATUS_OK, got.status);
     TEST_ASSERT_EQUAL_INT(0, got.predicted);
 }
 

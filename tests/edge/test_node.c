@@ -141,7 +141,7 @@ static void expect_nothing_published(int line)
 
 static void expect_safe_stop(const tvo_lcm_command_t *cmd, int line)
 {
-    UNITY_TEST_ASSERT(((uint32_t)cmd->flags & TVO_FLAG_SAFE_STOP) != 0u, line, "SAFE_STOP flag");
+    UNITY_TEST_ASSERT(((uint32_t)cmd->flags & TVO_LCM_COMMAND_T_FLAG_SAFE_STOP) != 0u, line, "SAFE_STOP flag");
     for (int r = 0; r < TVO_LCM_MEASUREMENT_T_MAX_ROBOTS; ++r) {
         UNITY_TEST_ASSERT(cmd->speed_mps[r] == 0.0 && cmd->turn_rate_radps[r] == 0.0, line, "v = omega = 0");
     }
@@ -268,7 +268,7 @@ static tvo_lcm_command_t expect_accepted(const tvo_lcm_measurement_t *m, int64_t
     UNITY_TEST_ASSERT_EQUAL_INT64(utime, cmd.utime, line, "command utime: the apply instant");
     UNITY_TEST_ASSERT_EQUAL_INT64(m->sequence, cmd.measurement_sequence, line, "sequence echoed");
     UNITY_TEST_ASSERT_EQUAL_INT64(m->session_id, cmd.session_id, line, "session echoed");
-    UNITY_TEST_ASSERT(((uint32_t)cmd.flags & (TVO_FLAG_HOLDING | TVO_FLAG_SAFE_STOP)) == 0u, line,
+    UNITY_TEST_ASSERT(((uint32_t)cmd.flags & (TVO_LCM_COMMAND_T_FLAG_HOLDING | TVO_LCM_COMMAND_T_FLAG_SAFE_STOP)) == 0u, line,
                       "neither holding nor stopping");
     return cmd;
 }
@@ -276,18 +276,18 @@ static tvo_lcm_command_t expect_accepted(const tvo_lcm_measurement_t *m, int64_t
 
 /*
  * Sends a measurement of the running session and expects it refused for `reason` (holding) or,
- * when reason is TVO_ERR_WATCHDOG, answered with a safe stop; the running session is kept byte for
+ * when reason is TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG, answered with a safe stop; the running session is kept byte for
  * byte unless it is a safe stop. The answer's utime is never before the measurement's stamp:
  * CLOCK_PLANT the stamp itself, CLOCK_NODE the later of the stamp and now (plant clock).
  */
-static tvo_lcm_command_t expect_refused(const tvo_lcm_measurement_t *m, int64_t now_us, tvo_status_t reason, int line)
+static tvo_lcm_command_t expect_refused(const tvo_lcm_measurement_t *m, int64_t now_us, int32_t reason, int line)
 {
     const tvo_node_session_t *s = tvo_node_session(&node);
     UNITY_TEST_ASSERT_NOT_NULL(s, line, "no session");
     const int clock_node = s->schedule.timing.clock_source == TVO_LCM_SESSION_T_CLOCK_NODE;
     const int64_t offset = s->schedule.anchor.offset_us;
     take_snapshot();
-    const int32_t refused_before = node.counters.refused[reason == TVO_ERR_WATCHDOG ? 0 : reason];
+    const int32_t refused_before = node.counters.refused[reason == TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG ? 0 : reason];
     ef_record_clear(&rec);
     UNITY_TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_MEASUREMENT, send_measurement(m, now_us), line, "handled");
     const tvo_lcm_command_t cmd = the_command(line);
@@ -303,11 +303,11 @@ static tvo_lcm_command_t expect_refused(const tvo_lcm_measurement_t *m, int64_t 
     } else {
         UNITY_TEST_ASSERT_EQUAL_INT64(stamp, cmd.utime, line, "refusal utime is the measurement's");
     }
-    if (reason == TVO_ERR_WATCHDOG) {
+    if (reason == TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG) {
         expect_safe_stop(&cmd, line);
         return cmd;
     }
-    UNITY_TEST_ASSERT_EQUAL_HEX32(TVO_FLAG_HOLDING, (uint32_t)cmd.flags, line, "HOLDING, nothing else");
+    UNITY_TEST_ASSERT_EQUAL_HEX32(TVO_LCM_COMMAND_T_FLAG_HOLDING, (uint32_t)cmd.flags, line, "HOLDING, nothing else");
     UNITY_TEST_ASSERT_EQUAL_INT32(refused_before + 1, node.counters.refused[reason], line, "refusal counted");
     UNITY_TEST_ASSERT_EQUAL_INT(reason, node.last_refusal, line, "last_refusal");
     assert_session_kept(line);
@@ -393,8 +393,8 @@ static void test_start_with_a_new_id_replaces_the_running_session(void)
 /* Edits of a START that make it invalid, with the ack they must get. */
 typedef struct {
     const char *what;
-    tvo_status_t status;
-    tvo_param_t param;
+    int32_t status;  /* command_t.STATUS_* */
+    int32_t param;   /* session_ack_t.PARAM_* */
     int32_t part;
     int32_t index;
 } refusal_t;
@@ -451,19 +451,19 @@ static void make_invalid(tvo_lcm_session_t *m, int which)
 }
 
 static const refusal_t invalid_starts[] = {
-    {"period 0", TVO_ERR_PARAM, TVO_PARAM_PERIOD, TVO_LCM_SESSION_ACK_T_PART_NONE, -1},
-    {"negative gain", TVO_ERR_PARAM, TVO_PARAM_GAINS, TVO_LCM_SESSION_ACK_T_PART_NONE, -1},
-    {"epoch beyond the span", TVO_ERR_PARAM, TVO_PARAM_EPOCH, TVO_LCM_SESSION_ACK_T_PART_NONE, -1},
-    {"distance robot 5", TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_DISTANCE, 0},
-    {"relaxation degree 1", TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_BARRIER, -1},
-    {"gain 3e38", TVO_ERR_PARAM, TVO_PARAM_GAINS, TVO_LCM_SESSION_ACK_T_PART_NONE, -1},
-    {"target coefficient 1e30", TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 0},
-    {"target 2e4 m out", TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 0},
-    {"obstacle 1e5 m out", TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_OBSTACLES, 0},
-    {"wall moving at 1e6 m/s", TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_HALFSPACE, -1},
-    {"robot 1's weight -1", TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 1},
-    {"obstacles 0 and 2 overlap", TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_OBSTACLES, 2},
-    {"target kind 9", TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 0},
+    {"period 0", TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_PERIOD, TVO_LCM_SESSION_ACK_T_PART_NONE, -1},
+    {"negative gain", TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_GAINS, TVO_LCM_SESSION_ACK_T_PART_NONE, -1},
+    {"epoch beyond the span", TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_EPOCH, TVO_LCM_SESSION_ACK_T_PART_NONE, -1},
+    {"distance robot 5", TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_DISTANCE, 0},
+    {"relaxation degree 1", TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_BARRIER, -1},
+    {"gain 3e38", TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_GAINS, TVO_LCM_SESSION_ACK_T_PART_NONE, -1},
+    {"target coefficient 1e30", TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 0},
+    {"target 2e4 m out", TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 0},
+    {"obstacle 1e5 m out", TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_OBSTACLES, 0},
+    {"wall moving at 1e6 m/s", TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_HALFSPACE, -1},
+    {"robot 1's weight -1", TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 1},
+    {"obstacles 0 and 2 overlap", TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_OBSTACLES, 2},
+    {"target kind 9", TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 0},
 };
 
 static void test_refused_start_while_running_changes_nothing(void)
@@ -481,7 +481,7 @@ static void test_refused_start_while_running_changes_nothing(void)
             const tvo_lcm_session_ack_t ack = THE_ACK();
             const refusal_t *r = &invalid_starts[which];
             /* The running id with other (here: invalid) content is a conflict before it is invalid. */
-            TEST_ASSERT_EQUAL_INT_MESSAGE(same_id ? TVO_ERR_SESSION_CONFLICT : r->status, ack.status, r->what);
+            TEST_ASSERT_EQUAL_INT_MESSAGE(same_id ? TVO_LCM_COMMAND_T_STATUS_ERR_SESSION_CONFLICT : r->status, ack.status, r->what);
             if (!same_id) {
                 EF_ASSERT_PARAM(r->param, ack.bad_param);
                 TEST_ASSERT_EQUAL_INT32(r->part, ack.bad_part);
@@ -549,7 +549,7 @@ static void test_start_of_the_running_id_with_other_content_is_a_conflict(void)
     ef_record_clear(&rec);
     (void)send_session(&start, 0);
     const tvo_lcm_session_ack_t ack = THE_ACK();
-    EF_ASSERT_STATUS(TVO_ERR_SESSION_CONFLICT, ack.status);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_SESSION_CONFLICT, ack.status);
     TEST_ASSERT_EQUAL_INT64(EF_SESSION_ID, ack.running_session_id);
     ASSERT_SESSION_AND_COUNTERS_KEPT();
     tvo_lcm_measurement_t m;
@@ -584,7 +584,7 @@ static void test_stop_of_the_running_session_ends_it_and_a_start_begins_anew(voi
     plant_meas(&m, 3);
     ef_record_clear(&rec);
     (void)send_measurement(&m, 0);
-    EF_ASSERT_STATUS(TVO_ERR_NO_SESSION, THE_SESSIONLESS_COMMAND().status);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_NO_SESSION, THE_SESSIONLESS_COMMAND().status);
     /* The same START again (a plant that re-sends it) starts afresh. */
     start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
     TEST_ASSERT_EQUAL_UINT8(0u, node.stop_requested);
@@ -602,7 +602,7 @@ static void test_stop_of_another_id_is_refused_and_the_session_runs_on(void)
     ef_record_clear(&rec);
     (void)send_session(&stop, 0);
     tvo_lcm_session_ack_t ack = THE_ACK();
-    EF_ASSERT_STATUS(TVO_ERR_NO_SESSION, ack.status);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_NO_SESSION, ack.status);
     TEST_ASSERT_EQUAL_INT64(OTHER_ID, ack.session_id);
     TEST_ASSERT_EQUAL_INT64(EF_SESSION_ID, ack.running_session_id);
     TEST_ASSERT_EQUAL_UINT8(0u, node.stop_requested);
@@ -611,7 +611,7 @@ static void test_stop_of_another_id_is_refused_and_the_session_runs_on(void)
     setUp();
     (void)send_session(&stop, 0);
     ack = THE_ACK();
-    EF_ASSERT_STATUS(TVO_ERR_NO_SESSION, ack.status);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_NO_SESSION, ack.status);
     TEST_ASSERT_EQUAL_INT64(-1, ack.running_session_id);
     TEST_ASSERT_EQUAL_UINT8(0u, node.stop_requested);
 }
@@ -631,7 +631,7 @@ static void test_unknown_actions_are_refused_and_change_nothing(void)
             ef_record_clear(&rec);
             (void)send_session(&start, 0);
             const tvo_lcm_session_ack_t ack = THE_ACK();
-            EF_ASSERT_STATUS(TVO_ERR_PARAM, ack.status);
+            EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, ack.status);
             TEST_ASSERT_EQUAL_INT8(bad[i], ack.action);
             TEST_ASSERT_EQUAL_INT64(running ? EF_SESSION_ID : -1, ack.running_session_id);
             if (running) {
@@ -649,14 +649,14 @@ static void test_measurement_without_a_session_is_answered_with_a_safe_stop(void
     ef_measurement(&m, 31337, 123456, 17, 2);
     TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_MEASUREMENT, send_measurement(&m, 0));
     const tvo_lcm_command_t cmd = THE_SESSIONLESS_COMMAND();
-    EF_ASSERT_STATUS(TVO_ERR_NO_SESSION, cmd.status);
-    TEST_ASSERT_EQUAL_HEX32(TVO_FLAG_SAFE_STOP, (uint32_t)cmd.flags);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_NO_SESSION, cmd.status);
+    TEST_ASSERT_EQUAL_HEX32(TVO_LCM_COMMAND_T_FLAG_SAFE_STOP, (uint32_t)cmd.flags);
     EXPECT_SAFE_STOP(cmd);
     TEST_ASSERT_EQUAL_INT64(31337, cmd.session_id);
     TEST_ASSERT_EQUAL_INT64(17, cmd.measurement_sequence);
     TEST_ASSERT_EQUAL_INT64(123456, cmd.utime);
     TEST_ASSERT_EQUAL_INT32(2, cmd.robot_count);
-    TEST_ASSERT_EQUAL_INT32(1, node.counters.refused[TVO_ERR_NO_SESSION]);
+    TEST_ASSERT_EQUAL_INT32(1, node.counters.refused[TVO_LCM_COMMAND_T_STATUS_ERR_NO_SESSION]);
     TEST_ASSERT_NULL(tvo_node_session(&node));
 }
 
@@ -732,26 +732,26 @@ static const readme_row_t readme_rows[] = {
     {"running A | START of a new id B that passes every check | B replaces A | 0, running B", ROW_RUNNING_A,
      SEND_START_VALID_NEW_ID, TVO_NODE_EVENT_START, TVO_NODE_RUNNING, ANSWER_ACK, TVO_OK, ID_B, 0, 0},
     {"any (idle) | START that fails a check | nothing changes | the status, bad_param ...; running -1", ROW_IDLE,
-     SEND_START_INVALID, TVO_NODE_EVENT_START, TVO_NODE_IDLE, ANSWER_ACK, TVO_ERR_PARAM, -1, 0, 0},
+     SEND_START_INVALID, TVO_NODE_EVENT_START, TVO_NODE_IDLE, ANSWER_ACK, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, -1, 0, 0},
     {"any (running A) | START that fails a check | nothing changes: A keeps running | the status ...; running A",
-     ROW_RUNNING_A, SEND_START_INVALID, TVO_NODE_EVENT_START, TVO_NODE_RUNNING, ANSWER_ACK, TVO_ERR_PARAM, ID_A, 1, 0},
+     ROW_RUNNING_A, SEND_START_INVALID, TVO_NODE_EVENT_START, TVO_NODE_RUNNING, ANSWER_ACK, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, ID_A, 1, 0},
     {"running A | START of A, the same content (any utime) | nothing: a repeat | 0 again", ROW_RUNNING_A,
      SEND_START_REPEAT, TVO_NODE_EVENT_START_REPEAT, TVO_NODE_RUNNING, ANSWER_ACK, TVO_OK, ID_A, 1, 0},
-    {"running A | START of A with other content | refused | TVO_ERR_SESSION_CONFLICT (17)", ROW_RUNNING_A,
-     SEND_START_OTHER_CONTENT, TVO_NODE_EVENT_START_CONFLICT, TVO_NODE_RUNNING, ANSWER_ACK, TVO_ERR_SESSION_CONFLICT,
+    {"running A | START of A with other content | refused | TVO_LCM_COMMAND_T_STATUS_ERR_SESSION_CONFLICT (17)", ROW_RUNNING_A,
+     SEND_START_OTHER_CONTENT, TVO_NODE_EVENT_START_CONFLICT, TVO_NODE_RUNNING, ANSWER_ACK, TVO_LCM_COMMAND_T_STATUS_ERR_SESSION_CONFLICT,
      ID_A, 1, 0},
     {"running A | STOP of A | the session ends | 0, running -1", ROW_RUNNING_A, SEND_STOP_RUNNING, TVO_NODE_EVENT_STOP,
      TVO_NODE_IDLE, ANSWER_ACK, TVO_OK, -1, 0, 0},
-    {"any (idle) | STOP of another id | ignored | TVO_ERR_NO_SESSION (18)", ROW_IDLE, SEND_STOP_OTHER,
-     TVO_NODE_EVENT_STOP_OTHER, TVO_NODE_IDLE, ANSWER_ACK, TVO_ERR_NO_SESSION, -1, 0, 0},
-    {"any (running A) | STOP of another id | ignored | TVO_ERR_NO_SESSION (18)", ROW_RUNNING_A, SEND_STOP_OTHER,
-     TVO_NODE_EVENT_STOP_OTHER, TVO_NODE_RUNNING, ANSWER_ACK, TVO_ERR_NO_SESSION, ID_A, 1, 0},
-    {"any (idle) | another action | ignored | TVO_ERR_PARAM", ROW_IDLE, SEND_OTHER_ACTION, TVO_NODE_EVENT_OTHER_ACTION,
-     TVO_NODE_IDLE, ANSWER_ACK, TVO_ERR_PARAM, -1, 0, 0},
-    {"any (running A) | another action | ignored | TVO_ERR_PARAM", ROW_RUNNING_A, SEND_OTHER_ACTION,
-     TVO_NODE_EVENT_OTHER_ACTION, TVO_NODE_RUNNING, ANSWER_ACK, TVO_ERR_PARAM, ID_A, 1, 0},
-    {"idle | measurement | answered with a safe stop, status TVO_ERR_NO_SESSION | command only", ROW_IDLE,
-     SEND_MEASUREMENT_OWN, TVO_NODE_EVENT_MEASUREMENT, TVO_NODE_IDLE, ANSWER_SAFE_STOP_ONLY, TVO_ERR_NO_SESSION, -1, 0,
+    {"any (idle) | STOP of another id | ignored | TVO_LCM_COMMAND_T_STATUS_ERR_NO_SESSION (18)", ROW_IDLE, SEND_STOP_OTHER,
+     TVO_NODE_EVENT_STOP_OTHER, TVO_NODE_IDLE, ANSWER_ACK, TVO_LCM_COMMAND_T_STATUS_ERR_NO_SESSION, -1, 0, 0},
+    {"any (running A) | STOP of another id | ignored | TVO_LCM_COMMAND_T_STATUS_ERR_NO_SESSION (18)", ROW_RUNNING_A, SEND_STOP_OTHER,
+     TVO_NODE_EVENT_STOP_OTHER, TVO_NODE_RUNNING, ANSWER_ACK, TVO_LCM_COMMAND_T_STATUS_ERR_NO_SESSION, ID_A, 1, 0},
+    {"any (idle) | another action | ignored | TVO_LCM_COMMAND_T_STATUS_ERR_PARAM", ROW_IDLE, SEND_OTHER_ACTION, TVO_NODE_EVENT_OTHER_ACTION,
+     TVO_NODE_IDLE, ANSWER_ACK, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, -1, 0, 0},
+    {"any (running A) | another action | ignored | TVO_LCM_COMMAND_T_STATUS_ERR_PARAM", ROW_RUNNING_A, SEND_OTHER_ACTION,
+     TVO_NODE_EVENT_OTHER_ACTION, TVO_NODE_RUNNING, ANSWER_ACK, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, ID_A, 1, 0},
+    {"idle | measurement | answered with a safe stop, status TVO_LCM_COMMAND_T_STATUS_ERR_NO_SESSION | command only", ROW_IDLE,
+     SEND_MEASUREMENT_OWN, TVO_NODE_EVENT_MEASUREMENT, TVO_NODE_IDLE, ANSWER_SAFE_STOP_ONLY, TVO_LCM_COMMAND_T_STATUS_ERR_NO_SESSION, -1, 0,
      0},
     {"running A | measurement of another session id | ignored, counted (other_session) | none", ROW_RUNNING_A,
      SEND_MEASUREMENT_OTHER, TVO_NODE_EVENT_MEASUREMENT_OTHER, TVO_NODE_RUNNING, ANSWER_NONE, 0, ID_A, 1, 1},
@@ -846,7 +846,7 @@ static void test_each_readme_session_row_is_what_the_table_does(void)
             TEST_ASSERT_EQUAL_INT_MESSAGE(row->status, ack.status, row->readme);
             TEST_ASSERT_EQUAL_INT64_MESSAGE(row->running_after, ack.running_session_id, row->readme);
             if (row->message == SEND_START_INVALID) {
-                EF_ASSERT_PARAM(TVO_PARAM_PERIOD, ack.bad_param); /* the check that failed is named */
+                EF_ASSERT_PARAM(TVO_LCM_SESSION_ACK_T_PARAM_PERIOD, ack.bad_param); /* the check that failed is named */
             }
             break;
         }
@@ -958,7 +958,7 @@ static void test_plant_age_outside_zero_to_h_is_refused_by_the_controller(void)
     (void)send_session(&start, 0);
     tvo_lcm_measurement_t m;
     ef_measurement(&m, EF_SESSION_ID, plant_apply(3) + 3000, SEQ0 + 3, 1);
-    (void)EXPECT_REFUSED(m, 0, TVO_ERR_FUTURE_STAMP);
+    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_FUTURE_STAMP);
     ef_measurement(&m, EF_SESSION_ID, plant_apply(3), SEQ0 + 3, 1);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(3));
     /* tau = h: a stamp more than a period before its apply instant is stale. */
@@ -967,7 +967,7 @@ static void test_plant_age_outside_zero_to_h_is_refused_by_the_controller(void)
     start.delay_us = H;
     (void)send_session(&start, 0);
     ef_measurement(&m, EF_SESSION_ID, plant_apply(3) - H - 4000, SEQ0 + 3, 1);
-    (void)EXPECT_REFUSED(m, 0, TVO_ERR_STALE);
+    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_STALE);
     ef_measurement(&m, EF_SESSION_ID, plant_apply(3) - H, SEQ0 + 3, 1);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(3));
 }
@@ -977,13 +977,13 @@ static void test_plant_duplicates_and_reordering_are_out_of_order(void)
     plant_session_after(1);
     tvo_lcm_measurement_t m;
     plant_meas(&m, 1);
-    (void)EXPECT_REFUSED(m, 0, TVO_ERR_OUT_OF_ORDER); /* duplicate */
+    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER); /* duplicate */
     plant_meas(&m, 3);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(3)); /* a lost period: consistent stamp and sequence */
     plant_meas(&m, 2);
-    (void)EXPECT_REFUSED(m, 0, TVO_ERR_OUT_OF_ORDER); /* arrives late */
+    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER); /* arrives late */
     plant_meas(&m, 0);
-    (void)EXPECT_REFUSED(m, 0, TVO_ERR_OUT_OF_ORDER);
+    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER);
     plant_meas(&m, 4);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(4));
 }
@@ -1024,25 +1024,25 @@ static void test_plant_stray_stamps_cost_the_genuine_stream_nothing(void)
         switch (j) {
         case 1: /* a stamp 20 s ahead with the next sequence */
             ef_measurement(&stray, EF_SESSION_ID, plant_apply(2000), SEQ0 + j + 1, 1);
-            (void)EXPECT_REFUSED(stray, 0, TVO_ERR_IMPLAUSIBLE_STAMP);
+            (void)EXPECT_REFUSED(stray, 0, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
             break;
         case 2: /* a stamp in the past */
             ef_measurement(&stray, EF_SESSION_ID, plant_apply(0) - TAU, SEQ0 + j + 1, 1);
-            (void)EXPECT_REFUSED(stray, 0, TVO_ERR_OUT_OF_ORDER);
+            (void)EXPECT_REFUSED(stray, 0, TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER);
             break;
         case 3: /* before the epoch */
             ef_measurement(&stray, EF_SESSION_ID, EF_EPOCH - 10 * H, SEQ0 + j + 1, 1);
-            (void)EXPECT_REFUSED(stray, 0, TVO_ERR_IMPLAUSIBLE_STAMP);
+            (void)EXPECT_REFUSED(stray, 0, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
             break;
         case 4: /* the right stamp, a wild sequence */
             plant_meas(&stray, j + 1);
             stray.sequence = SEQ0 + ((int64_t)1 << 40);
-            (void)EXPECT_REFUSED(stray, 0, TVO_ERR_IMPLAUSIBLE_STAMP);
+            (void)EXPECT_REFUSED(stray, 0, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
             break;
         default: /* garbage values of the right fingerprint */
             plant_meas(&stray, j + 1);
             stray.position_m[0][0] = (double)NAN;
-            (void)EXPECT_REFUSED(stray, 0, TVO_ERR_NOT_FINITE);
+            (void)EXPECT_REFUSED(stray, 0, TVO_LCM_COMMAND_T_STATUS_ERR_NOT_FINITE);
             break;
         }
     }
@@ -1057,7 +1057,7 @@ static void test_plant_huge_sequences_are_refused(void)
         tvo_lcm_measurement_t m;
         plant_meas(&m, j);
         m.sequence = bad[i];
-        (void)EXPECT_REFUSED(m, 0, TVO_ERR_IMPLAUSIBLE_STAMP);
+        (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
         /* A watchdog's worth of refusals would stop: keep below it with the genuine sample. */
         plant_meas(&m, j);
         (void)EXPECT_ACCEPTED(m, 0, plant_apply(j));
@@ -1070,9 +1070,9 @@ static void plant_jump_to(int64_t j)
 {
     tvo_lcm_measurement_t m;
     plant_meas(&m, j);
-    (void)EXPECT_REFUSED(m, 0, TVO_ERR_IMPLAUSIBLE_STAMP);
+    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
     plant_meas(&m, j + 1);
-    (void)EXPECT_REFUSED(m, 0, TVO_ERR_IMPLAUSIBLE_STAMP);
+    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
     plant_meas(&m, j + 2);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(j + 2));
 }
@@ -1090,7 +1090,7 @@ static void test_plant_gap_with_consistent_sequence_is_accepted(void)
     /* A gap beyond the controller's tick span is stale: the plant must START anew. */
     const int64_t beyond = last + (int64_t)TVO_MAX_TICK_SPAN / H + 1;
     plant_meas(&m, beyond);
-    (void)EXPECT_REFUSED(m, 0, TVO_ERR_STALE);
+    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_STALE);
     plant_meas(&m, last + 1); /* ends the streak of refusals before the next jump's two */
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(last + 1));
     /* The longest gap the span holds, once three samples agree on it. */
@@ -1104,9 +1104,9 @@ static void test_plant_one_sample_far_ahead_costs_one_refusal(void)
     plant_session_after(5);
     tvo_lcm_measurement_t m;
     plant_meas(&m, 5 + 2000);
-    const tvo_lcm_command_t refused = EXPECT_REFUSED(m, 0, TVO_ERR_IMPLAUSIBLE_STAMP);
-    TEST_ASSERT_TRUE(((uint32_t)refused.flags & TVO_FLAG_HOLDING) != 0u);
-    TEST_ASSERT_TRUE(((uint32_t)refused.flags & TVO_FLAG_SAFE_STOP) == 0u);
+    const tvo_lcm_command_t refused = EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
+    TEST_ASSERT_TRUE(((uint32_t)refused.flags & TVO_LCM_COMMAND_T_FLAG_HOLDING) != 0u);
+    TEST_ASSERT_TRUE(((uint32_t)refused.flags & TVO_LCM_COMMAND_T_FLAG_SAFE_STOP) == 0u);
     for (int64_t j = 6; j < 6 + 50; ++j) {
         plant_meas(&m, j);
         (void)EXPECT_ACCEPTED(m, 0, plant_apply(j));
@@ -1114,7 +1114,7 @@ static void test_plant_one_sample_far_ahead_costs_one_refusal(void)
     /* Strays interleaved with the genuine stream never add up to a vote: each served sample ends the streak. */
     for (int64_t j = 56; j < 56 + 6; ++j) {
         plant_meas(&m, j + 2000);
-        (void)EXPECT_REFUSED(m, 0, TVO_ERR_IMPLAUSIBLE_STAMP);
+        (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
         plant_meas(&m, j);
         (void)EXPECT_ACCEPTED(m, 0, plant_apply(j));
     }
@@ -1126,15 +1126,15 @@ static void test_plant_watchdog_refusals_in_a_row_give_a_safe_stop_until_one_is_
     tvo_lcm_measurement_t dup;
     plant_meas(&dup, 2);
     for (int64_t k = 1; k < W; ++k) {
-        (void)EXPECT_REFUSED(dup, 0, TVO_ERR_OUT_OF_ORDER);
+        (void)EXPECT_REFUSED(dup, 0, TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER);
     }
     TEST_ASSERT_EQUAL_INT32(0, node.counters.safe_stops);
-    tvo_lcm_command_t cmd = EXPECT_REFUSED(dup, 0, TVO_ERR_WATCHDOG);
+    tvo_lcm_command_t cmd = EXPECT_REFUSED(dup, 0, TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG);
     TEST_ASSERT_EQUAL_INT64(SEQ0 + 2, cmd.measurement_sequence);
     TEST_ASSERT_EQUAL_INT32(1, node.counters.safe_stops);
-    cmd = EXPECT_REFUSED(dup, 0, TVO_ERR_WATCHDOG); /* and on, until one is accepted */
+    cmd = EXPECT_REFUSED(dup, 0, TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG); /* and on, until one is accepted */
     TEST_ASSERT_EQUAL_INT32(2, node.counters.safe_stops);
-    TEST_ASSERT_EQUAL_INT32(W + 1, node.counters.refused[TVO_ERR_OUT_OF_ORDER]);
+    TEST_ASSERT_EQUAL_INT32(W + 1, node.counters.refused[TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER]);
     /* The controller dropped to rest: it holds zero until a measurement is accepted. */
     const tvo_node_session_t *s = tvo_node_session(&node);
     TEST_ASSERT_TRUE(s->controller.u.unicycle.held.speed_mps[0] == TVO_R(0.0));
@@ -1144,7 +1144,7 @@ static void test_plant_watchdog_refusals_in_a_row_give_a_safe_stop_until_one_is_
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(3));
     TEST_ASSERT_EQUAL_UINT32(0u, tvo_node_session(&node)->schedule.clock.plant.refused_in_row);
     plant_meas(&dup, 3);
-    (void)EXPECT_REFUSED(dup, 0, TVO_ERR_OUT_OF_ORDER); /* the count restarted */
+    (void)EXPECT_REFUSED(dup, 0, TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER); /* the count restarted */
 }
 
 static void test_plant_wrong_robot_count_and_non_finite_values_are_refused(void)
@@ -1153,10 +1153,10 @@ static void test_plant_wrong_robot_count_and_non_finite_values_are_refused(void)
     tvo_lcm_measurement_t m;
     plant_meas(&m, 2);
     m.robot_count = 2;
-    (void)EXPECT_REFUSED(m, 0, TVO_ERR_DIMENSION);
+    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_DIMENSION);
     plant_meas(&m, 2);
     m.heading_rad[0] = (double)INFINITY;
-    (void)EXPECT_REFUSED(m, 0, TVO_ERR_NOT_FINITE);
+    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_NOT_FINITE);
     plant_meas(&m, 2);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(2));
 }
@@ -1206,9 +1206,9 @@ static void test_node_clock_stamp_more_than_half_a_period_ahead_is_implausible(v
     tvo_lcm_measurement_t m;
     const int64_t now = node_apply(1) + 1000;
     ef_measurement(&m, EF_SESSION_ID, now - OFFSET + H / 2 + 1, 2, 1);
-    (void)EXPECT_REFUSED(m, now, TVO_ERR_IMPLAUSIBLE_STAMP);
+    (void)EXPECT_REFUSED(m, now, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
     ef_measurement(&m, EF_SESSION_ID, now - OFFSET + 20000000, 2, 1); /* 20 s ahead */
-    (void)EXPECT_REFUSED(m, now, TVO_ERR_IMPLAUSIBLE_STAMP);
+    (void)EXPECT_REFUSED(m, now, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
     /* Exactly h/2 ahead: within the tolerance; A_2 = now + 9 ms is after it. */
     ef_measurement(&m, EF_SESSION_ID, now - OFFSET + H / 2, 2, 1);
     (void)EXPECT_ACCEPTED(m, now, node_apply(2) - OFFSET);
@@ -1224,12 +1224,12 @@ static void test_node_clock_stale_and_repeated_stamps_are_refused(void)
     /* Arriving at A_1 + 2 ms: serves A_2; sampled 1 ms after A_0 is 19 ms old there. */
     const int64_t now = node_apply(1) + 2000;
     ef_measurement(&m, EF_SESSION_ID, node_apply(0) + 1000 - OFFSET, 2, 1);
-    (void)EXPECT_REFUSED(m, now, TVO_ERR_STALE);
+    (void)EXPECT_REFUSED(m, now, TVO_LCM_COMMAND_T_STATUS_ERR_STALE);
     /* A sample stamped at A_2 itself (1 ms ahead of the node's clock) serves A_2 with age 0; the
      * same stamp again serves A_3 with age h, but is not newer than the last accepted one. */
     ef_measurement(&m, EF_SESSION_ID, node_apply(2) - OFFSET, 2, 1);
     (void)EXPECT_ACCEPTED(m, node_apply(2) - 1000, node_apply(2) - OFFSET);
-    (void)EXPECT_REFUSED(m, node_apply(2) - 500, TVO_ERR_OUT_OF_ORDER);
+    (void)EXPECT_REFUSED(m, node_apply(2) - 500, TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER);
     node_meas(&m, 3, 3);
     (void)EXPECT_ACCEPTED(m, node_arrival(3), node_apply(3) - OFFSET);
 }
@@ -1244,7 +1244,7 @@ static void test_node_timer_has_no_deadline_before_the_first_accepted_measuremen
     tvo_lcm_measurement_t m;
     node_meas(&m, 1, 1);
     m.position_m[0][1] = (double)NAN;
-    (void)EXPECT_REFUSED(m, node_arrival(1), TVO_ERR_NOT_FINITE); /* a refusal does not arm it */
+    (void)EXPECT_REFUSED(m, node_arrival(1), TVO_LCM_COMMAND_T_STATUS_ERR_NOT_FINITE); /* a refusal does not arm it */
     ef_record_clear(&rec);
     TEST_ASSERT_EQUAL_INT64(TVO_NODE_NO_DEADLINE, tvo_node_poll(&node, node_apply(50)));
     EXPECT_NOTHING_PUBLISHED();
@@ -1255,8 +1255,8 @@ static void expect_timer_stop(int64_t now, int64_t next_deadline, int line)
     ef_record_clear(&rec);
     const int64_t deadline = tvo_node_poll(&node, now);
     const tvo_lcm_command_t cmd = the_command(line);
-    ef_assert_status(TVO_ERR_WATCHDOG, cmd.status, line);
-    UNITY_TEST_ASSERT_EQUAL_HEX32(TVO_FLAG_SAFE_STOP, (uint32_t)cmd.flags, line, "flags");
+    ef_assert_status(TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG, cmd.status, line);
+    UNITY_TEST_ASSERT_EQUAL_HEX32(TVO_LCM_COMMAND_T_FLAG_SAFE_STOP, (uint32_t)cmd.flags, line, "flags");
     expect_safe_stop(&cmd, line);
     UNITY_TEST_ASSERT_EQUAL_INT64(-1, cmd.measurement_sequence, line, "the node's own stop answers nothing");
     UNITY_TEST_ASSERT_EQUAL_INT64(now - OFFSET, cmd.utime, line, "stamped now, in plant time");
@@ -1311,10 +1311,10 @@ static void test_node_timer_is_not_moved_by_refused_measurements(void)
     tvo_lcm_measurement_t m;
     node_meas(&m, 3, 3);
     m.robot_count = 3;
-    (void)EXPECT_REFUSED(m, node_arrival(3), TVO_ERR_DIMENSION);
+    (void)EXPECT_REFUSED(m, node_arrival(3), TVO_LCM_COMMAND_T_STATUS_ERR_DIMENSION);
     node_meas(&m, 4, 4);
     m.position_m[0][0] = (double)NAN;
-    (void)EXPECT_REFUSED(m, node_arrival(4), TVO_ERR_NOT_FINITE);
+    (void)EXPECT_REFUSED(m, node_arrival(4), TVO_LCM_COMMAND_T_STATUS_ERR_NOT_FINITE);
     EXPECT_TIMER_QUIET(due - 1, due);
     EXPECT_TIMER_STOP(due, node_apply(3 + W));
 }
@@ -1347,10 +1347,10 @@ static void test_telemetry_counts_every_kind_of_event(void)
     plant_session_after(2);
     tvo_lcm_measurement_t m;
     plant_meas(&m, 2);
-    (void)EXPECT_REFUSED(m, 0, TVO_ERR_OUT_OF_ORDER);
+    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER);
     plant_meas(&m, 3);
     m.position_m[0][0] = (double)NAN;
-    (void)EXPECT_REFUSED(m, 0, TVO_ERR_NOT_FINITE);
+    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_NOT_FINITE);
     plant_meas(&m, 3);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(3));
     /* Undecodable: garbage, truncated, empty, NULL on the node's input channels. */
@@ -1383,7 +1383,7 @@ static void test_telemetry_counts_every_kind_of_event(void)
     t.robot_count = 1;
     (void)send_target(&t, 0);
     TEST_ASSERT_EQUAL_INT32(1, node.counters.targets_refused);
-    EF_ASSERT_STATUS(TVO_ERR_PARAM, node.last_target_status);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, node.last_target_status);
     /* A safe stop: watchdog_periods refusals in a row. */
     plant_meas(&m, 3);
     for (int64_t k = 0; k < W; ++k) {
@@ -1394,8 +1394,8 @@ static void test_telemetry_counts_every_kind_of_event(void)
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(4));
     const tvo_lcm_node_counters_t *c = &last_telemetry.counters;
     TEST_ASSERT_EQUAL_INT32(4, c->accepted);
-    TEST_ASSERT_EQUAL_INT32(1 + (int32_t)W, c->refused[TVO_ERR_OUT_OF_ORDER]);
-    TEST_ASSERT_EQUAL_INT32(1, c->refused[TVO_ERR_NOT_FINITE]);
+    TEST_ASSERT_EQUAL_INT32(1 + (int32_t)W, c->refused[TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER]);
+    TEST_ASSERT_EQUAL_INT32(1, c->refused[TVO_LCM_COMMAND_T_STATUS_ERR_NOT_FINITE]);
     TEST_ASSERT_EQUAL_INT32(6, c->undecodable);
     TEST_ASSERT_EQUAL_INT32(1, c->other_session);
     TEST_ASSERT_EQUAL_INT32(1, c->safe_stops);
@@ -1443,11 +1443,11 @@ static void test_plant_implausible_measurements_are_refused_and_keep_nothing(voi
         case 1: m.position_m[0][0] = 1e6; break;
         default: m.heading_rad[0] = 1e6; break;
         }
-        (void)EXPECT_REFUSED(m, 0, TVO_ERR_IMPLAUSIBLE_MEASUREMENT);
+        (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_MEASUREMENT);
         plant_meas(&m, 4 + 2 * which); /* the genuine stream goes on (and the watchdog's count restarts) */
         (void)EXPECT_ACCEPTED(m, 0, plant_apply(4 + 2 * which));
     }
-    TEST_ASSERT_EQUAL_INT32(3, node.counters.refused[TVO_ERR_IMPLAUSIBLE_MEASUREMENT]);
+    TEST_ASSERT_EQUAL_INT32(3, node.counters.refused[TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_MEASUREMENT]);
 }
 
 /* A START whose robot 0 streams its target and must stay in x <= 0.5 (a half-space). */
@@ -1495,10 +1495,10 @@ static void test_slack_rule_is_undone_when_the_first_step_fails(void)
     ef_record_clear(&rec);
     (void)send_measurement(&first, 0);
     const tvo_lcm_command_t cmd = THE_COMMAND();
-    EF_ASSERT_STATUS(TVO_ERR_TARGET_NOT_READY, cmd.status);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_TARGET_NOT_READY, cmd.status);
     TEST_ASSERT_TRUE(cmd.utime >= first.utime);
-    TEST_ASSERT_TRUE(((uint32_t)cmd.flags & (TVO_FLAG_HOLDING | TVO_FLAG_SAFE_STOP)) != 0u);
-    TEST_ASSERT_EQUAL_INT32(1, node.counters.refused[TVO_ERR_TARGET_NOT_READY]);
+    TEST_ASSERT_TRUE(((uint32_t)cmd.flags & (TVO_LCM_COMMAND_T_FLAG_HOLDING | TVO_LCM_COMMAND_T_FLAG_SAFE_STOP)) != 0u);
+    TEST_ASSERT_EQUAL_INT32(1, node.counters.refused[TVO_LCM_COMMAND_T_STATUS_ERR_TARGET_NOT_READY]);
     TEST_ASSERT_EQUAL_INT32(0, node.counters.accepted);
     const tvo_node_session_t *s = tvo_node_session(&node);
     TEST_ASSERT_EQUAL_UINT8(0u, s->problem.slack_chosen);
@@ -1529,7 +1529,7 @@ static void test_target_stamped_at_epoch_minus_tau_is_carried_to_the_epoch(void)
     target_at_epoch(&t);
     t.utime = EF_EPOCH - H - 1;
     (void)send_target(&t, 0);
-    EF_ASSERT_STATUS(TVO_ERR_OUT_OF_ORDER, node.last_target_status);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER, node.last_target_status);
     t.utime = EF_EPOCH - TAU;
     t.position_m[0][0] = 1.0;
     t.velocity_mps[0][0] = 2.0;
@@ -1567,9 +1567,9 @@ static void test_plant_first_measurement_beyond_the_tick_span_is_implausible(voi
     for (int64_t k = 0; k < W + 1; ++k) {
         tvo_lcm_measurement_t m;
         ef_measurement(&m, EF_SESSION_ID, EF_EPOCH + twenty_minutes + k * H - TAU, k, 1);
-        (void)EXPECT_REFUSED(m, 0, k + 1 < W ? TVO_ERR_IMPLAUSIBLE_STAMP : TVO_ERR_WATCHDOG);
+        (void)EXPECT_REFUSED(m, 0, k + 1 < W ? TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP : TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG);
     }
-    TEST_ASSERT_EQUAL_INT32((int32_t)W + 1, node.counters.refused[TVO_ERR_IMPLAUSIBLE_STAMP]);
+    TEST_ASSERT_EQUAL_INT32((int32_t)W + 1, node.counters.refused[TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP]);
     /* The first sample anchors the sequence, so it must follow the later of the START and the epoch
      * within a second (or watchdog_periods periods if longer): the last period inside that window is
      * served, the next one is not. */
@@ -1577,7 +1577,7 @@ static void test_plant_first_measurement_beyond_the_tick_span_is_implausible(voi
     const int64_t last = ((EF_UTIME > EF_EPOCH ? EF_UTIME : EF_EPOCH) + window - EF_EPOCH + TAU) / H;
     tvo_lcm_measurement_t m;
     plant_meas(&m, last + 1);
-    (void)EXPECT_REFUSED(m, 0, TVO_ERR_WATCHDOG);
+    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG);
     plant_meas(&m, last);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(last));
 }
@@ -1601,7 +1601,7 @@ static void test_chain_session_runs_through_the_node(void)
             }
             if (j == 2) {
                 /* The session reads y' as measured (no filters): a sample without it is refused. */
-                (void)EXPECT_REFUSED(m, node_clock ? node_arrival(j) : 0, TVO_ERR_MISSING_FIELD);
+                (void)EXPECT_REFUSED(m, node_clock ? node_arrival(j) : 0, TVO_LCM_COMMAND_T_STATUS_ERR_MISSING_FIELD);
             }
             m.derivatives_valid = 1;
             cmd = EXPECT_ACCEPTED(m, node_clock ? node_arrival(j) : 0,
@@ -1618,13 +1618,13 @@ static void test_chain_session_runs_through_the_node(void)
             tvo_lcm_measurement_t dup;
             plant_meas(&dup, 3);
             for (int64_t k = 1; k < W; ++k) {
-                cmd = EXPECT_REFUSED(dup, 0, TVO_ERR_OUT_OF_ORDER);
+                cmd = EXPECT_REFUSED(dup, 0, TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER);
                 TEST_ASSERT_TRUE(cmd.input[0] != 0.0); /* the chain's held u */
             }
-            cmd = EXPECT_REFUSED(dup, 0, TVO_ERR_WATCHDOG);
+            cmd = EXPECT_REFUSED(dup, 0, TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG);
         }
-        EF_ASSERT_STATUS(TVO_ERR_WATCHDOG, cmd.status);
-        TEST_ASSERT_EQUAL_HEX32(TVO_FLAG_SAFE_STOP, (uint32_t)cmd.flags);
+        EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG, cmd.status);
+        TEST_ASSERT_EQUAL_HEX32(TVO_LCM_COMMAND_T_FLAG_SAFE_STOP, (uint32_t)cmd.flags);
         for (int i = 0; i < 8; ++i) {
             TEST_ASSERT_TRUE(cmd.input[i] == 0.0);
         }
@@ -1669,7 +1669,7 @@ static void test_node_clock_reanchors_on_agreeing_measurements_before_tracking(v
     ef_measurement(&stray, EF_SESSION_ID, EF_EPOCH + 40 * H, 1000, 1);
     ef_record_clear(&rec);
     (void)send_measurement(&stray, EF_EPOCH + offset + 40 * H - 500000);
-    EF_ASSERT_STATUS(TVO_ERR_IMPLAUSIBLE_STAMP, THE_COMMAND().status);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP, THE_COMMAND().status);
     for (int64_t k = 0; k < 6; ++k) {
         const int64_t sample = EF_EPOCH + (k + 1) * H - TAU;
         tvo_lcm_measurement_t m;
@@ -1678,7 +1678,7 @@ static void test_node_clock_reanchors_on_agreeing_measurements_before_tracking(v
         (void)send_measurement(&m, sample + offset + latency);
         const tvo_lcm_command_t cmd = THE_COMMAND();
         if (k < 2) {
-            EF_ASSERT_STATUS(TVO_ERR_IMPLAUSIBLE_STAMP, cmd.status);
+            EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP, cmd.status);
         } else {
             EF_ASSERT_STATUS(TVO_OK, cmd.status);
             /* Applied at the period's instant on the plant's clock, as if the START had been on time
@@ -1716,11 +1716,11 @@ static void test_node_clock_reanchor_whose_trial_the_core_stops_commits_nothing_
         (void)send_measurement(&m, sample + offset + latency);
         const tvo_lcm_command_t cmd = THE_COMMAND();
         if (k == 2) {
-            EF_ASSERT_STATUS(TVO_ERR_WATCHDOG, cmd.status); /* the core's stop */
+            EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG, cmd.status); /* the core's stop */
             EXPECT_SAFE_STOP(cmd);
             TEST_ASSERT_EQUAL_INT64(offset + start_delay, tvo_node_session(&node)->schedule.anchor.offset_us);
         } else if (k < 5) {
-            EF_ASSERT_STATUS(TVO_ERR_IMPLAUSIBLE_STAMP, cmd.status);
+            EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP, cmd.status);
         } else {
             EF_ASSERT_STATUS(TVO_OK, cmd.status);
             TEST_ASSERT_INT64_WITHIN(latency, sample + TAU, cmd.utime);
@@ -1745,7 +1745,7 @@ static void test_plant_target_beyond_the_next_period_is_refused(void)
     tvo_lcm_target_t stray = t;
     stray.utime = EF_EPOCH + 10000000;
     (void)send_target(&stray, 0);
-    EF_ASSERT_STATUS(TVO_ERR_IMPLAUSIBLE_STAMP, node.last_target_status);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP, node.last_target_status);
     TEST_ASSERT_EQUAL_INT32(1, node.counters.targets_refused);
     t.utime = plant_apply(2) - TAU;
     (void)send_target(&t, 0);
@@ -1789,7 +1789,7 @@ static void test_plant_repeated_start_moves_the_first_window(void)
     TEST_ASSERT_TRUE(j > first_period_past_window(EF_UTIME));
     tvo_lcm_measurement_t m;
     plant_meas(&m, j);
-    (void)EXPECT_REFUSED(m, 0, TVO_ERR_IMPLAUSIBLE_STAMP); /* past the first START's window */
+    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP); /* past the first START's window */
     tvo_lcm_session_t again = start;
     again.utime = EF_UTIME + 3000000;
     ef_record_clear(&rec);
@@ -1824,16 +1824,16 @@ static void test_plant_samples_past_the_first_window_that_agree_move_it(void)
     const int64_t j = first_period_past_window(EF_UTIME) + 200;
     tvo_lcm_measurement_t m;
     plant_meas(&m, j);
-    (void)EXPECT_REFUSED(m, 0, TVO_ERR_IMPLAUSIBLE_STAMP);
+    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
     plant_meas(&m, j + 1);
-    (void)EXPECT_REFUSED(m, 0, TVO_ERR_IMPLAUSIBLE_STAMP);
+    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
     plant_meas(&m, j + 2);
     m.sequence += 7; /* a stray: its numbering disagrees, so the vote starts again */
-    (void)EXPECT_REFUSED(m, 0, TVO_ERR_WATCHDOG);
+    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG);
     const int64_t window_start = tvo_node_session(&node)->schedule.anchor.first_window_utime;
     for (int64_t k = 3; k <= 4; ++k) {
         plant_meas(&m, j + k);
-        (void)EXPECT_REFUSED(m, 0, TVO_ERR_WATCHDOG);
+        (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG);
         TEST_ASSERT_EQUAL_INT64(window_start, tvo_node_session(&node)->schedule.anchor.first_window_utime);
     }
     plant_meas(&m, j + 5);
@@ -1871,7 +1871,7 @@ static void test_plant_target_stream_may_start_late(void)
     target_at_epoch(&t);
     t.utime = plant_apply(50) - TAU;
     (void)send_target(&t, 0);
-    EF_ASSERT_STATUS(TVO_ERR_IMPLAUSIBLE_STAMP, node.last_target_status);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP, node.last_target_status);
     t.utime = plant_apply(1);
     (void)send_target(&t, 0);
     EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
@@ -1886,17 +1886,17 @@ static void test_plant_target_stream_may_start_late(void)
     const int64_t j = first_period_past_window(EF_UTIME) + 50;
     t.utime = plant_apply(j);
     (void)send_target(&t, 0);
-    EF_ASSERT_STATUS(TVO_ERR_IMPLAUSIBLE_STAMP, node.last_target_status);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP, node.last_target_status);
     for (int64_t k = 0; k < 2; ++k) {
         plant_meas(&m, j + k);
-        (void)EXPECT_REFUSED(m, 0, TVO_ERR_IMPLAUSIBLE_STAMP);
+        (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
     }
     plant_meas(&m, j + 2);
     ef_record_clear(&rec);
     (void)send_measurement(&m, 0);
     /* The window moved, but there is no target yet: the third refusal in a row, so a safe stop. */
-    EF_ASSERT_STATUS(TVO_ERR_WATCHDOG, THE_COMMAND().status);
-    EF_ASSERT_STATUS(TVO_ERR_TARGET_NOT_READY, node.last_refusal);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG, THE_COMMAND().status);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_TARGET_NOT_READY, node.last_refusal);
     t.utime = plant_apply(j + 3);
     (void)send_target(&t, 0);
     EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
@@ -1935,7 +1935,7 @@ static void test_plant_target_two_to_the_32_us_old_is_not_taken_for_a_new_one(vo
     stray.utime = plant_apply(last) + 60000000 - ((int64_t)1 << 32);
     stray.position_m[0][0] = 99.0;
     (void)send_target(&stray, 0);
-    EF_ASSERT_STATUS(TVO_ERR_OUT_OF_ORDER, node.last_target_status);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER, node.last_target_status);
     t.utime = plant_apply(last + 1);
     (void)send_target(&t, 0);
     EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
@@ -1963,7 +1963,7 @@ static void test_node_clock_sample_two_to_the_32_us_old_is_stale(void)
             tvo_lcm_measurement_t stray = m;
             stray.utime = m.utime - ((int64_t)1 << 32) - 1000;
             stray.position_m[0][0] = 50.0;
-            (void)EXPECT_REFUSED(stray, apply_node - 4000, TVO_ERR_STALE);
+            (void)EXPECT_REFUSED(stray, apply_node - 4000, TVO_LCM_COMMAND_T_STATUS_ERR_STALE);
         }
         (void)EXPECT_ACCEPTED(m, apply_node - 4000, apply_node - offset);
     }
@@ -1979,7 +1979,7 @@ static void test_plant_refusal_by_the_step_keeps_nothing(void)
     (void)send_measurement(&m, 0);
     const tvo_lcm_command_t cmd = THE_COMMAND();
     TEST_ASSERT_TRUE(cmd.status != TVO_OK);
-    TEST_ASSERT_EQUAL_HEX32(TVO_FLAG_HOLDING, (uint32_t)cmd.flags);
+    TEST_ASSERT_EQUAL_HEX32(TVO_LCM_COMMAND_T_FLAG_HOLDING, (uint32_t)cmd.flags);
     TEST_ASSERT_TRUE(cmd.utime >= m.utime);
     const tvo_node_session_t *s = tvo_node_session(&node);
     const tvo_sample_clock_t *before = &snapshot.controller.u.unicycle.clock;
@@ -2001,7 +2001,7 @@ static void test_plant_refusal_by_the_step_keeps_nothing(void)
 static void test_node_clock_a_law_failure_after_the_timer_stop_is_answered_with_a_safe_stop(void)
 {
     /* After a silence the timer stopped, a measurement the law then fails on (its streamed target
-     * sample lies ahead of it) was answered TVO_ERR_WATCHDOG flagged HOLDING with v = omega = 0: the
+     * sample lies ahead of it) was answered TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG flagged HOLDING with v = omega = 0: the
      * core had stopped, the node said "hold". The answer is the core's: a safe stop. */
     ef_start(&start, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_NODE, 1);
     start.delay_compensation = 0;
@@ -2024,8 +2024,8 @@ static void test_node_clock_a_law_failure_after_the_timer_stop_is_answered_with_
     (void)send_target(&t, node_arrival(j));
     EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
     node_meas(&m, j, j);
-    const tvo_lcm_command_t cmd = EXPECT_REFUSED(m, node_arrival(j), TVO_ERR_WATCHDOG);
-    TEST_ASSERT_EQUAL_HEX32(TVO_FLAG_SAFE_STOP, (uint32_t)cmd.flags);
+    const tvo_lcm_command_t cmd = EXPECT_REFUSED(m, node_arrival(j), TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG);
+    TEST_ASSERT_EQUAL_HEX32(TVO_LCM_COMMAND_T_FLAG_SAFE_STOP, (uint32_t)cmd.flags);
 }
 
 static void test_plant_step_refusals_count_toward_the_watchdog(void)
@@ -2038,7 +2038,7 @@ static void test_plant_step_refusals_count_toward_the_watchdog(void)
     ef_record_clear(&rec);
     (void)send_measurement(&m, 0);
     tvo_lcm_command_t cmd = THE_COMMAND();
-    EF_ASSERT_STATUS(TVO_ERR_FUTURE_STAMP, cmd.status);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_FUTURE_STAMP, cmd.status);
     TEST_ASSERT_EQUAL_UINT32(1u, tvo_node_session(&node)->schedule.clock.plant.refused_in_row);
     tvo_lcm_measurement_t dup;
     plant_meas(&dup, 2);
@@ -2047,8 +2047,8 @@ static void test_plant_step_refusals_count_toward_the_watchdog(void)
         (void)send_measurement(&dup, 0);
         cmd = THE_COMMAND();
     }
-    EF_ASSERT_STATUS(TVO_ERR_WATCHDOG, cmd.status);
-    TEST_ASSERT_TRUE(((uint32_t)cmd.flags & TVO_FLAG_SAFE_STOP) != 0u);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG, cmd.status);
+    TEST_ASSERT_TRUE(((uint32_t)cmd.flags & TVO_LCM_COMMAND_T_FLAG_SAFE_STOP) != 0u);
 }
 
 /* ------------------------------------------------------------------------------------------------
@@ -2062,8 +2062,8 @@ typedef void (*start_edit_fn)(tvo_lcm_session_t *m, int64_t value);
  * idle node and while a session runs (which runs on, byte for byte). index < -1: the robot or
  * entry index is the edited entry's (given as -index - 2).
  */
-static void expect_start_site(start_edit_fn edit, const int64_t *values, size_t count, tvo_status_t status,
-                              tvo_param_t param, int32_t part, int32_t index, int line)
+static void expect_start_site(start_edit_fn edit, const int64_t *values, size_t count, int32_t status,
+                              int32_t param, int32_t part, int32_t index, int line)
 {
     for (size_t i = 0; i < count; ++i) {
         for (int running = 0; running < 2; ++running) {
@@ -2082,9 +2082,9 @@ static void expect_start_site(start_edit_fn edit, const int64_t *values, size_t 
                 static char text[240];
                 (void)snprintf(text, sizeof(text),
                                "value %lld (%s): expected %s/%s part %d index %d, got %d (%s)/%s part %d index %d",
-                               (long long)values[i], running ? "running" : "idle", tvo_status_str(status),
-                               tvo_param_str(param), (int)part, (int)index, (int)ack.status,
-                               tvo_status_str((tvo_status_t)ack.status), tvo_param_str((tvo_param_t)ack.bad_param),
+                               (long long)values[i], running ? "running" : "idle", tvo_protocol_status_str(status),
+                               tvo_protocol_param_str(param), (int)part, (int)index, (int)ack.status,
+                               tvo_protocol_status_str((int32_t)ack.status), tvo_protocol_param_str((int32_t)ack.bad_param),
                                (int)ack.bad_part, (int)ack.bad_index);
                 UNITY_TEST_FAIL(line, text);
             }
@@ -2181,107 +2181,107 @@ static void edit_offset_kind(tvo_lcm_session_t *m, int64_t v)
 
 static void test_start_utime_extremes(void)
 {
-    EXPECT_START_SITE(edit_utime, time_extremes, TVO_ERR_PARAM, TVO_PARAM_EPOCH, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+    EXPECT_START_SITE(edit_utime, time_extremes, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_EPOCH, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
 }
 
 static void test_start_epoch_extremes(void)
 {
-    EXPECT_START_SITE(edit_epoch, time_extremes, TVO_ERR_PARAM, TVO_PARAM_EPOCH, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+    EXPECT_START_SITE(edit_epoch, time_extremes, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_EPOCH, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
     const int64_t far[] = {EF_UTIME + (int64_t)TVO_MAX_TICK_SPAN + 1, EF_TWO_POW_60};
-    EXPECT_START_SITE(edit_epoch, far, TVO_ERR_PARAM, TVO_PARAM_EPOCH, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+    EXPECT_START_SITE(edit_epoch, far, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_EPOCH, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
 }
 
 static void test_start_period_extremes(void)
 {
     const int64_t bad[] = {INT64_MIN, -1, 0, (int64_t)TVO_MAX_TICK_SPAN + 1, EF_TWO_POW_60 + 1, INT64_MAX};
-    EXPECT_START_SITE(edit_period, bad, TVO_ERR_PARAM, TVO_PARAM_PERIOD, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+    EXPECT_START_SITE(edit_period, bad, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_PERIOD, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
 }
 
 static void test_start_delay_extremes(void)
 {
     const int64_t bad[] = {INT64_MIN, -1, H + 1, EF_TWO_POW_60 + 1, INT64_MAX};
-    EXPECT_START_SITE(edit_delay, bad, TVO_ERR_PARAM, TVO_PARAM_DELAY, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+    EXPECT_START_SITE(edit_delay, bad, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_DELAY, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
 }
 
 static void test_start_watchdog_extremes(void)
 {
     const int64_t bad[] = {INT32_MIN, -1, 0, (int64_t)(TVO_MAX_TICK_SPAN / (uint32_t)EF_PERIOD_US) + 1, INT32_MAX};
-    EXPECT_START_SITE(edit_watchdog, bad, TVO_ERR_PARAM, TVO_PARAM_WATCHDOG, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+    EXPECT_START_SITE(edit_watchdog, bad, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_WATCHDOG, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
 }
 
 static void test_start_robot_count_extremes(void)
 {
     const int64_t bad[] = {INT32_MIN, -1, 0, TVO_MAX_ROBOTS + 1, INT32_MAX};
-    EXPECT_START_SITE(edit_robot_count, bad, TVO_ERR_PARAM, TVO_PARAM_ROBOT_COUNT, TVO_LCM_SESSION_ACK_T_PART_NONE,
+    EXPECT_START_SITE(edit_robot_count, bad, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_ROBOT_COUNT, TVO_LCM_SESSION_ACK_T_PART_NONE,
                       -1);
 }
 
 static void test_start_clock_source_extremes(void)
 {
-    EXPECT_START_SITE(edit_clock_source, kind32_extremes, TVO_ERR_PARAM, TVO_PARAM_CLOCK_SOURCE,
+    EXPECT_START_SITE(edit_clock_source, kind32_extremes, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_CLOCK_SOURCE,
                       TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
 }
 
 static void test_start_plant_kind_extremes(void)
 {
-    EXPECT_START_SITE(edit_plant_kind, kind32_extremes, TVO_ERR_PARAM, TVO_PARAM_PLANT_KIND,
+    EXPECT_START_SITE(edit_plant_kind, kind32_extremes, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_PLANT_KIND,
                       TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
 }
 
 static void test_start_velocity_source_extremes(void)
 {
-    EXPECT_START_SITE(edit_velocity_source, kind32_extremes, TVO_ERR_PARAM, TVO_PARAM_VELOCITY_SOURCE,
+    EXPECT_START_SITE(edit_velocity_source, kind32_extremes, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_VELOCITY_SOURCE,
                       TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
 }
 
 static void test_start_chain_relative_degree_extremes(void)
 {
     const int64_t bad[] = {INT32_MIN, -1, 0, TVO_MAX_RELATIVE_DEGREE + 1, INT32_MAX};
-    EXPECT_START_SITE(edit_chain_degree, bad, TVO_ERR_PARAM, TVO_PARAM_GAINS, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+    EXPECT_START_SITE(edit_chain_degree, bad, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_GAINS, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
 }
 
 static void test_start_relaxation_degree_extremes(void)
 {
     const int64_t bad[] = {INT32_MIN, -1, (int64_t)UINT8_MAX + 1, INT32_MAX};
-    EXPECT_START_SITE(edit_relaxation_degree, bad, TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE,
+    EXPECT_START_SITE(edit_relaxation_degree, bad, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE,
                       TVO_LCM_SESSION_ACK_T_PART_BARRIER, -1);
 }
 
 static void test_start_count_extremes(void)
 {
     const int64_t distance[] = {INT32_MIN, -1, TVO_LCM_SESSION_T_MAX_DISTANCE_BOUNDS + 1, INT32_MAX};
-    EXPECT_START_SITE(edit_distance_count, distance, TVO_ERR_CAPACITY, TVO_PARAM_OBJECTIVE,
+    EXPECT_START_SITE(edit_distance_count, distance, TVO_LCM_COMMAND_T_STATUS_ERR_CAPACITY, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE,
                       TVO_LCM_SESSION_ACK_T_PART_DISTANCE, -1);
     const int64_t halfspace[] = {INT32_MIN, -1, TVO_LCM_SESSION_T_MAX_HALFSPACES + 1, INT32_MAX};
-    EXPECT_START_SITE(edit_halfspace_count, halfspace, TVO_ERR_CAPACITY, TVO_PARAM_OBJECTIVE,
+    EXPECT_START_SITE(edit_halfspace_count, halfspace, TVO_LCM_COMMAND_T_STATUS_ERR_CAPACITY, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE,
                       TVO_LCM_SESSION_ACK_T_PART_HALFSPACE, -1);
     const int64_t obstacles[] = {INT32_MIN, -1, TVO_LCM_SESSION_T_MAX_OBSTACLES + 1, INT32_MAX};
-    EXPECT_START_SITE(edit_obstacle_count, obstacles, TVO_ERR_CAPACITY, TVO_PARAM_OBJECTIVE,
+    EXPECT_START_SITE(edit_obstacle_count, obstacles, TVO_LCM_COMMAND_T_STATUS_ERR_CAPACITY, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE,
                       TVO_LCM_SESSION_ACK_T_PART_OBSTACLES, -1);
     const int64_t offsets[] = {INT32_MIN, -1, TVO_LCM_SESSION_T_MAX_OFFSETS + 1, INT32_MAX};
-    EXPECT_START_SITE(edit_offset_count, offsets, TVO_ERR_CAPACITY, TVO_PARAM_OBJECTIVE,
+    EXPECT_START_SITE(edit_offset_count, offsets, TVO_LCM_COMMAND_T_STATUS_ERR_CAPACITY, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE,
                       TVO_LCM_SESSION_ACK_T_PART_OFFSETS, -1);
 }
 
 static void test_start_robot_index_extremes(void)
 {
-    EXPECT_START_SITE(edit_distance_robot_a, robot_index_extremes, TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE,
+    EXPECT_START_SITE(edit_distance_robot_a, robot_index_extremes, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE,
                       TVO_LCM_SESSION_ACK_T_PART_DISTANCE, 0);
-    EXPECT_START_SITE(edit_distance_robot_b, robot_index_extremes, TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE,
+    EXPECT_START_SITE(edit_distance_robot_b, robot_index_extremes, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE,
                       TVO_LCM_SESSION_ACK_T_PART_DISTANCE, 0);
-    EXPECT_START_SITE(edit_halfspace_robot, robot_index_extremes, TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE,
+    EXPECT_START_SITE(edit_halfspace_robot, robot_index_extremes, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE,
                       TVO_LCM_SESSION_ACK_T_PART_HALFSPACE, 0);
-    EXPECT_START_SITE(edit_offset_robot_a, robot_index_extremes, TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE,
+    EXPECT_START_SITE(edit_offset_robot_a, robot_index_extremes, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE,
                       TVO_LCM_SESSION_ACK_T_PART_OFFSETS, 0);
-    EXPECT_START_SITE(edit_offset_robot_b, robot_index_extremes, TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE,
+    EXPECT_START_SITE(edit_offset_robot_b, robot_index_extremes, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE,
                       TVO_LCM_SESSION_ACK_T_PART_OFFSETS, 0);
 }
 
 static void test_start_path_kind_extremes(void)
 {
     const int64_t bad[] = {INT32_MIN, -1, TVO_LCM_PATH_T_KIND_STREAMED + 1, INT32_MAX};
-    EXPECT_START_SITE(edit_target_kind, bad, TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 1);
-    EXPECT_START_SITE(edit_offset_kind, bad, TVO_ERR_PARAM, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_OFFSETS, 0);
+    EXPECT_START_SITE(edit_target_kind, bad, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 1);
+    EXPECT_START_SITE(edit_offset_kind, bad, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_OFFSETS, 0);
 }
 
 static void test_start_session_id_extremes(void)
@@ -2309,8 +2309,8 @@ static void test_start_session_id_extremes(void)
         ef_start(&bad, negative[i], TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
         ef_record_clear(&rec);
         (void)send_session(&bad, 0);
-        EF_ASSERT_STATUS(TVO_ERR_PARAM, THE_ACK().status);
-        TEST_ASSERT_EQUAL_INT32(TVO_PARAM_SESSION_ID, THE_ACK().bad_param);
+        EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, THE_ACK().status);
+        TEST_ASSERT_EQUAL_INT32(TVO_LCM_SESSION_ACK_T_PARAM_SESSION_ID, THE_ACK().bad_param);
         TEST_ASSERT_NULL(tvo_node_session(&node));
     }
 }
@@ -2328,12 +2328,12 @@ static void test_measurement_utime_extremes(void)
             tvo_lcm_measurement_t m;
             plant_meas(&m, anchored + 1);
             m.utime = time_extremes[i];
-            (void)EXPECT_REFUSED(m, 0, TVO_ERR_IMPLAUSIBLE_STAMP);
+            (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
             setUp();
             node_session_after(anchored);
             node_meas(&m, anchored + 1, anchored + 1);
             m.utime = time_extremes[i];
-            (void)EXPECT_REFUSED(m, node_arrival(anchored + 1), TVO_ERR_IMPLAUSIBLE_STAMP);
+            (void)EXPECT_REFUSED(m, node_arrival(anchored + 1), TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
         }
     }
 }
@@ -2347,11 +2347,11 @@ static void test_measurement_sequence_extremes(void)
             tvo_lcm_measurement_t m;
             plant_meas(&m, anchored + 1);
             m.sequence = time_extremes[i];
-            (void)EXPECT_REFUSED(m, 0, TVO_ERR_IMPLAUSIBLE_STAMP);
+            (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
             setUp();
             node_session_after(anchored);
             node_meas(&m, anchored + 1, time_extremes[i]);
-            (void)EXPECT_REFUSED(m, node_arrival(anchored + 1), TVO_ERR_IMPLAUSIBLE_STAMP);
+            (void)EXPECT_REFUSED(m, node_arrival(anchored + 1), TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
         }
     }
     /* The ends of the range are sequences like any other. */
@@ -2375,14 +2375,14 @@ static void test_measurement_robot_count_extremes(void)
         tvo_lcm_measurement_t m;
         plant_meas(&m, 2);
         m.robot_count = as_int32(bad[i]);
-        (void)EXPECT_REFUSED(m, 0, TVO_ERR_DIMENSION);
+        (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_DIMENSION);
         /* Without a session: the safe stop carries a robot count only if it is one. */
         setUp();
         ef_record_clear(&rec);
         (void)send_measurement(&m, 0);
         const tvo_lcm_command_t cmd = THE_SESSIONLESS_COMMAND();
         TEST_ASSERT_TRUE(cmd.robot_count >= 0 && cmd.robot_count <= TVO_MAX_ROBOTS);
-        EF_ASSERT_STATUS(TVO_ERR_NO_SESSION, cmd.status);
+        EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_NO_SESSION, cmd.status);
     }
 }
 
@@ -2429,7 +2429,7 @@ static void test_target_utime_robot_count_and_session_extremes(void)
             ef_record_clear(&rec);
             TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_TARGET, send_target(&t, now));
             EXPECT_NOTHING_PUBLISHED();
-            EF_ASSERT_STATUS(TVO_ERR_IMPLAUSIBLE_STAMP, node.last_target_status);
+            EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP, node.last_target_status);
             TEST_ASSERT_EQUAL_INT32(++refused, node.counters.targets_refused);
         }
         t.utime = EF_EPOCH;
@@ -2437,7 +2437,7 @@ static void test_target_utime_robot_count_and_session_extremes(void)
         for (size_t i = 0; i < sizeof(counts) / sizeof(counts[0]); ++i) {
             t.robot_count = as_int32(counts[i]);
             (void)send_target(&t, now);
-            EF_ASSERT_STATUS(TVO_ERR_DIMENSION, node.last_target_status);
+            EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_DIMENSION, node.last_target_status);
             TEST_ASSERT_EQUAL_INT32(++refused, node.counters.targets_refused);
         }
         t.robot_count = 1;

@@ -42,7 +42,7 @@ static tvo_status_t decode_timing(tvo_session_timing_t *timing, tvo_session_reje
 }
 
 /* A START whose timing is refused names `param` (status TVO_ERR_PARAM, no part). */
-static void expect_timing_refused(tvo_param_t param, int line)
+static void expect_timing_refused(tvo_session_param_t param, int line)
 {
     tvo_session_timing_t timing;
     tvo_session_reject_t why;
@@ -52,8 +52,8 @@ static void expect_timing_refused(tvo_param_t param, int line)
         why.part != TVO_LCM_SESSION_ACK_T_PART_NONE || why.index != -1) {
         static char text[200];
         (void)snprintf(text, sizeof(text), "expected PARAM/%s, got status %d why {%d, %s, part %d, index %d}",
-                       tvo_param_str(param), (int)st, (int)why.status, tvo_param_str(why.param), (int)why.part,
-                       (int)why.index);
+                       tvo_protocol_param_str((int32_t)param), (int)st, (int)why.status,
+                       tvo_protocol_param_str((int32_t)why.param), (int)why.part, (int)why.index);
         UNITY_TEST_FAIL(line, text);
     }
 }
@@ -65,7 +65,7 @@ static void expect_problem_refused(tvo_status_t status, int32_t part, int32_t in
     tvo_session_reject_t why;
     memset(&why, 0x5A, sizeof(why));
     const tvo_status_t st = tvo_session_decode_problem(&msg, &desc, &why);
-    if (st != status || why.status != status || why.param != TVO_PARAM_OBJECTIVE || why.part != part ||
+    if (st != status || why.status != status || why.param != TVO_SESSION_PARAM_OBJECTIVE || why.part != part ||
         why.index != index) {
         static char text[200];
         (void)snprintf(text, sizeof(text),
@@ -101,7 +101,7 @@ static void test_valid_start_decodes_its_timing(void)
     tvo_session_reject_t why;
     EF_ASSERT_STATUS(TVO_OK, decode_timing(&timing, &why));
     EF_ASSERT_STATUS(TVO_OK, why.status);
-    EF_ASSERT_PARAM(TVO_PARAM_NONE, why.param);
+    EF_ASSERT_PARAM(TVO_SESSION_PARAM_NONE, why.param);
     TEST_ASSERT_EQUAL_INT32(TVO_LCM_SESSION_T_CLOCK_NODE, timing.clock_source);
     TEST_ASSERT_EQUAL_INT64(EF_EPOCH, timing.epoch_utime);
     TEST_ASSERT_EQUAL_INT64(EF_PERIOD_US, timing.period_us);
@@ -116,15 +116,15 @@ static void test_utime_and_epoch_outside_the_wire_range_name_the_epoch(void)
     for (size_t i = 0; i < INT64_EXTREMES; ++i) {
         ef_start(&msg, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
         msg.utime = int64_extremes[i];
-        EXPECT_TIMING_REFUSED(TVO_PARAM_EPOCH);
+        EXPECT_TIMING_REFUSED(TVO_SESSION_PARAM_EPOCH);
         ef_start(&msg, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
         msg.epoch_utime = int64_extremes[i];
-        EXPECT_TIMING_REFUSED(TVO_PARAM_EPOCH);
+        EXPECT_TIMING_REFUSED(TVO_SESSION_PARAM_EPOCH);
         /* Both at the same extreme: their difference is 0, the range check must still refuse. */
         ef_start(&msg, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
         msg.utime = int64_extremes[i];
         msg.epoch_utime = int64_extremes[i];
-        EXPECT_TIMING_REFUSED(TVO_PARAM_EPOCH);
+        EXPECT_TIMING_REFUSED(TVO_SESSION_PARAM_EPOCH);
     }
 }
 
@@ -161,7 +161,7 @@ static void test_epoch_lead_is_limited_to_the_controllers_tick_span(void)
         ef_start(&msg, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
         msg.utime = base;
         msg.epoch_utime = base + leads_bad[i];
-        EXPECT_TIMING_REFUSED(TVO_PARAM_EPOCH);
+        EXPECT_TIMING_REFUSED(TVO_SESSION_PARAM_EPOCH);
     }
 }
 
@@ -172,7 +172,7 @@ static void test_period_outside_one_to_two_pow_thirty_is_refused(void)
         ef_start(&msg, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
         msg.period_us = bad[i];
         msg.delay_us = 0;
-        EXPECT_TIMING_REFUSED(TVO_PARAM_PERIOD);
+        EXPECT_TIMING_REFUSED(TVO_SESSION_PARAM_PERIOD);
     }
     tvo_session_timing_t timing;
     tvo_session_reject_t why;
@@ -191,7 +191,7 @@ static void test_delay_outside_zero_to_period_is_refused(void)
     for (size_t i = 0; i < sizeof(bad) / sizeof(bad[0]); ++i) {
         ef_start(&msg, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
         msg.delay_us = bad[i];
-        EXPECT_TIMING_REFUSED(TVO_PARAM_DELAY);
+        EXPECT_TIMING_REFUSED(TVO_SESSION_PARAM_DELAY);
     }
     tvo_session_timing_t timing;
     tvo_session_reject_t why;
@@ -209,7 +209,7 @@ static void test_watchdog_outside_one_to_the_span_is_refused(void)
     for (size_t i = 0; i < sizeof(bad) / sizeof(bad[0]); ++i) {
         ef_start(&msg, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
         msg.watchdog_periods = bad[i];
-        EXPECT_TIMING_REFUSED(TVO_PARAM_WATCHDOG);
+        EXPECT_TIMING_REFUSED(TVO_SESSION_PARAM_WATCHDOG);
     }
     tvo_session_timing_t timing;
     tvo_session_reject_t why;
@@ -227,16 +227,16 @@ static void test_robot_count_clock_source_and_plant_kind_extremes_are_refused(vo
     for (size_t i = 0; i < sizeof(bad_counts) / sizeof(bad_counts[0]); ++i) {
         ef_start(&msg, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
         msg.robot_count = bad_counts[i];
-        EXPECT_TIMING_REFUSED(TVO_PARAM_ROBOT_COUNT);
+        EXPECT_TIMING_REFUSED(TVO_SESSION_PARAM_ROBOT_COUNT);
     }
     const int32_t bad_kinds[] = {INT32_MIN, -1, 2, INT32_MAX};
     for (size_t i = 0; i < sizeof(bad_kinds) / sizeof(bad_kinds[0]); ++i) {
         ef_start(&msg, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
         msg.clock_source = bad_kinds[i];
-        EXPECT_TIMING_REFUSED(TVO_PARAM_CLOCK_SOURCE);
+        EXPECT_TIMING_REFUSED(TVO_SESSION_PARAM_CLOCK_SOURCE);
         ef_start(&msg, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
         msg.plant_kind = bad_kinds[i];
-        EXPECT_TIMING_REFUSED(TVO_PARAM_PLANT_KIND);
+        EXPECT_TIMING_REFUSED(TVO_SESSION_PARAM_PLANT_KIND);
     }
 }
 
@@ -304,11 +304,11 @@ static void test_unicycle_velocity_source_extremes_are_refused(void)
         tvo_controller_config_t cfg;
         tvo_session_reject_t why;
         EF_ASSERT_STATUS(TVO_ERR_PARAM, tvo_session_decode_unicycle(&msg, &cfg, &why));
-        EF_ASSERT_PARAM(TVO_PARAM_VELOCITY_SOURCE, why.param);
+        EF_ASSERT_PARAM(TVO_SESSION_PARAM_VELOCITY_SOURCE, why.param);
         tvo_chain_config_t ccfg;
         msg.plant_kind = TVO_LCM_SESSION_T_PLANT_CHAIN;
         EF_ASSERT_STATUS(TVO_ERR_PARAM, tvo_session_decode_chain(&msg, &ccfg, &why));
-        EF_ASSERT_PARAM(TVO_PARAM_VELOCITY_SOURCE, why.param);
+        EF_ASSERT_PARAM(TVO_SESSION_PARAM_VELOCITY_SOURCE, why.param);
     }
 }
 
@@ -348,7 +348,7 @@ static void test_chain_configuration_and_relative_degree_extremes(void)
     for (size_t i = 0; i < sizeof(bad) / sizeof(bad[0]); ++i) {
         msg.chain_relative_degree = bad[i];
         EF_ASSERT_STATUS(TVO_ERR_PARAM, tvo_session_decode_chain(&msg, &cfg, &why));
-        EF_ASSERT_PARAM(TVO_PARAM_GAINS, why.param);
+        EF_ASSERT_PARAM(TVO_SESSION_PARAM_GAINS, why.param);
     }
     msg.chain_relative_degree = TVO_MAX_RELATIVE_DEGREE;
     EF_ASSERT_STATUS(TVO_OK, tvo_session_decode_chain(&msg, &cfg, &why));
@@ -680,7 +680,7 @@ static void test_problem_robot_count_extremes_are_refused(void)
         msg.robot_count = bad[i];
         tvo_session_reject_t why;
         EF_ASSERT_STATUS(TVO_ERR_PARAM, tvo_session_decode_problem(&msg, &desc, &why));
-        EF_ASSERT_PARAM(TVO_PARAM_ROBOT_COUNT, why.param);
+        EF_ASSERT_PARAM(TVO_SESSION_PARAM_ROBOT_COUNT, why.param);
     }
 }
 
@@ -704,18 +704,33 @@ static void test_ack_carries_the_message_the_reason_and_the_running_session(void
 {
     ef_start(&msg, INT64_MIN, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
     msg.utime = 123456789;
-    const tvo_session_reject_t why = {TVO_ERR_CAPACITY, TVO_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_HALFSPACE, 3};
+    const tvo_session_reject_t why = {TVO_NODE_OK, TVO_ERR_CAPACITY, TVO_SESSION_PARAM_OBJECTIVE,
+                                      TVO_LCM_SESSION_ACK_T_PART_HALFSPACE, 3};
     tvo_lcm_session_ack_t ack;
     memset(&ack, 0x5A, sizeof(ack));
     tvo_session_ack(&msg, &why, INT64_MAX, &ack);
     TEST_ASSERT_EQUAL_INT64(123456789, ack.utime);
     TEST_ASSERT_EQUAL_INT64(INT64_MIN, ack.session_id);
     TEST_ASSERT_EQUAL_INT8(TVO_LCM_SESSION_T_ACTION_START, ack.action);
-    EF_ASSERT_STATUS(TVO_ERR_CAPACITY, ack.status);
-    EF_ASSERT_PARAM(TVO_PARAM_OBJECTIVE, ack.bad_param);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_CAPACITY, ack.status); /* the core's error, in the wire's numbers */
+    EF_ASSERT_PARAM(TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, ack.bad_param);
     TEST_ASSERT_EQUAL_INT32(TVO_LCM_SESSION_ACK_T_PART_HALFSPACE, ack.bad_part);
     TEST_ASSERT_EQUAL_INT32(3, ack.bad_index);
     TEST_ASSERT_EQUAL_INT64(INT64_MAX, ack.running_session_id);
+
+    /* The edge's own refusals, in the wire's numbers. */
+    const tvo_session_reject_t conflict = {TVO_NODE_SESSION_CONFLICT, TVO_OK, TVO_SESSION_PARAM_NONE,
+                                           TVO_LCM_SESSION_ACK_T_PART_NONE, -1};
+    tvo_session_ack(&msg, &conflict, 1, &ack);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_SESSION_CONFLICT, ack.status);
+    const tvo_session_reject_t no_session = {TVO_NODE_NO_SESSION, TVO_OK, TVO_SESSION_PARAM_NONE,
+                                             TVO_LCM_SESSION_ACK_T_PART_NONE, -1};
+    tvo_session_ack(&msg, &no_session, 1, &ack);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_NO_SESSION, ack.status);
+    const tvo_session_reject_t unknown = {TVO_NODE_UNKNOWN_ACTION, TVO_OK, TVO_SESSION_PARAM_NONE,
+                                          TVO_LCM_SESSION_ACK_T_PART_NONE, -1};
+    tvo_session_ack(&msg, &unknown, 1, &ack);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, ack.status);
 
     /* Without a reason: done, nothing named; with no session running: -1. */
     memset(&ack, 0x5A, sizeof(ack));

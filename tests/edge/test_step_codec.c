@@ -147,7 +147,9 @@ static void test_command_round_trip_carries_the_stamp_and_each_robot(void)
         cmd.turn_rate_radps[r] = (tvo_real_t)(-1.0 - r);
     }
     cmd.flags = TVO_FLAG_PREDICTED | TVO_FLAG_SPEED_MISMATCH;
-    const tvo_step_stamp_t stamp = {EF_TWO_POW_60, INT64_MIN, -1, TVO_ERR_WATCHDOG, 2u};
+    cmd.outcome = TVO_OUTCOME_STOPPED;
+    cmd.reason = TVO_REASON_WATCHDOG;
+    const tvo_step_stamp_t stamp = {EF_TWO_POW_60, INT64_MIN, -1, {TVO_NODE_OK, TVO_OK, TVO_REASON_WATCHDOG}, 2u};
     tvo_lcm_command_t msg;
     memset(&msg, 0x5A, sizeof(msg));
     tvo_step_command_to_lcm(&cmd, &stamp, &msg);
@@ -159,8 +161,9 @@ static void test_command_round_trip_carries_the_stamp_and_each_robot(void)
     TEST_ASSERT_EQUAL_INT64(INT64_MIN, back.session_id);
     TEST_ASSERT_EQUAL_INT64(-1, back.measurement_sequence);
     TEST_ASSERT_EQUAL_INT32(2, back.robot_count);
-    EF_ASSERT_STATUS(TVO_ERR_WATCHDOG, back.status);
-    TEST_ASSERT_EQUAL_HEX32(TVO_FLAG_PREDICTED | TVO_FLAG_SPEED_MISMATCH, (uint32_t)back.flags);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG, back.status);
+    TEST_ASSERT_EQUAL_HEX32(TVO_FLAG_PREDICTED | TVO_FLAG_SPEED_MISMATCH | TVO_LCM_COMMAND_T_FLAG_SAFE_STOP,
+                            (uint32_t)back.flags);
     for (int r = 0; r < 2; ++r) {
         TEST_ASSERT_TRUE(back.speed_mps[r] == (double)cmd.speed_mps[r]);
         TEST_ASSERT_TRUE(back.turn_rate_radps[r] == (double)cmd.turn_rate_radps[r]);
@@ -172,7 +175,7 @@ static void test_command_round_trip_carries_the_stamp_and_each_robot(void)
         TEST_ASSERT_TRUE(back.input[i] == 0.0);
     }
     /* A robot count past the arrays writes nothing out of bounds (ASan variant watches). */
-    const tvo_step_stamp_t wide = {0, 0, 0, TVO_OK, UINT8_MAX};
+    const tvo_step_stamp_t wide = {0, 0, 0, {TVO_NODE_OK, TVO_OK, TVO_REASON_NONE}, UINT8_MAX};
     tvo_step_command_to_lcm(&cmd, &wide, &msg);
     TEST_ASSERT_TRUE(msg.speed_mps[TVO_MAX_ROBOTS - 1] == (double)cmd.speed_mps[TVO_MAX_ROBOTS - 1]);
     tvo_step_command_to_lcm(NULL, &stamp, &msg); /* NULLs: nothing, no crash */
@@ -188,7 +191,7 @@ static void test_chain_command_carries_u_per_output(void)
         cmd.u[i] = (tvo_real_t)(0.25 * (i + 1));
     }
     cmd.flags = TVO_FLAG_ACCEL_SATURATED;
-    const tvo_step_stamp_t stamp = {123, 5, 6, TVO_OK, 1u};
+    const tvo_step_stamp_t stamp = {123, 5, 6, {TVO_NODE_OK, TVO_OK, TVO_REASON_NONE}, 1u};
     tvo_lcm_command_t msg;
     tvo_step_chain_command_to_lcm(&cmd, &stamp, &msg);
     const int n = tvo_lcm_command_t_encode(buffer, 0, (int)sizeof(buffer), &msg);
@@ -200,7 +203,7 @@ static void test_chain_command_carries_u_per_output(void)
     }
     TEST_ASSERT_EQUAL_INT64(6, back.measurement_sequence);
     TEST_ASSERT_EQUAL_HEX32(TVO_FLAG_ACCEL_SATURATED, (uint32_t)back.flags);
-    const tvo_step_stamp_t wide = {0, 0, 0, TVO_OK, UINT8_MAX};
+    const tvo_step_stamp_t wide = {0, 0, 0, {TVO_NODE_OK, TVO_OK, TVO_REASON_NONE}, UINT8_MAX};
     tvo_step_chain_command_to_lcm(&cmd, &wide, &msg);
     TEST_ASSERT_TRUE(msg.input[TVO_MAX_OUTPUT_DIM - 1] == (double)cmd.u[TVO_MAX_OUTPUT_DIM - 1]);
 }
@@ -239,6 +242,7 @@ static void stepped_controller(int with_halfspace)
     EF_ASSERT_STATUS(TVO_OK, tvo_problem_choose_slack(&problem, y, TVO_R(0.0)));
     tvo_command_t cmd;
     EF_ASSERT_STATUS(TVO_OK, tvo_controller_step(&ctl, &meas, apply, &cmd));
+    TEST_ASSERT_EQUAL_INT(TVO_OUTCOME_APPLIED, cmd.outcome);
 }
 
 static void test_telemetry_round_trip_carries_the_controllers_last_step(void)
@@ -247,10 +251,10 @@ static void test_telemetry_round_trip_carries_the_controllers_last_step(void)
     tvo_lcm_telemetry_t tel;
     memset(&tel, 0, sizeof(tel));
     tvo_step_telemetry_to_lcm(&ctl, &problem, &tel);
-    const tvo_step_stamp_t stamp = {4242, 17, 99, TVO_ERR_STALE, 2u};
-    tvo_step_telemetry_stamp(&stamp, TVO_FLAG_HOLDING, &tel);
+    const tvo_step_stamp_t stamp = {4242, 17, 99, {TVO_NODE_OK, TVO_OK, TVO_REASON_STALE}, 2u};
+    tvo_step_telemetry_stamp(&stamp, tvo_step_wire_flags(0u, TVO_OUTCOME_HELD), &tel);
     tel.counters.accepted = 5;
-    tel.counters.refused[TVO_ERR_STALE] = 2;
+    tel.counters.refused[TVO_LCM_COMMAND_T_STATUS_ERR_STALE] = 2;
     const int n = tvo_lcm_telemetry_t_encode(buffer, 0, (int)sizeof(buffer), &tel);
     TEST_ASSERT_TRUE(n > 0 && n <= TVO_NODE_BUFFER_BYTES);
     tvo_lcm_telemetry_t back;
@@ -258,8 +262,8 @@ static void test_telemetry_round_trip_carries_the_controllers_last_step(void)
     TEST_ASSERT_EQUAL_INT64(4242, back.utime);
     TEST_ASSERT_EQUAL_INT64(17, back.session_id);
     TEST_ASSERT_EQUAL_INT64(99, back.measurement_sequence);
-    EF_ASSERT_STATUS(TVO_ERR_STALE, back.status);
-    TEST_ASSERT_EQUAL_HEX32(TVO_FLAG_HOLDING, (uint32_t)back.flags);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_STALE, back.status);
+    TEST_ASSERT_EQUAL_HEX32(TVO_LCM_COMMAND_T_FLAG_HOLDING, (uint32_t)back.flags);
     TEST_ASSERT_EQUAL_INT32(4, back.dim);
     TEST_ASSERT_TRUE(back.objective_time_s == (double)ctl.telemetry.objective_time_s);
     for (int i = 0; i < 4; ++i) {
@@ -282,7 +286,7 @@ static void test_telemetry_round_trip_carries_the_controllers_last_step(void)
     TEST_ASSERT_TRUE(back.barrier_c == (double)c && back.barrier_c > 0.0);
     TEST_ASSERT_TRUE(back.barrier_slack == (double)slack);
     TEST_ASSERT_EQUAL_INT32(5, back.counters.accepted);
-    TEST_ASSERT_EQUAL_INT32(2, back.counters.refused[TVO_ERR_STALE]);
+    TEST_ASSERT_EQUAL_INT32(2, back.counters.refused[TVO_LCM_COMMAND_T_STATUS_ERR_STALE]);
 
     /* Without inequalities: no barrier figures. */
     stepped_controller(0);
@@ -402,10 +406,104 @@ static void test_target_sample_for_a_non_streamed_target_or_wrong_count_is_refus
     EF_ASSERT_STATUS(TVO_ERR_NOT_INITIALIZED, tvo_step_target_from_lcm(&t, 2u, 5000u, &empty));
 }
 
+/* The wire's statuses, written here from lcm_types/README.md's table, not from the codec's: every core
+ * reason, core error and edge status a command can carry, and which vocabulary wins. */
+static void test_wire_status_of_each_reason_error_and_edge_status(void)
+{
+    static const struct {
+        tvo_reason_t reason;
+        int32_t wire;
+    } reasons[] = {
+        {TVO_REASON_NONE, TVO_LCM_COMMAND_T_STATUS_OK},
+        {TVO_REASON_NOT_FINITE, TVO_LCM_COMMAND_T_STATUS_ERR_NOT_FINITE},
+        {TVO_REASON_IMPLAUSIBLE_MEASUREMENT, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_MEASUREMENT},
+        {TVO_REASON_STALE, TVO_LCM_COMMAND_T_STATUS_ERR_STALE},
+        {TVO_REASON_FUTURE_STAMP, TVO_LCM_COMMAND_T_STATUS_ERR_FUTURE_STAMP},
+        {TVO_REASON_STAMP_NOT_NEWER, TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER},
+        {TVO_REASON_MISSING_FIELD, TVO_LCM_COMMAND_T_STATUS_ERR_MISSING_FIELD},
+        {TVO_REASON_SOURCE_NOT_LINKED, TVO_LCM_COMMAND_T_STATUS_ERR_NOT_INITIALIZED},
+        {TVO_REASON_TARGET_NOT_READY, TVO_LCM_COMMAND_T_STATUS_ERR_TARGET_NOT_READY},
+        {TVO_REASON_NUMERIC, TVO_LCM_COMMAND_T_STATUS_ERR_NUMERIC},
+        {TVO_REASON_NOT_POSITIVE_DEFINITE, TVO_LCM_COMMAND_T_STATUS_ERR_NOT_POSITIVE_DEFINITE},
+        {TVO_REASON_NO_MEASUREMENT, TVO_LCM_COMMAND_T_STATUS_ERR_NO_MEASUREMENT},
+        {TVO_REASON_WATCHDOG, TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG},
+        {TVO_REASON_SPEED_MISMATCH, TVO_LCM_COMMAND_T_STATUS_OK}, /* taken: the stop is in the flags */
+        {TVO_REASON_STOP_REQUESTED, TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG},
+    };
+    TEST_ASSERT_EQUAL_INT(TVO_REASON_COUNT, (int)(sizeof(reasons) / sizeof(reasons[0])));
+    for (size_t i = 0; i < sizeof(reasons) / sizeof(reasons[0]); ++i) {
+        const tvo_step_why_t why = {TVO_NODE_OK, TVO_OK, reasons[i].reason};
+        EF_ASSERT_STATUS(reasons[i].wire, tvo_step_wire_status(&why));
+    }
+    static const struct {
+        tvo_status_t error;
+        int32_t wire;
+    } errors[] = {
+        {TVO_OK, TVO_LCM_COMMAND_T_STATUS_OK},
+        {TVO_ERR_NULL, TVO_LCM_COMMAND_T_STATUS_ERR_NULL},
+        {TVO_ERR_NOT_FINITE, TVO_LCM_COMMAND_T_STATUS_ERR_NOT_FINITE},
+        {TVO_ERR_DIMENSION, TVO_LCM_COMMAND_T_STATUS_ERR_DIMENSION},
+        {TVO_ERR_PARAM, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM},
+        {TVO_ERR_CAPACITY, TVO_LCM_COMMAND_T_STATUS_ERR_CAPACITY},
+        {TVO_ERR_NOT_INITIALIZED, TVO_LCM_COMMAND_T_STATUS_ERR_NOT_INITIALIZED},
+        {TVO_ERR_TICK_NOT_ADVANCING, TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER},
+        {TVO_ERR_BEFORE_EPOCH, TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER},
+        {TVO_ERR_CLOCK_STARTED, TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER},
+        {TVO_ERR_NOT_POSITIVE_DEFINITE, TVO_LCM_COMMAND_T_STATUS_ERR_NOT_POSITIVE_DEFINITE},
+        {TVO_ERR_NUMERIC, TVO_LCM_COMMAND_T_STATUS_ERR_NUMERIC},
+        {TVO_ERR_STALE, TVO_LCM_COMMAND_T_STATUS_ERR_STALE},
+        {TVO_ERR_FUTURE_STAMP, TVO_LCM_COMMAND_T_STATUS_ERR_FUTURE_STAMP},
+        {TVO_ERR_STAMP_NOT_NEWER, TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER},
+        {TVO_ERR_TARGET_NOT_READY, TVO_LCM_COMMAND_T_STATUS_ERR_TARGET_NOT_READY},
+    };
+    TEST_ASSERT_EQUAL_INT(TVO_STATUS_COUNT, (int)(sizeof(errors) / sizeof(errors[0])));
+    for (size_t i = 0; i < sizeof(errors) / sizeof(errors[0]); ++i) {
+        const tvo_step_why_t why = {TVO_NODE_OK, errors[i].error, TVO_REASON_WATCHDOG}; /* the error wins */
+        EF_ASSERT_STATUS(i == 0 ? TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG : errors[i].wire, tvo_step_wire_status(&why));
+    }
+    static const struct {
+        tvo_node_status_t node;
+        int32_t wire;
+    } edge[] = {
+        {TVO_NODE_OK, TVO_LCM_COMMAND_T_STATUS_OK},
+        {TVO_NODE_WRONG_ROBOT_COUNT, TVO_LCM_COMMAND_T_STATUS_ERR_DIMENSION},
+        {TVO_NODE_IMPLAUSIBLE_STAMP, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP},
+        {TVO_NODE_NOT_LATER_PERIOD, TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER},
+        {TVO_NODE_STALE, TVO_LCM_COMMAND_T_STATUS_ERR_STALE},
+        {TVO_NODE_MISSING_DERIVATIVES, TVO_LCM_COMMAND_T_STATUS_ERR_MISSING_FIELD},
+        {TVO_NODE_REFUSAL_STREAK, TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG},
+        {TVO_NODE_SESSION_CONFLICT, TVO_LCM_COMMAND_T_STATUS_ERR_SESSION_CONFLICT},
+        {TVO_NODE_NO_SESSION, TVO_LCM_COMMAND_T_STATUS_ERR_NO_SESSION},
+        {TVO_NODE_UNKNOWN_ACTION, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM},
+    };
+    TEST_ASSERT_EQUAL_INT(TVO_NODE_STATUS_COUNT, (int)(sizeof(edge) / sizeof(edge[0])));
+    for (size_t i = 1; i < sizeof(edge) / sizeof(edge[0]); ++i) {
+        const tvo_step_why_t why = {edge[i].node, TVO_ERR_NUMERIC, TVO_REASON_STALE}; /* the edge's wins */
+        EF_ASSERT_STATUS(edge[i].wire, tvo_step_wire_status(&why));
+        TEST_ASSERT_TRUE(strcmp(tvo_node_status_str(edge[i].node), tvo_node_status_str(TVO_NODE_STATUS_COUNT)) != 0);
+    }
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_NULL, tvo_step_wire_status(NULL));
+}
+
+/* HOLDING and SAFE_STOP say the outcome, and only it; the core's flags pass unchanged. */
+static void test_wire_flags_say_the_outcome(void)
+{
+    const uint32_t shaping = TVO_FLAG_OMEGA_SATURATED | TVO_FLAG_PREDICTED | TVO_FLAG_SPEED_MISMATCH;
+    TEST_ASSERT_EQUAL_HEX32(shaping, tvo_step_wire_flags(shaping, TVO_OUTCOME_APPLIED));
+    TEST_ASSERT_EQUAL_HEX32(shaping | TVO_LCM_COMMAND_T_FLAG_HOLDING, tvo_step_wire_flags(shaping, TVO_OUTCOME_HELD));
+    TEST_ASSERT_EQUAL_HEX32(shaping | TVO_LCM_COMMAND_T_FLAG_SAFE_STOP,
+                            tvo_step_wire_flags(shaping, TVO_OUTCOME_STOPPED));
+    /* Stray outcome bits in the core's flags do not survive an applied outcome. */
+    TEST_ASSERT_EQUAL_HEX32(0u, tvo_step_wire_flags(TVO_LCM_COMMAND_T_FLAG_HOLDING | TVO_LCM_COMMAND_T_FLAG_SAFE_STOP,
+                                                    TVO_OUTCOME_APPLIED));
+}
+
 int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_measurement_round_trip_keeps_every_robot_and_field);
+    RUN_TEST(test_wire_status_of_each_reason_error_and_edge_status);
+    RUN_TEST(test_wire_flags_say_the_outcome);
     RUN_TEST(test_measurement_robot_count_must_match_the_session);
     RUN_TEST(test_measurement_values_beyond_the_scalar_become_infinite);
     RUN_TEST(test_chain_measurement_reads_derivatives_only_when_valid);

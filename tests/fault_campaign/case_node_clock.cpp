@@ -101,7 +101,7 @@ void case_link_loss_node_clock(Context& ctx)
             const std::int64_t arrival = rx.arrival_mono_us + kPlantClockOffsetUs;
             ctx.audit.add(cmd);
             arrivals.push_back({cmd, arrival});
-            const bool safe_stop = (cmd.flags & static_cast<std::int32_t>(TVO_FLAG_SAFE_STOP)) != 0;
+            const bool safe_stop = (cmd.flags & static_cast<std::int32_t>(tvo_lcm::command_t::FLAG_SAFE_STOP)) != 0;
             const bool newer = sent.count(cmd.measurement_sequence) != 0 && cmd.measurement_sequence > in_force;
             if (cmd.session_id != id || !(newer || safe_stop)) {
                 continue;
@@ -243,8 +243,8 @@ void case_link_loss_node_clock(Context& ctx)
             continue;
         }
         ++stops_total;
-        stops_bad_fields += (a.cmd.status != TVO_ERR_WATCHDOG ||
-                             (a.cmd.flags & static_cast<std::int32_t>(TVO_FLAG_SAFE_STOP)) == 0)
+        stops_bad_fields += (a.cmd.status != tvo_lcm::command_t::STATUS_ERR_WATCHDOG ||
+                             (a.cmd.flags & static_cast<std::int32_t>(tvo_lcm::command_t::FLAG_SAFE_STOP)) == 0)
                                 ? 1
                                 : 0;
         stamped_ahead += a.cmd.utime > a.arrival_us ? 1 : 0;
@@ -281,7 +281,7 @@ void case_link_loss_node_clock(Context& ctx)
                  "in at least one of the three silences)",
                  deltas.str() + " ms; window " + window);
     report.check(all_repeat && stops_bad_fields == 0,
-                 "safe stops repeat during each silence, each TVO_ERR_WATCHDOG, SAFE_STOP, sequence -1",
+                 "safe stops repeat during each silence, each tvo_lcm::command_t::STATUS_ERR_WATCHDOG, SAFE_STOP, sequence -1",
                  repeats.str() + "; " + std::to_string(stops_bad_fields) + " of " + std::to_string(stops_total) +
                      " with other fields");
     report.check(stamped_ahead == 0, "safe stops stamped now (the node's clock mapped), never ahead of the plant's",

@@ -117,7 +117,7 @@ std::string ack_text(const tvo_lcm::session_ack_t& a)
 {
     std::ostringstream out;
     out << status_text(a.status) << ", bad_param " << a.bad_param << " ("
-        << tvo_param_str(static_cast<tvo_param_t>(a.bad_param)) << "), part " << a.bad_part << " ("
+        << tvo_protocol_param_str(a.bad_param) << "), part " << a.bad_part << " ("
         << tvo_protocol_part_str(a.bad_part) << "), index " << a.bad_index << ", running " << a.running_session_id
         << ", echoes id " << a.session_id << " action " << static_cast<int>(a.action) << " utime " << a.utime;
     return out.str();
@@ -158,10 +158,10 @@ void case_stray_future_stamp(Context& ctx)
     run.run([](LockstepRun& r, std::int64_t n) {
         const auto m = r.measure(n);
         if (n == 300) {
-            r.send_stray(restamped(m, kUsPerS), TVO_ERR_IMPLAUSIBLE_STAMP,
+            r.send_stray(restamped(m, kUsPerS), tvo_lcm::command_t::STATUS_ERR_IMPLAUSIBLE_STAMP,
                          "a copy of sample 300 stamped +1 s, before the genuine one: refused, implausible stamp");
         } else if (n == 400) {
-            r.send_stray(restamped(m, 20 * kUsPerS), TVO_ERR_IMPLAUSIBLE_STAMP,
+            r.send_stray(restamped(m, 20 * kUsPerS), tvo_lcm::command_t::STATUS_ERR_IMPLAUSIBLE_STAMP,
                          "a copy of sample 400 stamped +20 s: refused, implausible stamp");
         } else if (n == 500) {
             auto bad = restamped(m, kUsPerS);
@@ -174,7 +174,7 @@ void case_stray_future_stamp(Context& ctx)
         }
         r.send_genuine(m);
         if (n == 600) {
-            r.send_stray(restamped(m, kUsPerS), TVO_ERR_IMPLAUSIBLE_STAMP,
+            r.send_stray(restamped(m, kUsPerS), tvo_lcm::command_t::STATUS_ERR_IMPLAUSIBLE_STAMP,
                          "a copy of sample 600 stamped +1 s, after the genuine one: refused, implausible stamp");
         }
     });
@@ -192,22 +192,22 @@ void case_stray_past_stamp(Context& ctx)
     run.run([epoch, h](LockstepRun& r, std::int64_t n) {
         const auto m = r.measure(n);
         if (n == 0) {
-            r.send_stray(restamped(m, -kUsPerS), TVO_ERR_IMPLAUSIBLE_STAMP,
+            r.send_stray(restamped(m, -kUsPerS), tvo_lcm::command_t::STATUS_ERR_IMPLAUSIBLE_STAMP,
                          "before the first genuine sample, a copy stamped 1 s before the epoch: refused, implausible");
         } else if (n == 300) {
-            r.send_stray(restamped(m, -kUsPerS), TVO_ERR_OUT_OF_ORDER,
+            r.send_stray(restamped(m, -kUsPerS), tvo_lcm::command_t::STATUS_ERR_OUT_OF_ORDER,
                          "a copy of sample 300 stamped -1 s: refused, out of order");
         } else if (n == 350) {
-            r.send_stray(restamped(m, -h), TVO_ERR_OUT_OF_ORDER,
+            r.send_stray(restamped(m, -h), tvo_lcm::command_t::STATUS_ERR_OUT_OF_ORDER,
                          "a copy of sample 350 with the previous period's stamp: refused, out of order");
         } else if (n == 400) {
             auto bad = m;
             bad.utime = epoch - kUsPerS;
-            r.send_stray(bad, TVO_ERR_IMPLAUSIBLE_STAMP, "a copy stamped 1 s before the epoch: refused, implausible");
+            r.send_stray(bad, tvo_lcm::command_t::STATUS_ERR_IMPLAUSIBLE_STAMP, "a copy stamped 1 s before the epoch: refused, implausible");
         } else if (n == 450) {
             auto bad = m;
             bad.utime = 0;
-            r.send_stray(bad, TVO_ERR_IMPLAUSIBLE_STAMP, "a copy stamped 0 (the wire's minimum): refused, implausible");
+            r.send_stray(bad, tvo_lcm::command_t::STATUS_ERR_IMPLAUSIBLE_STAMP, "a copy stamped 0 (the wire's minimum): refused, implausible");
         } else if (n == 500) {
             auto bad = m;
             bad.utime = -1;
@@ -326,8 +326,8 @@ void case_garbage(Context& ctx)
         } else if (n == 350) {
             const auto bytes = session_garbage(0x55, false);
             const auto ack = raw_request(ctx, bytes);
-            check_refused_start(ctx.report, decoded<tvo_lcm::session_t>(bytes), ack, ours, TVO_ERR_PARAM, -1, -1, -2,
-                                "session_t with a random body and action 0x55: acked TVO_ERR_PARAM, session runs on");
+            check_refused_start(ctx.report, decoded<tvo_lcm::session_t>(bytes), ack, ours, tvo_lcm::command_t::STATUS_ERR_PARAM, -1, -1, -2,
+                                "session_t with a random body and action 0x55: acked tvo_lcm::command_t::STATUS_ERR_PARAM, session runs on");
         } else if (n >= 351 && n < 354) {
             const auto bytes = session_garbage(tvo_lcm::session_t::ACTION_START, false);
             const auto ack = raw_request(ctx, bytes);
@@ -337,9 +337,9 @@ void case_garbage(Context& ctx)
         } else if (n == 354) {
             const auto bytes = session_garbage(tvo_lcm::session_t::ACTION_STOP, false);
             const auto ack = raw_request(ctx, bytes);
-            check_refused_start(ctx.report, decoded<tvo_lcm::session_t>(bytes), ack, ours, TVO_ERR_NO_SESSION, -1, -1,
+            check_refused_start(ctx.report, decoded<tvo_lcm::session_t>(bytes), ack, ours, tvo_lcm::command_t::STATUS_ERR_NO_SESSION, -1, -1,
                                 -2,
-                                "a STOP with a random body (another id): acked TVO_ERR_NO_SESSION, session runs on");
+                                "a STOP with a random body (another id): acked tvo_lcm::command_t::STATUS_ERR_NO_SESSION, session runs on");
         } else if (n == 355) {
             const auto bytes = session_garbage(tvo_lcm::session_t::ACTION_START, true);
             const auto ack = raw_request(ctx, bytes);
@@ -411,7 +411,7 @@ void case_huge_sequence(Context& ctx)
     run.run([](LockstepRun& r, std::int64_t n) {
         const auto m = r.measure(n);
         if (n == 300) {
-            r.send_stray(resequenced(m, std::int64_t{1} << 59), TVO_ERR_IMPLAUSIBLE_STAMP,
+            r.send_stray(resequenced(m, std::int64_t{1} << 59), tvo_lcm::command_t::STATUS_ERR_IMPLAUSIBLE_STAMP,
                          "a copy of sample 300 with sequence 2^59, genuine stamp: refused, implausible");
         } else if (n == 350) {
             r.send_stray(resequenced(m, kInt64Max), kAny, "sequence INT64_MAX: refused", true);
@@ -420,7 +420,7 @@ void case_huge_sequence(Context& ctx)
         } else if (n == 450) {
             r.send_stray(resequenced(m, kInt64Min), kAny, "sequence INT64_MIN: refused", true);
         } else if (n == 500) {
-            r.send_stray(resequenced(m, kWireMax), TVO_ERR_IMPLAUSIBLE_STAMP,
+            r.send_stray(resequenced(m, kWireMax), tvo_lcm::command_t::STATUS_ERR_IMPLAUSIBLE_STAMP,
                          "sequence 2^60 (the wire's maximum): refused, implausible");
         } else if (n == 550) {
             r.send_stray(resequenced(m, kWireMax + 1), kAny, "sequence 2^60 + 1 (out of the wire range): refused",
@@ -429,7 +429,7 @@ void case_huge_sequence(Context& ctx)
         r.send_genuine(m);
         if (n == 600) {
             // Its stamp is the genuine one's: its period is already served (the spec checks that first).
-            r.send_stray(resequenced(m, std::int64_t{1} << 59), TVO_ERR_OUT_OF_ORDER,
+            r.send_stray(resequenced(m, std::int64_t{1} << 59), tvo_lcm::command_t::STATUS_ERR_OUT_OF_ORDER,
                          "sequence 2^59 after the genuine sample 600 (same stamp): refused, out of order");
         }
     });
@@ -446,20 +446,20 @@ void case_duplicates(Context& ctx)
     run.run([&sent](LockstepRun& r, std::int64_t n) {
         const auto m = r.measure(n);
         if (n == 450) {
-            r.send_stray(sent.back(), TVO_ERR_OUT_OF_ORDER,
+            r.send_stray(sent.back(), tvo_lcm::command_t::STATUS_ERR_OUT_OF_ORDER,
                          "sample 449 again, before sample 450: refused, out of order");
         }
         r.send_genuine(m);
         sent.push_back(m);
         if (n == 300) {
-            r.send_stray(m, TVO_ERR_OUT_OF_ORDER, "sample 300 twice: the copy refused, out of order");
+            r.send_stray(m, tvo_lcm::command_t::STATUS_ERR_OUT_OF_ORDER, "sample 300 twice: the copy refused, out of order");
         } else if (n == 350) {
             for (int k = 1; k <= 3; ++k) {
-                r.send_stray(m, TVO_ERR_OUT_OF_ORDER,
+                r.send_stray(m, tvo_lcm::command_t::STATUS_ERR_OUT_OF_ORDER,
                              "sample 350 four times: copy " + std::to_string(k) + " refused, out of order");
             }
         } else if (n == 400) {
-            r.send_stray(sent[sent.size() - 6], TVO_ERR_OUT_OF_ORDER,
+            r.send_stray(sent[sent.size() - 6], tvo_lcm::command_t::STATUS_ERR_OUT_OF_ORDER,
                          "sample 395 again after 400: refused, out of order");
         }
     });
@@ -488,7 +488,7 @@ void case_reordering(Context& ctx)
         }
         r.send_genuine(m);
         if (late(n - 1)) {
-            r.send_genuine_refused(withheld, TVO_ERR_OUT_OF_ORDER,
+            r.send_genuine_refused(withheld, tvo_lcm::command_t::STATUS_ERR_OUT_OF_ORDER,
                                    "sample " + std::to_string(n - 1) + " delivered after sample " + std::to_string(n) +
                                        ": refused, out of order");
         }
@@ -544,7 +544,7 @@ void case_refusal_watchdog(Context& ctx)
         const auto m = r.measure(n);
         if (n >= 300 && n < 300 + wd + 2) {
             // Instead of its sample, the plant's link repeats the last one: refused every period.
-            r.send_stray(previous, TVO_ERR_OUT_OF_ORDER,
+            r.send_stray(previous, tvo_lcm::command_t::STATUS_ERR_OUT_OF_ORDER,
                          "refusal " + std::to_string(n - 299) + " of " + std::to_string(wd + 2) +
                              " in a row (sample 299 repeated)");
             return;
@@ -552,7 +552,7 @@ void case_refusal_watchdog(Context& ctx)
         if (n >= 300 + wd + 2 && n < 300 + wd + 4) {
             // The stream jumped wd + 3 periods past sample 299, more than the watchdog's span: served
             // once three samples agree on it, so its first two are refused, after the streak with a stop.
-            r.send_genuine_refused(m, TVO_ERR_WATCHDOG,
+            r.send_genuine_refused(m, tvo_lcm::command_t::STATUS_ERR_WATCHDOG,
                                    "after the streak, genuine sample " + std::to_string(n - 300 - wd - 1) +
                                        " of 2 before three agree on the jump: a safe stop");
             previous = m;
@@ -566,7 +566,7 @@ void case_refusal_watchdog(Context& ctx)
     long index = 0;
     for (const auto& o : run.outcomes()) {
         ++index;
-        if ((o.flags & static_cast<std::int32_t>(TVO_FLAG_SAFE_STOP)) != 0 && first_safe_stop < 0) {
+        if ((o.flags & static_cast<std::int32_t>(tvo_lcm::command_t::FLAG_SAFE_STOP)) != 0 && first_safe_stop < 0) {
             first_safe_stop = index;
         }
     }
@@ -596,15 +596,15 @@ void case_rejected_start_during_run(Context& ctx)
         std::string what;
     };
     const std::vector<BadStart> bad = {
-        {300, [](tvo_lcm::session_t& s) { s.gain_kp = -1.0; }, TVO_ERR_PARAM, TVO_PARAM_GAINS, -1, -2,
+        {300, [](tvo_lcm::session_t& s) { s.gain_kp = -1.0; }, tvo_lcm::command_t::STATUS_ERR_PARAM, tvo_lcm::session_ack_t::PARAM_GAINS, -1, -2,
          "a START with a new id and gain_kp = -1: refused naming the gains"},
-        {320, [](tvo_lcm::session_t& s) { s.watchdog_periods = 0; }, TVO_ERR_PARAM, TVO_PARAM_WATCHDOG, -1, -2,
+        {320, [](tvo_lcm::session_t& s) { s.watchdog_periods = 0; }, tvo_lcm::command_t::STATUS_ERR_PARAM, tvo_lcm::session_ack_t::PARAM_WATCHDOG, -1, -2,
          "a START with watchdog_periods = 0: refused naming the watchdog"},
-        {340, [](tvo_lcm::session_t& s) { s.period_us = std::int64_t{1} << 31; }, TVO_ERR_PARAM, TVO_PARAM_PERIOD,
+        {340, [](tvo_lcm::session_t& s) { s.period_us = std::int64_t{1} << 31; }, tvo_lcm::command_t::STATUS_ERR_PARAM, tvo_lcm::session_ack_t::PARAM_PERIOD,
          -1, -2, "a START with period_us = 2^31 (out of the wire range): refused naming the period"},
-        {360, [](tvo_lcm::session_t& s) { s.delay_us = s.period_us + 1; }, TVO_ERR_PARAM, TVO_PARAM_DELAY, -1, -2,
+        {360, [](tvo_lcm::session_t& s) { s.delay_us = s.period_us + 1; }, tvo_lcm::command_t::STATUS_ERR_PARAM, tvo_lcm::session_ack_t::PARAM_DELAY, -1, -2,
          "a START with delay_us = period_us + 1: refused naming the delay"},
-        {380, [](tvo_lcm::session_t& s) { s.robot_count = 0; }, kAny, TVO_PARAM_ROBOT_COUNT, -1, -2,
+        {380, [](tvo_lcm::session_t& s) { s.robot_count = 0; }, kAny, tvo_lcm::session_ack_t::PARAM_ROBOT_COUNT, -1, -2,
          "a START with robot_count = 0: refused naming the robot count"},
         {400,
          [](tvo_lcm::session_t& s) { s.robot[0].target.semi_axis_m[0] = std::numeric_limits<double>::quiet_NaN(); },
@@ -612,7 +612,7 @@ void case_rejected_start_during_run(Context& ctx)
          "a START with a NaN semi-axis in robot 0's target: refused naming part robots, index 0"},
         {420, [](tvo_lcm::session_t& s) { s.clock_source = 7; }, kAny, -1, -1, -2,
          "a START with clock_source = 7: refused"},
-        {440, [](tvo_lcm::session_t& s) { s.epoch_utime = -1; }, TVO_ERR_PARAM, -1, -1, -2,
+        {440, [](tvo_lcm::session_t& s) { s.epoch_utime = -1; }, tvo_lcm::command_t::STATUS_ERR_PARAM, -1, -1, -2,
          "a START with epoch_utime = -1 (out of the wire range): refused"},
     };
     run.run([&](LockstepRun& r, std::int64_t n) {
@@ -657,8 +657,8 @@ void case_same_id_start(Context& ctx)
                 what = "the running id with another target phase";
             }
             const auto ack = r.request(start);
-            check_refused_start(ctx.report, start, ack, ours, TVO_ERR_SESSION_CONFLICT, -1, -1, -2,
-                                "a START with " + what + ": refused TVO_ERR_SESSION_CONFLICT, runs on");
+            check_refused_start(ctx.report, start, ack, ours, tvo_lcm::command_t::STATUS_ERR_SESSION_CONFLICT, -1, -1, -2,
+                                "a START with " + what + ": refused tvo_lcm::command_t::STATUS_ERR_SESSION_CONFLICT, runs on");
         } else if (n == 350 || n == 500) {
             const auto ack = r.request(start);
             const auto& original = r.start_ack();
@@ -693,7 +693,7 @@ void case_implausible_epoch(Context& ctx)
     auto refused_epoch = [&](std::int64_t epoch, std::int64_t running, const std::string& what) {
         tvo_lcm::session_t start = demo_session(ctx.new_session_id(), start_utime, epoch, config.timing);
         const auto ack = run.request(start, std::chrono::milliseconds(100));
-        check_refused_start(ctx.report, start, ack, running, TVO_ERR_PARAM, TVO_PARAM_EPOCH, -1, -2, what);
+        check_refused_start(ctx.report, start, ack, running, tvo_lcm::command_t::STATUS_ERR_PARAM, tvo_lcm::session_ack_t::PARAM_EPOCH, -1, -2, what);
     };
     refused_epoch(start_utime - 20 * 60 * kUsPerS, -1,
                   "no session: a START whose epoch is 20 min before it: refused naming the epoch");
@@ -749,7 +749,7 @@ void case_node_restart(Context& ctx)
         // The plant does not know: it sends its sample; the new node has no session.
         r.send_until_answered(r.measure(n), Expect::Kind::NoSession,
                               "node killed (SIGKILL) and restarted: the next sample is answered with a safe stop, "
-                              "TVO_ERR_NO_SESSION");
+                              "tvo_lcm::command_t::STATUS_ERR_NO_SESSION");
         r.settle();
         r.restart_session();   // the plant rule: re-send START (same id and content), then go on
         ctx.report.check(r.start_ack().status == 0 && r.start_ack().running_session_id == r.session().session_id,
@@ -810,8 +810,8 @@ void case_plant_restart(Context& ctx)
             stop.action = tvo_lcm::session_t::ACTION_STOP;
             stop.utime = old_plant.sample_utime(old_sequence);
             const auto ack = r.request(stop);
-            check_refused_start(ctx.report, stop, ack, config_b.session_id, TVO_ERR_NO_SESSION, -1, -1, -2,
-                                "the old session's STOP: acked TVO_ERR_NO_SESSION, the new session runs on");
+            check_refused_start(ctx.report, stop, ack, config_b.session_id, tvo_lcm::command_t::STATUS_ERR_NO_SESSION, -1, -1, -2,
+                                "the old session's STOP: acked tvo_lcm::command_t::STATUS_ERR_NO_SESSION, the new session runs on");
         }
     });
     plant.stop();
@@ -878,7 +878,7 @@ void case_speed_mismatch(Context& ctx)
                              std::to_string(to - from) + " flagged; meanwhile the error reached " + fmt(error) + " m");
         // Acted on: stopped (status 0, SAFE_STOP with the flag) within the stop's periods, and held
         // stopped for the holdoff's periods each time.
-        const auto stop_flags = static_cast<std::int32_t>(TVO_FLAG_SAFE_STOP | TVO_FLAG_SPEED_MISMATCH);
+        const auto stop_flags = static_cast<std::int32_t>(tvo_lcm::command_t::FLAG_SAFE_STOP | TVO_FLAG_SPEED_MISMATCH);
         std::int64_t first_stop = -1;
         long stopped = 0;
         long stopped_in_run = 0;

@@ -28,8 +28,8 @@ constexpr std::size_t kMaxProblems = 8;
 constexpr double kTrackingBoundM = 1e-3;
 constexpr std::int64_t kTrackingWindowPeriods = 100;   // the last second at h = 10 ms
 
-const std::int32_t kHolding = static_cast<std::int32_t>(TVO_FLAG_HOLDING);
-const std::int32_t kSafeStop = static_cast<std::int32_t>(TVO_FLAG_SAFE_STOP);
+const std::int32_t kHolding = static_cast<std::int32_t>(tvo_lcm::command_t::FLAG_HOLDING);
+const std::int32_t kSafeStop = static_cast<std::int32_t>(tvo_lcm::command_t::FLAG_SAFE_STOP);
 
 std::string describe(const tvo_lcm::command_t& c)
 {
@@ -430,7 +430,7 @@ void LockstepRun::verify(const Expect& e, const tvo_lcm::command_t& cmd)
         // watchdog_periods-th on, required after it.
         ++consecutive_refusals_;
         const long watchdog_at = config_.timing.watchdog_periods;
-        const bool watchdog = safe_stop && cmd.status == TVO_ERR_WATCHDOG && consecutive_refusals_ >= watchdog_at;
+        const bool watchdog = safe_stop && cmd.status == tvo_lcm::command_t::STATUS_ERR_WATCHDOG && consecutive_refusals_ >= watchdog_at;
         const bool watchdog_due = consecutive_refusals_ > watchdog_at;
         const bool status_ok =
             watchdog || (cmd.status != 0 && (e.status == Expect::kAnyStatus || cmd.status == e.status));
@@ -468,7 +468,7 @@ void LockstepRun::verify(const Expect& e, const tvo_lcm::command_t& cmd)
         break;
     }
     case Expect::Kind::NoSession: {
-        const bool ok = cmd.status == TVO_ERR_NO_SESSION && safe_stop && is_zero(cmd) && cmd.utime == e.utime &&
+        const bool ok = cmd.status == tvo_lcm::command_t::STATUS_ERR_NO_SESSION && safe_stop && is_zero(cmd) && cmd.utime == e.utime &&
                         cmd.session_id == e.session_id && cmd.measurement_sequence == e.sequence;
         if (e.genuine) {
             ++genuine_held;
@@ -590,7 +590,7 @@ void LockstepRun::stop()
         const auto it = tel_keys.find({c.utime, c.session_id, c.measurement_sequence, c.status, c.flags});
         if (it != tel_keys.end()) {
             tel_keys.erase(it);
-        } else if (c.status == TVO_ERR_NO_SESSION) {
+        } else if (c.status == tvo_lcm::command_t::STATUS_ERR_NO_SESSION) {
             ++no_session;
         } else if (without_telemetry++ == 0) {
             first_without = " (first: " + describe(c) + ")";

@@ -24,7 +24,7 @@ struct Expect {
     enum class Kind {
         Accepted,   // a genuine sample: stepped, status 0, applied at a_j
         Refused,    // answered with the held command, HOLDING (or a watchdog safe stop), a status
-        NoSession,  // answered with a safe stop, TVO_ERR_NO_SESSION
+        NoSession,  // answered with a safe stop, tvo_lcm::command_t::STATUS_ERR_NO_SESSION
         Ignored,    // no answer at all (another session's message, undecodable bytes)
         Optional    // may be answered or not (the spec leaves it open): reported, not judged
     };
@@ -204,7 +204,7 @@ void check_tracking(Report& report, const LockstepRun& run, const std::string& w
 /// Genuine samples: each meant to be accepted is; at most one period of holding after each bad message
 /// (fault_steps: the periods where one is injected; none: no holding at all); no unexpected answer.
 /// expected_stopped: accepted samples the controller answered with a stop of its own (status 0,
-/// TVO_FLAG_SAFE_STOP: a speed mismatch), counted apart from the accepted ones.
+/// tvo_lcm::command_t::FLAG_SAFE_STOP: a speed mismatch), counted apart from the accepted ones.
 void check_genuine(Report& report, const LockstepRun& run, const std::vector<std::int64_t>& fault_steps,
                    long expected_accepted = -1, long expected_stopped = 0);
 /// Every genuine answer bit for bit as in a run without the faults: nothing was kept from them.

@@ -64,7 +64,7 @@ void Report::note(const std::string& what, const std::string& figure)
 
 std::string status_text(std::int32_t status)
 {
-    return "status " + std::to_string(status) + " (" + tvo_status_str(static_cast<tvo_status_t>(status)) + ")";
+    return "status " + std::to_string(status) + " (" + tvo_protocol_status_str(status) + ")";
 }
 
 std::string fmt(double value, int precision)
@@ -380,7 +380,7 @@ void demo_target(const tvo_lcm::session_t& session, std::int64_t utime_us, doubl
 void CommandAudit::add(const tvo_lcm::command_t& cmd)
 {
     ++commands;
-    const bool safe_stop = (cmd.flags & static_cast<std::int32_t>(TVO_FLAG_SAFE_STOP)) != 0;
+    const bool safe_stop = (cmd.flags & static_cast<std::int32_t>(tvo_lcm::command_t::FLAG_SAFE_STOP)) != 0;
     safe_stops += safe_stop ? 1 : 0;
     const int robots = std::clamp(cmd.robot_count, 0, static_cast<int>(tvo_lcm::measurement_t::MAX_ROBOTS));
     bool finite = cmd.robot_count == robots;   // a count out of range is itself a bad command

@@ -1,9 +1,10 @@
 /*
  * The unicycle controller's step with fuzzed measurements (values, flags and stamps from the input).
  * Invariants: every command finite and within the limits (|v|, |omega|, and but for a safe stop
- * |v - v_in_force| <= accel_max h), a safe stop all zero, status OK only on a computed command (or the
- * speed mismatch's stop) with finite telemetry; a measurement tvo_controller_check refuses leaves the
- * velocity filter, the speed state and the last stamp as they were.
+ * |v - v_in_force| <= accel_max h), a stop all zero, the outcome APPLIED exactly when the reason is
+ * NONE (a delivered command; a call error only for an apply tick that does not advance) with finite
+ * telemetry; tvo_controller_check says what the step does; a measurement it refuses leaves the velocity
+ * filter, the speed state and the last stamp as they were.
  * The first byte chooses the velocity source (bit 0: position-only) and, for the pose source, the
  * init (bits 1..0 = 2: tvo_controller_init_pose_velocity). Then records: stamp step (2 bytes,
  * ticks), apply lead (2 bytes, ticks), flags (1 byte), position x, y, heading, speed (4 x 4-byte floats).
@@ -76,7 +77,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         meas.heading_rad[0] = read_float(p + 13);
         meas.speed_mps[0] = read_float(p + 17);
         const tvo_measurement_t *given = (p[4] & 4u) ? NULL : &meas;
-        const tvo_status_t verdict = tvo_controller_check(&ctl, given, apply);
+        tvo_reason_t verdict = TVO_REASON_COUNT;
+        const tvo_status_t check_status = tvo_controller_check(&ctl, given, apply, &verdict);
         const tvo_dirty_derivative_t filter = ctl.velocity_filter;
         const tvo_real_t speed = ctl.speed_state_mps[0];
         const uint32_t last_stamp = ctl.clock.last_stamp_tick;
@@ -88,20 +90,29 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         if (TVO_FABS(cmd.turn_rate_radps[0]) > cfg.omega_max_radps || TVO_FABS(cmd.speed_mps[0]) > cfg.speed_max_mps) {
             fail("command beyond its limits");
         }
-        if ((cmd.flags & TVO_FLAG_SAFE_STOP) && (cmd.speed_mps[0] != TVO_R(0.0) || cmd.turn_rate_radps[0] != TVO_R(0.0))) {
+        const int stopped = cmd.outcome == TVO_OUTCOME_STOPPED;
+        if (stopped && (cmd.speed_mps[0] != TVO_R(0.0) || cmd.turn_rate_radps[0] != TVO_R(0.0))) {
             fail("safe stop not all zero");
         }
-        const int mismatch_stop = (cmd.flags & (TVO_FLAG_SAFE_STOP | TVO_FLAG_SPEED_MISMATCH)) ==
-                                  (TVO_FLAG_SAFE_STOP | TVO_FLAG_SPEED_MISMATCH);
-        if (st == TVO_OK && ((cmd.flags & TVO_FLAG_HOLDING) || ((cmd.flags & TVO_FLAG_SAFE_STOP) && !mismatch_stop))) {
-            fail("status OK on a holding or stop command");
+        if (st != check_status) {
+            fail("the step's call error is not the check's");
         }
-        if (!(cmd.flags & TVO_FLAG_SAFE_STOP) &&
+        if (st != TVO_OK && (st != TVO_ERR_TICK_NOT_ADVANCING && st != TVO_ERR_BEFORE_EPOCH)) {
+            fail("a call error other than a misplaced apply tick");
+        }
+        if (st == TVO_OK && (cmd.outcome == TVO_OUTCOME_APPLIED) != (cmd.reason == TVO_REASON_NONE)) {
+            fail("outcome and reason disagree");
+        }
+        if (st == TVO_OK && cmd.outcome == TVO_OUTCOME_HELD &&
+            (cmd.reason == TVO_REASON_WATCHDOG || cmd.reason == TVO_REASON_SPEED_MISMATCH)) {
+            fail("held for a stop's reason");
+        }
+        if (!stopped &&
             fabs((double)cmd.speed_mps[0] - (double)speed_in_force) > speed_step_max * (1.0 + 1e-5) + 1e-6) {
             fail("the speed moved by more than accel_max h from the command in force");
         }
         speed_in_force = cmd.speed_mps[0];
-        if (st == TVO_OK) {
+        if (st == TVO_OK && cmd.outcome == TVO_OUTCOME_APPLIED) {
             const tvo_controller_telemetry_t *tm = &ctl.telemetry;
             for (int axis = 0; axis < 2; ++axis) {
                 if (!isfinite(tm->gradient[axis]) || !isfinite(tm->gradient_rate[axis]) ||
@@ -110,10 +121,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                 }
             }
         }
-        if (verdict != TVO_OK && st == TVO_OK) {
+        const int taken = st == TVO_OK && (cmd.reason == TVO_REASON_NONE || cmd.reason == TVO_REASON_SPEED_MISMATCH);
+        if (verdict != TVO_REASON_NONE && taken) {
             fail("the step used a measurement its check refused");
         }
-        if (verdict != TVO_OK && st != TVO_ERR_WATCHDOG &&
+        if (st == TVO_OK && !taken && cmd.reason != TVO_REASON_WATCHDOG && verdict != TVO_REASON_NONE &&
+            verdict != cmd.reason) {
+            fail("the step refused for another reason than its check");
+        }
+        if (!taken && cmd.reason != TVO_REASON_WATCHDOG &&
             (memcmp(&filter, &ctl.velocity_filter, sizeof(filter)) != 0 || speed != ctl.speed_state_mps[0] ||
              last_stamp != ctl.clock.last_stamp_tick)) {
             fail("a refused measurement changed the filter, the speed state or the last stamp");

@@ -109,7 +109,7 @@ static inline void fuzz_check_command(const tvo_lcm_command_t *m, const tvo_lcm_
                 fuzz_fail("|v| beyond speed_max");
             }
         }
-        if ((m->flags & (int32_t)TVO_FLAG_SAFE_STOP) && (m->speed_mps[r] != 0.0 || m->turn_rate_radps[r] != 0.0)) {
+        if ((m->flags & (int32_t)TVO_LCM_COMMAND_T_FLAG_SAFE_STOP) && (m->speed_mps[r] != 0.0 || m->turn_rate_radps[r] != 0.0)) {
             fuzz_fail("safe stop not all zero");
         }
     }
@@ -121,14 +121,14 @@ static inline void fuzz_check_command(const tvo_lcm_command_t *m, const tvo_lcm_
             fabs(m->input[i]) > fuzz_core_limit(s->chain_input_max) * (1.0 + slack)) {
             fuzz_fail("|u| beyond chain_input_max");
         }
-        if ((m->flags & (int32_t)TVO_FLAG_SAFE_STOP) && m->input[i] != 0.0) {
+        if ((m->flags & (int32_t)TVO_LCM_COMMAND_T_FLAG_SAFE_STOP) && m->input[i] != 0.0) {
             fuzz_fail("safe stop not all zero (chain)");
         }
     }
     /* Status 0 is a computed command, or the speed mismatch's stop (the measurement was accepted). */
-    const int32_t mismatch_stop = (int32_t)(TVO_FLAG_SAFE_STOP | TVO_FLAG_SPEED_MISMATCH);
-    if (m->status == 0 && ((m->flags & (int32_t)TVO_FLAG_HOLDING) != 0 ||
-                           ((m->flags & (int32_t)TVO_FLAG_SAFE_STOP) != 0 && (m->flags & mismatch_stop) != mismatch_stop))) {
+    const int32_t mismatch_stop = (int32_t)(TVO_LCM_COMMAND_T_FLAG_SAFE_STOP | TVO_FLAG_SPEED_MISMATCH);
+    if (m->status == 0 && ((m->flags & (int32_t)TVO_LCM_COMMAND_T_FLAG_HOLDING) != 0 ||
+                           ((m->flags & (int32_t)TVO_LCM_COMMAND_T_FLAG_SAFE_STOP) != 0 && (m->flags & mismatch_stop) != mismatch_stop))) {
         fuzz_fail("status OK on a holding or stop command");
     }
 }
@@ -137,13 +137,13 @@ static inline void fuzz_check_command(const tvo_lcm_command_t *m, const tvo_lcm_
 static inline int fuzz_refused_before_step(int32_t status)
 {
     switch (status) {
-    case TVO_ERR_DIMENSION:
-    case TVO_ERR_IMPLAUSIBLE_STAMP:
-    case TVO_ERR_OUT_OF_ORDER:
-    case TVO_ERR_STALE:
-    case TVO_ERR_FUTURE_STAMP:
-    case TVO_ERR_NOT_FINITE:
-    case TVO_ERR_MISSING_FIELD:
+    case TVO_LCM_COMMAND_T_STATUS_ERR_DIMENSION:
+    case TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP:
+    case TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER:
+    case TVO_LCM_COMMAND_T_STATUS_ERR_STALE:
+    case TVO_LCM_COMMAND_T_STATUS_ERR_FUTURE_STAMP:
+    case TVO_LCM_COMMAND_T_STATUS_ERR_NOT_FINITE:
+    case TVO_LCM_COMMAND_T_STATUS_ERR_MISSING_FIELD:
         return 1;
     default:
         return 0;

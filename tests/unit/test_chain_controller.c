@@ -142,9 +142,9 @@ static tvo_status_t ch_init(ch_t *ch)
     ch->u[0] = ch->u[1] = 0.0;
     ch->apply = CH_EPOCH;
     ch->steps = 0;
-    tvo_param_t bad = TVO_PARAM_EPOCH;
+    tvo_chain_param_t bad = TVO_CHAIN_PARAM_OBJECTIVE; /* anything but NONE: init must write it */
     const tvo_status_t st = tvo_chain_controller_init(&ch->ctl, &ch->cfg, &ch->objective, CH_EPOCH, &bad);
-    ASSERT_PARAM(st == TVO_OK ? TVO_PARAM_NONE : bad, bad);
+    ASSERT_CHAIN_PARAM(st == TVO_OK ? TVO_CHAIN_PARAM_NONE : bad, bad);
     return st;
 }
 
@@ -291,7 +291,7 @@ static void check_one_step_closed_form(uint8_t k)
     const uint32_t apply = CH_EPOCH + 350000u;
     m.stamp_tick = apply;
     tvo_chain_command_t cmd;
-    ASSERT_STATUS(TVO_OK, tvo_chain_controller_step(&ch.ctl, &m, apply, &cmd));
+    ASSERT_PERIOD(APPLIED, tvo_chain_controller_step(&ch.ctl, &m, apply, &cmd), cmd);
     double a[3];
     ch_gains(k, a);
     for (int i = 0; i < 2; ++i) {
@@ -329,7 +329,7 @@ static void test_uncompensated_delay_evaluates_at_the_sample_instant(void)
         double xs[2][3];
         tvo_chain_measurement_t m;
         ch_sample(&ch, xs, &m);
-        ASSERT_STATUS(TVO_OK, ch_step(&ch, &cmd));
+        ASSERT_PERIOD(APPLIED, ch_step(&ch, &cmd), cmd);
         const double t_sample = ticks_s(apply - CH_EPOCH) - 0.004;
         for (int i = 0; i < 2; ++i) {
             ASSERT_NEAR(closed_form_law(2, a, xs[i], t_sample < 0.0 ? 0.0 : t_sample, i), cmd.u[i], LAW_TOL);
@@ -361,9 +361,9 @@ static void test_compensation_makes_tau_h_equal_tau_0(void)
         double worst_comp = 0.0, worst_raw = 0.0;
         for (int n = 0; n < 8; ++n) {
             tvo_chain_command_t c0, c1, c2;
-            ASSERT_STATUS(TVO_OK, ch_step(&ref, &c0));
-            ASSERT_STATUS(TVO_OK, ch_step(&comp, &c1));
-            ASSERT_STATUS(TVO_OK, ch_step(&raw, &c2));
+            ASSERT_PERIOD(APPLIED, ch_step(&ref, &c0), c0);
+            ASSERT_PERIOD(APPLIED, ch_step(&comp, &c1), c1);
+            ASSERT_PERIOD(APPLIED, ch_step(&raw, &c2), c2);
             if (n > 0) {
                 ASSERT_FLAG_SET(c1.flags, TVO_FLAG_PREDICTED);
             }
@@ -394,7 +394,7 @@ static void check_zoh_instant(uint8_t k, uint32_t delay, uint8_t comp)
         tvo_chain_measurement_t m;
         ch_sample(&ch, xs, &m);
         tvo_chain_command_t cmd;
-        ASSERT_STATUS(TVO_OK, ch_step(&ch, &cmd));
+        ASSERT_PERIOD(APPLIED, ch_step(&ch, &cmd), cmd);
         ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_PREDICTED);
         const double carry = (comp ? tau : 0.0) + h / 2.0;
         const double t_law = ticks_s(apply - CH_EPOCH) - (comp ? 0.0 : tau) + h / 2.0;
@@ -442,7 +442,7 @@ static void test_filters_start_at_rest_and_follow_the_ramp_update(void)
         m.y.d[2][1] = TEST_NAN;
         m.stamp_tick = CH_EPOCH + 100000u;
         tvo_chain_command_t cmd;
-        ASSERT_STATUS(TVO_OK, tvo_chain_controller_step(&ch.ctl, &m, CH_EPOCH + 100000u, &cmd));
+        ASSERT_PERIOD(APPLIED, tvo_chain_controller_step(&ch.ctl, &m, CH_EPOCH + 100000u, &cmd), cmd);
         const double x0[2][3] = {{2.0, 0.0, 0.0}, {0.5, 0.0, 0.0}};
         for (int i = 0; i < 2; ++i) {
             ASSERT_NEAR(closed_form_law(k, a, x0[i], 0.1, i), cmd.u[i], LAW_TOL);
@@ -451,7 +451,7 @@ static void test_filters_start_at_rest_and_follow_the_ramp_update(void)
         m.y.d[0][0] = TVO_R(2.01);
         m.y.d[0][1] = TVO_R(0.48);
         m.stamp_tick = CH_EPOCH + 110000u;
-        ASSERT_STATUS(TVO_OK, tvo_chain_controller_step(&ch.ctl, &m, CH_EPOCH + 110000u, &cmd));
+        ASSERT_PERIOD(APPLIED, tvo_chain_controller_step(&ch.ctl, &m, CH_EPOCH + 110000u, &cmd), cmd);
         const double dec = exp(-0.01 / 0.05), g = (1.0 - dec) / 0.01;
         for (int i = 0; i < 2; ++i) {
             const double y1 = test_d(m.y.d[0][i]);
@@ -472,28 +472,28 @@ static void test_filters_start_at_rest_and_follow_the_ramp_update(void)
 static void test_init_names_the_first_bad_parameter(void)
 {
     ch_t ch;
-    tvo_param_t bad = TVO_PARAM_NONE;
+    tvo_chain_param_t bad = TVO_CHAIN_PARAM_NONE;
     ch_config(&ch, 2, 10000u, 20000u, 1u, 0u);
     ASSERT_STATUS(TVO_ERR_PARAM, ch_init(&ch));
     (void)tvo_chain_controller_init(&ch.ctl, &ch.cfg, &ch.objective, CH_EPOCH, &bad);
-    ASSERT_PARAM(TVO_PARAM_DELAY, bad);
+    ASSERT_CHAIN_PARAM(TVO_CHAIN_PARAM_DELAY, bad);
     ch_config(&ch, 2, 10000u, 0u, 0u, 0u);
     ch.cfg.relative_degree = 4u;
     ASSERT_STATUS(TVO_ERR_PARAM, tvo_chain_controller_init(&ch.ctl, &ch.cfg, &ch.objective, CH_EPOCH, &bad));
-    ASSERT_PARAM(TVO_PARAM_GAINS, bad);
+    ASSERT_CHAIN_PARAM(TVO_CHAIN_PARAM_RELATIVE_DEGREE, bad);
     ch_config(&ch, 2, 10000u, 0u, 0u, 0u);
     ch.cfg.gain[1] = TVO_R(-1.0); /* s^2 - s + 2.56: not Hurwitz */
     ASSERT_STATUS(TVO_ERR_PARAM, tvo_chain_controller_init(&ch.ctl, &ch.cfg, &ch.objective, CH_EPOCH, &bad));
-    ASSERT_PARAM(TVO_PARAM_GAINS, bad);
+    ASSERT_CHAIN_PARAM(TVO_CHAIN_PARAM_GAIN, bad);
     /* Beyond the sampling's reach (h = 10 ms: a_1 <= 2 pi / h = 628.3), and a gain that would overflow. */
     ch_config(&ch, 2, 10000u, 0u, 0u, 0u);
     ch.cfg.gain[1] = TVO_R(629.0);
     ASSERT_STATUS(TVO_ERR_PARAM, tvo_chain_controller_init(&ch.ctl, &ch.cfg, &ch.objective, CH_EPOCH, &bad));
-    ASSERT_PARAM(TVO_PARAM_GAINS, bad);
+    ASSERT_CHAIN_PARAM(TVO_CHAIN_PARAM_GAIN, bad);
     ch_config(&ch, 2, 10000u, 0u, 0u, 0u);
     ch.cfg.gain[0] = TVO_R(3e38);
     ASSERT_STATUS(TVO_ERR_PARAM, tvo_chain_controller_init(&ch.ctl, &ch.cfg, &ch.objective, CH_EPOCH, &bad));
-    ASSERT_PARAM(TVO_PARAM_GAINS, bad);
+    ASSERT_CHAIN_PARAM(TVO_CHAIN_PARAM_GAIN, bad);
     ch_config(&ch, 2, 10000u, 0u, 0u, 0u);
     ch.cfg.gain[1] = TVO_R(628.0); /* just inside; s^2 + 628 s + 2.56 is Hurwitz */
     ASSERT_STATUS(TVO_OK, tvo_chain_controller_init(&ch.ctl, &ch.cfg, &ch.objective, CH_EPOCH, &bad));
@@ -501,14 +501,14 @@ static void test_init_names_the_first_bad_parameter(void)
     ch.cfg.filtered_derivatives = 1u;
     ch.cfg.filter_tf_s = TVO_R(0.0);
     ASSERT_STATUS(TVO_ERR_PARAM, tvo_chain_controller_init(&ch.ctl, &ch.cfg, &ch.objective, CH_EPOCH, &bad));
-    ASSERT_PARAM(TVO_PARAM_FILTER_TF, bad);
+    ASSERT_CHAIN_PARAM(TVO_CHAIN_PARAM_FILTER_TF, bad);
     ch_config(&ch, 2, 0u, 0u, 0u, 0u);
     ASSERT_STATUS(TVO_ERR_PARAM, tvo_chain_controller_init(&ch.ctl, &ch.cfg, &ch.objective, CH_EPOCH, &bad));
-    ASSERT_PARAM(TVO_PARAM_PERIOD, bad);
+    ASSERT_CHAIN_PARAM(TVO_CHAIN_PARAM_PERIOD, bad);
     /* a failed init leaves an instance that refuses to step, with a safe command */
     tvo_chain_command_t cmd;
     ASSERT_STATUS(TVO_ERR_NOT_INITIALIZED, tvo_chain_controller_step(&ch.ctl, NULL, CH_EPOCH, &cmd));
-    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_SAFE_STOP);
+    ASSERT_OUTCOME(TVO_OUTCOME_STOPPED, cmd);
 }
 
 static void test_bad_measurements_hold_the_command_then_the_watchdog_stops(void)
@@ -517,53 +517,53 @@ static void test_bad_measurements_hold_the_command_then_the_watchdog_stops(void)
     ch_config(&ch, 2, 10000u, 5000u, 1u, 0u);
     ASSERT_STATUS(TVO_OK, ch_init(&ch));
     tvo_chain_command_t good, cmd;
-    ASSERT_STATUS(TVO_OK, ch_step(&ch, &good));
-    ASSERT_STATUS(TVO_OK, ch_step(&ch, &good));
+    ASSERT_PERIOD(APPLIED, ch_step(&ch, &good), good);
+    ASSERT_PERIOD(APPLIED, ch_step(&ch, &good), good);
     tvo_chain_measurement_t m;
     double xs[2][3];
 
     /* NaN position: held (watchdog 3 periods: 1 missed) */
     ch_sample(&ch, xs, &m);
     m.y.d[0][1] = TEST_NAN;
-    ASSERT_STATUS(TVO_ERR_NOT_FINITE, tvo_chain_controller_step(&ch.ctl, &m, ch.apply, &cmd));
-    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_HOLDING);
+    ASSERT_PERIOD(HELD(NOT_FINITE), tvo_chain_controller_step(&ch.ctl, &m, ch.apply, &cmd), cmd);
+    ASSERT_OUTCOME(TVO_OUTCOME_HELD, cmd);
     TEST_ASSERT_EQUAL_MEMORY(good.u, cmd.u, sizeof(cmd.u));
     ch.apply += ch.cfg.period_ticks;
 
     /* NaN in a measured derivative (not filtered: it is read) */
     ch_sample(&ch, xs, &m);
     m.y.d[1][0] = TEST_INF;
-    ASSERT_STATUS(TVO_ERR_NOT_FINITE, tvo_chain_controller_step(&ch.ctl, &m, ch.apply, &cmd));
+    ASSERT_PERIOD(HELD(NOT_FINITE), tvo_chain_controller_step(&ch.ctl, &m, ch.apply, &cmd), cmd);
     TEST_ASSERT_EQUAL_MEMORY(good.u, cmd.u, sizeof(cmd.u));
     ch.apply += ch.cfg.period_ticks;
 
     /* a good one (stamped at the apply tick itself: age 0) restarts the watchdog */
     ch_sample(&ch, xs, &m);
     m.stamp_tick = ch.apply;
-    ASSERT_STATUS(TVO_OK, tvo_chain_controller_step(&ch.ctl, &m, ch.apply, &good));
+    ASSERT_PERIOD(APPLIED, tvo_chain_controller_step(&ch.ctl, &m, ch.apply, &good), good);
     const uint32_t last_stamp = m.stamp_tick;
     ch.apply += ch.cfg.period_ticks;
 
     /* not newer than the last accepted (age h: not stale), stale (older than one period), future */
     m.stamp_tick = last_stamp;
-    ASSERT_STATUS(TVO_ERR_OUT_OF_ORDER, tvo_chain_controller_step(&ch.ctl, &m, ch.apply, &cmd));
-    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_HOLDING);
+    ASSERT_PERIOD(HELD(STAMP_NOT_NEWER), tvo_chain_controller_step(&ch.ctl, &m, ch.apply, &cmd), cmd);
+    ASSERT_OUTCOME(TVO_OUTCOME_HELD, cmd);
     TEST_ASSERT_EQUAL_MEMORY(good.u, cmd.u, sizeof(cmd.u));
     ch.apply += ch.cfg.period_ticks;
     m.stamp_tick = ch.apply - ch.cfg.period_ticks - 1u;
-    ASSERT_STATUS(TVO_ERR_STALE, tvo_chain_controller_step(&ch.ctl, &m, ch.apply, &cmd));
-    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_HOLDING);
+    ASSERT_PERIOD(HELD(STALE), tvo_chain_controller_step(&ch.ctl, &m, ch.apply, &cmd), cmd);
+    ASSERT_OUTCOME(TVO_OUTCOME_HELD, cmd);
     TEST_ASSERT_EQUAL_MEMORY(good.u, cmd.u, sizeof(cmd.u));
     ch.apply += ch.cfg.period_ticks;
     /* third missed period in a row (a future stamp): the watchdog expires -> zero command, safe stop */
     m.stamp_tick = ch.apply + 1u;
-    ASSERT_STATUS(TVO_ERR_WATCHDOG, tvo_chain_controller_step(&ch.ctl, &m, ch.apply, &cmd));
-    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_SAFE_STOP);
+    ASSERT_PERIOD(STOPPED(WATCHDOG), tvo_chain_controller_step(&ch.ctl, &m, ch.apply, &cmd), cmd);
+    ASSERT_OUTCOME(TVO_OUTCOME_STOPPED, cmd);
     ASSERT_NEAR(0.0, cmd.u[0], 0.0);
     ASSERT_NEAR(0.0, cmd.u[1], 0.0);
     ch.apply += ch.cfg.period_ticks;
-    ASSERT_STATUS(TVO_ERR_WATCHDOG, tvo_chain_controller_step(&ch.ctl, NULL, ch.apply, &cmd));
-    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_SAFE_STOP);
+    ASSERT_PERIOD(STOPPED(WATCHDOG), tvo_chain_controller_step(&ch.ctl, NULL, ch.apply, &cmd), cmd);
+    ASSERT_OUTCOME(TVO_OUTCOME_STOPPED, cmd);
 
     /* a future stamp before the watchdog expires is its own status */
     {
@@ -571,25 +571,25 @@ static void test_bad_measurements_hold_the_command_then_the_watchdog_stops(void)
         ch_config(&f, 2, 10000u, 0u, 0u, 0u);
         ASSERT_STATUS(TVO_OK, ch_init(&f));
         tvo_chain_command_t fc;
-        ASSERT_STATUS(TVO_OK, ch_step(&f, &fc));
+        ASSERT_PERIOD(APPLIED, ch_step(&f, &fc), fc);
         ch_sample(&f, xs, &m);
         m.stamp_tick = f.apply + 1u;
-        ASSERT_STATUS(TVO_ERR_FUTURE_STAMP, tvo_chain_controller_step(&f.ctl, &m, f.apply, &cmd));
-        ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_HOLDING);
+        ASSERT_PERIOD(HELD(FUTURE_STAMP), tvo_chain_controller_step(&f.ctl, &m, f.apply, &cmd), cmd);
+        ASSERT_OUTCOME(TVO_OUTCOME_HELD, cmd);
         TEST_ASSERT_EQUAL_MEMORY(fc.u, cmd.u, sizeof(cmd.u));
     }
 
-    /* an apply tick that does not advance: out of order, held */
-    ASSERT_STATUS(TVO_ERR_OUT_OF_ORDER, tvo_chain_controller_step(&ch.ctl, NULL, ch.apply, &cmd));
-    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_HOLDING);
+    /* an apply tick that does not advance: a call error, the command in force */
+    ASSERT_PERIOD(CALL_ERROR(TVO_ERR_TICK_NOT_ADVANCING), tvo_chain_controller_step(&ch.ctl, NULL, ch.apply, &cmd), cmd);
+    ASSERT_OUTCOME(TVO_OUTCOME_HELD, cmd);
     ch.apply += ch.cfg.period_ticks;
 
     /* measurements resume: a fresh, newer stamp is accepted again */
     memset(&m, 0, sizeof(m));
     m.y.d[0][0] = TVO_R(1.0);
     m.stamp_tick = ch.apply - ch.cfg.delay_ticks;
-    ASSERT_STATUS(TVO_OK, tvo_chain_controller_step(&ch.ctl, &m, ch.apply, &cmd));
-    ASSERT_FLAG_CLEAR(cmd.flags, TVO_FLAG_SAFE_STOP);
+    ASSERT_PERIOD(APPLIED, tvo_chain_controller_step(&ch.ctl, &m, ch.apply, &cmd), cmd);
+    ASSERT_NOT_OUTCOME(TVO_OUTCOME_STOPPED, cmd);
     TEST_ASSERT_TRUE(test_is_finite(cmd.u[0]) && test_is_finite(cmd.u[1]));
 }
 
@@ -715,8 +715,8 @@ static void check_lifted(uint8_t k, uint32_t delay, uint8_t comp, uint8_t zoh)
     lifted_matrix(k, a, h, comp ? 0.5 * tau : (tau > 0.0 ? 0.0 : 0.5 * h), 0, zoh, Mwrong);
 
     tvo_chain_command_t cmd;
-    ASSERT_STATUS(TVO_OK, ch_step(&ch, &cmd)); /* step 0: from rest (not the lifted recursion yet) */
-    ASSERT_STATUS(TVO_OK, ch_step(&ch, &cmd));
+    ASSERT_PERIOD(APPLIED, ch_step(&ch, &cmd), cmd); /* step 0: from rest (not the lifted recursion yet) */
+    ASSERT_PERIOD(APPLIED, ch_step(&ch, &cmd), cmd);
     double z[2][LMAX], zw[2][LMAX];
     for (int i = 0; i < 2; ++i) {
         error_state(&ch, p, i, z[i]);
@@ -724,7 +724,7 @@ static void check_lifted(uint8_t k, uint32_t delay, uint8_t comp, uint8_t zoh)
     }
     double worst = 0.0, worst_wrong = 0.0;
     for (int n = 0; n < 8; ++n) {
-        ASSERT_STATUS(TVO_OK, ch_step(&ch, &cmd));
+        ASSERT_PERIOD(APPLIED, ch_step(&ch, &cmd), cmd);
         for (int i = 0; i < 2; ++i) {
             double next[LMAX] = {0}, next_w[LMAX] = {0}, sim[LMAX];
             for (uint8_t r = 0; r <= k; ++r) {
@@ -776,7 +776,7 @@ static void ch_filtered_running(ch_t *ch, uint32_t steps)
     ASSERT_STATUS(TVO_OK, ch_init(ch));
     tvo_chain_command_t cmd;
     for (uint32_t i = 0; i < steps; ++i) {
-        ASSERT_STATUS(TVO_OK, ch_step(ch, &cmd));
+        ASSERT_PERIOD(APPLIED, ch_step(ch, &cmd), cmd);
     }
 }
 
@@ -796,38 +796,43 @@ static void test_chain_check_changes_nothing_and_says_what_the_step_would(void)
             tvo_chain_measurement_t m;
             uint32_t apply;
             int null_meas;
-            tvo_status_t expected;
+            test_period_t expected;
         } cases[8];
         size_t n = 0;
-        cases[n].m = good, cases[n].apply = ch.apply, cases[n].null_meas = 0, cases[n++].expected = TVO_OK;
+        cases[n].m = good, cases[n].apply = ch.apply, cases[n].null_meas = 0, cases[n++].expected = APPLIED;
         cases[n].m = good, cases[n].m.y.d[0][1] = TEST_NAN, cases[n].apply = ch.apply, cases[n].null_meas = 0;
-        cases[n++].expected = TVO_ERR_NOT_FINITE;
+        cases[n++].expected = HELD(NOT_FINITE);
         cases[n].m = good, cases[n].m.y.d[2][0] = TEST_INF, cases[n].apply = ch.apply, cases[n].null_meas = 0;
-        cases[n++].expected = filtered ? TVO_OK : TVO_ERR_NOT_FINITE; /* y'' is read only when measured */
+        cases[n++].expected = filtered ? APPLIED : HELD(NOT_FINITE); /* y'' is read only when measured */
         cases[n].m = good, cases[n].m.stamp_tick = ch.apply - ch.cfg.period_ticks - 1u, cases[n].apply = ch.apply;
-        cases[n].null_meas = 0, cases[n++].expected = TVO_ERR_STALE;
+        cases[n].null_meas = 0, cases[n++].expected = HELD(STALE);
         cases[n].m = good, cases[n].m.stamp_tick = ch.apply + 1u, cases[n].apply = ch.apply;
-        cases[n].null_meas = 0, cases[n++].expected = TVO_ERR_FUTURE_STAMP;
+        cases[n].null_meas = 0, cases[n++].expected = HELD(FUTURE_STAMP);
         cases[n].m = good, cases[n].apply = ch.apply - ch.cfg.period_ticks, cases[n].null_meas = 0;
-        cases[n++].expected = TVO_ERR_OUT_OF_ORDER;
+        cases[n++].expected = CALL_ERROR(TVO_ERR_TICK_NOT_ADVANCING);
         cases[n].m = good, cases[n].apply = ch.apply, cases[n].null_meas = 1;
-        cases[n++].expected = TVO_ERR_NO_MEASUREMENT;
+        cases[n++].expected = HELD(NO_MEASUREMENT);
         for (size_t i = 0; i < n; ++i) {
             const tvo_chain_measurement_t *m = cases[i].null_meas ? NULL : &cases[i].m;
             memcpy(&ch_before, &ch.ctl, sizeof(ch_before));
-            ASSERT_STATUS(cases[i].expected, tvo_chain_controller_check(&ch.ctl, m, cases[i].apply));
+            tvo_reason_t reason = TVO_REASON_COUNT;
+            ASSERT_STATUS(cases[i].expected.status, tvo_chain_controller_check(&ch.ctl, m, cases[i].apply, &reason));
+            if (cases[i].expected.status == TVO_OK) {
+                TEST_ASSERT_EQUAL_INT(cases[i].expected.reason, reason);
+            }
             TEST_ASSERT_EQUAL_MEMORY(&ch_before, &ch.ctl, sizeof(ch_before));
             memcpy(&ch_copy, &ch.ctl, sizeof(ch_copy));
             tvo_chain_command_t cmd;
-            ASSERT_STATUS(cases[i].expected, tvo_chain_controller_step(&ch_copy, m, cases[i].apply, &cmd));
+            ASSERT_PERIOD(cases[i].expected, tvo_chain_controller_step(&ch_copy, m, cases[i].apply, &cmd), cmd);
         }
     }
-    ASSERT_STATUS(TVO_ERR_NULL, tvo_chain_controller_check(NULL, NULL, 0u));
+    tvo_reason_t reason = TVO_REASON_NONE;
+    ASSERT_STATUS(TVO_ERR_NULL, tvo_chain_controller_check(NULL, NULL, 0u, &reason));
     tvo_chain_controller_t blank;
     memset(&blank, 0, sizeof(blank));
     tvo_chain_measurement_t m;
     memset(&m, 0, sizeof(m));
-    ASSERT_STATUS(TVO_ERR_NOT_INITIALIZED, tvo_chain_controller_check(&blank, &m, CH_EPOCH));
+    ASSERT_STATUS(TVO_ERR_NOT_INITIALIZED, tvo_chain_controller_check(&blank, &m, CH_EPOCH, &reason));
 }
 
 static void test_chain_safe_stop_drops_to_rest_without_advancing_the_clock(void)
@@ -838,8 +843,8 @@ static void test_chain_safe_stop_drops_to_rest_without_advancing_the_clock(void)
     const tvo_sample_clock_t clock_before = ch.ctl.clock;
     tvo_chain_command_t cmd;
     memset(&cmd, 0x5A, sizeof(cmd));
-    ASSERT_STATUS(TVO_OK, tvo_chain_controller_safe_stop(&ch.ctl, &cmd));
-    TEST_ASSERT_EQUAL_HEX32(TVO_FLAG_SAFE_STOP, cmd.flags);
+    ASSERT_PERIOD(STOPPED(STOP_REQUESTED), tvo_chain_controller_safe_stop(&ch.ctl, &cmd), cmd);
+    TEST_ASSERT_EQUAL_HEX32(0u, cmd.flags);
     for (int i = 0; i < TVO_MAX_OUTPUT_DIM; ++i) {
         ASSERT_NEAR(0.0, cmd.u[i], 0.0);
         ASSERT_NEAR(0.0, ch.ctl.held.u[i], 0.0);
@@ -850,8 +855,8 @@ static void test_chain_safe_stop_drops_to_rest_without_advancing_the_clock(void)
     TEST_ASSERT_EQUAL_UINT64(clock_before.elapsed.ticks, ch.ctl.clock.elapsed.ticks);
     /* The plant applies the stop; the next measurement is accepted, the filters restart at rest. */
     ch.u[0] = ch.u[1] = 0.0;
-    ASSERT_STATUS(TVO_OK, ch_step(&ch, &cmd));
-    ASSERT_FLAG_CLEAR(cmd.flags, TVO_FLAG_SAFE_STOP | TVO_FLAG_HOLDING);
+    ASSERT_PERIOD(APPLIED, ch_step(&ch, &cmd), cmd);
+    ASSERT_OUTCOME(TVO_OUTCOME_APPLIED, cmd);
     TEST_ASSERT_EQUAL_UINT8(0u, ch.ctl.clock.stopped);
     for (int i = 0; i < 2; ++i) {
         ASSERT_NEAR(0.0, ch.ctl.filter[0].output[i], 0.0);
@@ -859,7 +864,8 @@ static void test_chain_safe_stop_drops_to_rest_without_advancing_the_clock(void)
     ASSERT_STATUS(TVO_ERR_NULL, tvo_chain_controller_safe_stop(&ch.ctl, NULL));
     memset(&cmd, 0x5A, sizeof(cmd));
     ASSERT_STATUS(TVO_ERR_NULL, tvo_chain_controller_safe_stop(NULL, &cmd));
-    TEST_ASSERT_EQUAL_HEX32(TVO_FLAG_SAFE_STOP, cmd.flags);
+    TEST_ASSERT_EQUAL_HEX32(0u, cmd.flags);
+    ASSERT_OUTCOME(TVO_OUTCOME_STOPPED, cmd);
     tvo_chain_controller_t blank;
     memset(&blank, 0, sizeof(blank));
     ASSERT_STATUS(TVO_ERR_NOT_INITIALIZED, tvo_chain_controller_safe_stop(&blank, &cmd));
@@ -883,20 +889,20 @@ static void test_chain_refused_measurement_leaves_filters_and_stamp_untouched(vo
     double xs[2][3];
     tvo_chain_measurement_t m;
     tvo_chain_command_t cmd;
-    const tvo_status_t why[] = {TVO_ERR_STALE, TVO_ERR_FUTURE_STAMP};
+    const test_period_t why[] = {HELD(STALE), HELD(FUTURE_STAMP)};
     for (int i = 0; i < 2; ++i) {
         ch_sample(&ch, xs, &m);
         m.y.d[0][0] += TVO_R(0.25); /* a jump the filters would follow if they saw it */
         m.stamp_tick = (i == 0) ? ch.apply - ch.cfg.period_ticks - 1u : ch.apply + 1u;
         memcpy(&ch_before, &ch.ctl, sizeof(ch_before));
-        ASSERT_STATUS(why[i], tvo_chain_controller_step(&ch.ctl, &m, ch.apply, &cmd));
+        ASSERT_PERIOD(why[i], tvo_chain_controller_step(&ch.ctl, &m, ch.apply, &cmd), cmd);
         assert_chain_untouched(&ch_before, &ch.ctl);
         ch.apply += ch.cfg.period_ticks;
     }
     ch_sample(&ch, xs, &m);
     m.y.d[0][1] = TEST_NAN;
     memcpy(&ch_before, &ch.ctl, sizeof(ch_before));
-    ASSERT_STATUS(TVO_ERR_NOT_FINITE, tvo_chain_controller_step(&ch.ctl, &m, ch.apply, &cmd));
+    ASSERT_PERIOD(HELD(NOT_FINITE), tvo_chain_controller_step(&ch.ctl, &m, ch.apply, &cmd), cmd);
     assert_chain_untouched(&ch_before, &ch.ctl);
 }
 
@@ -917,7 +923,7 @@ static void test_chain_law_failure_after_the_filters_leaves_them_untouched(void)
     ASSERT_STATUS(TVO_OK, tvo_target_stream_update(&ch.target, 0u, TEST_CONST_STREAM(sample)));
     tvo_chain_command_t cmd;
     for (int i = 0; i < 8; ++i) {
-        ASSERT_STATUS(TVO_OK, ch_step(&ch, &cmd));
+        ASSERT_PERIOD(APPLIED, ch_step(&ch, &cmd), cmd);
     }
     TEST_ASSERT_EQUAL_UINT8(1u, ch.ctl.filter[1].primed);
     ASSERT_STATUS(TVO_OK, tvo_target_stream_update(&ch.target, 1000000u, TEST_CONST_STREAM(sample)));
@@ -925,11 +931,9 @@ static void test_chain_law_failure_after_the_filters_leaves_them_untouched(void)
     tvo_chain_measurement_t m;
     ch_sample(&ch, xs, &m);
     m.y.d[0][0] += TVO_R(0.1);
-    ASSERT_STATUS(TVO_OK, tvo_chain_controller_check(&ch.ctl, &m, ch.apply));
+    ASSERT_CHECK_USES(tvo_chain_controller_check, &ch.ctl, &m, ch.apply);
     memcpy(&ch_before, &ch.ctl, sizeof(ch_before));
-    const tvo_status_t st = tvo_chain_controller_step(&ch.ctl, &m, ch.apply, &cmd);
-    TEST_ASSERT_TRUE(st != TVO_OK);
-    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_HOLDING);
+    ASSERT_PERIOD(HELD(FUTURE_STAMP), tvo_chain_controller_step(&ch.ctl, &m, ch.apply, &cmd), cmd); /* the target's */
     assert_chain_untouched(&ch_before, &ch.ctl);
 }
 

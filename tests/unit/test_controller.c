@@ -45,7 +45,7 @@ static void fx_set_pose(fx_t *fx, uint8_t r, double x, double y, double th)
 static void run_ok(fx_t *fx, int steps)
 {
     for (int i = 0; i < steps; ++i) {
-        ASSERT_STATUS(TVO_OK, fx_closed_loop_step(fx, NULL));
+        ASSERT_PERIOD(APPLIED, fx_closed_loop_step(fx, NULL), fx->cmd);
     }
 }
 
@@ -121,7 +121,7 @@ static void expect_not_initialized(fx_t *fx)
     ASSERT_STATUS(TVO_ERR_NOT_INITIALIZED, tvo_controller_step(&fx->ctl, &m, FX_PERIOD, &cmd));
     ASSERT_NEAR(0.0, cmd.speed_mps[0], 0.0);
     ASSERT_NEAR(0.0, cmd.turn_rate_radps[0], 0.0);
-    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_SAFE_STOP);
+    ASSERT_OUTCOME(TVO_OUTCOME_STOPPED, cmd);
 }
 
 static void expect_rejected(fx_t *fx, tvo_param_t param)
@@ -461,7 +461,7 @@ static void test_first_step_from_rest_gives_finite_command(void)
     fx_static_point(&fx_a, 3.0, 4.0);
     fx_start(&fx_a, 0);
     tvo_command_t cmd;
-    ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_a, &cmd));
+    ASSERT_PERIOD(APPLIED, fx_closed_loop_step(&fx_a, &cmd), cmd);
     assert_command_finite(&cmd, 1);
     TEST_ASSERT_TRUE(test_d(cmd.speed_mps[0]) > 0.0); /* target ahead-left: speeds up */
     TEST_ASSERT_TRUE(test_d(cmd.turn_rate_radps[0]) > 0.0); /* and turns left */
@@ -474,7 +474,7 @@ static void test_zero_speed_start_gives_finite_turn_rate(void)
     fx_static_point(&fx_a, 0.0, 1.0);
     fx_start(&fx_a, 0);
     tvo_command_t cmd;
-    ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_a, &cmd));
+    ASSERT_PERIOD(APPLIED, fx_closed_loop_step(&fx_a, &cmd), cmd);
     TEST_ASSERT_TRUE(test_is_finite(cmd.turn_rate_radps[0]));
     TEST_ASSERT_TRUE(test_d(cmd.turn_rate_radps[0]) > 0.0);
     ASSERT_LE(fabs(test_d(cmd.turn_rate_radps[0])), test_d(fx_a.cfg.omega_max_radps), "|omega|");
@@ -498,7 +498,7 @@ static void test_unsaturated_command_is_the_flat_map_of_the_laws_demand(void)
     tvo_measurement_t m = measure_now(&fx_a, stamp);
     m.heading_rad[0] = TVO_R(0.1);
     tvo_command_t cmd;
-    ASSERT_STATUS(TVO_OK, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd));
+    ASSERT_PERIOD(APPLIED, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), cmd);
     ASSERT_FLAG_CLEAR(cmd.flags, TVO_FLAG_OMEGA_SATURATED | TVO_FLAG_ACCEL_SATURATED | TVO_FLAG_SPEED_SATURATED);
     const tvo_controller_telemetry_t *tm = &fx_a.ctl.telemetry;
     const double ax = test_d(tm->output_accel_mps2[0]), ay = test_d(tm->output_accel_mps2[1]);
@@ -525,7 +525,7 @@ static void test_measured_speed_resyncs_the_speed_state(void)
     m.speed_mps[0] = TVO_R(0.7);
     m.speed_valid = 1;
     tvo_command_t cmd;
-    ASSERT_STATUS(TVO_OK, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd));
+    ASSERT_PERIOD(APPLIED, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), cmd);
     ASSERT_NEAR(0.7 * cos(0.4), fx_a.ctl.telemetry.output_rate_mps[0], TEST_TOL(8, 1.0));
     ASSERT_NEAR(0.7 * sin(0.4), fx_a.ctl.telemetry.output_rate_mps[1], TEST_TOL(8, 1.0));
 }
@@ -537,8 +537,8 @@ static void test_pose_mode_requires_heading(void)
     tvo_measurement_t m = measure_now(&fx_a, fx_a.apply - FX_DELAY);
     m.heading_valid = 0;
     tvo_command_t cmd;
-    ASSERT_STATUS(TVO_ERR_MISSING_FIELD, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd));
-    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_HOLDING);
+    ASSERT_PERIOD(HELD(MISSING_FIELD), tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), cmd);
+    ASSERT_OUTCOME(TVO_OUTCOME_HELD, cmd);
 }
 
 /* Runs robot 0 on a circle for a while so the held command has a clear speed and turn rate. */
@@ -562,7 +562,7 @@ static void check_prediction_over_age(uint32_t age_ticks)
     tvo_measurement_t m;
     fx_measure(&fx_a, &meas_pose, fx_a.apply - age_ticks, &m);
     tvo_command_t cmd;
-    ASSERT_STATUS(TVO_OK, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd));
+    ASSERT_PERIOD(APPLIED, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), cmd);
     tvo_pose_t expected;
     tvo_unicycle_predict(&meas_pose, held.speed_mps[0], held.turn_rate_radps[0],
                                                test_r((double)age_ticks / FX_TICK_HZ), &expected);
@@ -595,7 +595,7 @@ static void test_without_compensation_law_sees_the_measured_pose(void)
     tvo_measurement_t m;
     fx_measure(&fx_a, &meas_pose, fx_a.apply - FX_DELAY, &m);
     tvo_command_t cmd;
-    ASSERT_STATUS(TVO_OK, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd));
+    ASSERT_PERIOD(APPLIED, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), cmd);
     const tvo_controller_telemetry_t *tm = &fx_a.ctl.telemetry;
     ASSERT_NEAR(test_d(TVO_R(0.9)), tm->output_m[0], 0.0);
     ASSERT_NEAR(test_d(TVO_R(0.35)), tm->output_m[1], 0.0);
@@ -631,7 +631,7 @@ static void test_identical_inputs_give_bit_identical_commands(void)
 
 static tvo_status_t init_pose_velocity(fx_t *fx)
 {
-    fx->bad_param = TVO_PARAM_EPOCH; /* anything but NONE: init must write it */
+    fx->bad_param = TVO_PARAM_INITIAL_SPEED; /* anything but NONE: init must write it */
     return tvo_controller_init_pose_velocity(&fx->ctl, &fx->cfg, &fx->objective, fx->epoch, &fx->bad_param);
 }
 
@@ -647,7 +647,7 @@ static void test_pose_velocity_init_refuses_the_position_source(void)
     fx_static_point(&fx_a, 1.0, 1.0);
     fx_a.cfg.velocity_source = TVO_VELOCITY_FROM_POSITION;
     fx_start(&fx_a, 0u); /* the full init takes it */
-    ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_a, NULL));
+    ASSERT_PERIOD(APPLIED, fx_closed_loop_step(&fx_a, NULL), (fx_a).cmd);
     expect_pose_init_refuses(&fx_a, TVO_PARAM_VELOCITY_SOURCE); /* and a refusal undoes the controller */
     fx_a.cfg.velocity_source = (tvo_velocity_source_t)7;
     expect_pose_init_refuses(&fx_a, TVO_PARAM_VELOCITY_SOURCE);
@@ -655,7 +655,7 @@ static void test_pose_velocity_init_refuses_the_position_source(void)
 
 static void test_pose_velocity_init_validates_as_the_full_init(void)
 {
-    tvo_param_t bad = TVO_PARAM_EPOCH;
+    tvo_param_t bad = TVO_PARAM_INITIAL_SPEED;
     fx_static_point(&fx_a, 1.0, 1.0);
     ASSERT_STATUS(TVO_OK, fx_init_controller(&fx_a, 0));
     ASSERT_STATUS(TVO_ERR_NULL, tvo_controller_init_pose_velocity(NULL, &fx_a.cfg, &fx_a.objective, 0, &bad));
@@ -712,7 +712,7 @@ static void test_pose_velocity_init_steps_bit_identically(void)
         tvo_command_t ca, cb;
         const tvo_status_t sa = fx_closed_loop_step(&fx_a, &ca);
         ASSERT_STATUS(sa, fx_closed_loop_step(&fx_b, &cb));
-        stopped |= sa == TVO_ERR_WATCHDOG;
+        stopped |= ca.outcome == TVO_OUTCOME_STOPPED && ca.reason == TVO_REASON_WATCHDOG;
         assert_commands_bit_identical(&ca, &cb);
         TEST_ASSERT_EQUAL_MEMORY(&fx_a.ctl.telemetry, &fx_b.ctl.telemetry, sizeof(fx_a.ctl.telemetry));
         TEST_ASSERT_EQUAL_MEMORY(fx_a.ctl.speed_state_mps, fx_b.ctl.speed_state_mps, sizeof(fx_a.ctl.speed_state_mps));
@@ -721,14 +721,15 @@ static void test_pose_velocity_init_steps_bit_identically(void)
         assert_commands_bit_identical(&fx_a.ctl.held, &fx_b.ctl.held);
     }
     TEST_ASSERT_TRUE(stopped); /* the run went through the watchdog's stop */
-    ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_b, NULL)); /* and came back */
-    /* The position source set by hand afterwards: refused as not initialised, the command held. */
+    ASSERT_PERIOD(APPLIED, fx_closed_loop_step(&fx_b, NULL), (fx_b).cmd); /* and came back */
+    /* The position source set by hand afterwards: refused as not linked, the command held. */
     fx_b.ctl.cfg.velocity_source = TVO_VELOCITY_FROM_POSITION;
     tvo_command_t cmd;
-    ASSERT_STATUS(TVO_ERR_NOT_INITIALIZED, fx_closed_loop_step(&fx_b, &cmd));
-    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_HOLDING);
+    ASSERT_PERIOD(HELD(SOURCE_NOT_LINKED), fx_closed_loop_step(&fx_b, &cmd), cmd);
     tvo_measurement_t m = measure_now(&fx_b, fx_b.apply - FX_DELAY);
-    ASSERT_STATUS(TVO_ERR_NOT_INITIALIZED, tvo_controller_check(&fx_b.ctl, &m, fx_b.apply));
+    tvo_reason_t reason = TVO_REASON_NONE;
+    ASSERT_STATUS(TVO_OK, tvo_controller_check(&fx_b.ctl, &m, fx_b.apply, &reason));
+    TEST_ASSERT_EQUAL_INT(TVO_REASON_SOURCE_NOT_LINKED, reason);
 }
 
 /* ------------------------------------------------------------------------------------------------
@@ -748,7 +749,7 @@ static uint32_t run_checking_limits(fx_t *fx, int steps)
     for (int i = 0; i < steps; ++i) {
         const double v_prev = test_d(fx->cmd.speed_mps[0]);
         tvo_command_t cmd;
-        ASSERT_STATUS(TVO_OK, fx_closed_loop_step(fx, &cmd));
+        ASSERT_PERIOD(APPLIED, fx_closed_loop_step(fx, &cmd), cmd);
         const double w = test_d(cmd.turn_rate_radps[0]), v = test_d(cmd.speed_mps[0]);
         const double a = test_d(fx->ctl.telemetry.accel_mps2[0]);
         ASSERT_LE(fabs(w), wmax + slack, "|omega| above omega_max");
@@ -785,7 +786,7 @@ static void test_first_step_toward_far_target_saturates_turn_rate(void)
     fx_static_point(&fx_a, 0.0, 1000.0);
     fx_start(&fx_a, 0);
     tvo_command_t cmd;
-    ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_a, &cmd));
+    ASSERT_PERIOD(APPLIED, fx_closed_loop_step(&fx_a, &cmd), cmd);
     ASSERT_NEAR(test_d(fx_a.cfg.omega_max_radps), cmd.turn_rate_radps[0], TEST_TOL(4, 7.0));
     ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_OMEGA_SATURATED);
 }
@@ -795,7 +796,7 @@ static void test_far_target_ahead_saturates_acceleration(void)
     fx_static_point(&fx_a, 1000.0, 0.0);
     fx_start(&fx_a, 0);
     tvo_command_t cmd;
-    ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_a, &cmd));
+    ASSERT_PERIOD(APPLIED, fx_closed_loop_step(&fx_a, &cmd), cmd);
     ASSERT_NEAR(test_d(fx_a.cfg.accel_max_mps2), fx_a.ctl.telemetry.accel_mps2[0], TEST_TOL(4, 15.0));
     ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_ACCEL_SATURATED);
     ASSERT_NEAR(0.0, cmd.turn_rate_radps[0], TEST_TOL(4, 1.0));
@@ -818,12 +819,12 @@ static void test_speed_limit_does_not_wind_up(void)
     fx_line_target(&fx_a.target[0], -1000.0, 0.0, 0.0, 0.0); /* the term points at this storage */
     const double amax_h = test_d(fx_a.cfg.accel_max_mps2) * h_s(&fx_a);
     tvo_command_t cmd;
-    ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_a, &cmd));
+    ASSERT_PERIOD(APPLIED, fx_closed_loop_step(&fx_a, &cmd), cmd);
     ASSERT_NEAR(-test_d(fx_a.cfg.accel_max_mps2), fx_a.ctl.telemetry.accel_mps2[0], TEST_TOL(4, 15.0));
     ASSERT_LE(test_d(cmd.speed_mps[0]), vmax - 0.45 * amax_h, "first speed after reversal");
     double prev = test_d(cmd.speed_mps[0]);
     for (int i = 0; i < 5; ++i) {
-        ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_a, &cmd));
+        ASSERT_PERIOD(APPLIED, fx_closed_loop_step(&fx_a, &cmd), cmd);
         ASSERT_NEAR(prev - amax_h, cmd.speed_mps[0], TEST_TOL(64, 2.0));
         prev = test_d(cmd.speed_mps[0]);
     }
@@ -842,11 +843,11 @@ static void fx_running(fx_t *fx)
     run_ok(fx, 10);
 }
 
-static void expect_held(const fx_t *fx, tvo_status_t expected, tvo_status_t st, const tvo_command_t *cmd)
+static void expect_held(const fx_t *fx, test_period_t expected, tvo_status_t st, const tvo_command_t *cmd)
 {
-    ASSERT_STATUS(expected, st);
+    test_assert_period(expected, st, cmd->outcome, cmd->reason, __LINE__);
     assert_same_motion(&fx->cmd, cmd, 1);
-    ASSERT_FLAG_SET(cmd->flags, TVO_FLAG_HOLDING);
+    ASSERT_OUTCOME(TVO_OUTCOME_HELD, *cmd);
 }
 
 static void test_nan_position_is_rejected_and_previous_command_held(void)
@@ -855,7 +856,7 @@ static void test_nan_position_is_rejected_and_previous_command_held(void)
     tvo_measurement_t m = measure_now(&fx_a, fx_a.apply - FX_DELAY);
     m.position_m[0][1] = TEST_NAN;
     tvo_command_t cmd;
-    expect_held(&fx_a, TVO_ERR_NOT_FINITE, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), &cmd);
+    expect_held(&fx_a, HELD(NOT_FINITE), tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), &cmd);
 }
 
 static void test_infinite_heading_is_rejected_and_previous_command_held(void)
@@ -864,7 +865,7 @@ static void test_infinite_heading_is_rejected_and_previous_command_held(void)
     tvo_measurement_t m = measure_now(&fx_a, fx_a.apply - FX_DELAY);
     m.heading_rad[0] = TEST_INF;
     tvo_command_t cmd;
-    expect_held(&fx_a, TVO_ERR_NOT_FINITE, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), &cmd);
+    expect_held(&fx_a, HELD(NOT_FINITE), tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), &cmd);
 }
 
 static void test_nan_speed_is_rejected_when_marked_valid(void)
@@ -874,7 +875,7 @@ static void test_nan_speed_is_rejected_when_marked_valid(void)
     m.speed_mps[0] = TEST_NAN;
     m.speed_valid = 1;
     tvo_command_t cmd;
-    expect_held(&fx_a, TVO_ERR_NOT_FINITE, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), &cmd);
+    expect_held(&fx_a, HELD(NOT_FINITE), tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), &cmd);
 }
 
 static void test_measurement_older_than_one_period_is_stale(void)
@@ -882,7 +883,7 @@ static void test_measurement_older_than_one_period_is_stale(void)
     fx_running(&fx_a);
     tvo_measurement_t m = measure_now(&fx_a, fx_a.apply - FX_PERIOD - 1u);
     tvo_command_t cmd;
-    expect_held(&fx_a, TVO_ERR_STALE, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), &cmd);
+    expect_held(&fx_a, HELD(STALE), tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), &cmd);
 }
 
 static void test_measurement_exactly_one_period_old_is_accepted(void)
@@ -890,7 +891,7 @@ static void test_measurement_exactly_one_period_old_is_accepted(void)
     fx_running(&fx_a);
     tvo_measurement_t m = measure_now(&fx_a, fx_a.apply - FX_PERIOD);
     tvo_command_t cmd;
-    ASSERT_STATUS(TVO_OK, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd));
+    ASSERT_PERIOD(APPLIED, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), cmd);
 }
 
 static void test_repeated_stamp_is_out_of_order(void)
@@ -900,10 +901,10 @@ static void test_repeated_stamp_is_out_of_order(void)
     fx_running(&fx_a);
     tvo_command_t cmd;
     tvo_measurement_t m = measure_now(&fx_a, fx_a.apply);
-    ASSERT_STATUS(TVO_OK, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd));
+    ASSERT_PERIOD(APPLIED, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), cmd);
     fx_a.cmd = cmd;
     fx_a.apply += FX_PERIOD;
-    expect_held(&fx_a, TVO_ERR_OUT_OF_ORDER, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), &cmd);
+    expect_held(&fx_a, HELD(STAMP_NOT_NEWER), tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), &cmd);
 }
 
 static void test_earlier_stamp_is_out_of_order(void)
@@ -914,11 +915,11 @@ static void test_earlier_stamp_is_out_of_order(void)
     tvo_command_t cmd;
     const uint32_t stamp = fx_a.apply;
     tvo_measurement_t m = measure_now(&fx_a, stamp);
-    ASSERT_STATUS(TVO_OK, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd));
+    ASSERT_PERIOD(APPLIED, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), cmd);
     fx_a.cmd = cmd;
     fx_a.apply += FX_PERIOD / 2u;
     m.stamp_tick = stamp - 1u;
-    expect_held(&fx_a, TVO_ERR_OUT_OF_ORDER, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), &cmd);
+    expect_held(&fx_a, HELD(STAMP_NOT_NEWER), tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), &cmd);
 }
 
 static void test_stamp_after_apply_tick_is_future(void)
@@ -926,7 +927,7 @@ static void test_stamp_after_apply_tick_is_future(void)
     fx_running(&fx_a);
     tvo_measurement_t m = measure_now(&fx_a, fx_a.apply + 1u);
     tvo_command_t cmd;
-    expect_held(&fx_a, TVO_ERR_FUTURE_STAMP, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), &cmd);
+    expect_held(&fx_a, HELD(FUTURE_STAMP), tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), &cmd);
 }
 
 static void test_apply_tick_not_advancing_is_out_of_order(void)
@@ -935,9 +936,11 @@ static void test_apply_tick_not_advancing_is_out_of_order(void)
     const uint32_t last_apply = fx_a.apply - FX_PERIOD;
     tvo_measurement_t m = measure_now(&fx_a, last_apply - 1u);
     tvo_command_t cmd;
-    expect_held(&fx_a, TVO_ERR_OUT_OF_ORDER, tvo_controller_step(&fx_a.ctl, &m, last_apply, &cmd), &cmd);
+    expect_held(&fx_a, CALL_ERROR(TVO_ERR_TICK_NOT_ADVANCING), tvo_controller_step(&fx_a.ctl, &m, last_apply, &cmd),
+                &cmd);
     m.stamp_tick = last_apply - FX_PERIOD / 2u;
-    expect_held(&fx_a, TVO_ERR_OUT_OF_ORDER, tvo_controller_step(&fx_a.ctl, &m, last_apply - FX_PERIOD, &cmd),
+    expect_held(&fx_a, CALL_ERROR(TVO_ERR_TICK_NOT_ADVANCING),
+                tvo_controller_step(&fx_a.ctl, &m, last_apply - FX_PERIOD, &cmd),
                 &cmd);
 }
 
@@ -947,12 +950,12 @@ static void test_rejected_measurement_leaves_the_controller_usable(void)
     tvo_measurement_t bad = measure_now(&fx_a, fx_a.apply - FX_DELAY);
     bad.position_m[0][0] = TEST_NAN;
     tvo_command_t cmd;
-    ASSERT_STATUS(TVO_ERR_NOT_FINITE, tvo_controller_step(&fx_a.ctl, &bad, fx_a.apply, &cmd));
+    ASSERT_PERIOD(HELD(NOT_FINITE), tvo_controller_step(&fx_a.ctl, &bad, fx_a.apply, &cmd), cmd);
     fx_a.apply += FX_PERIOD;
     tvo_measurement_t good = measure_now(&fx_a, fx_a.apply - FX_DELAY);
-    ASSERT_STATUS(TVO_OK, tvo_controller_step(&fx_a.ctl, &good, fx_a.apply, &cmd));
+    ASSERT_PERIOD(APPLIED, tvo_controller_step(&fx_a.ctl, &good, fx_a.apply, &cmd), cmd);
     assert_command_finite(&cmd, 1);
-    ASSERT_FLAG_CLEAR(cmd.flags, TVO_FLAG_HOLDING);
+    ASSERT_NOT_OUTCOME(TVO_OUTCOME_HELD, cmd);
 }
 
 /* ------------------------------------------------------------------------------------------------
@@ -966,21 +969,21 @@ static void test_missing_measurement_holds_then_watchdog_stops(void)
     fx_a.meas_mode = FX_MEAS_NONE;
     tvo_command_t cmd;
     for (uint32_t i = 1; i < fx_a.cfg.watchdog_periods; ++i) {
-        ASSERT_STATUS(TVO_ERR_NO_MEASUREMENT, fx_closed_loop_step(&fx_a, &cmd));
+        ASSERT_PERIOD(HELD(NO_MEASUREMENT), fx_closed_loop_step(&fx_a, &cmd), cmd);
         assert_same_motion(&last_good, &cmd, 1);
-        ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_HOLDING);
-        ASSERT_FLAG_CLEAR(cmd.flags, TVO_FLAG_SAFE_STOP);
+        ASSERT_OUTCOME(TVO_OUTCOME_HELD, cmd);
+        ASSERT_NOT_OUTCOME(TVO_OUTCOME_STOPPED, cmd);
     }
-    ASSERT_STATUS(TVO_ERR_WATCHDOG, fx_closed_loop_step(&fx_a, &cmd));
+    ASSERT_PERIOD(STOPPED(WATCHDOG), fx_closed_loop_step(&fx_a, &cmd), cmd);
     ASSERT_NEAR(0.0, cmd.speed_mps[0], 0.0);
     ASSERT_NEAR(0.0, cmd.turn_rate_radps[0], 0.0);
-    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_SAFE_STOP);
+    ASSERT_OUTCOME(TVO_OUTCOME_STOPPED, cmd);
     /* It stays stopped while nothing arrives. */
     for (int i = 0; i < 3; ++i) {
-        ASSERT_STATUS(TVO_ERR_WATCHDOG, fx_closed_loop_step(&fx_a, &cmd));
+        ASSERT_PERIOD(STOPPED(WATCHDOG), fx_closed_loop_step(&fx_a, &cmd), cmd);
         ASSERT_NEAR(0.0, cmd.speed_mps[0], 0.0);
         ASSERT_NEAR(0.0, cmd.turn_rate_radps[0], 0.0);
-        ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_SAFE_STOP);
+        ASSERT_OUTCOME(TVO_OUTCOME_STOPPED, cmd);
     }
 }
 
@@ -992,10 +995,10 @@ static void test_watchdog_recovers_from_rest_when_measurements_resume(void)
     for (uint32_t i = 0; i < fx_a.cfg.watchdog_periods + 2u; ++i) {
         (void)fx_closed_loop_step(&fx_a, &cmd);
     }
-    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_SAFE_STOP);
+    ASSERT_OUTCOME(TVO_OUTCOME_STOPPED, cmd);
     fx_a.meas_mode = FX_MEAS_NORMAL;
-    ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_a, &cmd));
-    ASSERT_FLAG_CLEAR(cmd.flags, TVO_FLAG_SAFE_STOP | TVO_FLAG_HOLDING);
+    ASSERT_PERIOD(APPLIED, fx_closed_loop_step(&fx_a, &cmd), cmd);
+    ASSERT_OUTCOME(TVO_OUTCOME_APPLIED, cmd);
     assert_command_finite(&cmd, 1);
     /* The speed state was reset: the robot restarts from rest, within one period's acceleration. */
     ASSERT_LE(fabs(test_d(cmd.speed_mps[0])), test_d(fx_a.cfg.accel_max_mps2) * h_s(&fx_a) + TEST_TOL(8, 1.0),
@@ -1009,11 +1012,11 @@ static void test_watchdog_counts_rejected_measurements(void)
     fx_a.meas_mode = FX_MEAS_NAN;
     tvo_command_t cmd;
     for (uint32_t i = 1; i < fx_a.cfg.watchdog_periods; ++i) {
-        ASSERT_STATUS(TVO_ERR_NOT_FINITE, fx_closed_loop_step(&fx_a, &cmd));
-        ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_HOLDING);
+        ASSERT_PERIOD(HELD(NOT_FINITE), fx_closed_loop_step(&fx_a, &cmd), cmd);
+        ASSERT_OUTCOME(TVO_OUTCOME_HELD, cmd);
     }
-    ASSERT_STATUS(TVO_ERR_WATCHDOG, fx_closed_loop_step(&fx_a, &cmd));
-    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_SAFE_STOP);
+    ASSERT_PERIOD(STOPPED(WATCHDOG), fx_closed_loop_step(&fx_a, &cmd), cmd);
+    ASSERT_OUTCOME(TVO_OUTCOME_STOPPED, cmd);
     ASSERT_NEAR(0.0, cmd.speed_mps[0], 0.0);
     ASSERT_NEAR(0.0, cmd.turn_rate_radps[0], 0.0);
 }
@@ -1025,10 +1028,10 @@ static void test_one_good_measurement_resets_the_watchdog_count(void)
     for (int round = 0; round < 3; ++round) {
         fx_a.meas_mode = FX_MEAS_NONE;
         for (uint32_t i = 1; i < fx_a.cfg.watchdog_periods; ++i) {
-            ASSERT_STATUS(TVO_ERR_NO_MEASUREMENT, fx_closed_loop_step(&fx_a, &cmd));
+            ASSERT_PERIOD(HELD(NO_MEASUREMENT), fx_closed_loop_step(&fx_a, &cmd), cmd);
         }
         fx_a.meas_mode = FX_MEAS_NORMAL;
-        ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_a, &cmd));
+        ASSERT_PERIOD(APPLIED, fx_closed_loop_step(&fx_a, &cmd), cmd);
     }
 }
 
@@ -1055,31 +1058,31 @@ static void test_a_refused_step_changes_nothing_its_clock_included(void)
     tvo_command_t cmd;
     tvo_measurement_t m = measure_now(&fx_a, apply - FX_DELAY);
     m.position_m[0][1] = TEST_NAN;
-    ASSERT_STATUS(TVO_ERR_NOT_FINITE, tvo_controller_step(&fx_a.ctl, &m, apply, &cmd));
+    ASSERT_PERIOD(HELD(NOT_FINITE), tvo_controller_step(&fx_a.ctl, &m, apply, &cmd), cmd);
     assert_state_unchanged(&before, &fx_a.ctl, "not finite");
     assert_same_motion(&before.held, &cmd, 1);
-    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_HOLDING);
+    ASSERT_OUTCOME(TVO_OUTCOME_HELD, cmd);
     m = measure_now(&fx_a, apply - FX_PERIOD - 1u);
-    ASSERT_STATUS(TVO_ERR_STALE, tvo_controller_step(&fx_a.ctl, &m, apply, &cmd));
+    ASSERT_PERIOD(HELD(STALE), tvo_controller_step(&fx_a.ctl, &m, apply, &cmd), cmd);
     assert_state_unchanged(&before, &fx_a.ctl, "stale");
     m = measure_now(&fx_a, apply + 1u);
-    ASSERT_STATUS(TVO_ERR_FUTURE_STAMP, tvo_controller_step(&fx_a.ctl, &m, apply, &cmd));
+    ASSERT_PERIOD(HELD(FUTURE_STAMP), tvo_controller_step(&fx_a.ctl, &m, apply, &cmd), cmd);
     assert_state_unchanged(&before, &fx_a.ctl, "future");
     m = measure_now(&fx_a, apply - FX_DELAY);
     m.speed_valid = 1;
     m.speed_mps[0] = test_r(1e3);
-    ASSERT_STATUS(TVO_ERR_IMPLAUSIBLE_MEASUREMENT, tvo_controller_step(&fx_a.ctl, &m, apply, &cmd));
+    ASSERT_PERIOD(HELD(IMPLAUSIBLE_MEASUREMENT), tvo_controller_step(&fx_a.ctl, &m, apply, &cmd), cmd);
     assert_state_unchanged(&before, &fx_a.ctl, "implausible");
     m = measure_now(&fx_a, apply - FX_PERIOD - FX_DELAY);
-    ASSERT_STATUS(TVO_ERR_OUT_OF_ORDER, tvo_controller_step(&fx_a.ctl, &m, apply - FX_PERIOD, &cmd));
+    ASSERT_PERIOD(CALL_ERROR(TVO_ERR_TICK_NOT_ADVANCING), tvo_controller_step(&fx_a.ctl, &m, apply - FX_PERIOD, &cmd), cmd);
     assert_state_unchanged(&before, &fx_a.ctl, "apply tick not advancing");
     /* The period is still open: a good measurement for it is served, as if nothing had come before. */
     tvo_controller_t twin;
     memcpy(&twin, &before, sizeof(twin));
     m = measure_now(&fx_a, apply - FX_DELAY);
     tvo_command_t twin_cmd;
-    ASSERT_STATUS(TVO_OK, tvo_controller_step(&fx_a.ctl, &m, apply, &cmd));
-    ASSERT_STATUS(TVO_OK, tvo_controller_step(&twin, &m, apply, &twin_cmd));
+    ASSERT_PERIOD(APPLIED, tvo_controller_step(&fx_a.ctl, &m, apply, &cmd), cmd);
+    ASSERT_PERIOD(APPLIED, tvo_controller_step(&twin, &m, apply, &twin_cmd), twin_cmd);
     assert_commands_bit_identical(&twin_cmd, &cmd);
 }
 
@@ -1092,10 +1095,10 @@ static void test_miss_counts_one_period_and_is_the_step_without_a_measurement(vo
     const uint32_t apply = fx_a.apply;
     tvo_command_t cmd;
     tvo_command_t twin_cmd;
-    ASSERT_STATUS(TVO_ERR_NO_MEASUREMENT, tvo_controller_miss(&fx_a.ctl, apply, &cmd));
-    ASSERT_STATUS(TVO_ERR_NO_MEASUREMENT, tvo_controller_step(&twin, NULL, apply, &twin_cmd));
+    ASSERT_PERIOD(HELD(NO_MEASUREMENT), tvo_controller_miss(&fx_a.ctl, apply, &cmd), cmd);
+    ASSERT_PERIOD(HELD(NO_MEASUREMENT), tvo_controller_step(&twin, NULL, apply, &twin_cmd), twin_cmd);
     assert_same_motion(&in_force, &cmd, 1);
-    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_HOLDING);
+    ASSERT_OUTCOME(TVO_OUTCOME_HELD, cmd);
     assert_commands_bit_identical(&twin_cmd, &cmd);
     TEST_ASSERT_EQUAL_HEX32(apply, fx_a.ctl.clock.last_apply_tick);
     TEST_ASSERT_EQUAL_UINT32(1u, fx_a.ctl.clock.periods_without_measurement);
@@ -1104,18 +1107,17 @@ static void test_miss_counts_one_period_and_is_the_step_without_a_measurement(vo
     tvo_controller_t before;
     state_of(&fx_a.ctl, &before);
     const tvo_measurement_t m = measure_now(&fx_a, apply - FX_DELAY);
-    ASSERT_STATUS(TVO_ERR_OUT_OF_ORDER, tvo_controller_step(&fx_a.ctl, &m, apply, &cmd));
-    ASSERT_STATUS(TVO_ERR_OUT_OF_ORDER, tvo_controller_miss(&fx_a.ctl, apply, &cmd));
+    ASSERT_PERIOD(CALL_ERROR(TVO_ERR_TICK_NOT_ADVANCING), tvo_controller_step(&fx_a.ctl, &m, apply, &cmd), cmd);
+    ASSERT_PERIOD(CALL_ERROR(TVO_ERR_TICK_NOT_ADVANCING), tvo_controller_miss(&fx_a.ctl, apply, &cmd), cmd);
     assert_state_unchanged(&before, &fx_a.ctl, "miss at a counted period");
     /* A late miss counts every period since the last application: watchdog_periods - 1 more expire it. */
-    ASSERT_STATUS(TVO_ERR_WATCHDOG,
-                  tvo_controller_miss(&fx_a.ctl, apply + (fx_a.cfg.watchdog_periods - 1u) * FX_PERIOD, &cmd));
-    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_SAFE_STOP);
+    ASSERT_PERIOD(STOPPED(WATCHDOG), tvo_controller_miss(&fx_a.ctl, apply + (fx_a.cfg.watchdog_periods - 1u) * FX_PERIOD, &cmd), cmd);
+    ASSERT_OUTCOME(TVO_OUTCOME_STOPPED, cmd);
     ASSERT_NEAR(0.0, cmd.speed_mps[0], 0.0);
     TEST_ASSERT_EQUAL_UINT8(1u, fx_a.ctl.clock.stopped);
     ASSERT_STATUS(TVO_ERR_NULL, tvo_controller_miss(&fx_a.ctl, apply, NULL));
     ASSERT_STATUS(TVO_ERR_NULL, tvo_controller_miss(NULL, apply, &cmd));
-    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_SAFE_STOP);
+    ASSERT_OUTCOME(TVO_OUTCOME_STOPPED, cmd);
 }
 
 /* Refusals commit nothing, so the watchdog reads their span from the clock: the refusal whose period
@@ -1129,16 +1131,16 @@ static void test_refusals_stop_after_the_watchdogs_span_and_the_next_step_starts
     fx_a.meas_mode = FX_MEAS_NAN;
     tvo_command_t cmd;
     for (uint32_t i = 1; i < fx_a.cfg.watchdog_periods; ++i) {
-        ASSERT_STATUS(TVO_ERR_NOT_FINITE, fx_closed_loop_step(&fx_a, &cmd));
+        ASSERT_PERIOD(HELD(NOT_FINITE), fx_closed_loop_step(&fx_a, &cmd), cmd);
     }
-    ASSERT_STATUS(TVO_ERR_WATCHDOG, fx_closed_loop_step(&fx_a, &cmd));
-    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_SAFE_STOP);
+    ASSERT_PERIOD(STOPPED(WATCHDOG), fx_closed_loop_step(&fx_a, &cmd), cmd);
+    ASSERT_OUTCOME(TVO_OUTCOME_STOPPED, cmd);
     TEST_ASSERT_EQUAL_HEX32(last_apply + fx_a.cfg.watchdog_periods * FX_PERIOD, fx_a.ctl.clock.last_apply_tick);
     TEST_ASSERT_EQUAL_UINT8(1u, fx_a.ctl.clock.stopped);
     ASSERT_NEAR(0.0, fx_a.ctl.held.speed_mps[0], 0.0);
     fx_a.meas_mode = FX_MEAS_NORMAL;
-    ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_a, &cmd));
-    ASSERT_FLAG_CLEAR(cmd.flags, TVO_FLAG_SAFE_STOP | TVO_FLAG_HOLDING);
+    ASSERT_PERIOD(APPLIED, fx_closed_loop_step(&fx_a, &cmd), cmd);
+    ASSERT_OUTCOME(TVO_OUTCOME_APPLIED, cmd);
     ASSERT_LE(fabs(test_d(cmd.speed_mps[0])), test_d(fx_a.cfg.accel_max_mps2) * h_s(&fx_a) + TEST_TOL(8, 1.0),
               "the first speed after the refusals' stop");
     run_ok(&fx_a, 20);
@@ -1164,8 +1166,8 @@ static void test_tick_wrap_gives_bit_identical_commands(void)
     for (int i = 0; i < 300; ++i) {
         const uint32_t before = fx_b.apply;
         tvo_command_t ca, cb;
-        ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_a, &ca));
-        ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_b, &cb));
+        ASSERT_PERIOD(APPLIED, fx_closed_loop_step(&fx_a, &ca), ca);
+        ASSERT_PERIOD(APPLIED, fx_closed_loop_step(&fx_b, &cb), cb);
         wrapped |= (fx_b.apply < before);
         assert_commands_bit_identical(&ca, &cb);
         TEST_ASSERT_EQUAL_MEMORY(&fx_a.ctl.telemetry, &fx_b.ctl.telemetry, sizeof(fx_a.ctl.telemetry));
@@ -1182,7 +1184,7 @@ static double run_max_error(fx_t *fx, uint8_t r, int steps)
 {
     double worst = 0.0;
     for (int i = 0; i < steps; ++i) {
-        ASSERT_STATUS(TVO_OK, fx_closed_loop_step(fx, NULL));
+        ASSERT_PERIOD(APPLIED, fx_closed_loop_step(fx, NULL), fx->cmd);
         const double e = fx_tracking_error(fx, r);
         worst = e > worst ? e : worst;
     }
@@ -1281,11 +1283,11 @@ static void test_pose_mode_tracks_circle_and_ellipse_with_two_robots(void)
     TEST_ASSERT_TRUE(fx_tracking_error(&fx_a, 0) > 0.9);
     TEST_ASSERT_TRUE(fx_tracking_error(&fx_a, 1) > 0.9);
     for (int i = 0; i < 800; ++i) {
-        ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_a, NULL));
+        ASSERT_PERIOD(APPLIED, fx_closed_loop_step(&fx_a, NULL), (fx_a).cmd);
     }
     double worst[2] = {0.0, 0.0};
     for (int i = 0; i < 200; ++i) {
-        ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_a, NULL));
+        ASSERT_PERIOD(APPLIED, fx_closed_loop_step(&fx_a, NULL), (fx_a).cmd);
         for (uint8_t r = 0; r < 2; ++r) {
             const double e = fx_tracking_error(&fx_a, r);
             worst[r] = e > worst[r] ? e : worst[r];
@@ -1353,12 +1355,13 @@ static void test_position_only_law_sees_the_filter_rotated_over_this_periods_car
         const tvo_real_t held_turn_radps = fx_a.ctl.held.turn_rate_radps[0];
         tvo_command_t cmd;
         const tvo_status_t st = tvo_controller_step(&fx_a.ctl, outage ? NULL : &m, apply, &cmd);
+        ASSERT_STATUS(TVO_OK, st);
         if (outage) {
-            stopped |= st == TVO_ERR_WATCHDOG;
-            restart |= st == TVO_ERR_WATCHDOG;
+            stopped |= cmd.outcome == TVO_OUTCOME_STOPPED && cmd.reason == TVO_REASON_WATCHDOG;
+            restart |= cmd.outcome == TVO_OUTCOME_STOPPED && cmd.reason == TVO_REASON_WATCHDOG;
             continue;
         }
-        ASSERT_STATUS(TVO_OK, st);
+        ASSERT_OUTCOME(TVO_OUTCOME_APPLIED, cmd);
         tvo_real_t rate[2];
         if (restart) {
             const tvo_real_t rate0[2] = {TVO_R(0.0), TVO_R(0.0)}; /* at rest: the speed state is 0 */
@@ -1404,7 +1407,7 @@ static void test_position_only_mode_ignores_heading_and_speed_after_the_first_sa
     fx_a.heading_first_only = 1;
     for (int i = 0; i < 100; ++i) {
         tvo_command_t ca, cb;
-        ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_a, &ca));
+        ASSERT_PERIOD(APPLIED, fx_closed_loop_step(&fx_a, &ca), ca);
         /* B by hand, so its measurement can be corrupted. */
         tvo_pose_t at_sample;
         fx_predict_all(&fx_b, &fx_b.cmd, fx_b.pose, FX_PERIOD - FX_DELAY, &at_sample);
@@ -1415,7 +1418,7 @@ static void test_position_only_mode_ignores_heading_and_speed_after_the_first_sa
             m.speed_mps[0] = TVO_R(1.7);
             m.speed_valid = 1;
         }
-        ASSERT_STATUS(TVO_OK, tvo_controller_step(&fx_b.ctl, &m, fx_b.apply, &cb));
+        ASSERT_PERIOD(APPLIED, tvo_controller_step(&fx_b.ctl, &m, fx_b.apply, &cb), cb);
         fx_predict_all(&fx_b, &fx_b.cmd, &at_sample, FX_DELAY, fx_b.pose);
         fx_b.cmd = cb;
         fx_b.apply += FX_PERIOD;
@@ -1453,38 +1456,44 @@ static void test_check_changes_nothing_and_says_what_the_step_would(void)
             tvo_measurement_t m;
             uint32_t apply;
             int null_meas;
-            tvo_status_t expected;
+            test_period_t expected;
         } cases[8];
         size_t n = 0;
-        cases[n].m = good, cases[n].apply = fx_a.apply, cases[n].null_meas = 0, cases[n++].expected = TVO_OK;
+        cases[n].m = good, cases[n].apply = fx_a.apply, cases[n].null_meas = 0, cases[n++].expected = APPLIED;
         cases[n].m = good, cases[n].m.position_m[0][1] = TEST_NAN, cases[n].apply = fx_a.apply;
-        cases[n].null_meas = 0, cases[n++].expected = TVO_ERR_NOT_FINITE;
+        cases[n].null_meas = 0, cases[n++].expected = HELD(NOT_FINITE);
         cases[n].m = good, cases[n].m.stamp_tick = fx_a.apply - FX_PERIOD - 1u, cases[n].apply = fx_a.apply;
-        cases[n].null_meas = 0, cases[n++].expected = TVO_ERR_STALE;
+        cases[n].null_meas = 0, cases[n++].expected = HELD(STALE);
         cases[n].m = good, cases[n].m.stamp_tick = fx_a.apply + 1u, cases[n].apply = fx_a.apply;
-        cases[n].null_meas = 0, cases[n++].expected = TVO_ERR_FUTURE_STAMP;
+        cases[n].null_meas = 0, cases[n++].expected = HELD(FUTURE_STAMP);
         cases[n].m = good, cases[n].apply = fx_a.apply - FX_PERIOD; /* apply does not advance */
-        cases[n].null_meas = 0, cases[n++].expected = TVO_ERR_OUT_OF_ORDER;
+        cases[n].null_meas = 0, cases[n++].expected = CALL_ERROR(TVO_ERR_TICK_NOT_ADVANCING);
         cases[n].m = good, cases[n].apply = fx_a.apply, cases[n].null_meas = 1;
-        cases[n++].expected = TVO_ERR_NO_MEASUREMENT;
+        cases[n++].expected = HELD(NO_MEASUREMENT);
         cases[n].m = good, cases[n].m.heading_valid = 0, cases[n].apply = fx_a.apply, cases[n].null_meas = 0;
-        cases[n++].expected = position_only ? TVO_OK : TVO_ERR_MISSING_FIELD;
+        cases[n++].expected = position_only ? APPLIED : HELD(MISSING_FIELD);
         for (size_t i = 0; i < n; ++i) {
             const tvo_measurement_t *m = cases[i].null_meas ? NULL : &cases[i].m;
             memcpy(&ctl_before, &fx_a.ctl, sizeof(ctl_before));
-            ASSERT_STATUS(cases[i].expected, tvo_controller_check(&fx_a.ctl, m, cases[i].apply));
+            tvo_reason_t reason = TVO_REASON_COUNT;
+            ASSERT_STATUS(cases[i].expected.status, tvo_controller_check(&fx_a.ctl, m, cases[i].apply, &reason));
+            if (cases[i].expected.status == TVO_OK) {
+                TEST_ASSERT_EQUAL_INT(cases[i].expected.reason, reason);
+            }
             TEST_ASSERT_EQUAL_MEMORY(&ctl_before, &fx_a.ctl, sizeof(ctl_before));
             /* The step, on a copy, says the same. */
             memcpy(&ctl_copy, &fx_a.ctl, sizeof(ctl_copy));
             tvo_command_t cmd;
-            ASSERT_STATUS(cases[i].expected, tvo_controller_step(&ctl_copy, m, cases[i].apply, &cmd));
+            ASSERT_PERIOD(cases[i].expected, tvo_controller_step(&ctl_copy, m, cases[i].apply, &cmd), cmd);
         }
     }
-    ASSERT_STATUS(TVO_ERR_NULL, tvo_controller_check(NULL, NULL, 0u));
+    tvo_reason_t reason = TVO_REASON_NONE;
+    ASSERT_STATUS(TVO_ERR_NULL, tvo_controller_check(NULL, NULL, 0u, &reason));
     tvo_controller_t blank;
     memset(&blank, 0, sizeof(blank));
     const tvo_measurement_t m = measure_now(&fx_a, 0u);
-    ASSERT_STATUS(TVO_ERR_NOT_INITIALIZED, tvo_controller_check(&blank, &m, FX_PERIOD));
+    ASSERT_STATUS(TVO_ERR_NOT_INITIALIZED, tvo_controller_check(&blank, &m, FX_PERIOD, &reason));
+    ASSERT_STATUS(TVO_ERR_NULL, tvo_controller_check(&fx_a.ctl, &m, FX_PERIOD, NULL));
 }
 
 static void test_safe_stop_drops_to_rest_without_advancing_the_clock(void)
@@ -1494,8 +1503,8 @@ static void test_safe_stop_drops_to_rest_without_advancing_the_clock(void)
     const tvo_sample_clock_t clock_before = fx_a.ctl.clock;
     tvo_command_t cmd;
     memset(&cmd, 0x5A, sizeof(cmd));
-    ASSERT_STATUS(TVO_OK, tvo_controller_safe_stop(&fx_a.ctl, &cmd));
-    TEST_ASSERT_EQUAL_HEX32(TVO_FLAG_SAFE_STOP, cmd.flags);
+    ASSERT_PERIOD(STOPPED(STOP_REQUESTED), tvo_controller_safe_stop(&fx_a.ctl, &cmd), cmd);
+    TEST_ASSERT_EQUAL_HEX32(0u, cmd.flags);
     for (int r = 0; r < TVO_MAX_ROBOTS; ++r) {
         ASSERT_NEAR(0.0, cmd.speed_mps[r], 0.0);
         ASSERT_NEAR(0.0, cmd.turn_rate_radps[r], 0.0);
@@ -1513,8 +1522,8 @@ static void test_safe_stop_drops_to_rest_without_advancing_the_clock(void)
     TEST_ASSERT_EQUAL_HEX32(clock_before.last_stamp_tick, fx_a.ctl.clock.last_stamp_tick);
     /* The plant stops (it applies the safe stop); the next measurement resumes from rest. */
     fx_a.cmd = cmd;
-    ASSERT_STATUS(TVO_OK, fx_closed_loop_step(&fx_a, &cmd));
-    ASSERT_FLAG_CLEAR(cmd.flags, TVO_FLAG_SAFE_STOP | TVO_FLAG_HOLDING);
+    ASSERT_PERIOD(APPLIED, fx_closed_loop_step(&fx_a, &cmd), cmd);
+    ASSERT_OUTCOME(TVO_OUTCOME_APPLIED, cmd);
     assert_command_finite(&cmd, 1);
     TEST_ASSERT_EQUAL_UINT8(0u, fx_a.ctl.clock.stopped);
     ASSERT_LE(fabs(test_d(cmd.speed_mps[0])), test_d(fx_a.cfg.accel_max_mps2) * h_s(&fx_a) + TEST_TOL(8, 1.0),
@@ -1524,13 +1533,15 @@ static void test_safe_stop_drops_to_rest_without_advancing_the_clock(void)
     ASSERT_STATUS(TVO_ERR_NULL, tvo_controller_safe_stop(&fx_a.ctl, NULL));
     memset(&cmd, 0x5A, sizeof(cmd));
     ASSERT_STATUS(TVO_ERR_NULL, tvo_controller_safe_stop(NULL, &cmd));
-    TEST_ASSERT_EQUAL_HEX32(TVO_FLAG_SAFE_STOP, cmd.flags);
+    TEST_ASSERT_EQUAL_HEX32(0u, cmd.flags);
+    ASSERT_OUTCOME(TVO_OUTCOME_STOPPED, cmd);
     ASSERT_NEAR(0.0, cmd.speed_mps[0], 0.0);
     tvo_controller_t blank;
     memset(&blank, 0, sizeof(blank));
     memset(&cmd, 0x5A, sizeof(cmd));
     ASSERT_STATUS(TVO_ERR_NOT_INITIALIZED, tvo_controller_safe_stop(&blank, &cmd));
-    TEST_ASSERT_EQUAL_HEX32(TVO_FLAG_SAFE_STOP, cmd.flags);
+    TEST_ASSERT_EQUAL_HEX32(0u, cmd.flags);
+    ASSERT_OUTCOME(TVO_OUTCOME_STOPPED, cmd);
 }
 
 /* What a refused step must leave as it was. */
@@ -1596,19 +1607,19 @@ static void test_refused_measurement_leaves_filter_speed_state_and_stamp_untouch
         m.speed_mps[0] = TVO_R(1.5);
         m.position_m[0][0] += TVO_R(0.3);
         trace_of(&fx_a.ctl, &before);
-        ASSERT_STATUS(TVO_ERR_STALE, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd));
+        ASSERT_PERIOD(HELD(STALE), tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), cmd);
         assert_no_trace(&before, &fx_a.ctl);
         /* Not finite, from the future, missing its heading (pose mode). */
         fx_a.apply += FX_PERIOD;
         m = next_sample(&fx_a);
         m.heading_rad[0] = TEST_NAN;
         trace_of(&fx_a.ctl, &before);
-        ASSERT_STATUS(TVO_ERR_NOT_FINITE, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd));
+        ASSERT_PERIOD(HELD(NOT_FINITE), tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), cmd);
         assert_no_trace(&before, &fx_a.ctl);
         fx_a.apply += FX_PERIOD;
         m = next_sample(&fx_a);
         m.stamp_tick = fx_a.apply + 2u;
-        ASSERT_STATUS(TVO_ERR_FUTURE_STAMP, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd));
+        ASSERT_PERIOD(HELD(FUTURE_STAMP), tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), cmd);
         assert_no_trace(&before, &fx_a.ctl);
     }
 }
@@ -1634,11 +1645,9 @@ static void test_law_failure_after_the_estimate_leaves_the_filter_untouched(void
     trace_of(&fx_a.ctl, &before);
     tvo_measurement_t m = next_sample(&fx_a);
     m.position_m[0][0] += TVO_R(0.05); /* a sample the filter would react to */
-    ASSERT_STATUS(TVO_OK, tvo_controller_check(&fx_a.ctl, &m, fx_a.apply));
+    ASSERT_CHECK_USES(tvo_controller_check, &fx_a.ctl, &m, fx_a.apply);
     tvo_command_t cmd;
-    const tvo_status_t st = tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd);
-    TEST_ASSERT_TRUE(st != TVO_OK);
-    ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_HOLDING);
+    ASSERT_PERIOD(HELD(FUTURE_STAMP), tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), cmd); /* the target's sample */
     assert_no_trace(&before, &fx_a.ctl);
 }
 
@@ -1666,7 +1675,7 @@ static void test_speed_mismatch_is_flagged_after_its_periods_in_a_row(void)
     tvo_command_t cmd;
     /* A speed no command gave (within the plausible 2 speed_max + 0.5), reported TVO_SPEED_MISMATCH_PERIODS times in a row. */
     for (uint32_t k = 1; k <= TVO_SPEED_MISMATCH_PERIODS + 2u; ++k) {
-        ASSERT_STATUS(TVO_OK, step_reporting_speed(&fx_a, 4.0, &cmd));
+        ASSERT_PERIOD(APPLIED, step_reporting_speed(&fx_a, 4.0, &cmd), cmd);
         if (k < TVO_SPEED_MISMATCH_PERIODS) {
             ASSERT_FLAG_CLEAR(cmd.flags, TVO_FLAG_SPEED_MISMATCH);
         } else {
@@ -1675,10 +1684,10 @@ static void test_speed_mismatch_is_flagged_after_its_periods_in_a_row(void)
         assert_command_finite(&cmd, 1);
     }
     /* One truthful report ends it, and the count starts over. */
-    ASSERT_STATUS(TVO_OK, step_reporting_speed(&fx_a, test_d(fx_a.cmd.speed_mps[0]), &cmd));
+    ASSERT_PERIOD(APPLIED, step_reporting_speed(&fx_a, test_d(fx_a.cmd.speed_mps[0]), &cmd), cmd);
     ASSERT_FLAG_CLEAR(cmd.flags, TVO_FLAG_SPEED_MISMATCH);
     for (uint32_t k = 1; k < TVO_SPEED_MISMATCH_PERIODS; ++k) {
-        ASSERT_STATUS(TVO_OK, step_reporting_speed(&fx_a, -4.0, &cmd));
+        ASSERT_PERIOD(APPLIED, step_reporting_speed(&fx_a, -4.0, &cmd), cmd);
         ASSERT_FLAG_CLEAR(cmd.flags, TVO_FLAG_SPEED_MISMATCH);
     }
     /* A refused measurement neither counts nor resets it. */
@@ -1686,9 +1695,9 @@ static void test_speed_mismatch_is_flagged_after_its_periods_in_a_row(void)
     stale.stamp_tick = fx_a.apply - FX_PERIOD - 1u;
     stale.speed_valid = 1;
     stale.speed_mps[0] = TVO_R(-4.0);
-    ASSERT_STATUS(TVO_ERR_STALE, tvo_controller_step(&fx_a.ctl, &stale, fx_a.apply, &cmd));
+    ASSERT_PERIOD(HELD(STALE), tvo_controller_step(&fx_a.ctl, &stale, fx_a.apply, &cmd), cmd);
     fx_a.apply += FX_PERIOD;
-    ASSERT_STATUS(TVO_OK, step_reporting_speed(&fx_a, -4.0, &cmd));
+    ASSERT_PERIOD(APPLIED, step_reporting_speed(&fx_a, -4.0, &cmd), cmd);
     ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_SPEED_MISMATCH);
 }
 
@@ -1701,7 +1710,7 @@ static void test_speed_mismatch_is_not_flagged_for_a_plant_that_follows(void)
     tvo_command_t cmd;
     for (int k = 0; k < 600; ++k) {
         /* The plant runs at the held speed and says so. */
-        ASSERT_STATUS(TVO_OK, step_reporting_speed(&fx_a, test_d(fx_a.cmd.speed_mps[0]), &cmd));
+        ASSERT_PERIOD(APPLIED, step_reporting_speed(&fx_a, test_d(fx_a.cmd.speed_mps[0]), &cmd), cmd);
         ASSERT_FLAG_CLEAR(cmd.flags, TVO_FLAG_SPEED_MISMATCH);
     }
     TEST_ASSERT_EQUAL_UINT32(0u, fx_a.ctl.speed_mismatch_periods);
@@ -1726,6 +1735,8 @@ static void test_speed_mismatch_flags_a_plant_reporting_zero_while_it_falls_behi
         const double held = test_d(fx_a.cmd.speed_mps[0]);
         largest_departure = fabs(held) > largest_departure ? fabs(held) : largest_departure;
         ASSERT_STATUS(TVO_OK, step_reporting_speed(&fx_a, 0.0, &cmd));
+        TEST_ASSERT_TRUE(cmd.outcome == TVO_OUTCOME_APPLIED ||
+                         (cmd.outcome == TVO_OUTCOME_STOPPED && cmd.reason == TVO_REASON_SPEED_MISMATCH));
         flagged += (cmd.flags & TVO_FLAG_SPEED_MISMATCH) != 0u ? 1u : 0u;
     }
     TEST_ASSERT_TRUE_MESSAGE(fx_tracking_error(&fx_a, 0) >= 1.0, "the plant did not fall a metre behind");
@@ -1804,27 +1815,27 @@ static void test_hostile_measurements_never_break_a_limit(void)
     fx_start(&fx_a, 0);
     tvo_command_t cmd;
     for (int k = 0; k < 200; ++k) {
-        ASSERT_STATUS(TVO_OK, hostile_step(&fx_a, HOSTILE_NONE, &cmd));
+        ASSERT_PERIOD(APPLIED, hostile_step(&fx_a, HOSTILE_NONE, &cmd), cmd);
     }
     const struct {
         hostile_t kind;
-        tvo_status_t status;
-    } cases[] = {{HOSTILE_SPEED_1E3, TVO_ERR_IMPLAUSIBLE_MEASUREMENT},
-                 {HOSTILE_SPEED_HIGH, TVO_OK},
-                 {HOSTILE_POSITION_1E6, TVO_ERR_IMPLAUSIBLE_MEASUREMENT},
-                 {HOSTILE_JUMP_100M, TVO_OK},
-                 {HOSTILE_HEADING_1E6, TVO_ERR_IMPLAUSIBLE_MEASUREMENT}};
+        test_period_t period;
+    } cases[] = {{HOSTILE_SPEED_1E3, HELD(IMPLAUSIBLE_MEASUREMENT)},
+                 {HOSTILE_SPEED_HIGH, APPLIED},
+                 {HOSTILE_POSITION_1E6, HELD(IMPLAUSIBLE_MEASUREMENT)},
+                 {HOSTILE_JUMP_100M, APPLIED},
+                 {HOSTILE_HEADING_1E6, HELD(IMPLAUSIBLE_MEASUREMENT)}};
     for (size_t c = 0; c < sizeof(cases) / sizeof(cases[0]); ++c) {
         for (int repeat = 0; repeat < 3; ++repeat) { /* three in a row: below the watchdog's 5 */
-            ASSERT_STATUS(cases[c].status, hostile_step(&fx_a, cases[c].kind, &cmd));
+            ASSERT_PERIOD(cases[c].period, hostile_step(&fx_a, cases[c].kind, &cmd), cmd);
         }
-        ASSERT_STATUS(TVO_ERR_NOT_FINITE, hostile_step(&fx_a, HOSTILE_NAN, &cmd));
+        ASSERT_PERIOD(HELD(NOT_FINITE), hostile_step(&fx_a, HOSTILE_NAN, &cmd), cmd);
         for (int k = 0; k < 100; ++k) {
-            ASSERT_STATUS(TVO_OK, hostile_step(&fx_a, HOSTILE_NONE, &cmd));
+            ASSERT_PERIOD(APPLIED, hostile_step(&fx_a, HOSTILE_NONE, &cmd), cmd);
         }
     }
     for (int k = 0; k < 300; ++k) {
-        ASSERT_STATUS(TVO_OK, hostile_step(&fx_a, HOSTILE_NONE, &cmd));
+        ASSERT_PERIOD(APPLIED, hostile_step(&fx_a, HOSTILE_NONE, &cmd), cmd);
     }
     ASSERT_LE(fx_tracking_error(&fx_a, 0), 0.05, "tracking error 3 s after the last hostile period");
 }
@@ -1834,10 +1845,10 @@ static void test_a_resynced_speed_moves_the_command_by_at_most_accel_h(void)
     /* Before: a measured 4.4 m/s (plausible for speed_max 2) moved the command from ~0.3 to 2 m/s. */
     fx_running(&fx_a);
     tvo_command_t cmd;
-    ASSERT_STATUS(TVO_OK, hostile_step(&fx_a, HOSTILE_SPEED_HIGH, &cmd));
+    ASSERT_PERIOD(APPLIED, hostile_step(&fx_a, HOSTILE_SPEED_HIGH, &cmd), cmd);
     ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_ACCEL_SATURATED);
     for (int k = 0; k < 50; ++k) { /* and every command after it (hostile_step checks each) */
-        ASSERT_STATUS(TVO_OK, hostile_step(&fx_a, HOSTILE_NONE, &cmd));
+        ASSERT_PERIOD(APPLIED, hostile_step(&fx_a, HOSTILE_NONE, &cmd), cmd);
     }
 }
 
@@ -1863,11 +1874,14 @@ static void test_implausible_measurements_are_refused_and_keep_nothing(void)
             m.speed_mps[0] = TEST_NAN;
             break;
         }
-        const tvo_status_t expected = (which == 5) ? TVO_ERR_NOT_FINITE : TVO_ERR_IMPLAUSIBLE_MEASUREMENT;
+        const test_period_t expected = (which == 5) ? HELD(NOT_FINITE) : HELD(IMPLAUSIBLE_MEASUREMENT);
+        tvo_reason_t reason = TVO_REASON_COUNT;
         if (which < 5) {
-            ASSERT_STATUS(TVO_OK, tvo_controller_check(&fx_a.ctl, &at_limit, fx_a.apply)); /* the limit is in */
+            ASSERT_STATUS(TVO_OK, tvo_controller_check(&fx_a.ctl, &at_limit, fx_a.apply, &reason));
+            TEST_ASSERT_EQUAL_INT(TVO_REASON_NONE, reason); /* the limit is in */
         }
-        ASSERT_STATUS(expected, tvo_controller_check(&fx_a.ctl, &m, fx_a.apply));
+        ASSERT_STATUS(TVO_OK, tvo_controller_check(&fx_a.ctl, &m, fx_a.apply, &reason));
+        TEST_ASSERT_EQUAL_INT(expected.reason, reason);
         trace_t before;
         trace_of(&fx_a.ctl, &before);
         tvo_command_t cmd;
@@ -1880,7 +1894,7 @@ static void test_implausible_measurements_are_refused_and_keep_nothing(void)
     tvo_measurement_t m = next_sample(&fx_a);
     m.speed_valid = 0;
     m.speed_mps[0] = TVO_R(1.0e30);
-    ASSERT_STATUS(TVO_OK, tvo_controller_check(&fx_a.ctl, &m, fx_a.apply));
+    ASSERT_CHECK_USES(tvo_controller_check, &fx_a.ctl, &m, fx_a.apply);
 }
 
 static void test_speed_mismatch_stops_the_robot_then_starts_again_from_rest(void)
@@ -1895,27 +1909,27 @@ static void test_speed_mismatch_stops_the_robot_then_starts_again_from_rest(void
     int k = 0;
     for (; k < 200; ++k) {
         ASSERT_STATUS(TVO_OK, step_reporting_speed(&fx_a, 0.0, &cmd));
-        if ((cmd.flags & TVO_FLAG_SAFE_STOP) != 0u) {
+        if (cmd.outcome == TVO_OUTCOME_STOPPED) {
+            TEST_ASSERT_EQUAL_INT(TVO_REASON_SPEED_MISMATCH, cmd.reason);
             break;
         }
+        ASSERT_OUTCOME(TVO_OUTCOME_APPLIED, cmd);
         flagged_in_row = (cmd.flags & TVO_FLAG_SPEED_MISMATCH) != 0u ? flagged_in_row + 1 : 0;
     }
     TEST_ASSERT_TRUE_MESSAGE(k < 200, "never stopped");
     /* Flagged from the TVO_SPEED_MISMATCH_PERIODS-th contradicted period, stopped at the STOP-th. */
     TEST_ASSERT_EQUAL_INT((int)(TVO_SPEED_MISMATCH_STOP_PERIODS - TVO_SPEED_MISMATCH_PERIODS), flagged_in_row);
     ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_SPEED_MISMATCH);
-    const tvo_command_t rest = {{TVO_R(0.0)}, {TVO_R(0.0)}, 0u};
+    const tvo_command_t rest = {{TVO_R(0.0)}, {TVO_R(0.0)}, 0u, TVO_OUTCOME_STOPPED, TVO_REASON_SPEED_MISMATCH};
     assert_same_motion(&rest, &cmd, 1);
     /* Stopped for the holdoff's accepted periods, status TVO_OK; the measurement's 0 m/s now agrees. */
     for (uint32_t j = 1; j < TVO_SPEED_MISMATCH_HOLDOFF_PERIODS; ++j) {
-        ASSERT_STATUS(TVO_OK, step_reporting_speed(&fx_a, 0.0, &cmd));
-        ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_SAFE_STOP);
+        ASSERT_PERIOD(STOPPED(SPEED_MISMATCH), step_reporting_speed(&fx_a, 0.0, &cmd), cmd);
         ASSERT_FLAG_SET(cmd.flags, TVO_FLAG_SPEED_MISMATCH);
         assert_same_motion(&rest, &cmd, 1);
     }
     /* Then it starts again from rest, within the limits. */
-    ASSERT_STATUS(TVO_OK, step_reporting_speed(&fx_a, 0.0, &cmd));
-    ASSERT_FLAG_CLEAR(cmd.flags, TVO_FLAG_SAFE_STOP);
+    ASSERT_PERIOD(APPLIED, step_reporting_speed(&fx_a, 0.0, &cmd), cmd);
     ASSERT_LE(fabs(test_d(cmd.speed_mps[0])), test_d(fx_a.cfg.accel_max_mps2) * h_s(&fx_a) + TEST_TOL(8, 1.0),
               "first speed after the holdoff");
     TEST_ASSERT_TRUE_MESSAGE(cmd.speed_mps[0] > TVO_R(0.0), "the controller drives again after the holdoff");

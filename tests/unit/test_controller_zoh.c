@@ -85,7 +85,7 @@ static double worst_error(double period_s, uint8_t zoh_aware)
         const uint32_t apply = (uint32_t)llround((n + 1) * period_s * 1e6);
         m.stamp_tick = apply - controller.cfg.delay_ticks;
         arc(pose, test_d(cmd.speed_mps[0]), test_d(cmd.turn_rate_radps[0]), tau);
-        ASSERT_STATUS(TVO_OK, tvo_controller_step(&controller, &m, apply, &cmd));
+        ASSERT_PERIOD(APPLIED, tvo_controller_step(&controller, &m, apply, &cmd), cmd);
     }
     return worst;
 }
@@ -100,7 +100,7 @@ static void test_law_is_evaluated_mid_interval(void)
     m.heading_valid = 1u;
     m.stamp_tick = 5000u;
     tvo_command_t cmd;
-    ASSERT_STATUS(TVO_OK, tvo_controller_step(&controller, &m, 10000u, &cmd));
+    ASSERT_PERIOD(APPLIED, tvo_controller_step(&controller, &m, 10000u, &cmd), cmd);
     /* apply at 10 ms, evaluated half a period later */
     ASSERT_NEAR(0.015, controller.telemetry.objective_time_s, 1e-6);
     TEST_ASSERT_TRUE((cmd.flags & TVO_FLAG_PREDICTED) != 0u);

@@ -16,6 +16,7 @@
 #include "unity.h"
 
 #include "tvo/config.h"
+#include "tvo/chain_controller.h"
 #include "tvo/controller.h"
 #include "tvo/objective.h"
 #include "tvo/status.h"
@@ -93,6 +94,61 @@ static inline void test_assert_param(tvo_param_t expected, tvo_param_t actual, i
         UNITY_TEST_FAIL(line, msg);
     }
 }
+/* A period's answer as the tests state it: the call's status, and (TVO_OK) the command's outcome and reason. */
+typedef struct {
+    tvo_status_t status;
+    tvo_outcome_t outcome;
+    tvo_reason_t reason;
+} test_period_t;
+#define APPLIED ((test_period_t){TVO_OK, TVO_OUTCOME_APPLIED, TVO_REASON_NONE})
+#define HELD(why) ((test_period_t){TVO_OK, TVO_OUTCOME_HELD, TVO_REASON_##why})
+#define STOPPED(why) ((test_period_t){TVO_OK, TVO_OUTCOME_STOPPED, TVO_REASON_##why})
+/* A call error: nothing changed; the command (held, reason NONE) is the one in force. */
+#define CALL_ERROR(error) ((test_period_t){(error), TVO_OUTCOME_HELD, TVO_REASON_NONE})
+
+static inline void test_assert_period(test_period_t expected, tvo_status_t status, unsigned outcome, unsigned reason,
+                                      int line)
+{
+    if (expected.status != status || (unsigned)expected.outcome != outcome || (unsigned)expected.reason != reason) {
+        static char msg[300];
+        (void)snprintf(msg, sizeof(msg), "expected %s, %s (%s), got %s, %s (%s)", tvo_status_str(expected.status),
+                       tvo_outcome_str(expected.outcome), tvo_reason_str(expected.reason), tvo_status_str(status),
+                       tvo_outcome_str((tvo_outcome_t)outcome), tvo_reason_str((tvo_reason_t)reason));
+        UNITY_TEST_FAIL(line, msg);
+    }
+}
+/** The call (a step, a miss, a safe stop) returns expected.status and leaves cmd (a command, not a pointer)
+ *  with expected's outcome and reason. */
+#define ASSERT_PERIOD(expected, call, cmd)                                                            \
+    do {                                                                                              \
+        const tvo_status_t period_status_ = (call);                                                   \
+        test_assert_period((expected), period_status_, (cmd).outcome, (cmd).reason, __LINE__);        \
+    } while (0)
+/** A controller's check (check_fn, e.g. tvo_controller_check) says the step would use the measurement:
+ *  TVO_OK, TVO_REASON_NONE. */
+#define ASSERT_CHECK_USES(check_fn, ctl, meas, apply)                            \
+    do {                                                                         \
+        tvo_reason_t check_reason_ = TVO_REASON_COUNT;                           \
+        ASSERT_STATUS(TVO_OK, check_fn((ctl), (meas), (apply), &check_reason_)); \
+        TEST_ASSERT_EQUAL_INT(TVO_REASON_NONE, check_reason_);                   \
+    } while (0)
+/** The command's outcome (any reason). */
+#define ASSERT_OUTCOME(expected, cmd) \
+    TEST_ASSERT_EQUAL_INT_MESSAGE((int)(expected), (int)(cmd).outcome, "outcome should be " #expected)
+#define ASSERT_NOT_OUTCOME(unexpected, cmd) \
+    TEST_ASSERT_NOT_EQUAL_INT_MESSAGE((int)(unexpected), (int)(cmd).outcome, "outcome should not be " #unexpected)
+
+
+static inline void test_assert_chain_param(tvo_chain_param_t expected, tvo_chain_param_t actual, int line)
+{
+    if (expected != actual) {
+        static char msg[200];
+        (void)snprintf(msg, sizeof(msg), "expected bad_param %d (%s), got %d (%s)", (int)expected,
+                       tvo_chain_param_str(expected), (int)actual, tvo_chain_param_str(actual));
+        UNITY_TEST_FAIL(line, msg);
+    }
+}
+#define ASSERT_CHAIN_PARAM(expected, actual) test_assert_chain_param((expected), (actual), __LINE__)
 /* a <= b (+ slack), with both values in the failure message. */
 static inline void test_assert_le(double a, double b, const char *what, int line)
 {
@@ -202,7 +258,7 @@ static inline tvo_status_t fx_init_controller(fx_t *fx, uint32_t epoch)
     }
     fx->epoch = epoch;
     fx->apply = epoch + fx->cfg.period_ticks;
-    fx->bad_param = TVO_PARAM_EPOCH; /* anything but NONE: init must write it */
+    fx->bad_param = TVO_PARAM_INITIAL_SPEED; /* anything but NONE: init must write it */
     memset(&fx->cmd, 0, sizeof(fx->cmd));
     return tvo_controller_init(&fx->ctl, &fx->cfg, &fx->objective, epoch, &fx->bad_param);
 }
@@ -322,6 +378,8 @@ static inline void assert_commands_bit_identical(const tvo_command_t *a, const t
     TEST_ASSERT_EQUAL_MEMORY(a->speed_mps, b->speed_mps, sizeof(a->speed_mps));
     TEST_ASSERT_EQUAL_MEMORY(a->turn_rate_radps, b->turn_rate_radps, sizeof(a->turn_rate_radps));
     TEST_ASSERT_EQUAL_HEX32(a->flags, b->flags);
+    TEST_ASSERT_EQUAL_INT(a->outcome, b->outcome);
+    TEST_ASSERT_EQUAL_INT(a->reason, b->reason);
 }
 
 #endif /* TVO_TEST_SUPPORT_H */

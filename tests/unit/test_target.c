@@ -553,8 +553,8 @@ static void test_streamed_rejects_stamps_that_do_not_advance(void)
     tvo_real_t other[TVO_STREAM_MAX_DERIV + 1][2];
     stream_sample(other);
     other[0][0] = TVO_R(100.0);
-    ASSERT_STATUS(TVO_ERR_OUT_OF_ORDER, tvo_target_stream_update(&target, 5000, TEST_CONST_STREAM(other)));
-    ASSERT_STATUS(TVO_ERR_OUT_OF_ORDER, tvo_target_stream_update(&target, 4000, TEST_CONST_STREAM(other)));
+    ASSERT_STATUS(TVO_ERR_STAMP_NOT_NEWER, tvo_target_stream_update(&target, 5000, TEST_CONST_STREAM(other)));
+    ASSERT_STATUS(TVO_ERR_STAMP_NOT_NEWER, tvo_target_stream_update(&target, 4000, TEST_CONST_STREAM(other)));
     /* The original sample is still the one in force. */
     const tvo_time_jet_t t = ticks_time(5000, 1000);
     tvo_real_t d[ORD + 1][2];

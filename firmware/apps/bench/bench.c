@@ -5,7 +5,8 @@
  *   chain_k3    the integrator chain y''' = u in R^2 (k = 3 law, exact derivatives)
  *
  * Prints one line per problem: "BENCH <name> steps <n> min <a> median <b> max <c> status <s>" in
- * instructions under qemu -icount shift=0 (counter ticks times the board's instructions per tick),
+ * instructions under qemu -icount shift=0 (counter ticks times the board's instructions per tick;
+ * status 0: the last step applied its command, else its call error or 100 + why it held or stopped),
  * then "BENCH_DIGEST <name> <n>", a 32-bit FNV-1a hash of every command's bytes (two builds of the
  * core that compute the same commands bit for bit print the same digest),
  * "BENCH_SKIP <name>" for a problem the build's limits cannot hold, then "BENCH_CONFIG" with the
@@ -67,7 +68,17 @@ static void digest_add(const void *bytes, size_t size)
     }
 }
 
-static void report(const char *name, uint32_t count, tvo_status_t last_status)
+/* The last step's answer as one number: 0 when it applied a new command, else its call error, or
+ * 100 + the reason it held or stopped. */
+static int32_t period_verdict(tvo_status_t status, uint8_t outcome, uint8_t reason)
+{
+    if (status != TVO_OK) {
+        return (int32_t)status;
+    }
+    return (outcome == TVO_OUTCOME_APPLIED) ? 0 : 100 + (int32_t)reason;
+}
+
+static void report(const char *name, uint32_t count, int32_t last_status)
 {
     sort_samples(count);
     tvo_board_puts("BENCH ");
@@ -81,7 +92,7 @@ static void report(const char *name, uint32_t count, tvo_status_t last_status)
     tvo_board_puts(" max ");
     tvo_board_put_u32(instructions(samples[count - 1u]));
     tvo_board_puts(" status ");
-    tvo_board_put_i32((int32_t)last_status);
+    tvo_board_put_i32(last_status);
     tvo_board_puts("\nBENCH_DIGEST ");
     tvo_board_puts(name);
     tvo_board_putc(' ');
@@ -177,7 +188,7 @@ static tvo_status_t bench_unicycle_problem(bench_unicycle_problem_t which)
         digest_add(&loop.cmd.turn_rate_radps, sizeof(loop.cmd.turn_rate_radps));
         digest_add(&loop.cmd.flags, sizeof(loop.cmd.flags));
     }
-    report(bench_problem_name(which), BENCH_STEPS, last);
+    report(bench_problem_name(which), BENCH_STEPS, period_verdict(last, loop.cmd.outcome, loop.cmd.reason));
     stack_report(bench_problem_name(which));
     return last;
 }
@@ -264,7 +275,7 @@ static tvo_status_t bench_chain_k3(void)
     (void)tvo_target_init_circle(&desc.target[0], center, TVO_R(1.0), 2.0f * BENCH_PI / 10.0f, TVO_R(0.0));
     tvo_status_t last = tvo_problem_init(&loop.problem, &desc, 3u, &part);
     tvo_chain_config_t cfg;
-    tvo_param_t bad = TVO_PARAM_NONE;
+    tvo_chain_param_t bad = TVO_CHAIN_PARAM_NONE;
     (void)tvo_chain_config_default(&cfg);
     cfg.relative_degree = 3u;
     cfg.gain[0] = TVO_R(4.096); /* (s + 1.6)^3 */
@@ -294,7 +305,7 @@ static tvo_status_t bench_chain_k3(void)
         stack_measure_after_step();
         digest_add(&cmd.u, sizeof(cmd.u));
     }
-    report("chain_k3", BENCH_STEPS, last);
+    report("chain_k3", BENCH_STEPS, period_verdict(last, cmd.outcome, cmd.reason));
     stack_report("chain_k3");
     return last;
 }

@@ -30,6 +30,22 @@
 extern "C" {
 #endif
 
+/** Names the field of tvo_chain_config_t an init rejected. */
+typedef enum {
+    TVO_CHAIN_PARAM_NONE = 0,
+    TVO_CHAIN_PARAM_TICK_HZ = 1,
+    TVO_CHAIN_PARAM_PERIOD = 2,
+    TVO_CHAIN_PARAM_DELAY = 3,             /* delay_ticks, or a switch (delay_compensation, zoh_aware) not 0/1 */
+    TVO_CHAIN_PARAM_RELATIVE_DEGREE = 4,
+    TVO_CHAIN_PARAM_GAIN = 5,              /* not Hurwitz, or too fast for the period */
+    TVO_CHAIN_PARAM_FILTER_TF = 6,
+    TVO_CHAIN_PARAM_INPUT_MAX = 7,
+    TVO_CHAIN_PARAM_WATCHDOG = 8,
+    TVO_CHAIN_PARAM_OBJECTIVE = 9          /* the objective argument: equality constraints, or no term */
+} tvo_chain_param_t;
+
+#define TVO_CHAIN_PARAM_COUNT 10
+
 typedef struct {
     uint32_t tick_hz;             /* > 0 */
     uint32_t period_ticks;        /* h, > 0 and < 2^30 */
@@ -52,6 +68,8 @@ typedef struct {
 typedef struct {
     tvo_real_t u[TVO_MAX_OUTPUT_DIM];
     uint32_t flags;               /* TVO_FLAG_* (TVO_FLAG_ACCEL_SATURATED: |u| clipped) */
+    uint8_t outcome;              /* tvo_outcome_t: applied, held or stopped */
+    uint8_t reason;               /* tvo_reason_t: why held or stopped (NONE when applied) */
 } tvo_chain_command_t;
 
 /** The step's working storage (written before it is read: nothing in it between steps). */
@@ -83,12 +101,16 @@ tvo_status_t tvo_chain_config_default(tvo_chain_config_t *cfg);
 
 /** Validates cfg (*bad_param names the first wrong field) and binds the objective (primal only). */
 tvo_status_t tvo_chain_controller_init(tvo_chain_controller_t *ctl, const tvo_chain_config_t *cfg,
-                                       const tvo_objective_t *objective, uint32_t epoch_tick, tvo_param_t *bad_param);
+                                       const tvo_objective_t *objective, uint32_t epoch_tick,
+                                       tvo_chain_param_t *bad_param);
+
+/** Name of a parameter as it appears in tvo_chain_config_t. */
+const char *tvo_chain_param_str(tvo_chain_param_t param);
 
 /**
- * One period, as tvo_controller_step (a transaction: commits a whole period or changes nothing): cmd
- * always receives a safe command (new, held with TVO_FLAG_HOLDING, or zero with TVO_FLAG_SAFE_STOP
- * after the watchdog) and the status says why. meas NULL: tvo_chain_controller_miss.
+ * One period, as tvo_controller_step (a transaction: commits a whole period or changes nothing): TVO_OK
+ * with the period's command (applied, held, or the watchdog's stop: its outcome and reason say which
+ * and why); an error only when the call changed nothing. meas NULL: tvo_chain_controller_miss.
  */
 tvo_status_t tvo_chain_controller_step(tvo_chain_controller_t *ctl, const tvo_chain_measurement_t *meas,
                                        uint32_t apply_tick, tvo_chain_command_t *cmd);
@@ -96,11 +118,13 @@ tvo_status_t tvo_chain_controller_step(tvo_chain_controller_t *ctl, const tvo_ch
 /** A period that passed without a good step, counted as tvo_controller_miss counts it. */
 tvo_status_t tvo_chain_controller_miss(tvo_chain_controller_t *ctl, uint32_t apply_tick, tvo_chain_command_t *cmd);
 
-/** What tvo_chain_controller_step would say of this measurement, changing nothing (as tvo_controller_check). */
+/** What tvo_chain_controller_step would say of this measurement (*reason), changing nothing (as
+ *  tvo_controller_check). */
 tvo_status_t tvo_chain_controller_check(const tvo_chain_controller_t *ctl, const tvo_chain_measurement_t *meas,
-                                        uint32_t apply_tick);
+                                        uint32_t apply_tick, tvo_reason_t *reason);
 
-/** Drops to rest now (held u = 0, watchdog expired, filters restart); cmd receives the safe stop. */
+/** Drops to rest now (held u = 0, watchdog expired, filters restart); cmd receives the stop
+ *  (TVO_OUTCOME_STOPPED, TVO_REASON_STOP_REQUESTED). */
 tvo_status_t tvo_chain_controller_safe_stop(tvo_chain_controller_t *ctl, tvo_chain_command_t *cmd);
 
 #ifdef __cplusplus

@@ -26,14 +26,16 @@
  *     map starts from the first sample's heading if it has one, is dead-reckoned with the held
  *     turn rate, and is pulled toward the filtered velocity direction with time constant 10 T_f.
  *
- * A step is a transaction: it commits a whole period (TVO_OK) or changes nothing, its clock included.
- * Measurements are refused (the status says why, cmd is the command in force, flagged HOLDING) when
- * they carry NaN/Inf, are stamped after apply_tick, are older than one period, or do not advance, and
- * so is a step whose law fails. A period that passes without a good step is counted by
- * tvo_controller_miss (or a step with no measurement): the core's watchdog is the only watchdog. After
- * watchdog_periods periods without a good step the robots stop (v = 0, omega = 0, speed state reset;
- * TVO_ERR_WATCHDOG, TVO_FLAG_SAFE_STOP), and the next good step starts from rest. The stop is the one
- * thing a refusal commits: a refused step whose period would expire the watchdog counts it and stops.
+ * A step is a transaction: it commits a whole period (cmd.outcome TVO_OUTCOME_APPLIED) or changes
+ * nothing, its clock included. Measurements are refused (cmd is the command in force, outcome
+ * TVO_OUTCOME_HELD, cmd.reason says why) when they carry NaN/Inf, are stamped after apply_tick, are
+ * older than one period, or do not advance, and so is a step whose law fails. A period that passes
+ * without a good step is counted by tvo_controller_miss (or a step with no measurement): the core's
+ * watchdog is the only watchdog. After watchdog_periods periods without a good step the robots stop
+ * (v = 0, omega = 0, speed state reset; TVO_OUTCOME_STOPPED, TVO_REASON_WATCHDOG), and the next good
+ * step starts from rest. The stop is the one thing a refusal commits: a refused step whose period
+ * would expire the watchdog counts it and stops. Whatever the outcome, the step returns TVO_OK: an
+ * error (tvo/status.h) means the call was misused and changed nothing.
  *
  * A valid measured speed that departs from the held speed by more than
  * max(TVO_SPEED_MISMATCH_MPS, TVO_SPEED_MISMATCH_FRACTION |held|) for TVO_SPEED_MISMATCH_PERIODS
@@ -45,7 +47,7 @@
  * |v_{n+1} - v_n| <= accel_max h against the command in force (a measured speed's re-sync moves the
  * command by at most that; the speed state moves with the command, so the next period's limit holds
  * too). Finite but impossible measurements are refused (see TVO_HEADING_LIMIT_RAD). A step whose
- * law results (y'', gradient, its rate) are not finite is TVO_ERR_NUMERIC.
+ * law results (y'', gradient, its rate) are not finite is held (TVO_REASON_NUMERIC).
  */
 #ifndef TVO_CONTROLLER_H
 #define TVO_CONTROLLER_H
@@ -64,13 +66,13 @@ extern "C" {
 #define TVO_SPEED_MISMATCH_MPS TVO_R(0.05)
 #define TVO_SPEED_MISMATCH_FRACTION TVO_R(0.25)
 #define TVO_SPEED_MISMATCH_PERIODS 5u
-/** ... acted on: after this many contradicted periods in a row the robots stop (TVO_FLAG_SAFE_STOP with
- *  TVO_FLAG_SPEED_MISMATCH, status TVO_OK: the measurements are accepted) and stay stopped for
+/** ... acted on: after this many contradicted periods in a row the robots stop (TVO_OUTCOME_STOPPED,
+ *  TVO_REASON_SPEED_MISMATCH, flagged TVO_FLAG_SPEED_MISMATCH: the measurements are accepted) and stay stopped for
  *  TVO_SPEED_MISMATCH_HOLDOFF_PERIODS accepted periods; then the controller starts again from rest. */
 #define TVO_SPEED_MISMATCH_STOP_PERIODS 10u
 #define TVO_SPEED_MISMATCH_HOLDOFF_PERIODS 50u
 
-/** Plausibility: a finite measurement is refused with TVO_ERR_IMPLAUSIBLE_MEASUREMENT when a position
+/** Plausibility: a finite measurement is refused with TVO_REASON_IMPLAUSIBLE_MEASUREMENT when a position
  *  lies beyond TVO_POSITION_LIMIT_M (tvo/config.h), a valid heading beyond +-TVO_HEADING_LIMIT_RAD
  *  (unwrapped headings are fine up to it; float32 keeps 0.008 rad there), or a valid measured speed
  *  beyond TVO_MEASURED_SPEED_FACTOR * speed_max_mps + TVO_MEASURED_SPEED_MARGIN_MPS (no command
@@ -118,10 +120,12 @@ typedef struct {
 typedef struct {
     tvo_real_t speed_mps[TVO_MAX_ROBOTS];
     tvo_real_t turn_rate_radps[TVO_MAX_ROBOTS];
-    uint32_t flags;                              /* TVO_FLAG_* */
+    uint32_t flags;                              /* TVO_FLAG_*: what shaped an applied command */
+    uint8_t outcome;                             /* tvo_outcome_t: applied, held or stopped */
+    uint8_t reason;                              /* tvo_reason_t: why held or stopped (NONE when applied) */
 } tvo_command_t;
 
-/** What the last step computed (valid when the step's status is TVO_OK). */
+/** What the last applied step computed. */
 typedef struct {
     tvo_real_t objective_time_s;
     tvo_real_t output_m[TVO_MAX_OUTPUT_DIM];          /* y the law used */
@@ -214,7 +218,7 @@ tvo_status_t tvo_controller_init(tvo_controller_t *ctl, const tvo_controller_con
  * when its link drops unused sections (-ffunction-sections and --gc-sections, as the project's
  * toolchain files set). The controller then steps exactly as one from tvo_controller_init with the
  * same arguments; a measurement for the position source set by hand afterwards is refused
- * (TVO_ERR_NOT_INITIALIZED).
+ * (TVO_REASON_SOURCE_NOT_LINKED).
  */
 tvo_status_t tvo_controller_init_pose_velocity(tvo_controller_t *ctl, const tvo_controller_config_t *cfg,
                                                const tvo_objective_t *objective, uint32_t epoch_tick,
@@ -222,35 +226,40 @@ tvo_status_t tvo_controller_init_pose_velocity(tvo_controller_t *ctl, const tvo_
 
 /**
  * One period: computes the command applied at apply_tick from the measurement (NULL when none
- * arrived: tvo_controller_miss). cmd always receives a safe command: the new one on TVO_OK (committed);
- * otherwise, with nothing changed, the one in force (TVO_FLAG_HOLDING) with the reason as the status,
- * or, when the period would expire the watchdog, the stop (counted; TVO_FLAG_SAFE_STOP, TVO_ERR_WATCHDOG). apply_tick must advance past
- * the last committed period (TVO_ERR_OUT_OF_ORDER otherwise). A caller with no other measurement for
- * the period counts it with tvo_controller_miss.
+ * arrived: tvo_controller_miss). Returns TVO_OK with the period's command in cmd: the new one
+ * (TVO_OUTCOME_APPLIED, committed); or, with nothing changed, the one in force (TVO_OUTCOME_HELD,
+ * cmd->reason the refusal); or, when the period would expire the watchdog, the stop (counted;
+ * TVO_OUTCOME_STOPPED, TVO_REASON_WATCHDOG). Errors change nothing: TVO_ERR_NULL,
+ * TVO_ERR_NOT_INITIALIZED (cmd the stop), TVO_ERR_TICK_NOT_ADVANCING when apply_tick does not
+ * advance past the last period, TVO_ERR_BEFORE_EPOCH when the first precedes the epoch (cmd the
+ * command in force, reason NONE): cmd is safe to apply in every case.
  */
 tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t *meas,
                                  uint32_t apply_tick, tvo_command_t *cmd);
 
 /**
- * A period that passed without a good step: the command applied at apply_tick is the one in force
- * (TVO_ERR_NO_MEASUREMENT, TVO_FLAG_HOLDING), or the watchdog's stop once watchdog_periods periods
- * passed so (TVO_ERR_WATCHDOG, TVO_FLAG_SAFE_STOP; the robots are at rest until a good step). Counts the
- * periods since the last application (apply_tick must advance: TVO_ERR_OUT_OF_ORDER otherwise, with
- * nothing changed). tvo_controller_step with meas NULL is the same call.
+ * A period that passed without a good step: TVO_OK with the command applied at apply_tick, the one in
+ * force (TVO_OUTCOME_HELD, TVO_REASON_NO_MEASUREMENT), or the watchdog's stop once watchdog_periods
+ * periods passed so (TVO_OUTCOME_STOPPED, TVO_REASON_WATCHDOG; the robots are at rest until a good
+ * step). Counts the periods since the last application; the errors are the step's, changing nothing.
+ * tvo_controller_step with meas NULL is the same call.
  */
 tvo_status_t tvo_controller_miss(tvo_controller_t *ctl, uint32_t apply_tick, tvo_command_t *cmd);
 
 /**
- * What tvo_controller_step would say of this measurement before computing anything: TVO_OK if it
- * would use it, else the refusal (out of order, not finite, future, stale, missing field).
- * Changes nothing, so an edge can refuse a message without a trace in the controller.
+ * What tvo_controller_step would say of this measurement before computing anything: *reason is
+ * TVO_REASON_NONE if it would use it, else the refusal (not finite, implausible, future, stale, not
+ * newer, missing field; TVO_REASON_NO_MEASUREMENT for meas NULL). Returns the step's errors (and
+ * TVO_ERR_NULL for reason NULL). Changes nothing.
  */
-tvo_status_t tvo_controller_check(const tvo_controller_t *ctl, const tvo_measurement_t *meas, uint32_t apply_tick);
+tvo_status_t tvo_controller_check(const tvo_controller_t *ctl, const tvo_measurement_t *meas, uint32_t apply_tick,
+                                  tvo_reason_t *reason);
 
 /**
  * Drops to rest now, as the watchdog does: held command and speed states zero, multiplier rates
  * zero, the watchdog counted as expired (so filters restart with the next accepted measurement).
- * cmd receives the safe stop (all zero, TVO_FLAG_SAFE_STOP). The clock does not advance.
+ * cmd receives the stop (all zero, TVO_OUTCOME_STOPPED, TVO_REASON_STOP_REQUESTED). The clock does
+ * not advance.
  */
 tvo_status_t tvo_controller_safe_stop(tvo_controller_t *ctl, tvo_command_t *cmd);
 

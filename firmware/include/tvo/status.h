@@ -1,8 +1,17 @@
 /*
- * Status codes, parameter names and command flags shared by every block of the control core.
+ * What the control core's calls answer, in three vocabularies kept apart (as OSQP keeps its
+ * osqp_error_type apart from the solver's status):
  *
- * Every public function returns a tvo_status_t; 0 means success. The numeric values are part of
- * the wire protocol (command_t.status) and must not be renumbered.
+ *   tvo_status_t   returned by every public function: TVO_OK, or an error that says the call failed and
+ *                  changed nothing (a caller's misuse, or a computation that produced no result).
+ *   tvo_outcome_t  what a controller's period did with the robots, carried by the command it delivers
+ *   tvo_reason_t   (tvo_command_t.outcome / .reason): applied, or held / stopped and why. A step that
+ *                  delivers a command returns TVO_OK whatever its outcome.
+ *   tvo_param_t    which field of tvo_controller_config_t an init refused (the chain's configuration
+ *                  names its own: tvo_chain_param_t in tvo/chain_controller.h).
+ *
+ * None of these numbers is the wire's: the edge maps them to command_t.status and session_ack_t's
+ * fields in one table (firmware/edge/step_codec.c, session_codec.c).
  */
 #ifndef TVO_STATUS_H
 #define TVO_STATUS_H
@@ -13,38 +22,73 @@
 extern "C" {
 #endif
 
+/** A call's answer. Every code but TVO_OK means the call changed nothing (outputs aside: a controller's
+ *  cmd still receives a command that is safe to apply, see tvo/controller.h). */
 typedef enum {
     TVO_OK = 0,
-    TVO_ERR_NULL = 1,                /* a required pointer was NULL */
-    TVO_ERR_NOT_FINITE = 2,          /* an input was NaN or infinite */
-    TVO_ERR_DIMENSION = 3,           /* a size is zero or above its compile-time limit */
-    TVO_ERR_PARAM = 4,               /* a parameter is out of range (see tvo_param_t) */
-    TVO_ERR_CAPACITY = 5,            /* a fixed-size table is full */
-    TVO_ERR_NOT_INITIALIZED = 6,     /* the instance was not (successfully) initialised */
-    TVO_ERR_NOT_POSITIVE_DEFINITE = 7, /* the Hessian is not positive definite: no Newton step */
-    TVO_ERR_NUMERIC = 8,             /* a computed value came out NaN or infinite */
-    TVO_ERR_STALE = 9,               /* the measurement is older than one period */
-    TVO_ERR_OUT_OF_ORDER = 10,       /* a timestamp did not advance */
-    TVO_ERR_FUTURE_STAMP = 11,       /* the measurement is stamped after the application time */
-    TVO_ERR_NO_MEASUREMENT = 12,     /* no measurement arrived for this period */
-    TVO_ERR_MISSING_FIELD = 13,      /* the velocity source needs a field the measurement lacks */
-    TVO_ERR_TARGET_NOT_READY = 14,   /* a streamed target has no sample yet */
-    TVO_ERR_WATCHDOG = 15,           /* no valid measurement within the watchdog: safe stop */
-    TVO_ERR_IMPLAUSIBLE_STAMP = 16,  /* the stamp (or stamp and sequence) does not fit the schedule */
-    TVO_ERR_SESSION_CONFLICT = 17,   /* a START reuses the running session's id with other content */
-    TVO_ERR_NO_SESSION = 18,         /* no such session is running (send START) */
-    TVO_ERR_IMPLAUSIBLE_MEASUREMENT = 19 /* finite, but beyond what the session's robot can be (tvo/controller.h) */
+    /* The caller's misuse: */
+    TVO_ERR_NULL = 1,                  /* a required pointer was NULL */
+    TVO_ERR_NOT_FINITE = 2,            /* an argument was NaN or infinite */
+    TVO_ERR_DIMENSION = 3,             /* a size is zero or above its compile-time limit */
+    TVO_ERR_PARAM = 4,                 /* a parameter is out of range (an init names it: tvo_param_t) */
+    TVO_ERR_CAPACITY = 5,              /* a fixed-size table is full */
+    TVO_ERR_NOT_INITIALIZED = 6,       /* the instance was not (successfully) initialised */
+    TVO_ERR_TICK_NOT_ADVANCING = 7,    /* apply_tick does not advance past the last period */
+    TVO_ERR_BEFORE_EPOCH = 8,          /* a time before the epoch (objective time 0) */
+    TVO_ERR_CLOCK_STARTED = 9,         /* the clock cannot be rebased: a period has ended */
+    /* The core's checks and computations that produced no result (a controller's step never returns
+     * these: it holds or stops, and its command's tvo_reason_t says why): */
+    TVO_ERR_NOT_POSITIVE_DEFINITE = 10, /* the Hessian is not positive definite: no Newton step */
+    TVO_ERR_NUMERIC = 11,              /* a computed value came out NaN or infinite */
+    TVO_ERR_STALE = 12,                /* a stamp is more than one period before its application */
+    TVO_ERR_FUTURE_STAMP = 13,         /* a stamp lies after the time it is used for */
+    TVO_ERR_STAMP_NOT_NEWER = 14,      /* a stamp is not newer than the last one taken */
+    TVO_ERR_TARGET_NOT_READY = 15      /* a streamed target has no sample yet */
 } tvo_status_t;
 
-/** Number of status codes: arrays indexed by status (the node's refusal counters) hold this many. */
-#define TVO_STATUS_COUNT 20
+/** Number of tvo_status_t codes (0 .. TVO_STATUS_COUNT - 1). */
+#define TVO_STATUS_COUNT 16
 
-/** Names the parameter an init rejected. */
+/** What a controller's period did: the command it delivers says (tvo_command_t.outcome). */
+typedef enum {
+    TVO_OUTCOME_APPLIED = 0,           /* a new command, computed from this period's measurement */
+    TVO_OUTCOME_HELD = 1,              /* the command in force, repeated; nothing changed (reason: why) */
+    TVO_OUTCOME_STOPPED = 2            /* every input zero: the robots stop (reason: why) */
+} tvo_outcome_t;
+
+#define TVO_OUTCOME_COUNT 3
+
+/** Why a period's command was held or stopped (TVO_REASON_NONE when applied). */
+typedef enum {
+    TVO_REASON_NONE = 0,
+    /* The measurement refused (held, or stopped when the watchdog expires with it): */
+    TVO_REASON_NOT_FINITE = 1,             /* a value the configuration reads is NaN or infinite */
+    TVO_REASON_IMPLAUSIBLE_MEASUREMENT = 2, /* finite, but beyond what the session's robot can be */
+    TVO_REASON_STALE = 3,                  /* stamped more than one period before the application */
+    TVO_REASON_FUTURE_STAMP = 4,           /* stamped after the application time */
+    TVO_REASON_STAMP_NOT_NEWER = 5,        /* stamped no later than the last accepted measurement */
+    TVO_REASON_MISSING_FIELD = 6,          /* the velocity source needs a field the measurement lacks */
+    TVO_REASON_SOURCE_NOT_LINKED = 7,      /* the velocity source set was not linked by the init */
+    /* The law could not serve it: */
+    TVO_REASON_TARGET_NOT_READY = 8,       /* a streamed target has no sample yet */
+    TVO_REASON_NUMERIC = 9,                /* a computed value came out NaN or infinite */
+    TVO_REASON_NOT_POSITIVE_DEFINITE = 10, /* the Hessian is not positive definite: no Newton step */
+    /* No measurement: */
+    TVO_REASON_NO_MEASUREMENT = 11,        /* none this period (tvo_controller_miss) */
+    /* Stops: */
+    TVO_REASON_WATCHDOG = 12,              /* watchdog_periods periods without a good step */
+    TVO_REASON_SPEED_MISMATCH = 13,        /* measured speeds contradicted the command (tvo/controller.h) */
+    TVO_REASON_STOP_REQUESTED = 14         /* the caller asked (tvo_controller_safe_stop) */
+} tvo_reason_t;
+
+#define TVO_REASON_COUNT 15
+
+/** Names the field of tvo_controller_config_t an init rejected. */
 typedef enum {
     TVO_PARAM_NONE = 0,
     TVO_PARAM_TICK_HZ = 1,
     TVO_PARAM_PERIOD = 2,
-    TVO_PARAM_DELAY = 3,
+    TVO_PARAM_DELAY = 3,               /* delay_ticks, or a switch (delay_compensation, zoh_aware) not 0/1 */
     TVO_PARAM_FILTER_TF = 4,
     TVO_PARAM_GAINS = 5,
     TVO_PARAM_OMEGA_MAX = 6,
@@ -53,28 +97,31 @@ typedef enum {
     TVO_PARAM_MIN_SPEED = 9,
     TVO_PARAM_WATCHDOG = 10,
     TVO_PARAM_ROBOT_COUNT = 11,
-    TVO_PARAM_OBJECTIVE = 12,
+    TVO_PARAM_OBJECTIVE = 12,          /* the objective argument: its dimension, or no term */
     TVO_PARAM_VELOCITY_SOURCE = 13,
-    TVO_PARAM_INITIAL_SPEED = 14,
-    TVO_PARAM_EPOCH = 15,
-    TVO_PARAM_CLOCK_SOURCE = 16,
-    TVO_PARAM_PLANT_KIND = 17,
-    TVO_PARAM_SESSION_ID = 18
+    TVO_PARAM_INITIAL_SPEED = 14
 } tvo_param_t;
 
-/* Bits of tvo_command_t.flags: what shaped the command, for telemetry and fault counting. */
+#define TVO_PARAM_COUNT 15
+
+/* Bits of a command's flags: what shaped an applied command (its outcome says whether it was applied). */
 #define TVO_FLAG_OMEGA_SATURATED (1u << 0)  /* |omega| clipped to omega_max */
 #define TVO_FLAG_ACCEL_SATURATED (1u << 1)  /* |dv/dt| clipped to accel_max */
 #define TVO_FLAG_SPEED_SATURATED (1u << 2)  /* |v| clipped to speed_max (anti-windup held the state) */
 #define TVO_FLAG_LOW_SPEED (1u << 3)        /* |v| below min_speed: 1/v regularised */
-#define TVO_FLAG_HOLDING (1u << 4)          /* no usable measurement: previous command held */
-#define TVO_FLAG_SAFE_STOP (1u << 5)        /* watchdog expired or law failed: v = 0, omega = 0 */
+/* Bits 4 and 5 are the wire's HOLDING and SAFE_STOP, which the edge derives from the outcome. */
 #define TVO_FLAG_PREDICTED (1u << 6)        /* state predicted over the computation delay */
 #define TVO_FLAG_REGULARIZED (1u << 7)      /* Hessian not positive definite: the solve shifted it */
 #define TVO_FLAG_SPEED_MISMATCH (1u << 8)   /* measured speed contradicts the commanded speed (stall, or a lying plant) */
 
-/** Short English description of a status, for logs at the edge (no stdio in the core). */
+/** Short English description of a call's status, for logs at the edge (no stdio in the core). */
 const char *tvo_status_str(tvo_status_t status);
+
+/** Short English description of a period's outcome. */
+const char *tvo_outcome_str(tvo_outcome_t outcome);
+
+/** Short English description of why a period's command was held or stopped. */
+const char *tvo_reason_str(tvo_reason_t reason);
 
 /** Name of a parameter as it appears in tvo_controller_config_t. */
 const char *tvo_param_str(tvo_param_t param);

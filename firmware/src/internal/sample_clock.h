@@ -39,7 +39,7 @@ int tvo_sample_clock_end(tvo_sample_clock_t *clock, const tvo_period_t *period, 
 
 /**
  * Ticks from the epoch to a tick near the clock's present (within TVO_MAX_TICK_SPAN either way):
- * the objective time of a stamp. TVO_ERR_OUT_OF_ORDER if it lies before the epoch.
+ * the objective time of a stamp. TVO_ERR_BEFORE_EPOCH if it lies before the epoch.
  */
 tvo_status_t tvo_sample_clock_objective_ticks(const tvo_sample_clock_t *clock, uint32_t tick, uint64_t *objective_ticks);
 
@@ -100,7 +100,7 @@ static inline tvo_status_t sample_clock_begin(const tvo_sample_clock_t *clock, u
     if (!clock->started) {
         const uint32_t since_epoch = apply_tick - clock->epoch_tick;
         if (since_epoch > TVO_MAX_TICK_SPAN) {
-            return TVO_ERR_OUT_OF_ORDER; /* first application before the epoch */
+            return TVO_ERR_BEFORE_EPOCH; /* first application before the epoch */
         }
         const tvo_tick_time_t epoch = {0u, 0u, 0u};
         period->elapsed = tick_time_after(&epoch, since_epoch, clock->tick_hz);
@@ -108,7 +108,7 @@ static inline tvo_status_t sample_clock_begin(const tvo_sample_clock_t *clock, u
     }
     const uint32_t advance = apply_tick - clock->last_apply_tick;
     if (advance == 0u || advance > TVO_MAX_TICK_SPAN) {
-        return TVO_ERR_OUT_OF_ORDER;
+        return TVO_ERR_TICK_NOT_ADVANCING;
     }
     period->elapsed = tick_time_after(&clock->elapsed, advance, clock->tick_hz);
     if (advance / clock->period_ticks > 1u) {
@@ -144,7 +144,7 @@ static inline tvo_status_t sample_clock_check_stamp(const tvo_sample_clock_t *cl
     if (clock->has_stamp) {
         const uint32_t advance = stamp_tick - clock->last_stamp_tick;
         if (advance == 0u || advance > TVO_MAX_TICK_SPAN) {
-            return TVO_ERR_OUT_OF_ORDER;
+            return TVO_ERR_STAMP_NOT_NEWER;
         }
     }
     return TVO_OK;

@@ -6,7 +6,7 @@
  * Usage: closed_loop_ref CASE STEPS KP KD ZOH
  *   CASE 0: one robot, ellipse target, an obstacle in the way (barrier), start (-1, -2, 0)
  *   CASE 1: two robots, polynomial targets, a minimum distance and a half-space, measured speeds
- * Output: per period "k status flags" then per robot the speed and turn rate's bits (hex) and the
+ * Output: per period "k outcome reason flags" then per robot the speed and turn rate's bits (hex) and the
  * plant's pose bits at the apply instant.
  */
 #include <inttypes.h>
@@ -182,7 +182,10 @@ int main(int argc, char **argv)
         }
         tvo_command_t cmd;
         st = tvo_controller_step(&ctl, &m, apply, &cmd);
-        printf("%ld %d %" PRIu32, k, (int)st, cmd.flags);
+        if (st != TVO_OK) {
+            return fail("step", st); /* a call error: the module raises there */
+        }
+        printf("%ld %d %d %" PRIu32, k, (int)cmd.outcome, (int)cmd.reason, cmd.flags);
         for (uint8_t r = 0; r < robots; ++r) {
             held_v[r] = (double)cmd.speed_mps[r];
             held_w[r] = (double)cmd.turn_rate_radps[r];

@@ -4,7 +4,7 @@
 Runs the same closed loops (exact unicycle plants, the core's controller) through Python
 (tvo.UnicycleController.run) and through closed_loop_ref.c linked with the firmware's host build of
 the core (tvo_core in float32, tvo_core_double in float64: the core tvo_firmware_node runs) and with
-the shared library the module calls, and compares every period's status, flags, command bits (speed,
+the shared library the module calls, and compares every period's outcome, reason, flags, command bits (speed,
 turn rate as tvo_real_t) and the plant's pose bits.
 
 Not compared: the Cortex-M4F build, which links newlib's expf/logf instead of glibc's (the PIL test,
@@ -55,7 +55,7 @@ def python_lines(precision, case, steps, kp, kd, zoh):
     pose = loop.poses[1:].view(np.uint64)
     lines = []
     for k in range(steps):
-        fields = [str(k), str(int(loop.status[k])), str(int(loop.flags[k]))]
+        fields = [str(k), str(int(loop.outcome[k])), str(int(loop.reason[k])), str(int(loop.flags[k]))]
         for r in range(v.shape[1]):
             fields += [f"{int(v[k, r]):0{width}x}", f"{int(w[k, r]):0{width}x}"]
             fields += [f"{int(b):016x}" for b in pose[k, r]]
@@ -77,12 +77,12 @@ def main(argv):
                       "of the core differ in C")
                 failures += 1
             label = f"{precision} case {case} kp={kp} kd={kd} zoh={zoh}, {steps} periods"
-            ok_steps = int(np.sum(loop.status == 0))
+            ok_steps = int(np.sum(loop.outcome == 0))
             if c_lines == py_lines:
-                print(f"ok: {label}: every period identical (status, flags, command bits, plant bits) in "
-                      f"Python, C on the firmware's core build and C on the module's library; {ok_steps} TVO_OK steps")
+                print(f"ok: {label}: every period identical (outcome, reason, flags, command bits, plant bits) in "
+                      f"Python, C on the firmware's core build and C on the module's library; {ok_steps} applied steps")
                 if ok_steps < steps // 2:
-                    print(f"FAIL: {label}: fewer than half of the steps were TVO_OK: the loop tests little")
+                    print(f"FAIL: {label}: fewer than half of the steps applied a command: the loop tests little")
                     failures += 1
                 continue
             failures += 1

@@ -18,13 +18,22 @@ def demo_problem():
 
 class StatusTest(unittest.TestCase):
     def test_codes_and_text_come_from_the_core(self):
+        lib, ffi = tvo.core().lib, tvo.core().ffi
         self.assertEqual(int(tvo.Status.TVO_OK), 0)
-        self.assertEqual(len(tvo.Status), tvo.core().lib.TVO_STATUS_COUNT)
-        self.assertEqual(tvo.Status.TVO_ERR_WATCHDOG.message,
-                         tvo.core().ffi.string(tvo.core().lib.tvo_status_str(15)).decode())
-        self.assertIn("stale", tvo.Status.TVO_ERR_STALE.message)
+        self.assertEqual(len(tvo.Status), lib.TVO_STATUS_COUNT)
+        self.assertEqual(len(tvo.Outcome), lib.TVO_OUTCOME_COUNT)
+        self.assertEqual(len(tvo.Reason), lib.TVO_REASON_COUNT)
+        self.assertEqual(len(tvo.Param), lib.TVO_PARAM_COUNT)
+        self.assertEqual(len(tvo.ChainParam), lib.TVO_CHAIN_PARAM_COUNT)
+        self.assertEqual(tvo.Status.TVO_ERR_TICK_NOT_ADVANCING.message,
+                         ffi.string(lib.tvo_status_str(lib.TVO_ERR_TICK_NOT_ADVANCING)).decode())
+        self.assertIn("stale", tvo.Reason.STALE.message)
+        self.assertEqual(tvo.Reason.WATCHDOG.message, ffi.string(lib.tvo_reason_str(lib.TVO_REASON_WATCHDOG)).decode())
+        self.assertEqual(tvo.Outcome.HELD.message, "held")
         self.assertEqual(str(tvo.Param.TVO_PARAM_GAINS), "gain_kp/gain_kd")
-        self.assertEqual(tvo.Flag.SAFE_STOP, tvo.core().lib.TVO_FLAG_SAFE_STOP)
+        self.assertEqual(str(tvo.ChainParam.TVO_CHAIN_PARAM_INPUT_MAX), "input_max")
+        self.assertEqual(tvo.Flag.PREDICTED, lib.TVO_FLAG_PREDICTED)
+        self.assertFalse(hasattr(tvo.Flag, "SAFE_STOP"))  # the outcome says it: tvo.Outcome.STOPPED
 
     def test_refused_parameter_raises_naming_it(self):
         with self.assertRaises(tvo.TvoError) as caught:
@@ -50,33 +59,41 @@ class StepTest(unittest.TestCase):
         for precision in tvo.PRECISIONS:
             ctl = tvo.UnicycleController(demo_problem(), precision, period_s=0.01)
             cmd = ctl.step(np.array([[-1.0, -2.0]]), heading=np.array([0.0]))
-            self.assertEqual(cmd.status, tvo.Status.TVO_OK)
+            self.assertEqual((cmd.outcome, cmd.reason), (tvo.Outcome.APPLIED, tvo.Reason.NONE))
             self.assertEqual(cmd.speed_mps.dtype, np.dtype(precision))
             self.assertEqual(cmd.speed_mps.shape, (1,))
             self.assertTrue(np.all(np.isfinite(cmd.turn_rate_radps)))
             self.assertIn(tvo.Flag.PREDICTED, cmd.flags)
 
-    def test_refusal_is_a_status_not_an_exception(self):
+    def test_refusal_is_an_outcome_not_an_exception(self):
         ctl = tvo.UnicycleController(demo_problem(), period_s=0.01)
         cmd = ctl.step([[-1.0, -2.0]], heading=None)   # pose mode needs the heading
-        self.assertEqual(cmd.status, tvo.Status.TVO_ERR_MISSING_FIELD)
-        self.assertIn(tvo.Flag.HOLDING, cmd.flags)
+        self.assertEqual((cmd.outcome, cmd.reason), (tvo.Outcome.HELD, tvo.Reason.MISSING_FIELD))
         cmd = ctl.step([[math.nan, -2.0]], heading=[0.0])
-        self.assertEqual(cmd.status, tvo.Status.TVO_ERR_NOT_FINITE)
+        self.assertEqual((cmd.outcome, cmd.reason), (tvo.Outcome.HELD, tvo.Reason.NOT_FINITE))
+
+    def test_misuse_raises_and_changes_nothing(self):
+        ctl = tvo.UnicycleController(demo_problem(), period_s=0.01)
+        cmd = ctl.step([[-1.0, -2.0]], heading=[0.0])
+        self.assertEqual(cmd.outcome, tvo.Outcome.APPLIED)
+        with self.assertRaises(tvo.TvoError) as caught:
+            ctl.step([[-1.0, -2.0]], heading=[0.0], apply_tick=ctl.next_apply_tick() - ctl.period_ticks)
+        self.assertEqual(caught.exception.status, tvo.Status.TVO_ERR_TICK_NOT_ADVANCING)
+        self.assertEqual(ctl.step([[-1.0, -2.0]], heading=[0.0]).outcome, tvo.Outcome.APPLIED)
 
     def test_misses_reach_the_watchdog(self):
         ctl = tvo.UnicycleController(demo_problem(), period_s=0.01, watchdog_periods=3)
-        self.assertEqual(ctl.step([[-1.0, -2.0]], [0.0]).status, tvo.Status.TVO_OK)
-        statuses = [ctl.miss().status for _ in range(3)]
-        self.assertEqual(statuses[:2], [tvo.Status.TVO_ERR_NO_MEASUREMENT] * 2)
-        self.assertEqual(statuses[2], tvo.Status.TVO_ERR_WATCHDOG)
+        self.assertEqual(ctl.step([[-1.0, -2.0]], [0.0]).outcome, tvo.Outcome.APPLIED)
+        answers = [(cmd.outcome, cmd.reason) for cmd in (ctl.miss() for _ in range(3))]
+        self.assertEqual(answers[:2], [(tvo.Outcome.HELD, tvo.Reason.NO_MEASUREMENT)] * 2)
+        self.assertEqual(answers[2], (tvo.Outcome.STOPPED, tvo.Reason.WATCHDOG))
 
     def test_closed_loop_tracks_in_both_precisions(self):
         errors = {}
         for precision in tvo.PRECISIONS:
             ctl = tvo.UnicycleController(demo_problem(), precision, period_s=0.01)
             loop = ctl.run([[-1.0, -2.0, 0.0]], 1000)
-            self.assertTrue(np.all(loop.status == 0))
+            self.assertTrue(np.all(loop.outcome == tvo.Outcome.APPLIED))
             errors[precision] = loop.tracking_error(demo_problem())[-1, 0]
             self.assertLess(errors[precision], 0.01)
         self.assertNotEqual(errors["float32"], errors["float64"])  # two builds, not one
@@ -85,21 +102,22 @@ class StepTest(unittest.TestCase):
         p = tvo.Problem(2).track(0, tvo.circle((0, 0), 2.0, 0.5)).track(1, tvo.circle((0, 0), 2.0, 0.5, math.pi / 2))
         p.add_distance_bound(0, 1, min_m=1.0)
         loop = tvo.UnicycleController(p, period_s=0.01).run([[2.0, 0.0, 1.6], [0.0, 2.0, 3.1]], 300)
-        self.assertTrue(np.all(loop.status == 0))
+        self.assertTrue(np.all(loop.outcome == tvo.Outcome.APPLIED))
         d = np.linalg.norm(loop.poses[:, 0, :2] - loop.poses[:, 1, :2], axis=-1)
         self.assertGreater(d.min(), 0.9)
 
     def test_streamed_target(self):
         p = tvo.Problem(1).track(0, tvo.streamed())
         ctl = tvo.UnicycleController(p, period_s=0.01)
-        self.assertEqual(ctl.step([[0.0, 0.0]], [0.0]).status, tvo.Status.TVO_ERR_TARGET_NOT_READY)
+        cmd = ctl.step([[0.0, 0.0]], [0.0])
+        self.assertEqual((cmd.outcome, cmd.reason), (tvo.Outcome.HELD, tvo.Reason.TARGET_NOT_READY))
         # A target moving along x at 0.5 m/s from (1, 0), streamed every period, stamped at the sample.
         for _ in range(100):
             apply = ctl.next_apply_tick()
             sample = apply - ctl.delay_ticks
             ctl.stream_target(0, [[1.0 + 0.5 * sample * 1e-6, 0.0], [0.5, 0.0]], sample)
             cmd = ctl.step([[0.0, 0.0]], [0.0], apply_tick=apply)
-            self.assertEqual(cmd.status, tvo.Status.TVO_OK)
+            self.assertEqual(cmd.outcome, tvo.Outcome.APPLIED)
         self.assertGreater(cmd.speed_mps[0], 0.0)   # towards the target ahead
         with self.assertRaises(tvo.TvoError) as caught:
             ctl.stream_target(0, [[math.inf, 0.0]], ctl.next_apply_tick() - ctl.delay_ticks)
@@ -113,7 +131,7 @@ class StepTest(unittest.TestCase):
         y = np.zeros((2, 2))   # y, y' of the double integrator
         for _ in range(800):
             cmd = ctl.step(y)
-            self.assertEqual(cmd.status, tvo.Status.TVO_OK)
+            self.assertEqual((cmd.outcome, cmd.reason), (tvo.Outcome.APPLIED, tvo.Reason.NONE))
             h = 0.01
             y = np.array([y[0] + y[1] * h + 0.5 * cmd.u * h * h, y[1] + cmd.u * h])
         t = 800 * 0.01
@@ -131,7 +149,7 @@ class ReadmeTest(unittest.TestCase):
         self.assertGreaterEqual(len(blocks), 2)
         scope = {}
         exec(blocks[0], scope)   # pylint: disable=exec-used
-        self.assertEqual(scope["cmd"].status, tvo.Status.TVO_OK)
+        self.assertEqual(scope["cmd"].outcome, tvo.Outcome.APPLIED)
         scope["start"] = [[-1.0, -2.0, 0.0]]
         exec(blocks[1], scope)   # pylint: disable=exec-used
         self.assertLess(scope["score"](40, 13, seconds=2.0), 1.0)
@@ -143,7 +161,7 @@ class ScenarioTest(unittest.TestCase):
         self.assertEqual(s.problem.robots[0]["target"]["kind"], "polynomial")   # its waypoints, solved
         self.assertEqual(len(s.problem.obstacles), 4)
         loop = s.make_controller().run(s.starts, 200)
-        self.assertTrue(np.all(loop.status == 0))
+        self.assertTrue(np.all(loop.outcome == tvo.Outcome.APPLIED))
 
     def test_export_command(self):
         run = subprocess.run([sys.executable, "-m", "tvo", "export", "formation-max", "--gains", "30,11"],

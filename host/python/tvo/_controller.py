@@ -3,16 +3,17 @@ import collections
 
 import numpy as np
 
-from ._lib import Flag, Status, TvoError, check, core
+from ._lib import ChainParam, Flag, Outcome, Reason, TvoError, check, core
 from ._problem import BuiltProblem, Problem
 
 UINT32 = 1 << 32
 
-Command = collections.namedtuple("Command", "speed_mps turn_rate_radps flags status")
-Command.__doc__ = """One step's answer: speeds and turn rates (numpy, one per robot, tvo_real_t), the
-TVO_FLAG_* bits (tvo.Flag) and the status (tvo.Status; not OK: the command in force, or the stop)."""
+Command = collections.namedtuple("Command", "speed_mps turn_rate_radps flags outcome reason")
+Command.__doc__ = """One period's answer: speeds and turn rates (numpy, one per robot, tvo_real_t), the
+TVO_FLAG_* bits (tvo.Flag), what the period did (tvo.Outcome: APPLIED, or HELD / STOPPED: the command
+in force, or the stop) and why (tvo.Reason, NONE when applied)."""
 
-ChainCommand = collections.namedtuple("ChainCommand", "u flags status")
+ChainCommand = collections.namedtuple("ChainCommand", "u flags outcome reason")
 
 
 def _configure(c, cfg, config, period_s, delay_s):
@@ -78,12 +79,13 @@ class UnicycleController:
         self._y = ffi.new("tvo_real_t[]", lib.TVO_MAX_OUTPUT_DIM)
         self._slack_chosen = False
 
-    def _command(self, status):
+    def _command(self, status, where):
+        check(status, where)  # a call error: nothing changed
         n = self.robot_count
         cmd = self._cmd
         return Command(np.array([cmd.speed_mps[r] for r in range(n)], dtype=self.core.dtype),
                        np.array([cmd.turn_rate_radps[r] for r in range(n)], dtype=self.core.dtype),
-                       Flag(cmd.flags), Status(status))
+                       Flag(cmd.flags), Outcome(cmd.outcome), Reason(cmd.reason))
 
     def next_apply_tick(self):
         return (self.epoch_tick + (self.periods + 1) * self.period_ticks) % UINT32
@@ -92,7 +94,8 @@ class UnicycleController:
         """One period: position (N, 2) in m, heading (N,) in rad (None: not measured), speed (N,) in
         m/s (None: not measured). apply_tick defaults to the next period (epoch + (n + 1) h), stamp_tick
         to apply_tick - tau. Returns a Command (numpy arrays); a refused measurement is no exception:
-        its status says why and the command is the one in force (as on the firmware)."""
+        the command is the one in force, its outcome HELD and its reason why (as on the firmware). A
+        misused call (an apply tick that does not advance) raises TvoError and changes nothing."""
         lib = self.core.lib
         n = self.robot_count
         pos = np.asarray(position, dtype=np.float64).reshape(n, 2)
@@ -118,19 +121,20 @@ class UnicycleController:
             check(lib.tvo_problem_choose_slack(self.built.problem, self._y, 0.0), "tvo_problem_choose_slack")
             self._slack_chosen = True
         status = lib.tvo_controller_step(self.ctl, m, apply_tick, self._cmd)
-        self.periods += 1
-        return self._command(status)
+        if status == 0:
+            self.periods += 1
+        return self._command(status, "tvo_controller_step")
 
     def miss(self, apply_tick=None):
         """A period without a measurement (tvo_controller_miss): the command in force, or the stop."""
         apply_tick = self.next_apply_tick() if apply_tick is None else int(apply_tick) % UINT32
         status = self.core.lib.tvo_controller_miss(self.ctl, apply_tick, self._cmd)
-        self.periods += 1
-        return self._command(status)
+        if status == 0:
+            self.periods += 1
+        return self._command(status, "tvo_controller_miss")
 
     def safe_stop(self):
-        check(self.core.lib.tvo_controller_safe_stop(self.ctl, self._cmd), "tvo_controller_safe_stop")
-        return self._command(0)
+        return self._command(self.core.lib.tvo_controller_safe_stop(self.ctl, self._cmd), "tvo_controller_safe_stop")
 
     def stream_target(self, robot, derivs, tick):
         """A new sample of robot's streamed target (tvo.streamed()): derivs (up to 4, 2) = position,
@@ -183,7 +187,8 @@ class UnicycleController:
             out.speed_mps[k] = cmd.speed_mps
             out.turn_rate_radps[k] = cmd.turn_rate_radps
             out.flags[k] = int(cmd.flags)
-            out.status[k] = int(cmd.status)
+            out.outcome[k] = int(cmd.outcome)
+            out.reason[k] = int(cmd.reason)
         return out
 
 
@@ -198,7 +203,8 @@ class ClosedLoop:
         self.speed_mps = np.zeros((steps, robots), dtype=dtype)
         self.turn_rate_radps = np.zeros((steps, robots), dtype=dtype)
         self.flags = np.zeros(steps, dtype=np.uint32)
-        self.status = np.zeros(steps, dtype=np.int32)
+        self.outcome = np.zeros(steps, dtype=np.int32)  # tvo.Outcome: 0 APPLIED
+        self.reason = np.zeros(steps, dtype=np.int32)   # tvo.Reason: 0 NONE
 
     def tracking_error(self, problem):
         """|y_r - y_d,r| at each apply instant (steps, N), against the problem's targets (double)."""
@@ -226,9 +232,9 @@ class ChainController:
         _configure(c, cfg, dict(config), period_s, delay_s)
         self.config = cfg
         self.ctl = ffi.new("tvo_chain_controller_t *")
-        bad = ffi.new("tvo_param_t *")
+        bad = ffi.new("tvo_chain_param_t *")
         check(lib.tvo_chain_controller_init(self.ctl, cfg, problem.objective, epoch_tick % UINT32, bad),
-              "tvo_chain_controller_init", param=bad[0])
+              "tvo_chain_controller_init", param=bad[0], param_enum=ChainParam)
         self.k = relative_degree
         self.epoch_tick = epoch_tick % UINT32
         self.tick_hz, self.period_ticks, self.delay_ticks = cfg.tick_hz, cfg.period_ticks, cfg.delay_ticks
@@ -255,6 +261,7 @@ class ChainController:
             check(lib.tvo_problem_choose_slack(self.built.problem, y, 0.0), "tvo_problem_choose_slack")
             self._slack_chosen = True
         status = lib.tvo_chain_controller_step(self.ctl, m, apply_tick, self._cmd)
+        check(status, "tvo_chain_controller_step")  # a call error: nothing changed
         self.periods += 1
         return ChainCommand(np.array([self._cmd.u[i] for i in range(self.dim)], dtype=self.core.dtype),
-                            Flag(self._cmd.flags), Status(status))
+                            Flag(self._cmd.flags), Outcome(self._cmd.outcome), Reason(self._cmd.reason))

@@ -47,12 +47,27 @@ def _constants(*prefixes, strip=""):
     return {n[len(strip):]: getattr(lib, n) for n in sorted(names, key=lambda n: getattr(lib, n))}
 
 
-# The core's status codes (tvo/status.h, also command_t.status on the wire) and parameter names.
-_StatusBase = enum.IntEnum("_StatusBase", _constants("TVO_OK", "TVO_ERR_"))
+def _named_enum(name, doc, prefix, text_fn, strip=""):
+    """An IntEnum of the lib's constants named prefix* (but prefix + COUNT), str() the core's text."""
+    values = {n: v for n, v in _constants(prefix, strip=strip).items() if n != (prefix + "COUNT")[len(strip):]}
+
+    def message(self):
+        return core().ffi.string(getattr(core().lib, text_fn)(int(self))).decode()
+
+    cls = enum.IntEnum(name, values, module=__name__)
+    cls.__doc__ = doc
+    cls.message = property(message)
+    cls.__str__ = lambda self: f"{self.name}: {self.message}"
+    return cls
+
+
+# tvo_status_t (tvo/status.h): a call's answer; anything but TVO_OK raises TvoError (the call changed nothing).
+_StatusBase = enum.IntEnum("_StatusBase", {n: v for n, v in _constants("TVO_OK", "TVO_ERR_").items()})
 
 
 class Status(enum.IntEnum):
-    """tvo_status_t: 0 is TVO_OK. str() is the core's own text (tvo_status_str)."""
+    """tvo_status_t: 0 is TVO_OK; the others say a call failed and changed nothing. str() is the core's
+    own text (tvo_status_str). Not the wire's numbers (command_t.status: the edge maps them)."""
 
     _ignore_ = ["member"]
     for member in _StatusBase:
@@ -66,22 +81,30 @@ class Status(enum.IntEnum):
         return f"{self.name}: {self.message}"
 
 
-class Param(enum.IntEnum):
-    """tvo_param_t: which parameter an init refused. str() is its name in the config (tvo_param_str)."""
-
-    _ignore_ = ["member"]
-    for member in enum.IntEnum("_ParamBase", _constants("TVO_PARAM_")):
-        locals()[member.name] = int(member)
-
-    @property
-    def field(self):
-        return core().ffi.string(core().lib.tvo_param_str(int(self))).decode()
-
-    def __str__(self):
-        return self.field
+# What a period did (tvo_outcome_t) and why it held or stopped (tvo_reason_t): a Command carries both.
+Outcome = _named_enum("Outcome", "tvo_outcome_t: APPLIED, HELD or STOPPED (tvo_outcome_str).", "TVO_OUTCOME_",
+                      "tvo_outcome_str", strip="TVO_OUTCOME_")
+Reason = _named_enum("Reason", "tvo_reason_t: why a period held or stopped, NONE when applied (tvo_reason_str).",
+                     "TVO_REASON_", "tvo_reason_str", strip="TVO_REASON_")
 
 
-# TVO_FLAG_*: what shaped a command (tvo_command_t.flags), e.g. Flag.SAFE_STOP in Flag(cmd.flags).
+def _param_enum(name, doc, prefix, text_fn):
+    """An IntEnum of a configuration's parameter names (prefix*, but prefix + COUNT); .field and str()
+    are the field's name in the config (text_fn: tvo_param_str or tvo_chain_param_str)."""
+    cls = enum.IntEnum(name, {n: v for n, v in _constants(prefix).items() if n != prefix + "COUNT"}, module=__name__)
+    cls.__doc__ = doc
+    cls.field = property(lambda self: core().ffi.string(getattr(core().lib, text_fn)(int(self))).decode())
+    cls.__str__ = lambda self: self.field
+    return cls
+
+
+Param = _param_enum("Param", "tvo_param_t: which field of tvo_controller_config_t an init refused (tvo_param_str).",
+                    "TVO_PARAM_", "tvo_param_str")
+ChainParam = _param_enum("ChainParam", "tvo_chain_param_t: which field of tvo_chain_config_t an init refused "
+                         "(tvo_chain_param_str).", "TVO_CHAIN_PARAM_", "tvo_chain_param_str")
+
+
+# TVO_FLAG_*: what shaped an applied command (tvo_command_t.flags), e.g. Flag.PREDICTED in Flag(cmd.flags).
 Flag = enum.IntFlag("Flag", _constants("TVO_FLAG_", strip="TVO_FLAG_"))
 
 # The parts of a problem tvo_problem_init names on failure (bad_part, tvo/problem.h).
@@ -89,12 +112,12 @@ PROBLEM_PARTS = ("robots/targets", "barrier", "distance bounds", "half-spaces", 
 
 
 class TvoError(Exception):
-    """A status other than TVO_OK from the core: .status (Status), .param (Param, for TVO_ERR_PARAM
-    from an init), .part (the problem's part, from tvo_problem_init); the message is the core's text."""
+    """A status other than TVO_OK from the core (the call changed nothing): .status (Status), .param
+    (Param, or ChainParam, for TVO_ERR_PARAM from an init), .part (the problem's part, from tvo_problem_init); the message is the core's text."""
 
-    def __init__(self, status, where="", param=None, part=None):
+    def __init__(self, status, where="", param=None, part=None, param_enum=None):
         self.status = Status(status)
-        self.param = Param(param) if param is not None and int(param) != 0 else None
+        self.param = (param_enum or Param)(param) if param is not None and int(param) != 0 else None
         self.part = part
         text = f"{where}: " if where else ""
         text += f"{self.status.name} ({self.status.message})"

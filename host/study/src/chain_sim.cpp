@@ -128,9 +128,9 @@ SimResult run_chain(const SimConfig &cfg, std::vector<TraceRow> *trace)
     cc.input_max = static_cast<tvo_real_t>(1e30);  // the study measures the unsaturated loop
     cc.watchdog_periods = 10u;
     tvo_chain_controller_t ctl;
-    tvo_param_t bad = TVO_PARAM_NONE;
+    tvo_chain_param_t bad = TVO_CHAIN_PARAM_NONE;
     if (tvo_chain_controller_init(&ctl, &cc, &objective, kEpochTick, &bad) != TVO_OK) {
-        throw std::runtime_error(std::string("chain controller init rejected parameter ") + tvo_param_str(bad));
+        throw std::runtime_error(std::string("chain controller init rejected parameter ") + tvo_chain_param_str(bad));
     }
 
     // --- plant (double) ---
@@ -171,11 +171,15 @@ SimResult run_chain(const SimConfig &cfg, std::vector<TraceRow> *trace)
             }
         }
         tvo_chain_command_t cmd;
-        const tvo_status_t st = tvo_chain_controller_step(&ctl, &meas, apply_tick, &cmd);
+        // 0 when the step applied a new command; else its call error, or 100 + why it held or stopped.
+        const tvo_status_t call = tvo_chain_controller_step(&ctl, &meas, apply_tick, &cmd);
+        const int st = (call != TVO_OK) ? static_cast<int>(call)
+                       : (cmd.outcome == TVO_OUTCOME_APPLIED) ? 0
+                                                              : 100 + static_cast<int>(cmd.reason);
         res.steps++;
-        if (st != TVO_OK) {
+        if (st != 0) {
             if (res.not_ok == 0) {
-                res.first_bad_status = static_cast<int>(st);
+                res.first_bad_status = st;
             }
             res.not_ok++;
         }

@@ -40,8 +40,8 @@ struct SimResult {
     double diverged_at_s = 0.0;
     double peak_ratio = 0.0;   // max |e| / |e(0)| seen (interval starts, dense points); inf if non-finite
     uint64_t steps = 0;        // controller steps taken
-    uint64_t not_ok = 0;       // steps whose status was not TVO_OK (should stay 0)
-    int first_bad_status = 0;
+    uint64_t not_ok = 0;       // steps that did not apply a new command (should stay 0)
+    int first_bad_status = 0;  // its call error, or 100 + the reason it held or stopped
 };
 
 // One controller step, for --trace (the command as the firmware produced it).

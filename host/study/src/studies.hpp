@@ -42,7 +42,7 @@ struct Curve {
     double edge_sim_long_s = 0.0;     // the same with 200 s runs
     double edge_sim_1e3_s = 0.0;      // 20 s runs, threshold |e| > 1e3 |e(0)| (what matches the paper)
     bool sim_monotone = true;         // every h above edge_sim_s in the sweep diverged too
-    uint64_t not_ok_steps = 0;        // controller steps with a status other than TVO_OK (stable runs)
+    uint64_t not_ok_steps = 0;        // controller steps that did not apply a new command (stable runs)
 };
 
 struct NoiseConfig {
