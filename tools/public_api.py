@@ -7,7 +7,7 @@ Reads every header of firmware/include/tvo (what `cmake --install` installs; fir
 is not installed) and lists the functions they declare. --check compares them with
 firmware/cmake/tvo_public_api.txt, one name per line, and fails naming any function declared but
 not listed (an internal function in an installed header) or listed but not declared. --count prints
-only the number (firmware/README.md states it). --headers reads another folder (the CTest
+only the number; --check also fails unless firmware/README.md states it ("**N functions**"). --headers reads another folder (the CTest
 public_api_selftest points it at firmware/src/internal, where the check must fail).
 """
 import argparse
@@ -18,6 +18,7 @@ import sys
 REPO = pathlib.Path(__file__).resolve().parent.parent
 HEADERS = REPO / "firmware/include/tvo"
 LIST = REPO / "firmware/cmake/tvo_public_api.txt"
+README = REPO / "firmware/README.md"
 
 COMMENT = re.compile(r"/\*.*?\*/|//[^\n]*", re.S)
 # A declaration or definition at file scope: a return type, the name, its parameter list (not a
@@ -61,7 +62,14 @@ def main():
               "(an internal function belongs in firmware/src/internal)", file=sys.stderr)
     for name in missing:
         print(f"public_api: {name} is listed but no installed header declares it", file=sys.stderr)
-    if extra or missing or len(expected) != len(set(expected)):
+    stated = None
+    if args.headers == HEADERS:  # the README counts the installed headers, not a --headers folder
+        match = re.search(r"\*\*(\d+) functions\*\*", README.read_text())
+        stated = int(match.group(1)) if match else None
+        if stated != len(names):
+            print(f"public_api: {README.relative_to(REPO)} states {stated} functions, the headers declare "
+                  f"{len(names)}", file=sys.stderr)
+    if extra or missing or len(expected) != len(set(expected)) or (args.headers == HEADERS and stated != len(names)):
         return 1
     print(f"public_api: the installed headers declare the {len(names)} listed functions")
     return 0
