@@ -155,7 +155,7 @@ TVO_SHAPE_BODY tvo_status_t distance_sum_shape(const tvo_distance_term_t *self, 
         tvo_jet_axpy(e[1], &diff[1], order, &coordinate);
         tvo_jet_mul(&w, &coordinate, order, &part.gradient);
         tvo_jet_scale(&part.gradient, TVO_R(2.0) * sign, order, &part.gradient);
-        tvo_hessian_add(hessian, &part, grad, order);
+        tvo_hessian_add_relative(hessian, &part, grad, order);
     }
     return TVO_OK;
 }

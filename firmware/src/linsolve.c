@@ -64,8 +64,81 @@ TVO_SHAPE_BODY void cholesky_substitute_shape(const tvo_real_t *l, const unsigne
     }
 }
 
-/* The primal blocks of the common shapes (one robot, two) with the matrix's own stride. */
-static int cholesky_factor(tvo_real_t *a, unsigned stride, unsigned n)
+/* Row i's envelope starts at first[i], the column of its first nonzero left of the diagonal (i if
+ * none). The factor is zero left of it too (Cholesky fills in only right of a row's first nonzero),
+ * so every product a dense loop would take there is a zero: skipping them changes no nonzero digit
+ * (at most a zero's sign). A ring of distance bounds couples each robot with two others only. */
+static unsigned envelope_start(const tvo_real_t *row, const unsigned i)
+{
+    unsigned k = 0;
+    while (k < i && row[k] == TVO_R(0.0)) { /* NaN is not 0: it stays in, as in the dense loops */
+        ++k;
+    }
+    return k;
+}
+
+/* cholesky_factor_shape for a run-time size, row by row over each row's envelope: every entry the
+ * same sum in the same order times the same reciprocal of its pivot. */
+static int cholesky_factor_envelope(tvo_real_t *a, const unsigned stride, const unsigned n, uint8_t *first)
+{
+    tvo_real_t inv_pivot[TVO_MAX_Z_DIM];
+    for (unsigned i = 0; i < n && i < TVO_MAX_Z_DIM; ++i) {
+        tvo_real_t *row_i = &AT(a, stride, i, 0);
+        const unsigned first_i = envelope_start(row_i, i);
+        first[i] = (uint8_t)first_i;
+        for (unsigned j = first_i; j < i; ++j) {
+            const tvo_real_t *row_j = &AT(a, stride, j, 0);
+            tvo_real_t s = row_i[j];
+            for (unsigned k = first_i > first[j] ? first_i : first[j]; k < j; ++k) {
+                s -= row_i[k] * row_j[k];
+            }
+            row_i[j] = s * inv_pivot[j];
+        }
+        const tvo_real_t diagonal = row_i[i];
+        tvo_real_t d = diagonal;
+        for (unsigned k = first_i; k < i; ++k) {
+            d -= row_i[k] * row_i[k];
+        }
+        if (!(diagonal > TVO_R(0.0)) || !(d > TVO_R(64.0) * TVO_EPSILON * diagonal)) {
+            return 0;
+        }
+        const tvo_real_t l_ii = TVO_SQRT(d);
+        inv_pivot[i] = TVO_R(1.0) / l_ii;
+        row_i[i] = l_ii;
+    }
+    return 1;
+}
+
+/* cholesky_substitute_shape for a run-time size, over the envelope the factor found (first). */
+static void cholesky_substitute_envelope(const tvo_real_t *l, const unsigned stride, const unsigned n,
+                                         const uint8_t *first, const tvo_real_t *b, tvo_real_t *x)
+{
+    for (unsigned i = 0; i < n; ++i) {
+        const tvo_real_t *row = &AT(l, stride, i, 0);
+        tvo_real_t s = b[i];
+        for (unsigned k = first[i]; k < i; ++k) {
+            s -= row[k] * x[k];
+        }
+        x[i] = s / row[i];
+    }
+    for (unsigned ii = n; ii > 0u; --ii) {
+        const unsigned i = ii - 1u;
+        const tvo_real_t *column = &AT(l, stride, i, i); /* L_ki for k = i, i + 1, ... */
+        tvo_real_t s = x[i];
+        for (unsigned k = i + 1u; k < n; ++k) {
+            column += stride;
+            if (first[k] <= i) {
+                s -= *column * x[k];
+            }
+        }
+        x[i] = s / AT(l, stride, i, i);
+    }
+}
+
+/* The primal blocks of the common shapes (one robot, two) with the matrix's own stride, dense; any
+ * other size over its envelope, which the factor writes to first (TVO_MAX_Z_DIM entries) for the
+ * substitutions with that factor. */
+static int cholesky_factor(tvo_real_t *a, unsigned stride, unsigned n, uint8_t *first)
 {
 #if TVO_SHAPE_COPIES
     if (stride == TVO_MAX_Z_DIM && n == TVO_SHAPE_OUTPUT_DIM) {
@@ -75,10 +148,11 @@ static int cholesky_factor(tvo_real_t *a, unsigned stride, unsigned n)
         return cholesky_factor_shape(a, TVO_MAX_Z_DIM, TVO_SHAPE_PAIR_OUTPUT_DIM);
     }
 #endif
-    return cholesky_factor_shape(a, stride, n);
+    return cholesky_factor_envelope(a, stride, n, first);
 }
 
-static void cholesky_substitute(const tvo_real_t *l, unsigned stride, unsigned n, const tvo_real_t *b, tvo_real_t *x)
+static void cholesky_substitute(const tvo_real_t *l, unsigned stride, unsigned n, const uint8_t *first,
+                                const tvo_real_t *b, tvo_real_t *x)
 {
 #if TVO_SHAPE_COPIES
     if (stride == TVO_MAX_Z_DIM && n == TVO_SHAPE_OUTPUT_DIM) {
@@ -90,7 +164,7 @@ static void cholesky_substitute(const tvo_real_t *l, unsigned stride, unsigned n
         return;
     }
 #endif
-    cholesky_substitute_shape(l, stride, n, b, x);
+    cholesky_substitute_envelope(l, stride, n, first, b, x);
 }
 
 static int all_finite(const tvo_real_t *v, unsigned n)
@@ -101,6 +175,31 @@ static int all_finite(const tvo_real_t *v, unsigned n)
         probe += v[i] * TVO_R(0.0);
     }
     return isfinite(probe);
+}
+
+/* 1 if the leading n x n block of a and b[0..n-1] are finite. Their sum is finite only then (an
+ * infinity or NaN cannot cancel to a finite sum): one addition per entry; only a sum that overflowed
+ * is settled entry by entry. */
+static int block_finite(tvo_real_t (*a)[TVO_MAX_Z_DIM], const tvo_real_t *b, unsigned n)
+{
+    tvo_real_t sum = TVO_R(0.0);
+    for (unsigned i = 0; i < n; ++i) {
+        const tvo_real_t *row = a[i];
+        TVO_UNROLL_SMALL
+        for (unsigned j = 0; j < n; ++j) {
+            sum += row[j];
+        }
+        sum += b[i];
+    }
+    if (isfinite(sum)) {
+        return 1;
+    }
+    for (unsigned i = 0; i < n; ++i) {
+        if (!all_finite(a[i], n) || !isfinite(b[i])) {
+            return 0;
+        }
+    }
+    return 1;
 }
 
 tvo_status_t tvo_cholesky_solve(tvo_matrix_t a, uint8_t n, const tvo_real_t *b, tvo_real_t *x)
@@ -116,16 +215,17 @@ tvo_status_t tvo_cholesky_solve(tvo_matrix_t a, uint8_t n, const tvo_real_t *b, 
             return TVO_ERR_NOT_FINITE;
         }
     }
-    if (!cholesky_factor(&a[0][0], TVO_MAX_Z_DIM, n)) {
+    uint8_t first[TVO_MAX_Z_DIM];
+    if (!cholesky_factor(&a[0][0], TVO_MAX_Z_DIM, n, first)) {
         return TVO_ERR_NOT_POSITIVE_DEFINITE;
     }
-    cholesky_substitute(&a[0][0], TVO_MAX_Z_DIM, n, b, x);
+    cholesky_substitute(&a[0][0], TVO_MAX_Z_DIM, n, first, b, x);
     return all_finite(x, n) ? TVO_OK : TVO_ERR_NUMERIC;
 }
 
 /* Factors P + mu I in place (p = the primal block of a), smallest workable mu first. */
 static tvo_status_t regularized_factor(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t n, tvo_real_t *diag,
-                                       tvo_real_t *shift)
+                                       tvo_real_t *shift, uint8_t *first)
 {
     /* The factor overwrites the lower triangle and the diagonal: keep the diagonal, and let the strict
      * upper triangle (never written) be the pristine copy the retries restore from. */
@@ -134,7 +234,7 @@ static tvo_status_t regularized_factor(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t n
     }
     *shift = TVO_R(0.0);
     /* The factor reads the lower triangle: the upper one (symmetric input) stays as the copy. */
-    if (cholesky_factor(&a[0][0], TVO_MAX_Z_DIM, n)) {
+    if (cholesky_factor(&a[0][0], TVO_MAX_Z_DIM, n, first)) {
         return TVO_OK; /* the usual case: positive definite, no shift */
     }
     tvo_real_t scale = TVO_R(1.0);
@@ -167,7 +267,7 @@ static tvo_status_t regularized_factor(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t n
                 a[i][j] = a[j][i];
             }
         }
-        if (cholesky_factor(&a[0][0], TVO_MAX_Z_DIM, n)) {
+        if (cholesky_factor(&a[0][0], TVO_MAX_Z_DIM, n, first)) {
             *shift = mu;
             return TVO_OK;
         }
@@ -244,13 +344,12 @@ static tvo_status_t saddle_solve(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t primal_
     if (dual_n == 0u && diagonal_solve(a, n, b, x)) {
         return all_finite(x, n) ? TVO_OK : TVO_ERR_NUMERIC;
     }
-    for (uint8_t i = 0; i < n; ++i) {
-        if (!all_finite(a[i], n) || !isfinite(b[i])) {
-            return TVO_ERR_NOT_FINITE;
-        }
+    if (!block_finite(a, b, n)) {
+        return TVO_ERR_NOT_FINITE;
     }
     tvo_real_t mu = TVO_R(0.0);
-    tvo_status_t st = regularized_factor(a, primal_n, scratch->diag, &mu);
+    uint8_t first[TVO_MAX_Z_DIM]; /* the primal factor's envelope */
+    tvo_status_t st = regularized_factor(a, primal_n, scratch->diag, &mu, first);
     if (st != TVO_OK) {
         return st;
     }
@@ -259,18 +358,18 @@ static tvo_status_t saddle_solve(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t primal_
     }
     /* u = P^-1 b_p; then, with equalities, Y = P^-1 C^T and S w = C u - b_d, x_p = u - Y w. */
     if (dual_n == 0u) {
-        cholesky_substitute(&a[0][0], TVO_MAX_Z_DIM, primal_n, b, x);
+        cholesky_substitute(&a[0][0], TVO_MAX_Z_DIM, primal_n, first, b, x);
         return all_finite(x, n) ? TVO_OK : TVO_ERR_NUMERIC;
     }
 #if TVO_MAX_EQUALITIES > 0
     tvo_real_t *u = scratch->first;
-    cholesky_substitute(&a[0][0], TVO_MAX_Z_DIM, primal_n, b, u);
+    cholesky_substitute(&a[0][0], TVO_MAX_Z_DIM, primal_n, first, b, u);
     tvo_real_t(*y_cols)[TVO_MAX_Z_DIM] = scratch->columns;
     tvo_real_t(*schur)[TVO_SOLVE_SMALL_DIM] = scratch->small;
     tvo_real_t *rhs = scratch->small_rhs;
     tvo_real_t *w = scratch->small_x;
     for (uint8_t q = 0; q < dual_n && q < TVO_MAX_EQUALITIES; ++q) {
-        cholesky_substitute(&a[0][0], TVO_MAX_Z_DIM, primal_n, a[primal_n + q], y_cols[q]);
+        cholesky_substitute(&a[0][0], TVO_MAX_Z_DIM, primal_n, first, a[primal_n + q], y_cols[q]);
     }
     for (uint8_t q = 0; q < dual_n && q < TVO_MAX_EQUALITIES; ++q) {
         const tvo_real_t *c_row = a[primal_n + q];
@@ -289,10 +388,11 @@ static tvo_status_t saddle_solve(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t primal_
     }
     /* The Schur complement is symmetric in exact arithmetic; average away the rounding. */
     symmetrize(&schur[0][0], TVO_SOLVE_SMALL_DIM, dual_n);
-    if (!cholesky_factor(&schur[0][0], TVO_SOLVE_SMALL_DIM, dual_n)) {
+    uint8_t first_small[TVO_MAX_Z_DIM];
+    if (!cholesky_factor(&schur[0][0], TVO_SOLVE_SMALL_DIM, dual_n, first_small)) {
         return TVO_ERR_NOT_POSITIVE_DEFINITE;
     }
-    cholesky_substitute(&schur[0][0], TVO_SOLVE_SMALL_DIM, dual_n, rhs, w);
+    cholesky_substitute(&schur[0][0], TVO_SOLVE_SMALL_DIM, dual_n, first_small, rhs, w);
     for (uint8_t i = 0; i < primal_n; ++i) {
         tvo_real_t s = u[i];
         for (uint8_t q = 0; q < dual_n && q < TVO_MAX_EQUALITIES; ++q) {
@@ -410,9 +510,61 @@ void tvo_hessian_add_part(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_
     }
 }
 
-/* tvo_hessian_add for a valid part of count entries. */
+/* add_part_shape for a part on a pair's relative coordinates (tvo_hessian_add_relative): the same
+ * sums bit for bit, each product formed once. Row b + p's weight is -(weight e_p) and column b + q's
+ * entry -e_q: negations, which are exact, so every entry's product is +-(weight e_p) e_q. */
+TVO_SHAPE_BODY void add_relative_shape(const tvo_rank_one_t *part, tvo_matrix_t m, tvo_jet_t *grad,
+                                       const uint8_t order)
+{
+    const unsigned a = part->index[0];
+    const unsigned b = part->index[2];
+    const tvo_real_t e[2] = {part->value[0], part->value[1]};
+    const tvo_real_t weight = part->weight;
+    TVO_UNROLL_SMALL
+    for (unsigned p = 0; p < 2u; ++p) {
+        const tvo_real_t wp = weight * e[p];
+        const tvo_real_t q0 = wp * e[0];
+        const tvo_real_t q1 = wp * e[1];
+        tvo_real_t *row_a = m[a + p];
+        tvo_real_t *row_b = m[b + p];
+        row_a[a] += q0;
+        row_a[a + 1u] += q1;
+        row_a[b] -= q0;
+        row_a[b + 1u] -= q1;
+        row_b[a] -= q0;
+        row_b[a + 1u] -= q1;
+        row_b[b] += q0;
+        row_b[b + 1u] += q1;
+    }
+    if (grad == NULL) {
+        return;
+    }
+    if (TVO_JET_ORDER_IS_CONSTANT_2(order)) {
+        TVO_UNROLL_SMALL
+        for (unsigned p = 0; p < 2u; ++p) {
+            TVO_UNROLL_SMALL
+            for (unsigned j = 0; j <= 2u; ++j) {
+                const tvo_real_t q = e[p] * part->gradient.c[j];
+                grad[a + p].c[j] += q;
+                grad[b + p].c[j] -= q;
+            }
+        }
+        return;
+    }
+    const unsigned n = tvo_jet_order_clamp(order);
+    for (unsigned p = 0; p < 2u; ++p) {
+        for (unsigned j = 0; j <= n; ++j) {
+            const tvo_real_t q = e[p] * part->gradient.c[j];
+            grad[a + p].c[j] += q;
+            grad[b + p].c[j] -= q;
+        }
+    }
+}
+
+/* tvo_hessian_add for a valid part of count entries; relative: a part on a pair's relative
+ * coordinates (tvo_hessian_add_relative), count 4. */
 TVO_SHAPE_BODY void hessian_add_shape(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_t *grad,
-                                      const unsigned count, const uint8_t order)
+                                      const unsigned count, const uint8_t order, const int relative)
 {
     tvo_real_t scale = TVO_R(1.0);
     TVO_UNROLL_SMALL
@@ -422,6 +574,8 @@ TVO_SHAPE_BODY void hessian_add_shape(tvo_hessian_t *h, const tvo_rank_one_t *pa
     }
     if (rank_one_size_shape(part, count) > TVO_STIFF_RATIO * scale) {
         tvo_hessian_add_part(h, part, grad, order);
+    } else if (relative) {
+        add_relative_shape(part, h->matrix, grad, order);
     } else {
         add_part_shape(part, h->matrix, grad, count, order);
     }
@@ -435,15 +589,29 @@ void tvo_hessian_add(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_t *gr
 #if TVO_SHAPE_COPIES
     /* A plane's part has 2 entries (one robot), a distance bound's 4 (two robots). */
     if (order == TVO_SHAPE_ORDER && part->count == 2u) {
-        hessian_add_shape(h, part, grad, 2u, TVO_SHAPE_ORDER);
+        hessian_add_shape(h, part, grad, 2u, TVO_SHAPE_ORDER, 0);
         return;
     }
     if (order == TVO_SHAPE_ORDER && part->count == 4u) {
-        hessian_add_shape(h, part, grad, 4u, TVO_SHAPE_ORDER);
+        hessian_add_shape(h, part, grad, 4u, TVO_SHAPE_ORDER, 0);
         return;
     }
 #endif
-    hessian_add_shape(h, part, grad, part->count, order);
+    hessian_add_shape(h, part, grad, part->count, order, 0);
+}
+
+void tvo_hessian_add_relative(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_t *grad, uint8_t order)
+{
+    TVO_ASSERT(h != NULL && part != NULL && part->count == 4u);
+    TVO_ASSERT(part->index[1] == part->index[0] + 1u && part->index[3] == part->index[2] + 1u);
+    TVO_ASSERT(part->value[2] == -part->value[0] && part->value[3] == -part->value[1]);
+#if TVO_SHAPE_COPIES
+    if (order == TVO_SHAPE_ORDER) {
+        hessian_add_shape(h, part, grad, 4u, TVO_SHAPE_ORDER, 1);
+        return;
+    }
+#endif
+    hessian_add_shape(h, part, grad, 4u, order, 1);
 }
 
 void tvo_hessian_settle(tvo_hessian_t *h, uint8_t n, uint8_t dual_n, tvo_jet_t *grad, uint8_t order)
@@ -473,8 +641,8 @@ void tvo_hessian_settle(tvo_hessian_t *h, uint8_t n, uint8_t dual_n, tvo_jet_t *
 }
 
 /* y = A^-1 u for a sparse u, with A's factor in the lower triangle. */
-static void substitute_sparse(const tvo_real_t *factor, unsigned n, const tvo_rank_one_t *part, tvo_real_t *dense,
-                              tvo_real_t *y)
+static void substitute_sparse(const tvo_real_t *factor, unsigned n, const uint8_t *first, const tvo_rank_one_t *part,
+                              tvo_real_t *dense, tvo_real_t *y)
 {
     for (unsigned i = 0; i < n; ++i) {
         dense[i] = TVO_R(0.0);
@@ -482,7 +650,7 @@ static void substitute_sparse(const tvo_real_t *factor, unsigned n, const tvo_ra
     for (unsigned i = 0; i < part->count; ++i) {
         dense[part->index[i]] += part->value[i];
     }
-    cholesky_substitute(factor, TVO_MAX_Z_DIM, n, dense, y);
+    cholesky_substitute(factor, TVO_MAX_Z_DIM, n, first, dense, y);
 }
 
 static tvo_real_t dot_sparse(const tvo_rank_one_t *part, const tvo_real_t *v)
@@ -535,10 +703,8 @@ tvo_status_t tvo_saddle_solve_split(tvo_hessian_t *h, uint8_t primal_n, uint8_t 
         return saddle_solve(h->matrix, primal_n, dual_n, b, x, shift, &h->scratch);
     }
     const unsigned n = primal_n;
-    for (unsigned i = 0; i < n; ++i) {
-        if (!all_finite(h->matrix[i], n) || !isfinite(b[i])) {
-            return TVO_ERR_NOT_FINITE;
-        }
+    if (!block_finite(h->matrix, b, n)) {
+        return TVO_ERR_NOT_FINITE;
     }
     if (!all_finite(gamma, parts)) {
         return TVO_ERR_NOT_FINITE;
@@ -548,7 +714,8 @@ tvo_status_t tvo_saddle_solve_split(tvo_hessian_t *h, uint8_t primal_n, uint8_t 
     for (unsigned i = 0; i < n; ++i) {
         scratch->diag[i] = h->matrix[i][i];
     }
-    if (!cholesky_factor(&h->matrix[0][0], TVO_MAX_Z_DIM, n)) {
+    uint8_t first[TVO_MAX_Z_DIM];
+    if (!cholesky_factor(&h->matrix[0][0], TVO_MAX_Z_DIM, n, first)) {
         return solve_parts_added(h, primal_n, dual_n, b, gamma, x, shift);
     }
     if (shift != NULL) {
@@ -563,9 +730,9 @@ tvo_status_t tvo_saddle_solve_split(tvo_hessian_t *h, uint8_t primal_n, uint8_t 
     tvo_real_t(*capacitance)[TVO_SOLVE_SMALL_DIM] = scratch->small;
     tvo_real_t *rhs = scratch->small_rhs;
     tvo_real_t *w = scratch->small_x;
-    cholesky_substitute(&h->matrix[0][0], TVO_MAX_Z_DIM, n, b, z);
+    cholesky_substitute(&h->matrix[0][0], TVO_MAX_Z_DIM, n, first, b, z);
     for (unsigned k = 0; k < parts; ++k) {
-        substitute_sparse(&h->matrix[0][0], n, &h->rank_one[k], scratch->dense, y_cols[k]);
+        substitute_sparse(&h->matrix[0][0], n, first, &h->rank_one[k], scratch->dense, y_cols[k]);
     }
     for (unsigned k = 0; k < parts; ++k) {
         const tvo_real_t inv_weight = TVO_R(1.0) / h->rank_one[k].weight;
@@ -576,11 +743,12 @@ tvo_status_t tvo_saddle_solve_split(tvo_hessian_t *h, uint8_t primal_n, uint8_t 
         capacitance[k][k] += inv_weight;
     }
     symmetrize(&capacitance[0][0], TVO_SOLVE_SMALL_DIM, parts);
-    if (!cholesky_factor(&capacitance[0][0], TVO_SOLVE_SMALL_DIM, parts)) {
+    uint8_t first_small[TVO_MAX_Z_DIM];
+    if (!cholesky_factor(&capacitance[0][0], TVO_SOLVE_SMALL_DIM, parts, first_small)) {
         /* Nearly dependent directions (three planes of one robot in the plane): solve the sum. */
         return solve_parts_added(h, primal_n, dual_n, b, gamma, x, shift);
     }
-    cholesky_substitute(&capacitance[0][0], TVO_SOLVE_SMALL_DIM, parts, rhs, w);
+    cholesky_substitute(&capacitance[0][0], TVO_SOLVE_SMALL_DIM, parts, first_small, rhs, w);
     for (unsigned i = 0; i < n; ++i) {
         tvo_real_t sum = z[i];
         for (unsigned k = 0; k < parts; ++k) {
