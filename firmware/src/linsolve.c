@@ -566,13 +566,20 @@ TVO_SHAPE_BODY void add_relative_shape(const tvo_rank_one_t *part, tvo_matrix_t 
 TVO_SHAPE_BODY void hessian_add_shape(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_t *grad,
                                       const unsigned count, const uint8_t order, const int relative)
 {
-    tvo_real_t scale = TVO_R(1.0);
-    TVO_UNROLL_SMALL
-    for (unsigned i = 0; i < count; ++i) {
-        const tvo_real_t d = TVO_FABS(h->matrix[part->index[i]][part->index[i]]);
-        scale = d > scale ? d : scale;
+    /* The scale is at least 1: a part no larger than TVO_STIFF_RATIO is not stiff, whatever the
+     * diagonal (the common case, decided without reading it). */
+    const tvo_real_t size = rank_one_size_shape(part, count);
+    int stiff = size > TVO_STIFF_RATIO;
+    if (stiff) {
+        tvo_real_t scale = TVO_R(1.0);
+        TVO_UNROLL_SMALL
+        for (unsigned i = 0; i < count; ++i) {
+            const tvo_real_t d = TVO_FABS(h->matrix[part->index[i]][part->index[i]]);
+            scale = d > scale ? d : scale;
+        }
+        stiff = size > TVO_STIFF_RATIO * scale;
     }
-    if (rank_one_size_shape(part, count) > TVO_STIFF_RATIO * scale) {
+    if (stiff) {
         tvo_hessian_add_part(h, part, grad, order);
     } else if (relative) {
         add_relative_shape(part, h->matrix, grad, order);

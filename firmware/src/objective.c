@@ -1,6 +1,7 @@
 /* The objective as a sum of gradient-jet terms; see tvo/objective.h. */
 #include "internal/objective.h"
 
+#include "internal/constraints.h"
 #include "internal/law.h"
 #include "objective_kernel.h"
 #include "internal/sample_clock.h"
@@ -141,7 +142,16 @@ tvo_status_t objective_sum_terms(const tvo_objective_t *objective, const tvo_jet
         }
         const int closed = (mode != SUM_ALL_BY_JETS) && gradient_hessian != NULL && !objective->jets_only;
         tvo_status_t st = TVO_OK;
-        if (mode == SUM_CLOSED_FORMS && closed) {
+        if (mode == SUM_CLOSED_FORMS && closed && gradient_hessian == tvo_distance_gradient_hessian &&
+            k + 1u < objective->term_count && k + 1u < TVO_MAX_TERMS &&
+            term[1].gradient_hessian == tvo_distance_gradient_hessian && hessian != NULL &&
+            tvo_distance_terms_pair(term->term, term[1].term)) {
+            /* A pair's minimum and maximum bound (tvo_problem adds them in turn): what they share
+             * computed once, each one's sums as alone. */
+            st = tvo_distance_pair_gradient_hessian(term->term, term[1].term, z, objective->dim, t, order, grad,
+                                                    hessian);
+            ++k;
+        } else if (mode == SUM_CLOSED_FORMS && closed) {
             st = gradient_hessian(term->term, z, objective->dim, t, order, grad, hessian);
         } else if (!(mode == SUM_JET_TERMS && closed)) {
             st = gradient_jet(term->term, z, objective->dim, t, order, grad);
