@@ -80,7 +80,8 @@ static tvo_real_t distance_sign(const tvo_distance_term_t *self)
 typedef struct {
     tvo_jet_t diff[2];
     tvo_jet_t square[2];
-    tvo_barrier_schedule_jet_t schedule;
+    tvo_barrier_schedule_jet_t own_schedule; /* without a memo */
+    const tvo_barrier_schedule_jet_t *schedule;
     tvo_status_t schedule_status;
     tvo_real_t norm_sq;           /* |D|^2 at tau = 0 */
     tvo_real_t direction[2][2];   /* [0]: d = D/|D| ((1, 0) at D = 0); [1]: d_perp = (-d_y, d_x) */
@@ -90,13 +91,23 @@ typedef struct {
 /* The pair's shared values for a term whose offsets fit dim (the caller checked). */
 TVO_SHAPE_BODY void distance_shared_shape(const tvo_distance_term_t *self, const tvo_jet_t *z,
                                           const tvo_time_jet_t *t, const uint8_t order, const int closed,
-                                          distance_shared_t *shared)
+                                          tvo_schedule_memo_t *memo, distance_shared_t *shared)
 {
     for (uint8_t axis = 0; axis < 2u; ++axis) {
         tvo_jet_sub(&z[self->offset_a + axis], &z[self->offset_b + axis], order, &shared->diff[axis]);
         tvo_jet_mul(&shared->diff[axis], &shared->diff[axis], order, &shared->square[axis]);
     }
-    shared->schedule_status = tvo_barrier_schedule_jet(self->barrier, t, order, &shared->schedule);
+    if (memo == NULL) {
+        shared->schedule_status = tvo_barrier_schedule_jet(self->barrier, t, order, &shared->own_schedule);
+        shared->schedule = &shared->own_schedule;
+    } else {
+        if (memo->barrier != self->barrier) {
+            memo->barrier = self->barrier;
+            memo->status = tvo_barrier_schedule_jet(self->barrier, t, order, &memo->schedule);
+        }
+        shared->schedule_status = memo->status;
+        shared->schedule = &memo->schedule;
+    }
     if (!closed) {
         return;
     }
@@ -143,7 +154,7 @@ TVO_SHAPE_BODY tvo_status_t distance_term_shape(const tvo_distance_term_t *self,
     tvo_jet_t w;
     tvo_real_t dw_df = TVO_R(0.0);
     if (st == TVO_OK) {
-        st = TERM_BARRIER_WEIGHT(self->barrier, &shared->schedule, &f, order, &w, hessian != NULL ? &dw_df : NULL);
+        st = TERM_BARRIER_WEIGHT(self->barrier, shared->schedule, &f, order, &w, hessian != NULL ? &dw_df : NULL);
     }
     if (st != TVO_OK) {
         return st;
@@ -165,23 +176,24 @@ TVO_SHAPE_BODY tvo_status_t distance_term_shape(const tvo_distance_term_t *self,
      * beta(tau) v(d_perp)) with alpha = d . D(tau), beta = d_perp . D(tau): two parts along
      * orthogonal directions, which a stiff maximum bound keeps apart (tvo/linsolve.h). */
     const tvo_real_t curvature = TVO_R(2.0) * sign * w.c[0];
-    tvo_rank_one_t part;
-    part.count = 4u;
-    part.index[0] = self->offset_a;
-    part.index[1] = (uint8_t)(self->offset_a + 1u);
-    part.index[2] = self->offset_b;
-    part.index[3] = (uint8_t)(self->offset_b + 1u);
+    tvo_rank_one_t parts[2];
     for (unsigned k = 0; k < 2u; ++k) {
+        tvo_rank_one_t *part = &parts[k];
         const tvo_real_t *e = shared->direction[k];
-        part.value[0] = e[0];
-        part.value[1] = e[1];
-        part.value[2] = -e[0];
-        part.value[3] = -e[1];
-        part.weight = (k == 0u ? TVO_R(4.0) * shared->norm_sq * dw_df : TVO_R(0.0)) + curvature;
-        tvo_jet_mul(&w, &shared->coordinate[k], order, &part.gradient);
-        tvo_jet_scale(&part.gradient, TVO_R(2.0) * sign, order, &part.gradient);
-        tvo_hessian_add_relative(hessian, &part, grad, order);
+        part->count = 4u;
+        part->index[0] = self->offset_a;
+        part->index[1] = (uint8_t)(self->offset_a + 1u);
+        part->index[2] = self->offset_b;
+        part->index[3] = (uint8_t)(self->offset_b + 1u);
+        part->value[0] = e[0];
+        part->value[1] = e[1];
+        part->value[2] = -e[0];
+        part->value[3] = -e[1];
+        part->weight = (k == 0u ? TVO_R(4.0) * shared->norm_sq * dw_df : TVO_R(0.0)) + curvature;
+        tvo_jet_mul(&w, &shared->coordinate[k], order, &part->gradient);
+        tvo_jet_scale(&part->gradient, TVO_R(2.0) * sign, order, &part->gradient);
     }
+    tvo_hessian_add_relative(hessian, parts, 2u, grad, order);
     return TVO_OK;
 }
 
@@ -202,14 +214,15 @@ static tvo_status_t distance_check(const tvo_distance_term_t *self, const tvo_je
  * with what they share computed once: each bound's sums as alone, in the same order. */
 TVO_SHAPE_BODY tvo_status_t distance_sum_shape(const tvo_distance_term_t *self, const tvo_distance_term_t *second,
                                                const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
-                                               const uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian)
+                                               const uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian,
+                                               tvo_schedule_memo_t *memo)
 {
     tvo_status_t st = distance_check(self, z, dim, t, grad);
     if (st != TVO_OK) {
         return st;
     }
     distance_shared_t shared;
-    distance_shared_shape(self, z, t, order, hessian != NULL, &shared);
+    distance_shared_shape(self, z, t, order, hessian != NULL, memo, &shared);
     st = distance_term_shape(self, &shared, t, order, grad, hessian);
     if (st != TVO_OK || second == NULL) {
         return st;
@@ -219,14 +232,14 @@ TVO_SHAPE_BODY tvo_status_t distance_sum_shape(const tvo_distance_term_t *self, 
 
 static tvo_status_t distance_sum(const tvo_distance_term_t *self, const tvo_distance_term_t *second,
                                  const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t, uint8_t order,
-                                 tvo_jet_t *grad, tvo_hessian_t *hessian)
+                                 tvo_jet_t *grad, tvo_hessian_t *hessian, tvo_schedule_memo_t *memo)
 {
 #if TVO_SHAPE_COPIES
     if (order == TVO_SHAPE_ORDER) {
-        return distance_sum_shape(self, second, z, dim, t, TVO_SHAPE_ORDER, grad, hessian);
+        return distance_sum_shape(self, second, z, dim, t, TVO_SHAPE_ORDER, grad, hessian, memo);
     }
 #endif
-    return distance_sum_shape(self, second, z, dim, t, order, grad, hessian);
+    return distance_sum_shape(self, second, z, dim, t, order, grad, hessian, memo);
 }
 
 int tvo_distance_terms_pair(const void *first, const void *second)
@@ -239,17 +252,17 @@ int tvo_distance_terms_pair(const void *first, const void *second)
 
 tvo_status_t tvo_distance_pair_gradient_hessian(const void *first, const void *second, const tvo_jet_t *z,
                                                 uint8_t dim, const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
-                                                tvo_hessian_t *hessian)
+                                                tvo_hessian_t *hessian, tvo_schedule_memo_t *memo)
 {
-    TVO_ASSERT(tvo_distance_terms_pair(first, second) && hessian != NULL);
+    TVO_ASSERT(tvo_distance_terms_pair(first, second) && hessian != NULL && memo != NULL);
     return distance_sum((const tvo_distance_term_t *)first, (const tvo_distance_term_t *)second, z, dim, t, order,
-                        grad, hessian);
+                        grad, hessian, memo);
 }
 
 tvo_status_t tvo_distance_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
                                        uint8_t order, tvo_jet_t *grad)
 {
-    return distance_sum((const tvo_distance_term_t *)term, NULL, z, dim, t, order, grad, NULL);
+    return distance_sum((const tvo_distance_term_t *)term, NULL, z, dim, t, order, grad, NULL, NULL);
 }
 
 tvo_status_t tvo_distance_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
@@ -258,7 +271,7 @@ tvo_status_t tvo_distance_gradient_hessian(const void *term, const tvo_jet_t *z,
     if (hessian == NULL) {
         return TVO_ERR_NULL;
     }
-    return distance_sum((const tvo_distance_term_t *)term, NULL, z, dim, t, order, grad, hessian);
+    return distance_sum((const tvo_distance_term_t *)term, NULL, z, dim, t, order, grad, hessian, NULL);
 }
 
 tvo_status_t tvo_distance_constraint_max(const void *term, const tvo_real_t *y, uint8_t primal_dim, tvo_real_t t_s,

@@ -510,53 +510,67 @@ void tvo_hessian_add_part(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_
     }
 }
 
-/* add_part_shape for a part on a pair's relative coordinates (tvo_hessian_add_relative): the same
- * sums bit for bit, each product formed once. Row b + p's weight is -(weight e_p) and column b + q's
- * entry -e_q: negations, which are exact, so every entry's product is +-(weight e_p) e_q. */
-TVO_SHAPE_BODY void add_relative_shape(const tvo_rank_one_t *part, tvo_matrix_t m, tvo_jet_t *grad,
-                                       const uint8_t order)
+/* add_part_shape for count (1 or 2) parts on one pair's relative coordinates (tvo_hessian_add_relative),
+ * one after the other: the same sums bit for bit (each entry's additions in the parts' order), each
+ * product formed once. Row b + p's weight is -(weight e_p) and column b + q's entry -e_q: negations,
+ * which are exact, so every entry's product is +-(weight e_p) e_q. */
+TVO_SHAPE_BODY void add_relative_shape(const tvo_rank_one_t *parts, const unsigned count, tvo_matrix_t m,
+                                       tvo_jet_t *grad, const uint8_t order)
 {
-    const unsigned a = part->index[0];
-    const unsigned b = part->index[2];
-    const tvo_real_t e[2] = {part->value[0], part->value[1]};
-    const tvo_real_t weight = part->weight;
+    const unsigned a = parts[0].index[0];
+    const unsigned b = parts[0].index[2];
+    tvo_real_t q[2][2][2]; /* [part][p][q] = (weight e_p) e_q */
+    TVO_UNROLL_SMALL
+    for (unsigned k = 0; k < count; ++k) {
+        const tvo_real_t *e = parts[k].value;
+        TVO_UNROLL_SMALL
+        for (unsigned p = 0; p < 2u; ++p) {
+            const tvo_real_t wp = parts[k].weight * e[p];
+            q[k][p][0] = wp * e[0];
+            q[k][p][1] = wp * e[1];
+        }
+    }
     TVO_UNROLL_SMALL
     for (unsigned p = 0; p < 2u; ++p) {
-        const tvo_real_t wp = weight * e[p];
-        const tvo_real_t q0 = wp * e[0];
-        const tvo_real_t q1 = wp * e[1];
         tvo_real_t *row_a = m[a + p];
         tvo_real_t *row_b = m[b + p];
-        row_a[a] += q0;
-        row_a[a + 1u] += q1;
-        row_a[b] -= q0;
-        row_a[b + 1u] -= q1;
-        row_b[a] -= q0;
-        row_b[a + 1u] -= q1;
-        row_b[b] += q0;
-        row_b[b + 1u] += q1;
+        TVO_UNROLL_SMALL
+        for (unsigned c = 0; c < 2u; ++c) {
+            tvo_real_t aa = row_a[a + c];
+            tvo_real_t ab = row_a[b + c];
+            tvo_real_t ba = row_b[a + c];
+            tvo_real_t bb = row_b[b + c];
+            TVO_UNROLL_SMALL
+            for (unsigned k = 0; k < count; ++k) {
+                aa += q[k][p][c];
+                ab -= q[k][p][c];
+                ba -= q[k][p][c];
+                bb += q[k][p][c];
+            }
+            row_a[a + c] = aa;
+            row_a[b + c] = ab;
+            row_b[a + c] = ba;
+            row_b[b + c] = bb;
+        }
     }
     if (grad == NULL) {
         return;
     }
-    if (TVO_JET_ORDER_IS_CONSTANT_2(order)) {
-        TVO_UNROLL_SMALL
-        for (unsigned p = 0; p < 2u; ++p) {
-            TVO_UNROLL_SMALL
-            for (unsigned j = 0; j <= 2u; ++j) {
-                const tvo_real_t q = e[p] * part->gradient.c[j];
-                grad[a + p].c[j] += q;
-                grad[b + p].c[j] -= q;
-            }
-        }
-        return;
-    }
-    const unsigned n = tvo_jet_order_clamp(order);
+    const unsigned n = TVO_JET_ORDER_IS_CONSTANT_2(order) ? 2u : tvo_jet_order_clamp(order);
+    TVO_UNROLL_SMALL
     for (unsigned p = 0; p < 2u; ++p) {
+        TVO_UNROLL_SMALL
         for (unsigned j = 0; j <= n; ++j) {
-            const tvo_real_t q = e[p] * part->gradient.c[j];
-            grad[a + p].c[j] += q;
-            grad[b + p].c[j] -= q;
+            tvo_real_t ga = grad[a + p].c[j];
+            tvo_real_t gb = grad[b + p].c[j];
+            TVO_UNROLL_SMALL
+            for (unsigned k = 0; k < count; ++k) {
+                const tvo_real_t g = parts[k].value[p] * parts[k].gradient.c[j];
+                ga += g;
+                gb -= g;
+            }
+            grad[a + p].c[j] = ga;
+            grad[b + p].c[j] = gb;
         }
     }
 }
@@ -582,7 +596,7 @@ TVO_SHAPE_BODY void hessian_add_shape(tvo_hessian_t *h, const tvo_rank_one_t *pa
     if (stiff) {
         tvo_hessian_add_part(h, part, grad, order);
     } else if (relative) {
-        add_relative_shape(part, h->matrix, grad, order);
+        add_relative_shape(part, 1u, h->matrix, grad, order);
     } else {
         add_part_shape(part, h->matrix, grad, count, order);
     }
@@ -607,18 +621,39 @@ void tvo_hessian_add(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_t *gr
     hessian_add_shape(h, part, grad, part->count, order, 0);
 }
 
-void tvo_hessian_add_relative(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_t *grad, uint8_t order)
+/* tvo_hessian_add_relative for valid parts. */
+TVO_SHAPE_BODY void hessian_add_relative_shape(tvo_hessian_t *h, const tvo_rank_one_t *parts, const unsigned count,
+                                               tvo_jet_t *grad, const uint8_t order)
 {
-    TVO_ASSERT(h != NULL && part != NULL && part->count == 4u);
-    TVO_ASSERT(part->index[1] == part->index[0] + 1u && part->index[3] == part->index[2] + 1u);
-    TVO_ASSERT(part->value[2] == -part->value[0] && part->value[3] == -part->value[1]);
+    /* Parts no larger than TVO_STIFF_RATIO are not stiff whatever the diagonal (hessian_add_shape):
+     * both go in together. */
+    if (count == 2u && !(rank_one_size_shape(&parts[0], 4u) > TVO_STIFF_RATIO) &&
+        !(rank_one_size_shape(&parts[1], 4u) > TVO_STIFF_RATIO)) {
+        add_relative_shape(parts, 2u, h->matrix, grad, order);
+        return;
+    }
+    for (unsigned k = 0; k < count; ++k) {
+        hessian_add_shape(h, &parts[k], grad, 4u, order, 1);
+    }
+}
+
+void tvo_hessian_add_relative(tvo_hessian_t *h, const tvo_rank_one_t *parts, uint8_t count, tvo_jet_t *grad,
+                              uint8_t order)
+{
+    TVO_ASSERT(h != NULL && parts != NULL && (count == 1u || count == 2u));
+    for (unsigned k = 0; k < count; ++k) {
+        TVO_ASSERT(parts[k].count == 4u && parts[k].index[0] == parts[0].index[0] &&
+                   parts[k].index[2] == parts[0].index[2]);
+        TVO_ASSERT(parts[k].index[1] == parts[k].index[0] + 1u && parts[k].index[3] == parts[k].index[2] + 1u);
+        TVO_ASSERT(parts[k].value[2] == -parts[k].value[0] && parts[k].value[3] == -parts[k].value[1]);
+    }
 #if TVO_SHAPE_COPIES
     if (order == TVO_SHAPE_ORDER) {
-        hessian_add_shape(h, part, grad, 4u, TVO_SHAPE_ORDER, 1);
+        hessian_add_relative_shape(h, parts, count, grad, TVO_SHAPE_ORDER);
         return;
     }
 #endif
-    hessian_add_shape(h, part, grad, 4u, order, 1);
+    hessian_add_relative_shape(h, parts, count, grad, order);
 }
 
 void tvo_hessian_settle(tvo_hessian_t *h, uint8_t n, uint8_t dual_n, tvo_jet_t *grad, uint8_t order)

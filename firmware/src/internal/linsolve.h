@@ -49,10 +49,12 @@ void tvo_hessian_add_part(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_
 void tvo_hessian_add(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_t *grad, uint8_t order);
 
 /**
- * tvo_hessian_add for a part on a pair's relative coordinates (a distance bound's): index
- * (a, a + 1, b, b + 1), value (e0, e1, -e0, -e1); the same sums bit for bit, each product formed once.
+ * tvo_hessian_add for count (1 or 2) parts, in turn, on one pair's relative coordinates (a distance
+ * bound's): index (a, a + 1, b, b + 1), value (e0, e1, -e0, -e1); the same sums bit for bit, each
+ * product formed once, and two parts that cannot be stiff added in one pass.
  */
-void tvo_hessian_add_relative(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_t *grad, uint8_t order);
+void tvo_hessian_add_relative(tvo_hessian_t *h, const tvo_rank_one_t *parts, uint8_t count, tvo_jet_t *grad,
+                              uint8_t order);
 
 /**
  * Keeps apart only the parts that are stiff (weight |u|^2 above TVO_STIFF_RATIO times the matrix's
