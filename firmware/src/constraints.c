@@ -176,24 +176,17 @@ TVO_SHAPE_BODY tvo_status_t distance_term_shape(const tvo_distance_term_t *self,
      * beta(tau) v(d_perp)) with alpha = d . D(tau), beta = d_perp . D(tau): two parts along
      * orthogonal directions, which a stiff maximum bound keeps apart (tvo/linsolve.h). */
     const tvo_real_t curvature = TVO_R(2.0) * sign * w.c[0];
-    tvo_rank_one_t parts[2];
+    tvo_relative_parts_t parts;
+    parts.offset_a = self->offset_a;
+    parts.offset_b = self->offset_b;
     for (unsigned k = 0; k < 2u; ++k) {
-        tvo_rank_one_t *part = &parts[k];
-        const tvo_real_t *e = shared->direction[k];
-        part->count = 4u;
-        part->index[0] = self->offset_a;
-        part->index[1] = (uint8_t)(self->offset_a + 1u);
-        part->index[2] = self->offset_b;
-        part->index[3] = (uint8_t)(self->offset_b + 1u);
-        part->value[0] = e[0];
-        part->value[1] = e[1];
-        part->value[2] = -e[0];
-        part->value[3] = -e[1];
-        part->weight = (k == 0u ? TVO_R(4.0) * shared->norm_sq * dw_df : TVO_R(0.0)) + curvature;
-        tvo_jet_mul(&w, &shared->coordinate[k], order, &part->gradient);
-        tvo_jet_scale(&part->gradient, TVO_R(2.0) * sign, order, &part->gradient);
+        parts.direction[k][0] = shared->direction[k][0];
+        parts.direction[k][1] = shared->direction[k][1];
+        parts.weight[k] = (k == 0u ? TVO_R(4.0) * shared->norm_sq * dw_df : TVO_R(0.0)) + curvature;
+        tvo_jet_mul(&w, &shared->coordinate[k], order, &parts.gradient[k]);
+        tvo_jet_scale(&parts.gradient[k], TVO_R(2.0) * sign, order, &parts.gradient[k]);
     }
-    tvo_hessian_add_relative(hessian, parts, 2u, grad, order);
+    tvo_hessian_add_relative(hessian, &parts, grad, order);
     return TVO_OK;
 }
 

@@ -510,24 +510,33 @@ void tvo_hessian_add_part(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_
     }
 }
 
-/* add_part_shape for count (1 or 2) parts on one pair's relative coordinates (tvo_hessian_add_relative),
- * one after the other: the same sums bit for bit (each entry's additions in the parts' order), each
- * product formed once. Row b + p's weight is -(weight e_p) and column b + q's entry -e_q: negations,
- * which are exact, so every entry's product is +-(weight e_p) e_q. */
-TVO_SHAPE_BODY void add_relative_shape(const tvo_rank_one_t *parts, const unsigned count, tvo_matrix_t m,
-                                       tvo_jet_t *grad, const uint8_t order)
+/* add_part_shape for count (1 or 2) parts of r (tvo_relative_parts_t) starting at first, one after
+ * the other: the same sums bit for bit (each entry's additions in the parts' order), each product
+ * formed once. Row b + p's weight is -(weight e_p) and column b + q's entry -e_q: negations, which
+ * are exact, so every entry's product is +-(weight e_p) e_q. */
+TVO_SHAPE_BODY void add_relative_shape(const tvo_relative_parts_t *r, const unsigned first, const unsigned count,
+                                       tvo_matrix_t m, tvo_jet_t *grad, const uint8_t order)
 {
-    const unsigned a = parts[0].index[0];
-    const unsigned b = parts[0].index[2];
+    const unsigned a = r->offset_a;
+    const unsigned b = r->offset_b;
+    const unsigned n = TVO_JET_ORDER_IS_CONSTANT_2(order) ? 2u : tvo_jet_order_clamp(order);
+    /* The parts read once into registers before any store (r must not overlap m or grad). */
+    tvo_real_t e[2][2];
+    tvo_real_t g[2][TVO_JET_MAX_ORDER + 1];
     tvo_real_t q[2][2][2]; /* [part][p][q] = (weight e_p) e_q */
     TVO_UNROLL_SMALL
     for (unsigned k = 0; k < count; ++k) {
-        const tvo_real_t *e = parts[k].value;
+        e[k][0] = r->direction[first + k][0];
+        e[k][1] = r->direction[first + k][1];
+        TVO_UNROLL_SMALL
+        for (unsigned j = 0; j <= n; ++j) {
+            g[k][j] = r->gradient[first + k].c[j];
+        }
         TVO_UNROLL_SMALL
         for (unsigned p = 0; p < 2u; ++p) {
-            const tvo_real_t wp = parts[k].weight * e[p];
-            q[k][p][0] = wp * e[0];
-            q[k][p][1] = wp * e[1];
+            const tvo_real_t wp = r->weight[first + k] * e[k][p];
+            q[k][p][0] = wp * e[k][0];
+            q[k][p][1] = wp * e[k][1];
         }
     }
     TVO_UNROLL_SMALL
@@ -556,7 +565,6 @@ TVO_SHAPE_BODY void add_relative_shape(const tvo_rank_one_t *parts, const unsign
     if (grad == NULL) {
         return;
     }
-    const unsigned n = TVO_JET_ORDER_IS_CONSTANT_2(order) ? 2u : tvo_jet_order_clamp(order);
     TVO_UNROLL_SMALL
     for (unsigned p = 0; p < 2u; ++p) {
         TVO_UNROLL_SMALL
@@ -565,9 +573,9 @@ TVO_SHAPE_BODY void add_relative_shape(const tvo_rank_one_t *parts, const unsign
             tvo_real_t gb = grad[b + p].c[j];
             TVO_UNROLL_SMALL
             for (unsigned k = 0; k < count; ++k) {
-                const tvo_real_t g = parts[k].value[p] * parts[k].gradient.c[j];
-                ga += g;
-                gb -= g;
+                const tvo_real_t product = e[k][p] * g[k][j];
+                ga += product;
+                gb -= product;
             }
             grad[a + p].c[j] = ga;
             grad[b + p].c[j] = gb;
@@ -575,10 +583,27 @@ TVO_SHAPE_BODY void add_relative_shape(const tvo_rank_one_t *parts, const unsign
     }
 }
 
-/* tvo_hessian_add for a valid part of count entries; relative: a part on a pair's relative
- * coordinates (tvo_hessian_add_relative), count 4. */
+/* Part k of r as a rank-one part. */
+static void relative_part(const tvo_relative_parts_t *r, unsigned k, tvo_rank_one_t *part)
+{
+    part->count = 4u;
+    part->index[0] = r->offset_a;
+    part->index[1] = (uint8_t)(r->offset_a + 1u);
+    part->index[2] = r->offset_b;
+    part->index[3] = (uint8_t)(r->offset_b + 1u);
+    part->value[0] = r->direction[k][0];
+    part->value[1] = r->direction[k][1];
+    part->value[2] = -r->direction[k][0];
+    part->value[3] = -r->direction[k][1];
+    part->weight = r->weight[k];
+    part->gradient = r->gradient[k];
+}
+
+/* tvo_hessian_add for a valid part of count entries; relative (not NULL): the part is relative's
+ * part relative_k (tvo_hessian_add_relative), count 4. */
 TVO_SHAPE_BODY void hessian_add_shape(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_t *grad,
-                                      const unsigned count, const uint8_t order, const int relative)
+                                      const unsigned count, const uint8_t order, const tvo_relative_parts_t *relative,
+                                      const unsigned relative_k)
 {
     /* The scale is at least 1: a part no larger than TVO_STIFF_RATIO is not stiff, whatever the
      * diagonal (the common case, decided without reading it). */
@@ -595,8 +620,8 @@ TVO_SHAPE_BODY void hessian_add_shape(tvo_hessian_t *h, const tvo_rank_one_t *pa
     }
     if (stiff) {
         tvo_hessian_add_part(h, part, grad, order);
-    } else if (relative) {
-        add_relative_shape(part, 1u, h->matrix, grad, order);
+    } else if (relative != NULL) {
+        add_relative_shape(relative, relative_k, 1u, h->matrix, grad, order);
     } else {
         add_part_shape(part, h->matrix, grad, count, order);
     }
@@ -610,50 +635,58 @@ void tvo_hessian_add(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_t *gr
 #if TVO_SHAPE_COPIES
     /* A plane's part has 2 entries (one robot), a distance bound's 4 (two robots). */
     if (order == TVO_SHAPE_ORDER && part->count == 2u) {
-        hessian_add_shape(h, part, grad, 2u, TVO_SHAPE_ORDER, 0);
+        hessian_add_shape(h, part, grad, 2u, TVO_SHAPE_ORDER, NULL, 0u);
         return;
     }
     if (order == TVO_SHAPE_ORDER && part->count == 4u) {
-        hessian_add_shape(h, part, grad, 4u, TVO_SHAPE_ORDER, 0);
+        hessian_add_shape(h, part, grad, 4u, TVO_SHAPE_ORDER, NULL, 0u);
         return;
     }
 #endif
-    hessian_add_shape(h, part, grad, part->count, order, 0);
+    hessian_add_shape(h, part, grad, part->count, order, NULL, 0u);
+}
+
+/* A relative part's size weight |u|^2 as rank_one_size_shape forms it, with u = (e, -e): the squares
+ * of -e are those of e. */
+static inline tvo_real_t relative_size(const tvo_relative_parts_t *r, unsigned k)
+{
+    const tvo_real_t e0_sq = r->direction[k][0] * r->direction[k][0];
+    const tvo_real_t e1_sq = r->direction[k][1] * r->direction[k][1];
+    tvo_real_t norm_sq = TVO_R(0.0);
+    norm_sq += e0_sq;
+    norm_sq += e1_sq;
+    norm_sq += e0_sq;
+    norm_sq += e1_sq;
+    return r->weight[k] * norm_sq;
 }
 
 /* tvo_hessian_add_relative for valid parts. */
-TVO_SHAPE_BODY void hessian_add_relative_shape(tvo_hessian_t *h, const tvo_rank_one_t *parts, const unsigned count,
-                                               tvo_jet_t *grad, const uint8_t order)
+TVO_SHAPE_BODY void hessian_add_relative_shape(tvo_hessian_t *h, const tvo_relative_parts_t *r, tvo_jet_t *grad,
+                                               const uint8_t order)
 {
     /* Parts no larger than TVO_STIFF_RATIO are not stiff whatever the diagonal (hessian_add_shape):
      * both go in together. */
-    if (count == 2u && !(rank_one_size_shape(&parts[0], 4u) > TVO_STIFF_RATIO) &&
-        !(rank_one_size_shape(&parts[1], 4u) > TVO_STIFF_RATIO)) {
-        add_relative_shape(parts, 2u, h->matrix, grad, order);
+    if (!(relative_size(r, 0u) > TVO_STIFF_RATIO) && !(relative_size(r, 1u) > TVO_STIFF_RATIO)) {
+        add_relative_shape(r, 0u, 2u, h->matrix, grad, order);
         return;
     }
-    for (unsigned k = 0; k < count; ++k) {
-        hessian_add_shape(h, &parts[k], grad, 4u, order, 1);
+    for (unsigned k = 0; k < 2u; ++k) {
+        tvo_rank_one_t part;
+        relative_part(r, k, &part);
+        hessian_add_shape(h, &part, grad, 4u, order, r, k);
     }
 }
 
-void tvo_hessian_add_relative(tvo_hessian_t *h, const tvo_rank_one_t *parts, uint8_t count, tvo_jet_t *grad,
-                              uint8_t order)
+void tvo_hessian_add_relative(tvo_hessian_t *h, const tvo_relative_parts_t *parts, tvo_jet_t *grad, uint8_t order)
 {
-    TVO_ASSERT(h != NULL && parts != NULL && (count == 1u || count == 2u));
-    for (unsigned k = 0; k < count; ++k) {
-        TVO_ASSERT(parts[k].count == 4u && parts[k].index[0] == parts[0].index[0] &&
-                   parts[k].index[2] == parts[0].index[2]);
-        TVO_ASSERT(parts[k].index[1] == parts[k].index[0] + 1u && parts[k].index[3] == parts[k].index[2] + 1u);
-        TVO_ASSERT(parts[k].value[2] == -parts[k].value[0] && parts[k].value[3] == -parts[k].value[1]);
-    }
+    TVO_ASSERT(h != NULL && parts != NULL && parts->offset_a != parts->offset_b);
 #if TVO_SHAPE_COPIES
     if (order == TVO_SHAPE_ORDER) {
-        hessian_add_relative_shape(h, parts, count, grad, TVO_SHAPE_ORDER);
+        hessian_add_relative_shape(h, parts, grad, TVO_SHAPE_ORDER);
         return;
     }
 #endif
-    hessian_add_relative_shape(h, parts, count, grad, order);
+    hessian_add_relative_shape(h, parts, grad, order);
 }
 
 void tvo_hessian_settle(tvo_hessian_t *h, uint8_t n, uint8_t dual_n, tvo_jet_t *grad, uint8_t order)

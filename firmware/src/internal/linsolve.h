@@ -49,12 +49,23 @@ void tvo_hessian_add_part(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_
 void tvo_hessian_add(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_t *grad, uint8_t order);
 
 /**
- * tvo_hessian_add for count (1 or 2) parts, in turn, on one pair's relative coordinates (a distance
- * bound's): index (a, a + 1, b, b + 1), value (e0, e1, -e0, -e1); the same sums bit for bit, each
- * product formed once, and two parts that cannot be stiff added in one pass.
+ * A distance bound's two rank-one parts, on its pair's relative coordinates: part k has index
+ * (offset_a, offset_a + 1, offset_b, offset_b + 1), value (e_k, -e_k) with e_k = direction[k], its
+ * weight and its gradient jet.
  */
-void tvo_hessian_add_relative(tvo_hessian_t *h, const tvo_rank_one_t *parts, uint8_t count, tvo_jet_t *grad,
-                              uint8_t order);
+typedef struct {
+    uint8_t offset_a;
+    uint8_t offset_b;
+    tvo_real_t direction[2][2];
+    tvo_real_t weight[2];
+    tvo_jet_t gradient[2];
+} tvo_relative_parts_t;
+
+/**
+ * tvo_hessian_add of the two parts in turn: the same sums bit for bit, each product formed once, and
+ * two parts that cannot be stiff added in one pass. parts must not lie in h or grad.
+ */
+void tvo_hessian_add_relative(tvo_hessian_t *h, const tvo_relative_parts_t *parts, tvo_jet_t *grad, uint8_t order);
 
 /**
  * Keeps apart only the parts that are stiff (weight |u|^2 above TVO_STIFF_RATIO times the matrix's
