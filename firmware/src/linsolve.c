@@ -15,6 +15,7 @@
  * make the soft directions look singular (a floor relative to the largest diagonal would). */
 #define AT(a, stride, i, j) ((a)[(size_t)(i) * (stride) + (j)])
 
+#if TVO_SHAPE_COPIES /* the dense loops serve the common shapes' copies only */
 TVO_SHAPE_BODY int cholesky_factor_shape(tvo_real_t *a, const unsigned stride, const unsigned n)
 {
     TVO_UNROLL_SMALL
@@ -63,6 +64,7 @@ TVO_SHAPE_BODY void cholesky_substitute_shape(const tvo_real_t *l, const unsigne
         x[i] = s / AT(l, stride, i, i);
     }
 }
+#endif
 
 /* Row i's envelope starts at first[i], the column of its first nonzero left of the diagonal (i if
  * none). The factor is zero left of it too (Cholesky fills in only right of a row's first nonzero),
