@@ -156,8 +156,8 @@ static tvo_status_t derivatives_at_sample(const tvo_chain_controller_t *ctl, tvo
     }
     tvo_status_t st = TVO_OK;
     const int primed = filter[0].primed;
-    const tvo_real_t dt_s = primed ? ticks_to_seconds32(meas->stamp_tick - ctl->clock.last_stamp_tick, ctl->cfg.tick_hz)
-                                   : TVO_R(0.0);
+    const tvo_real_t dt_s =
+        primed ? clock_ticks_to_seconds(meas->stamp_tick - ctl->clock.last_stamp_tick, ctl->cfg.tick_hz) : TVO_R(0.0);
     for (uint8_t j = 0; st == TVO_OK && j + 1u < k; ++j) {
         if (!primed || !filter[j].primed) {
             /* Start at rest: the filters have seen nothing yet. */

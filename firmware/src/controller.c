@@ -11,6 +11,7 @@
 
 #include "internal/dirty_derivative.h"
 #include "internal/law.h"
+#include "internal/real_bits.h"
 #include "position_velocity.h"
 #include "sampled_loop.h"
 #include "internal/unicycle.h"
@@ -31,11 +32,6 @@ tvo_status_t tvo_controller_config_default(tvo_controller_config_t *cfg)
     return TVO_OK;
 }
 
-static int positive_finite(tvo_real_t v)
-{
-    return isfinite(v) && v > TVO_R(0.0);
-}
-
 /* position_velocity: the position-only source's plan, NULL if the caller does not offer it. */
 static tvo_param_t first_bad_param(const tvo_controller_config_t *cfg, const tvo_objective_t *objective,
                                    const tvo_position_velocity_t *position_velocity)
@@ -54,33 +50,33 @@ static tvo_param_t first_bad_param(const tvo_controller_config_t *cfg, const tvo
         (cfg->velocity_source != TVO_VELOCITY_FROM_POSITION || position_velocity == NULL)) {
         return TVO_PARAM_VELOCITY_SOURCE;
     }
-    if (!positive_finite(cfg->filter_tf_s)) {
+    if (!real_positive_finite(cfg->filter_tf_s)) {
         return TVO_PARAM_FILTER_TF;
     }
-    if (!positive_finite(cfg->gain_kp) || !positive_finite(cfg->gain_kd)) {
+    if (!real_positive_finite(cfg->gain_kp) || !real_positive_finite(cfg->gain_kd)) {
         return TVO_PARAM_GAINS; /* s^2 + kd s + kp is Hurwitz iff both are positive */
     }
     const tvo_real_t gains[2] = {cfg->gain_kp, cfg->gain_kd};
     if (tvo_law_check_sampling_reach(2u, gains, tvo_ticks_to_seconds32(cfg->period_ticks, cfg->tick_hz)) != TVO_OK) {
         return TVO_PARAM_GAINS;
     }
-    if (!positive_finite(cfg->omega_max_radps)) {
+    if (!real_positive_finite(cfg->omega_max_radps)) {
         return TVO_PARAM_OMEGA_MAX;
     }
-    if (!positive_finite(cfg->accel_max_mps2)) {
+    if (!real_positive_finite(cfg->accel_max_mps2)) {
         return TVO_PARAM_ACCEL_MAX;
     }
-    if (!positive_finite(cfg->speed_max_mps)) {
+    if (!real_positive_finite(cfg->speed_max_mps)) {
         return TVO_PARAM_SPEED_MAX;
     }
-    if (!positive_finite(cfg->min_speed_mps) || !(cfg->min_speed_mps < cfg->speed_max_mps)) {
+    if (!real_positive_finite(cfg->min_speed_mps) || !(cfg->min_speed_mps < cfg->speed_max_mps)) {
         return TVO_PARAM_MIN_SPEED;
     }
     if (!tvo_sample_clock_watchdog_ok(cfg->period_ticks, cfg->watchdog_periods)) {
         return TVO_PARAM_WATCHDOG;
     }
     for (uint8_t r = 0; r < cfg->robot_count; ++r) {
-        if (!isfinite(cfg->initial_speed_mps[r]) || TVO_FABS(cfg->initial_speed_mps[r]) > cfg->speed_max_mps) {
+        if (!real_within(cfg->initial_speed_mps[r], cfg->speed_max_mps)) {
             return TVO_PARAM_INITIAL_SPEED;
         }
     }
@@ -189,32 +185,6 @@ TVO_COLD_BODY void unicycle_refuse(void *ctl, const void *meas, const tvo_period
     loop_refuse(&unicycle_plant, ctl, meas, period, reason, cmd);
 }
 
-/* |a| <= limit and |b| <= limit (limit > 0), false for NaN and the infinities. In float32 by the bits:
- * positive floats order as their bit patterns, and NaN's and the infinities' lie above every finite
- * one's, so one integer comparison of the larger magnitude decides both (cheaper than the FPU's). */
-#if TVO_USE_DOUBLE
-#define within(a, limit) (TVO_FABS(a) <= (limit))
-#define within2(a, b, limit) (within(a, limit) && within(b, limit))
-#else
-static inline uint32_t magnitude_bits(float value)
-{
-    uint32_t bits;
-    memcpy(&bits, &value, sizeof(bits));
-    return bits & 0x7FFFFFFFu;
-}
-
-static inline int within2(float a, float b, float limit)
-{
-    const uint32_t a_bits = magnitude_bits(a);
-    const uint32_t b_bits = magnitude_bits(b);
-    return (a_bits > b_bits ? a_bits : b_bits) <= magnitude_bits(limit);
-}
-
-static inline int within(float value, float limit)
-{
-    return magnitude_bits(value) <= magnitude_bits(limit);
-}
-#endif
 
 /* The loop's check piece: the measurement's values, its stamp and the fields the source reads. */
 static inline tvo_reason_t check_measurement(const void *ctl_any, const void *meas_any, uint32_t apply_tick)
@@ -224,10 +194,10 @@ static inline tvo_reason_t check_measurement(const void *ctl_any, const void *me
     const uint8_t n = STEP_ROBOTS(ctl->cfg.robot_count);
     const tvo_real_t speed_limit = ctl->measured_speed_limit_mps;
     for (uint8_t r = 0; r < n; ++r) {
-        /* One comparison per value refuses NaN, infinities and the impossible alike (NaN compares false). */
-        if (!within2(meas->position_m[r][0], meas->position_m[r][1], TVO_POSITION_LIMIT_M) ||
-            (meas->heading_valid && !within(meas->heading_rad[r], TVO_HEADING_LIMIT_RAD)) ||
-            (meas->speed_valid && !within(meas->speed_mps[r], speed_limit))) {
+        /* One comparison per value refuses NaN, infinities and the impossible alike (internal/real_bits.h). */
+        if (!real_within2(meas->position_m[r][0], meas->position_m[r][1], TVO_POSITION_LIMIT_M) ||
+            (meas->heading_valid && !real_within(meas->heading_rad[r], TVO_HEADING_LIMIT_RAD)) ||
+            (meas->speed_valid && !real_within(meas->speed_mps[r], speed_limit))) {
             return TVO_REASON_IMPLAUSIBLE_MEASUREMENT; /* or not finite: unicycle_refusal says which */
         }
     }
@@ -289,22 +259,34 @@ TVO_COLD_BODY uint32_t limit_speed_step(const tvo_controller_t *ctl, tvo_real_t 
     return TVO_FLAG_ACCEL_SATURATED;
 }
 
-/* A period of the speed mismatch's stop, after the period's commit: accepted (clock, filters,
- * multipliers move on), but the robots stand still. */
-TVO_COLD_BODY void hold_mismatch_stop(tvo_controller_t *ctl)
+/* The commit's mismatch count, after the held command's flags are written: a contradicted period
+ * counts (a run of TVO_SPEED_MISMATCH_PERIODS flags the command, a longer one starts the stop), any
+ * other clears the count; a period of a running stop holds the robots still. */
+TVO_COLD_BODY void commit_speed_mismatch(tvo_controller_t *ctl, uint8_t contradicted)
 {
-    ctl->speed_mismatch_holdoff--;
-    for (uint8_t r = 0; r < TVO_MAX_ROBOTS; ++r) {
-        ctl->speed_state_mps[r] = TVO_R(0.0);
-        ctl->telemetry.accel_mps2[r] = TVO_R(0.0);
+    ctl->speed_mismatch_periods = contradicted ? ctl->speed_mismatch_periods + 1u : 0u;
+    if (ctl->speed_mismatch_periods >= TVO_SPEED_MISMATCH_PERIODS) {
+        ctl->held.flags |= TVO_FLAG_SPEED_MISMATCH;
+        if (ctl->speed_mismatch_periods >= TVO_SPEED_MISMATCH_STOP_PERIODS) {
+            ctl->speed_mismatch_periods = 0u;
+            ctl->speed_mismatch_holdoff = TVO_SPEED_MISMATCH_HOLDOFF_PERIODS;
+        }
     }
-    for (uint8_t q = 0; q < TVO_ARRAY_LEN(TVO_MAX_EQUALITIES); ++q) {
-        ctl->multiplier_rate[q] = TVO_R(0.0);
+    if (ctl->speed_mismatch_holdoff > 0u) {
+        /* A period of the stop: accepted (clock, filters, multipliers move on), but the robots stand still. */
+        ctl->speed_mismatch_holdoff--;
+        for (uint8_t r = 0; r < TVO_MAX_ROBOTS; ++r) {
+            ctl->speed_state_mps[r] = TVO_R(0.0);
+            ctl->telemetry.accel_mps2[r] = TVO_R(0.0);
+        }
+        for (uint8_t q = 0; q < TVO_ARRAY_LEN(TVO_MAX_EQUALITIES); ++q) {
+            ctl->multiplier_rate[q] = TVO_R(0.0);
+        }
+        memset(&ctl->held, 0, sizeof(ctl->held));
+        ctl->held.flags = TVO_FLAG_SPEED_MISMATCH;
+        ctl->held.outcome = TVO_OUTCOME_STOPPED;
+        ctl->held.reason = TVO_REASON_SPEED_MISMATCH;
     }
-    memset(&ctl->held, 0, sizeof(ctl->held));
-    ctl->held.flags = TVO_FLAG_SPEED_MISMATCH;
-    ctl->held.outcome = TVO_OUTCOME_STOPPED;
-    ctl->held.reason = TVO_REASON_SPEED_MISMATCH;
 }
 
 /* The loop's prepare piece, for a period the clock has begun: the measurement checked, the state and
@@ -461,7 +443,8 @@ TVO_OFF_CHAIN_BODY tvo_reason_t unicycle_command(void *ctl_any, tvo_loop_frame_t
         if (!(TVO_FABS(next->speed_mps[r] - work->in_force->speed_mps[r]) <= ctl->speed_step_max_mps)) {
             flags |= limit_speed_step(ctl, &next->speed_mps[r], &speed_next[r], work->in_force->speed_mps[r]);
         }
-        if (!isfinite(next->speed_mps[r]) || !isfinite(next->turn_rate_radps[r])) {
+        /* x - x is 0 for a finite x, NaN for NaN and the infinities: one test for both values. */
+        if (isnan((next->speed_mps[r] - next->speed_mps[r]) + (next->turn_rate_radps[r] - next->turn_rate_radps[r]))) {
             st = TVO_REASON_NUMERIC;
         }
     }
@@ -490,14 +473,6 @@ TVO_OFF_CHAIN_BODY void unicycle_commit(void *ctl_any, const tvo_loop_frame_t *f
     }
     if (cfg->velocity_source == TVO_VELOCITY_FROM_POSITION) {
         ctl->position_velocity->commit(ctl); /* init set it for this source */
-    }
-    ctl->speed_mismatch_periods = frame->note ? ctl->speed_mismatch_periods + 1u : 0u;
-    if (ctl->speed_mismatch_periods >= TVO_SPEED_MISMATCH_PERIODS) {
-        flags |= TVO_FLAG_SPEED_MISMATCH;
-        if (ctl->speed_mismatch_periods >= TVO_SPEED_MISMATCH_STOP_PERIODS) {
-            ctl->speed_mismatch_periods = 0u;
-            ctl->speed_mismatch_holdoff = TVO_SPEED_MISMATCH_HOLDOFF_PERIODS;
-        }
     }
     tvo_controller_telemetry_t *tm = &ctl->telemetry;
 #if TVO_MAX_EQUALITIES > 0
@@ -529,8 +504,9 @@ TVO_OFF_CHAIN_BODY void unicycle_commit(void *ctl_any, const tvo_loop_frame_t *f
         tm->gradient_rate[i] = work->gradient_rate[i];
     }
     tm->regularization = work->report.regularization;
-    if (ctl->speed_mismatch_holdoff > 0u) {
-        hold_mismatch_stop(ctl);
+    /* The common period: no contradiction, none counted, no stop running (nothing to write). */
+    if ((frame->note | ctl->speed_mismatch_periods | ctl->speed_mismatch_holdoff) != 0u) {
+        commit_speed_mismatch(ctl, frame->note);
     }
 }
 

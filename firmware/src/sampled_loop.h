@@ -122,21 +122,27 @@ TVO_LOOP_ENTRY int loop_initialized(const tvo_loop_plant_t *p, const void *ctl)
     return *(const uint8_t *)loop_at_const(ctl, p->initialized_at) != 0u;
 }
 
-/* A command's flags, outcome and reason. */
-TVO_LOOP_ENTRY void loop_mark(const tvo_loop_plant_t *p, void *cmd, uint32_t flags, tvo_outcome_t outcome,
-                              tvo_reason_t reason)
+/* A command's outcome and reason. */
+TVO_LOOP_ENTRY void loop_mark_outcome(const tvo_loop_plant_t *p, void *cmd, tvo_outcome_t outcome, tvo_reason_t reason)
 {
     uint8_t *outcome_at = loop_at(cmd, p->command_outcome_at);
-    *(uint32_t *)loop_at(cmd, p->command_flags_at) = flags;
     outcome_at[0] = (uint8_t)outcome;
     outcome_at[1] = (uint8_t)reason;
 }
 
-/* The stop: every input zero. */
+/* A command's flags, outcome and reason. */
+TVO_LOOP_ENTRY void loop_mark(const tvo_loop_plant_t *p, void *cmd, uint32_t flags, tvo_outcome_t outcome,
+                              tvo_reason_t reason)
+{
+    *(uint32_t *)loop_at(cmd, p->command_flags_at) = flags;
+    loop_mark_outcome(p, cmd, outcome, reason);
+}
+
+/* The stop: every input zero, no flags (the memset's). */
 TVO_LOOP_ENTRY void loop_stop_command(const tvo_loop_plant_t *p, void *cmd, tvo_reason_t reason)
 {
     memset(LOOP_WORDS(cmd), 0, p->command_size);
-    loop_mark(p, cmd, 0u, TVO_OUTCOME_STOPPED, reason);
+    loop_mark_outcome(p, cmd, TVO_OUTCOME_STOPPED, reason);
 }
 
 /* The command in force, held (zero once the plant was stopped). */
@@ -146,14 +152,16 @@ TVO_LOOP_ENTRY void loop_hold(const tvo_loop_plant_t *p, const void *ctl, void *
     loop_mark(p, cmd, 0u, TVO_OUTCOME_HELD, reason);
 }
 
-/* The plant stops: its states, and the held command, at rest; cmd the stop, for `reason`. */
+/* The plant stops: its states, and the held command, at rest; cmd the stop, for `reason` (a copy of
+ * the held one). */
 TVO_LOOP_ENTRY void loop_drop_to_rest(const tvo_loop_plant_t *p, void *ctl, void *cmd, tvo_reason_t reason)
 {
     if (p->rest != NULL) {
         p->rest(ctl);
     }
-    loop_stop_command(p, loop_at(ctl, p->held_at), reason);
-    loop_stop_command(p, cmd, reason);
+    void *held = loop_at(ctl, p->held_at);
+    loop_stop_command(p, held, reason);
+    memcpy(LOOP_WORDS(cmd), LOOP_WORDS(held), p->command_size);
 }
 
 /* A public call's guard: cmd NULL is TVO_ERR_NULL; an instance NULL or not initialised answers with
@@ -163,11 +171,13 @@ TVO_LOOP_ENTRY tvo_status_t loop_ready(const tvo_loop_plant_t *p, const void *ct
     if (cmd == NULL) {
         return TVO_ERR_NULL;
     }
-    if (ctl == NULL || !loop_initialized(p, ctl)) {
-        loop_stop_command(p, cmd, TVO_REASON_NONE);
-        return (ctl == NULL) ? TVO_ERR_NULL : TVO_ERR_NOT_INITIALIZED;
+    const tvo_status_t st = (ctl == NULL)                 ? TVO_ERR_NULL
+                            : !loop_initialized(p, ctl) ? TVO_ERR_NOT_INITIALIZED
+                                                        : TVO_OK;
+    if (st != TVO_OK) {
+        loop_stop_command(p, cmd, TVO_REASON_NONE); /* one copy of the stop for both errors */
     }
-    return TVO_OK;
+    return st;
 }
 
 /* A period counted without a good step (committed): held, or stopped once the watchdog expires. */
@@ -194,7 +204,8 @@ TVO_LOOP_ENTRY tvo_status_t loop_begin(const tvo_loop_plant_t *p, void *ctl, uin
 }
 
 /* tvo_*_miss (and a step without a measurement, which calls it: its period record is in its own
- * frame, not on the step's deepest chain). */
+ * frame, not on the step's deepest chain). The period is counted by the plant's refuse piece, which
+ * counts every period without a measurement (loop_refuse). */
 TVO_LOOP_ENTRY tvo_status_t loop_miss(const tvo_loop_plant_t *p, void *ctl, uint32_t apply_tick, void *cmd)
 {
     tvo_status_t st = loop_ready(p, ctl, cmd);
@@ -203,7 +214,7 @@ TVO_LOOP_ENTRY tvo_status_t loop_miss(const tvo_loop_plant_t *p, void *ctl, uint
         st = loop_begin(p, ctl, apply_tick, &period, cmd);
     }
     if (st == TVO_OK) {
-        loop_miss_period(p, ctl, &period, cmd, TVO_REASON_NO_MEASUREMENT);
+        p->refuse(ctl, NULL, &period, TVO_REASON_NO_MEASUREMENT, cmd);
     }
     return st;
 }
@@ -235,11 +246,12 @@ TVO_LOOP_ENTRY tvo_reason_t loop_reason_of(tvo_status_t st)
 
 /* A step that cannot use its measurement (or its law's result), committing nothing: the command in
  * force, held for the refusal's reason; or, when counting the period would expire the watchdog, the
- * period counted and the stop (the state the plant is left in). The body of the plant's refuse piece. */
+ * period counted and the stop (the state the plant is left in). meas NULL: a period without a
+ * measurement (tvo_*_miss), always counted. The body of the plant's refuse piece. */
 TVO_LOOP_ENTRY void loop_refuse(const tvo_loop_plant_t *p, void *ctl, const void *meas, const tvo_period_t *period,
                                 tvo_reason_t reason, void *cmd)
 {
-    if (sample_clock_refusal_stops(loop_clock(p, ctl), period)) {
+    if (meas == NULL || sample_clock_refusal_stops(loop_clock(p, ctl), period)) {
         loop_miss_period(p, ctl, period, cmd, reason);
     } else {
         loop_hold(p, ctl, cmd, (p->refusal != NULL) ? p->refusal(ctl, meas, reason) : reason);

@@ -7,25 +7,17 @@
 #include "target_kernel.h"
 #include "internal/trig.h"
 
-static int all_finite(const tvo_real_t *v, size_t n)
-{
-    for (size_t i = 0; i < n; ++i) {
-        if (!isfinite(v[i])) {
-            return 0;
-        }
-    }
-    return 1;
-}
-
-/* TVO_ERR_NOT_FINITE if a value is not finite, else TVO_ERR_PARAM if one has |v_i| > limit, else TVO_OK. */
-static __attribute__((noinline)) tvo_status_t check_values(const tvo_real_t *v, size_t n, tvo_real_t limit)
+/* TVO_ERR_NOT_FINITE if one of the n values is not finite, else TVO_ERR_PARAM if one of the first
+ * `limited` has |v_i| > limit, else TVO_OK. */
+static __attribute__((noinline)) tvo_status_t check_values(const tvo_real_t *v, size_t n, size_t limited,
+                                                           tvo_real_t limit)
 {
     tvo_status_t st = TVO_OK;
     for (size_t i = 0; i < n; ++i) {
         if (!isfinite(v[i])) {
             return TVO_ERR_NOT_FINITE;
         }
-        if (!(TVO_FABS(v[i]) <= limit)) {
+        if (i < limited && !(TVO_FABS(v[i]) <= limit)) {
             st = TVO_ERR_PARAM;
         }
     }
@@ -39,7 +31,8 @@ tvo_status_t tvo_target_init_polynomial(tvo_target_t *target,
         return TVO_ERR_NULL;
     }
     /* Its value at the epoch in the workspace, its coefficients within TVO_POLY_COEFF_LIMIT (wider). */
-    const tvo_status_t st = check_values(&coeff[0][0], 2u * (TVO_POLY_MAX_DEGREE + 1u), TVO_POLY_COEFF_LIMIT);
+    const size_t count = 2u * (TVO_POLY_MAX_DEGREE + 1u);
+    const tvo_status_t st = check_values(&coeff[0][0], count, count, TVO_POLY_COEFF_LIMIT);
     if (st != TVO_OK) {
         return st;
     }
@@ -91,11 +84,12 @@ tvo_status_t tvo_target_init_ellipse(tvo_target_t *target, const tvo_target_elli
     const tvo_real_t values[7] = {ellipse->center_m[0], ellipse->center_m[1], ellipse->semi_axis_m[0],
                                   ellipse->semi_axis_m[1], ellipse->omega_radps, ellipse->phase_rad,
                                   ellipse->rotation_rad};
-    if (!all_finite(values, 7u)) {
-        return TVO_ERR_NOT_FINITE;
+    /* All seven finite; the centre and semi-axes (the first four) within the workspace. */
+    const tvo_status_t st = check_values(values, 7u, 4u, TVO_POSITION_LIMIT_M);
+    if (st == TVO_ERR_NOT_FINITE) {
+        return st;
     }
-    if (!(ellipse->semi_axis_m[0] > TVO_R(0.0)) || !(ellipse->semi_axis_m[1] > TVO_R(0.0)) ||
-        check_values(values, 4u, TVO_POSITION_LIMIT_M) != TVO_OK ||
+    if (st != TVO_OK || !(ellipse->semi_axis_m[0] > TVO_R(0.0)) || !(ellipse->semi_axis_m[1] > TVO_R(0.0)) ||
         !(TVO_FABS(ellipse->omega_radps) <= TVO_TARGET_MAX_OMEGA_RADPS)) {
         return TVO_ERR_PARAM;
     }
@@ -158,7 +152,8 @@ tvo_status_t tvo_target_stream_update(tvo_target_t *target, uint64_t stamp_ticks
     if (target->kind != TVO_TARGET_STREAMED) {
         return TVO_ERR_PARAM;
     }
-    const tvo_status_t st = check_values(&deriv[0][0], 2u * (TVO_STREAM_MAX_DERIV + 1u), TVO_POSITION_LIMIT_M);
+    const size_t count = 2u * (TVO_STREAM_MAX_DERIV + 1u);
+    const tvo_status_t st = check_values(&deriv[0][0], count, count, TVO_POSITION_LIMIT_M);
     if (st != TVO_OK) {
         return st; /* not finite, or beyond the workspace (or a rate of it) */
     }
@@ -211,17 +206,23 @@ static void ellipse_derivatives(const tvo_target_t *target, const tvo_time_jet_t
      * derivatives of (cos, sin) cycle with period 4 and scale by omega^j. */
     const tvo_real_t dcos[4] = {c, -s, -c, s};
     const tvo_real_t dsin[4] = {s, c, -s, -c};
-    tvo_real_t omega_pow = TVO_R(1.0);
+    /* In locals: deriv's stores could alias the target, which would be read again at every order. */
+    const tvo_real_t a0 = target->axis_m[0][0];
+    const tvo_real_t a1 = target->axis_m[0][1];
+    const tvo_real_t b0 = target->axis_m[1][0];
+    const tvo_real_t b1 = target->axis_m[1][1];
+    const tvo_real_t omega = e->omega_radps;
+    deriv[0][0] = (a0 * c + b0 * s) + e->center_m[0];
+    deriv[0][1] = (a1 * c + b1 * s) + e->center_m[1];
+    tvo_real_t omega_pow = omega;
     TVO_UNROLL_SMALL
-    for (unsigned j = 0; j <= order; ++j) {
+    for (unsigned j = 1; j <= order; ++j) {
         const tvo_real_t u = dcos[j & 3u] * omega_pow;
         const tvo_real_t v = dsin[j & 3u] * omega_pow;
-        deriv[j][0] = target->axis_m[0][0] * u + target->axis_m[1][0] * v;
-        deriv[j][1] = target->axis_m[0][1] * u + target->axis_m[1][1] * v;
-        omega_pow *= e->omega_radps;
+        deriv[j][0] = a0 * u + b0 * v;
+        deriv[j][1] = a1 * u + b1 * v;
+        omega_pow *= omega;
     }
-    deriv[0][0] += e->center_m[0];
-    deriv[0][1] += e->center_m[1];
 }
 
 static tvo_status_t streamed_derivatives(const tvo_target_streamed_t *s, const tvo_time_jet_t *t,

@@ -1,16 +1,17 @@
 /* Weighted tracking term; see tvo/tracking.h. */
 #include "tvo/tracking.h"
 
+#include "internal/real_bits.h"
 #include "objective_kernel.h"
 #include "tracking_kernel.h"
 
 /* W finite and > 0 keeps f0 strongly convex, which the law's Newton step relies on. */
 static tvo_status_t check_weight(const tvo_real_t weight[2])
 {
-    if (!isfinite(weight[0]) || !isfinite(weight[1])) {
+    if (!real_finite2(weight[0], weight[1])) {
         return TVO_ERR_NOT_FINITE;
     }
-    if (!(weight[0] > TVO_R(0.0)) || !(weight[1] > TVO_R(0.0))) {
+    if (!real_positive_finite(weight[0]) || !real_positive_finite(weight[1])) {
         return TVO_ERR_PARAM;
     }
     return TVO_OK;

@@ -83,13 +83,17 @@ static inline tvo_real_t tick_time_seconds(const tvo_tick_time_t *t, uint32_t ti
     return (tvo_real_t)t->whole_s + (tvo_real_t)t->frac_ticks / (tvo_real_t)tick_hz;
 }
 
-static inline tvo_real_t ticks_to_seconds32(uint32_t ticks, uint32_t tick_hz)
+/* ticks_to_seconds32 at a clock's rate (tick_hz > 0: init validated it). */
+static inline tvo_real_t clock_ticks_to_seconds(uint32_t ticks, uint32_t tick_hz)
 {
-    if (tick_hz == 0u) {
-        return TVO_R(0.0);
-    }
+    TVO_ASSERT(tick_hz > 0u);
     /* Whole seconds and the rest separately, so only the final sum rounds. */
     return (tvo_real_t)(ticks / tick_hz) + (tvo_real_t)(ticks % tick_hz) / (tvo_real_t)tick_hz;
+}
+
+static inline tvo_real_t ticks_to_seconds32(uint32_t ticks, uint32_t tick_hz)
+{
+    return (tick_hz == 0u) ? TVO_R(0.0) : clock_ticks_to_seconds(ticks, tick_hz);
 }
 
 static inline tvo_status_t sample_clock_begin(const tvo_sample_clock_t *clock, uint32_t apply_tick,
@@ -122,12 +126,12 @@ static inline void sample_clock_locate(const tvo_sample_clock_t *clock, tvo_peri
 {
     const uint32_t hz = clock->tick_hz;
     period->age_ticks = period->apply_tick - stamp_tick;
-    period->age_s = ticks_to_seconds32(period->age_ticks, hz);
+    period->age_s = clock_ticks_to_seconds(period->age_ticks, hz);
     period->law_time = delay_compensation ? period->elapsed : tick_time_before(&period->elapsed, period->age_ticks, hz);
     period->carry_s = delay_compensation ? period->age_s : TVO_R(0.0);
     if (zoh_aware) {
         period->law_time = tick_time_after(&period->law_time, clock->period_ticks / 2u, hz);
-        period->carry_s += TVO_R(0.5) * ticks_to_seconds32(clock->period_ticks, hz);
+        period->carry_s += TVO_R(0.5) * clock_ticks_to_seconds(clock->period_ticks, hz);
     }
 }
 
