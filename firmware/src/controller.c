@@ -443,8 +443,10 @@ TVO_OFF_CHAIN_BODY tvo_reason_t unicycle_command(void *ctl_any, tvo_loop_frame_t
         if (!(TVO_FABS(next->speed_mps[r] - work->in_force->speed_mps[r]) <= ctl->speed_step_max_mps)) {
             flags |= limit_speed_step(ctl, &next->speed_mps[r], &speed_next[r], work->in_force->speed_mps[r]);
         }
-        /* x - x is 0 for a finite x, NaN for NaN and the infinities: one test for both values. */
-        if (isnan((next->speed_mps[r] - next->speed_mps[r]) + (next->turn_rate_radps[r] - next->turn_rate_radps[r]))) {
+        /* x - x is 0 for a finite x, NaN for NaN and the infinities: one test for the command and the speed
+         * state it commits (the step bound can make a NaN command finite, never the state). */
+        if (isnan((next->speed_mps[r] - next->speed_mps[r]) + (next->turn_rate_radps[r] - next->turn_rate_radps[r]) +
+                  (speed_next[r] - speed_next[r]))) {
             st = TVO_REASON_NUMERIC;
         }
     }
