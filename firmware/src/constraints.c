@@ -74,87 +74,40 @@ static tvo_real_t distance_sign(const tvo_distance_term_t *self)
     return (self->kind == TVO_DISTANCE_MAX) ? TVO_R(1.0) : TVO_R(-1.0);
 }
 
-/* What both bounds of a pair of robots compute alike (same robots, barrier, time and order): the
- * relative position's jets D, their squares, the barrier's schedule and, for the closed form, the
- * unit direction d of D at tau = 0 and the coordinates of D(tau) along d and across it. */
-typedef struct {
-    tvo_jet_t diff[2];
-    tvo_jet_t square[2];
-    tvo_barrier_schedule_jet_t own_schedule; /* without a memo */
-    const tvo_barrier_schedule_jet_t *schedule;
-    tvo_status_t schedule_status;
-    tvo_real_t norm_sq;           /* |D|^2 at tau = 0 */
-    tvo_real_t direction[2][2];   /* [0]: d = D/|D| ((1, 0) at D = 0); [1]: d_perp = (-d_y, d_x) */
-    tvo_jet_t coordinate[2];      /* d . D(tau), d_perp . D(tau) */
-} distance_shared_t;
-
-/* The pair's shared values for a term whose offsets fit dim (the caller checked). */
-TVO_SHAPE_BODY void distance_shared_shape(const tvo_distance_term_t *self, const tvo_jet_t *z,
-                                          const tvo_time_jet_t *t, const uint8_t order, const int closed,
-                                          tvo_schedule_memo_t *memo, distance_shared_t *shared)
-{
-    for (uint8_t axis = 0; axis < 2u; ++axis) {
-        tvo_jet_sub(&z[self->offset_a + axis], &z[self->offset_b + axis], order, &shared->diff[axis]);
-        tvo_jet_mul(&shared->diff[axis], &shared->diff[axis], order, &shared->square[axis]);
-    }
-    if (memo == NULL) {
-        shared->schedule_status = tvo_barrier_schedule_jet(self->barrier, t, order, &shared->own_schedule);
-        shared->schedule = &shared->own_schedule;
-    } else {
-        if (memo->barrier != self->barrier) {
-            memo->barrier = self->barrier;
-            memo->status = tvo_barrier_schedule_jet(self->barrier, t, order, &memo->schedule);
-        }
-        shared->schedule_status = memo->status;
-        shared->schedule = &memo->schedule;
-    }
-    if (!closed) {
-        return;
-    }
-    const tvo_jet_t *diff = shared->diff;
-    const tvo_real_t norm_sq = diff[0].c[0] * diff[0].c[0] + diff[1].c[0] * diff[1].c[0];
-    tvo_real_t along[2] = {TVO_R(1.0), TVO_R(0.0)};
-    if (norm_sq > TVO_R(0.0)) {
-        const tvo_real_t inv_norm = TVO_R(1.0) / TVO_SQRT(norm_sq);
-        along[0] = diff[0].c[0] * inv_norm;
-        along[1] = diff[1].c[0] * inv_norm;
-    }
-    shared->norm_sq = norm_sq;
-    for (unsigned k = 0; k < 2u; ++k) {
-        /* k = 0: along d; k = 1: across, d_perp = (-d_y, d_x). */
-        const tvo_real_t e[2] = {k == 0u ? along[0] : -along[1], k == 0u ? along[1] : along[0]};
-        shared->direction[k][0] = e[0];
-        shared->direction[k][1] = e[1];
-        tvo_jet_scale(&diff[0], e[0], order, &shared->coordinate[k]);
-        tvo_jet_axpy(e[1], &diff[1], order, &shared->coordinate[k]);
-    }
-}
-
 /* The distance bound's gradient jets, and with hessian its closed-form Hessian
- * H += (dw/df) grad f grad f^T + w hess f, grad f = 2 sign (D, -D), hess f = 2 sign [I -I; -I I],
- * from its pair's shared values (distance_shared_shape, closed when hessian is not NULL). */
-TVO_SHAPE_BODY tvo_status_t distance_term_shape(const tvo_distance_term_t *self, const distance_shared_t *shared,
-                                                const tvo_time_jet_t *t, const uint8_t order, tvo_jet_t *grad,
-                                                tvo_hessian_t *hessian)
+ * H += (dw/df) grad f grad f^T + w hess f, grad f = 2 sign (D, -D), hess f = 2 sign [I -I; -I I]. */
+TVO_SHAPE_BODY tvo_status_t distance_sum_shape(const tvo_distance_term_t *self, const tvo_jet_t *z, uint8_t dim,
+                                               const tvo_time_jet_t *t, const uint8_t order, tvo_jet_t *grad,
+                                               tvo_hessian_t *hessian)
 {
+    if (self == NULL || z == NULL || t == NULL || grad == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if ((unsigned)self->offset_a + 2u > dim || (unsigned)self->offset_b + 2u > dim) {
+        return TVO_ERR_DIMENSION;
+    }
     tvo_jet_t bound;
     affine_time_jet(self->bound_m, self->bound_rate_mps, t, &bound);
     if (!(bound.c[0] > TVO_R(0.0))) {
         return TVO_ERR_PARAM; /* the schedule d(t) ran through zero */
     }
     const tvo_real_t sign = distance_sign(self);
+    tvo_jet_t diff[2];
     tvo_jet_t f;
-    tvo_jet_constant(TVO_R(0.0), &f); /* every coefficient set: a run-time order's loops are not followed */
     tvo_jet_mul(&bound, &bound, order, &f);
     tvo_jet_scale(&f, -sign, order, &f);
     for (uint8_t axis = 0; axis < 2u; ++axis) {
-        tvo_jet_axpy(sign, &shared->square[axis], order, &f);
+        tvo_jet_t square;
+        tvo_jet_sub(&z[self->offset_a + axis], &z[self->offset_b + axis], order, &diff[axis]);
+        tvo_jet_mul(&diff[axis], &diff[axis], order, &square);
+        tvo_jet_axpy(sign, &square, order, &f);
     }
-    tvo_status_t st = shared->schedule_status;
+    tvo_barrier_schedule_jet_t schedule;
+    tvo_status_t st = tvo_barrier_schedule_jet(self->barrier, t, order, &schedule);
     tvo_jet_t w;
     tvo_real_t dw_df = TVO_R(0.0);
     if (st == TVO_OK) {
-        st = TERM_BARRIER_WEIGHT(self->barrier, shared->schedule, &f, order, &w, hessian != NULL ? &dw_df : NULL);
+        st = TERM_BARRIER_WEIGHT(self->barrier, &schedule, &f, order, &w, hessian != NULL ? &dw_df : NULL);
     }
     if (st != TVO_OK) {
         return st;
@@ -163,7 +116,7 @@ TVO_SHAPE_BODY tvo_status_t distance_term_shape(const tvo_distance_term_t *self,
         for (uint8_t axis = 0; axis < 2u; ++axis) {
             /* grad_{y_a} f = 2 sign D, grad_{y_b} f = -2 sign D. */
             tvo_jet_t df;
-            tvo_jet_scale(&shared->diff[axis], TVO_R(2.0) * sign, order, &df);
+            tvo_jet_scale(&diff[axis], TVO_R(2.0) * sign, order, &df);
             add_weighted(grad, (uint8_t)(self->offset_a + axis), &w, &df, order);
             tvo_jet_scale(&df, TVO_R(-1.0), order, &df);
             add_weighted(grad, (uint8_t)(self->offset_b + axis), &w, &df, order);
@@ -175,87 +128,53 @@ TVO_SHAPE_BODY tvo_status_t distance_term_shape(const tvo_distance_term_t *self,
      * + 2 sign w v(d_perp) v(d_perp)^T, and the gradient 2 sign w(tau) (alpha(tau) v(d) +
      * beta(tau) v(d_perp)) with alpha = d . D(tau), beta = d_perp . D(tau): two parts along
      * orthogonal directions, which a stiff maximum bound keeps apart (tvo/linsolve.h). */
+    const tvo_real_t norm_sq = diff[0].c[0] * diff[0].c[0] + diff[1].c[0] * diff[1].c[0];
+    tvo_real_t along[2] = {TVO_R(1.0), TVO_R(0.0)};
+    if (norm_sq > TVO_R(0.0)) {
+        const tvo_real_t inv_norm = TVO_R(1.0) / TVO_SQRT(norm_sq);
+        along[0] = diff[0].c[0] * inv_norm;
+        along[1] = diff[1].c[0] * inv_norm;
+    }
     const tvo_real_t curvature = TVO_R(2.0) * sign * w.c[0];
-    tvo_relative_parts_t parts;
-    parts.offset_a = self->offset_a;
-    parts.offset_b = self->offset_b;
+    tvo_rank_one_t part;
+    part.count = 4u;
+    part.index[0] = self->offset_a;
+    part.index[1] = (uint8_t)(self->offset_a + 1u);
+    part.index[2] = self->offset_b;
+    part.index[3] = (uint8_t)(self->offset_b + 1u);
     for (unsigned k = 0; k < 2u; ++k) {
-        parts.direction[k][0] = shared->direction[k][0];
-        parts.direction[k][1] = shared->direction[k][1];
-        parts.weight[k] = (k == 0u ? TVO_R(4.0) * shared->norm_sq * dw_df : TVO_R(0.0)) + curvature;
-        tvo_jet_mul(&w, &shared->coordinate[k], order, &parts.gradient[k]);
-        tvo_jet_scale(&parts.gradient[k], TVO_R(2.0) * sign, order, &parts.gradient[k]);
-    }
-    tvo_hessian_add_relative(hessian, &parts, grad, order);
-    return TVO_OK;
-}
-
-/* The checks of a distance bound's evaluation (pointers, its robots within dim). */
-static tvo_status_t distance_check(const tvo_distance_term_t *self, const tvo_jet_t *z, uint8_t dim,
-                                   const tvo_time_jet_t *t, const tvo_jet_t *grad)
-{
-    if (self == NULL || z == NULL || t == NULL || grad == NULL) {
-        return TVO_ERR_NULL;
-    }
-    if ((unsigned)self->offset_a + 2u > dim || (unsigned)self->offset_b + 2u > dim) {
-        return TVO_ERR_DIMENSION;
+        /* k = 0: along d; k = 1: across, d_perp = (-d_y, d_x). */
+        const tvo_real_t e[2] = {k == 0u ? along[0] : -along[1], k == 0u ? along[1] : along[0]};
+        part.value[0] = e[0];
+        part.value[1] = e[1];
+        part.value[2] = -e[0];
+        part.value[3] = -e[1];
+        part.weight = (k == 0u ? TVO_R(4.0) * norm_sq * dw_df : TVO_R(0.0)) + curvature;
+        tvo_jet_t coordinate;
+        tvo_jet_scale(&diff[0], e[0], order, &coordinate);
+        tvo_jet_axpy(e[1], &diff[1], order, &coordinate);
+        tvo_jet_mul(&w, &coordinate, order, &part.gradient);
+        tvo_jet_scale(&part.gradient, TVO_R(2.0) * sign, order, &part.gradient);
+        tvo_hessian_add(hessian, &part, grad, order);
     }
     return TVO_OK;
 }
 
-/* One bound's evaluation, or (second not NULL) two bounds' of the same robots and barrier in turn,
- * with what they share computed once: each bound's sums as alone, in the same order. */
-TVO_SHAPE_BODY tvo_status_t distance_sum_shape(const tvo_distance_term_t *self, const tvo_distance_term_t *second,
-                                               const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
-                                               const uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian,
-                                               tvo_schedule_memo_t *memo)
-{
-    tvo_status_t st = distance_check(self, z, dim, t, grad);
-    if (st != TVO_OK) {
-        return st;
-    }
-    distance_shared_t shared;
-    distance_shared_shape(self, z, t, order, hessian != NULL, memo, &shared);
-    st = distance_term_shape(self, &shared, t, order, grad, hessian);
-    if (st != TVO_OK || second == NULL) {
-        return st;
-    }
-    return distance_term_shape(second, &shared, t, order, grad, hessian);
-}
-
-static tvo_status_t distance_sum(const tvo_distance_term_t *self, const tvo_distance_term_t *second,
-                                 const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t, uint8_t order,
-                                 tvo_jet_t *grad, tvo_hessian_t *hessian, tvo_schedule_memo_t *memo)
+static tvo_status_t distance_sum(const tvo_distance_term_t *self, const tvo_jet_t *z, uint8_t dim,
+                                 const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian)
 {
 #if TVO_SHAPE_COPIES
     if (order == TVO_SHAPE_ORDER) {
-        return distance_sum_shape(self, second, z, dim, t, TVO_SHAPE_ORDER, grad, hessian, memo);
+        return distance_sum_shape(self, z, dim, t, TVO_SHAPE_ORDER, grad, hessian);
     }
 #endif
-    return distance_sum_shape(self, second, z, dim, t, order, grad, hessian, memo);
-}
-
-int tvo_distance_terms_pair(const void *first, const void *second)
-{
-    const tvo_distance_term_t *a = (const tvo_distance_term_t *)first;
-    const tvo_distance_term_t *b = (const tvo_distance_term_t *)second;
-    return a != NULL && b != NULL && a->barrier == b->barrier && a->offset_a == b->offset_a &&
-           a->offset_b == b->offset_b;
-}
-
-tvo_status_t tvo_distance_pair_gradient_hessian(const void *first, const void *second, const tvo_jet_t *z,
-                                                uint8_t dim, const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
-                                                tvo_hessian_t *hessian, tvo_schedule_memo_t *memo)
-{
-    TVO_ASSERT(tvo_distance_terms_pair(first, second) && hessian != NULL && memo != NULL);
-    return distance_sum((const tvo_distance_term_t *)first, (const tvo_distance_term_t *)second, z, dim, t, order,
-                        grad, hessian, memo);
+    return distance_sum_shape(self, z, dim, t, order, grad, hessian);
 }
 
 tvo_status_t tvo_distance_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
                                        uint8_t order, tvo_jet_t *grad)
 {
-    return distance_sum((const tvo_distance_term_t *)term, NULL, z, dim, t, order, grad, NULL, NULL);
+    return distance_sum((const tvo_distance_term_t *)term, z, dim, t, order, grad, NULL);
 }
 
 tvo_status_t tvo_distance_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
@@ -264,7 +183,7 @@ tvo_status_t tvo_distance_gradient_hessian(const void *term, const tvo_jet_t *z,
     if (hessian == NULL) {
         return TVO_ERR_NULL;
     }
-    return distance_sum((const tvo_distance_term_t *)term, NULL, z, dim, t, order, grad, hessian, NULL);
+    return distance_sum((const tvo_distance_term_t *)term, z, dim, t, order, grad, hessian);
 }
 
 tvo_status_t tvo_distance_constraint_max(const void *term, const tvo_real_t *y, uint8_t primal_dim, tvo_real_t t_s,

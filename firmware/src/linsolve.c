@@ -15,7 +15,6 @@
  * make the soft directions look singular (a floor relative to the largest diagonal would). */
 #define AT(a, stride, i, j) ((a)[(size_t)(i) * (stride) + (j)])
 
-#if TVO_SHAPE_COPIES /* the dense loops serve the common shapes' copies only */
 TVO_SHAPE_BODY int cholesky_factor_shape(tvo_real_t *a, const unsigned stride, const unsigned n)
 {
     TVO_UNROLL_SMALL
@@ -64,83 +63,9 @@ TVO_SHAPE_BODY void cholesky_substitute_shape(const tvo_real_t *l, const unsigne
         x[i] = s / AT(l, stride, i, i);
     }
 }
-#endif
 
-/* Row i's envelope starts at first[i], the column of its first nonzero left of the diagonal (i if
- * none). The factor is zero left of it too (Cholesky fills in only right of a row's first nonzero),
- * so every product a dense loop would take there is a zero: skipping them changes no nonzero digit
- * (at most a zero's sign). A ring of distance bounds couples each robot with two others only. */
-static unsigned envelope_start(const tvo_real_t *row, const unsigned i)
-{
-    unsigned k = 0;
-    while (k < i && row[k] == TVO_R(0.0)) { /* NaN is not 0: it stays in, as in the dense loops */
-        ++k;
-    }
-    return k;
-}
-
-/* cholesky_factor_shape for a run-time size, row by row over each row's envelope: every entry the
- * same sum in the same order times the same reciprocal of its pivot. */
-static int cholesky_factor_envelope(tvo_real_t *a, const unsigned stride, const unsigned n, uint8_t *first)
-{
-    tvo_real_t inv_pivot[TVO_MAX_Z_DIM];
-    for (unsigned i = 0; i < n && i < TVO_MAX_Z_DIM; ++i) {
-        tvo_real_t *row_i = &AT(a, stride, i, 0);
-        const unsigned first_i = envelope_start(row_i, i);
-        first[i] = (uint8_t)first_i;
-        for (unsigned j = first_i; j < i; ++j) {
-            const tvo_real_t *row_j = &AT(a, stride, j, 0);
-            tvo_real_t s = row_i[j];
-            for (unsigned k = first_i > first[j] ? first_i : first[j]; k < j; ++k) {
-                s -= row_i[k] * row_j[k];
-            }
-            row_i[j] = s * inv_pivot[j];
-        }
-        const tvo_real_t diagonal = row_i[i];
-        tvo_real_t d = diagonal;
-        for (unsigned k = first_i; k < i; ++k) {
-            d -= row_i[k] * row_i[k];
-        }
-        if (!(diagonal > TVO_R(0.0)) || !(d > TVO_R(64.0) * TVO_EPSILON * diagonal)) {
-            return 0;
-        }
-        const tvo_real_t l_ii = TVO_SQRT(d);
-        inv_pivot[i] = TVO_R(1.0) / l_ii;
-        row_i[i] = l_ii;
-    }
-    return 1;
-}
-
-/* cholesky_substitute_shape for a run-time size, over the envelope the factor found (first). */
-static void cholesky_substitute_envelope(const tvo_real_t *l, const unsigned stride, const unsigned n,
-                                         const uint8_t *first, const tvo_real_t *b, tvo_real_t *x)
-{
-    for (unsigned i = 0; i < n; ++i) {
-        const tvo_real_t *row = &AT(l, stride, i, 0);
-        tvo_real_t s = b[i];
-        for (unsigned k = first[i]; k < i; ++k) {
-            s -= row[k] * x[k];
-        }
-        x[i] = s / row[i];
-    }
-    for (unsigned ii = n; ii > 0u; --ii) {
-        const unsigned i = ii - 1u;
-        const tvo_real_t *column = &AT(l, stride, i, i); /* L_ki for k = i, i + 1, ... */
-        tvo_real_t s = x[i];
-        for (unsigned k = i + 1u; k < n; ++k) {
-            column += stride;
-            if (first[k] <= i) {
-                s -= *column * x[k];
-            }
-        }
-        x[i] = s / AT(l, stride, i, i);
-    }
-}
-
-/* The primal blocks of the common shapes (one robot, two) with the matrix's own stride, dense; any
- * other size over its envelope, which the factor writes to first (TVO_MAX_Z_DIM entries) for the
- * substitutions with that factor. */
-static int cholesky_factor(tvo_real_t *a, unsigned stride, unsigned n, uint8_t *first)
+/* The primal blocks of the common shapes (one robot, two) with the matrix's own stride. */
+static int cholesky_factor(tvo_real_t *a, unsigned stride, unsigned n)
 {
 #if TVO_SHAPE_COPIES
     if (stride == TVO_MAX_Z_DIM && n == TVO_SHAPE_OUTPUT_DIM) {
@@ -150,11 +75,10 @@ static int cholesky_factor(tvo_real_t *a, unsigned stride, unsigned n, uint8_t *
         return cholesky_factor_shape(a, TVO_MAX_Z_DIM, TVO_SHAPE_PAIR_OUTPUT_DIM);
     }
 #endif
-    return cholesky_factor_envelope(a, stride, n, first);
+    return cholesky_factor_shape(a, stride, n);
 }
 
-static void cholesky_substitute(const tvo_real_t *l, unsigned stride, unsigned n, const uint8_t *first,
-                                const tvo_real_t *b, tvo_real_t *x)
+static void cholesky_substitute(const tvo_real_t *l, unsigned stride, unsigned n, const tvo_real_t *b, tvo_real_t *x)
 {
 #if TVO_SHAPE_COPIES
     if (stride == TVO_MAX_Z_DIM && n == TVO_SHAPE_OUTPUT_DIM) {
@@ -166,7 +90,7 @@ static void cholesky_substitute(const tvo_real_t *l, unsigned stride, unsigned n
         return;
     }
 #endif
-    cholesky_substitute_envelope(l, stride, n, first, b, x);
+    cholesky_substitute_shape(l, stride, n, b, x);
 }
 
 static int all_finite(const tvo_real_t *v, unsigned n)
@@ -177,31 +101,6 @@ static int all_finite(const tvo_real_t *v, unsigned n)
         probe += v[i] * TVO_R(0.0);
     }
     return isfinite(probe);
-}
-
-/* 1 if the leading n x n block of a and b[0..n-1] are finite. Their sum is finite only then (an
- * infinity or NaN cannot cancel to a finite sum): one addition per entry; only a sum that overflowed
- * is settled entry by entry. */
-static int block_finite(tvo_real_t (*a)[TVO_MAX_Z_DIM], const tvo_real_t *b, unsigned n)
-{
-    tvo_real_t sum = TVO_R(0.0);
-    for (unsigned i = 0; i < n; ++i) {
-        const tvo_real_t *row = a[i];
-        TVO_UNROLL_SMALL
-        for (unsigned j = 0; j < n; ++j) {
-            sum += row[j];
-        }
-        sum += b[i];
-    }
-    if (isfinite(sum)) {
-        return 1;
-    }
-    for (unsigned i = 0; i < n; ++i) {
-        if (!all_finite(a[i], n) || !isfinite(b[i])) {
-            return 0;
-        }
-    }
-    return 1;
 }
 
 tvo_status_t tvo_cholesky_solve(tvo_matrix_t a, uint8_t n, const tvo_real_t *b, tvo_real_t *x)
@@ -217,17 +116,16 @@ tvo_status_t tvo_cholesky_solve(tvo_matrix_t a, uint8_t n, const tvo_real_t *b, 
             return TVO_ERR_NOT_FINITE;
         }
     }
-    uint8_t first[TVO_MAX_Z_DIM];
-    if (!cholesky_factor(&a[0][0], TVO_MAX_Z_DIM, n, first)) {
+    if (!cholesky_factor(&a[0][0], TVO_MAX_Z_DIM, n)) {
         return TVO_ERR_NOT_POSITIVE_DEFINITE;
     }
-    cholesky_substitute(&a[0][0], TVO_MAX_Z_DIM, n, first, b, x);
+    cholesky_substitute(&a[0][0], TVO_MAX_Z_DIM, n, b, x);
     return all_finite(x, n) ? TVO_OK : TVO_ERR_NUMERIC;
 }
 
 /* Factors P + mu I in place (p = the primal block of a), smallest workable mu first. */
 static tvo_status_t regularized_factor(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t n, tvo_real_t *diag,
-                                       tvo_real_t *shift, uint8_t *first)
+                                       tvo_real_t *shift)
 {
     /* The factor overwrites the lower triangle and the diagonal: keep the diagonal, and let the strict
      * upper triangle (never written) be the pristine copy the retries restore from. */
@@ -236,7 +134,7 @@ static tvo_status_t regularized_factor(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t n
     }
     *shift = TVO_R(0.0);
     /* The factor reads the lower triangle: the upper one (symmetric input) stays as the copy. */
-    if (cholesky_factor(&a[0][0], TVO_MAX_Z_DIM, n, first)) {
+    if (cholesky_factor(&a[0][0], TVO_MAX_Z_DIM, n)) {
         return TVO_OK; /* the usual case: positive definite, no shift */
     }
     tvo_real_t scale = TVO_R(1.0);
@@ -269,7 +167,7 @@ static tvo_status_t regularized_factor(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t n
                 a[i][j] = a[j][i];
             }
         }
-        if (cholesky_factor(&a[0][0], TVO_MAX_Z_DIM, n, first)) {
+        if (cholesky_factor(&a[0][0], TVO_MAX_Z_DIM, n)) {
             *shift = mu;
             return TVO_OK;
         }
@@ -346,12 +244,13 @@ static tvo_status_t saddle_solve(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t primal_
     if (dual_n == 0u && diagonal_solve(a, n, b, x)) {
         return all_finite(x, n) ? TVO_OK : TVO_ERR_NUMERIC;
     }
-    if (!block_finite(a, b, n)) {
-        return TVO_ERR_NOT_FINITE;
+    for (uint8_t i = 0; i < n; ++i) {
+        if (!all_finite(a[i], n) || !isfinite(b[i])) {
+            return TVO_ERR_NOT_FINITE;
+        }
     }
     tvo_real_t mu = TVO_R(0.0);
-    uint8_t first[TVO_MAX_Z_DIM]; /* the primal factor's envelope */
-    tvo_status_t st = regularized_factor(a, primal_n, scratch->diag, &mu, first);
+    tvo_status_t st = regularized_factor(a, primal_n, scratch->diag, &mu);
     if (st != TVO_OK) {
         return st;
     }
@@ -360,18 +259,18 @@ static tvo_status_t saddle_solve(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t primal_
     }
     /* u = P^-1 b_p; then, with equalities, Y = P^-1 C^T and S w = C u - b_d, x_p = u - Y w. */
     if (dual_n == 0u) {
-        cholesky_substitute(&a[0][0], TVO_MAX_Z_DIM, primal_n, first, b, x);
+        cholesky_substitute(&a[0][0], TVO_MAX_Z_DIM, primal_n, b, x);
         return all_finite(x, n) ? TVO_OK : TVO_ERR_NUMERIC;
     }
 #if TVO_MAX_EQUALITIES > 0
     tvo_real_t *u = scratch->first;
-    cholesky_substitute(&a[0][0], TVO_MAX_Z_DIM, primal_n, first, b, u);
+    cholesky_substitute(&a[0][0], TVO_MAX_Z_DIM, primal_n, b, u);
     tvo_real_t(*y_cols)[TVO_MAX_Z_DIM] = scratch->columns;
     tvo_real_t(*schur)[TVO_SOLVE_SMALL_DIM] = scratch->small;
     tvo_real_t *rhs = scratch->small_rhs;
     tvo_real_t *w = scratch->small_x;
     for (uint8_t q = 0; q < dual_n && q < TVO_MAX_EQUALITIES; ++q) {
-        cholesky_substitute(&a[0][0], TVO_MAX_Z_DIM, primal_n, first, a[primal_n + q], y_cols[q]);
+        cholesky_substitute(&a[0][0], TVO_MAX_Z_DIM, primal_n, a[primal_n + q], y_cols[q]);
     }
     for (uint8_t q = 0; q < dual_n && q < TVO_MAX_EQUALITIES; ++q) {
         const tvo_real_t *c_row = a[primal_n + q];
@@ -390,11 +289,10 @@ static tvo_status_t saddle_solve(tvo_real_t (*a)[TVO_MAX_Z_DIM], uint8_t primal_
     }
     /* The Schur complement is symmetric in exact arithmetic; average away the rounding. */
     symmetrize(&schur[0][0], TVO_SOLVE_SMALL_DIM, dual_n);
-    uint8_t first_small[TVO_MAX_Z_DIM];
-    if (!cholesky_factor(&schur[0][0], TVO_SOLVE_SMALL_DIM, dual_n, first_small)) {
+    if (!cholesky_factor(&schur[0][0], TVO_SOLVE_SMALL_DIM, dual_n)) {
         return TVO_ERR_NOT_POSITIVE_DEFINITE;
     }
-    cholesky_substitute(&schur[0][0], TVO_SOLVE_SMALL_DIM, dual_n, first_small, rhs, w);
+    cholesky_substitute(&schur[0][0], TVO_SOLVE_SMALL_DIM, dual_n, rhs, w);
     for (uint8_t i = 0; i < primal_n; ++i) {
         tvo_real_t s = u[i];
         for (uint8_t q = 0; q < dual_n && q < TVO_MAX_EQUALITIES; ++q) {
@@ -512,118 +410,18 @@ void tvo_hessian_add_part(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_
     }
 }
 
-/* add_part_shape for count (1 or 2) parts of r (tvo_relative_parts_t) starting at first, one after
- * the other: the same sums bit for bit (each entry's additions in the parts' order), each product
- * formed once. Row b + p's weight is -(weight e_p) and column b + q's entry -e_q: negations, which
- * are exact, so every entry's product is +-(weight e_p) e_q. */
-TVO_SHAPE_BODY void add_relative_shape(const tvo_relative_parts_t *r, const unsigned first, const unsigned count,
-                                       tvo_matrix_t m, tvo_jet_t *grad, const uint8_t order)
-{
-    const unsigned a = r->offset_a;
-    const unsigned b = r->offset_b;
-    const unsigned n = TVO_JET_ORDER_IS_CONSTANT_2(order) ? 2u : tvo_jet_order_clamp(order);
-    /* The parts read once into registers before any store (r must not overlap m or grad). */
-    tvo_real_t e[2][2];
-    tvo_real_t g[2][TVO_JET_MAX_ORDER + 1];
-    tvo_real_t q[2][2][2]; /* [part][p][q] = (weight e_p) e_q */
-    TVO_UNROLL_SMALL
-    for (unsigned k = 0; k < count; ++k) {
-        e[k][0] = r->direction[first + k][0];
-        e[k][1] = r->direction[first + k][1];
-        TVO_UNROLL_SMALL
-        for (unsigned j = 0; j <= n; ++j) {
-            g[k][j] = r->gradient[first + k].c[j];
-        }
-        TVO_UNROLL_SMALL
-        for (unsigned p = 0; p < 2u; ++p) {
-            const tvo_real_t wp = r->weight[first + k] * e[k][p];
-            q[k][p][0] = wp * e[k][0];
-            q[k][p][1] = wp * e[k][1];
-        }
-    }
-    TVO_UNROLL_SMALL
-    for (unsigned p = 0; p < 2u; ++p) {
-        tvo_real_t *row_a = m[a + p];
-        tvo_real_t *row_b = m[b + p];
-        TVO_UNROLL_SMALL
-        for (unsigned c = 0; c < 2u; ++c) {
-            tvo_real_t aa = row_a[a + c];
-            tvo_real_t ab = row_a[b + c];
-            tvo_real_t ba = row_b[a + c];
-            tvo_real_t bb = row_b[b + c];
-            TVO_UNROLL_SMALL
-            for (unsigned k = 0; k < count; ++k) {
-                aa += q[k][p][c];
-                ab -= q[k][p][c];
-                ba -= q[k][p][c];
-                bb += q[k][p][c];
-            }
-            row_a[a + c] = aa;
-            row_a[b + c] = ab;
-            row_b[a + c] = ba;
-            row_b[b + c] = bb;
-        }
-    }
-    if (grad == NULL) {
-        return;
-    }
-    TVO_UNROLL_SMALL
-    for (unsigned p = 0; p < 2u; ++p) {
-        TVO_UNROLL_SMALL
-        for (unsigned j = 0; j <= n; ++j) {
-            tvo_real_t ga = grad[a + p].c[j];
-            tvo_real_t gb = grad[b + p].c[j];
-            TVO_UNROLL_SMALL
-            for (unsigned k = 0; k < count; ++k) {
-                const tvo_real_t product = e[k][p] * g[k][j];
-                ga += product;
-                gb -= product;
-            }
-            grad[a + p].c[j] = ga;
-            grad[b + p].c[j] = gb;
-        }
-    }
-}
-
-/* Part k of r as a rank-one part. */
-static void relative_part(const tvo_relative_parts_t *r, unsigned k, tvo_rank_one_t *part)
-{
-    part->count = 4u;
-    part->index[0] = r->offset_a;
-    part->index[1] = (uint8_t)(r->offset_a + 1u);
-    part->index[2] = r->offset_b;
-    part->index[3] = (uint8_t)(r->offset_b + 1u);
-    part->value[0] = r->direction[k][0];
-    part->value[1] = r->direction[k][1];
-    part->value[2] = -r->direction[k][0];
-    part->value[3] = -r->direction[k][1];
-    part->weight = r->weight[k];
-    part->gradient = r->gradient[k];
-}
-
-/* tvo_hessian_add for a valid part of count entries; relative (not NULL): the part is relative's
- * part relative_k (tvo_hessian_add_relative), count 4. */
+/* tvo_hessian_add for a valid part of count entries. */
 TVO_SHAPE_BODY void hessian_add_shape(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_t *grad,
-                                      const unsigned count, const uint8_t order, const tvo_relative_parts_t *relative,
-                                      const unsigned relative_k)
+                                      const unsigned count, const uint8_t order)
 {
-    /* The scale is at least 1: a part no larger than TVO_STIFF_RATIO is not stiff, whatever the
-     * diagonal (the common case, decided without reading it). */
-    const tvo_real_t size = rank_one_size_shape(part, count);
-    int stiff = size > TVO_STIFF_RATIO;
-    if (stiff) {
-        tvo_real_t scale = TVO_R(1.0);
-        TVO_UNROLL_SMALL
-        for (unsigned i = 0; i < count; ++i) {
-            const tvo_real_t d = TVO_FABS(h->matrix[part->index[i]][part->index[i]]);
-            scale = d > scale ? d : scale;
-        }
-        stiff = size > TVO_STIFF_RATIO * scale;
+    tvo_real_t scale = TVO_R(1.0);
+    TVO_UNROLL_SMALL
+    for (unsigned i = 0; i < count; ++i) {
+        const tvo_real_t d = TVO_FABS(h->matrix[part->index[i]][part->index[i]]);
+        scale = d > scale ? d : scale;
     }
-    if (stiff) {
+    if (rank_one_size_shape(part, count) > TVO_STIFF_RATIO * scale) {
         tvo_hessian_add_part(h, part, grad, order);
-    } else if (relative != NULL) {
-        add_relative_shape(relative, relative_k, 1u, h->matrix, grad, order);
     } else {
         add_part_shape(part, h->matrix, grad, count, order);
     }
@@ -637,58 +435,15 @@ void tvo_hessian_add(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_t *gr
 #if TVO_SHAPE_COPIES
     /* A plane's part has 2 entries (one robot), a distance bound's 4 (two robots). */
     if (order == TVO_SHAPE_ORDER && part->count == 2u) {
-        hessian_add_shape(h, part, grad, 2u, TVO_SHAPE_ORDER, NULL, 0u);
+        hessian_add_shape(h, part, grad, 2u, TVO_SHAPE_ORDER);
         return;
     }
     if (order == TVO_SHAPE_ORDER && part->count == 4u) {
-        hessian_add_shape(h, part, grad, 4u, TVO_SHAPE_ORDER, NULL, 0u);
+        hessian_add_shape(h, part, grad, 4u, TVO_SHAPE_ORDER);
         return;
     }
 #endif
-    hessian_add_shape(h, part, grad, part->count, order, NULL, 0u);
-}
-
-/* A relative part's size weight |u|^2 as rank_one_size_shape forms it, with u = (e, -e): the squares
- * of -e are those of e. */
-static inline tvo_real_t relative_size(const tvo_relative_parts_t *r, unsigned k)
-{
-    const tvo_real_t e0_sq = r->direction[k][0] * r->direction[k][0];
-    const tvo_real_t e1_sq = r->direction[k][1] * r->direction[k][1];
-    tvo_real_t norm_sq = TVO_R(0.0);
-    norm_sq += e0_sq;
-    norm_sq += e1_sq;
-    norm_sq += e0_sq;
-    norm_sq += e1_sq;
-    return r->weight[k] * norm_sq;
-}
-
-/* tvo_hessian_add_relative for valid parts. */
-TVO_SHAPE_BODY void hessian_add_relative_shape(tvo_hessian_t *h, const tvo_relative_parts_t *r, tvo_jet_t *grad,
-                                               const uint8_t order)
-{
-    /* Parts no larger than TVO_STIFF_RATIO are not stiff whatever the diagonal (hessian_add_shape):
-     * both go in together. */
-    if (!(relative_size(r, 0u) > TVO_STIFF_RATIO) && !(relative_size(r, 1u) > TVO_STIFF_RATIO)) {
-        add_relative_shape(r, 0u, 2u, h->matrix, grad, order);
-        return;
-    }
-    for (unsigned k = 0; k < 2u; ++k) {
-        tvo_rank_one_t part;
-        relative_part(r, k, &part);
-        hessian_add_shape(h, &part, grad, 4u, order, r, k);
-    }
-}
-
-void tvo_hessian_add_relative(tvo_hessian_t *h, const tvo_relative_parts_t *parts, tvo_jet_t *grad, uint8_t order)
-{
-    TVO_ASSERT(h != NULL && parts != NULL && parts->offset_a != parts->offset_b);
-#if TVO_SHAPE_COPIES
-    if (order == TVO_SHAPE_ORDER) {
-        hessian_add_relative_shape(h, parts, grad, TVO_SHAPE_ORDER);
-        return;
-    }
-#endif
-    hessian_add_relative_shape(h, parts, grad, order);
+    hessian_add_shape(h, part, grad, part->count, order);
 }
 
 void tvo_hessian_settle(tvo_hessian_t *h, uint8_t n, uint8_t dual_n, tvo_jet_t *grad, uint8_t order)
@@ -718,8 +473,8 @@ void tvo_hessian_settle(tvo_hessian_t *h, uint8_t n, uint8_t dual_n, tvo_jet_t *
 }
 
 /* y = A^-1 u for a sparse u, with A's factor in the lower triangle. */
-static void substitute_sparse(const tvo_real_t *factor, unsigned n, const uint8_t *first, const tvo_rank_one_t *part,
-                              tvo_real_t *dense, tvo_real_t *y)
+static void substitute_sparse(const tvo_real_t *factor, unsigned n, const tvo_rank_one_t *part, tvo_real_t *dense,
+                              tvo_real_t *y)
 {
     for (unsigned i = 0; i < n; ++i) {
         dense[i] = TVO_R(0.0);
@@ -727,7 +482,7 @@ static void substitute_sparse(const tvo_real_t *factor, unsigned n, const uint8_
     for (unsigned i = 0; i < part->count; ++i) {
         dense[part->index[i]] += part->value[i];
     }
-    cholesky_substitute(factor, TVO_MAX_Z_DIM, n, first, dense, y);
+    cholesky_substitute(factor, TVO_MAX_Z_DIM, n, dense, y);
 }
 
 static tvo_real_t dot_sparse(const tvo_rank_one_t *part, const tvo_real_t *v)
@@ -780,8 +535,10 @@ tvo_status_t tvo_saddle_solve_split(tvo_hessian_t *h, uint8_t primal_n, uint8_t 
         return saddle_solve(h->matrix, primal_n, dual_n, b, x, shift, &h->scratch);
     }
     const unsigned n = primal_n;
-    if (!block_finite(h->matrix, b, n)) {
-        return TVO_ERR_NOT_FINITE;
+    for (unsigned i = 0; i < n; ++i) {
+        if (!all_finite(h->matrix[i], n) || !isfinite(b[i])) {
+            return TVO_ERR_NOT_FINITE;
+        }
     }
     if (!all_finite(gamma, parts)) {
         return TVO_ERR_NOT_FINITE;
@@ -791,8 +548,7 @@ tvo_status_t tvo_saddle_solve_split(tvo_hessian_t *h, uint8_t primal_n, uint8_t 
     for (unsigned i = 0; i < n; ++i) {
         scratch->diag[i] = h->matrix[i][i];
     }
-    uint8_t first[TVO_MAX_Z_DIM];
-    if (!cholesky_factor(&h->matrix[0][0], TVO_MAX_Z_DIM, n, first)) {
+    if (!cholesky_factor(&h->matrix[0][0], TVO_MAX_Z_DIM, n)) {
         return solve_parts_added(h, primal_n, dual_n, b, gamma, x, shift);
     }
     if (shift != NULL) {
@@ -807,9 +563,9 @@ tvo_status_t tvo_saddle_solve_split(tvo_hessian_t *h, uint8_t primal_n, uint8_t 
     tvo_real_t(*capacitance)[TVO_SOLVE_SMALL_DIM] = scratch->small;
     tvo_real_t *rhs = scratch->small_rhs;
     tvo_real_t *w = scratch->small_x;
-    cholesky_substitute(&h->matrix[0][0], TVO_MAX_Z_DIM, n, first, b, z);
+    cholesky_substitute(&h->matrix[0][0], TVO_MAX_Z_DIM, n, b, z);
     for (unsigned k = 0; k < parts; ++k) {
-        substitute_sparse(&h->matrix[0][0], n, first, &h->rank_one[k], scratch->dense, y_cols[k]);
+        substitute_sparse(&h->matrix[0][0], n, &h->rank_one[k], scratch->dense, y_cols[k]);
     }
     for (unsigned k = 0; k < parts; ++k) {
         const tvo_real_t inv_weight = TVO_R(1.0) / h->rank_one[k].weight;
@@ -820,12 +576,11 @@ tvo_status_t tvo_saddle_solve_split(tvo_hessian_t *h, uint8_t primal_n, uint8_t 
         capacitance[k][k] += inv_weight;
     }
     symmetrize(&capacitance[0][0], TVO_SOLVE_SMALL_DIM, parts);
-    uint8_t first_small[TVO_MAX_Z_DIM];
-    if (!cholesky_factor(&capacitance[0][0], TVO_SOLVE_SMALL_DIM, parts, first_small)) {
+    if (!cholesky_factor(&capacitance[0][0], TVO_SOLVE_SMALL_DIM, parts)) {
         /* Nearly dependent directions (three planes of one robot in the plane): solve the sum. */
         return solve_parts_added(h, primal_n, dual_n, b, gamma, x, shift);
     }
-    cholesky_substitute(&capacitance[0][0], TVO_SOLVE_SMALL_DIM, parts, first_small, rhs, w);
+    cholesky_substitute(&capacitance[0][0], TVO_SOLVE_SMALL_DIM, parts, rhs, w);
     for (unsigned i = 0; i < n; ++i) {
         tvo_real_t sum = z[i];
         for (unsigned k = 0; k < parts; ++k) {

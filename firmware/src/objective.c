@@ -1,7 +1,6 @@
 /* The objective as a sum of gradient-jet terms; see tvo/objective.h. */
 #include "internal/objective.h"
 
-#include "internal/constraints.h"
 #include "internal/law.h"
 #include "objective_kernel.h"
 #include "internal/sample_clock.h"
@@ -130,8 +129,6 @@ tvo_status_t objective_sum_terms(const tvo_objective_t *objective, const tvo_jet
         tvo_jet_constant(TVO_R(0.0), &grad[i]);
     }
     uint8_t left_to_jets = 0u;
-    tvo_schedule_memo_t memo; /* this pass's barrier schedule, for the distance bounds */
-    memo.barrier = NULL;
     for (uint8_t k = 0; k < objective->term_count && k < TVO_MAX_TERMS; ++k) {
         const tvo_term_t *term = &objective->terms[k];
         /* The tracking slot's callbacks are the tracking term's, named here (the general path), so a
@@ -144,16 +141,7 @@ tvo_status_t objective_sum_terms(const tvo_objective_t *objective, const tvo_jet
         }
         const int closed = (mode != SUM_ALL_BY_JETS) && gradient_hessian != NULL && !objective->jets_only;
         tvo_status_t st = TVO_OK;
-        if (mode == SUM_CLOSED_FORMS && closed && gradient_hessian == tvo_distance_gradient_hessian &&
-            k + 1u < objective->term_count && k + 1u < TVO_MAX_TERMS &&
-            term[1].gradient_hessian == tvo_distance_gradient_hessian && hessian != NULL &&
-            tvo_distance_terms_pair(term->term, term[1].term)) {
-            /* A pair's minimum and maximum bound (tvo_problem adds them in turn): what they share
-             * computed once, each one's sums as alone; the barrier's schedule once per pass. */
-            st = tvo_distance_pair_gradient_hessian(term->term, term[1].term, z, objective->dim, t, order, grad,
-                                                    hessian, &memo);
-            ++k;
-        } else if (mode == SUM_CLOSED_FORMS && closed) {
+        if (mode == SUM_CLOSED_FORMS && closed) {
             st = gradient_hessian(term->term, z, objective->dim, t, order, grad, hessian);
         } else if (!(mode == SUM_JET_TERMS && closed)) {
             st = gradient_jet(term->term, z, objective->dim, t, order, grad);

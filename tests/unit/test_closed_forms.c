@@ -14,7 +14,6 @@
 
 #include "tvo/law.h"
 #include "tvo/problem.h"
-#include "internal/constraints.h"
 #include "internal/jet.h"
 #include "internal/law.h"
 #include "internal/linsolve.h"
@@ -143,7 +142,6 @@ static void compare_paths(const tvo_output_derivs_t *y, const tvo_time_jet_t *t,
     tvo_real_t jet_out[TVO_MAX_Z_DIM];
     const tvo_status_t st_closed = tvo_law_evaluate(&law, &problem.objective, y, t, closed_out, &closed_eval);
     const tvo_status_t st_jets = tvo_law_evaluate(&law, &by_jets, y, t, jet_out, &jet_eval);
-
     ASSERT_STATUS(st_jets, st_closed);
     if (st_jets != TVO_OK) {
         return; /* the same refusal (e.g. an obstacle centre under the robot) */
@@ -237,84 +235,6 @@ static void run_trials(int offsets)
     }
     /* Refusals and stiff draws are allowed, but the whole comparison must have happened for many. */
     ASSERT_LE(TRIALS / 4u, compared, "trials compared in full");
-}
-
-/* The law's pass evaluates a pair's minimum and maximum distance bound together
- * (tvo_distance_pair_gradient_hessian): it must add exactly what the two bounds add alone, in turn. */
-static void test_distance_pair_adds_what_its_bounds_add_alone_bit_for_bit(void)
-{
-    static tvo_hessian_t alone;
-    static tvo_hessian_t together;
-    const uint32_t other_tests_state = rng_state; /* the other tests keep their own draws */
-    unsigned stiff_seen = 0u;
-    for (unsigned trial = 0; trial < TRIALS; ++trial) {
-        random_problem(0);
-        const tvo_objective_t *objective = &problem.objective;
-        unsigned k = 0;
-        while (k + 1u < objective->term_count &&
-               !(objective->terms[k].gradient_hessian == tvo_distance_gradient_hessian &&
-                 objective->terms[k + 1u].gradient_hessian == tvo_distance_gradient_hessian)) {
-            ++k;
-        }
-        TEST_ASSERT_TRUE_MESSAGE(k + 1u < objective->term_count, "the problem's bounds are adjacent terms");
-        const void *first = objective->terms[k].term;
-        const void *second = objective->terms[k + 1u].term;
-        TEST_ASSERT_TRUE(tvo_distance_terms_pair(first, second));
-        /* Robot 1 anywhere from inside the minimum to beyond the maximum: every barrier branch. */
-        const double distance = uniform(0.3, 5.5);
-        const double angle = uniform(-3.0, 3.0);
-        const uint8_t order = (uint8_t)(2u + trial % 2u);
-        tvo_jet_t z[TVO_MAX_Z_DIM];
-        memset(z, 0, sizeof(z));
-        for (unsigned i = 0; i < objective->dim; ++i) {
-            for (unsigned j = 1; j <= order; ++j) {
-                z[i].c[j] = test_r(uniform(-1.0, 1.0));
-            }
-        }
-        z[0].c[0] = test_r(uniform(-1.0, 1.0));
-        z[1].c[0] = test_r(uniform(-1.0, 1.0));
-        z[2].c[0] = test_r(test_d(z[0].c[0]) + distance * cos(angle));
-        z[3].c[0] = test_r(test_d(z[1].c[0]) + distance * sin(angle));
-        tvo_time_jet_t t;
-        ASSERT_STATUS(TVO_OK, tvo_time_jet_at_ticks((uint64_t)llround(uniform(0.0, 12.0) * 1e6), 1000000u,
-                                                    TVO_R(1.0), &t));
-        if (trial % 2u == 0u) {
-            const tvo_real_t y[4] = {z[0].c[0], z[1].c[0], z[2].c[0], z[3].c[0]};
-            ASSERT_STATUS(TVO_OK, tvo_problem_choose_slack(&problem, y, t.t_s));
-        }
-        memset(&alone, 0, sizeof(alone));
-        for (unsigned i = 0; i < objective->dim; ++i) {
-            alone.matrix[i][i] = test_r(uniform(0.5, 4.0));
-        }
-        together = alone;
-        tvo_jet_t grad_alone[TVO_MAX_Z_DIM];
-        tvo_jet_t grad_together[TVO_MAX_Z_DIM];
-        memset(grad_alone, 0, sizeof(grad_alone));
-        memset(grad_together, 0, sizeof(grad_together));
-        const uint8_t dim = objective->dim;
-        tvo_status_t st_alone = tvo_distance_gradient_hessian(first, z, dim, &t, order, grad_alone, &alone);
-        if (st_alone == TVO_OK) {
-            st_alone = tvo_distance_gradient_hessian(second, z, dim, &t, order, grad_alone, &alone);
-        }
-        tvo_schedule_memo_t memo;
-        memo.barrier = NULL;
-        const tvo_status_t st_together =
-            tvo_distance_pair_gradient_hessian(first, second, z, dim, &t, order, grad_together, &together, &memo);
-        ASSERT_STATUS(st_alone, st_together);
-        TEST_ASSERT_EQUAL_MEMORY(alone.matrix, together.matrix, sizeof(alone.matrix));
-        TEST_ASSERT_EQUAL_MEMORY(grad_alone, grad_together, sizeof(grad_alone));
-        TEST_ASSERT_EQUAL_UINT8(alone.rank_one_count, together.rank_one_count);
-        for (unsigned p = 0; p < alone.rank_one_count; ++p) { /* field by field: not the padding */
-            TEST_ASSERT_EQUAL_MEMORY(alone.rank_one[p].index, together.rank_one[p].index, sizeof(alone.rank_one[p].index));
-            TEST_ASSERT_EQUAL_MEMORY(alone.rank_one[p].value, together.rank_one[p].value, sizeof(alone.rank_one[p].value));
-            TEST_ASSERT_EQUAL_MEMORY(&alone.rank_one[p].weight, &together.rank_one[p].weight, sizeof(tvo_real_t));
-            TEST_ASSERT_EQUAL_MEMORY(alone.rank_one[p].gradient.c, together.rank_one[p].gradient.c,
-                                     (order + 1u) * sizeof(tvo_real_t)); /* the coefficients of this order */
-        }
-        stiff_seen += alone.rank_one_count;
-    }
-    rng_state = other_tests_state;
-    TEST_ASSERT_TRUE_MESSAGE(stiff_seen > 0u, "some draws keep stiff parts apart");
 }
 
 static void test_closed_forms_match_jets_without_equalities(void)
@@ -475,7 +395,6 @@ static void test_tracking_path_matches_the_general_path_bit_for_bit(void)
 int main(void)
 {
     UNITY_BEGIN();
-    RUN_TEST(test_distance_pair_adds_what_its_bounds_add_alone_bit_for_bit);
     RUN_TEST(test_closed_forms_match_jets_without_equalities);
     RUN_TEST(test_closed_forms_match_jets_with_an_offset_equality);
     RUN_TEST(test_every_built_in_term_has_a_closed_form);

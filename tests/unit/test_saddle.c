@@ -7,8 +7,6 @@
  */
 #include "test_support.h"
 
-#include <string.h>
-
 #include "tvo/linsolve.h"
 #include "internal/jet.h"
 #include "internal/linsolve.h"
@@ -324,96 +322,6 @@ static void pair_expected(const double b[4], double wx, double wy, double gx, do
     }
 }
 
-/* A pseudo-random value in [lo, hi) (a fixed sequence: the test is repeatable). */
-static double relative_uniform(uint32_t *state, double lo, double hi)
-{
-    *state = *state * 1664525u + 1013904223u;
-    return lo + (hi - lo) * (double)(*state >> 8) / 16777216.0;
-}
-
-static void test_relative_parts_add_as_two_parts_bit_for_bit(void)
-{
-    /* A distance bound's two parts through tvo_hessian_add_relative and, as rank-one parts, through
-     * tvo_hessian_add in turn: the same matrix, gradient jets and kept parts, bit for bit; parts
-     * that cannot be stiff (one pass), one or both stiff (kept apart), orders 1 to 3. */
-    static tvo_hessian_t by_parts;
-    static tvo_hessian_t by_relative;
-    if (TVO_MAX_ROBOTS < 2) {
-        TEST_IGNORE_MESSAGE("a pair needs two robots");
-    }
-    uint32_t state = 0x9E3779B9u;
-    unsigned stiff_seen = 0u;
-    const double weight_scale[3] = {1.0, 2e3, 1e6};
-    for (unsigned trial = 0; trial < 36u; ++trial) {
-        const uint8_t order = (uint8_t)(1u + trial % (TVO_JET_MAX_ORDER < 3 ? TVO_JET_MAX_ORDER : 3u));
-        const double scale = weight_scale[(trial / 3u) % 3u];
-        memset(&by_parts, 0, sizeof(by_parts));
-        tvo_jet_t grad_parts[TVO_MAX_Z_DIM];
-        tvo_jet_t grad_relative[TVO_MAX_Z_DIM];
-        memset(grad_parts, 0, sizeof(grad_parts));
-        for (unsigned i = 0; i < TVO_MAX_OUTPUT_DIM; ++i) {
-            for (unsigned j = 0; j < TVO_MAX_OUTPUT_DIM; ++j) {
-                by_parts.matrix[i][j] = test_r(relative_uniform(&state, -2.0, 2.0));
-            }
-            by_parts.matrix[i][i] = test_r(relative_uniform(&state, 0.5, 8.0));
-            for (unsigned j = 0; j <= TVO_JET_MAX_ORDER; ++j) {
-                grad_parts[i].c[j] = test_r(relative_uniform(&state, -1.0, 1.0));
-            }
-        }
-        by_relative = by_parts;
-        memcpy(grad_relative, grad_parts, sizeof(grad_parts));
-        tvo_relative_parts_t r;
-        r.offset_a = (uint8_t)(2u * (trial % TVO_MAX_ROBOTS));
-        r.offset_b = (uint8_t)(2u * ((trial + 1u) % TVO_MAX_ROBOTS));
-        if (r.offset_a == r.offset_b) {
-            r.offset_b = (uint8_t)(r.offset_a == 0u ? 2u : 0u);
-        }
-        const double angle = relative_uniform(&state, -3.0, 3.0);
-        r.direction[0][0] = test_r(cos(angle));
-        r.direction[0][1] = test_r(sin(angle));
-        r.direction[1][0] = -r.direction[0][1];
-        r.direction[1][1] = r.direction[0][0];
-        for (unsigned k = 0; k < 2u; ++k) {
-            r.weight[k] = test_r(scale * relative_uniform(&state, 0.05, 1.0));
-            tvo_jet_constant(TVO_R(0.0), &r.gradient[k]);
-            for (unsigned j = 0; j <= order; ++j) {
-                r.gradient[k].c[j] = test_r(relative_uniform(&state, -3.0, 3.0));
-            }
-        }
-        for (unsigned k = 0; k < 2u; ++k) {
-            tvo_rank_one_t part;
-            memset(&part, 0, sizeof(part));
-            part.count = 4u;
-            part.index[0] = r.offset_a;
-            part.index[1] = (uint8_t)(r.offset_a + 1u);
-            part.index[2] = r.offset_b;
-            part.index[3] = (uint8_t)(r.offset_b + 1u);
-            part.value[0] = r.direction[k][0];
-            part.value[1] = r.direction[k][1];
-            part.value[2] = -r.direction[k][0];
-            part.value[3] = -r.direction[k][1];
-            part.weight = r.weight[k];
-            part.gradient = r.gradient[k];
-            tvo_hessian_add(&by_parts, &part, grad_parts, order);
-        }
-        tvo_hessian_add_relative(&by_relative, &r, grad_relative, order);
-        TEST_ASSERT_EQUAL_MEMORY(by_parts.matrix, by_relative.matrix, sizeof(by_parts.matrix));
-        TEST_ASSERT_EQUAL_MEMORY(grad_parts, grad_relative, sizeof(grad_parts));
-        TEST_ASSERT_EQUAL_UINT8(by_parts.rank_one_count, by_relative.rank_one_count);
-        for (unsigned k = 0; k < by_parts.rank_one_count; ++k) { /* field by field: not the padding */
-            const tvo_rank_one_t *kept = &by_parts.rank_one[k];
-            const tvo_rank_one_t *other = &by_relative.rank_one[k];
-            TEST_ASSERT_EQUAL_UINT8(kept->count, other->count);
-            TEST_ASSERT_EQUAL_MEMORY(kept->index, other->index, sizeof(kept->index));
-            TEST_ASSERT_EQUAL_MEMORY(kept->value, other->value, sizeof(kept->value));
-            TEST_ASSERT_EQUAL_MEMORY(&kept->weight, &other->weight, sizeof(kept->weight));
-            TEST_ASSERT_EQUAL_MEMORY(kept->gradient.c, other->gradient.c, sizeof(kept->gradient.c));
-        }
-        stiff_seen += by_parts.rank_one_count;
-    }
-    TEST_ASSERT_TRUE(stiff_seen > 0u); /* the kept-apart path was taken too */
-}
-
 static void test_stiff_parts_keep_the_soft_directions_in_float32(void)
 {
     /* The infeasible-start case: relative directions 1e7 stiffer, their right-hand side 1e9. */
@@ -503,7 +411,6 @@ int main(void)
     RUN_TEST(test_gershgorin_fallback_when_the_ladder_is_not_enough);
     RUN_TEST(test_gershgorin_fallback_when_the_bound_is_tight);
     RUN_TEST(test_non_finite_input_and_bad_sizes_are_rejected);
-    RUN_TEST(test_relative_parts_add_as_two_parts_bit_for_bit);
     RUN_TEST(test_stiff_parts_keep_the_soft_directions_in_float32);
     RUN_TEST(test_parts_that_are_not_stiff_join_the_matrix);
     RUN_TEST(test_split_falls_back_to_the_sum_when_the_rest_is_indefinite);

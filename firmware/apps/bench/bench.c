@@ -10,8 +10,7 @@
  * then "BENCH_DIGEST <name> <n>", a 32-bit FNV-1a hash of every command's bytes (two builds of the
  * core that compute the same commands bit for bit print the same digest),
  * "BENCH_SKIP <name>" for a problem the build's limits cannot hold, then "BENCH_CONFIG" with the
- * build's limits and the resolution. With an argument (host builds), runs only that problem; on a
- * board, a compile definition BENCH_ONLY="name" does (for a profile of QEMU's trace of one problem).
+ * build's limits and the resolution. With an argument (host builds), runs only that problem.
  * On Cortex-M, each step also runs with the stack below it painted and interrupts off, and
  * "BENCH_STACK <name> <bytes>" gives the deepest any step wrote below its caller's stack pointer;
  * "BENCH_STACK hostile <bytes>" the same for steps fed hostile measurements (huge finite headings,
@@ -367,10 +366,6 @@ int main(int argc, char **argv)
 #else
 int main(void)
 {
-#if defined(BENCH_ONLY)
-    return bench_run(BENCH_ONLY); /* one problem, for a profile of the board's trace */
-#else
     return bench_run(NULL);
-#endif
 }
 #endif

@@ -25,28 +25,6 @@ tvo_status_t tvo_distance_gradient_jet(const void *term, const tvo_jet_t *z, uin
 tvo_status_t tvo_distance_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
                                    uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian);
 
-/** 1 if two distance bounds have the same robots and barrier (a minimum and a maximum of one pair). */
-int tvo_distance_terms_pair(const void *first, const void *second);
-
-/**
- * A barrier's schedule kept for one pass over an objective's terms (one time jet, one order, the
- * barriers unchanged): barrier NULL until the first bound computes it.
- */
-typedef struct {
-    const tvo_barrier_t *barrier;
-    tvo_status_t status;
-    tvo_barrier_schedule_jet_t schedule;
-} tvo_schedule_memo_t;
-
-/**
- * tvo_distance_gradient_hessian of first and then of second, two bounds of one pair
- * (tvo_distance_terms_pair): the same sums in the same order, what they share computed once, and
- * the barrier's schedule taken from memo when it holds that barrier's (else computed and kept there).
- */
-tvo_status_t tvo_distance_pair_gradient_hessian(const void *first, const void *second, const tvo_jet_t *z,
-                                                uint8_t dim, const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
-                                                tvo_hessian_t *hessian, tvo_schedule_memo_t *memo);
-
 tvo_status_t tvo_distance_constraint_max(const void *term, const tvo_real_t *y, uint8_t primal_dim, tvo_real_t t_s,
                                          tvo_real_t *max_value);
 

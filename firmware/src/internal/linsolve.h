@@ -49,25 +49,6 @@ void tvo_hessian_add_part(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_
 void tvo_hessian_add(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_t *grad, uint8_t order);
 
 /**
- * A distance bound's two rank-one parts, on its pair's relative coordinates: part k has index
- * (offset_a, offset_a + 1, offset_b, offset_b + 1), value (e_k, -e_k) with e_k = direction[k], its
- * weight and its gradient jet.
- */
-typedef struct {
-    uint8_t offset_a;
-    uint8_t offset_b;
-    tvo_real_t direction[2][2];
-    tvo_real_t weight[2];
-    tvo_jet_t gradient[2];
-} tvo_relative_parts_t;
-
-/**
- * tvo_hessian_add of the two parts in turn: the same sums bit for bit, each product formed once, and
- * two parts that cannot be stiff added in one pass. parts must not lie in h or grad.
- */
-void tvo_hessian_add_relative(tvo_hessian_t *h, const tvo_relative_parts_t *parts, tvo_jet_t *grad, uint8_t order);
-
-/**
  * Keeps apart only the parts that are stiff (weight |u|^2 above TVO_STIFF_RATIO times the matrix's
  * largest diagonal entry), and none with equalities (dual_n > 0); the others go into the matrix and
  * grad as in tvo_hessian_add_part.
