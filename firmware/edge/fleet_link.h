@@ -14,7 +14,7 @@
  *        TVO_SESSION_ACK_R<own>, TVO_TELEMETRY_R<own>  the node's own messages, named by robot.
  *
  * A node steps only once it has heard every robot (a robot never heard cannot be predicted): until
- * then the own sample is answered with TVO_ERR_NO_MEASUREMENT and the command in force (HOLDING).
+ * then the own sample is answered with the wire's STATUS_ERR_NO_MEASUREMENT and the command in force (FLAG_HOLDING).
  * A prediction spans at most the session's watchdog_periods periods; a robot unheard for longer is
  * not predicted either (same answer), since the plant stops robots whose commands stop.
  * Transport-independent, like node.c and auth_link.c; the LCM process is tvo_firmware_node --own-robot.
