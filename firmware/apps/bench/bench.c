@@ -54,19 +54,7 @@ static uint32_t instructions(uint32_t ticks)
     return (uint32_t)(((uint64_t)ticks * TVO_BOARD_INSTRUCTIONS_PER_TICK_NUM) / TVO_BOARD_INSTRUCTIONS_PER_TICK_DEN);
 }
 
-/* FNV-1a's offset basis: each problem's digest starts from it. */
-#define DIGEST_BASIS 2166136261u
-
-static uint32_t digest;
-
-/* FNV-1a over the bytes of what the step returned: outside the measured span. */
-static void digest_add(const void *bytes, size_t size)
-{
-    const unsigned char *p = (const unsigned char *)bytes;
-    for (size_t i = 0; i < size; ++i) {
-        digest = (digest ^ p[i]) * 16777619u;
-    }
-}
+static uint32_t digest; /* the current problem's, bench_problems.h's FNV-1a */
 
 /* The last step's answer as one number: 0 when it applied a new command, else its call error, or
  * 100 + the reason it held or stopped. */
@@ -175,7 +163,7 @@ static tvo_status_t bench_unicycle_problem(bench_unicycle_problem_t which)
     if (last != TVO_OK) {
         return last;
     }
-    digest = DIGEST_BASIS;
+    digest = BENCH_DIGEST_BASIS;
     for (uint32_t n = 0; n < BENCH_STEPS; ++n) {
         const tvo_status_t advanced = bench_loop_advance(&loop);
         if (advanced != TVO_OK) {
@@ -184,9 +172,7 @@ static tvo_status_t bench_unicycle_problem(bench_unicycle_problem_t which)
         STACK_PAINT_BELOW_HERE();
         MEASURE(samples[n], tvo_controller_step(&loop.controller, &loop.meas, loop.apply_tick, &loop.cmd));
         stack_measure_after_step();
-        digest_add(&loop.cmd.speed_mps, sizeof(loop.cmd.speed_mps));
-        digest_add(&loop.cmd.turn_rate_radps, sizeof(loop.cmd.turn_rate_radps));
-        digest_add(&loop.cmd.flags, sizeof(loop.cmd.flags));
+        digest = bench_digest_command(digest, &loop.cmd); /* outside the measured span */
     }
     report(bench_problem_name(which), BENCH_STEPS, period_verdict(last, loop.cmd.outcome, loop.cmd.reason));
     stack_report(bench_problem_name(which));
@@ -293,7 +279,7 @@ static tvo_status_t bench_chain_k3(void)
     tvo_chain_command_t cmd;
     memset(&cmd, 0, sizeof(cmd));
     const tvo_real_t half_s = TVO_R(0.5) * tvo_ticks_to_seconds(cfg.period_ticks, cfg.tick_hz);
-    digest = DIGEST_BASIS;
+    digest = BENCH_DIGEST_BASIS;
     for (uint32_t n = 0; n < BENCH_STEPS; ++n) {
         tvo_chain_measurement_t meas;
         (void)tvo_chain_predict(3u, 2u, &state, cmd.u, half_s, &state);
@@ -303,7 +289,7 @@ static tvo_status_t bench_chain_k3(void)
         STACK_PAINT_BELOW_HERE();
         MEASURE(samples[n], tvo_chain_controller_step(&loop.chain, &meas, (n + 1u) * cfg.period_ticks, &cmd));
         stack_measure_after_step();
-        digest_add(&cmd.u, sizeof(cmd.u));
+        digest = bench_digest_bytes(digest, &cmd.u, sizeof(cmd.u));
     }
     report("chain_k3", BENCH_STEPS, period_verdict(last, cmd.outcome, cmd.reason));
     stack_report("chain_k3");

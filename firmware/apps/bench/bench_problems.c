@@ -198,14 +198,11 @@ static void plant_half_period(bench_loop_t *loop)
     }
 }
 
-tvo_status_t bench_loop_advance(bench_loop_t *loop)
+/* Period n's measurement from the plant's pose, and the slack chosen from it in period 0. */
+static tvo_status_t sample(bench_loop_t *loop)
 {
-    if (loop == NULL) {
-        return TVO_ERR_NULL;
-    }
     const uint32_t n = loop->period;
     const uint32_t period_ticks = loop->cfg.period_ticks;
-    plant_half_period(loop);
     memset(&loop->meas, 0, sizeof(loop->meas));
     for (uint8_t r = 0; r < loop->robots && r < TVO_MAX_ROBOTS; ++r) {
         loop->meas.position_m[r][0] = loop->pose[r].position_m[0];
@@ -223,8 +220,52 @@ tvo_status_t bench_loop_advance(bench_loop_t *loop)
         }
         st = tvo_problem_choose_slack(&loop->problem, y, TVO_R(0.0));
     }
-    plant_half_period(loop);
-    loop->apply_tick = (n + 1u) * period_ticks;
-    loop->period = n + 1u;
     return st;
+}
+
+static void finish_period(bench_loop_t *loop)
+{
+    loop->apply_tick = (loop->period + 1u) * loop->cfg.period_ticks;
+    loop->period += 1u;
+}
+
+tvo_status_t bench_loop_advance(bench_loop_t *loop)
+{
+    if (loop == NULL) {
+        return TVO_ERR_NULL;
+    }
+    plant_half_period(loop);
+    const tvo_status_t st = sample(loop);
+    plant_half_period(loop);
+    finish_period(loop);
+    return st;
+}
+
+tvo_status_t bench_loop_replay(bench_loop_t *loop, const tvo_pose_t *measured)
+{
+    if (loop == NULL || measured == NULL) {
+        return TVO_ERR_NULL;
+    }
+    for (uint8_t r = 0; r < loop->robots && r < TVO_MAX_ROBOTS; ++r) {
+        loop->pose[r] = measured[r];
+    }
+    const tvo_status_t st = sample(loop);
+    finish_period(loop);
+    return st;
+}
+
+uint32_t bench_digest_bytes(uint32_t digest, const void *bytes, size_t size)
+{
+    const unsigned char *p = (const unsigned char *)bytes;
+    for (size_t i = 0; i < size; ++i) {
+        digest = (digest ^ p[i]) * 16777619u;
+    }
+    return digest;
+}
+
+uint32_t bench_digest_command(uint32_t digest, const tvo_command_t *cmd)
+{
+    digest = bench_digest_bytes(digest, &cmd->speed_mps, sizeof(cmd->speed_mps));
+    digest = bench_digest_bytes(digest, &cmd->turn_rate_radps, sizeof(cmd->turn_rate_radps));
+    return bench_digest_bytes(digest, &cmd->flags, sizeof(cmd->flags));
 }

@@ -71,6 +71,24 @@ tvo_status_t bench_loop_init(bench_loop_t *loop, bench_unicycle_problem_t which)
 /** Moves the plant through period n under the last command and fills meas and apply_tick. */
 tvo_status_t bench_loop_advance(bench_loop_t *loop);
 
+/**
+ * Period n open loop: the plant is not moved; measured (one pose per robot, as bench_loop_advance
+ * sampled them) is the measurement, and meas and apply_tick are filled as bench_loop_advance fills them.
+ */
+tvo_status_t bench_loop_replay(bench_loop_t *loop, const tvo_pose_t *measured);
+
+/** FNV-1a (32-bit)'s offset basis: each problem's digest starts from it. */
+#define BENCH_DIGEST_BASIS 2166136261u
+
+/** digest with size bytes folded in (FNV-1a, 32-bit). */
+uint32_t bench_digest_bytes(uint32_t digest, const void *bytes, size_t size);
+
+/**
+ * digest with a command folded in: the bytes of its speeds, turn rates (every robot slot) and flags.
+ * Two builds of the core that compute the same commands bit for bit print the same digest.
+ */
+uint32_t bench_digest_command(uint32_t digest, const tvo_command_t *cmd);
+
 #ifdef __cplusplus
 }
 #endif
