@@ -10,8 +10,13 @@
  *         AGREE_SETUP <problem> <digest of the distance bounds and obstacles, which libm's sinf shapes>
  *         AGREE <problem> <period> <status> <outcome> <flags> <speed bits> <turn rate bits> per robot
  *         AGREE_DIGEST <problem> <digest>   bench.c's BENCH_DIGEST of the replayed commands
- *       (bits in hex). The host's replay of its own closed loop must print its BENCH_DIGEST.
+ *       (bits in hex). The host's replay of its own closed loop must print its BENCH_DIGEST. Then the
+ *       one libm function these problems' steps call (expf, the barrier's c(t) and slack(t); sqrtf and
+ *       floorf are exact, the trigonometry is the core's own) over a sweep of arguments:
+ *         AGREE_EXPF <arguments> <digest of expf's bits> <how many differ from (float)exp((double)x)>
+ *                    <the most ulps any differs by>
  */
+#include <math.h>
 #include <string.h>
 
 #include "agree_table.h"
@@ -177,6 +182,39 @@ static int replay(const agree_table_t *table)
     return 0;
 }
 
+/* expf over -16 .. 16 in steps of 2^-8 (exact floats), against double exp rounded once to float. */
+#define EXPF_SWEEP_COUNT 8193u
+
+static void expf_sweep(void)
+{
+    uint32_t digest = BENCH_DIGEST_BASIS;
+    uint32_t differ = 0u;
+    uint32_t max_ulps = 0u;
+    for (uint32_t k = 0; k < EXPF_SWEEP_COUNT; ++k) {
+        const float x = -16.0f + (float)k * 0.00390625f;
+        const float e = expf(x);
+        const float once = (float)exp((double)x);
+        uint32_t e_bits;
+        uint32_t once_bits;
+        memcpy(&e_bits, &e, sizeof(e_bits));
+        memcpy(&once_bits, &once, sizeof(once_bits));
+        /* both positive and finite here: their bit patterns are ordered like the values */
+        const uint32_t ulps = (e_bits > once_bits) ? e_bits - once_bits : once_bits - e_bits;
+        digest = bench_digest_bytes(digest, &e, sizeof(e));
+        differ += (ulps != 0u) ? 1u : 0u;
+        max_ulps = (ulps > max_ulps) ? ulps : max_ulps;
+    }
+    tvo_board_puts("AGREE_EXPF ");
+    tvo_board_put_u32(EXPF_SWEEP_COUNT);
+    tvo_board_putc(' ');
+    put_hex32(digest);
+    tvo_board_putc(' ');
+    tvo_board_put_u32(differ);
+    tvo_board_putc(' ');
+    tvo_board_put_u32(max_ulps);
+    tvo_board_putc('\n');
+}
+
 int main(void)
 {
     int failures = 0;
@@ -188,6 +226,7 @@ int main(void)
             ++failures;
         }
     }
+    expf_sweep();
     tvo_board_puts("AGREE_DONE\n");
     return failures;
 }
