@@ -32,9 +32,10 @@ extern "C" {
 #define TVO_AUTH_KEY_BYTES 32u
 #define TVO_AUTH_TAG_BYTES 16u
 #define TVO_AUTH_TRAILER_BYTES (4u + 8u + TVO_AUTH_TAG_BYTES)
-/** Senders whose last counter a receiver remembers; a message from one more is refused. */
+/** Senders whose last counter a receiver remembers; a message from one more is refused. 16: a keyed
+ *  fleet node of 8 robots hears 9 (every robot's samples and the plant's sessions). */
 #ifndef TVO_AUTH_MAX_SENDERS
-#define TVO_AUTH_MAX_SENDERS 8u
+#define TVO_AUTH_MAX_SENDERS 16u
 #endif
 #if TVO_AUTH_MAX_SENDERS < 1u || TVO_AUTH_MAX_SENDERS > 64u
 #error "TVO_AUTH_MAX_SENDERS must lie in 1 .. 64"
@@ -43,6 +44,10 @@ extern "C" {
  *  reuse a nonce); a fleet gives each node and plant a distinct one. */
 #define TVO_AUTH_SENDER_NODE 1u
 #define TVO_AUTH_SENDER_PLANT 2u
+/** A keyed fleet's (lcm_types/README.md, "A fleet"): robot k's node signs as FLEET_NODE + k, robot k's
+ *  samples are signed as FLEET_ROBOT + k; the plant's sessions stay SENDER_PLANT's. */
+#define TVO_AUTH_SENDER_FLEET_NODE 0x100u
+#define TVO_AUTH_SENDER_FLEET_ROBOT 0x200u
 /** How far a new sender's counter may lag the receiver's clock at start (us): older recordings are
  *  refused after a restart; two machines' clocks must agree within it. */
 #define TVO_AUTH_NEW_SENDER_WINDOW_US 60000000u

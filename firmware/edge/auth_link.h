@@ -8,6 +8,7 @@
 #ifndef TVO_AUTH_LINK_H
 #define TVO_AUTH_LINK_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "auth.h"
@@ -17,13 +18,23 @@
 extern "C" {
 #endif
 
+/** Writes the LCM name of `channel` (authenticated with the message); 0, or -1 if unknown. */
+typedef int (*tvo_auth_link_namer_fn)(void *context, int channel, char *out, size_t size);
+
+/** Longest channel name a link signs or opens, with its terminator. */
+#define TVO_AUTH_LINK_NAME_BYTES 32u
+
 typedef struct {
     tvo_auth_t auth;
+    tvo_auth_link_namer_fn namer;            /* NULL: the node's channels (tvo_node_channel_name) */
+    void *namer_context;
     tvo_node_publish_fn transport_publish;   /* where signed frames go (LCM, a serial link) */
     void *transport_context;
     uint8_t frame[TVO_NODE_BUFFER_BYTES + TVO_AUTH_TRAILER_BYTES];
     uint32_t unsigned_drops;                 /* outgoing messages that could not be signed (not sent) */
     tvo_auth_status_t last_refusal;          /* why the last received frame was dropped */
+    uint32_t dropped_unauthenticated;        /* since init (the node's counters restart with a session) */
+    uint32_t dropped_replayed;
 } tvo_auth_link_t;
 
 /**
@@ -35,8 +46,22 @@ tvo_auth_status_t tvo_auth_link_init(tvo_auth_link_t *link, const uint8_t key[TV
                                      uint32_t own_sender_id, uint64_t first_counter,
                                      tvo_node_publish_fn transport_publish, void *transport_context);
 
+/**
+ * Names the link's channels with `namer` (a fleet node's carry its robot: fleet_link.h) instead of
+ * the node's own; NULL restores those. Returns TVO_AUTH_ERR_ARGUMENT for a NULL link.
+ */
+tvo_auth_status_t tvo_auth_link_set_namer(tvo_auth_link_t *link, tvo_auth_link_namer_fn namer, void *namer_context);
+
 /** The node's publisher (tvo_node_publish_fn; context: the link): signs and forwards, or drops and counts. */
 void tvo_auth_link_publish(void *link, int channel, const uint8_t *data, uint32_t length);
+
+/**
+ * Opens a received frame on `channel`: on TVO_AUTH_OK *message_length is the message's bytes (the
+ * frame's start); a refusal is counted in the node's counters and the link's totals, and the frame
+ * must be dropped unanswered.
+ */
+tvo_auth_status_t tvo_auth_link_open(tvo_auth_link_t *link, tvo_node_t *node, int channel, const uint8_t *frame,
+                                     uint32_t length, uint32_t *message_length);
 
 /**
  * A received frame on `channel`: opened and handed to tvo_node_handle, or dropped and counted.

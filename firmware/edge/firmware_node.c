@@ -200,8 +200,12 @@ static void on_message(const lcm_recv_buf_t *rbuf, const char *channel, void *us
     if (self->fleet_member) {
         const int fleet_channel = strcmp(channel, self->fleet_sample_channel) == 0 ? (int)TVO_FLEET_CH_SAMPLE
                                                                                    : tvo_node_channel_of(channel);
-        (void)tvo_fleet_link_receive(&self->fleet, &self->node, fleet_channel, (const uint8_t *)rbuf->data,
-                                     rbuf->data_size, monotonic_us());
+        uint32_t length = rbuf->data_size;
+        if (!self->keyed || tvo_auth_link_open(&self->link, &self->node, fleet_channel, (const uint8_t *)rbuf->data,
+                                               rbuf->data_size, &length) == TVO_AUTH_OK) {
+            (void)tvo_fleet_link_receive(&self->fleet, &self->node, fleet_channel, (const uint8_t *)rbuf->data, length,
+                                         monotonic_us());
+        }
     } else if (self->keyed) {
         (void)tvo_auth_link_receive(&self->link, &self->node, tvo_node_channel_of(channel),
                                     (const uint8_t *)rbuf->data, rbuf->data_size, monotonic_us());
@@ -220,7 +224,8 @@ static void print_usage(FILE *out)
             "Runs the TV-O controller behind LCM: sessions on TVO_SESSION, measurements in, commands out.\n"
             "  --key-file FILE     authenticate every message both ways with this 32-byte key (tools/keygen;\n"
             "                      mode 0600); without it the bus is unauthenticated (lab use)\n"
-            "  --sender-id N       this node's sender id on a keyed bus (default 1; unique per key holder)\n"
+            "  --sender-id N       this node's sender id on a keyed bus (default 1, a fleet node's 256 + I;\n"
+            "                      unique per key holder)\n"
             "  --own-robot I       a fleet node: drive robot I only, from per-robot samples on TVO_FLEET_SAMPLE_RI\n"
             "                      (every robot's), answering on TVO_FLEET_COMMAND_RI (lcm_types/README.md, \"A fleet\")\n"
             "  --lcm-url URL       LCM provider URL (default: $LCM_DEFAULT_URL, else LCM's default udpm)\n"
@@ -296,9 +301,8 @@ static int parse_args(int argc, char **argv, node_options_t *opt)
             return 2;
         }
     }
-    if (opt->own_robot >= 0 && opt->key_file != NULL) {
-        fprintf(stderr, "tvo_firmware_node: error: --own-robot with --key-file is not supported yet (a fleet bus is unkeyed)\n");
-        return 2;
+    if (opt->own_robot >= 0 && !sender_id_given) {
+        opt->sender_id = TVO_AUTH_SENDER_FLEET_NODE + (uint32_t)opt->own_robot; /* each fleet node its own stream */
     }
     if (sender_id_given && opt->key_file == NULL) {
         fprintf(stderr, "tvo_firmware_node: error: --sender-id needs --key-file (it names this node on a keyed bus)\n");
@@ -354,6 +358,16 @@ int main(int argc, char **argv)
     const pid_t parent = getppid();
     /* Static: the node holds two session slots, the decoded message and the encode buffer (kilobytes). */
     static lcm_node_t self;
+    /* A keyed fleet node: node -> fleet link -> auth link (signs, names by robot) -> LCM. */
+    const int fleet = opt.own_robot >= 0;
+    if (fleet && (tvo_fleet_link_init(&self.fleet, opt.own_robot, opt.key_file != NULL ? tvo_auth_link_publish : fleet_publish,
+                                      opt.key_file != NULL ? (void *)&self.link : (void *)&self) != 0 ||
+                  tvo_fleet_channel_name(TVO_FLEET_CH_SAMPLE, opt.own_robot, self.fleet_sample_channel,
+                                         sizeof(self.fleet_sample_channel)) != 0)) {
+        fprintf(stderr, "tvo_firmware_node: error: fleet link set-up failed\n");
+        return 1;
+    }
+    self.fleet_member = fleet;
     if (opt.key_file != NULL) {
         uint8_t key[TVO_AUTH_KEY_BYTES];
         char why[300];
@@ -361,26 +375,23 @@ int main(int argc, char **argv)
             fprintf(stderr, "tvo_firmware_node: error: %s\n", why);
             return 2;
         }
-        const tvo_auth_status_t keyed = tvo_auth_link_init(&self.link, key, opt.sender_id, 1u, publish, &self);
+        const tvo_auth_status_t keyed = tvo_auth_link_init(&self.link, key, opt.sender_id, 1u,
+                                                           fleet ? fleet_publish : publish, &self);
         memset(key, 0, sizeof(key));
         if (keyed != TVO_AUTH_OK ||
-            tvo_auth_follow_clock(&self.link.auth, tvo_auth_wall_clock_counter, TVO_AUTH_NEW_SENDER_WINDOW_US) != TVO_AUTH_OK) {
+            tvo_auth_follow_clock(&self.link.auth, tvo_auth_wall_clock_counter, TVO_AUTH_NEW_SENDER_WINDOW_US) != TVO_AUTH_OK ||
+            (fleet && tvo_auth_link_set_namer(&self.link, tvo_fleet_link_channel_name, &self.fleet) != TVO_AUTH_OK)) {
             fprintf(stderr, "tvo_firmware_node: error: authentication set-up failed\n");
             return 1;
         }
         self.keyed = 1;
-        tvo_node_init(&self.node, tvo_auth_link_publish, &self.link);
-    } else if (opt.own_robot >= 0) {
-        if (tvo_fleet_link_init(&self.fleet, opt.own_robot, fleet_publish, &self) != 0 ||
-            tvo_fleet_channel_name(TVO_FLEET_CH_SAMPLE, opt.own_robot, self.fleet_sample_channel,
-                                   sizeof(self.fleet_sample_channel)) != 0) {
-            fprintf(stderr, "tvo_firmware_node: error: fleet link set-up failed\n");
-            return 1;
-        }
-        self.fleet_member = 1;
-        fprintf(stderr, "tvo_firmware_node: fleet node of robot %d on %s (unauthenticated bus)\n", (int)opt.own_robot,
-                self.fleet_sample_channel);
+    }
+    if (fleet) {
+        fprintf(stderr, "tvo_firmware_node: fleet node of robot %d on %s (%s)\n", (int)opt.own_robot,
+                self.fleet_sample_channel, self.keyed ? "keyed bus" : "unauthenticated bus");
         tvo_node_init(&self.node, tvo_fleet_link_publish, &self.fleet);
+    } else if (self.keyed) {
+        tvo_node_init(&self.node, tvo_auth_link_publish, &self.link);
     } else {
         fprintf(stderr, "tvo_firmware_node: the bus is unauthenticated (no --key-file): anyone on the network can "
                         "drive, stop or replace this session\n");
@@ -423,9 +434,10 @@ int main(int argc, char **argv)
     if (self.fleet_member) {
         fprintf(stderr,
                 "tvo_firmware_node: fleet: %u samples taken (%u late), %u refused; %u robot-periods predicted; "
-                "%u own samples answered before every robot was heard\n",
+                "%u own samples answered before every robot was heard; keyed: %u frames dropped unauthenticated, "
+                "%u replayed\n",
                 self.fleet.samples_taken, self.fleet.samples_late, self.fleet.samples_refused, self.fleet.predictions,
-                self.fleet.unheard_steps);
+                self.fleet.unheard_steps, self.link.dropped_unauthenticated, self.link.dropped_replayed);
     }
     tvo_auth_clear(&self.link.auth);
     lcm_destroy(self.lcm);

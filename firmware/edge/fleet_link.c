@@ -32,6 +32,20 @@ int tvo_fleet_channel_name(int channel, int32_t robot, char *out, size_t size)
     return (written > 0 && (size_t)written < size) ? 0 : -1;
 }
 
+int tvo_fleet_link_channel_name(void *context, int channel, char *out, size_t size)
+{
+    const tvo_fleet_link_t *link = (const tvo_fleet_link_t *)context;
+    if (link == NULL || out == NULL) {
+        return -1;
+    }
+    if (channel >= TVO_FLEET_CH_SAMPLE && channel <= TVO_FLEET_CH_TELEMETRY) {
+        return tvo_fleet_channel_name(channel, link->own_robot, out, size);
+    }
+    const char *name = tvo_node_channel_name(channel);
+    const int written = (name != NULL) ? snprintf(out, size, "%s", name) : -1;
+    return (written > 0 && (size_t)written < size) ? 0 : -1;
+}
+
 static uint64_t fnv_double(uint64_t hash, double value)
 {
     uint64_t bits = 0u;

@@ -50,6 +50,12 @@ typedef enum {
 /** Writes the LCM name of a fleet channel for `robot` (e.g. "TVO_FLEET_SAMPLE_R2"); 0, or -1 if unknown. */
 int tvo_fleet_channel_name(int channel, int32_t robot, char *out, size_t size);
 
+/**
+ * A keyed fleet node's channel names for its auth link (tvo_auth_link_namer_fn; context: the link):
+ * the fleet's channels carry the own robot, the node's keep their names. 0, or -1 if unknown.
+ */
+int tvo_fleet_link_channel_name(void *link, int channel, char *out, size_t size);
+
 /** FNV-1a 64 of the joint command: speed then turn rate of robots 0 .. robot_count-1, each double's
  *  IEEE-754 bits least significant byte first (the same on every machine). */
 uint64_t tvo_fleet_digest(const tvo_lcm_command_t *command);

@@ -15,6 +15,10 @@
 // so the hub knows which answers to await and the run stays lockstep and repeatable.
 // Agreement: per period, the digests of the nodes that computed a command are compared, and the
 // largest spread of any robot's row across them is recorded (--json).
+// Keyed (--key-file, auth.h): every frame on both buses is opened or dropped and counted, never
+// answered. The plant's SESSION/TARGET frames go to the nodes as tvo_sim signed them (SENDER_PLANT);
+// robot j's samples are signed as SENDER_FLEET_ROBOT + j (each robot its own counter stream); to
+// tvo_sim the hub signs as SENDER_NODE, the node it stands for.
 #include <sys/select.h>
 
 #include <algorithm>
@@ -22,6 +26,7 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <cstdio>
 #include <cstdint>
 #include <fstream>
 #include <iostream>
@@ -34,6 +39,8 @@
 #include <lcm/lcm-cpp.hpp>
 #include <nlohmann/json.hpp>
 
+#include "auth.h"
+#include "auth_key_file.h"
 #include "channels.h"
 #include "lcm_messages.hpp"
 #include "tvo/status.h"
@@ -65,6 +72,66 @@ struct Options {
     double loss_until_s{-1.0};  // < 0: loss for the whole run
     std::uint64_t seed{1};
     std::string json_path;
+    std::string key_file;  // empty: unauthenticated buses
+};
+
+// One signing or opening end on a keyed bus (auth.h), or a pass-through on an unkeyed one.
+class AuthEnd {
+public:
+    AuthEnd() = default;
+    AuthEnd(const AuthEnd&) = delete;
+    AuthEnd& operator=(const AuthEnd&) = delete;
+    ~AuthEnd() { tvo_auth_clear(&auth_); }
+
+    void key(const std::uint8_t (&key)[TVO_AUTH_KEY_BYTES], std::uint32_t sender_id)
+    {
+        tvo_auth_status_t status = tvo_auth_init(&auth_, key, sender_id, 1u);
+        if (status == TVO_AUTH_OK) {
+            status = tvo_auth_follow_clock(&auth_, tvo_auth_wall_clock_counter, TVO_AUTH_NEW_SENDER_WINDOW_US);
+        }
+        if (status != TVO_AUTH_OK) {
+            throw std::runtime_error(std::string("authentication set-up failed: ") + tvo_auth_status_str(status));
+        }
+        keyed_ = true;
+    }
+
+    // The message's length in a received frame, or -1 (dropped and counted) if it does not open.
+    int open(const lcm::ReceiveBuffer* rbuf, const std::string& channel)
+    {
+        if (!keyed_) {
+            return static_cast<int>(rbuf->data_size);
+        }
+        std::size_t length = 0;
+        const tvo_auth_status_t status = tvo_auth_open(&auth_, channel.c_str(), static_cast<const std::uint8_t*>(rbuf->data),
+                                                       rbuf->data_size, &length);
+        if (status != TVO_AUTH_OK) {
+            ++(status == TVO_AUTH_ERR_REPLAY ? replayed_ : unauthenticated_);
+            return -1;
+        }
+        return static_cast<int>(length);
+    }
+
+    template <class Msg>
+    void publish(lcm::LCM& bus, const std::string& channel, const Msg& msg)
+    {
+        const int length = msg.encode(frame_.data(), 0, static_cast<int>(frame_.size() - TVO_AUTH_TRAILER_BYTES));
+        std::size_t frame_length = length > 0 ? static_cast<std::size_t>(length) : 0u;
+        if (length <= 0 || (keyed_ && tvo_auth_sign(&auth_, channel.c_str(), frame_.data(), frame_length, frame_.size(),
+                                                   &frame_length) != TVO_AUTH_OK)) {
+            throw std::runtime_error("cannot encode or sign a message for " + channel);
+        }
+        bus.publish(channel, frame_.data(), static_cast<unsigned int>(frame_length));
+    }
+
+    std::uint64_t unauthenticated() const { return unauthenticated_; }
+    std::uint64_t replayed() const { return replayed_; }
+
+private:
+    tvo_auth_t auth_{};
+    bool keyed_{false};
+    std::array<std::uint8_t, 4096 + TVO_AUTH_TRAILER_BYTES> frame_{};
+    std::uint64_t unauthenticated_{0};
+    std::uint64_t replayed_{0};
 };
 
 struct Answer {
@@ -90,6 +157,19 @@ public:
         sample_channels_.resize(static_cast<std::size_t>(o.robots));
         for (int k = 0; k < o.robots; ++k) {
             sample_channels_[static_cast<std::size_t>(k)] = robot_channel("TVO_FLEET_SAMPLE", k);
+        }
+        if (!o.key_file.empty()) {
+            std::uint8_t key[TVO_AUTH_KEY_BYTES];
+            char why[300];
+            if (tvo_auth_key_file_read(o.key_file.c_str(), key, why, sizeof(why)) != 0) {
+                throw std::runtime_error(why);
+            }
+            plant_auth_.key(key, TVO_AUTH_SENDER_NODE);
+            fleet_auth_.key(key, TVO_AUTH_SENDER_FLEET_ROBOT + kMaxRobots);  // opens only: its id signs nothing
+            for (int j = 0; j < o.robots; ++j) {
+                robot_auth_[static_cast<std::size_t>(j)].key(key, TVO_AUTH_SENDER_FLEET_ROBOT + static_cast<std::uint32_t>(j));
+            }
+            std::fill(std::begin(key), std::end(key), std::uint8_t{0});
         }
     }
 
@@ -153,6 +233,10 @@ public:
         j["max_speed_step_mps"] = max_speed_step_;
         j["min_pair_distance_sampled_m"] =
             std::isfinite(min_pair_m_) ? nlohmann::json(min_pair_m_) : nlohmann::json(nullptr);
+        j["command_digest_run"] = run_digest_hex();
+        j["keyed"] = !o_.key_file.empty();
+        j["hub_unauthenticated"] = plant_auth_.unauthenticated() + fleet_auth_.unauthenticated();
+        j["hub_replayed"] = plant_auth_.replayed() + fleet_auth_.replayed();
         if (o_.json_path.empty()) {
             std::cout << j.dump(2) << '\n';
             return;
@@ -180,23 +264,44 @@ private:
                                     : 0;
     }
 
+    // FNV-1a 64 over (sequence, digest) of every compared period: one figure for a whole run's commands.
+    std::string run_digest_hex() const
+    {
+        char text[17];
+        std::snprintf(text, sizeof(text), "%016llx", static_cast<unsigned long long>(run_digest_));
+        return text;
+    }
+
+    void fold_run_digest(std::uint64_t value)
+    {
+        for (int b = 0; b < 8; ++b) {
+            run_digest_ ^= (value >> (8 * b)) & 0xffu;
+            run_digest_ *= 0x100000001b3ull;
+        }
+    }
+
     void on_plant_raw(const lcm::ReceiveBuffer* rbuf, const std::string& channel)
     {
+        const int length = plant_auth_.open(rbuf, channel);
+        if (length < 0) {
+            return;
+        }
         if (channel == TVO_CHANNEL_SESSION) {
             tvo_lcm::session_t s;
-            if (s.decode(rbuf->data, 0, static_cast<int>(rbuf->data_size)) == static_cast<int>(rbuf->data_size) &&
+            if (s.decode(rbuf->data, 0, length) == length &&
                 s.action == tvo_lcm::session_t::ACTION_START) {
                 start_ = s;
                 robots_ = s.robot_count;
             }
         }
-        fleet_.publish(channel, rbuf->data, static_cast<unsigned int>(rbuf->data_size));
+        fleet_.publish(channel, rbuf->data, static_cast<unsigned int>(rbuf->data_size));  // as signed by tvo_sim
     }
 
     void on_ack(const lcm::ReceiveBuffer* rbuf, const std::string& channel)
     {
         tvo_lcm::session_ack_t ack;
-        if (ack.decode(rbuf->data, 0, static_cast<int>(rbuf->data_size)) != static_cast<int>(rbuf->data_size)) {
+        const int length = fleet_auth_.open(rbuf, channel);
+        if (length < 0 || ack.decode(rbuf->data, 0, length) != length) {
             return;
         }
         const int k = std::stoi(channel.substr(channel.rfind('R') + 1));
@@ -210,7 +315,7 @@ private:
         }
         ack_mask_ |= 1u << k;
         if (ack.status != TVO_OK || ack_mask_ == (1u << o_.robots) - 1u) {
-            plant_.publish(TVO_CHANNEL_SESSION_ACK, &ack);
+            plant_auth_.publish(plant_, TVO_CHANNEL_SESSION_ACK, ack);
             ack_mask_ = 0u;
             if (ack.action == tvo_lcm::session_t::ACTION_STOP && ack.status == TVO_OK) {
                 stopped_ = true;
@@ -218,11 +323,14 @@ private:
         }
     }
 
-    void on_measurement(const lcm::ReceiveBuffer* rbuf, const std::string&)
+    void on_measurement(const lcm::ReceiveBuffer* rbuf, const std::string& channel)
     {
         tvo_lcm::measurement_t m;
-        if (m.decode(rbuf->data, 0, static_cast<int>(rbuf->data_size)) != static_cast<int>(rbuf->data_size) ||
-            m.robot_count != o_.robots) {
+        const int length = plant_auth_.open(rbuf, channel);
+        if (length < 0) {
+            return;
+        }
+        if (m.decode(rbuf->data, 0, length) != length || m.robot_count != o_.robots) {
             std::cerr << "tvo_fleet_hub: a measurement that does not decode or is not of " << o_.robots
                       << " robots (ignored)\n";
             return;
@@ -256,7 +364,7 @@ private:
                 s.speed_mps = m.speed_mps[j];
                 s.heading_valid = m.heading_valid;
                 s.speed_valid = m.speed_valid;
-                fleet_.publish(sample_channels_[static_cast<std::size_t>(k)], &s);
+                robot_auth_[static_cast<std::size_t>(j)].publish(fleet_, sample_channels_[static_cast<std::size_t>(k)], s);
                 if (j == k) {
                     expected_[static_cast<std::size_t>(k)] = true;
                 }
@@ -278,7 +386,8 @@ private:
     void on_row(const lcm::ReceiveBuffer* rbuf, const std::string& channel)
     {
         tvo_lcm::fleet_command_t row;
-        if (row.decode(rbuf->data, 0, static_cast<int>(rbuf->data_size)) != static_cast<int>(rbuf->data_size)) {
+        const int length = fleet_auth_.open(rbuf, channel);
+        if (length < 0 || row.decode(rbuf->data, 0, length) != length) {
             return;
         }
         const int k = answering_node(channel, row.measurement_sequence);
@@ -293,7 +402,8 @@ private:
     void on_telemetry(const lcm::ReceiveBuffer* rbuf, const std::string& channel)
     {
         tvo_lcm::telemetry_t tel;
-        if (tel.decode(rbuf->data, 0, static_cast<int>(rbuf->data_size)) != static_cast<int>(rbuf->data_size)) {
+        const int length = fleet_auth_.open(rbuf, channel);
+        if (length < 0 || tel.decode(rbuf->data, 0, length) != length) {
             return;
         }
         const int k = answering_node(channel, tel.measurement_sequence);
@@ -332,6 +442,10 @@ private:
                 computed.push_back(&a.row);
                 predicted_ += static_cast<std::uint64_t>(std::max(a.row.predicted, 0));
             }
+        }
+        if (!computed.empty()) {
+            fold_run_digest(static_cast<std::uint64_t>(measurement_.sequence));
+            fold_run_digest(static_cast<std::uint64_t>(computed.front()->joint_digest));
         }
         if (computed.size() < 2) {
             return;
@@ -413,8 +527,8 @@ private:
         out.measurement_sequence = cmd.measurement_sequence;
         out.status = cmd.status;
         out.flags = cmd.flags;
-        plant_.publish(TVO_CHANNEL_COMMAND, &cmd);
-        plant_.publish(TVO_CHANNEL_TELEMETRY, &out);
+        plant_auth_.publish(plant_, TVO_CHANNEL_COMMAND, cmd);
+        plant_auth_.publish(plant_, TVO_CHANNEL_TELEMETRY, out);
     }
 
     // A computed row against the session's limits; the speed step against the same node's last row.
@@ -440,6 +554,10 @@ private:
     lcm::LCM plant_;
     lcm::LCM fleet_;
     std::vector<std::string> sample_channels_;
+    AuthEnd plant_auth_;                           // tvo_sim's bus: opens its frames, signs as its node
+    AuthEnd fleet_auth_;                           // the nodes' bus: opens their frames
+    std::array<AuthEnd, kMaxRobots> robot_auth_;   // robot j's samples, each its own sender
+    std::uint64_t run_digest_{0xcbf29ce484222325ull};
     tvo_lcm::session_t start_{};
     int robots_{0};
     std::int64_t ack_session_{-2};
@@ -477,6 +595,7 @@ int main(int argc, char** argv)
     app.add_option("--loss-until-s", o.loss_until_s, "the links lose nothing from this plant time on (re-agreement)");
     app.add_option("--seed", o.seed, "seed of the loss pattern");
     app.add_option("--json", o.json_path, "write the agreement figures here (default: stdout)");
+    app.add_option("--key-file", o.key_file, "sign and open every message on both buses with this key (tools/keygen)");
     CLI11_PARSE(app, argc, argv);
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
