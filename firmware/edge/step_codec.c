@@ -8,6 +8,10 @@
 
 /* The wire's arrays must hold every robot and output the core can have. */
 _Static_assert(TVO_LCM_MEASUREMENT_T_MAX_ROBOTS >= TVO_MAX_ROBOTS, "measurement_t holds every robot");
+_Static_assert(sizeof(((tvo_lcm_command_t *)0)->speed_mps) / sizeof(double) >= TVO_MAX_ROBOTS, "command_t holds every robot");
+_Static_assert(sizeof(((tvo_lcm_target_t *)0)->position_m) / sizeof(double[2]) >= TVO_MAX_ROBOTS, "target_t holds every robot");
+_Static_assert(sizeof(((tvo_lcm_telemetry_t *)0)->speed_state_mps) / sizeof(double) >= TVO_MAX_ROBOTS,
+               "telemetry_t holds every robot");
 _Static_assert(sizeof(((tvo_lcm_command_t *)0)->input) / sizeof(double) >= TVO_MAX_OUTPUT_DIM,
                "command_t.input holds every output");
 _Static_assert(sizeof(((tvo_lcm_telemetry_t *)0)->gradient) / sizeof(double) >= TVO_MAX_OUTPUT_DIM,
