@@ -26,7 +26,7 @@
     }                                                                                                          \
     static void member##_holding(const tvo_edge_controller_t *ctl, tvo_edge_command_t *cmd)                   \
     {                                                                                                          \
-        cmd->member = ctl->u.member.held;                                                                      \
+        cmd->member = ctl->u.member.internal.held;                                                             \
         cmd->member.flags = 0u;                                                                                \
         cmd->member.outcome = TVO_OUTCOME_HELD;                                                                \
         cmd->member.reason = TVO_REASON_NONE;                                                                  \
@@ -39,7 +39,7 @@
     }                                                                                                          \
     static tvo_sample_clock_t *member##_clock(tvo_edge_controller_t *ctl)                                     \
     {                                                                                                          \
-        return &ctl->u.member.clock;                                                                           \
+        return &ctl->u.member.internal.clock;                                                                  \
     }
 
 /* The six in a table's initialiser. */
@@ -109,7 +109,9 @@ static void unicycle_command_to_lcm(const tvo_edge_command_t *cmd, const tvo_ste
 static void unicycle_telemetry_to_lcm(const tvo_edge_controller_t *ctl, const tvo_problem_t *problem,
                                       tvo_lcm_telemetry_t *msg)
 {
-    tvo_step_telemetry_to_lcm(&ctl->u.unicycle, problem, msg);
+    const tvo_controller_t *unicycle = &ctl->u.unicycle;
+    tvo_step_telemetry_to_lcm(&unicycle->telemetry, unicycle->cfg.robot_count, unicycle->internal.speed_state_mps,
+                              problem, msg);
 }
 
 static const tvo_edge_controller_ops_t unicycle_ops = {
@@ -184,9 +186,9 @@ void tvo_edge_controller_clear_scratch(tvo_edge_controller_t *ctl)
         return;
     }
     if (ctl->ops == &unicycle_ops) {
-        memset(&ctl->u.unicycle.work, 0, sizeof(ctl->u.unicycle.work));
+        memset(&ctl->u.unicycle.internal.work, 0, sizeof(ctl->u.unicycle.internal.work));
     } else if (ctl->ops == &chain_ops) {
-        memset(&ctl->u.chain.work, 0, sizeof(ctl->u.chain.work));
+        memset(&ctl->u.chain.internal.work, 0, sizeof(ctl->u.chain.internal.work));
     }
 }
 
