@@ -104,10 +104,10 @@ static tvo_status_t controller_setup(tvo_controller_t *ctl, const tvo_controller
         return TVO_ERR_PARAM;
     }
     ctl->cfg = *cfg;
-    ctl->internal.objective = objective;
+    ctl->internal.loop.objective = objective;
     ctl->internal.position_velocity = position_velocity;
-    ctl->internal.period_s = tvo_ticks_to_seconds32(cfg->period_ticks, cfg->tick_hz);
-    ctl->internal.speed_step_max_mps = cfg->accel_max_mps2 * ctl->internal.period_s;
+    ctl->internal.loop.period_s = tvo_ticks_to_seconds32(cfg->period_ticks, cfg->tick_hz);
+    ctl->internal.speed_step_max_mps = cfg->accel_max_mps2 * ctl->internal.loop.period_s;
     ctl->internal.measured_speed_limit_mps = TVO_MEASURED_SPEED_FACTOR * cfg->speed_max_mps + TVO_MEASURED_SPEED_MARGIN_MPS;
     for (uint8_t r = 0; r < cfg->robot_count; ++r) {
         ctl->internal.speed_state_mps[r] = cfg->initial_speed_mps[r];
@@ -138,7 +138,7 @@ TVO_LOOP_ENTRY tvo_status_t controller_init(tvo_controller_t *ctl, const tvo_con
     tvo_param_t bad = TVO_PARAM_NONE;
     st = controller_setup(ctl, cfg, objective, &bad, position_velocity);
     if (st == TVO_OK && position_velocity != NULL) {
-        st = tvo_dirty_derivative_init(&ctl->internal.velocity_filter, objective->primal_dim, cfg->filter_tf_s, ctl->internal.period_s);
+        st = tvo_dirty_derivative_init(&ctl->internal.velocity_filter, objective->primal_dim, cfg->filter_tf_s, ctl->internal.loop.period_s);
         bad = (st == TVO_OK) ? TVO_PARAM_NONE : TVO_PARAM_OBJECTIVE;
     }
     if (st != TVO_OK && bad_param != NULL) {
@@ -201,7 +201,7 @@ static inline tvo_reason_t check_measurement(const void *ctl_any, const void *me
             return TVO_REASON_IMPLAUSIBLE_MEASUREMENT; /* or not finite: unicycle_refusal says which */
         }
     }
-    const tvo_status_t st = sample_clock_check_stamp(&ctl->internal.clock, meas->stamp_tick, apply_tick);
+    const tvo_status_t st = sample_clock_check_stamp(&ctl->internal.loop.clock, meas->stamp_tick, apply_tick);
     if (st != TVO_OK) {
         return loop_reason_of(st);
     }
@@ -309,7 +309,7 @@ TVO_OFF_CHAIN_BODY tvo_reason_t unicycle_prepare(void *ctl_any, const void *meas
     }
     /* Where the law is evaluated and how far the sampled state is carried there (the age to the
      * application instant with compensation, half a period on when ZOH-aware). */
-    sample_clock_locate(&ctl->internal.clock, period, meas->stamp_tick, cfg->delay_compensation, cfg->zoh_aware);
+    sample_clock_locate(&ctl->internal.loop.clock, period, meas->stamp_tick, cfg->delay_compensation, cfg->zoh_aware);
     const int position_only = cfg->velocity_source == TVO_VELOCITY_FROM_POSITION;
     if (position_only) {
         const tvo_status_t st = ctl->internal.position_velocity->estimate(ctl, meas); /* init set it for this source */
@@ -358,7 +358,7 @@ TVO_OFF_CHAIN_BODY tvo_reason_t unicycle_prepare(void *ctl_any, const void *meas
         heading[r] = pose.heading_rad;
         /* Mid-interval speed: the state plus half a period of the last acceleration (O(h^2)). */
         speed[r] = speed_state[r] +
-                   (zoh_aware && !from_rest ? TVO_R(0.5) * ctl->internal.period_s * ctl->telemetry.accel_mps2[r] : TVO_R(0.0));
+                   (zoh_aware && !from_rest ? TVO_R(0.5) * ctl->internal.loop.period_s * ctl->telemetry.accel_mps2[r] : TVO_R(0.0));
         y->d[0][2u * r] = pose.position_m[0];
         y->d[0][2u * r + 1u] = pose.position_m[1];
         if (position_only) {
@@ -376,8 +376,8 @@ TVO_OFF_CHAIN_BODY tvo_reason_t unicycle_prepare(void *ctl_any, const void *meas
 
 #if TVO_MAX_EQUALITIES > 0
     /* Multipliers (equality constraints) and their rates: controller states living at apply times. */
-    const uint8_t primal = ctl->internal.objective->primal_dim;
-    const uint8_t dual = ctl->internal.objective->dual_dim;
+    const uint8_t primal = ctl->internal.loop.objective->primal_dim;
+    const uint8_t dual = ctl->internal.loop.objective->dual_dim;
     for (uint8_t q = 0; q < dual && q < TVO_MAX_EQUALITIES; ++q) {
         y->d[0][primal + q] = ctl->internal.multiplier[q];
         y->d[1][primal + q] = from_rest ? TVO_R(0.0) : ctl->internal.multiplier_rate[q];
@@ -397,8 +397,8 @@ TVO_LOOP_ENTRY tvo_reason_t unicycle_law(void *ctl_any, tvo_loop_frame_t *frame)
     tvo_law_report_t *report = &work->report;
     report->gradient = work->gradient;
     report->gradient_rate = work->gradient_rate;
-    report->count = ctl->internal.objective->primal_dim;
-    const tvo_status_t st = tvo_law_evaluate_report(&ctl->internal.law, ctl->internal.objective, &work->output, &work->time,
+    report->count = ctl->internal.loop.objective->primal_dim;
+    const tvo_status_t st = tvo_law_evaluate_report(&ctl->internal.law, ctl->internal.loop.objective, &work->output, &work->time,
                                                     work->output_accel, report, &work->law);
     if (report->regularization > TVO_R(0.0)) {
         frame->flags |= TVO_FLAG_REGULARIZED;
@@ -433,7 +433,7 @@ TVO_OFF_CHAIN_BODY tvo_reason_t unicycle_command(void *ctl_any, tvo_loop_frame_t
         accel[r] = clamp(accel[r], cfg->accel_max_mps2, TVO_FLAG_ACCEL_SATURATED, &flags);
         next->turn_rate_radps[r] = clamp(turn_rate, cfg->omega_max_radps, TVO_FLAG_OMEGA_SATURATED, &flags);
         /* Anti-windup: the integrator state itself is limited, so no excess accumulates. */
-        speed_next[r] = clamp(speed_state[r] + accel[r] * ctl->internal.period_s, cfg->speed_max_mps,
+        speed_next[r] = clamp(speed_state[r] + accel[r] * ctl->internal.loop.period_s, cfg->speed_max_mps,
                               TVO_FLAG_SPEED_SATURATED, &flags);
         /* Hold the interval average of the speed state, so the held straight-line distance matches
          * the continuous extension to second order in h (end-of-interval speed would lead by a h/2). */
@@ -468,7 +468,7 @@ TVO_OFF_CHAIN_BODY void unicycle_commit(void *ctl_any, const tvo_loop_frame_t *f
     const tvo_command_t *next = &work->command;
 #if TVO_MAX_EQUALITIES > 0
     const uint8_t primal = work->report.count; /* the objective's primal_dim */
-    const uint8_t dual = ctl->internal.objective->dual_dim;
+    const uint8_t dual = ctl->internal.loop.objective->dual_dim;
 #endif
     if (work->from_rest) {
         unicycle_rest(ctl);
@@ -481,8 +481,8 @@ TVO_OFF_CHAIN_BODY void unicycle_commit(void *ctl_any, const tvo_loop_frame_t *f
     for (uint8_t q = 0; q < dual && q < TVO_MAX_EQUALITIES; ++q) {
         /* Exact for the constant nu'' the law asked for over the period. */
         const tvo_real_t accel_q = y_accel[primal + q];
-        ctl->internal.multiplier[q] += (ctl->internal.multiplier_rate[q] + TVO_R(0.5) * accel_q * ctl->internal.period_s) * ctl->internal.period_s;
-        ctl->internal.multiplier_rate[q] += accel_q * ctl->internal.period_s;
+        ctl->internal.multiplier[q] += (ctl->internal.multiplier_rate[q] + TVO_R(0.5) * accel_q * ctl->internal.loop.period_s) * ctl->internal.loop.period_s;
+        ctl->internal.multiplier_rate[q] += accel_q * ctl->internal.loop.period_s;
         tm->multiplier[q] = ctl->internal.multiplier[q];
     }
 #endif
@@ -576,5 +576,5 @@ tvo_status_t tvo_controller_objective_ticks(const tvo_controller_t *ctl, uint32_
     if (!ctl->internal.initialized) {
         return TVO_ERR_NOT_INITIALIZED;
     }
-    return tvo_sample_clock_objective_ticks(&ctl->internal.clock, tick, objective_ticks);
+    return tvo_sample_clock_objective_ticks(&ctl->internal.loop.clock, tick, objective_ticks);
 }

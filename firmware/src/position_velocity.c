@@ -43,15 +43,15 @@ static tvo_status_t estimate_at_sample(const tvo_controller_t *ctl, tvo_dirty_de
         }
         return st;
     }
-    const tvo_real_t dt_s = ticks_to_seconds32(meas->stamp_tick - ctl->internal.clock.last_stamp_tick, ctl->cfg.tick_hz);
+    const tvo_real_t dt_s = ticks_to_seconds32(meas->stamp_tick - ctl->internal.loop.clock.last_stamp_tick, ctl->cfg.tick_hz);
     st = tvo_dirty_derivative_step(filter, position, dt_s, rate_at_sample);
     if (st != TVO_OK) {
         return st;
     }
     /* Signed time from the last application instant (where the estimate lives) to this sample. */
-    const int32_t since_apply_ticks = (int32_t)(meas->stamp_tick - ctl->internal.clock.last_apply_tick);
+    const int32_t since_apply_ticks = (int32_t)(meas->stamp_tick - ctl->internal.loop.clock.last_apply_tick);
     const tvo_real_t since_apply_s = (tvo_real_t)since_apply_ticks / (tvo_real_t)ctl->cfg.tick_hz;
-    const tvo_real_t correction = ctl->internal.period_s / (TVO_HEADING_CORRECTION_TF_MULTIPLE * ctl->cfg.filter_tf_s);
+    const tvo_real_t correction = ctl->internal.loop.period_s / (TVO_HEADING_CORRECTION_TF_MULTIPLE * ctl->cfg.filter_tf_s);
     for (uint8_t r = 0; r < n; ++r) {
         /* Dead-reckon with the held turn rate, then pull toward the velocity direction when the
          * robot moves fast enough for that direction to mean something. */

@@ -1982,8 +1982,8 @@ static void test_plant_refusal_by_the_step_keeps_nothing(void)
     TEST_ASSERT_EQUAL_HEX32(TVO_LCM_COMMAND_T_FLAG_HOLDING, (uint32_t)cmd.flags);
     TEST_ASSERT_TRUE(cmd.utime >= m.utime);
     const tvo_node_session_t *s = tvo_node_session(&node);
-    const tvo_sample_clock_t *before = &snapshot.controller.u.unicycle.internal.clock;
-    const tvo_sample_clock_t *after = &s->controller.u.unicycle.internal.clock;
+    const tvo_sample_clock_t *before = &snapshot.controller.u.unicycle.internal.loop.clock;
+    const tvo_sample_clock_t *after = &s->controller.u.unicycle.internal.loop.clock;
     if (before->last_apply_tick != after->last_apply_tick || before->elapsed.ticks != after->elapsed.ticks ||
         before->periods_without_measurement != after->periods_without_measurement) {
         static char text[240];

@@ -81,7 +81,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         const tvo_status_t check_status = tvo_controller_check(&ctl, given, apply, &verdict);
         const tvo_dirty_derivative_t filter = ctl.internal.velocity_filter;
         const tvo_real_t speed = ctl.internal.speed_state_mps[0];
-        const uint32_t last_stamp = ctl.internal.clock.last_stamp_tick;
+        const uint32_t last_stamp = ctl.internal.loop.clock.last_stamp_tick;
         tvo_command_t cmd;
         const tvo_status_t st = tvo_controller_step(&ctl, given, apply, &cmd);
         if (!isfinite(cmd.speed_mps[0]) || !isfinite(cmd.turn_rate_radps[0])) {
@@ -131,7 +131,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         }
         if (!taken && cmd.reason != TVO_REASON_WATCHDOG &&
             (memcmp(&filter, &ctl.internal.velocity_filter, sizeof(filter)) != 0 || speed != ctl.internal.speed_state_mps[0] ||
-             last_stamp != ctl.internal.clock.last_stamp_tick)) {
+             last_stamp != ctl.internal.loop.clock.last_stamp_tick)) {
             fail("a refused measurement changed the filter, the speed state or the last stamp");
         }
     }

@@ -840,7 +840,7 @@ static void test_chain_safe_stop_drops_to_rest_without_advancing_the_clock(void)
     ch_t ch;
     ch_filtered_running(&ch, 8u);
     TEST_ASSERT_TRUE(ch.ctl.internal.held.u[0] != TVO_R(0.0));
-    const tvo_sample_clock_t clock_before = ch.ctl.internal.clock;
+    const tvo_sample_clock_t clock_before = ch.ctl.internal.loop.clock;
     tvo_chain_command_t cmd;
     memset(&cmd, 0x5A, sizeof(cmd));
     ASSERT_PERIOD(STOPPED(STOP_REQUESTED), tvo_chain_controller_safe_stop(&ch.ctl, &cmd), cmd);
@@ -849,15 +849,15 @@ static void test_chain_safe_stop_drops_to_rest_without_advancing_the_clock(void)
         ASSERT_NEAR(0.0, cmd.u[i], 0.0);
         ASSERT_NEAR(0.0, ch.ctl.internal.held.u[i], 0.0);
     }
-    TEST_ASSERT_EQUAL_UINT8(1u, ch.ctl.internal.clock.stopped);
-    TEST_ASSERT_EQUAL_UINT32(ch.cfg.watchdog_periods, ch.ctl.internal.clock.periods_without_measurement);
-    TEST_ASSERT_EQUAL_HEX32(clock_before.last_apply_tick, ch.ctl.internal.clock.last_apply_tick);
-    TEST_ASSERT_EQUAL_UINT64(clock_before.elapsed.ticks, ch.ctl.internal.clock.elapsed.ticks);
+    TEST_ASSERT_EQUAL_UINT8(1u, ch.ctl.internal.loop.clock.stopped);
+    TEST_ASSERT_EQUAL_UINT32(ch.cfg.watchdog_periods, ch.ctl.internal.loop.clock.periods_without_measurement);
+    TEST_ASSERT_EQUAL_HEX32(clock_before.last_apply_tick, ch.ctl.internal.loop.clock.last_apply_tick);
+    TEST_ASSERT_EQUAL_UINT64(clock_before.elapsed.ticks, ch.ctl.internal.loop.clock.elapsed.ticks);
     /* The plant applies the stop; the next measurement is accepted, the filters restart at rest. */
     ch.u[0] = ch.u[1] = 0.0;
     ASSERT_PERIOD(APPLIED, ch_step(&ch, &cmd), cmd);
     ASSERT_OUTCOME(TVO_OUTCOME_APPLIED, cmd);
-    TEST_ASSERT_EQUAL_UINT8(0u, ch.ctl.internal.clock.stopped);
+    TEST_ASSERT_EQUAL_UINT8(0u, ch.ctl.internal.loop.clock.stopped);
     for (int i = 0; i < 2; ++i) {
         ASSERT_NEAR(0.0, ch.ctl.internal.filter[0].output[i], 0.0);
     }
@@ -877,8 +877,8 @@ static void assert_chain_untouched(const tvo_chain_controller_t *before, const t
 {
     TEST_ASSERT_EQUAL_MEMORY_MESSAGE(before->internal.filter, after->internal.filter, sizeof(after->internal.filter), "filters");
     TEST_ASSERT_EQUAL_MEMORY_MESSAGE(before->internal.held.u, after->internal.held.u, sizeof(after->internal.held.u), "held command");
-    TEST_ASSERT_EQUAL_HEX32_MESSAGE(before->internal.clock.last_stamp_tick, after->internal.clock.last_stamp_tick, "last stamp");
-    TEST_ASSERT_EQUAL_UINT8_MESSAGE(before->internal.clock.has_stamp, after->internal.clock.has_stamp, "has stamp");
+    TEST_ASSERT_EQUAL_HEX32_MESSAGE(before->internal.loop.clock.last_stamp_tick, after->internal.loop.clock.last_stamp_tick, "last stamp");
+    TEST_ASSERT_EQUAL_UINT8_MESSAGE(before->internal.loop.clock.has_stamp, after->internal.loop.clock.has_stamp, "has stamp");
 }
 
 static void test_chain_refused_measurement_leaves_filters_and_stamp_untouched(void)

@@ -1100,8 +1100,8 @@ static void test_miss_counts_one_period_and_is_the_step_without_a_measurement(vo
     assert_same_motion(&in_force, &cmd, 1);
     ASSERT_OUTCOME(TVO_OUTCOME_HELD, cmd);
     assert_commands_bit_identical(&twin_cmd, &cmd);
-    TEST_ASSERT_EQUAL_HEX32(apply, fx_a.ctl.internal.clock.last_apply_tick);
-    TEST_ASSERT_EQUAL_UINT32(1u, fx_a.ctl.internal.clock.periods_without_measurement);
+    TEST_ASSERT_EQUAL_HEX32(apply, fx_a.ctl.internal.loop.clock.last_apply_tick);
+    TEST_ASSERT_EQUAL_UINT32(1u, fx_a.ctl.internal.loop.clock.periods_without_measurement);
     /* The period was counted: a measurement for it comes too late; a miss that does not advance
      * changes nothing. */
     tvo_controller_t before;
@@ -1114,7 +1114,7 @@ static void test_miss_counts_one_period_and_is_the_step_without_a_measurement(vo
     ASSERT_PERIOD(STOPPED(WATCHDOG), tvo_controller_miss(&fx_a.ctl, apply + (fx_a.cfg.watchdog_periods - 1u) * FX_PERIOD, &cmd), cmd);
     ASSERT_OUTCOME(TVO_OUTCOME_STOPPED, cmd);
     ASSERT_NEAR(0.0, cmd.speed_mps[0], 0.0);
-    TEST_ASSERT_EQUAL_UINT8(1u, fx_a.ctl.internal.clock.stopped);
+    TEST_ASSERT_EQUAL_UINT8(1u, fx_a.ctl.internal.loop.clock.stopped);
     ASSERT_STATUS(TVO_ERR_NULL, tvo_controller_miss(&fx_a.ctl, apply, NULL));
     ASSERT_STATUS(TVO_ERR_NULL, tvo_controller_miss(NULL, apply, &cmd));
     ASSERT_OUTCOME(TVO_OUTCOME_STOPPED, cmd);
@@ -1127,7 +1127,7 @@ static void test_refusals_stop_after_the_watchdogs_span_and_the_next_step_starts
 {
     fx_running(&fx_a);
     TEST_ASSERT_TRUE(fabs(test_d(fx_a.ctl.internal.held.speed_mps[0])) > 2.0 * test_d(fx_a.cfg.accel_max_mps2) * h_s(&fx_a));
-    const uint32_t last_apply = fx_a.ctl.internal.clock.last_apply_tick;
+    const uint32_t last_apply = fx_a.ctl.internal.loop.clock.last_apply_tick;
     fx_a.meas_mode = FX_MEAS_NAN;
     tvo_command_t cmd;
     for (uint32_t i = 1; i < fx_a.cfg.watchdog_periods; ++i) {
@@ -1135,8 +1135,8 @@ static void test_refusals_stop_after_the_watchdogs_span_and_the_next_step_starts
     }
     ASSERT_PERIOD(STOPPED(WATCHDOG), fx_closed_loop_step(&fx_a, &cmd), cmd);
     ASSERT_OUTCOME(TVO_OUTCOME_STOPPED, cmd);
-    TEST_ASSERT_EQUAL_HEX32(last_apply + fx_a.cfg.watchdog_periods * FX_PERIOD, fx_a.ctl.internal.clock.last_apply_tick);
-    TEST_ASSERT_EQUAL_UINT8(1u, fx_a.ctl.internal.clock.stopped);
+    TEST_ASSERT_EQUAL_HEX32(last_apply + fx_a.cfg.watchdog_periods * FX_PERIOD, fx_a.ctl.internal.loop.clock.last_apply_tick);
+    TEST_ASSERT_EQUAL_UINT8(1u, fx_a.ctl.internal.loop.clock.stopped);
     ASSERT_NEAR(0.0, fx_a.ctl.internal.held.speed_mps[0], 0.0);
     fx_a.meas_mode = FX_MEAS_NORMAL;
     ASSERT_PERIOD(APPLIED, fx_closed_loop_step(&fx_a, &cmd), cmd);
@@ -1500,7 +1500,7 @@ static void test_safe_stop_drops_to_rest_without_advancing_the_clock(void)
 {
     fx_running(&fx_a);
     TEST_ASSERT_TRUE(fx_a.ctl.internal.held.speed_mps[0] != TVO_R(0.0)); /* it was moving */
-    const tvo_sample_clock_t clock_before = fx_a.ctl.internal.clock;
+    const tvo_sample_clock_t clock_before = fx_a.ctl.internal.loop.clock;
     tvo_command_t cmd;
     memset(&cmd, 0x5A, sizeof(cmd));
     ASSERT_PERIOD(STOPPED(STOP_REQUESTED), tvo_controller_safe_stop(&fx_a.ctl, &cmd), cmd);
@@ -1515,17 +1515,17 @@ static void test_safe_stop_drops_to_rest_without_advancing_the_clock(void)
     for (int q = 0; q < TVO_MAX_EQUALITIES; ++q) {
         ASSERT_NEAR(0.0, fx_a.ctl.internal.multiplier_rate[q], 0.0);
     }
-    TEST_ASSERT_EQUAL_UINT8(1u, fx_a.ctl.internal.clock.stopped);
-    TEST_ASSERT_EQUAL_UINT32(fx_a.cfg.watchdog_periods, fx_a.ctl.internal.clock.periods_without_measurement);
-    TEST_ASSERT_EQUAL_HEX32(clock_before.last_apply_tick, fx_a.ctl.internal.clock.last_apply_tick);
-    TEST_ASSERT_EQUAL_UINT64(clock_before.elapsed.ticks, fx_a.ctl.internal.clock.elapsed.ticks);
-    TEST_ASSERT_EQUAL_HEX32(clock_before.last_stamp_tick, fx_a.ctl.internal.clock.last_stamp_tick);
+    TEST_ASSERT_EQUAL_UINT8(1u, fx_a.ctl.internal.loop.clock.stopped);
+    TEST_ASSERT_EQUAL_UINT32(fx_a.cfg.watchdog_periods, fx_a.ctl.internal.loop.clock.periods_without_measurement);
+    TEST_ASSERT_EQUAL_HEX32(clock_before.last_apply_tick, fx_a.ctl.internal.loop.clock.last_apply_tick);
+    TEST_ASSERT_EQUAL_UINT64(clock_before.elapsed.ticks, fx_a.ctl.internal.loop.clock.elapsed.ticks);
+    TEST_ASSERT_EQUAL_HEX32(clock_before.last_stamp_tick, fx_a.ctl.internal.loop.clock.last_stamp_tick);
     /* The plant stops (it applies the safe stop); the next measurement resumes from rest. */
     fx_a.cmd = cmd;
     ASSERT_PERIOD(APPLIED, fx_closed_loop_step(&fx_a, &cmd), cmd);
     ASSERT_OUTCOME(TVO_OUTCOME_APPLIED, cmd);
     assert_command_finite(&cmd, 1);
-    TEST_ASSERT_EQUAL_UINT8(0u, fx_a.ctl.internal.clock.stopped);
+    TEST_ASSERT_EQUAL_UINT8(0u, fx_a.ctl.internal.loop.clock.stopped);
     ASSERT_LE(fabs(test_d(cmd.speed_mps[0])), test_d(fx_a.cfg.accel_max_mps2) * h_s(&fx_a) + TEST_TOL(8, 1.0),
               "speed after the safe stop");
     run_ok(&fx_a, 20);
@@ -1564,8 +1564,8 @@ static void trace_of(const tvo_controller_t *ctl, trace_t *t)
     memcpy(t->heading_estimate_rad, ctl->internal.heading_estimate_rad, sizeof(t->heading_estimate_rad));
     memcpy(t->multiplier, ctl->internal.multiplier, sizeof(t->multiplier));
     memcpy(&t->held, &ctl->internal.held, sizeof(t->held));
-    t->last_stamp_tick = ctl->internal.clock.last_stamp_tick;
-    t->has_stamp = ctl->internal.clock.has_stamp;
+    t->last_stamp_tick = ctl->internal.loop.clock.last_stamp_tick;
+    t->has_stamp = ctl->internal.loop.clock.has_stamp;
     t->speed_mismatch_periods = ctl->internal.speed_mismatch_periods;
 }
 

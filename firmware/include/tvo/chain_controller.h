@@ -23,6 +23,7 @@
 
 #include "tvo/dirty_derivative.h"
 #include "tvo/law.h"
+#include "tvo/loop_state.h"
 #include "tvo/objective.h"
 #include "tvo/sample_clock.h"
 
@@ -91,10 +92,8 @@ typedef struct {
         /* not part of the API: read through the accessors (the layout may change with any release) */
         tvo_law_t law;
         tvo_chain_controller_work_t work; /* scratch, off the step's stack: no state between steps */
-        const tvo_objective_t *objective;
-        tvo_sample_clock_t clock;
+        tvo_loop_state_t loop;            /* the objective, h, the clock */
         tvo_dirty_derivative_t filter[TVO_MAX_RELATIVE_DEGREE - 1]; /* cascade: y -> y' -> y'' */
-        tvo_real_t period_s;
         tvo_chain_command_t held;
         uint8_t initialized;
     } internal;

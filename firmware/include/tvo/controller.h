@@ -54,6 +54,7 @@
 
 #include "tvo/dirty_derivative.h"
 #include "tvo/law.h"
+#include "tvo/loop_state.h"
 #include "tvo/objective.h"
 #include "tvo/sample_clock.h"
 #include "tvo/unicycle.h"
@@ -183,10 +184,8 @@ struct tvo_controller {
         /* not part of the API: read through the accessors (the layout may change with any release) */
         tvo_law_t law;
         tvo_controller_work_t work; /* scratch, off the step's stack: no state between steps */
-        const tvo_objective_t *objective;
         tvo_dirty_derivative_t velocity_filter;
-        tvo_real_t period_s;
-        tvo_sample_clock_t clock;        /* ticks, elapsed time, stamps, watchdog */
+        tvo_loop_state_t loop;           /* the objective, h, the clock (ticks, stamps, watchdog) */
         tvo_real_t speed_state_mps[TVO_MAX_ROBOTS];   /* dynamic extension v */
         tvo_real_t heading_estimate_rad[TVO_MAX_ROBOTS]; /* position-only mode: dead-reckoned heading (else unused) */
         tvo_real_t multiplier[TVO_ARRAY_LEN(TVO_MAX_EQUALITIES)];      /* nu of equality constraints, at apply_tick */
