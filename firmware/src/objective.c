@@ -2,7 +2,7 @@
 #include "internal/objective.h"
 
 #include "internal/law.h"
-#include "objective_kernel.h"
+#include "internal/objective_kernel.h"
 #include "internal/sample_clock.h"
 #include "tvo/tracking.h"
 
