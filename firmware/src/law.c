@@ -221,7 +221,7 @@ static inline int tracking_terms_only(const tvo_objective_t *objective)
         return 0;
     }
     for (unsigned p = 0; p < objective->term_count && p < TVO_MAX_TERMS; ++p) {
-        if (!objective_slot_is_tracking(&objective->terms[p])) {
+        if (objective->terms[p].kind != TVO_TERM_TRACKING) {
             return 0;
         }
     }
