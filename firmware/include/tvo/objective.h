@@ -67,9 +67,9 @@ typedef tvo_status_t (*tvo_gradient_hessian_fn)(const void *term, const tvo_jet_
 /**
  * The law's general path (every kind of term, the Hessian from jets and closed forms, the KKT solve),
  * reached through the objective: every public add function (tvo_objective_add*, for any term, a
- * tracking term's closed form included) and tvo_objective_reserve_multipliers set it; only
- * tvo_tracking_add does not, so a firmware whose objective holds tracking terms only does not link it. The argument is the law's workspace
- * (tvo_law_workspace_t), which holds the call's arguments.
+ * TVO_TERM_TRACKING term included) and tvo_objective_reserve_multipliers set it; only tvo_tracking_add
+ * does not, so a firmware whose objective holds tracking terms only does not link it. The argument is
+ * the law's workspace (tvo_law_workspace_t), which holds the call's arguments.
  */
 typedef tvo_status_t (*tvo_general_path_fn)(void *law_workspace);
 
