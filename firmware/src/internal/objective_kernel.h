@@ -1,5 +1,5 @@
 /*
- * Private to the core: the objective's sum over its terms, for the law, which calls it without the
+ * Internal: the objective's sum over its terms, for the law, which calls it without the
  * public entries' extra frame (its deepest call path runs through it into every term).
  */
 #ifndef TVO_OBJECTIVE_KERNEL_H
