@@ -3,13 +3,40 @@
 
 #include <string.h>
 
+/* The core's init's answer to a decoded START: a refusal names its culprit, as the START names it, in
+ * *why (may be NULL). */
+static tvo_status_t rejected_by_core(tvo_status_t st, tvo_session_param_t bad, tvo_session_reject_t *why)
+{
+    if (st != TVO_OK && why != NULL) {
+        why->node = TVO_NODE_OK;
+        why->status = st;
+        why->param = bad;
+    }
+    return st;
+}
+
 /*
- * The core's sampled-data loop behind the edge's unions: the same six operations for every plant,
- * written once and stamped out per plant (member: the unions' member, api: the core's prefix). The
- * step, the miss and the safe stop are the core's own public calls (its loop decides hold, refusal
- * and stop); holding answers with the command in force, clock is the clock the node rebases.
+ * The core's sampled-data loop behind the edge's unions: the same seven operations for every plant,
+ * written once and stamped out per plant (member: the unions' member and the session codec's suffix,
+ * api: the core's prefix, with the plant's configuration and parameter types). init decodes a START
+ * into the plant's configuration and hands it to the core's init; the step, the miss and the safe
+ * stop are the core's own public calls (its loop decides hold, refusal and stop); holding answers
+ * with the command in force, clock is the clock the node rebases.
  */
-#define EDGE_LOOP_OPS(member, api)                                                                             \
+#define EDGE_LOOP_OPS(member, api, config_type, param_type, param_none)                                        \
+    static tvo_status_t member##_init(tvo_edge_controller_t *ctl, const tvo_lcm_session_t *msg,               \
+                                      const tvo_objective_t *objective, uint32_t epoch_tick,                  \
+                                      tvo_session_reject_t *why)                                              \
+    {                                                                                                          \
+        config_type cfg;                                                                                       \
+        param_type bad = param_none;                                                                           \
+        tvo_status_t st = tvo_session_decode_##member(msg, &cfg, why);                                        \
+        if (st == TVO_OK) {                                                                                    \
+            st = api##_init(&ctl->u.member, &cfg, objective, epoch_tick, &bad);                                \
+            st = rejected_by_core(st, tvo_session_param_of_##member(bad), why);                               \
+        }                                                                                                      \
+        return st;                                                                                             \
+    }                                                                                                          \
     static tvo_status_t member##_step(tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas,         \
                                       uint32_t apply_tick, tvo_edge_command_t *cmd)                           \
     {                                                                                                          \
@@ -26,7 +53,7 @@
     }                                                                                                          \
     static void member##_holding(const tvo_edge_controller_t *ctl, tvo_edge_command_t *cmd)                   \
     {                                                                                                          \
-        cmd->member = ctl->u.member.held;                                                                      \
+        cmd->member = ctl->u.member.internal.held;                                                             \
         cmd->member.flags = 0u;                                                                                \
         cmd->member.outcome = TVO_OUTCOME_HELD;                                                                \
         cmd->member.reason = TVO_REASON_NONE;                                                                  \
@@ -39,28 +66,16 @@
     }                                                                                                          \
     static tvo_sample_clock_t *member##_clock(tvo_edge_controller_t *ctl)                                     \
     {                                                                                                          \
-        return &ctl->u.member.clock;                                                                           \
+        return &ctl->u.member.internal.loop.clock;                                                             \
     }
 
-/* The six in a table's initialiser. */
+/* The seven in a table's initialiser. */
 #define EDGE_LOOP_ENTRIES(member)                                                                              \
-    .step = member##_step, .miss = member##_miss, .safe_stop = member##_safe_stop, .holding = member##_holding, \
-    .mark = member##_mark, .clock = member##_clock
+    .init = member##_init, .step = member##_step, .miss = member##_miss, .safe_stop = member##_safe_stop,      \
+    .holding = member##_holding, .mark = member##_mark, .clock = member##_clock
 
-EDGE_LOOP_OPS(unicycle, tvo_controller)
-EDGE_LOOP_OPS(chain, tvo_chain_controller)
-
-/* The core's init's answer to a decoded START: a refusal names its culprit, as the START names it, in
- * *why (may be NULL). */
-static tvo_status_t rejected_by_core(tvo_status_t st, tvo_session_param_t bad, tvo_session_reject_t *why)
-{
-    if (st != TVO_OK && why != NULL) {
-        why->node = TVO_NODE_OK;
-        why->status = st;
-        why->param = bad;
-    }
-    return st;
-}
+EDGE_LOOP_OPS(unicycle, tvo_controller, tvo_controller_config_t, tvo_param_t, TVO_PARAM_NONE)
+EDGE_LOOP_OPS(chain, tvo_chain_controller, tvo_chain_config_t, tvo_chain_param_t, TVO_CHAIN_PARAM_NONE)
 
 /* ---- unicycle (controller.h) ---------------------------------------------------------------- */
 
@@ -68,19 +83,6 @@ static uint8_t unicycle_relative_degree(const tvo_lcm_session_t *msg)
 {
     (void)msg;
     return 2u;
-}
-
-static tvo_status_t unicycle_init(tvo_edge_controller_t *ctl, const tvo_lcm_session_t *msg,
-                                  const tvo_objective_t *objective, uint32_t epoch_tick, tvo_session_reject_t *why)
-{
-    tvo_controller_config_t cfg;
-    tvo_param_t bad = TVO_PARAM_NONE;
-    tvo_status_t st = tvo_session_decode_unicycle(msg, &cfg, why);
-    if (st == TVO_OK) {
-        st = tvo_controller_init(&ctl->u.unicycle, &cfg, objective, epoch_tick, &bad);
-        st = rejected_by_core(st, tvo_session_param_of_unicycle(bad), why);
-    }
-    return st;
 }
 
 static tvo_node_status_t unicycle_measurement(const tvo_edge_controller_t *ctl, const tvo_lcm_measurement_t *msg,
@@ -109,11 +111,13 @@ static void unicycle_command_to_lcm(const tvo_edge_command_t *cmd, const tvo_ste
 static void unicycle_telemetry_to_lcm(const tvo_edge_controller_t *ctl, const tvo_problem_t *problem,
                                       tvo_lcm_telemetry_t *msg)
 {
-    tvo_step_telemetry_to_lcm(&ctl->u.unicycle, problem, msg);
+    const tvo_controller_t *unicycle = &ctl->u.unicycle;
+    tvo_step_telemetry_to_lcm(&unicycle->telemetry, unicycle->cfg.robot_count, unicycle->internal.speed_state_mps,
+                              problem, msg);
 }
 
 static const tvo_edge_controller_ops_t unicycle_ops = {
-    .name = "unicycle", EDGE_LOOP_ENTRIES(unicycle), .relative_degree = unicycle_relative_degree, .init = unicycle_init,
+    .name = "unicycle", EDGE_LOOP_ENTRIES(unicycle), .relative_degree = unicycle_relative_degree,
     .measurement = unicycle_measurement, .positions = unicycle_positions, .command_to_lcm = unicycle_command_to_lcm,
     .telemetry_to_lcm = unicycle_telemetry_to_lcm};
 
@@ -124,19 +128,6 @@ static uint8_t chain_relative_degree(const tvo_lcm_session_t *msg)
     /* Checked by tvo_session_decode_chain before the problem is built; clamp for the cast only. */
     const int32_t k = msg->chain_relative_degree;
     return (k >= 1 && k <= TVO_MAX_RELATIVE_DEGREE) ? (uint8_t)k : 1u;
-}
-
-static tvo_status_t chain_init(tvo_edge_controller_t *ctl, const tvo_lcm_session_t *msg,
-                               const tvo_objective_t *objective, uint32_t epoch_tick, tvo_session_reject_t *why)
-{
-    tvo_chain_config_t cfg;
-    tvo_chain_param_t bad = TVO_CHAIN_PARAM_NONE;
-    tvo_status_t st = tvo_session_decode_chain(msg, &cfg, why);
-    if (st == TVO_OK) {
-        st = tvo_chain_controller_init(&ctl->u.chain, &cfg, objective, epoch_tick, &bad);
-        st = rejected_by_core(st, tvo_session_param_of_chain(bad), why);
-    }
-    return st;
 }
 
 static tvo_node_status_t chain_measurement(const tvo_edge_controller_t *ctl, const tvo_lcm_measurement_t *msg,
@@ -174,7 +165,7 @@ static void chain_telemetry_to_lcm(const tvo_edge_controller_t *ctl, const tvo_p
 }
 
 static const tvo_edge_controller_ops_t chain_ops = {
-    .name = "chain", EDGE_LOOP_ENTRIES(chain), .relative_degree = chain_relative_degree, .init = chain_init,
+    .name = "chain", EDGE_LOOP_ENTRIES(chain), .relative_degree = chain_relative_degree,
     .measurement = chain_measurement, .positions = chain_positions, .command_to_lcm = chain_command_to_lcm,
     .telemetry_to_lcm = chain_telemetry_to_lcm};
 
@@ -184,9 +175,9 @@ void tvo_edge_controller_clear_scratch(tvo_edge_controller_t *ctl)
         return;
     }
     if (ctl->ops == &unicycle_ops) {
-        memset(&ctl->u.unicycle.work, 0, sizeof(ctl->u.unicycle.work));
+        memset(&ctl->u.unicycle.internal.work, 0, sizeof(ctl->u.unicycle.internal.work));
     } else if (ctl->ops == &chain_ops) {
-        memset(&ctl->u.chain.work, 0, sizeof(ctl->u.chain.work));
+        memset(&ctl->u.chain.internal.work, 0, sizeof(ctl->u.chain.internal.work));
     }
 }
 

@@ -202,13 +202,14 @@ void tvo_step_telemetry_stamp(const tvo_step_stamp_t *stamp, uint32_t wire_flags
     SET_STEP_STAMP(msg, stamp, wire_flags);
 }
 
-void tvo_step_telemetry_to_lcm(const tvo_controller_t *ctl, const tvo_problem_t *problem, tvo_lcm_telemetry_t *msg)
+void tvo_step_telemetry_to_lcm(const tvo_controller_telemetry_t *tel, uint8_t robot_count,
+                               const tvo_real_t *speed_state_mps, const tvo_problem_t *problem,
+                               tvo_lcm_telemetry_t *msg)
 {
-    if (ctl == NULL || problem == NULL || msg == NULL) {
+    if (tel == NULL || speed_state_mps == NULL || problem == NULL || msg == NULL) {
         return;
     }
-    const tvo_controller_telemetry_t *tel = &ctl->telemetry;
-    const size_t dim = 2u * (size_t)ctl->cfg.robot_count;
+    const size_t dim = 2u * (size_t)robot_count;
     msg->objective_time_s = (double)tel->objective_time_s;
     msg->dim = (int32_t)dim;
     for (size_t i = 0; i < dim && i < TVO_MAX_OUTPUT_DIM; ++i) {
@@ -218,8 +219,8 @@ void tvo_step_telemetry_to_lcm(const tvo_controller_t *ctl, const tvo_problem_t 
         msg->output_rate_mps[i] = (double)tel->output_rate_mps[i];
         msg->output_accel_mps2[i] = (double)tel->output_accel_mps2[i];
     }
-    for (size_t r = 0; r < ctl->cfg.robot_count && r < TVO_MAX_ROBOTS; ++r) {
-        msg->speed_state_mps[r] = (double)ctl->speed_state_mps[r];
+    for (size_t r = 0; r < robot_count && r < TVO_MAX_ROBOTS; ++r) {
+        msg->speed_state_mps[r] = (double)speed_state_mps[r];
     }
     const size_t multipliers = problem->objective.dual_dim;
     for (size_t q = 0; q < multipliers && q < TVO_ARRAY_LEN(TVO_MAX_EQUALITIES) && q < 4u; ++q) {

@@ -66,8 +66,11 @@ void tvo_step_chain_command_to_lcm(const tvo_chain_command_t *cmd, const tvo_ste
  *  tvo_step_wire_flags gives them; the controller's part is separate). */
 void tvo_step_telemetry_stamp(const tvo_step_stamp_t *stamp, uint32_t wire_flags, tvo_lcm_telemetry_t *msg);
 
-/** Telemetry of the unicycle controller's last good step (state, gradient, multipliers, barrier). */
-void tvo_step_telemetry_to_lcm(const tvo_controller_t *ctl, const tvo_problem_t *problem, tvo_lcm_telemetry_t *msg);
+/** Telemetry of the unicycle controller's last good step (its telemetry for robot_count robots, their
+ *  speed states, the problem's multipliers and barrier). */
+void tvo_step_telemetry_to_lcm(const tvo_controller_telemetry_t *tel, uint8_t robot_count,
+                               const tvo_real_t *speed_state_mps, const tvo_problem_t *problem,
+                               tvo_lcm_telemetry_t *msg);
 
 /**
  * Feeds a streamed target sample, valid at objective_ticks (ticks from the epoch), to every robot's

@@ -3,7 +3,7 @@
 
 #include <string.h>
 
-#include "barrier_kernel.h"
+#include "internal/barrier_kernel.h"
 
 /* Stand-in for "never" when c does not grow (alpha_c = 0): far beyond any run, still finite. */
 #define BARRIER_NEVER_S TVO_R(1e30)
@@ -190,10 +190,10 @@ tvo_status_t tvo_barrier_weight_on_schedule(const tvo_barrier_t *barrier, const 
     }
 #if TVO_SHAPE_COPIES
     if (order == TVO_SHAPE_ORDER) {
-        return barrier_weight_unchecked(barrier, schedule, f_jet, TVO_SHAPE_ORDER, w_jet, dw_df);
+        return barrier_weight(barrier, schedule, f_jet, TVO_SHAPE_ORDER, w_jet, dw_df);
     }
 #endif
-    return barrier_weight_unchecked(barrier, schedule, f_jet, order, w_jet, dw_df);
+    return barrier_weight(barrier, schedule, f_jet, order, w_jet, dw_df);
 }
 
 tvo_status_t tvo_barrier_weight_jet(const tvo_barrier_t *barrier, const tvo_jet_t *f_jet, const tvo_time_jet_t *t,

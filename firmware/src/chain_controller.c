@@ -81,17 +81,17 @@ static tvo_chain_param_t chain_setup(tvo_chain_controller_t *ctl, const tvo_chai
         objective->primal_dim > TVO_MAX_Z_DIM) {
         return TVO_CHAIN_PARAM_GAIN;
     }
-    tvo_law_init(&ctl->law, cfg->relative_degree, objective->primal_dim, cfg->gain);
-    ctl->period_s = tvo_ticks_to_seconds32(cfg->period_ticks, cfg->tick_hz);
+    tvo_law_init(&ctl->internal.law, cfg->relative_degree, objective->primal_dim, cfg->gain);
+    ctl->internal.loop.period_s = tvo_ticks_to_seconds32(cfg->period_ticks, cfg->tick_hz);
     for (uint8_t j = 0; j + 1u < cfg->relative_degree; ++j) {
-        if (tvo_dirty_derivative_init(&ctl->filter[j], objective->primal_dim,
+        if (tvo_dirty_derivative_init(&ctl->internal.filter[j], objective->primal_dim,
                                       cfg->filtered_derivatives ? cfg->filter_tf_s : TVO_R(1.0),
-                                      ctl->period_s) != TVO_OK) {
+                                      ctl->internal.loop.period_s) != TVO_OK) {
             return TVO_CHAIN_PARAM_FILTER_TF;
         }
     }
     ctl->cfg = *cfg;
-    ctl->objective = objective;
+    ctl->internal.loop.objective = objective;
     return TVO_CHAIN_PARAM_NONE;
 }
 
@@ -149,7 +149,7 @@ static tvo_status_t derivatives_at_sample(const tvo_chain_controller_t *ctl, tvo
                                           const tvo_chain_measurement_t *meas, tvo_output_derivs_t *x)
 {
     const uint8_t k = ctl->cfg.relative_degree;
-    const uint8_t m = ctl->objective->primal_dim;
+    const uint8_t m = ctl->internal.loop.objective->primal_dim;
     *x = meas->y;
     if (!ctl->cfg.filtered_derivatives || k == 1u) {
         return TVO_OK;
@@ -157,7 +157,7 @@ static tvo_status_t derivatives_at_sample(const tvo_chain_controller_t *ctl, tvo
     tvo_status_t st = TVO_OK;
     const int primed = filter[0].primed;
     const tvo_real_t dt_s =
-        primed ? clock_ticks_to_seconds(meas->stamp_tick - ctl->clock.last_stamp_tick, ctl->cfg.tick_hz) : TVO_R(0.0);
+        primed ? clock_ticks_to_seconds(meas->stamp_tick - ctl->internal.loop.clock.last_stamp_tick, ctl->cfg.tick_hz) : TVO_R(0.0);
     for (uint8_t j = 0; st == TVO_OK && j + 1u < k; ++j) {
         if (!primed || !filter[j].primed) {
             /* Start at rest: the filters have seen nothing yet. */
@@ -180,13 +180,13 @@ static tvo_reason_t chain_check(const void *ctl_any, const void *meas_any, uint3
     const tvo_chain_measurement_t *meas = meas_any;
     const uint8_t read = ctl->cfg.filtered_derivatives ? 1u : ctl->cfg.relative_degree;
     for (uint8_t j = 0; j < read; ++j) {
-        for (uint8_t i = 0; i < ctl->objective->primal_dim; ++i) {
+        for (uint8_t i = 0; i < ctl->internal.loop.objective->primal_dim; ++i) {
             if (!isfinite(meas->y.d[j][i])) {
                 return TVO_REASON_NOT_FINITE;
             }
         }
     }
-    return loop_reason_of(sample_clock_check_stamp(&ctl->clock, meas->stamp_tick, apply_tick));
+    return loop_reason_of(sample_clock_check_stamp(&ctl->internal.loop.clock, meas->stamp_tick, apply_tick));
 }
 
 /* The loop's refuse piece: its refusal, out of line (a cold path). */
@@ -206,7 +206,7 @@ TVO_OFF_CHAIN_BODY tvo_reason_t chain_prepare(void *ctl_any, const void *meas_an
 {
     tvo_chain_controller_t *ctl = ctl_any;
     const tvo_chain_measurement_t *meas = meas_any;
-    tvo_chain_controller_work_t *work = &ctl->work;
+    tvo_chain_controller_work_t *work = &ctl->internal.work;
     tvo_period_t *period = &work->period;
     const tvo_reason_t refused = chain_check(ctl, meas, apply_tick);
     if (refused != TVO_REASON_NONE) {
@@ -217,7 +217,7 @@ TVO_OFF_CHAIN_BODY tvo_reason_t chain_prepare(void *ctl_any, const void *meas_an
     tvo_status_t st;
     {
         for (uint8_t j = 0; j + 1u < TVO_MAX_RELATIVE_DEGREE; ++j) {
-            filter[j] = ctl->filter[j];
+            filter[j] = ctl->internal.filter[j];
             if (frame->from_rest) {
                 filter[j].primed = 0; /* the gap makes old filter state meaningless */
             }
@@ -229,13 +229,13 @@ TVO_OFF_CHAIN_BODY tvo_reason_t chain_prepare(void *ctl_any, const void *meas_an
     }
 
     const uint8_t k = ctl->cfg.relative_degree;
-    const uint8_t m = ctl->objective->primal_dim;
+    const uint8_t m = ctl->internal.loop.objective->primal_dim;
     /* Where the law is evaluated (the sample, the application instant, or the middle of the held
      * interval); the state is carried there with the held command. */
-    sample_clock_locate(&ctl->clock, period, meas->stamp_tick, ctl->cfg.delay_compensation, ctl->cfg.zoh_aware);
+    sample_clock_locate(&ctl->internal.loop.clock, period, meas->stamp_tick, ctl->cfg.delay_compensation, ctl->cfg.zoh_aware);
     frame->flags = (period->carry_s > TVO_R(0.0)) ? TVO_FLAG_PREDICTED : 0u;
     if (period->carry_s > TVO_R(0.0)) {
-        st = tvo_chain_predict(k, m, x, frame->from_rest ? rest_input : ctl->held.u, period->carry_s, x);
+        st = tvo_chain_predict(k, m, x, frame->from_rest ? rest_input : ctl->internal.held.u, period->carry_s, x);
     }
     time_jet_at_tick_time(&period->law_time, ctl->cfg.tick_hz, TVO_R(1.0), &work->time); /* valid times */
     return loop_reason_of(st);
@@ -245,13 +245,13 @@ TVO_OFF_CHAIN_BODY tvo_reason_t chain_prepare(void *ctl_any, const void *meas_an
 TVO_LOOP_ENTRY tvo_reason_t chain_law(void *ctl_any, tvo_loop_frame_t *frame)
 {
     tvo_chain_controller_t *ctl = ctl_any;
-    tvo_chain_controller_work_t *work = &ctl->work;
+    tvo_chain_controller_work_t *work = &ctl->internal.work;
     tvo_law_report_t *report = &work->report;
     (void)frame;
     report->gradient = NULL;
     report->gradient_rate = NULL;
     report->count = 0u;
-    const tvo_status_t st = tvo_law_evaluate_report(&ctl->law, ctl->objective, &work->state, &work->time,
+    const tvo_status_t st = tvo_law_evaluate_report(&ctl->internal.law, ctl->internal.loop.objective, &work->state, &work->time,
                                                     work->input, report, &work->law);
     return (st == TVO_OK) ? TVO_REASON_NONE : loop_reason_of(st);
 }
@@ -260,8 +260,8 @@ TVO_LOOP_ENTRY tvo_reason_t chain_law(void *ctl_any, tvo_loop_frame_t *frame)
 TVO_OFF_CHAIN_BODY tvo_reason_t chain_command(void *ctl_any, tvo_loop_frame_t *frame)
 {
     tvo_chain_controller_t *ctl = ctl_any;
-    tvo_chain_controller_work_t *work = &ctl->work;
-    const uint8_t m = ctl->objective->primal_dim;
+    tvo_chain_controller_work_t *work = &ctl->internal.work;
+    const uint8_t m = ctl->internal.loop.objective->primal_dim;
     const tvo_real_t *u = work->input;
     tvo_chain_command_t *next = &work->command;
     memset(next, 0, sizeof(*next));
@@ -285,9 +285,9 @@ TVO_OFF_CHAIN_BODY void chain_commit(void *ctl_any, const tvo_loop_frame_t *fram
     tvo_chain_controller_t *ctl = ctl_any;
     (void)frame;
     for (uint8_t j = 0; j + 1u < TVO_MAX_RELATIVE_DEGREE; ++j) {
-        ctl->filter[j] = ctl->work.filter[j];
+        ctl->internal.filter[j] = ctl->internal.work.filter[j];
     }
-    ctl->held = ctl->work.command; /* applied: chain_command zeroed its outcome and reason */
+    ctl->internal.held = ctl->internal.work.command; /* applied: chain_command zeroed its outcome and reason */
 }
 
 /* No refusal piece (the chain's refusals are final) and no rest piece (the held input is all its

@@ -3,12 +3,12 @@
 
 #include <string.h>
 
-#include "barrier_kernel.h"
+#include "internal/barrier_kernel.h"
 
 /* The barrier's weight inline where the terms have shape copies (the order then a constant in them),
  * by call where they are compiled for size. */
 #if TVO_SHAPE_COPIES
-#define TERM_BARRIER_WEIGHT barrier_weight_unchecked
+#define TERM_BARRIER_WEIGHT barrier_weight
 #else
 #define TERM_BARRIER_WEIGHT tvo_barrier_weight_on_schedule
 #endif

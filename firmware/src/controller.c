@@ -104,21 +104,21 @@ static tvo_status_t controller_setup(tvo_controller_t *ctl, const tvo_controller
         return TVO_ERR_PARAM;
     }
     ctl->cfg = *cfg;
-    ctl->objective = objective;
-    ctl->position_velocity = position_velocity;
-    ctl->period_s = tvo_ticks_to_seconds32(cfg->period_ticks, cfg->tick_hz);
-    ctl->speed_step_max_mps = cfg->accel_max_mps2 * ctl->period_s;
-    ctl->measured_speed_limit_mps = TVO_MEASURED_SPEED_FACTOR * cfg->speed_max_mps + TVO_MEASURED_SPEED_MARGIN_MPS;
+    ctl->internal.loop.objective = objective;
+    ctl->internal.position_velocity = position_velocity;
+    ctl->internal.loop.period_s = tvo_ticks_to_seconds32(cfg->period_ticks, cfg->tick_hz);
+    ctl->internal.speed_step_max_mps = cfg->accel_max_mps2 * ctl->internal.loop.period_s;
+    ctl->internal.measured_speed_limit_mps = TVO_MEASURED_SPEED_FACTOR * cfg->speed_max_mps + TVO_MEASURED_SPEED_MARGIN_MPS;
     for (uint8_t r = 0; r < cfg->robot_count; ++r) {
-        ctl->speed_state_mps[r] = cfg->initial_speed_mps[r];
-        ctl->held.speed_mps[r] = cfg->initial_speed_mps[r];
+        ctl->internal.speed_state_mps[r] = cfg->initial_speed_mps[r];
+        ctl->internal.held.speed_mps[r] = cfg->initial_speed_mps[r];
     }
     if (objective->dim > TVO_MAX_Z_DIM) {
         *bad = TVO_PARAM_OBJECTIVE; /* an objective changed by hand: the law cannot hold its size */
         return TVO_ERR_DIMENSION;
     }
     const tvo_real_t gains[2] = {cfg->gain_kp, cfg->gain_kd}; /* positive: Hurwitz (first_bad_param) */
-    tvo_law_init(&ctl->law, 2u, objective->dim, gains);
+    tvo_law_init(&ctl->internal.law, 2u, objective->dim, gains);
     return TVO_OK;
 }
 
@@ -138,7 +138,7 @@ TVO_LOOP_ENTRY tvo_status_t controller_init(tvo_controller_t *ctl, const tvo_con
     tvo_param_t bad = TVO_PARAM_NONE;
     st = controller_setup(ctl, cfg, objective, &bad, position_velocity);
     if (st == TVO_OK && position_velocity != NULL) {
-        st = tvo_dirty_derivative_init(&ctl->velocity_filter, objective->primal_dim, cfg->filter_tf_s, ctl->period_s);
+        st = tvo_dirty_derivative_init(&ctl->internal.velocity_filter, objective->primal_dim, cfg->filter_tf_s, ctl->internal.loop.period_s);
         bad = (st == TVO_OK) ? TVO_PARAM_NONE : TVO_PARAM_OBJECTIVE;
     }
     if (st != TVO_OK && bad_param != NULL) {
@@ -192,7 +192,7 @@ static inline tvo_reason_t check_measurement(const void *ctl_any, const void *me
     const tvo_controller_t *ctl = ctl_any;
     const tvo_measurement_t *meas = meas_any;
     const uint8_t n = STEP_ROBOTS(ctl->cfg.robot_count);
-    const tvo_real_t speed_limit = ctl->measured_speed_limit_mps;
+    const tvo_real_t speed_limit = ctl->internal.measured_speed_limit_mps;
     for (uint8_t r = 0; r < n; ++r) {
         /* One comparison per value refuses NaN, infinities and the impossible alike (internal/real_bits.h). */
         if (!real_within2(meas->position_m[r][0], meas->position_m[r][1], TVO_POSITION_LIMIT_M) ||
@@ -201,7 +201,7 @@ static inline tvo_reason_t check_measurement(const void *ctl_any, const void *me
             return TVO_REASON_IMPLAUSIBLE_MEASUREMENT; /* or not finite: unicycle_refusal says which */
         }
     }
-    const tvo_status_t st = sample_clock_check_stamp(&ctl->clock, meas->stamp_tick, apply_tick);
+    const tvo_status_t st = sample_clock_check_stamp(&ctl->internal.loop.clock, meas->stamp_tick, apply_tick);
     if (st != TVO_OK) {
         return loop_reason_of(st);
     }
@@ -209,7 +209,7 @@ static inline tvo_reason_t check_measurement(const void *ctl_any, const void *me
         if (!meas->heading_valid) {
             return TVO_REASON_MISSING_FIELD;
         }
-    } else if (ctl->position_velocity == NULL) {
+    } else if (ctl->internal.position_velocity == NULL) {
         return TVO_REASON_SOURCE_NOT_LINKED; /* set by hand after tvo_controller_init_pose_velocity */
     }
     return TVO_REASON_NONE;
@@ -237,13 +237,13 @@ TVO_COLD_BODY void unicycle_rest(void *ctl_any)
 {
     tvo_controller_t *ctl = ctl_any;
     for (uint8_t r = 0; r < TVO_MAX_ROBOTS; ++r) {
-        ctl->speed_state_mps[r] = TVO_R(0.0);
+        ctl->internal.speed_state_mps[r] = TVO_R(0.0);
     }
     for (uint8_t q = 0; q < TVO_ARRAY_LEN(TVO_MAX_EQUALITIES); ++q) {
-        ctl->multiplier_rate[q] = TVO_R(0.0);
+        ctl->internal.multiplier_rate[q] = TVO_R(0.0);
     }
-    ctl->speed_mismatch_periods = 0u;
-    ctl->speed_mismatch_holdoff = 0u;
+    ctl->internal.speed_mismatch_periods = 0u;
+    ctl->internal.speed_mismatch_holdoff = 0u;
 }
 
 /* The command's speed moved beyond accel_max h from the one in force (a measured speed's re-sync):
@@ -252,7 +252,7 @@ TVO_COLD_BODY uint32_t limit_speed_step(const tvo_controller_t *ctl, tvo_real_t 
                                         tvo_real_t held_speed_mps)
 {
     const tvo_real_t step = *speed_mps - held_speed_mps;
-    const tvo_real_t bound = step > TVO_R(0.0) ? ctl->speed_step_max_mps : -ctl->speed_step_max_mps;
+    const tvo_real_t bound = step > TVO_R(0.0) ? ctl->internal.speed_step_max_mps : -ctl->internal.speed_step_max_mps;
     uint32_t unused = 0u;
     *speed_mps = held_speed_mps + bound;
     *speed_next_mps = clamp(*speed_next_mps - (step - bound), ctl->cfg.speed_max_mps, 0u, &unused);
@@ -264,28 +264,28 @@ TVO_COLD_BODY uint32_t limit_speed_step(const tvo_controller_t *ctl, tvo_real_t 
  * other clears the count; a period of a running stop holds the robots still. */
 TVO_COLD_BODY void commit_speed_mismatch(tvo_controller_t *ctl, uint8_t contradicted)
 {
-    ctl->speed_mismatch_periods = contradicted ? ctl->speed_mismatch_periods + 1u : 0u;
-    if (ctl->speed_mismatch_periods >= TVO_SPEED_MISMATCH_PERIODS) {
-        ctl->held.flags |= TVO_FLAG_SPEED_MISMATCH;
-        if (ctl->speed_mismatch_periods >= TVO_SPEED_MISMATCH_STOP_PERIODS) {
-            ctl->speed_mismatch_periods = 0u;
-            ctl->speed_mismatch_holdoff = TVO_SPEED_MISMATCH_HOLDOFF_PERIODS;
+    ctl->internal.speed_mismatch_periods = contradicted ? ctl->internal.speed_mismatch_periods + 1u : 0u;
+    if (ctl->internal.speed_mismatch_periods >= TVO_SPEED_MISMATCH_PERIODS) {
+        ctl->internal.held.flags |= TVO_FLAG_SPEED_MISMATCH;
+        if (ctl->internal.speed_mismatch_periods >= TVO_SPEED_MISMATCH_STOP_PERIODS) {
+            ctl->internal.speed_mismatch_periods = 0u;
+            ctl->internal.speed_mismatch_holdoff = TVO_SPEED_MISMATCH_HOLDOFF_PERIODS;
         }
     }
-    if (ctl->speed_mismatch_holdoff > 0u) {
+    if (ctl->internal.speed_mismatch_holdoff > 0u) {
         /* A period of the stop: accepted (clock, filters, multipliers move on), but the robots stand still. */
-        ctl->speed_mismatch_holdoff--;
+        ctl->internal.speed_mismatch_holdoff--;
         for (uint8_t r = 0; r < TVO_MAX_ROBOTS; ++r) {
-            ctl->speed_state_mps[r] = TVO_R(0.0);
+            ctl->internal.speed_state_mps[r] = TVO_R(0.0);
             ctl->telemetry.accel_mps2[r] = TVO_R(0.0);
         }
         for (uint8_t q = 0; q < TVO_ARRAY_LEN(TVO_MAX_EQUALITIES); ++q) {
-            ctl->multiplier_rate[q] = TVO_R(0.0);
+            ctl->internal.multiplier_rate[q] = TVO_R(0.0);
         }
-        memset(&ctl->held, 0, sizeof(ctl->held));
-        ctl->held.flags = TVO_FLAG_SPEED_MISMATCH;
-        ctl->held.outcome = TVO_OUTCOME_STOPPED;
-        ctl->held.reason = TVO_REASON_SPEED_MISMATCH;
+        memset(&ctl->internal.held, 0, sizeof(ctl->internal.held));
+        ctl->internal.held.flags = TVO_FLAG_SPEED_MISMATCH;
+        ctl->internal.held.outcome = TVO_OUTCOME_STOPPED;
+        ctl->internal.held.reason = TVO_REASON_SPEED_MISMATCH;
     }
 }
 
@@ -299,20 +299,20 @@ TVO_OFF_CHAIN_BODY tvo_reason_t unicycle_prepare(void *ctl_any, const void *meas
     const tvo_measurement_t *meas = meas_any;
     const uint8_t n = STEP_ROBOTS(frame->shape);
     const tvo_controller_config_t *cfg = &ctl->cfg;
-    tvo_controller_work_t *work = &ctl->work;
+    tvo_controller_work_t *work = &ctl->internal.work;
     tvo_period_t *period = &work->period;
     work->from_rest = frame->from_rest;
-    work->in_force = work->from_rest ? &rest_command : &ctl->held;
+    work->in_force = work->from_rest ? &rest_command : &ctl->internal.held;
     const tvo_reason_t refused = check_measurement(ctl, meas, apply_tick);
     if (refused != TVO_REASON_NONE) {
         return refused;
     }
     /* Where the law is evaluated and how far the sampled state is carried there (the age to the
      * application instant with compensation, half a period on when ZOH-aware). */
-    sample_clock_locate(&ctl->clock, period, meas->stamp_tick, cfg->delay_compensation, cfg->zoh_aware);
+    sample_clock_locate(&ctl->internal.loop.clock, period, meas->stamp_tick, cfg->delay_compensation, cfg->zoh_aware);
     const int position_only = cfg->velocity_source == TVO_VELOCITY_FROM_POSITION;
     if (position_only) {
-        const tvo_status_t st = ctl->position_velocity->estimate(ctl, meas); /* init set it for this source */
+        const tvo_status_t st = ctl->internal.position_velocity->estimate(ctl, meas); /* init set it for this source */
         if (st != TVO_OK) {
             return loop_reason_of(st);
         }
@@ -333,7 +333,7 @@ TVO_OFF_CHAIN_BODY tvo_reason_t unicycle_prepare(void *ctl_any, const void *meas
     tvo_real_t *speed_state = work->speed_state;
     int speed_contradicted = 0;
     for (uint8_t r = 0; r < n; ++r) {
-        speed_state[r] = from_rest ? TVO_R(0.0) : ctl->speed_state_mps[r];
+        speed_state[r] = from_rest ? TVO_R(0.0) : ctl->internal.speed_state_mps[r];
         if (cfg->velocity_source == TVO_VELOCITY_FROM_POSE && meas->speed_valid) {
             /* Re-sync the extension with what the plant actually does (slip, disturbance): the plant
              * should run at the held speed, so shift the state by the measured departure from it. */
@@ -358,7 +358,7 @@ TVO_OFF_CHAIN_BODY tvo_reason_t unicycle_prepare(void *ctl_any, const void *meas
         heading[r] = pose.heading_rad;
         /* Mid-interval speed: the state plus half a period of the last acceleration (O(h^2)). */
         speed[r] = speed_state[r] +
-                   (zoh_aware && !from_rest ? TVO_R(0.5) * ctl->period_s * ctl->telemetry.accel_mps2[r] : TVO_R(0.0));
+                   (zoh_aware && !from_rest ? TVO_R(0.5) * ctl->internal.loop.period_s * ctl->telemetry.accel_mps2[r] : TVO_R(0.0));
         y->d[0][2u * r] = pose.position_m[0];
         y->d[0][2u * r + 1u] = pose.position_m[1];
         if (position_only) {
@@ -376,11 +376,11 @@ TVO_OFF_CHAIN_BODY tvo_reason_t unicycle_prepare(void *ctl_any, const void *meas
 
 #if TVO_MAX_EQUALITIES > 0
     /* Multipliers (equality constraints) and their rates: controller states living at apply times. */
-    const uint8_t primal = ctl->objective->primal_dim;
-    const uint8_t dual = ctl->objective->dual_dim;
+    const uint8_t primal = ctl->internal.loop.objective->primal_dim;
+    const uint8_t dual = ctl->internal.loop.objective->dual_dim;
     for (uint8_t q = 0; q < dual && q < TVO_MAX_EQUALITIES; ++q) {
-        y->d[0][primal + q] = ctl->multiplier[q];
-        y->d[1][primal + q] = from_rest ? TVO_R(0.0) : ctl->multiplier_rate[q];
+        y->d[0][primal + q] = ctl->internal.multiplier[q];
+        y->d[1][primal + q] = from_rest ? TVO_R(0.0) : ctl->internal.multiplier_rate[q];
     }
 #endif
 
@@ -393,12 +393,12 @@ TVO_OFF_CHAIN_BODY tvo_reason_t unicycle_prepare(void *ctl_any, const void *meas
 TVO_LOOP_ENTRY tvo_reason_t unicycle_law(void *ctl_any, tvo_loop_frame_t *frame)
 {
     tvo_controller_t *ctl = ctl_any;
-    tvo_controller_work_t *work = &ctl->work;
+    tvo_controller_work_t *work = &ctl->internal.work;
     tvo_law_report_t *report = &work->report;
     report->gradient = work->gradient;
     report->gradient_rate = work->gradient_rate;
-    report->count = ctl->objective->primal_dim;
-    const tvo_status_t st = tvo_law_evaluate_report(&ctl->law, ctl->objective, &work->output, &work->time,
+    report->count = ctl->internal.loop.objective->primal_dim;
+    const tvo_status_t st = tvo_law_evaluate_report(&ctl->internal.law, ctl->internal.loop.objective, &work->output, &work->time,
                                                     work->output_accel, report, &work->law);
     if (report->regularization > TVO_R(0.0)) {
         frame->flags |= TVO_FLAG_REGULARIZED;
@@ -412,7 +412,7 @@ TVO_OFF_CHAIN_BODY tvo_reason_t unicycle_command(void *ctl_any, tvo_loop_frame_t
     tvo_controller_t *ctl = ctl_any;
     const uint8_t n = STEP_ROBOTS(frame->shape);
     const tvo_controller_config_t *cfg = &ctl->cfg;
-    tvo_controller_work_t *work = &ctl->work;
+    tvo_controller_work_t *work = &ctl->internal.work;
     const tvo_real_t *y_accel = work->output_accel;
     tvo_real_t(*heading_cs)[2] = work->heading_cs;
     const tvo_real_t *speed = work->speed;
@@ -433,14 +433,14 @@ TVO_OFF_CHAIN_BODY tvo_reason_t unicycle_command(void *ctl_any, tvo_loop_frame_t
         accel[r] = clamp(accel[r], cfg->accel_max_mps2, TVO_FLAG_ACCEL_SATURATED, &flags);
         next->turn_rate_radps[r] = clamp(turn_rate, cfg->omega_max_radps, TVO_FLAG_OMEGA_SATURATED, &flags);
         /* Anti-windup: the integrator state itself is limited, so no excess accumulates. */
-        speed_next[r] = clamp(speed_state[r] + accel[r] * ctl->period_s, cfg->speed_max_mps,
+        speed_next[r] = clamp(speed_state[r] + accel[r] * ctl->internal.loop.period_s, cfg->speed_max_mps,
                               TVO_FLAG_SPEED_SATURATED, &flags);
         /* Hold the interval average of the speed state, so the held straight-line distance matches
          * the continuous extension to second order in h (end-of-interval speed would lead by a h/2). */
         next->speed_mps[r] = TVO_R(0.5) * (speed_state[r] + speed_next[r]);
         /* The command in force bounds the new one, whatever a measured speed re-synced: the state moves
          * with the command, so the next period's command stays within a_max h of this one too. */
-        if (!(TVO_FABS(next->speed_mps[r] - work->in_force->speed_mps[r]) <= ctl->speed_step_max_mps)) {
+        if (!(TVO_FABS(next->speed_mps[r] - work->in_force->speed_mps[r]) <= ctl->internal.speed_step_max_mps)) {
             flags |= limit_speed_step(ctl, &next->speed_mps[r], &speed_next[r], work->in_force->speed_mps[r]);
         }
         /* x - x is 0 for a finite x, NaN for NaN and the infinities: one test for the command and the speed
@@ -462,39 +462,39 @@ TVO_OFF_CHAIN_BODY void unicycle_commit(void *ctl_any, const tvo_loop_frame_t *f
     const uint8_t n = STEP_ROBOTS(frame->shape);
     uint32_t flags = frame->flags;
     const tvo_controller_config_t *cfg = &ctl->cfg;
-    tvo_controller_work_t *work = &ctl->work;
+    tvo_controller_work_t *work = &ctl->internal.work;
     const tvo_output_derivs_t *y = &work->output;
     const tvo_real_t *y_accel = work->output_accel;
     const tvo_command_t *next = &work->command;
 #if TVO_MAX_EQUALITIES > 0
     const uint8_t primal = work->report.count; /* the objective's primal_dim */
-    const uint8_t dual = ctl->objective->dual_dim;
+    const uint8_t dual = ctl->internal.loop.objective->dual_dim;
 #endif
     if (work->from_rest) {
         unicycle_rest(ctl);
     }
     if (cfg->velocity_source == TVO_VELOCITY_FROM_POSITION) {
-        ctl->position_velocity->commit(ctl); /* init set it for this source */
+        ctl->internal.position_velocity->commit(ctl); /* init set it for this source */
     }
     tvo_controller_telemetry_t *tm = &ctl->telemetry;
 #if TVO_MAX_EQUALITIES > 0
     for (uint8_t q = 0; q < dual && q < TVO_MAX_EQUALITIES; ++q) {
         /* Exact for the constant nu'' the law asked for over the period. */
         const tvo_real_t accel_q = y_accel[primal + q];
-        ctl->multiplier[q] += (ctl->multiplier_rate[q] + TVO_R(0.5) * accel_q * ctl->period_s) * ctl->period_s;
-        ctl->multiplier_rate[q] += accel_q * ctl->period_s;
-        tm->multiplier[q] = ctl->multiplier[q];
+        ctl->internal.multiplier[q] += (ctl->internal.multiplier_rate[q] + TVO_R(0.5) * accel_q * ctl->internal.loop.period_s) * ctl->internal.loop.period_s;
+        ctl->internal.multiplier_rate[q] += accel_q * ctl->internal.loop.period_s;
+        tm->multiplier[q] = ctl->internal.multiplier[q];
     }
 #endif
     for (uint8_t r = 0; r < n; ++r) {
-        ctl->speed_state_mps[r] = work->speed_next[r];
+        ctl->internal.speed_state_mps[r] = work->speed_next[r];
         tm->accel_mps2[r] = work->accel[r];
     }
     for (uint8_t r = 0; r < n; ++r) {
-        ctl->held.speed_mps[r] = next->speed_mps[r];
-        ctl->held.turn_rate_radps[r] = next->turn_rate_radps[r];
+        ctl->internal.held.speed_mps[r] = next->speed_mps[r];
+        ctl->internal.held.turn_rate_radps[r] = next->turn_rate_radps[r];
     }
-    ctl->held.flags = flags;
+    ctl->internal.held.flags = flags;
 
     /* Telemetry of the entries this problem uses (the rest stay zero from init). */
     tm->objective_time_s = work->time.t_s;
@@ -507,7 +507,7 @@ TVO_OFF_CHAIN_BODY void unicycle_commit(void *ctl_any, const tvo_loop_frame_t *f
     }
     tm->regularization = work->report.regularization;
     /* The common period: no contradiction, none counted, no stop running (nothing to write). */
-    if ((frame->note | ctl->speed_mismatch_periods | ctl->speed_mismatch_holdoff) != 0u) {
+    if ((frame->note | ctl->internal.speed_mismatch_periods | ctl->internal.speed_mismatch_holdoff) != 0u) {
         commit_speed_mismatch(ctl, frame->note);
     }
 }
@@ -561,7 +561,7 @@ tvo_status_t tvo_controller_sample_tick(const tvo_controller_t *ctl, uint32_t ap
     if (ctl == NULL || sample_tick == NULL) {
         return TVO_ERR_NULL;
     }
-    if (!ctl->initialized) {
+    if (!ctl->internal.initialized) {
         return TVO_ERR_NOT_INITIALIZED;
     }
     *sample_tick = apply_tick - ctl->cfg.delay_ticks;
@@ -573,8 +573,8 @@ tvo_status_t tvo_controller_objective_ticks(const tvo_controller_t *ctl, uint32_
     if (ctl == NULL || objective_ticks == NULL) {
         return TVO_ERR_NULL;
     }
-    if (!ctl->initialized) {
+    if (!ctl->internal.initialized) {
         return TVO_ERR_NOT_INITIALIZED;
     }
-    return tvo_sample_clock_objective_ticks(&ctl->clock, tick, objective_ticks);
+    return tvo_sample_clock_objective_ticks(&ctl->internal.loop.clock, tick, objective_ticks);
 }

@@ -24,7 +24,8 @@ tvo_status_t tvo_offset_equality_add(tvo_offset_equality_term_t *term, tvo_objec
     term->offset_a = (uint8_t)(2u * robot_a);
     term->offset_b = (uint8_t)(2u * robot_b);
     term->multiplier_index = first;
-    const tvo_term_t spec = {tvo_offset_equality_gradient_jet, tvo_offset_equality_gradient_hessian, NULL, term};
+    const tvo_term_t spec = {tvo_offset_equality_gradient_jet, tvo_offset_equality_gradient_hessian, NULL, term,
+                             TVO_TERM_GENERAL};
     st = tvo_objective_add(objective, &spec);
     if (st != TVO_OK) {
         /* Give the multipliers back, so a failed add leaves the objective as it was. */

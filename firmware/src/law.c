@@ -9,9 +9,9 @@
 
 #include <string.h>
 
-#include "objective_kernel.h"
+#include "internal/objective_kernel.h"
 #include "shape.h"
-#include "tracking_kernel.h"
+#include "internal/tracking_kernel.h"
 #include "internal/linsolve.h"
 
 /* 0! .. 3! (k <= TVO_MAX_RELATIVE_DEGREE <= 3). */
@@ -221,7 +221,7 @@ static inline int tracking_terms_only(const tvo_objective_t *objective)
         return 0;
     }
     for (unsigned p = 0; p < objective->term_count && p < TVO_MAX_TERMS; ++p) {
-        if (!objective_slot_is_tracking(&objective->terms[p])) {
+        if (objective->terms[p].kind != TVO_TERM_TRACKING) {
             return 0;
         }
     }
@@ -291,8 +291,8 @@ TRACKING_PATH_BODY tvo_status_t evaluate_tracking_shape(tvo_law_workspace_t *wor
         if (term != NULL) {
             st = (unsigned)term->offset + 2u > m ? TVO_ERR_DIMENSION
                  : term->target == NULL          ? TVO_ERR_NULL
-                                                 : tracking_add_unchecked(term, work->y_jet, t, TVO_R(1.0), k,
-                                                                          g_jet, diagonal, stride);
+                                                 : tracking_add(term, work->y_jet, t, TVO_R(1.0), k, g_jet,
+                                                                diagonal, stride);
         }
         if (st != TVO_OK) {
             return tracking_path_refusal(y, y_k, work, st, k, m);

@@ -2,7 +2,7 @@
 #include "internal/objective.h"
 
 #include "internal/law.h"
-#include "objective_kernel.h"
+#include "internal/objective_kernel.h"
 #include "internal/sample_clock.h"
 #include "tvo/tracking.h"
 
@@ -36,7 +36,7 @@ static tvo_status_t append_slot(tvo_objective_t *objective, const tvo_term_t *sp
     }
     objective->terms[objective->term_count] = *spec;
     /* Tracking terms alone need no Hessian matrix in the law (its diagonal path). */
-    const int tracking = objective_slot_is_tracking(spec);
+    const int tracking = spec->kind == TVO_TERM_TRACKING;
     objective->tracking_only = (uint8_t)((objective->term_count == 0u || objective->tracking_only) && tracking);
     objective->term_count++;
     return TVO_OK;
@@ -44,20 +44,19 @@ static tvo_status_t append_slot(tvo_objective_t *objective, const tvo_term_t *sp
 
 tvo_status_t objective_append_tracking(tvo_objective_t *objective, const void *tracking_term)
 {
-    const tvo_term_t slot = {NULL, NULL, NULL, tracking_term}; /* the tracking slot (objective_kernel.h) */
+    const tvo_term_t slot = {NULL, NULL, NULL, tracking_term, TVO_TERM_TRACKING};
     return append_slot(objective, &slot);
 }
 
 /* The public add functions take any term: their objective may need the law's general path. A tracking
- * term's closed form is kept as the tracking slot (objective_kernel.h), as tvo_tracking_add keeps it. */
+ * term is kept as tvo_tracking_add keeps it (objective_kernel.h). */
 static tvo_status_t append_general_term(tvo_objective_t *objective, tvo_gradient_jet_fn gradient_jet,
                                         tvo_gradient_hessian_fn gradient_hessian,
-                                        tvo_constraint_max_fn constraint_max, const void *term)
+                                        tvo_constraint_max_fn constraint_max, const void *term, uint8_t kind)
 {
-    const tvo_term_t spec = {gradient_jet, gradient_hessian, constraint_max, term};
-    const int tracking = gradient_jet == tvo_tracking_gradient_jet &&
-                         gradient_hessian == tvo_tracking_gradient_hessian && constraint_max == NULL;
-    const tvo_status_t st = tracking ? objective_append_tracking(objective, term) : append_slot(objective, &spec);
+    const tvo_term_t spec = {gradient_jet, gradient_hessian, constraint_max, term, TVO_TERM_GENERAL};
+    const tvo_status_t st =
+        (kind == TVO_TERM_TRACKING) ? objective_append_tracking(objective, term) : append_slot(objective, &spec);
     if (st == TVO_OK) {
         objective->general_path = law_general_path;
     }
@@ -70,7 +69,7 @@ tvo_status_t tvo_objective_add_term(tvo_objective_t *objective, tvo_gradient_jet
     if (objective == NULL || gradient_jet == NULL || term == NULL) {
         return TVO_ERR_NULL;
     }
-    return append_general_term(objective, gradient_jet, NULL, NULL, term);
+    return append_general_term(objective, gradient_jet, NULL, NULL, term, TVO_TERM_GENERAL);
 }
 
 tvo_status_t tvo_objective_add_constraint(tvo_objective_t *objective, tvo_gradient_jet_fn gradient_jet,
@@ -79,15 +78,20 @@ tvo_status_t tvo_objective_add_constraint(tvo_objective_t *objective, tvo_gradie
     if (objective == NULL || gradient_jet == NULL || constraint_max == NULL || term == NULL) {
         return TVO_ERR_NULL;
     }
-    return append_general_term(objective, gradient_jet, NULL, constraint_max, term);
+    return append_general_term(objective, gradient_jet, NULL, constraint_max, term, TVO_TERM_GENERAL);
 }
 
 tvo_status_t tvo_objective_add(tvo_objective_t *objective, const tvo_term_t *term)
 {
-    if (objective == NULL || term == NULL || term->gradient_jet == NULL || term->term == NULL) {
+    if (objective == NULL || term == NULL || term->term == NULL ||
+        (term->kind == TVO_TERM_GENERAL && term->gradient_jet == NULL)) {
         return TVO_ERR_NULL;
     }
-    return append_general_term(objective, term->gradient_jet, term->gradient_hessian, term->constraint_max, term->term);
+    if (term->kind != TVO_TERM_GENERAL && term->kind != TVO_TERM_TRACKING) {
+        return TVO_ERR_PARAM;
+    }
+    return append_general_term(objective, term->gradient_jet, term->gradient_hessian, term->constraint_max, term->term,
+                               term->kind);
 }
 
 tvo_status_t tvo_objective_reserve_multipliers(tvo_objective_t *objective, uint8_t count, uint8_t *first_index)
@@ -131,11 +135,11 @@ tvo_status_t objective_sum_terms(const tvo_objective_t *objective, const tvo_jet
     uint8_t left_to_jets = 0u;
     for (uint8_t k = 0; k < objective->term_count && k < TVO_MAX_TERMS; ++k) {
         const tvo_term_t *term = &objective->terms[k];
-        /* The tracking slot's callbacks are the tracking term's, named here (the general path), so a
-         * firmware without the general path links neither. */
+        /* A tracking term's callbacks are named here (the general path), so a firmware without the
+         * general path links neither. */
         tvo_gradient_jet_fn gradient_jet = term->gradient_jet;
         tvo_gradient_hessian_fn gradient_hessian = term->gradient_hessian;
-        if (objective_slot_is_tracking(term)) {
+        if (term->kind == TVO_TERM_TRACKING) {
             gradient_jet = tvo_tracking_gradient_jet;
             gradient_hessian = tvo_tracking_gradient_hessian;
         }

@@ -40,7 +40,7 @@ static tvo_status_t add_distance(tvo_problem_t *problem, tvo_distance_kind_t kin
     tvo_status_t st = tvo_distance_term_init(term, &problem->barrier, kind, d->robot_a, d->robot_b, bound_m, rate_mps);
     if (st == TVO_OK) {
         const tvo_term_t spec = {tvo_distance_gradient_jet, tvo_distance_gradient_hessian, tvo_distance_constraint_max,
-                                 term};
+                                 term, TVO_TERM_GENERAL};
         st = tvo_objective_add(&problem->objective, &spec);
     }
     if (st == TVO_OK) {
@@ -87,7 +87,7 @@ static tvo_status_t build_constraints(tvo_problem_t *problem, const tvo_problem_
                                      h->bound_m, h->bound_rate_mps);
         if (st == TVO_OK) {
             const tvo_term_t spec = {tvo_halfspace_gradient_jet, tvo_halfspace_gradient_hessian,
-                                     tvo_halfspace_constraint_max, &problem->halfspace[i]};
+                                     tvo_halfspace_constraint_max, &problem->halfspace[i], TVO_TERM_GENERAL};
             st = tvo_objective_add(&problem->objective, &spec);
         }
     }
@@ -103,7 +103,7 @@ static tvo_status_t build_constraints(tvo_problem_t *problem, const tvo_problem_
                                       desc->obstacle, desc->obstacle_count);
         if (st == TVO_OK) {
             const tvo_term_t spec = {tvo_free_space_gradient_jet, tvo_free_space_gradient_hessian,
-                                     tvo_free_space_constraint_max, &problem->free_space[r]};
+                                     tvo_free_space_constraint_max, &problem->free_space[r], TVO_TERM_GENERAL};
             st = tvo_objective_add(&problem->objective, &spec);
         }
     }
@@ -130,7 +130,7 @@ tvo_status_t tvo_problem_init(tvo_problem_t *problem, const tvo_problem_desc_t *
         problem->target[r] = desc->target[r];
         st = tvo_tracking_init(&problem->tracking[r], &problem->target[r], desc->tracking_weight[r], (uint8_t)(2u * r));
         if (st == TVO_OK) {
-            const tvo_term_t spec = {tvo_tracking_gradient_jet, tvo_tracking_gradient_hessian, NULL, &problem->tracking[r]};
+            const tvo_term_t spec = {NULL, NULL, NULL, &problem->tracking[r], TVO_TERM_TRACKING};
             st = tvo_objective_add(&problem->objective, &spec);
         }
     }

@@ -78,14 +78,16 @@ typedef struct {
     void (*rest)(void *ctl);
 } tvo_loop_plant_t;
 
-/* The layout part of a plant's table: the loop's members must carry these names (clock, held,
- * initialized, work.period in the controller; stamp_tick in the measurement; flags, outcome and
- * reason in the command). */
+/* The layout part of a plant's table: the loop's members must carry these names (internal.loop, a
+ * tvo_loop_state_t; internal.held, internal.initialized and internal.work.period in the controller;
+ * stamp_tick in the measurement; flags, outcome and reason in the command). */
 #define TVO_LOOP_LAYOUT(controller_type, measurement_type, command_type)                                     \
-    .controller_size = sizeof(controller_type), .clock_at = offsetof(controller_type, clock),                \
-    .held_at = offsetof(controller_type, held), .period_at = offsetof(controller_type, work.period),          \
-    .initialized_at = offsetof(controller_type, initialized), .stamp_at = offsetof(measurement_type, stamp_tick), \
-    .command_size = sizeof(command_type), .command_flags_at = offsetof(command_type, flags),                  \
+    .controller_size = sizeof(controller_type), .clock_at = offsetof(controller_type, internal.loop.clock),  \
+    .held_at = offsetof(controller_type, internal.held),                                                     \
+    .period_at = offsetof(controller_type, internal.work.period),                                            \
+    .initialized_at = offsetof(controller_type, internal.initialized),                                  \
+    .stamp_at = offsetof(measurement_type, stamp_tick),                                                      \
+    .command_size = sizeof(command_type), .command_flags_at = offsetof(command_type, flags),                 \
     .command_outcome_at = offsetof(command_type, outcome)
 
 /* A command's storage holds a uint32_t, so it is word-aligned: its copies may move whole words

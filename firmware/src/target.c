@@ -4,7 +4,7 @@
 #include <string.h>
 
 #include "shape.h"
-#include "target_kernel.h"
+#include "internal/target_kernel.h"
 #include "internal/trig.h"
 
 /* TVO_ERR_NOT_FINITE if one of the n values is not finite, else TVO_ERR_PARAM if one of the first
@@ -269,12 +269,13 @@ tvo_status_t tvo_target_derivatives(const tvo_target_t *target, const tvo_time_j
     if (!isfinite(t->t_s)) {
         return TVO_ERR_NOT_FINITE;
     }
-    return target_derivatives_unchecked(target, t, order, deriv);
+    return target_derivatives(target, t, order, deriv);
 }
 
-tvo_status_t target_derivatives_unchecked(const tvo_target_t *target, const tvo_time_jet_t *t, uint8_t order,
-                                          tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2])
+tvo_status_t target_derivatives(const tvo_target_t *target, const tvo_time_jet_t *t, uint8_t order,
+                                tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2])
 {
+    TVO_ASSERT(target != NULL && t != NULL && deriv != NULL);
     if (order > TVO_JET_MAX_ORDER) {
         return TVO_ERR_PARAM; /* checked by the callers; kept, as it bounds the loops below */
     }
@@ -307,5 +308,5 @@ tvo_status_t tvo_target_jet(const tvo_target_t *target, const tvo_time_jet_t *t,
     if (!isfinite(t->t_s)) {
         return TVO_ERR_NOT_FINITE;
     }
-    return target_jet_unchecked(target, t, order, out);
+    return target_jet(target, t, order, out);
 }

@@ -2,8 +2,8 @@
 #include "tvo/tracking.h"
 
 #include "internal/real_bits.h"
-#include "objective_kernel.h"
-#include "tracking_kernel.h"
+#include "internal/objective_kernel.h"
+#include "internal/tracking_kernel.h"
 
 /* W finite and > 0 keeps f0 strongly convex, which the law's Newton step relies on. */
 static tvo_status_t check_weight(const tvo_real_t weight[2])
@@ -85,14 +85,14 @@ tvo_status_t tvo_tracking_gradient_jet(const void *term, const tvo_jet_t *y, uin
         return st;
     }
     /* tvo_target_jet's body inline: the deepest call path of the step runs through here. */
-    tvo_jet_t target_jet[2];
-    st = target_jet_unchecked(self->target, t, order, target_jet);
+    tvo_jet_t desired[2];
+    st = target_jet(self->target, t, order, desired);
     if (st != TVO_OK) {
         return st;
     }
     for (uint8_t axis = 0; axis < 2u; ++axis) {
         tvo_jet_t error;
-        tvo_jet_sub(&y[self->offset + axis], &target_jet[axis], order, &error);
+        tvo_jet_sub(&y[self->offset + axis], &desired[axis], order, &error);
         tvo_jet_axpy(self->weight[axis], &error, order, &grad[self->offset + axis]);
     }
     return TVO_OK;
@@ -113,5 +113,5 @@ tvo_status_t tvo_tracking_gradient_hessian(const void *term, const tvo_jet_t *y,
         return st;
     }
     /* The Hessian is the constant W, on the matrix's diagonal. */
-    return tracking_add_unchecked(self, y, t, t->rate, order, grad, &hessian->matrix[0][0], TVO_MAX_Z_DIM + 1u);
+    return tracking_add(self, y, t, t->rate, order, grad, &hessian->matrix[0][0], TVO_MAX_Z_DIM + 1u);
 }

@@ -1137,8 +1137,8 @@ static void test_plant_watchdog_refusals_in_a_row_give_a_safe_stop_until_one_is_
     TEST_ASSERT_EQUAL_INT32(W + 1, node.counters.refused[TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER]);
     /* The controller dropped to rest: it holds zero until a measurement is accepted. */
     const tvo_node_session_t *s = tvo_node_session(&node);
-    TEST_ASSERT_TRUE(s->controller.u.unicycle.held.speed_mps[0] == TVO_R(0.0));
-    TEST_ASSERT_TRUE(s->controller.u.unicycle.speed_state_mps[0] == TVO_R(0.0));
+    TEST_ASSERT_TRUE(s->controller.u.unicycle.internal.held.speed_mps[0] == TVO_R(0.0));
+    TEST_ASSERT_TRUE(s->controller.u.unicycle.internal.speed_state_mps[0] == TVO_R(0.0));
     tvo_lcm_measurement_t m;
     plant_meas(&m, 3);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(3));
@@ -1293,7 +1293,7 @@ static void test_node_timer_stops_at_last_apply_plus_watchdog_periods_then_every
     TEST_ASSERT_EQUAL_INT32(3, node.counters.safe_stops);
     /* The controller is at rest; a refused measurement holds zero. */
     const tvo_node_session_t *s = tvo_node_session(&node);
-    TEST_ASSERT_TRUE(s->controller.u.unicycle.held.speed_mps[0] == TVO_R(0.0));
+    TEST_ASSERT_TRUE(s->controller.u.unicycle.internal.held.speed_mps[0] == TVO_R(0.0));
     /* Tracking resumes with the next accepted measurement, and the timer restarts from it. */
     tvo_lcm_measurement_t m;
     const int64_t j = 10 + W;
@@ -1628,7 +1628,7 @@ static void test_chain_session_runs_through_the_node(void)
         for (int i = 0; i < 8; ++i) {
             TEST_ASSERT_TRUE(cmd.input[i] == 0.0);
         }
-        TEST_ASSERT_TRUE(tvo_node_session(&node)->controller.u.chain.held.u[0] == TVO_R(0.0));
+        TEST_ASSERT_TRUE(tvo_node_session(&node)->controller.u.chain.internal.held.u[0] == TVO_R(0.0));
     }
 }
 
@@ -1982,8 +1982,8 @@ static void test_plant_refusal_by_the_step_keeps_nothing(void)
     TEST_ASSERT_EQUAL_HEX32(TVO_LCM_COMMAND_T_FLAG_HOLDING, (uint32_t)cmd.flags);
     TEST_ASSERT_TRUE(cmd.utime >= m.utime);
     const tvo_node_session_t *s = tvo_node_session(&node);
-    const tvo_sample_clock_t *before = &snapshot.controller.u.unicycle.clock;
-    const tvo_sample_clock_t *after = &s->controller.u.unicycle.clock;
+    const tvo_sample_clock_t *before = &snapshot.controller.u.unicycle.internal.loop.clock;
+    const tvo_sample_clock_t *after = &s->controller.u.unicycle.internal.loop.clock;
     if (before->last_apply_tick != after->last_apply_tick || before->elapsed.ticks != after->elapsed.ticks ||
         before->periods_without_measurement != after->periods_without_measurement) {
         static char text[240];

@@ -250,7 +250,7 @@ static void test_telemetry_round_trip_carries_the_controllers_last_step(void)
     stepped_controller(1);
     tvo_lcm_telemetry_t tel;
     memset(&tel, 0, sizeof(tel));
-    tvo_step_telemetry_to_lcm(&ctl, &problem, &tel);
+    tvo_step_telemetry_to_lcm(&ctl.telemetry, ctl.cfg.robot_count, ctl.internal.speed_state_mps, &problem, &tel);
     const tvo_step_stamp_t stamp = {4242, 17, 99, {TVO_NODE_OK, TVO_OK, TVO_REASON_STALE}, 2u};
     tvo_step_telemetry_stamp(&stamp, tvo_step_wire_flags(0u, TVO_OUTCOME_HELD), &tel);
     tel.counters.accepted = 5;
@@ -275,7 +275,7 @@ static void test_telemetry_round_trip_carries_the_controllers_last_step(void)
     }
     TEST_ASSERT_TRUE(back.output_m[3] == 1.0); /* robot 1 stands at y = 1 */
     for (int r = 0; r < 2; ++r) {
-        TEST_ASSERT_TRUE(back.speed_state_mps[r] == (double)ctl.speed_state_mps[r]);
+        TEST_ASSERT_TRUE(back.speed_state_mps[r] == (double)ctl.internal.speed_state_mps[r]);
         TEST_ASSERT_TRUE(back.speed_state_mps[r] != 0.0); /* the first step accelerated */
     }
     /* The barrier's schedule at the law's time, with the slack the rule chose. */
@@ -291,7 +291,7 @@ static void test_telemetry_round_trip_carries_the_controllers_last_step(void)
     /* Without inequalities: no barrier figures. */
     stepped_controller(0);
     memset(&tel, 0, sizeof(tel));
-    tvo_step_telemetry_to_lcm(&ctl, &problem, &tel);
+    tvo_step_telemetry_to_lcm(&ctl.telemetry, ctl.cfg.robot_count, ctl.internal.speed_state_mps, &problem, &tel);
     TEST_ASSERT_TRUE(tel.barrier_c == 0.0 && tel.barrier_slack == 0.0);
     TEST_ASSERT_EQUAL_INT32(4, tel.dim);
 }

@@ -79,9 +79,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         const tvo_measurement_t *given = (p[4] & 4u) ? NULL : &meas;
         tvo_reason_t verdict = TVO_REASON_COUNT;
         const tvo_status_t check_status = tvo_controller_check(&ctl, given, apply, &verdict);
-        const tvo_dirty_derivative_t filter = ctl.velocity_filter;
-        const tvo_real_t speed = ctl.speed_state_mps[0];
-        const uint32_t last_stamp = ctl.clock.last_stamp_tick;
+        const tvo_dirty_derivative_t filter = ctl.internal.velocity_filter;
+        const tvo_real_t speed = ctl.internal.speed_state_mps[0];
+        const uint32_t last_stamp = ctl.internal.loop.clock.last_stamp_tick;
         tvo_command_t cmd;
         const tvo_status_t st = tvo_controller_step(&ctl, given, apply, &cmd);
         if (!isfinite(cmd.speed_mps[0]) || !isfinite(cmd.turn_rate_radps[0])) {
@@ -130,8 +130,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             fail("the step refused for another reason than its check");
         }
         if (!taken && cmd.reason != TVO_REASON_WATCHDOG &&
-            (memcmp(&filter, &ctl.velocity_filter, sizeof(filter)) != 0 || speed != ctl.speed_state_mps[0] ||
-             last_stamp != ctl.clock.last_stamp_tick)) {
+            (memcmp(&filter, &ctl.internal.velocity_filter, sizeof(filter)) != 0 || speed != ctl.internal.speed_state_mps[0] ||
+             last_stamp != ctl.internal.loop.clock.last_stamp_tick)) {
             fail("a refused measurement changed the filter, the speed state or the last stamp");
         }
     }

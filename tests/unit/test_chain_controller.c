@@ -839,27 +839,27 @@ static void test_chain_safe_stop_drops_to_rest_without_advancing_the_clock(void)
 {
     ch_t ch;
     ch_filtered_running(&ch, 8u);
-    TEST_ASSERT_TRUE(ch.ctl.held.u[0] != TVO_R(0.0));
-    const tvo_sample_clock_t clock_before = ch.ctl.clock;
+    TEST_ASSERT_TRUE(ch.ctl.internal.held.u[0] != TVO_R(0.0));
+    const tvo_sample_clock_t clock_before = ch.ctl.internal.loop.clock;
     tvo_chain_command_t cmd;
     memset(&cmd, 0x5A, sizeof(cmd));
     ASSERT_PERIOD(STOPPED(STOP_REQUESTED), tvo_chain_controller_safe_stop(&ch.ctl, &cmd), cmd);
     TEST_ASSERT_EQUAL_HEX32(0u, cmd.flags);
     for (int i = 0; i < TVO_MAX_OUTPUT_DIM; ++i) {
         ASSERT_NEAR(0.0, cmd.u[i], 0.0);
-        ASSERT_NEAR(0.0, ch.ctl.held.u[i], 0.0);
+        ASSERT_NEAR(0.0, ch.ctl.internal.held.u[i], 0.0);
     }
-    TEST_ASSERT_EQUAL_UINT8(1u, ch.ctl.clock.stopped);
-    TEST_ASSERT_EQUAL_UINT32(ch.cfg.watchdog_periods, ch.ctl.clock.periods_without_measurement);
-    TEST_ASSERT_EQUAL_HEX32(clock_before.last_apply_tick, ch.ctl.clock.last_apply_tick);
-    TEST_ASSERT_EQUAL_UINT64(clock_before.elapsed.ticks, ch.ctl.clock.elapsed.ticks);
+    TEST_ASSERT_EQUAL_UINT8(1u, ch.ctl.internal.loop.clock.stopped);
+    TEST_ASSERT_EQUAL_UINT32(ch.cfg.watchdog_periods, ch.ctl.internal.loop.clock.periods_without_measurement);
+    TEST_ASSERT_EQUAL_HEX32(clock_before.last_apply_tick, ch.ctl.internal.loop.clock.last_apply_tick);
+    TEST_ASSERT_EQUAL_UINT64(clock_before.elapsed.ticks, ch.ctl.internal.loop.clock.elapsed.ticks);
     /* The plant applies the stop; the next measurement is accepted, the filters restart at rest. */
     ch.u[0] = ch.u[1] = 0.0;
     ASSERT_PERIOD(APPLIED, ch_step(&ch, &cmd), cmd);
     ASSERT_OUTCOME(TVO_OUTCOME_APPLIED, cmd);
-    TEST_ASSERT_EQUAL_UINT8(0u, ch.ctl.clock.stopped);
+    TEST_ASSERT_EQUAL_UINT8(0u, ch.ctl.internal.loop.clock.stopped);
     for (int i = 0; i < 2; ++i) {
-        ASSERT_NEAR(0.0, ch.ctl.filter[0].output[i], 0.0);
+        ASSERT_NEAR(0.0, ch.ctl.internal.filter[0].output[i], 0.0);
     }
     ASSERT_STATUS(TVO_ERR_NULL, tvo_chain_controller_safe_stop(&ch.ctl, NULL));
     memset(&cmd, 0x5A, sizeof(cmd));
@@ -875,17 +875,17 @@ static void test_chain_safe_stop_drops_to_rest_without_advancing_the_clock(void)
 /* The filters, the held command and the last stamp: what a refused step must not touch. */
 static void assert_chain_untouched(const tvo_chain_controller_t *before, const tvo_chain_controller_t *after)
 {
-    TEST_ASSERT_EQUAL_MEMORY_MESSAGE(before->filter, after->filter, sizeof(after->filter), "filters");
-    TEST_ASSERT_EQUAL_MEMORY_MESSAGE(before->held.u, after->held.u, sizeof(after->held.u), "held command");
-    TEST_ASSERT_EQUAL_HEX32_MESSAGE(before->clock.last_stamp_tick, after->clock.last_stamp_tick, "last stamp");
-    TEST_ASSERT_EQUAL_UINT8_MESSAGE(before->clock.has_stamp, after->clock.has_stamp, "has stamp");
+    TEST_ASSERT_EQUAL_MEMORY_MESSAGE(before->internal.filter, after->internal.filter, sizeof(after->internal.filter), "filters");
+    TEST_ASSERT_EQUAL_MEMORY_MESSAGE(before->internal.held.u, after->internal.held.u, sizeof(after->internal.held.u), "held command");
+    TEST_ASSERT_EQUAL_HEX32_MESSAGE(before->internal.loop.clock.last_stamp_tick, after->internal.loop.clock.last_stamp_tick, "last stamp");
+    TEST_ASSERT_EQUAL_UINT8_MESSAGE(before->internal.loop.clock.has_stamp, after->internal.loop.clock.has_stamp, "has stamp");
 }
 
 static void test_chain_refused_measurement_leaves_filters_and_stamp_untouched(void)
 {
     ch_t ch;
     ch_filtered_running(&ch, 8u);
-    TEST_ASSERT_EQUAL_UINT8(1u, ch.ctl.filter[0].primed);
+    TEST_ASSERT_EQUAL_UINT8(1u, ch.ctl.internal.filter[0].primed);
     double xs[2][3];
     tvo_chain_measurement_t m;
     tvo_chain_command_t cmd;
@@ -925,7 +925,7 @@ static void test_chain_law_failure_after_the_filters_leaves_them_untouched(void)
     for (int i = 0; i < 8; ++i) {
         ASSERT_PERIOD(APPLIED, ch_step(&ch, &cmd), cmd);
     }
-    TEST_ASSERT_EQUAL_UINT8(1u, ch.ctl.filter[1].primed);
+    TEST_ASSERT_EQUAL_UINT8(1u, ch.ctl.internal.filter[1].primed);
     ASSERT_STATUS(TVO_OK, tvo_target_stream_update(&ch.target, 1000000u, TEST_CONST_STREAM(sample)));
     double xs[2][3];
     tvo_chain_measurement_t m;

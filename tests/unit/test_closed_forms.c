@@ -335,7 +335,7 @@ static void test_tracking_path_matches_the_general_path_bit_for_bit(void)
     static tvo_objective_t tracking_only;
     static tvo_objective_t general;
     static const int nothing = 0;
-    const tvo_term_t nothing_term = {nothing_gradient_jet, nothing_gradient_hessian, NULL, &nothing};
+    const tvo_term_t nothing_term = {nothing_gradient_jet, nothing_gradient_hessian, NULL, &nothing, TVO_TERM_GENERAL};
     unsigned tracking_paths = 0u;
     for (unsigned trial = 0; trial < 4u * TRIALS; ++trial) {
         const uint8_t robots = (uint8_t)(1u + trial % TVO_MAX_ROBOTS);
@@ -351,7 +351,7 @@ static void test_tracking_path_matches_the_general_path_bit_for_bit(void)
             }
             const tvo_real_t w[2] = {test_r(uniform(0.1, 5.0)), test_r(uniform(0.1, 5.0))};
             ASSERT_STATUS(TVO_OK, tvo_tracking_init(&terms[r], &targets[r], w, (uint8_t)(2u * robot)));
-            const tvo_term_t term = {tvo_tracking_gradient_jet, tvo_tracking_gradient_hessian, NULL, &terms[r]};
+            const tvo_term_t term = {tvo_tracking_gradient_jet, tvo_tracking_gradient_hessian, NULL, &terms[r], TVO_TERM_TRACKING};
             ASSERT_STATUS(TVO_OK, tvo_objective_add(&tracking_only, &term));
         }
         TEST_ASSERT_EQUAL_UINT8(1u, tracking_only.tracking_only);

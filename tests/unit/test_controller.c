@@ -493,7 +493,7 @@ static void test_unsaturated_command_is_the_flat_map_of_the_laws_demand(void)
     fx_set_pose(&fx_a, 0, 0.0, 0.0, 0.05);
     fx_start(&fx_a, 0);
     run_ok(&fx_a, 3);
-    const double v0 = test_d(fx_a.ctl.speed_state_mps[0]);
+    const double v0 = test_d(fx_a.ctl.internal.speed_state_mps[0]);
     const uint32_t stamp = fx_a.apply - FX_DELAY;
     tvo_measurement_t m = measure_now(&fx_a, stamp);
     m.heading_rad[0] = TVO_R(0.1);
@@ -664,7 +664,7 @@ static void test_pose_velocity_init_validates_as_the_full_init(void)
     ASSERT_STATUS(TVO_ERR_NULL, tvo_controller_init_pose_velocity(&fx_a.ctl, &fx_a.cfg, NULL, 0, NULL));
     ASSERT_STATUS(TVO_OK, init_pose_velocity(&fx_a));
     ASSERT_PARAM(TVO_PARAM_NONE, fx_a.bad_param);
-    TEST_ASSERT_TRUE(fx_a.ctl.position_velocity == NULL);
+    TEST_ASSERT_TRUE(fx_a.ctl.internal.position_velocity == NULL);
     /* One wrong field at a time: the same status and the same culprit as tvo_controller_init. */
     for (int field = 0; field < 6; ++field) {
         fx_static_point(&fx_a, 1.0, 1.0);
@@ -715,10 +715,10 @@ static void test_pose_velocity_init_steps_bit_identically(void)
         stopped |= ca.outcome == TVO_OUTCOME_STOPPED && ca.reason == TVO_REASON_WATCHDOG;
         assert_commands_bit_identical(&ca, &cb);
         TEST_ASSERT_EQUAL_MEMORY(&fx_a.ctl.telemetry, &fx_b.ctl.telemetry, sizeof(fx_a.ctl.telemetry));
-        TEST_ASSERT_EQUAL_MEMORY(fx_a.ctl.speed_state_mps, fx_b.ctl.speed_state_mps, sizeof(fx_a.ctl.speed_state_mps));
-        TEST_ASSERT_EQUAL_MEMORY(fx_a.ctl.heading_estimate_rad, fx_b.ctl.heading_estimate_rad,
-                                 sizeof(fx_a.ctl.heading_estimate_rad));
-        assert_commands_bit_identical(&fx_a.ctl.held, &fx_b.ctl.held);
+        TEST_ASSERT_EQUAL_MEMORY(fx_a.ctl.internal.speed_state_mps, fx_b.ctl.internal.speed_state_mps, sizeof(fx_a.ctl.internal.speed_state_mps));
+        TEST_ASSERT_EQUAL_MEMORY(fx_a.ctl.internal.heading_estimate_rad, fx_b.ctl.internal.heading_estimate_rad,
+                                 sizeof(fx_a.ctl.internal.heading_estimate_rad));
+        assert_commands_bit_identical(&fx_a.ctl.internal.held, &fx_b.ctl.internal.held);
     }
     TEST_ASSERT_TRUE(stopped); /* the run went through the watchdog's stop */
     ASSERT_PERIOD(APPLIED, fx_closed_loop_step(&fx_b, NULL), (fx_b).cmd); /* and came back */
@@ -1039,7 +1039,7 @@ static void test_one_good_measurement_resets_the_watchdog_count(void)
 static void state_of(const tvo_controller_t *ctl, tvo_controller_t *state)
 {
     memcpy(state, ctl, sizeof(*state));
-    memset(&state->work, 0, sizeof(state->work));
+    memset(&state->internal.work, 0, sizeof(state->internal.work));
 }
 
 static void assert_state_unchanged(const tvo_controller_t *before, const tvo_controller_t *ctl, const char *what)
@@ -1060,7 +1060,7 @@ static void test_a_refused_step_changes_nothing_its_clock_included(void)
     m.position_m[0][1] = TEST_NAN;
     ASSERT_PERIOD(HELD(NOT_FINITE), tvo_controller_step(&fx_a.ctl, &m, apply, &cmd), cmd);
     assert_state_unchanged(&before, &fx_a.ctl, "not finite");
-    assert_same_motion(&before.held, &cmd, 1);
+    assert_same_motion(&before.internal.held, &cmd, 1);
     ASSERT_OUTCOME(TVO_OUTCOME_HELD, cmd);
     m = measure_now(&fx_a, apply - FX_PERIOD - 1u);
     ASSERT_PERIOD(HELD(STALE), tvo_controller_step(&fx_a.ctl, &m, apply, &cmd), cmd);
@@ -1091,7 +1091,7 @@ static void test_miss_counts_one_period_and_is_the_step_without_a_measurement(vo
     fx_running(&fx_a);
     tvo_controller_t twin;
     memcpy(&twin, &fx_a.ctl, sizeof(twin));
-    const tvo_command_t in_force = fx_a.ctl.held;
+    const tvo_command_t in_force = fx_a.ctl.internal.held;
     const uint32_t apply = fx_a.apply;
     tvo_command_t cmd;
     tvo_command_t twin_cmd;
@@ -1100,8 +1100,8 @@ static void test_miss_counts_one_period_and_is_the_step_without_a_measurement(vo
     assert_same_motion(&in_force, &cmd, 1);
     ASSERT_OUTCOME(TVO_OUTCOME_HELD, cmd);
     assert_commands_bit_identical(&twin_cmd, &cmd);
-    TEST_ASSERT_EQUAL_HEX32(apply, fx_a.ctl.clock.last_apply_tick);
-    TEST_ASSERT_EQUAL_UINT32(1u, fx_a.ctl.clock.periods_without_measurement);
+    TEST_ASSERT_EQUAL_HEX32(apply, fx_a.ctl.internal.loop.clock.last_apply_tick);
+    TEST_ASSERT_EQUAL_UINT32(1u, fx_a.ctl.internal.loop.clock.periods_without_measurement);
     /* The period was counted: a measurement for it comes too late; a miss that does not advance
      * changes nothing. */
     tvo_controller_t before;
@@ -1114,7 +1114,7 @@ static void test_miss_counts_one_period_and_is_the_step_without_a_measurement(vo
     ASSERT_PERIOD(STOPPED(WATCHDOG), tvo_controller_miss(&fx_a.ctl, apply + (fx_a.cfg.watchdog_periods - 1u) * FX_PERIOD, &cmd), cmd);
     ASSERT_OUTCOME(TVO_OUTCOME_STOPPED, cmd);
     ASSERT_NEAR(0.0, cmd.speed_mps[0], 0.0);
-    TEST_ASSERT_EQUAL_UINT8(1u, fx_a.ctl.clock.stopped);
+    TEST_ASSERT_EQUAL_UINT8(1u, fx_a.ctl.internal.loop.clock.stopped);
     ASSERT_STATUS(TVO_ERR_NULL, tvo_controller_miss(&fx_a.ctl, apply, NULL));
     ASSERT_STATUS(TVO_ERR_NULL, tvo_controller_miss(NULL, apply, &cmd));
     ASSERT_OUTCOME(TVO_OUTCOME_STOPPED, cmd);
@@ -1126,8 +1126,8 @@ static void test_miss_counts_one_period_and_is_the_step_without_a_measurement(vo
 static void test_refusals_stop_after_the_watchdogs_span_and_the_next_step_starts_from_rest(void)
 {
     fx_running(&fx_a);
-    TEST_ASSERT_TRUE(fabs(test_d(fx_a.ctl.held.speed_mps[0])) > 2.0 * test_d(fx_a.cfg.accel_max_mps2) * h_s(&fx_a));
-    const uint32_t last_apply = fx_a.ctl.clock.last_apply_tick;
+    TEST_ASSERT_TRUE(fabs(test_d(fx_a.ctl.internal.held.speed_mps[0])) > 2.0 * test_d(fx_a.cfg.accel_max_mps2) * h_s(&fx_a));
+    const uint32_t last_apply = fx_a.ctl.internal.loop.clock.last_apply_tick;
     fx_a.meas_mode = FX_MEAS_NAN;
     tvo_command_t cmd;
     for (uint32_t i = 1; i < fx_a.cfg.watchdog_periods; ++i) {
@@ -1135,9 +1135,9 @@ static void test_refusals_stop_after_the_watchdogs_span_and_the_next_step_starts
     }
     ASSERT_PERIOD(STOPPED(WATCHDOG), fx_closed_loop_step(&fx_a, &cmd), cmd);
     ASSERT_OUTCOME(TVO_OUTCOME_STOPPED, cmd);
-    TEST_ASSERT_EQUAL_HEX32(last_apply + fx_a.cfg.watchdog_periods * FX_PERIOD, fx_a.ctl.clock.last_apply_tick);
-    TEST_ASSERT_EQUAL_UINT8(1u, fx_a.ctl.clock.stopped);
-    ASSERT_NEAR(0.0, fx_a.ctl.held.speed_mps[0], 0.0);
+    TEST_ASSERT_EQUAL_HEX32(last_apply + fx_a.cfg.watchdog_periods * FX_PERIOD, fx_a.ctl.internal.loop.clock.last_apply_tick);
+    TEST_ASSERT_EQUAL_UINT8(1u, fx_a.ctl.internal.loop.clock.stopped);
+    ASSERT_NEAR(0.0, fx_a.ctl.internal.held.speed_mps[0], 0.0);
     fx_a.meas_mode = FX_MEAS_NORMAL;
     ASSERT_PERIOD(APPLIED, fx_closed_loop_step(&fx_a, &cmd), cmd);
     ASSERT_OUTCOME(TVO_OUTCOME_APPLIED, cmd);
@@ -1352,7 +1352,7 @@ static void test_position_only_law_sees_the_filter_rotated_over_this_periods_car
         m.heading_rad[0] = TVO_R(0.3);
         m.heading_valid = (uint8_t)(i == 1u);
         const int outage = i >= 200u && i < 200u + fx_a.cfg.watchdog_periods + 3u;
-        const tvo_real_t held_turn_radps = fx_a.ctl.held.turn_rate_radps[0];
+        const tvo_real_t held_turn_radps = fx_a.ctl.internal.held.turn_rate_radps[0];
         tvo_command_t cmd;
         const tvo_status_t st = tvo_controller_step(&fx_a.ctl, outage ? NULL : &m, apply, &cmd);
         ASSERT_STATUS(TVO_OK, st);
@@ -1499,8 +1499,8 @@ static void test_check_changes_nothing_and_says_what_the_step_would(void)
 static void test_safe_stop_drops_to_rest_without_advancing_the_clock(void)
 {
     fx_running(&fx_a);
-    TEST_ASSERT_TRUE(fx_a.ctl.held.speed_mps[0] != TVO_R(0.0)); /* it was moving */
-    const tvo_sample_clock_t clock_before = fx_a.ctl.clock;
+    TEST_ASSERT_TRUE(fx_a.ctl.internal.held.speed_mps[0] != TVO_R(0.0)); /* it was moving */
+    const tvo_sample_clock_t clock_before = fx_a.ctl.internal.loop.clock;
     tvo_command_t cmd;
     memset(&cmd, 0x5A, sizeof(cmd));
     ASSERT_PERIOD(STOPPED(STOP_REQUESTED), tvo_controller_safe_stop(&fx_a.ctl, &cmd), cmd);
@@ -1508,24 +1508,24 @@ static void test_safe_stop_drops_to_rest_without_advancing_the_clock(void)
     for (int r = 0; r < TVO_MAX_ROBOTS; ++r) {
         ASSERT_NEAR(0.0, cmd.speed_mps[r], 0.0);
         ASSERT_NEAR(0.0, cmd.turn_rate_radps[r], 0.0);
-        ASSERT_NEAR(0.0, fx_a.ctl.held.speed_mps[r], 0.0);
-        ASSERT_NEAR(0.0, fx_a.ctl.held.turn_rate_radps[r], 0.0);
-        ASSERT_NEAR(0.0, fx_a.ctl.speed_state_mps[r], 0.0);
+        ASSERT_NEAR(0.0, fx_a.ctl.internal.held.speed_mps[r], 0.0);
+        ASSERT_NEAR(0.0, fx_a.ctl.internal.held.turn_rate_radps[r], 0.0);
+        ASSERT_NEAR(0.0, fx_a.ctl.internal.speed_state_mps[r], 0.0);
     }
     for (int q = 0; q < TVO_MAX_EQUALITIES; ++q) {
-        ASSERT_NEAR(0.0, fx_a.ctl.multiplier_rate[q], 0.0);
+        ASSERT_NEAR(0.0, fx_a.ctl.internal.multiplier_rate[q], 0.0);
     }
-    TEST_ASSERT_EQUAL_UINT8(1u, fx_a.ctl.clock.stopped);
-    TEST_ASSERT_EQUAL_UINT32(fx_a.cfg.watchdog_periods, fx_a.ctl.clock.periods_without_measurement);
-    TEST_ASSERT_EQUAL_HEX32(clock_before.last_apply_tick, fx_a.ctl.clock.last_apply_tick);
-    TEST_ASSERT_EQUAL_UINT64(clock_before.elapsed.ticks, fx_a.ctl.clock.elapsed.ticks);
-    TEST_ASSERT_EQUAL_HEX32(clock_before.last_stamp_tick, fx_a.ctl.clock.last_stamp_tick);
+    TEST_ASSERT_EQUAL_UINT8(1u, fx_a.ctl.internal.loop.clock.stopped);
+    TEST_ASSERT_EQUAL_UINT32(fx_a.cfg.watchdog_periods, fx_a.ctl.internal.loop.clock.periods_without_measurement);
+    TEST_ASSERT_EQUAL_HEX32(clock_before.last_apply_tick, fx_a.ctl.internal.loop.clock.last_apply_tick);
+    TEST_ASSERT_EQUAL_UINT64(clock_before.elapsed.ticks, fx_a.ctl.internal.loop.clock.elapsed.ticks);
+    TEST_ASSERT_EQUAL_HEX32(clock_before.last_stamp_tick, fx_a.ctl.internal.loop.clock.last_stamp_tick);
     /* The plant stops (it applies the safe stop); the next measurement resumes from rest. */
     fx_a.cmd = cmd;
     ASSERT_PERIOD(APPLIED, fx_closed_loop_step(&fx_a, &cmd), cmd);
     ASSERT_OUTCOME(TVO_OUTCOME_APPLIED, cmd);
     assert_command_finite(&cmd, 1);
-    TEST_ASSERT_EQUAL_UINT8(0u, fx_a.ctl.clock.stopped);
+    TEST_ASSERT_EQUAL_UINT8(0u, fx_a.ctl.internal.loop.clock.stopped);
     ASSERT_LE(fabs(test_d(cmd.speed_mps[0])), test_d(fx_a.cfg.accel_max_mps2) * h_s(&fx_a) + TEST_TOL(8, 1.0),
               "speed after the safe stop");
     run_ok(&fx_a, 20);
@@ -1559,14 +1559,14 @@ typedef struct {
 static void trace_of(const tvo_controller_t *ctl, trace_t *t)
 {
     memset(t, 0, sizeof(*t));
-    memcpy(&t->velocity_filter, &ctl->velocity_filter, sizeof(t->velocity_filter));
-    memcpy(t->speed_state_mps, ctl->speed_state_mps, sizeof(t->speed_state_mps));
-    memcpy(t->heading_estimate_rad, ctl->heading_estimate_rad, sizeof(t->heading_estimate_rad));
-    memcpy(t->multiplier, ctl->multiplier, sizeof(t->multiplier));
-    memcpy(&t->held, &ctl->held, sizeof(t->held));
-    t->last_stamp_tick = ctl->clock.last_stamp_tick;
-    t->has_stamp = ctl->clock.has_stamp;
-    t->speed_mismatch_periods = ctl->speed_mismatch_periods;
+    memcpy(&t->velocity_filter, &ctl->internal.velocity_filter, sizeof(t->velocity_filter));
+    memcpy(t->speed_state_mps, ctl->internal.speed_state_mps, sizeof(t->speed_state_mps));
+    memcpy(t->heading_estimate_rad, ctl->internal.heading_estimate_rad, sizeof(t->heading_estimate_rad));
+    memcpy(t->multiplier, ctl->internal.multiplier, sizeof(t->multiplier));
+    memcpy(&t->held, &ctl->internal.held, sizeof(t->held));
+    t->last_stamp_tick = ctl->internal.loop.clock.last_stamp_tick;
+    t->has_stamp = ctl->internal.loop.clock.has_stamp;
+    t->speed_mismatch_periods = ctl->internal.speed_mismatch_periods;
 }
 
 static void assert_no_trace(const trace_t *before, const tvo_controller_t *ctl)
@@ -1596,7 +1596,7 @@ static void test_refused_measurement_leaves_filter_speed_state_and_stamp_untouch
         fx_start(&fx_a, 0);
         run_ok(&fx_a, 10);
         if (position_only) {
-            TEST_ASSERT_EQUAL_UINT8(1u, fx_a.ctl.velocity_filter.primed);
+            TEST_ASSERT_EQUAL_UINT8(1u, fx_a.ctl.internal.velocity_filter.primed);
         }
         trace_t before;
         tvo_command_t cmd;
@@ -1639,7 +1639,7 @@ static void test_law_failure_after_the_estimate_leaves_the_filter_untouched(void
     fx_set_pose(&fx_a, 0, 0.0, 0.0, 0.0);
     fx_start(&fx_a, 0);
     run_ok(&fx_a, 10);
-    TEST_ASSERT_EQUAL_UINT8(1u, fx_a.ctl.velocity_filter.primed);
+    TEST_ASSERT_EQUAL_UINT8(1u, fx_a.ctl.internal.velocity_filter.primed);
     ASSERT_STATUS(TVO_OK, tvo_target_stream_update(&fx_a.target[0], 1000000u, TEST_CONST_STREAM(sample)));
     trace_t before;
     trace_of(&fx_a.ctl, &before);
@@ -1713,7 +1713,7 @@ static void test_speed_mismatch_is_not_flagged_for_a_plant_that_follows(void)
         ASSERT_PERIOD(APPLIED, step_reporting_speed(&fx_a, test_d(fx_a.cmd.speed_mps[0]), &cmd), cmd);
         ASSERT_FLAG_CLEAR(cmd.flags, TVO_FLAG_SPEED_MISMATCH);
     }
-    TEST_ASSERT_EQUAL_UINT32(0u, fx_a.ctl.speed_mismatch_periods);
+    TEST_ASSERT_EQUAL_UINT32(0u, fx_a.ctl.internal.speed_mismatch_periods);
     ASSERT_LE(fx_tracking_error(&fx_a, 0), 0.05, "tracking error of the truthful plant");
 }
 

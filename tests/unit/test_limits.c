@@ -40,7 +40,7 @@ static void setup_one_robot(int how)
     ASSERT_STATUS(TVO_OK, tvo_objective_init(&fx.objective, 2u));
     ASSERT_STATUS(TVO_OK, tvo_tracking_init(&fx.term[0], &fx.target[0], weight, 0u));
     if (how == CLOSED_FORM) {
-        const tvo_term_t spec = {tvo_tracking_gradient_jet, tvo_tracking_gradient_hessian, NULL, &fx.term[0]};
+        const tvo_term_t spec = {tvo_tracking_gradient_jet, tvo_tracking_gradient_hessian, NULL, &fx.term[0], TVO_TERM_TRACKING};
         ASSERT_STATUS(TVO_OK, tvo_objective_add(&fx.objective, &spec));
     } else if (how == TRACKING_ADD) {
         ASSERT_STATUS(TVO_OK, tvo_tracking_add(&fx.objective, &fx.term[0]));

@@ -99,6 +99,32 @@ static void test_add_term_rejects_null(void)
     TEST_ASSERT_EQUAL_UINT8(0, obj.term_count);
 }
 
+/* A term says what it is: a general term needs its gradient jet, a tracking term none (its slot keeps
+ * the kind and the term, callbacks NULL); another kind is refused, and nothing is appended then. */
+static void test_add_dispatches_on_the_term_kind(void)
+{
+    tvo_objective_t obj;
+    const_term_t c = {TVO_R(1.0)};
+    ASSERT_STATUS(TVO_OK, tvo_objective_init(&obj, 2));
+    const tvo_term_t no_callback = {NULL, NULL, NULL, &c, TVO_TERM_GENERAL};
+    ASSERT_STATUS(TVO_ERR_NULL, tvo_objective_add(&obj, &no_callback));
+    const tvo_term_t unknown = {const_gradient_jet, NULL, NULL, &c, (uint8_t)(TVO_TERM_TRACKING + 1)};
+    ASSERT_STATUS(TVO_ERR_PARAM, tvo_objective_add(&obj, &unknown));
+    TEST_ASSERT_EQUAL_UINT8(0, obj.term_count);
+    const tvo_term_t tracking = {const_gradient_jet, NULL, NULL, &c, TVO_TERM_TRACKING};
+    ASSERT_STATUS(TVO_OK, tvo_objective_add(&obj, &tracking));
+    TEST_ASSERT_EQUAL_UINT8(TVO_TERM_TRACKING, obj.terms[0].kind);
+    TEST_ASSERT_NULL(obj.terms[0].gradient_jet);
+    TEST_ASSERT_EQUAL_PTR(&c, obj.terms[0].term);
+    TEST_ASSERT_EQUAL_UINT8(1, obj.tracking_only);
+    TEST_ASSERT_NOT_NULL(obj.general_path); /* the public add links the law's general path */
+    const tvo_term_t general = {const_gradient_jet, NULL, NULL, &c, TVO_TERM_GENERAL};
+    ASSERT_STATUS(TVO_OK, tvo_objective_add(&obj, &general));
+    TEST_ASSERT_EQUAL_UINT8(TVO_TERM_GENERAL, obj.terms[1].kind);
+    TEST_ASSERT_EQUAL_PTR(const_gradient_jet, obj.terms[1].gradient_jet);
+    TEST_ASSERT_EQUAL_UINT8(0, obj.tracking_only);
+}
+
 static void test_gradient_is_the_sum_of_the_terms(void)
 {
     /* grad = y(tau) + (1, 2, 3) * 0.5 + (1, 2, 3) * -2 = y(tau) - 1.5 (1, 2, 3) in the value coefficient. */
@@ -182,6 +208,7 @@ int main(void)
     RUN_TEST(test_init_rejects_dimension_zero_and_above_maximum);
     RUN_TEST(test_add_term_stops_at_capacity);
     RUN_TEST(test_add_term_rejects_null);
+    RUN_TEST(test_add_dispatches_on_the_term_kind);
     RUN_TEST(test_gradient_is_the_sum_of_the_terms);
     RUN_TEST(test_gradient_reports_the_first_failing_term);
     RUN_TEST(test_gradient_reports_non_finite_sum);

@@ -255,7 +255,7 @@ static void test_closed_form_refuses_like_the_target_did(void)
 
     static tvo_objective_t objective;
     ASSERT_STATUS(TVO_OK, tvo_objective_init(&objective, 2u));
-    const tvo_term_t closed = {tvo_tracking_gradient_jet, tvo_tracking_gradient_hessian, NULL, &blank};
+    const tvo_term_t closed = {tvo_tracking_gradient_jet, tvo_tracking_gradient_hessian, NULL, &blank, TVO_TERM_TRACKING};
     ASSERT_STATUS(TVO_OK, tvo_objective_add(&objective, &closed));
     TEST_ASSERT_EQUAL_UINT8(1u, objective.tracking_only);
     const tvo_real_t gains[2] = {TVO_R(4.0), TVO_R(4.0)};

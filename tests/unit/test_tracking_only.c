@@ -84,7 +84,7 @@ static void make_pair(uint8_t robots, unsigned kind, uint8_t k)
         make_target(&pair.target[r], kind);
         ASSERT_STATUS(TVO_OK, tvo_tracking_init(&pair.term[r], &pair.target[r], w, (uint8_t)(2u * r)));
         ASSERT_STATUS(TVO_OK, tvo_tracking_add(&pair.tracking_only, &pair.term[r]));
-        const tvo_term_t spec = {tvo_tracking_gradient_jet, tvo_tracking_gradient_hessian, NULL, &pair.term[r]};
+        const tvo_term_t spec = {tvo_tracking_gradient_jet, tvo_tracking_gradient_hessian, NULL, &pair.term[r], TVO_TERM_TRACKING};
         ASSERT_STATUS(TVO_OK, tvo_objective_add(&pair.general, &spec));
     }
     TEST_ASSERT_NULL(pair.tracking_only.general_path);
@@ -323,7 +323,7 @@ static void test_tracking_terms_alone_refuse_what_the_general_path_refuses_with_
     ASSERT_STATUS(TVO_OK, tvo_tracking_init(&heavy, &pair.target[0], huge_w, 0u));
     ASSERT_STATUS(TVO_OK, tvo_objective_init(&heavy_alone, 2u));
     ASSERT_STATUS(TVO_OK, tvo_objective_init(&heavy_general, 2u));
-    const tvo_term_t heavy_spec = {tvo_tracking_gradient_jet, tvo_tracking_gradient_hessian, NULL, &heavy};
+    const tvo_term_t heavy_spec = {tvo_tracking_gradient_jet, tvo_tracking_gradient_hessian, NULL, &heavy, TVO_TERM_TRACKING};
     for (unsigned n = 0; n < 2u; ++n) {
         ASSERT_STATUS(TVO_OK, tvo_tracking_add(&heavy_alone, &heavy));
         ASSERT_STATUS(TVO_OK, tvo_objective_add(&heavy_general, &heavy_spec));
@@ -380,7 +380,7 @@ static void test_an_output_without_a_term_is_refused_without_the_general_path(vo
     ASSERT_STATUS(TVO_OK, tvo_objective_init(&tracking_only, 4u));
     ASSERT_STATUS(TVO_OK, tvo_objective_init(&general, 4u));
     ASSERT_STATUS(TVO_OK, tvo_tracking_add(&tracking_only, &pair.term[0]));
-    const tvo_term_t spec = {tvo_tracking_gradient_jet, tvo_tracking_gradient_hessian, NULL, &pair.term[0]};
+    const tvo_term_t spec = {tvo_tracking_gradient_jet, tvo_tracking_gradient_hessian, NULL, &pair.term[0], TVO_TERM_TRACKING};
     ASSERT_STATUS(TVO_OK, tvo_objective_add(&general, &spec));
     const tvo_real_t gains[2] = {TVO_R(25.0), TVO_R(10.0)};
     tvo_law_init(&pair.law, 2u, 4u, gains);

@@ -23,6 +23,7 @@
 
 #include "tvo/dirty_derivative.h"
 #include "tvo/law.h"
+#include "tvo/loop_state.h"
 #include "tvo/objective.h"
 #include "tvo/sample_clock.h"
 
@@ -84,16 +85,18 @@ typedef struct {
     tvo_law_report_t report;                                   /* what the law reports to the step */
 } tvo_chain_controller_work_t;
 
+/* cfg is the firmware's to read (the validated configuration); everything else is the controller's own. */
 typedef struct {
     tvo_chain_config_t cfg;
-    tvo_law_t law;
-    tvo_chain_controller_work_t work; /* scratch, off the step's stack: no state between steps */
-    const tvo_objective_t *objective;
-    tvo_sample_clock_t clock;
-    tvo_dirty_derivative_t filter[TVO_MAX_RELATIVE_DEGREE - 1]; /* cascade: y -> y' -> y'' */
-    tvo_real_t period_s;
-    tvo_chain_command_t held;
-    uint8_t initialized;
+    struct {
+        /* not part of the API: read through the accessors (the layout may change with any release) */
+        tvo_law_t law;
+        tvo_chain_controller_work_t work; /* scratch, off the step's stack: no state between steps */
+        tvo_loop_state_t loop;            /* the objective, h, the clock */
+        tvo_dirty_derivative_t filter[TVO_MAX_RELATIVE_DEGREE - 1]; /* cascade: y -> y' -> y'' */
+        tvo_chain_command_t held;
+        uint8_t initialized;
+    } internal;
 } tvo_chain_controller_t;
 
 /** k = 2, poles at -1.6 (a = 2.56, 3.2), h = 10 ms, tau = h/2 compensated, T_f = 0.05 s, |u| <= 1e3. */

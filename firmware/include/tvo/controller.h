@@ -54,6 +54,7 @@
 
 #include "tvo/dirty_derivative.h"
 #include "tvo/law.h"
+#include "tvo/loop_state.h"
 #include "tvo/objective.h"
 #include "tvo/sample_clock.h"
 #include "tvo/unicycle.h"
@@ -175,26 +176,29 @@ typedef struct {
     void (*commit)(tvo_controller_t *ctl);
 } tvo_position_velocity_t;
 
+/* cfg and telemetry are the firmware's to read (the validated configuration; what the last applied
+ * step computed); everything else is the controller's own. */
 struct tvo_controller {
     tvo_controller_config_t cfg;
-    tvo_law_t law;
-    tvo_controller_work_t work; /* scratch, off the step's stack: no state between steps */
-    const tvo_objective_t *objective;
-    tvo_dirty_derivative_t velocity_filter;
-    tvo_real_t period_s;
-    tvo_sample_clock_t clock;        /* ticks, elapsed time, stamps, watchdog */
-    tvo_real_t speed_state_mps[TVO_MAX_ROBOTS];   /* dynamic extension v */
-    tvo_real_t heading_estimate_rad[TVO_MAX_ROBOTS]; /* position-only mode: dead-reckoned heading (else unused) */
-    tvo_real_t multiplier[TVO_ARRAY_LEN(TVO_MAX_EQUALITIES)];      /* nu of equality constraints, at apply_tick */
-    tvo_real_t multiplier_rate[TVO_ARRAY_LEN(TVO_MAX_EQUALITIES)]; /* nu' */
-    tvo_command_t held;              /* command applied over the current interval */
+    struct {
+        /* not part of the API: read through the accessors (the layout may change with any release) */
+        tvo_law_t law;
+        tvo_controller_work_t work; /* scratch, off the step's stack: no state between steps */
+        tvo_dirty_derivative_t velocity_filter;
+        tvo_loop_state_t loop;           /* the objective, h, the clock (ticks, stamps, watchdog) */
+        tvo_real_t speed_state_mps[TVO_MAX_ROBOTS];   /* dynamic extension v */
+        tvo_real_t heading_estimate_rad[TVO_MAX_ROBOTS]; /* position-only mode: dead-reckoned heading (else unused) */
+        tvo_real_t multiplier[TVO_ARRAY_LEN(TVO_MAX_EQUALITIES)];      /* nu of equality constraints, at apply_tick */
+        tvo_real_t multiplier_rate[TVO_ARRAY_LEN(TVO_MAX_EQUALITIES)]; /* nu' */
+        tvo_command_t held;              /* command applied over the current interval */
+        uint32_t speed_mismatch_periods; /* accepted steps in a row whose measured speed contradicted the held one */
+        uint32_t speed_mismatch_holdoff; /* accepted periods the mismatch stop still lasts */
+        tvo_real_t speed_step_max_mps;   /* accel_max h: the most a command's speed may differ from the one in force */
+        tvo_real_t measured_speed_limit_mps; /* a measured speed beyond it is refused (TVO_MEASURED_SPEED_FACTOR) */
+        const tvo_position_velocity_t *position_velocity; /* set by tvo_controller_init only: NULL links none */
+        uint8_t initialized;
+    } internal;
     tvo_controller_telemetry_t telemetry;
-    uint32_t speed_mismatch_periods; /* accepted steps in a row whose measured speed contradicted the held one */
-    uint32_t speed_mismatch_holdoff; /* accepted periods the mismatch stop still lasts */
-    tvo_real_t speed_step_max_mps;   /* accel_max h: the most a command's speed may differ from the one in force */
-    tvo_real_t measured_speed_limit_mps; /* a measured speed beyond it is refused (TVO_MEASURED_SPEED_FACTOR) */
-    const tvo_position_velocity_t *position_velocity; /* set by tvo_controller_init only: NULL links none */
-    uint8_t initialized;
 };
 
 /** The paper's defaults: k_p = 40, k_d = 13, omega_max = 2 pi, accel_max = 15, h = 10 ms, tau = h/2. */

@@ -67,23 +67,34 @@ typedef tvo_status_t (*tvo_gradient_hessian_fn)(const void *term, const tvo_jet_
 /**
  * The law's general path (every kind of term, the Hessian from jets and closed forms, the KKT solve),
  * reached through the objective: every public add function (tvo_objective_add*, for any term, a
- * tracking term's closed form included) and tvo_objective_reserve_multipliers set it; only
- * tvo_tracking_add does not, so a firmware whose objective holds tracking terms only does not link it. The argument is the law's workspace
- * (tvo_law_workspace_t), which holds the call's arguments.
+ * TVO_TERM_TRACKING term included) and tvo_objective_reserve_multipliers set it; only tvo_tracking_add
+ * does not, so a firmware whose objective holds tracking terms only does not link it. The argument is
+ * the law's workspace (tvo_law_workspace_t), which holds the call's arguments.
  */
 typedef tvo_status_t (*tvo_general_path_fn)(void *law_workspace);
 
+/** What a term is, which the law and the objective dispatch on. */
+typedef enum {
+    /** Any term, through its callbacks. */
+    TVO_TERM_GENERAL = 0,
+    /** A tracking term (tvo/tracking.h, term a tvo_tracking_term_t) by its closed form: the callbacks
+     *  are not used (stored NULL); they are named only where the general path calls them, so the law's
+     *  tracking path for objectives of tracking terms only links neither. */
+    TVO_TERM_TRACKING = 1
+} tvo_term_kind_t;
+
 typedef struct {
-    tvo_gradient_jet_fn gradient_jet;         /* required: the general mechanism and the reference (NULL
-                                                 only in a tracking slot, see terms[] below) */
+    tvo_gradient_jet_fn gradient_jet;         /* required for a general term: the general mechanism and
+                                                 the reference */
     tvo_gradient_hessian_fn gradient_hessian; /* NULL: the Hessian comes from jets */
     tvo_constraint_max_fn constraint_max;     /* NULL for terms without inequality constraints */
     const void *term;
+    uint8_t kind;                             /* tvo_term_kind_t */
 } tvo_term_t;
 
 typedef struct {
-    tvo_term_t terms[TVO_MAX_TERMS]; /* a tracking term's closed form is kept as {NULL, NULL, NULL, term}: its
-                                        callbacks are named only where the general path calls them */
+    tvo_term_t terms[TVO_MAX_TERMS]; /* as the add functions keep them (a tracking term: its kind, and the
+                                        term; callbacks NULL) */
     uint8_t term_count;
     uint8_t primal_dim;  /* flat-output dimension m (2 per robot) */
     uint8_t dual_dim;    /* equality multipliers q, reserved by tvo_objective_reserve_multipliers */
@@ -103,7 +114,9 @@ tvo_status_t tvo_objective_init(tvo_objective_t *objective, uint8_t primal_dim);
 tvo_status_t tvo_objective_add_term(tvo_objective_t *objective, tvo_gradient_jet_fn gradient_jet,
                                     const void *term);
 
-/** Appends a term described in full (gradient_jet and term required; the rest may be NULL). */
+/** Appends a term described in full: term required; a general term needs gradient_jet (the rest may
+ *  be NULL); a TVO_TERM_TRACKING term (a tvo_tracking_term_t) needs no callback. Another kind is
+ *  TVO_ERR_PARAM. */
 tvo_status_t tvo_objective_add(tvo_objective_t *objective, const tvo_term_t *term);
 
 #ifdef __cplusplus

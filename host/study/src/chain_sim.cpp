@@ -105,7 +105,7 @@ SimResult run_chain(const SimConfig &cfg, std::vector<TraceRow> *trace)
     target.kind = TVO_TARGET_CIRCLE;
     tvo_tracking_term_t term;
     const tvo_real_t weight[2] = {static_cast<tvo_real_t>(1.0), static_cast<tvo_real_t>(1.0)};
-    const tvo_term_t tracking = {tvo_tracking_gradient_jet, tvo_tracking_gradient_hessian, nullptr, &term};
+    const tvo_term_t tracking = {tvo_tracking_gradient_jet, tvo_tracking_gradient_hessian, nullptr, &term, TVO_TERM_TRACKING};
     tvo_objective_t objective;
     if (tvo_tracking_init(&term, &target, weight, 0u) != TVO_OK || tvo_objective_init(&objective, kDim) != TVO_OK ||
         tvo_objective_add(&objective, &tracking) != TVO_OK) {

@@ -1,13 +1,13 @@
 /*
- * Private to the core: the tracking term's closed form without input checks, for a caller that has
- * validated them (tvo_tracking_gradient_hessian, and the law's path for objectives of tracking terms
- * only, which needs no Hessian matrix).
+ * Internal: the tracking term's closed form, unchecked (TVO_ASSERT in debug builds), for a caller
+ * that has validated its inputs (tvo_tracking_gradient_hessian, which checks them, and the law's path
+ * for objectives of tracking terms only, which needs no Hessian matrix).
  */
 #ifndef TVO_TRACKING_KERNEL_H
 #define TVO_TRACKING_KERNEL_H
 
 #include "shape.h"
-#include "target_kernel.h"
+#include "internal/target_kernel.h"
 #include "tvo/tracking.h"
 
 /* grad += W (y - y_d) for coefficients 0 .. count-1, y_d's j-th coefficient being deriv[j] scale[j]. */
@@ -32,12 +32,13 @@ TVO_SHAPE_BODY void tracking_add_weighted_error(const tvo_tracking_term_t *self,
  * offset + 2 <= the objective's dimension and a finite t->t_s (its target's pointer is valid from
  * tvo_tracking_init). Returns the target's status.
  */
-static inline tvo_status_t tracking_add_unchecked(const tvo_tracking_term_t *self, const tvo_jet_t *y,
-                                                  const tvo_time_jet_t *t, tvo_real_t rate, uint8_t order,
-                                                  tvo_jet_t *grad, tvo_real_t *diagonal, unsigned diagonal_stride)
+static inline tvo_status_t tracking_add(const tvo_tracking_term_t *self, const tvo_jet_t *y, const tvo_time_jet_t *t,
+                                        tvo_real_t rate, uint8_t order, tvo_jet_t *grad, tvo_real_t *diagonal,
+                                        unsigned diagonal_stride)
 {
+    TVO_ASSERT(self != NULL && self->target != NULL && y != NULL && t != NULL && grad != NULL && diagonal != NULL);
     tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2];
-    const tvo_status_t st = target_derivatives_unchecked(self->target, t, order, deriv);
+    const tvo_status_t st = target_derivatives(self->target, t, order, deriv);
     if (st != TVO_OK) {
         return st;
     }

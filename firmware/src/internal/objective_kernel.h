@@ -1,5 +1,5 @@
 /*
- * Private to the core: the objective's sum over its terms, for the law, which calls it without the
+ * Internal: the objective's sum over its terms, for the law, which calls it without the
  * public entries' extra frame (its deepest call path runs through it into every term).
  */
 #ifndef TVO_OBJECTIVE_KERNEL_H
@@ -22,18 +22,12 @@ tvo_status_t objective_sum_terms(const tvo_objective_t *objective, const tvo_jet
                                  uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian, sum_mode_t mode,
                                  uint8_t *jet_terms);
 
-/* The tracking slot: a tracking term's closed form is kept as {NULL, NULL, NULL, term} (the public add
- * functions refuse a NULL gradient_jet, so no other term looks like it). Its callbacks,
- * tvo_tracking_gradient_jet and _hessian, are named only where the general path calls them
- * (objective_sum_terms): the law's tracking path needs neither, and a firmware without the general
- * path links neither. A slot whose term was set to NULL by hand stays one: its callbacks refuse it. */
-static inline int objective_slot_is_tracking(const tvo_term_t *slot)
-{
-    return slot->gradient_jet == NULL && slot->gradient_hessian == NULL && slot->constraint_max == NULL;
-}
-
-/* Appends a tracking term's slot, without linking the law's general path (tvo_tracking_add's way;
- * the public add functions call it for a tracking term and then set objective->general_path). */
+/* Appends a tracking term (kind TVO_TERM_TRACKING, callbacks NULL), without linking the law's general
+ * path (tvo_tracking_add's way; tvo_objective_add calls it for such a term and then sets
+ * objective->general_path). Its callbacks, tvo_tracking_gradient_jet and _hessian, are named only
+ * where the general path calls them (objective_sum_terms): the law's tracking path needs neither, and
+ * a firmware without the general path links neither. A term set to NULL by hand: its callbacks
+ * refuse it. */
 tvo_status_t objective_append_tracking(tvo_objective_t *objective, const void *tracking_term);
 
 #endif /* TVO_OBJECTIVE_KERNEL_H */

@@ -1,7 +1,7 @@
 /*
- * Private to the core: the relaxed barrier's weight jet without argument checks, inline, so that a
- * constraint term's shape copy (src/shape.h) computes it with the jet order a constant.
- * tvo_barrier_weight_on_schedule checks, then calls the same code.
+ * Internal: the relaxed barrier's weight jet, unchecked (TVO_ASSERT in debug builds), inline, so that
+ * a constraint term's shape copy (src/shape.h) computes it with the jet order a constant.
+ * tvo_barrier_weight_on_schedule checks its arguments, then calls it.
  */
 #ifndef TVO_BARRIER_KERNEL_H
 #define TVO_BARRIER_KERNEL_H
@@ -9,12 +9,14 @@
 #include "shape.h"
 #include "internal/barrier.h"
 
-/* tvo_barrier_weight_on_schedule for valid arguments (order <= TVO_JET_MAX_ORDER). */
-TVO_SHAPE_BODY tvo_status_t barrier_weight_unchecked(const tvo_barrier_t *barrier,
-                                                     const tvo_barrier_schedule_jet_t *schedule,
-                                                     const tvo_jet_t *f_jet, const uint8_t order, tvo_jet_t *w_jet,
-                                                     tvo_real_t *dw_df)
+/* w(f) on the schedule's c and slack jets, and dw/df at tau = 0 (dw_df may be NULL), for valid
+ * arguments (order <= TVO_JET_MAX_ORDER). TVO_ERR_NUMERIC when a result is not finite. */
+TVO_SHAPE_BODY tvo_status_t barrier_weight(const tvo_barrier_t *barrier, const tvo_barrier_schedule_jet_t *schedule,
+                                           const tvo_jet_t *f_jet, const uint8_t order, tvo_jet_t *w_jet,
+                                           tvo_real_t *dw_df)
 {
+    TVO_ASSERT(barrier != NULL && schedule != NULL && f_jet != NULL && w_jet != NULL);
+    TVO_ASSERT(order <= TVO_JET_MAX_ORDER);
     tvo_jet_t sigma;
     tvo_jet_sub(&schedule->slack, f_jet, order, &sigma);
     /* c sigma / delta0 = 1 + x: the branch is the logarithm when it is >= 1 at tau = 0. */
