@@ -2,7 +2,8 @@
  * The barrier's s0 chosen by the controllers' step (the objective's start rule, tvo/problem.h), one
  * robot behind a half-space x <= 1 (f = x - 1), so a start at x > 1 is infeasible and s0 > 0:
  *   - refused first measurements (not finite, stale, a target not ready yet) leave s0 at 0, not
- *     chosen, though a finite one would have chosen another s0 than the accepted one;
+ *     chosen, though a finite one would have chosen another s0 than the accepted one; a refused
+ *     step leaves the problem as it was, byte for byte;
  *   - the first accepted measurement chooses s0 exactly as tvo_problem_choose_slack would from its
  *     positions at t = 0, and later ones change nothing;
  *   - s0 chosen by tvo_problem_choose_slack before the first step is kept;
@@ -49,10 +50,19 @@ static tvo_real_t reference_slack(uint8_t k, tvo_real_t x, tvo_real_t y1)
     return reference.barrier.slack0;
 }
 
+static tvo_problem_t before; /* the problem before a refused step */
+
+static void snapshot(void)
+{
+    memcpy(&before, &problem, sizeof(problem));
+}
+
+/* s0 not chosen, and the refused step left the problem as it was, byte for byte. */
 static void assert_not_chosen(void)
 {
     TEST_ASSERT_EQUAL_UINT8(0u, problem.slack_chosen);
     TEST_ASSERT_TRUE(problem.barrier.slack0 == TVO_R(0.0));
+    TEST_ASSERT_EQUAL_MEMORY(&before, &problem, sizeof(problem));
 }
 
 /* ---- unicycle ---------------------------------------------------------------------------------- */
@@ -87,10 +97,12 @@ static void test_unicycle_refused_first_measurements_leave_s0_unchosen(void)
 
     unicycle_measure(TVO_R(3.0), stamp, &m);
     m.position_m[0][1] = TEST_NAN;
+    snapshot();
     ASSERT_PERIOD(HELD(NOT_FINITE), tvo_controller_step(&fx.ctl, &m, fx.apply, &cmd), cmd);
     assert_not_chosen();
 
     unicycle_measure(TVO_R(3.0), fx.apply - fx.cfg.period_ticks - 1u, &m);
+    snapshot();
     ASSERT_PERIOD(HELD(STALE), tvo_controller_step(&fx.ctl, &m, fx.apply, &cmd), cmd);
     assert_not_chosen();
 
@@ -99,8 +111,12 @@ static void test_unicycle_refused_first_measurements_leave_s0_unchosen(void)
     TEST_ASSERT_EQUAL_UINT8(1u, problem.slack_chosen);
     TEST_ASSERT_TRUE(problem.barrier.slack0 == s0_accepted);
 
-    /* Later periods change nothing. */
+    /* Later periods change nothing, refused or applied. */
     fx.apply += fx.cfg.period_ticks;
+    unicycle_measure(TVO_R(3.0), fx.apply - fx.cfg.period_ticks - 1u, &m);
+    snapshot();
+    ASSERT_PERIOD(HELD(STALE), tvo_controller_step(&fx.ctl, &m, fx.apply, &cmd), cmd);
+    TEST_ASSERT_EQUAL_MEMORY(&before, &problem, sizeof(problem));
     unicycle_measure(TVO_R(3.0), fx.apply - fx.cfg.delay_ticks, &m);
     ASSERT_PERIOD(APPLIED, tvo_controller_step(&fx.ctl, &m, fx.apply, &cmd), cmd);
     TEST_ASSERT_TRUE(problem.barrier.slack0 == s0_accepted);
@@ -113,6 +129,7 @@ static void test_unicycle_law_refusal_takes_the_choice_back(void)
     tvo_measurement_t m;
     tvo_command_t cmd;
     unicycle_measure(TVO_R(3.0), fx.apply - fx.cfg.delay_ticks, &m);
+    snapshot();
     ASSERT_PERIOD(HELD(TARGET_NOT_READY), tvo_controller_step(&fx.ctl, &m, fx.apply, &cmd), cmd);
     assert_not_chosen();
 
@@ -133,9 +150,9 @@ static void test_unicycle_keeps_s0_chosen_before_the_first_step(void)
     tvo_measurement_t m;
     tvo_command_t cmd;
     unicycle_measure(TVO_R(1.5), fx.apply - fx.cfg.period_ticks - 1u, &m);
+    snapshot();
     ASSERT_PERIOD(HELD(STALE), tvo_controller_step(&fx.ctl, &m, fx.apply, &cmd), cmd);
-    TEST_ASSERT_EQUAL_UINT8(1u, problem.slack_chosen);
-    TEST_ASSERT_TRUE(problem.barrier.slack0 == chosen);
+    TEST_ASSERT_EQUAL_MEMORY(&before, &problem, sizeof(problem));
     unicycle_measure(TVO_R(1.5), fx.apply - fx.cfg.delay_ticks, &m);
     ASSERT_PERIOD(APPLIED, tvo_controller_step(&fx.ctl, &m, fx.apply, &cmd), cmd);
     TEST_ASSERT_TRUE(problem.barrier.slack0 == chosen);
@@ -177,10 +194,12 @@ static void test_chain_refused_first_measurements_leave_s0_unchosen(void)
 
     chain_measure(TVO_R(3.0), stamp, &m);
     m.y.d[0][1] = TEST_NAN;
+    snapshot();
     ASSERT_PERIOD(HELD(NOT_FINITE), tvo_chain_controller_step(&chain, &m, apply, &cmd), cmd);
     assert_not_chosen();
 
     chain_measure(TVO_R(3.0), apply - period - 1u, &m);
+    snapshot();
     ASSERT_PERIOD(HELD(STALE), tvo_chain_controller_step(&chain, &m, apply, &cmd), cmd);
     assert_not_chosen();
 
@@ -189,6 +208,10 @@ static void test_chain_refused_first_measurements_leave_s0_unchosen(void)
     TEST_ASSERT_EQUAL_UINT8(1u, problem.slack_chosen);
     TEST_ASSERT_TRUE(problem.barrier.slack0 == s0_accepted);
 
+    chain_measure(TVO_R(3.0), apply - 1u, &m);
+    snapshot();
+    ASSERT_PERIOD(HELD(STALE), tvo_chain_controller_step(&chain, &m, apply + period, &cmd), cmd);
+    TEST_ASSERT_EQUAL_MEMORY(&before, &problem, sizeof(problem));
     chain_measure(TVO_R(3.0), stamp + period, &m);
     ASSERT_PERIOD(APPLIED, tvo_chain_controller_step(&chain, &m, apply + period, &cmd), cmd);
     TEST_ASSERT_TRUE(problem.barrier.slack0 == s0_accepted);
