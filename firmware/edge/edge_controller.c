@@ -94,14 +94,6 @@ static tvo_node_status_t unicycle_measurement(const tvo_edge_controller_t *ctl, 
                : TVO_NODE_WRONG_ROBOT_COUNT; /* the one refusal of the decoding (the node checked it first) */
 }
 
-static void unicycle_positions(const tvo_edge_measurement_t *meas, uint8_t robot_count, tvo_real_t *y)
-{
-    for (uint8_t r = 0; r < robot_count && r < TVO_MAX_ROBOTS; ++r) {
-        y[2u * r] = meas->unicycle.position_m[r][0];
-        y[2u * r + 1u] = meas->unicycle.position_m[r][1];
-    }
-}
-
 static void unicycle_command_to_lcm(const tvo_edge_command_t *cmd, const tvo_step_stamp_t *stamp,
                                     tvo_lcm_command_t *msg)
 {
@@ -118,7 +110,7 @@ static void unicycle_telemetry_to_lcm(const tvo_edge_controller_t *ctl, const tv
 
 static const tvo_edge_controller_ops_t unicycle_ops = {
     .name = "unicycle", EDGE_LOOP_ENTRIES(unicycle), .relative_degree = unicycle_relative_degree,
-    .measurement = unicycle_measurement, .positions = unicycle_positions, .command_to_lcm = unicycle_command_to_lcm,
+    .measurement = unicycle_measurement, .command_to_lcm = unicycle_command_to_lcm,
     .telemetry_to_lcm = unicycle_telemetry_to_lcm};
 
 /* ---- integrator chain (chain_controller.h) ---------------------------------------------------- */
@@ -144,13 +136,6 @@ static tvo_node_status_t chain_measurement(const tvo_edge_controller_t *ctl, con
     return TVO_NODE_OK;
 }
 
-static void chain_positions(const tvo_edge_measurement_t *meas, uint8_t robot_count, tvo_real_t *y)
-{
-    for (size_t i = 0; i < 2u * (size_t)robot_count && i < TVO_MAX_OUTPUT_DIM; ++i) {
-        y[i] = meas->chain.y.d[0][i];
-    }
-}
-
 static void chain_command_to_lcm(const tvo_edge_command_t *cmd, const tvo_step_stamp_t *stamp, tvo_lcm_command_t *msg)
 {
     tvo_step_chain_command_to_lcm(&cmd->chain, stamp, msg);
@@ -166,7 +151,7 @@ static void chain_telemetry_to_lcm(const tvo_edge_controller_t *ctl, const tvo_p
 
 static const tvo_edge_controller_ops_t chain_ops = {
     .name = "chain", EDGE_LOOP_ENTRIES(chain), .relative_degree = chain_relative_degree,
-    .measurement = chain_measurement, .positions = chain_positions, .command_to_lcm = chain_command_to_lcm,
+    .measurement = chain_measurement, .command_to_lcm = chain_command_to_lcm,
     .telemetry_to_lcm = chain_telemetry_to_lcm};
 
 void tvo_edge_controller_clear_scratch(tvo_edge_controller_t *ctl)

@@ -49,8 +49,6 @@ typedef struct {
      *  configuration reads: TVO_NODE_MISSING_DERIVATIVES; another robot count). */
     tvo_node_status_t (*measurement)(const tvo_edge_controller_t *ctl, const tvo_lcm_measurement_t *msg, uint8_t robot_count,
                                 uint32_t stamp_tick, tvo_edge_measurement_t *meas);
-    /** The measured positions y (2 per robot), for the slack rule. */
-    void (*positions)(const tvo_edge_measurement_t *meas, uint8_t robot_count, tvo_real_t *y);
     /* The core's sampled-data loop, the same six for every plant (edge_controller.c's EDGE_LOOP_OPS):
      * step, miss, safe_stop, holding, mark, clock. The others map the wire to the plant. */
     /** The core's step: a transaction (a whole period committed, or nothing changed and the refusal's

@@ -389,32 +389,6 @@ static int attempt_taken(const node_attempt_t *attempt)
            (attempt->why.reason == TVO_REASON_NONE || attempt->why.reason == TVO_REASON_SPEED_MISMATCH);
 }
 
-/*
- * The core's step with the paper's slack rule: the first accepted sample is the state at t = 0 and
- * chooses the barrier slack s0. The step reads the barrier from the session's problem, so the choice
- * is made there before it and taken back if the step does not take the sample (the next first sample
- * chooses again): the one piece of a refused step the node itself undoes (lcm_types/README.md "Timing").
- */
-static void step_with_slack_rule(tvo_node_session_t *s, const tvo_edge_measurement_t *meas, uint32_t apply_tick,
-                                 node_attempt_t *attempt)
-{
-    const tvo_edge_controller_ops_t *ops = s->controller.ops;
-    const uint8_t slack_was_chosen = s->problem.slack_chosen;
-    const tvo_barrier_t barrier_in_force = s->problem.barrier;
-    if (!slack_was_chosen) {
-        tvo_real_t y[TVO_MAX_OUTPUT_DIM] = {TVO_R(0.0)};
-        ops->positions(meas, s->schedule.timing.robot_count, y);
-        (void)tvo_problem_choose_slack(&s->problem, y, TVO_R(0.0));
-    }
-    attempt->why.error = ops->step(&s->controller, meas, apply_tick, &attempt->cmd);
-    attempt->why.reason = ops->mark(&attempt->cmd).reason;
-    attempt->stepped = 1;
-    if (!attempt_taken(attempt)) {
-        s->problem.barrier = barrier_in_force;
-        s->problem.slack_chosen = slack_was_chosen;
-    }
-}
-
 /* The node's checks of a measurement judged on `schedule` (the wire's and its schedule's), then the
  * core's step, a transaction that checks the rest once. */
 static void attempt_measurement(tvo_node_session_t *s, const tvo_schedule_t *schedule,
@@ -437,7 +411,11 @@ static void attempt_measurement(tvo_node_session_t *s, const tvo_schedule_t *sch
     if (attempt->why.node != TVO_NODE_OK) {
         return;
     }
-    step_with_slack_rule(s, &meas, tvo_schedule_tick(schedule, attempt->placement.apply_us), attempt);
+    /* The core's step is a transaction: the barrier's s0 included (its objective's start rule). */
+    attempt->why.error = ops->step(&s->controller, &meas, tvo_schedule_tick(schedule, attempt->placement.apply_us),
+                                   &attempt->cmd);
+    attempt->why.reason = ops->mark(&attempt->cmd).reason;
+    attempt->stepped = 1;
 }
 
 /* The sample passed every check, the core's included, and only its law could not serve it (a target

@@ -10,7 +10,7 @@
  *   TVO_MEASUREMENT  (of the running session) one answer per measurement: the controller's command
  *                    applied at the period the sample serves, or, if refused, the command in force
  *                    with the reason; nothing from a refused message is kept. The first accepted
- *                    measurement chooses the barrier slack s0 (the paper's rule).
+ *                    measurement chooses the barrier slack s0 (the paper's rule, in the core's step).
  *   TVO_TARGET       a streamed target sample.
  *   timer            (CLOCK_NODE) each period that passed without an accepted measurement is counted
  *                    by the core (tvo_controller_miss); once its watchdog stops the robots, a safe

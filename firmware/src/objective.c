@@ -18,6 +18,7 @@ tvo_status_t tvo_objective_init(tvo_objective_t *objective, uint8_t primal_dim)
     objective->jets_only = 0;
     objective->tracking_only = 0;
     objective->general_path = NULL;
+    objective->start_rule = NULL;
     if (primal_dim == 0u || primal_dim > TVO_MAX_OUTPUT_DIM) {
         return TVO_ERR_DIMENSION;
     }

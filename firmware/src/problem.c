@@ -6,6 +6,7 @@
 #include "internal/equality.h"
 #include "internal/objective.h"
 
+#include <stddef.h>
 #include <string.h>
 
 enum {
@@ -110,6 +111,29 @@ static tvo_status_t build_constraints(tvo_problem_t *problem, const tvo_problem_
     return st;
 }
 
+/* The objective's start rule (tvo/objective.h): as a controller's period begins, s0 from its positions
+ * at t = 0 unless already chosen; as it ends refused (y NULL), that choice taken back (until chosen s0
+ * is 0, as tvo_barrier_init left it). slack_pending records the period in progress: 1 begun, 2 begun
+ * and chose; 0 between steps. */
+static void problem_start_rule(const tvo_objective_t *objective, const tvo_real_t *y)
+{
+    /* The objective is the problem's own (the problem is not const: the controller only reads it). */
+    tvo_problem_t *problem = (tvo_problem_t *)((uintptr_t)objective - offsetof(tvo_problem_t, objective));
+    if (problem->slack_pending == 0u) {
+        const uint8_t chosen_before = problem->slack_chosen;
+        if (!chosen_before) {
+            (void)tvo_problem_choose_slack(problem, y, TVO_R(0.0)); /* the step judges y */
+        }
+        problem->slack_pending = (uint8_t)(1u + (problem->slack_chosen && !chosen_before));
+        return;
+    }
+    if (y == NULL && problem->slack_pending == 2u) {
+        problem->barrier.slack0 = TVO_R(0.0);
+        problem->slack_chosen = 0u;
+    }
+    problem->slack_pending = 0u;
+}
+
 tvo_status_t tvo_problem_init(tvo_problem_t *problem, const tvo_problem_desc_t *desc, uint8_t relative_degree,
                               uint8_t *bad_part)
 {
@@ -167,6 +191,9 @@ tvo_status_t tvo_problem_init(tvo_problem_t *problem, const tvo_problem_desc_t *
         return st;
     }
     problem->has_inequalities = any_inequality;
+    if (any_inequality) {
+        problem->objective.start_rule = problem_start_rule;
+    }
     problem->initialized = 1;
     return TVO_OK;
 }

@@ -7,7 +7,9 @@
  * plant's input, the limits); then either the whole period is committed (the clock, the plant's
  * state, the held command) or nothing changes and the answer is the command in force. The one thing
  * a refusal commits is the watchdog's stop: a refused step whose period would expire it counts the
- * period and stops (tvo/controller.h states the contract). Every command the loop delivers carries
+ * period and stops (tvo/controller.h states the contract). The objective's start rule (the barrier's
+ * s0, tvo/objective.h) is part of the period: it sees the measurement as the period begins and its
+ * outcome as it ends (a refused period takes back what it chose). Every command the loop delivers carries
  * its outcome and reason (tvo/status.h); the public calls return an error only when they changed
  * nothing, and this file is the one place that writes an outcome.
  *
@@ -50,6 +52,8 @@ typedef struct {
     size_t period_at;      /* the step's tvo_period_t (its work area) */
     size_t initialized_at; /* uint8_t */
     size_t stamp_at;       /* the measurement's uint32_t stamp_tick */
+    size_t objective_at;   /* the controller's const tvo_objective_t * */
+    size_t positions_at;   /* the measurement's positions, 2 tvo_real_t per robot in a row */
     /* The plant's command: its size, where its uint32_t TVO_FLAG_* are, and its uint8_t outcome and
      * reason (adjacent: outcome first). */
     size_t command_size;
@@ -144,7 +148,11 @@ TVO_LOOP_ENTRY void loop_mark(const tvo_loop_plant_t *p, void *cmd, uint32_t fla
 TVO_LOOP_ENTRY void loop_stop_command(const tvo_loop_plant_t *p, void *cmd, tvo_reason_t reason)
 {
     memset(LOOP_WORDS(cmd), 0, p->command_size);
-    loop_mark_outcome(p, cmd, TVO_OUTCOME_STOPPED, reason);
+    uint8_t *outcome_at = loop_at(cmd, p->command_outcome_at);
+    outcome_at[0] = (uint8_t)TVO_OUTCOME_STOPPED;
+    if (reason != TVO_REASON_NONE) {
+        outcome_at[1] = (uint8_t)reason; /* NONE is the memset's: a constant NONE stores nothing */
+    }
 }
 
 /* The command in force, held (zero once the plant was stopped). */
@@ -260,6 +268,22 @@ TVO_LOOP_ENTRY void loop_refuse(const tvo_loop_plant_t *p, void *ctl, const void
     }
 }
 
+/* The objective's start rule (tvo/objective.h), if it has one: as a period begins, with the
+ * measurement's positions y; as it ends, with y again if committed, NULL if refused. Out of line in a
+ * size build: a firmware without the rule pays for its two calls only. */
+TVO_OFF_CHAIN_BODY void loop_start_rule(const tvo_objective_t *objective, const tvo_real_t *y)
+{
+    if (objective->start_rule != NULL) {
+        (void)objective->start_rule(objective, y);
+    }
+}
+
+/* The controller's objective. */
+TVO_LOOP_ENTRY const tvo_objective_t *loop_objective(const tvo_loop_plant_t *p, const void *ctl)
+{
+    return *(const tvo_objective_t *const *)loop_at_const(ctl, p->objective_at);
+}
+
 /* One period with a measurement, for an instance loop_ready passed: begin, prepare, command, and the
  * commit or the refusal. shape: the plant's loop count, a constant in the shape copies. TVO_OK when
  * cmd is the period's answer (its outcome says which), else the clock could not begin the period. */
@@ -273,6 +297,7 @@ TVO_LOOP_ENTRY tvo_status_t loop_period(const tvo_loop_plant_t *p, void *ctl, co
         return begun;
     }
     tvo_loop_frame_t frame = {0u, 0u, clock->stopped, shape};
+    loop_start_rule(loop_objective(p, ctl), loop_at_const(meas, p->positions_at));
     tvo_reason_t reason = p->prepare(ctl, meas, apply_tick, &frame);
     if (reason == TVO_REASON_NONE) {
         reason = p->law(ctl, &frame);
@@ -282,6 +307,7 @@ TVO_LOOP_ENTRY tvo_status_t loop_period(const tvo_loop_plant_t *p, void *ctl, co
     }
     if (reason != TVO_REASON_NONE) {
         p->refuse(ctl, meas, period, reason, cmd);
+        loop_start_rule(loop_objective(p, ctl), NULL);
         return TVO_OK;
     }
     /* The step succeeded: from here on its working copies become the controller's state. */
@@ -292,6 +318,7 @@ TVO_LOOP_ENTRY tvo_status_t loop_period(const tvo_loop_plant_t *p, void *ctl, co
     held_outcome[1] = (uint8_t)TVO_REASON_NONE;
     p->commit(ctl, &frame);
     memcpy(LOOP_WORDS(cmd), LOOP_WORDS(held), p->command_size);
+    loop_start_rule(loop_objective(p, ctl), loop_at_const(meas, p->positions_at));
     return TVO_OK;
 }
 

@@ -12,7 +12,7 @@
  * Lagrangian and its Hessian is the KKT matrix (paper, "Equality Constrained ...").
  *
  * An inequality-constraint term can also report max_i f_i(y, t), which chooses the barrier's slack
- * s0 from the first measurement (tvo_objective_constraint_max).
+ * s0 from the first measurement (tvo_objective_constraint_max), through the objective's start rule.
  */
 #ifndef TVO_OBJECTIVE_H
 #define TVO_OBJECTIVE_H
@@ -83,6 +83,17 @@ typedef enum {
     TVO_TERM_TRACKING = 1
 } tvo_term_kind_t;
 
+struct tvo_objective;
+
+/**
+ * An objective's start rule, the paper's s0 (tvo_problem_init sets it when its problem has inequality
+ * constraints; the problem, which holds the objective, keeps its state). A controller's step calls it
+ * twice per period: as the period begins, with the measurement's positions y (2 per robot), before
+ * the law; and as it ends, with the same y if the period was committed, or NULL if it was refused,
+ * which takes back what the first call chose (a refused period changes nothing).
+ */
+typedef void (*tvo_start_rule_fn)(const struct tvo_objective *objective, const tvo_real_t *y);
+
 typedef struct {
     tvo_gradient_jet_fn gradient_jet;         /* required for a general term: the general mechanism and
                                                  the reference */
@@ -92,7 +103,7 @@ typedef struct {
     uint8_t kind;                             /* tvo_term_kind_t */
 } tvo_term_t;
 
-typedef struct {
+typedef struct tvo_objective {
     tvo_term_t terms[TVO_MAX_TERMS]; /* as the add functions keep them (a tracking term: its kind, and the
                                         term; callbacks NULL) */
     uint8_t term_count;
@@ -105,6 +116,7 @@ typedef struct {
     uint8_t tracking_only; /* kept by the add functions: every term so far a tracking term's closed form
                               (the law re-checks the terms before it relies on it) */
     tvo_general_path_fn general_path; /* NULL: tracking terms only, and the law has only its tracking path */
+    tvo_start_rule_fn start_rule;     /* NULL: no start rule (the step chooses nothing) */
 } tvo_objective_t;
 
 /** Empty objective over y in R^primal_dim, 1 <= primal_dim <= TVO_MAX_OUTPUT_DIM, no multipliers. */

@@ -78,8 +78,10 @@ typedef struct {
     tvo_offset_equality_term_t offset[TVO_ARRAY_LEN(TVO_MAX_OFFSET_EQUALITIES)];
     uint8_t distance_term_count;
     uint8_t has_inequalities;
-    uint8_t slack_chosen;
+    uint8_t slack_chosen;           /* s0 chosen: by the controller's step (the objective's start rule,
+                                       in the first period it commits) or tvo_problem_choose_slack */
     uint8_t initialized;
+    uint8_t slack_pending;          /* the start rule's record of a step in progress (0 between steps) */
 } tvo_problem_t;
 
 /** Empty description: no robots, no constraints, default barrier, unit tracking weights. */
@@ -87,7 +89,10 @@ tvo_status_t tvo_problem_desc_default(tvo_problem_desc_t *desc);
 
 /**
  * Validates desc and builds the objective (primal dimension 2N, plus 2 multipliers per offset);
- * pass &problem->objective to the controller's init (the problem must outlive the controller).
+ * pass &problem->objective to the controller's init (the problem must outlive the controller). With
+ * inequalities the objective carries the s0 rule as its start rule: the controller's step chooses s0
+ * as tvo_problem_choose_slack(problem, y, 0) would, y the measured positions of the first period it
+ * commits (a refused period keeps nothing of its choice).
  * relative_degree (k) is the controller's: 2 for tvo_controller_t, cfg.relative_degree for the
  * chain; it bounds the barrier's m_r from below (m_r >= k + 1). On TVO_ERR_PARAM (or another error)
  * *bad_part, if not NULL, says which part: 0 robots/targets, 1 barrier, 2 distance, 3 half-space,
@@ -98,9 +103,9 @@ tvo_status_t tvo_problem_init(tvo_problem_t *problem, const tvo_problem_desc_t *
 
 /**
  * Chooses the barrier slack s0 from the robots' positions at objective time t_s (the paper's rule,
- * from max_i f_i(y(0), 0)); later calls change nothing. No-op without inequalities. Call it once,
- * before the first controller step, with the first measured positions (y = x0, y0, x1, y1, ...):
- * until then s0 = 0, so a start that violates a constraint is not relaxed.
+ * from max_i f_i(y(0), 0)); later calls change nothing. No-op without inequalities. Optional: the
+ * controller's step chooses s0 itself (tvo_problem_init); called before the first step with other
+ * positions (y = x0, y0, x1, y1, ...) or another t_s, it chooses instead and the step does not.
  */
 tvo_status_t tvo_problem_choose_slack(tvo_problem_t *problem, const tvo_real_t *y, tvo_real_t t_s);
 
