@@ -294,7 +294,7 @@ TVO_OFF_CHAIN_BODY void chain_commit(void *ctl_any, const tvo_loop_frame_t *fram
  * state at rest; the filters restart from the gap). */
 static const tvo_loop_plant_t chain_plant = {
     TVO_LOOP_LAYOUT(tvo_chain_controller_t, tvo_chain_measurement_t, tvo_chain_command_t),
-    .objective_at = offsetof(tvo_chain_controller_t, objective), .positions_at = offsetof(tvo_chain_measurement_t, y),
+    .positions_at = offsetof(tvo_chain_measurement_t, y),
     .check = chain_check, .refusal = NULL, .prepare = chain_prepare, .law = chain_law, .command = chain_command,
     .commit = chain_commit, .refuse = chain_refuse, .rest = NULL};
 

@@ -514,7 +514,7 @@ TVO_OFF_CHAIN_BODY void unicycle_commit(void *ctl_any, const tvo_loop_frame_t *f
 
 static const tvo_loop_plant_t unicycle_plant = {
     TVO_LOOP_LAYOUT(tvo_controller_t, tvo_measurement_t, tvo_command_t),
-    .objective_at = offsetof(tvo_controller_t, objective), .positions_at = offsetof(tvo_measurement_t, position_m),
+    .positions_at = offsetof(tvo_measurement_t, position_m),
     .check = check_measurement, .refusal = unicycle_refusal, .prepare = unicycle_prepare, .law = unicycle_law,
     .command = unicycle_command, .commit = unicycle_commit, .refuse = unicycle_refuse, .rest = unicycle_rest};
 
