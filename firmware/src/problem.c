@@ -112,24 +112,22 @@ static tvo_status_t build_constraints(tvo_problem_t *problem, const tvo_problem_
 }
 
 /* The objective's start rule (tvo/objective.h): as a controller's period begins, s0 from its positions
- * at t = 0 unless already chosen; as it ends refused (y NULL), that choice taken back (until chosen s0
- * is 0, as tvo_barrier_init left it). slack_pending records the period in progress: 1 begun, 2 begun
- * and chose; 0 between steps. */
+ * at t = 0 unless already chosen; y NULL, that period was refused: what it chose taken back (s0 to 0,
+ * as tvo_barrier_init left it; the choice writes nothing else). slack_pending: chosen by the period
+ * in progress (0 again after a refusal, so a refused period leaves the problem as it was). */
 static void problem_start_rule(const tvo_objective_t *objective, const tvo_real_t *y)
 {
     /* The objective is the problem's own (the problem is not const: the controller only reads it). */
     tvo_problem_t *problem = (tvo_problem_t *)((uintptr_t)objective - offsetof(tvo_problem_t, objective));
-    if (problem->slack_pending == 0u) {
-        const uint8_t chosen_before = problem->slack_chosen;
-        if (!chosen_before) {
-            (void)tvo_problem_choose_slack(problem, y, TVO_R(0.0)); /* the step judges y */
+    if (y == NULL) {
+        if (problem->slack_pending) {
+            problem->barrier.slack0 = TVO_R(0.0);
+            problem->slack_chosen = 0u;
         }
-        problem->slack_pending = (uint8_t)(1u + (problem->slack_chosen && !chosen_before));
+    } else if (!problem->slack_chosen) {
+        (void)tvo_problem_choose_slack(problem, y, TVO_R(0.0)); /* the step judges y */
+        problem->slack_pending = problem->slack_chosen;
         return;
-    }
-    if (y == NULL && problem->slack_pending == 2u) {
-        problem->barrier.slack0 = TVO_R(0.0);
-        problem->slack_chosen = 0u;
     }
     problem->slack_pending = 0u;
 }

@@ -8,8 +8,8 @@
  * state, the held command) or nothing changes and the answer is the command in force. The one thing
  * a refusal commits is the watchdog's stop: a refused step whose period would expire it counts the
  * period and stops (tvo/controller.h states the contract). The objective's start rule (the barrier's
- * s0, tvo/objective.h) is part of the period: it sees the measurement as the period begins and its
- * outcome as it ends (a refused period takes back what it chose). Every command the loop delivers carries
+ * s0, tvo/objective.h) is part of the period until a sample is accepted: it sees the measurement as
+ * the period begins, and a refused period takes back what it chose. Every command the loop delivers carries
  * its outcome and reason (tvo/status.h); the public calls return an error only when they changed
  * nothing, and this file is the one place that writes an outcome.
  *
@@ -270,12 +270,12 @@ TVO_LOOP_ENTRY void loop_refuse(const tvo_loop_plant_t *p, void *ctl, const void
 }
 
 /* The objective's start rule (tvo/objective.h), if it has one: as a period begins, with the
- * measurement's positions y; as it ends, with y again if committed, NULL if refused. Out of line in a
- * size build: a firmware without the rule pays for its two calls only. */
+ * measurement's positions y; with NULL, as that period is refused. Called only until a sample is
+ * accepted (the clock has no stamp), so a running loop pays one test of a byte. */
 TVO_OFF_CHAIN_BODY void loop_start_rule(const tvo_objective_t *objective, const tvo_real_t *y)
 {
     if (objective->start_rule != NULL) {
-        (void)objective->start_rule(objective, y);
+        objective->start_rule(objective, y);
     }
 }
 
@@ -298,9 +298,11 @@ TVO_LOOP_ENTRY tvo_status_t loop_period(const tvo_loop_plant_t *p, void *ctl, co
         return begun;
     }
     tvo_loop_frame_t frame = {0u, 0u, clock->stopped, shape};
-    loop_start_rule(loop_objective(p, ctl), loop_at_const(meas, p->positions_at));
     tvo_reason_t reason = p->prepare(ctl, meas, apply_tick, &frame);
     if (reason == TVO_REASON_NONE) {
+        if (!clock->has_stamp) { /* no sample accepted yet: this checked one may be the state at t = 0 */
+            loop_start_rule(loop_objective(p, ctl), loop_at_const(meas, p->positions_at));
+        }
         reason = p->law(ctl, &frame);
     }
     if (reason == TVO_REASON_NONE) {
@@ -308,7 +310,9 @@ TVO_LOOP_ENTRY tvo_status_t loop_period(const tvo_loop_plant_t *p, void *ctl, co
     }
     if (reason != TVO_REASON_NONE) {
         p->refuse(ctl, meas, period, reason, cmd);
-        loop_start_rule(loop_objective(p, ctl), NULL);
+        if (!clock->has_stamp) { /* a refusal accepts nothing: the clock has no stamp still */
+            loop_start_rule(loop_objective(p, ctl), NULL);
+        }
         return TVO_OK;
     }
     /* The step succeeded: from here on its working copies become the controller's state. */
@@ -319,7 +323,6 @@ TVO_LOOP_ENTRY tvo_status_t loop_period(const tvo_loop_plant_t *p, void *ctl, co
     held_outcome[1] = (uint8_t)TVO_REASON_NONE;
     p->commit(ctl, &frame);
     memcpy(LOOP_WORDS(cmd), LOOP_WORDS(held), p->command_size);
-    loop_start_rule(loop_objective(p, ctl), loop_at_const(meas, p->positions_at));
     return TVO_OK;
 }
 

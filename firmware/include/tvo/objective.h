@@ -87,10 +87,11 @@ struct tvo_objective;
 
 /**
  * An objective's start rule, the paper's s0 (tvo_problem_init sets it when its problem has inequality
- * constraints; the problem, which holds the objective, keeps its state). A controller's step calls it
- * twice per period: as the period begins, with the measurement's positions y (2 per robot), before
- * the law; and as it ends, with the same y if the period was committed, or NULL if it was refused,
- * which takes back what the first call chose (a refused period changes nothing).
+ * constraints; the problem, which holds the objective, keeps its state). Until a controller has
+ * accepted its first sample, its step calls it once the measurement has passed its checks, with the
+ * measurement's positions y (2 per robot), before the law; and, if that period is then refused, again
+ * with y NULL, which takes back what the first call chose (a refused period changes nothing). So the
+ * first accepted sample is the state at t = 0; if its constraint values are not finite, s0 stays 0.
  */
 typedef void (*tvo_start_rule_fn)(const struct tvo_objective *objective, const tvo_real_t *y);
 

@@ -80,8 +80,8 @@ typedef struct {
     uint8_t has_inequalities;
     uint8_t slack_chosen;           /* s0 chosen: by the controller's step (the objective's start rule,
                                        in the first period it commits) or tvo_problem_choose_slack */
+    uint8_t slack_pending;          /* the start rule chose s0 in the period in progress */
     uint8_t initialized;
-    uint8_t slack_pending;          /* the start rule's record of a step in progress (0 between steps) */
 } tvo_problem_t;
 
 /** Empty description: no robots, no constraints, default barrier, unit tracking weights. */
