@@ -105,8 +105,6 @@ typedef struct {
 } tvo_term_t;
 
 typedef struct tvo_objective {
-    tvo_term_t terms[TVO_MAX_TERMS]; /* as the add functions keep them (a tracking term: its kind, and the
-                                        term; callbacks NULL) */
     uint8_t term_count;
     uint8_t primal_dim;  /* flat-output dimension m (2 per robot) */
     uint8_t dual_dim;    /* equality multipliers q, reserved by tvo_objective_reserve_multipliers */
@@ -118,6 +116,8 @@ typedef struct tvo_objective {
                               (the law re-checks the terms before it relies on it) */
     tvo_general_path_fn general_path; /* NULL: tracking terms only, and the law has only its tracking path */
     tvo_start_rule_fn start_rule;     /* NULL: no start rule (the step chooses nothing) */
+    tvo_term_t terms[TVO_MAX_TERMS]; /* as the add functions keep them (a tracking term: its kind, and the
+                                        term; callbacks NULL); last, so the fields above have short offsets */
 } tvo_objective_t;
 
 /** Empty objective over y in R^primal_dim, 1 <= primal_dim <= TVO_MAX_OUTPUT_DIM, no multipliers. */
