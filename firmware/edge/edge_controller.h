@@ -49,8 +49,8 @@ typedef struct {
      *  configuration reads: TVO_NODE_MISSING_DERIVATIVES; another robot count). */
     tvo_node_status_t (*measurement)(const tvo_edge_controller_t *ctl, const tvo_lcm_measurement_t *msg, uint8_t robot_count,
                                 uint32_t stamp_tick, tvo_edge_measurement_t *meas);
-    /* The core's sampled-data loop, the same six for every plant (edge_controller.c's EDGE_LOOP_OPS):
-     * step, miss, safe_stop, holding, mark, clock. The others map the wire to the plant. */
+    /* The core's sampled-data loop, the same seven for every plant (edge_controller.c's EDGE_LOOP_OPS):
+     * init (above), step, miss, safe_stop, holding, mark, clock. The others map the wire to the plant. */
     /** The core's step: a transaction (a whole period committed, or nothing changed and the refusal's
      *  command: the one in force, or the watchdog's stop). */
     tvo_status_t (*step)(tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas, uint32_t apply_tick,

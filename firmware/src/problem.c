@@ -111,8 +111,9 @@ static tvo_status_t build_constraints(tvo_problem_t *problem, const tvo_problem_
     return st;
 }
 
-/* The objective's start rule (tvo/objective.h): as a controller's period begins, s0 from its positions
- * at t = 0 unless already chosen; y NULL, that period was refused: what it chose taken back (s0 to 0,
+/* The objective's start rule (tvo/objective.h): in a controller's period whose measurement passed its
+ * checks, s0 from its positions at t = 0 unless already chosen; y NULL, that period was then refused:
+ * what it chose taken back (s0 to 0,
  * as tvo_barrier_init left it; the choice writes nothing else). slack_pending: chosen by the period
  * in progress (0 again after a refusal, so a refused period leaves the problem as it was). */
 static void problem_start_rule(const tvo_objective_t *objective, const tvo_real_t *y)

@@ -89,7 +89,7 @@ typedef struct {
     .controller_size = sizeof(controller_type), .clock_at = offsetof(controller_type, internal.loop.clock),  \
     .held_at = offsetof(controller_type, internal.held),                                                     \
     .period_at = offsetof(controller_type, internal.work.period),                                            \
-    .initialized_at = offsetof(controller_type, internal.initialized),                                  \
+    .initialized_at = offsetof(controller_type, internal.initialized),                                       \
     .objective_at = offsetof(controller_type, internal.loop.objective),                                      \
     .stamp_at = offsetof(measurement_type, stamp_tick),                                                      \
     .command_size = sizeof(command_type), .command_flags_at = offsetof(command_type, flags),                 \

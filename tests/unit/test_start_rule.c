@@ -83,6 +83,21 @@ static void unicycle_measure(tvo_real_t x, uint32_t stamp, tvo_measurement_t *m)
     fx_measure(&fx, &pose, stamp, m);
 }
 
+/* Once s0 is chosen: a stale measurement at x is refused and leaves the problem as it was, byte for
+ * byte; the next one at x is accepted, and s0 is still `kept`. */
+static void unicycle_stale_then_accepted_keep_s0(tvo_real_t x, tvo_real_t kept)
+{
+    tvo_measurement_t m;
+    tvo_command_t cmd;
+    unicycle_measure(x, fx.apply - fx.cfg.period_ticks - 1u, &m);
+    snapshot();
+    ASSERT_PERIOD(HELD(STALE), tvo_controller_step(&fx.ctl, &m, fx.apply, &cmd), cmd);
+    TEST_ASSERT_EQUAL_MEMORY(&before, &problem, sizeof(problem));
+    unicycle_measure(x, fx.apply - fx.cfg.delay_ticks, &m);
+    ASSERT_PERIOD(APPLIED, tvo_controller_step(&fx.ctl, &m, fx.apply, &cmd), cmd);
+    TEST_ASSERT_TRUE(problem.barrier.slack0 == kept);
+}
+
 static void test_unicycle_refused_first_measurements_leave_s0_unchosen(void)
 {
     unicycle_on_problem(0);
@@ -113,13 +128,7 @@ static void test_unicycle_refused_first_measurements_leave_s0_unchosen(void)
 
     /* Later periods change nothing, refused or applied. */
     fx.apply += fx.cfg.period_ticks;
-    unicycle_measure(TVO_R(3.0), fx.apply - fx.cfg.period_ticks - 1u, &m);
-    snapshot();
-    ASSERT_PERIOD(HELD(STALE), tvo_controller_step(&fx.ctl, &m, fx.apply, &cmd), cmd);
-    TEST_ASSERT_EQUAL_MEMORY(&before, &problem, sizeof(problem));
-    unicycle_measure(TVO_R(3.0), fx.apply - fx.cfg.delay_ticks, &m);
-    ASSERT_PERIOD(APPLIED, tvo_controller_step(&fx.ctl, &m, fx.apply, &cmd), cmd);
-    TEST_ASSERT_TRUE(problem.barrier.slack0 == s0_accepted);
+    unicycle_stale_then_accepted_keep_s0(TVO_R(3.0), s0_accepted);
 }
 
 static void test_unicycle_law_refusal_takes_the_choice_back(void)
@@ -147,15 +156,7 @@ static void test_unicycle_keeps_s0_chosen_before_the_first_step(void)
     const tvo_real_t y[2] = {TVO_R(3.0), TVO_R(0.2)};
     ASSERT_STATUS(TVO_OK, tvo_problem_choose_slack(&problem, y, TVO_R(0.0)));
     const tvo_real_t chosen = problem.barrier.slack0;
-    tvo_measurement_t m;
-    tvo_command_t cmd;
-    unicycle_measure(TVO_R(1.5), fx.apply - fx.cfg.period_ticks - 1u, &m);
-    snapshot();
-    ASSERT_PERIOD(HELD(STALE), tvo_controller_step(&fx.ctl, &m, fx.apply, &cmd), cmd);
-    TEST_ASSERT_EQUAL_MEMORY(&before, &problem, sizeof(problem));
-    unicycle_measure(TVO_R(1.5), fx.apply - fx.cfg.delay_ticks, &m);
-    ASSERT_PERIOD(APPLIED, tvo_controller_step(&fx.ctl, &m, fx.apply, &cmd), cmd);
-    TEST_ASSERT_TRUE(problem.barrier.slack0 == chosen);
+    unicycle_stale_then_accepted_keep_s0(TVO_R(1.5), chosen);
     TEST_ASSERT_TRUE(chosen == reference_slack(2u, TVO_R(3.0), TVO_R(0.2)));
 }
 
