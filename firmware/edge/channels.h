@@ -30,6 +30,10 @@ extern "C" {
 #define TVO_CHANNEL_TARGET "TVO_TARGET"
 #define TVO_CHANNEL_COMMAND "TVO_COMMAND"
 #define TVO_CHANNEL_TELEMETRY "TVO_TELEMETRY"
+/* A fleet's per-robot messages (fleet_sample_t, fleet_command_t): on the fleet bus, node k's channel is
+ * the name with "_R<k>" (fleet_link.h); the bare name is the plant's per-robot leg (tvo_sim --fleet). */
+#define TVO_CHANNEL_FLEET_SAMPLE "TVO_FLEET_SAMPLE"
+#define TVO_CHANNEL_FLEET_COMMAND "TVO_FLEET_COMMAND"
 
 /** Channel numbers; they also tag frames on a serial link. */
 typedef enum {

@@ -20,8 +20,8 @@
 
 int tvo_fleet_channel_name(int channel, int32_t robot, char *out, size_t size)
 {
-    const char *base = channel == TVO_FLEET_CH_SAMPLE        ? "TVO_FLEET_SAMPLE"
-                       : channel == TVO_FLEET_CH_COMMAND     ? "TVO_FLEET_COMMAND"
+    const char *base = channel == TVO_FLEET_CH_SAMPLE        ? TVO_CHANNEL_FLEET_SAMPLE
+                       : channel == TVO_FLEET_CH_COMMAND     ? TVO_CHANNEL_FLEET_COMMAND
                        : channel == TVO_FLEET_CH_SESSION_ACK ? TVO_CHANNEL_SESSION_ACK
                        : channel == TVO_FLEET_CH_TELEMETRY   ? TVO_CHANNEL_TELEMETRY
                                                              : NULL;

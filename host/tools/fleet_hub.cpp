@@ -152,11 +152,11 @@ public:
         plant_.subscribe(TVO_CHANNEL_TARGET, &Hub::on_plant_raw, this);
         plant_.subscribe(TVO_CHANNEL_MEASUREMENT, &Hub::on_measurement, this);
         fleet_.subscribe("TVO_SESSION_ACK_R[0-9]+", &Hub::on_ack, this);
-        fleet_.subscribe("TVO_FLEET_COMMAND_R[0-9]+", &Hub::on_row, this);
+        fleet_.subscribe(TVO_CHANNEL_FLEET_COMMAND "_R[0-9]+", &Hub::on_row, this);
         fleet_.subscribe("TVO_TELEMETRY_R[0-9]+", &Hub::on_telemetry, this);
         sample_channels_.resize(static_cast<std::size_t>(o.robots));
         for (int k = 0; k < o.robots; ++k) {
-            sample_channels_[static_cast<std::size_t>(k)] = robot_channel("TVO_FLEET_SAMPLE", k);
+            sample_channels_[static_cast<std::size_t>(k)] = robot_channel(TVO_CHANNEL_FLEET_SAMPLE, k);
         }
         if (!o.key_file.empty()) {
             std::uint8_t key[TVO_AUTH_KEY_BYTES];
