@@ -85,11 +85,11 @@ static uint8_t unicycle_relative_degree(const tvo_lcm_session_t *msg)
     return 2u;
 }
 
-static tvo_node_status_t unicycle_measurement(const tvo_edge_controller_t *ctl, const tvo_lcm_measurement_t *msg,
+static tvo_node_status_t unicycle_measurement(const tvo_edge_controller_t *ctl, const tvo_step_measurement_t *msg,
                                               uint8_t robot_count, uint32_t stamp_tick, tvo_edge_measurement_t *meas)
 {
     (void)ctl; /* the core's check says which fields its configuration needs (heading_valid) */
-    return (tvo_step_measurement_from_lcm(msg, robot_count, stamp_tick, &meas->unicycle) == TVO_OK)
+    return (tvo_step_unicycle_measurement(msg, robot_count, stamp_tick, &meas->unicycle) == TVO_OK)
                ? TVO_NODE_OK
                : TVO_NODE_WRONG_ROBOT_COUNT; /* the one refusal of the decoding (the node checked it first) */
 }
@@ -122,10 +122,10 @@ static uint8_t chain_relative_degree(const tvo_lcm_session_t *msg)
     return (k >= 1 && k <= TVO_MAX_RELATIVE_DEGREE) ? (uint8_t)k : 1u;
 }
 
-static tvo_node_status_t chain_measurement(const tvo_edge_controller_t *ctl, const tvo_lcm_measurement_t *msg,
+static tvo_node_status_t chain_measurement(const tvo_edge_controller_t *ctl, const tvo_step_measurement_t *msg,
                                            uint8_t robot_count, uint32_t stamp_tick, tvo_edge_measurement_t *meas)
 {
-    if (tvo_step_chain_measurement_from_lcm(msg, robot_count, stamp_tick, &meas->chain) != TVO_OK) {
+    if (tvo_step_chain_measurement(msg, robot_count, stamp_tick, &meas->chain) != TVO_OK) {
         return TVO_NODE_WRONG_ROBOT_COUNT; /* the one refusal of the decoding (the node checked it first) */
     }
     /* The core's chain measurement has no validity flag: y' (and y'') read as measured must be. */

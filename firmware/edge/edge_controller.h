@@ -47,7 +47,7 @@ typedef struct {
                          uint32_t epoch_tick, tvo_session_reject_t *why);
     /** The wire's measurement for the core: TVO_NODE_OK, or the edge's refusal (it lacks what ctl's
      *  configuration reads: TVO_NODE_MISSING_DERIVATIVES; another robot count). */
-    tvo_node_status_t (*measurement)(const tvo_edge_controller_t *ctl, const tvo_lcm_measurement_t *msg, uint8_t robot_count,
+    tvo_node_status_t (*measurement)(const tvo_edge_controller_t *ctl, const tvo_step_measurement_t *msg, uint8_t robot_count,
                                 uint32_t stamp_tick, tvo_edge_measurement_t *meas);
     /* The core's sampled-data loop, the same seven for every plant (edge_controller.c's EDGE_LOOP_OPS):
      * init (above), step, miss, safe_stop, holding, mark, clock. The others map the wire to the plant. */

@@ -227,11 +227,13 @@ static void print_usage(FILE *out)
             "  --sender-id N       this node's sender id on a keyed bus (default 1, a fleet node's 256 + I;\n"
             "                      unique per key holder)\n"
             "  --own-robot I       a fleet node: drive robot I only, from per-robot samples on TVO_FLEET_SAMPLE_RI\n"
-            "                      (every robot's), answering on TVO_FLEET_COMMAND_RI (lcm_types/README.md, \"A fleet\")\n"
+            "                      (every robot's), answering on TVO_FLEET_COMMAND_RI (lcm_types/README.md, \"A fleet\");\n"
+            "                      this build's fleet sessions have up to %d robots, its other sessions up to %d\n"
             "  --lcm-url URL       LCM provider URL (default: $LCM_DEFAULT_URL, else LCM's default udpm)\n"
             "  --keep-running      serve session after session (default: exit after a session's STOP)\n"
             "  --exit-with-parent  exit when the process that started this one dies (no orphans)\n"
-            "  -h, --help          show this help\n");
+            "  -h, --help          show this help\n",
+            TVO_FLEET_MAX_ROBOTS, TVO_WIRE_MAX_ROBOTS < TVO_MAX_ROBOTS ? TVO_WIRE_MAX_ROBOTS : TVO_MAX_ROBOTS);
 }
 
 typedef struct {
@@ -360,7 +362,7 @@ int main(int argc, char **argv)
     static lcm_node_t self;
     /* A keyed fleet node: node -> fleet link -> auth link (signs, names by robot) -> LCM. */
     const int fleet = opt.own_robot >= 0;
-    if (fleet && (tvo_fleet_link_init(&self.fleet, opt.own_robot, opt.key_file != NULL ? tvo_auth_link_publish : fleet_publish,
+    if (fleet && (tvo_fleet_link_init(&self.fleet, &self.node, opt.own_robot, opt.key_file != NULL ? tvo_auth_link_publish : fleet_publish,
                                       opt.key_file != NULL ? (void *)&self.link : (void *)&self) != 0 ||
                   tvo_fleet_channel_name(TVO_FLEET_CH_SAMPLE, opt.own_robot, self.fleet_sample_channel,
                                          sizeof(self.fleet_sample_channel)) != 0)) {
@@ -387,9 +389,9 @@ int main(int argc, char **argv)
         self.keyed = 1;
     }
     if (fleet) {
-        fprintf(stderr, "tvo_firmware_node: fleet node of robot %d on %s (%s)\n", (int)opt.own_robot,
-                self.fleet_sample_channel, self.keyed ? "keyed bus" : "unauthenticated bus");
-        tvo_node_init(&self.node, tvo_fleet_link_publish, &self.fleet);
+        fprintf(stderr, "tvo_firmware_node: fleet node of robot %d on %s (%s; sessions of up to %d robots)\n",
+                (int)opt.own_robot, self.fleet_sample_channel, self.keyed ? "keyed bus" : "unauthenticated bus",
+                (int)tvo_node_max_robots(&self.node));
     } else if (self.keyed) {
         tvo_node_init(&self.node, tvo_auth_link_publish, &self.link);
     } else {

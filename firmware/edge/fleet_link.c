@@ -57,14 +57,13 @@ static uint64_t fnv_double(uint64_t hash, double value)
     return hash;
 }
 
-uint64_t tvo_fleet_digest(const tvo_lcm_command_t *command)
+uint64_t tvo_fleet_digest(const tvo_fleet_joint_command_t *command, int32_t robot_count)
 {
     uint64_t hash = 0xcbf29ce484222325ull;
     if (command == NULL) {
         return 0u;
     }
-    const int32_t count = command->robot_count;
-    for (int32_t r = 0; r < count && r < TVO_FLEET_MAX_ROBOTS; ++r) {
+    for (int32_t r = 0; r < robot_count && r < TVO_FLEET_MAX_ROBOTS; ++r) {
         hash = fnv_double(hash, command->speed_mps[r]);
         hash = fnv_double(hash, command->turn_rate_radps[r]);
     }
@@ -88,10 +87,14 @@ static void reset(tvo_fleet_link_t *link, int64_t session_id)
     }
 }
 
-int tvo_fleet_link_init(tvo_fleet_link_t *link, int32_t own_robot, tvo_node_publish_fn transport_publish,
-                        void *transport_context)
+static void take_answer(void *context, const tvo_step_stamp_t *stamp, uint32_t wire_flags, const tvo_command_t *command);
+static void publish_from_node(void *context, int channel, const uint8_t *data, uint32_t length);
+
+int tvo_fleet_link_init(tvo_fleet_link_t *link, tvo_node_t *node, int32_t own_robot,
+                        tvo_node_publish_fn transport_publish, void *transport_context)
 {
-    if (link == NULL || transport_publish == NULL || own_robot < 0 || own_robot >= TVO_FLEET_MAX_ROBOTS) {
+    if (link == NULL || node == NULL || transport_publish == NULL || own_robot < 0 ||
+        own_robot >= TVO_FLEET_MAX_ROBOTS) {
         return -1;
     }
     memset(link, 0, sizeof(*link));
@@ -99,7 +102,8 @@ int tvo_fleet_link_init(tvo_fleet_link_t *link, int32_t own_robot, tvo_node_publ
     link->transport_publish = transport_publish;
     link->transport_context = transport_context;
     reset(link, -1);
-    return 0;
+    tvo_node_init(node, publish_from_node, link);
+    return tvo_node_set_answer(node, take_answer, link);
 }
 
 /* ---- prediction -------------------------------------------------------------------------------- */
@@ -156,63 +160,63 @@ static void publish_out(tvo_fleet_link_t *link, int channel, int length)
     }
 }
 
-static void publish_command(tvo_fleet_link_t *link, const tvo_lcm_command_t *cmd)
+/* A fleet command: the own robot's row of `rows` with the whole joint command's digest. */
+static void publish_row(tvo_fleet_link_t *link, const tvo_step_stamp_t *stamp, int32_t status, uint32_t wire_flags,
+                        const tvo_fleet_joint_command_t *rows)
 {
     tvo_lcm_fleet_command_t *out = &link->out;
+    const int32_t robots = stamp->robot_count <= TVO_FLEET_MAX_ROBOTS ? (int32_t)stamp->robot_count : 0;
     memset(out, 0, sizeof(*out));
-    out->utime = cmd->utime;
-    out->session_id = cmd->session_id;
-    out->measurement_sequence = cmd->measurement_sequence;
+    out->utime = stamp->utime;
+    out->session_id = stamp->session_id;
+    out->measurement_sequence = stamp->sequence;
     out->robot = link->own_robot;
-    out->robot_count = cmd->robot_count;
-    out->status = cmd->status;
-    out->flags = cmd->flags;
-    if (link->own_robot < cmd->robot_count) {
-        out->speed_mps = cmd->speed_mps[link->own_robot];
-        out->turn_rate_radps = cmd->turn_rate_radps[link->own_robot];
+    out->robot_count = robots;
+    out->status = status;
+    out->flags = (int32_t)wire_flags;
+    if (link->own_robot < robots) {
+        out->speed_mps = rows->speed_mps[link->own_robot];
+        out->turn_rate_radps = rows->turn_rate_radps[link->own_robot];
     }
-    out->joint_digest = (int64_t)tvo_fleet_digest(cmd);
-    out->predicted = (cmd->measurement_sequence == link->answering) ? link->predicted : 0;
-    for (int32_t r = 0; r < cmd->robot_count && r < TVO_FLEET_MAX_ROBOTS; ++r) {
-        out->joint_speed_mps[r] = cmd->speed_mps[r];
-        out->joint_turn_rate_radps[r] = cmd->turn_rate_radps[r];
+    out->joint_digest = (int64_t)tvo_fleet_digest(rows, robots);
+    out->predicted = (stamp->sequence == link->answering) ? link->predicted : 0;
+    for (int32_t r = 0; r < robots; ++r) {
+        out->joint_speed_mps[r] = rows->speed_mps[r];
+        out->joint_turn_rate_radps[r] = rows->turn_rate_radps[r];
     }
     publish_out(link, TVO_FLEET_CH_COMMAND, tvo_lcm_fleet_command_t_encode(link->buffer, 0, TVO_NODE_BUFFER_BYTES, out));
 }
 
-/* The node's command: kept as the joint command in force when the robots will follow it (a computed
- * command or a safe stop), then published as the own robot's row with the digest. */
-static void take_command(tvo_fleet_link_t *link, const uint8_t *data, uint32_t length)
-{
-    tvo_lcm_command_t *cmd = &link->rx.command;
-    if (tvo_lcm_command_t_decode(data, 0, (int)length, cmd) != (int)length) {
-        return;
-    }
-    const int in_step = link->answering >= 0 && cmd->measurement_sequence == link->answering;
-    const int followed = cmd->status == TVO_LCM_COMMAND_T_STATUS_OK || ((uint32_t)cmd->flags & TVO_LCM_COMMAND_T_FLAG_SAFE_STOP) != 0u;
-    if (in_step) {
-        link->answered_ok = (uint8_t)(cmd->status == TVO_LCM_COMMAND_T_STATUS_OK);
-    }
-    if (followed && cmd->robot_count > 0 && cmd->robot_count <= TVO_FLEET_MAX_ROBOTS) {
-        link->commands[1] = link->commands[0];
-        link->commands[0].sequence = in_step ? link->answering : (link->last_step >= 0 ? link->last_step : 0);
-        for (int32_t r = 0; r < TVO_FLEET_MAX_ROBOTS; ++r) {
-            link->commands[0].speed_mps[r] = r < cmd->robot_count ? cmd->speed_mps[r] : 0.0;
-            link->commands[0].turn_rate_radps[r] = r < cmd->robot_count ? cmd->turn_rate_radps[r] : 0.0;
-        }
-    }
-    publish_command(link, cmd);
-}
-
-void tvo_fleet_link_publish(void *context, int channel, const uint8_t *data, uint32_t length)
+/* The node's answer (tvo_node_answer_fn): kept as the joint command in force when the robots will
+ * follow it (a computed command or a safe stop), then published as the own robot's row with the digest. */
+static void take_answer(void *context, const tvo_step_stamp_t *stamp, uint32_t wire_flags, const tvo_command_t *command)
 {
     tvo_fleet_link_t *link = (tvo_fleet_link_t *)context;
-    if (link == NULL || data == NULL || length > TVO_NODE_BUFFER_BYTES) {
-        return;
+    const int32_t status = tvo_step_wire_status(&stamp->why);
+    tvo_fleet_joint_command_t rows;
+    memset(&rows, 0, sizeof(rows));
+    for (uint8_t r = 0; r < stamp->robot_count && r < TVO_FLEET_MAX_ROBOTS; ++r) {
+        rows.speed_mps[r] = (double)command->speed_mps[r];
+        rows.turn_rate_radps[r] = (double)command->turn_rate_radps[r];
     }
-    if (channel == TVO_NODE_CH_COMMAND) {
-        take_command(link, data, length);
-    } else if (channel == TVO_NODE_CH_SESSION_ACK || channel == TVO_NODE_CH_TELEMETRY) {
+    const int in_step = link->answering >= 0 && stamp->sequence == link->answering;
+    const int followed = status == TVO_LCM_COMMAND_T_STATUS_OK || (wire_flags & TVO_LCM_COMMAND_T_FLAG_SAFE_STOP) != 0u;
+    if (in_step) {
+        link->answered_ok = (uint8_t)(status == TVO_LCM_COMMAND_T_STATUS_OK);
+    }
+    if (followed && stamp->robot_count > 0 && stamp->robot_count <= TVO_FLEET_MAX_ROBOTS) {
+        link->commands[1] = link->commands[0];
+        link->commands[0] = rows;
+        link->commands[0].sequence = in_step ? link->answering : (link->last_step >= 0 ? link->last_step : 0);
+    }
+    publish_row(link, stamp, status, wire_flags, &rows);
+}
+
+/* The node's publisher (tvo_node_publish_fn): its ack and telemetry, renamed for the own robot. */
+static void publish_from_node(void *context, int channel, const uint8_t *data, uint32_t length)
+{
+    tvo_fleet_link_t *link = (tvo_fleet_link_t *)context;
+    if (channel == TVO_NODE_CH_SESSION_ACK || channel == TVO_NODE_CH_TELEMETRY) {
         link->transport_publish(link->transport_context,
                                 channel == TVO_NODE_CH_SESSION_ACK ? TVO_FLEET_CH_SESSION_ACK : TVO_FLEET_CH_TELEMETRY,
                                 data, length);
@@ -242,28 +246,25 @@ static void state_of(const tvo_lcm_fleet_sample_t *s, tvo_fleet_robot_t *robot)
  * force, HOLDING, with the wire's ERR_NO_MEASUREMENT, and a telemetry of the same answer (the plant awaits both). */
 static void answer_unheard(tvo_fleet_link_t *link, const tvo_lcm_fleet_sample_t *own, int64_t delay_us)
 {
-    tvo_lcm_command_t *cmd = &link->rx.command;
-    memset(cmd, 0, sizeof(*cmd));
-    cmd->utime = own->utime + delay_us;
-    cmd->session_id = own->session_id;
-    cmd->measurement_sequence = own->sequence;
-    cmd->robot_count = own->robot_count;
-    cmd->status = TVO_LCM_COMMAND_T_STATUS_ERR_NO_MEASUREMENT;
-    cmd->flags = TVO_LCM_COMMAND_T_FLAG_HOLDING;
+    const tvo_step_stamp_t stamp = {own->utime + delay_us, own->session_id, own->sequence,
+                                    {TVO_NODE_OK, TVO_OK, TVO_REASON_NO_MEASUREMENT}, (uint8_t)own->robot_count};
+    const int32_t status = tvo_step_wire_status(&stamp.why);
+    const uint32_t flags = TVO_LCM_COMMAND_T_FLAG_HOLDING;
     const tvo_fleet_joint_command_t *held = in_force(link, own->sequence);
-    for (int32_t r = 0; r < own->robot_count; ++r) {
-        cmd->speed_mps[r] = held != NULL ? held->speed_mps[r] : 0.0;
-        cmd->turn_rate_radps[r] = held != NULL ? held->turn_rate_radps[r] : 0.0;
+    tvo_fleet_joint_command_t rows;
+    memset(&rows, 0, sizeof(rows));
+    if (held != NULL) {
+        rows = *held;
     }
     link->unheard_steps += 1u;
-    publish_command(link, cmd);
+    publish_row(link, &stamp, status, flags, &rows);
     tvo_lcm_telemetry_t tel;
     memset(&tel, 0, sizeof(tel));
-    tel.utime = cmd->utime;
-    tel.session_id = cmd->session_id;
-    tel.measurement_sequence = cmd->measurement_sequence;
-    tel.status = cmd->status;
-    tel.flags = cmd->flags;
+    tel.utime = stamp.utime;
+    tel.session_id = stamp.session_id;
+    tel.measurement_sequence = stamp.sequence;
+    tel.status = status;
+    tel.flags = (int32_t)flags;
     publish_out(link, TVO_FLEET_CH_TELEMETRY, tvo_lcm_telemetry_t_encode(link->buffer, 0, TVO_NODE_BUFFER_BYTES, &tel));
 }
 
@@ -315,36 +316,33 @@ static void step(tvo_fleet_link_t *link, tvo_node_t *node, const tvo_lcm_fleet_s
         answer_unheard(link, own, s->schedule.timing.delay_us);
         return;
     }
-    tvo_lcm_measurement_t *joint = &link->joint;
+    tvo_step_measurement_t *joint = &link->joint;
     memset(joint, 0, sizeof(*joint));
     joint->utime = own->utime;
     joint->session_id = own->session_id;
     joint->sequence = own->sequence;
     joint->robot_count = own->robot_count;
-    joint->heading_valid = own->heading_valid;
-    joint->speed_valid = own->speed_valid;
+    joint->heading_valid = own->heading_valid ? 1u : 0u;
+    joint->speed_valid = own->speed_valid ? 1u : 0u;
     for (int32_t r = 0; r < own->robot_count; ++r) {
+        tvo_step_robot_sample_t *sample = &joint->robot[r];
         const tvo_fleet_robot_t *robot = running ? &next[r] : NULL;
         if (robot == NULL) { /* no session of this id: the node answers for itself (NO_SESSION, other session) */
             if (r == link->own_robot) {
-                joint->position_m[r][0] = own->position_m[0];
-                joint->position_m[r][1] = own->position_m[1];
+                sample->position_m[0] = own->position_m[0];
+                sample->position_m[1] = own->position_m[1];
             }
             continue;
         }
-        joint->position_m[r][0] = robot->position_m[0];
-        joint->position_m[r][1] = robot->position_m[1];
-        joint->heading_rad[r] = robot->heading_rad;
-        joint->speed_mps[r] = robot->speed_mps;
-    }
-    const int length = tvo_lcm_measurement_t_encode(link->buffer, 0, TVO_NODE_BUFFER_BYTES, joint);
-    if (length <= 0) {
-        return;
+        sample->position_m[0] = robot->position_m[0];
+        sample->position_m[1] = robot->position_m[1];
+        sample->heading_rad = robot->heading_rad;
+        sample->speed_mps = robot->speed_mps;
     }
     link->answering = n;
     link->predicted = predicted;
     link->answered_ok = 0u;
-    (void)tvo_node_handle(node, TVO_NODE_CH_MEASUREMENT, link->buffer, (uint32_t)length, now_us);
+    (void)tvo_node_measure(node, joint, now_us);
     const int stepped = running && link->answered_ok;
     link->answering = -1;
     if (!stepped) {
@@ -393,7 +391,7 @@ int tvo_fleet_link_receive(tvo_fleet_link_t *link, tvo_node_t *node, int channel
     if (channel != TVO_FLEET_CH_SAMPLE) {
         return 0;
     }
-    tvo_lcm_fleet_sample_t *sample = &link->rx.sample;
+    tvo_lcm_fleet_sample_t *sample = &link->rx;
     if (tvo_lcm_fleet_sample_t_decode(data, 0, (int)length, sample) != (int)length || !sample_valid(sample)) {
         link->samples_refused += 1u;
         return 0;
@@ -413,7 +411,6 @@ int tvo_fleet_link_receive(tvo_fleet_link_t *link, tvo_node_t *node, int channel
         return channel;
     }
     link->samples_taken += 1u;
-    const tvo_lcm_fleet_sample_t own = *sample; /* rx is reused for the node's command */
-    step(link, node, &own, now_us);
+    step(link, node, sample, now_us);
     return channel;
 }

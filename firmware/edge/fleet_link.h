@@ -4,13 +4,14 @@
  *
  *   in   TVO_FLEET_SAMPLE_R<own>  fleet_sample_t, one robot's sample each. The others' samples of a
  *                                 period are kept until the own robot's sample of that period
- *                                 arrives; that one steps the node with the joint measurement_t it
- *                                 expects. A robot whose sample for the period is missing (lost, or
+ *                                 arrives; that one steps the node with the joint measurement
+ *                                 (tvo_node_measure: as many robots as the build drives). A robot whose sample for the period is missing (lost, or
  *                                 not yet arrived: late) is predicted from its last known state along
  *                                 the exact unicycle arc of the joint commands this node computed
  *                                 (deterministic: nodes that heard the same samples predict alike).
  *        TVO_SESSION, TVO_TARGET  handed to the node unchanged.
- *   out  TVO_FLEET_COMMAND_R<own> fleet_command_t: the own robot's row, the joint command's digest.
+ *   out  TVO_FLEET_COMMAND_R<own> fleet_command_t: the own robot's row, the joint command's digest
+ *                                 (the node answers the link, tvo_node_set_answer, not in command_t).
  *        TVO_SESSION_ACK_R<own>, TVO_TELEMETRY_R<own>  the node's own messages, named by robot.
  *
  * A node steps only once it has heard every robot (a robot never heard cannot be predicted): until
@@ -33,8 +34,8 @@
 extern "C" {
 #endif
 
-/** Robots of a fleet: the node's joint measurement_t carries this many. */
-#define TVO_FLEET_MAX_ROBOTS TVO_LCM_MEASUREMENT_T_MAX_ROBOTS
+/** Robots of a fleet: as many as the build drives (tvo_core's TVO_MAX_ROBOTS; the fleet messages carry 8). */
+#define TVO_FLEET_MAX_ROBOTS TVO_MAX_ROBOTS
 
 /** The fleet's own channels (after the node's: they share the numbering of tvo_node_channel_t). */
 typedef enum {
@@ -56,10 +57,6 @@ int tvo_fleet_channel_name(int channel, int32_t robot, char *out, size_t size);
  */
 int tvo_fleet_link_channel_name(void *link, int channel, char *out, size_t size);
 
-/** FNV-1a 64 of the joint command: speed then turn rate of robots 0 .. robot_count-1, each double's
- *  IEEE-754 bits least significant byte first (the same on every machine). */
-uint64_t tvo_fleet_digest(const tvo_lcm_command_t *command);
-
 /** What the link knows of one robot at a sampling instant. */
 typedef struct {
     double position_m[2];
@@ -74,6 +71,10 @@ typedef struct {
     double speed_mps[TVO_FLEET_MAX_ROBOTS];
     double turn_rate_radps[TVO_FLEET_MAX_ROBOTS];
 } tvo_fleet_joint_command_t;
+
+/** FNV-1a 64 of a joint command: speed then turn rate of robots 0 .. robot_count-1, each double's
+ *  IEEE-754 bits least significant byte first (the same on every machine). */
+uint64_t tvo_fleet_digest(const tvo_fleet_joint_command_t *command, int32_t robot_count);
 
 typedef struct {
     int32_t own_robot;
@@ -95,25 +96,19 @@ typedef struct {
     uint32_t samples_refused;                /* did not decode, not finite, robot out of range */
     uint32_t predictions;                    /* robot-periods predicted */
     uint32_t unheard_steps;                  /* own samples answered NO_MEASUREMENT: a robot never heard */
-    union {                                  /* scratch: decoded in place, not on the stack */
-        tvo_lcm_fleet_sample_t sample;
-        tvo_lcm_command_t command;
-    } rx;
-    tvo_lcm_measurement_t joint;             /* the node's input being built */
+    tvo_lcm_fleet_sample_t rx;               /* scratch: decoded in place, not on the stack */
+    tvo_step_measurement_t joint;            /* the node's input being built */
     tvo_lcm_fleet_command_t out;
     uint8_t buffer[TVO_NODE_BUFFER_BYTES];
 } tvo_fleet_link_t;
 
 /**
- * A link for the node driving own_robot (0 .. TVO_FLEET_MAX_ROBOTS-1), publishing through
- * transport_publish. Give tvo_node_init tvo_fleet_link_publish and the link as its publisher.
- * Returns 0, or -1 naming own_robot (out of range) or a NULL argument.
+ * A link and its node (initialised here: tvo_node_init with the link as its publisher and answer)
+ * driving own_robot (0 .. TVO_FLEET_MAX_ROBOTS-1), publishing through transport_publish.
+ * Returns 0, or -1 for own_robot out of range or a NULL argument (then neither is initialised).
  */
-int tvo_fleet_link_init(tvo_fleet_link_t *link, int32_t own_robot, tvo_node_publish_fn transport_publish,
-                        void *transport_context);
-
-/** The node's publisher (tvo_node_publish_fn; context: the link). */
-void tvo_fleet_link_publish(void *link, int channel, const uint8_t *data, uint32_t length);
+int tvo_fleet_link_init(tvo_fleet_link_t *link, tvo_node_t *node, int32_t own_robot,
+                        tvo_node_publish_fn transport_publish, void *transport_context);
 
 /**
  * A received message: TVO_FLEET_CH_SAMPLE is gathered (and the own robot's steps the node);

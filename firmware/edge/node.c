@@ -37,6 +37,22 @@ void tvo_node_init(tvo_node_t *node, tvo_node_publish_fn publish, void *publish_
     node->publish_context = publish_context;
 }
 
+int tvo_node_set_answer(tvo_node_t *node, tvo_node_answer_fn answer, void *answer_context)
+{
+    if (node == NULL || answer == NULL) {
+        return -1;
+    }
+    node->answer = answer;
+    node->answer_context = answer_context;
+    return 0;
+}
+
+uint8_t tvo_node_max_robots(const tvo_node_t *node)
+{
+    const uint8_t wire = TVO_WIRE_MAX_ROBOTS < TVO_MAX_ROBOTS ? TVO_WIRE_MAX_ROBOTS : TVO_MAX_ROBOTS;
+    return (node != NULL && node->answer != NULL) ? (uint8_t)TVO_MAX_ROBOTS : wire;
+}
+
 const tvo_node_session_t *tvo_node_session(const tvo_node_t *node)
 {
     return (node != NULL && node->state == TVO_NODE_RUNNING) ? &node->slot[node->running] : NULL;
@@ -80,6 +96,18 @@ static void publish_ack(tvo_node_t *node, const tvo_lcm_session_t *msg, const tv
                     tvo_lcm_session_ack_t_encode(node->buffer, 0, TVO_NODE_BUFFER_BYTES, &node->last_ack));
 }
 
+/* A unicycle command: to the node's answer if it has one, else out as command_t. */
+static void publish_command(tvo_node_t *node, const tvo_step_stamp_t *stamp, uint32_t wire_flags, const tvo_command_t *cmd)
+{
+    if (node->answer != NULL) {
+        node->answer(node->answer_context, stamp, wire_flags, cmd);
+        return;
+    }
+    tvo_lcm_command_t out;
+    tvo_step_command_to_lcm(cmd, stamp, &out);
+    publish_encoded(node, TVO_NODE_CH_COMMAND, tvo_lcm_command_t_encode(node->buffer, 0, TVO_NODE_BUFFER_BYTES, &out));
+}
+
 /* A command and the telemetry that follows it. */
 static void publish_step(tvo_node_t *node, tvo_node_session_t *s, const tvo_edge_command_t *cmd,
                          const tvo_step_stamp_t *stamp, int64_t now_us)
@@ -93,9 +121,13 @@ static void publish_step(tvo_node_t *node, tvo_node_session_t *s, const tvo_edge
     if ((flags & TVO_FLAG_SPEED_MISMATCH) != 0u) {
         count(&node->counters.speed_mismatch);
     }
-    tvo_lcm_command_t out;
-    ops->command_to_lcm(cmd, stamp, &out);
-    publish_encoded(node, TVO_NODE_CH_COMMAND, tvo_lcm_command_t_encode(node->buffer, 0, TVO_NODE_BUFFER_BYTES, &out));
+    if (node->answer != NULL) {
+        publish_command(node, stamp, flags, &cmd->unicycle); /* such a node runs unicycle sessions only */
+    } else {
+        tvo_lcm_command_t out;
+        ops->command_to_lcm(cmd, stamp, &out);
+        publish_encoded(node, TVO_NODE_CH_COMMAND, tvo_lcm_command_t_encode(node->buffer, 0, TVO_NODE_BUFFER_BYTES, &out));
+    }
     tvo_lcm_telemetry_t tel;
     memset(&tel, 0, sizeof(tel));
     ops->telemetry_to_lcm(&s->controller, &s->problem, &tel);
@@ -111,7 +143,7 @@ static void publish_step(tvo_node_t *node, tvo_node_session_t *s, const tvo_edge
 /* A decoded message and when it arrived. */
 typedef struct {
     const tvo_lcm_session_t *session;          /* TVO_SESSION, else NULL */
-    const tvo_lcm_measurement_t *measurement;  /* TVO_MEASUREMENT, else NULL */
+    const tvo_step_measurement_t *measurement; /* TVO_MEASUREMENT (or tvo_node_measure), else NULL */
     const tvo_lcm_target_t *target;            /* TVO_TARGET, else NULL */
     uint64_t content_hash;                     /* a session message's, past its utime */
     int64_t now_us;
@@ -270,14 +302,22 @@ static int32_t problem_culprit(const tvo_problem_desc_t *desc, const tvo_barrier
 }
 
 /* Builds a session from a START into `s` (the spare slot); the running one is not touched. */
-static tvo_status_t build_session(tvo_node_session_t *s, const tvo_lcm_session_t *msg, uint64_t content_hash,
-                                  int64_t now_us, tvo_session_reject_t *why)
+static tvo_status_t build_session(const tvo_node_t *node, tvo_node_session_t *s, const tvo_lcm_session_t *msg,
+                                  uint64_t content_hash, int64_t now_us, tvo_session_reject_t *why)
 {
     memset(s, 0, sizeof(*s));
     tvo_session_timing_t timing;
     tvo_status_t st = tvo_session_decode_timing(msg, &timing, why);
     if (st != TVO_OK) {
         return st;
+    }
+    /* Robots the node's answers carry; a node that answers through its answer drives unicycles. */
+    if (timing.robot_count > tvo_node_max_robots(node) ||
+        (node->answer != NULL && timing.plant_kind != TVO_LCM_SESSION_T_PLANT_UNICYCLE)) {
+        why->status = TVO_ERR_PARAM;
+        why->param = timing.robot_count > tvo_node_max_robots(node) ? TVO_SESSION_PARAM_ROBOT_COUNT
+                                                                     : TVO_SESSION_PARAM_PLANT_KIND;
+        return TVO_ERR_PARAM;
     }
     const tvo_edge_controller_ops_t *ops = tvo_edge_controller_ops(timing.plant_kind);
     const tvo_schedule_ops_t *clock = tvo_schedule_ops(timing.clock_source);
@@ -288,6 +328,15 @@ static tvo_status_t build_session(tvo_node_session_t *s, const tvo_lcm_session_t
     }
     tvo_problem_desc_t desc;
     st = tvo_session_decode_problem(msg, &desc, why);
+    /* target_t carries the wire's robots: a larger session's targets cannot be streamed. */
+    for (uint8_t r = 0; st == TVO_OK && timing.robot_count > TVO_WIRE_MAX_ROBOTS && r < timing.robot_count; ++r) {
+        if (desc.target[r].kind == TVO_TARGET_STREAMED) {
+            why->status = st = TVO_ERR_DIMENSION;
+            why->param = TVO_SESSION_PARAM_OBJECTIVE;
+            why->part = TVO_LCM_SESSION_ACK_T_PART_ROBOTS;
+            why->index = (int32_t)r;
+        }
+    }
     if (st == TVO_OK) {
         uint8_t problem_part = 0;
         st = tvo_problem_init(&s->problem, &desc, ops->relative_degree(msg), &problem_part);
@@ -316,7 +365,7 @@ static tvo_status_t build_session(tvo_node_session_t *s, const tvo_lcm_session_t
 static tvo_status_t start_session(tvo_node_t *node, const node_input_t *in, tvo_session_reject_t *why)
 {
     const uint8_t spare = (node->state == TVO_NODE_RUNNING) ? (uint8_t)(1u - node->running) : node->running;
-    const tvo_status_t st = build_session(&node->slot[spare], in->session, in->content_hash, in->now_us, why);
+    const tvo_status_t st = build_session(node, &node->slot[spare], in->session, in->content_hash, in->now_us, why);
     if (st != TVO_OK) {
         return st;
     }
@@ -358,7 +407,7 @@ static tvo_status_t count_other_session(tvo_node_t *node, const node_input_t *in
 static tvo_status_t answer_without_session(tvo_node_t *node, const node_input_t *in, tvo_session_reject_t *why)
 {
     (void)why;
-    const tvo_lcm_measurement_t *msg = in->measurement;
+    const tvo_step_measurement_t *msg = in->measurement;
     const uint8_t robot_count =
         (msg->robot_count >= 1 && msg->robot_count <= TVO_MAX_ROBOTS) ? (uint8_t)msg->robot_count : 0u;
     const tvo_step_stamp_t stamp = {tvo_schedule_clamp_time(msg->utime), msg->session_id, msg->sequence,
@@ -366,11 +415,10 @@ static tvo_status_t answer_without_session(tvo_node_t *node, const node_input_t 
     tvo_command_t stop;
     memset(&stop, 0, sizeof(stop));
     stop.outcome = TVO_OUTCOME_STOPPED;
-    tvo_lcm_command_t out;
-    tvo_step_command_to_lcm(&stop, &stamp, &out);
-    count(&node->counters.refused[out.status]);
-    node->last_refusal = out.status;
-    publish_encoded(node, TVO_NODE_CH_COMMAND, tvo_lcm_command_t_encode(node->buffer, 0, TVO_NODE_BUFFER_BYTES, &out));
+    const int32_t wire = tvo_step_wire_status(&stamp.why);
+    count(&node->counters.refused[wire]);
+    node->last_refusal = wire;
+    publish_command(node, &stamp, tvo_step_wire_flags(stop.flags, stop.outcome), &stop);
     return TVO_OK;
 }
 
@@ -392,7 +440,7 @@ static int attempt_taken(const node_attempt_t *attempt)
 /* The node's checks of a measurement judged on `schedule` (the wire's and its schedule's), then the
  * core's step, a transaction that checks the rest once. */
 static void attempt_measurement(tvo_node_session_t *s, const tvo_schedule_t *schedule,
-                                const tvo_lcm_measurement_t *msg, int64_t now_us, node_attempt_t *attempt)
+                                const tvo_step_measurement_t *msg, int64_t now_us, node_attempt_t *attempt)
 {
     const tvo_edge_controller_ops_t *ops = s->controller.ops;
     const uint8_t robot_count = schedule->timing.robot_count;
@@ -430,7 +478,7 @@ static int law_refused(const node_attempt_t *attempt)
 /* The refusal's answer, stamped no earlier than the measurement: the core's answer if it stepped (the
  * command in force, or its watchdog's stop), else the command in force; or the safe stop of the
  * clock mode's own rule (CLOCK_PLANT: a streak of refusals). Nothing of the message is kept. */
-static void refuse_measurement(tvo_node_t *node, tvo_node_session_t *s, const tvo_lcm_measurement_t *msg,
+static void refuse_measurement(tvo_node_t *node, tvo_node_session_t *s, const tvo_step_measurement_t *msg,
                                const node_attempt_t *attempt, int64_t now_us)
 {
     const int32_t wire = tvo_step_wire_status(&attempt->why);
@@ -462,7 +510,7 @@ static tvo_status_t serve_measurement(tvo_node_t *node, const node_input_t *in, 
 {
     (void)why;
     tvo_node_session_t *s = running_slot(node);
-    const tvo_lcm_measurement_t *msg = in->measurement;
+    const tvo_step_measurement_t *msg = in->measurement;
     node_attempt_t attempt;
     attempt_measurement(s, &s->schedule, msg, in->now_us, &attempt);
     if (!attempt_taken(&attempt)) {
@@ -548,7 +596,8 @@ int tvo_node_handle(tvo_node_t *node, int channel, const uint8_t *data, uint32_t
         break; /* malformed, or bytes past the message: not what a sender of this message sends */
     case TVO_NODE_CH_MEASUREMENT:
         if (tvo_lcm_measurement_t_decode(data, 0, size, &node->rx.measurement) == size) {
-            in.measurement = &node->rx.measurement;
+            tvo_step_measurement_from_wire(&node->rx.measurement, &node->measurement);
+            in.measurement = &node->measurement;
             event = stream_event(node, in.measurement->session_id, TVO_NODE_EVENT_MEASUREMENT,
                                  TVO_NODE_EVENT_MEASUREMENT_OTHER);
         }
@@ -568,6 +617,17 @@ int tvo_node_handle(tvo_node_t *node, int channel, const uint8_t *data, uint32_t
     }
     dispatch(node, event, &in);
     return channel;
+}
+
+int tvo_node_measure(tvo_node_t *node, const tvo_step_measurement_t *measurement, int64_t now_us)
+{
+    if (node == NULL || measurement == NULL) {
+        return 0;
+    }
+    node_input_t in = {NULL, measurement, NULL, 0u, tvo_schedule_clamp_time(now_us)};
+    dispatch(node, stream_event(node, measurement->session_id, TVO_NODE_EVENT_MEASUREMENT, TVO_NODE_EVENT_MEASUREMENT_OTHER),
+             &in);
+    return TVO_NODE_CH_MEASUREMENT;
 }
 
 int64_t tvo_node_poll(tvo_node_t *node, int64_t now_us)

@@ -46,6 +46,14 @@ extern "C" {
 
 typedef void (*tvo_node_publish_fn)(void *context, int channel, const uint8_t *data, uint32_t length);
 
+/**
+ * Where a node's commands go instead of command_t (tvo_node_set_answer): a fleet link, which answers
+ * with a row of the joint command. stamp: when, which session and measurement, and why
+ * (tvo_step_wire_status); wire_flags: command_t.flags; command: every robot's row.
+ */
+typedef void (*tvo_node_answer_fn)(void *context, const tvo_step_stamp_t *stamp, uint32_t wire_flags,
+                                   const tvo_command_t *command);
+
 /** The node's states (lcm_types/README.md "Sessions"): idle, or running one session. */
 typedef enum {
     TVO_NODE_IDLE = 0,
@@ -87,9 +95,12 @@ typedef struct {
         tvo_lcm_measurement_t measurement;
         tvo_lcm_target_t target;
     } rx;
+    tvo_step_measurement_t measurement;      /* rx.measurement as the node judges it */
     uint8_t buffer[TVO_NODE_BUFFER_BYTES];   /* encode buffer: publishing allocates nothing */
     tvo_node_publish_fn publish;
     void *publish_context;
+    tvo_node_answer_fn answer;               /* NULL: commands go out as command_t */
+    void *answer_context;
     uint8_t stop_requested;                  /* a STOP ended the running session */
     tvo_lcm_node_counters_t counters;        /* since the running session started (in telemetry) */
     tvo_lcm_session_ack_t last_ack;          /* the last ack published, for the transport's log */
@@ -116,10 +127,28 @@ int tvo_node_check_buffer(void);
 void tvo_node_init(tvo_node_t *node, tvo_node_publish_fn publish, void *publish_context);
 
 /**
+ * Commands go to `answer` instead of out as command_t, so that sessions may have as many robots as
+ * the build drives (TVO_MAX_ROBOTS, beyond the wire's TVO_WIRE_MAX_ROBOTS) and measurements come from
+ * tvo_node_measure: a fleet link's. Such a node serves unicycle sessions only; a session of more robots
+ * than the wire carries takes no streamed targets, and its telemetry carries no per-output vectors.
+ * Set it before the first START. Returns 0, or -1 for a NULL node or answer.
+ */
+int tvo_node_set_answer(tvo_node_t *node, tvo_node_answer_fn answer, void *answer_context);
+
+/** Most robots a session of this node may have: the build's with an answer, else also the wire's. */
+uint8_t tvo_node_max_robots(const tvo_node_t *node);
+
+/**
  * Handles one encoded message on `channel` at node time now_us. Returns the channel it was, or 0
  * if it is not one the node takes or did not decode (counted in counters.undecodable).
  */
 int tvo_node_handle(tvo_node_t *node, int channel, const uint8_t *data, uint32_t length, int64_t now_us);
+
+/**
+ * A joint measurement already decoded (a fleet link's, gathered from per-robot samples), handled as
+ * a measurement on TVO_MEASUREMENT is. Returns TVO_NODE_CH_MEASUREMENT, or 0 for a NULL argument.
+ */
+int tvo_node_measure(tvo_node_t *node, const tvo_step_measurement_t *measurement, int64_t now_us);
 
 /**
  * The node's timer (CLOCK_NODE sessions): publishes what is due at now_us (a safe stop) and

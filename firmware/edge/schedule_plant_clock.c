@@ -65,7 +65,7 @@ static void plant_repeat_start(tvo_schedule_t *schedule, const tvo_lcm_session_t
     }
 }
 
-static tvo_node_status_t plant_place(const tvo_schedule_t *schedule, const tvo_lcm_measurement_t *msg, int64_t now_us,
+static tvo_node_status_t plant_place(const tvo_schedule_t *schedule, const tvo_step_measurement_t *msg, int64_t now_us,
                                 tvo_schedule_placement_t *placement)
 {
     (void)now_us;
@@ -110,7 +110,7 @@ static void plant_accepted(tvo_schedule_t *schedule, const tvo_schedule_placemen
  * window move the window to the last of them (a plant that could not be served within it, its
  * robot inside an obstacle or its target stream late, is not refused for ever).
  */
-static int plant_vote(tvo_schedule_t *schedule, const tvo_lcm_measurement_t *msg, const tvo_step_why_t *refusal, int64_t now_us,
+static int plant_vote(tvo_schedule_t *schedule, const tvo_step_measurement_t *msg, const tvo_step_why_t *refusal, int64_t now_us,
                       tvo_schedule_anchor_t *moved)
 {
     (void)now_us;
@@ -142,7 +142,7 @@ static int plant_vote(tvo_schedule_t *schedule, const tvo_lcm_measurement_t *msg
     return 1;
 }
 
-static int64_t plant_refusal_utime(const tvo_schedule_t *schedule, const tvo_lcm_measurement_t *msg, int64_t now_us)
+static int64_t plant_refusal_utime(const tvo_schedule_t *schedule, const tvo_step_measurement_t *msg, int64_t now_us)
 {
     (void)schedule;
     (void)now_us;

@@ -6,16 +6,15 @@
 #include "wire_real.h"
 #include "internal/barrier.h"
 
-/* The wire's arrays must hold every robot and output the core can have. */
-_Static_assert(TVO_LCM_MEASUREMENT_T_MAX_ROBOTS >= TVO_MAX_ROBOTS, "measurement_t holds every robot");
-_Static_assert(sizeof(((tvo_lcm_command_t *)0)->speed_mps) / sizeof(double) >= TVO_MAX_ROBOTS, "command_t holds every robot");
-_Static_assert(sizeof(((tvo_lcm_target_t *)0)->position_m) / sizeof(double[2]) >= TVO_MAX_ROBOTS, "target_t holds every robot");
-_Static_assert(sizeof(((tvo_lcm_telemetry_t *)0)->speed_state_mps) / sizeof(double) >= TVO_MAX_ROBOTS,
-               "telemetry_t holds every robot");
-_Static_assert(sizeof(((tvo_lcm_command_t *)0)->input) / sizeof(double) >= TVO_MAX_OUTPUT_DIM,
-               "command_t.input holds every output");
-_Static_assert(sizeof(((tvo_lcm_telemetry_t *)0)->gradient) / sizeof(double) >= TVO_MAX_OUTPUT_DIM,
-               "telemetry_t holds every output");
+/* Every per-period message holds TVO_WIRE_MAX_ROBOTS robots and their outputs; the codec's loops stop
+ * at the smaller of that and the build's limit. */
+#define WIRE_ROBOTS_OF(type, member, values_per_robot) (sizeof(((type *)0)->member) / (sizeof(double) * (values_per_robot)))
+_Static_assert(WIRE_ROBOTS_OF(tvo_lcm_command_t, speed_mps, 1) == TVO_WIRE_MAX_ROBOTS, "command_t: the wire's robots");
+_Static_assert(WIRE_ROBOTS_OF(tvo_lcm_command_t, input, 2) == TVO_WIRE_MAX_ROBOTS, "command_t.input: 2 per robot");
+_Static_assert(WIRE_ROBOTS_OF(tvo_lcm_target_t, position_m, 2) == TVO_WIRE_MAX_ROBOTS, "target_t: the wire's robots");
+_Static_assert(WIRE_ROBOTS_OF(tvo_lcm_telemetry_t, speed_state_mps, 1) == TVO_WIRE_MAX_ROBOTS, "telemetry_t: the wire's robots");
+_Static_assert(WIRE_ROBOTS_OF(tvo_lcm_telemetry_t, gradient, 2) == TVO_WIRE_MAX_ROBOTS, "telemetry_t: 2 outputs per robot");
+#define WIRE_ROBOTS (TVO_WIRE_MAX_ROBOTS < TVO_MAX_ROBOTS ? TVO_WIRE_MAX_ROBOTS : TVO_MAX_ROBOTS)
 
 /* The wire's numbers of the core's call errors, the core's reasons and the edge's statuses: every
  * status a command, telemetry or ack carries comes from these three tables (lcm_types/README.md). */
@@ -99,9 +98,34 @@ static int robot_count_matches(int32_t wire_count, uint8_t robot_count)
     return robot_count <= TVO_MAX_ROBOTS && wire_count == (int32_t)robot_count;
 }
 
+void tvo_step_measurement_from_wire(const tvo_lcm_measurement_t *msg, tvo_step_measurement_t *out)
+{
+    if (msg == NULL || out == NULL) {
+        return;
+    }
+    memset(out, 0, sizeof(*out));
+    out->utime = msg->utime;
+    out->session_id = msg->session_id;
+    out->sequence = msg->sequence;
+    out->robot_count = (msg->robot_count <= WIRE_ROBOTS) ? msg->robot_count : -1;
+    out->heading_valid = msg->heading_valid ? 1u : 0u;
+    out->speed_valid = msg->speed_valid ? 1u : 0u;
+    out->derivatives_valid = msg->derivatives_valid ? 1u : 0u;
+    for (int32_t r = 0; r < out->robot_count; ++r) {
+        tvo_step_robot_sample_t *robot = &out->robot[r];
+        robot->heading_rad = msg->heading_rad[r];
+        robot->speed_mps = msg->speed_mps[r];
+        for (size_t axis = 0; axis < 2; ++axis) {
+            robot->position_m[axis] = msg->position_m[r][axis];
+            robot->output_rate_mps[axis] = msg->output_rate_mps[r][axis];
+            robot->output_accel_mps2[axis] = msg->output_accel_mps2[r][axis];
+        }
+    }
+}
+
 /* What every measurement decoding starts with: the arguments, the core's measurement (`size` bytes)
  * zeroed, and the robot count. */
-static tvo_status_t measurement_start(const tvo_lcm_measurement_t *msg, void *meas, size_t size, uint8_t robot_count)
+static tvo_status_t measurement_start(const tvo_step_measurement_t *msg, void *meas, size_t size, uint8_t robot_count)
 {
     if (msg == NULL || meas == NULL) {
         return TVO_ERR_NULL;
@@ -110,7 +134,7 @@ static tvo_status_t measurement_start(const tvo_lcm_measurement_t *msg, void *me
     return robot_count_matches(msg->robot_count, robot_count) ? TVO_OK : TVO_ERR_DIMENSION;
 }
 
-tvo_status_t tvo_step_measurement_from_lcm(const tvo_lcm_measurement_t *msg, uint8_t robot_count, uint32_t stamp_tick,
+tvo_status_t tvo_step_unicycle_measurement(const tvo_step_measurement_t *msg, uint8_t robot_count, uint32_t stamp_tick,
                                            tvo_measurement_t *meas)
 {
     const tvo_status_t st = measurement_start(msg, meas, sizeof(*meas), robot_count);
@@ -119,18 +143,18 @@ tvo_status_t tvo_step_measurement_from_lcm(const tvo_lcm_measurement_t *msg, uin
     }
     meas->stamp_tick = stamp_tick;
     for (size_t r = 0; r < robot_count; ++r) {
-        meas->position_m[r][0] = tvo_wire_real(msg->position_m[r][0]);
-        meas->position_m[r][1] = tvo_wire_real(msg->position_m[r][1]);
-        meas->heading_rad[r] = tvo_wire_real(msg->heading_rad[r]);
-        meas->speed_mps[r] = tvo_wire_real(msg->speed_mps[r]);
+        meas->position_m[r][0] = tvo_wire_real(msg->robot[r].position_m[0]);
+        meas->position_m[r][1] = tvo_wire_real(msg->robot[r].position_m[1]);
+        meas->heading_rad[r] = tvo_wire_real(msg->robot[r].heading_rad);
+        meas->speed_mps[r] = tvo_wire_real(msg->robot[r].speed_mps);
     }
-    meas->heading_valid = msg->heading_valid ? 1u : 0u;
-    meas->speed_valid = msg->speed_valid ? 1u : 0u;
+    meas->heading_valid = msg->heading_valid;
+    meas->speed_valid = msg->speed_valid;
     return TVO_OK;
 }
 
-tvo_status_t tvo_step_chain_measurement_from_lcm(const tvo_lcm_measurement_t *msg, uint8_t robot_count,
-                                                 uint32_t stamp_tick, tvo_chain_measurement_t *meas)
+tvo_status_t tvo_step_chain_measurement(const tvo_step_measurement_t *msg, uint8_t robot_count, uint32_t stamp_tick,
+                                        tvo_chain_measurement_t *meas)
 {
     const tvo_status_t st = measurement_start(msg, meas, sizeof(*meas), robot_count);
     if (st != TVO_OK) {
@@ -140,11 +164,11 @@ tvo_status_t tvo_step_chain_measurement_from_lcm(const tvo_lcm_measurement_t *ms
     for (size_t r = 0; r < robot_count; ++r) {
         for (size_t axis = 0; axis < 2; ++axis) {
             const size_t i = 2u * r + axis;
-            meas->y.d[0][i] = tvo_wire_real(msg->position_m[r][axis]);
+            meas->y.d[0][i] = tvo_wire_real(msg->robot[r].position_m[axis]);
             if (msg->derivatives_valid) {
-                meas->y.d[1][i] = tvo_wire_real(msg->output_rate_mps[r][axis]);
+                meas->y.d[1][i] = tvo_wire_real(msg->robot[r].output_rate_mps[axis]);
 #if TVO_MAX_RELATIVE_DEGREE >= 3
-                meas->y.d[2][i] = tvo_wire_real(msg->output_accel_mps2[r][axis]);
+                meas->y.d[2][i] = tvo_wire_real(msg->robot[r].output_accel_mps2[axis]);
 #endif
             }
         }
@@ -176,7 +200,7 @@ void tvo_step_command_to_lcm(const tvo_command_t *cmd, const tvo_step_stamp_t *s
         return;
     }
     command_stamp(stamp, cmd->flags, cmd->outcome, msg);
-    for (size_t r = 0; r < stamp->robot_count && r < TVO_MAX_ROBOTS; ++r) {
+    for (size_t r = 0; r < stamp->robot_count && r < WIRE_ROBOTS; ++r) {
         msg->speed_mps[r] = (double)cmd->speed_mps[r];
         msg->turn_rate_radps[r] = (double)cmd->turn_rate_radps[r];
     }
@@ -189,7 +213,7 @@ void tvo_step_chain_command_to_lcm(const tvo_chain_command_t *cmd, const tvo_ste
         return;
     }
     command_stamp(stamp, cmd->flags, cmd->outcome, msg);
-    for (size_t i = 0; i < 2u * (size_t)stamp->robot_count && i < TVO_MAX_OUTPUT_DIM; ++i) {
+    for (size_t i = 0; i < 2u * (size_t)stamp->robot_count && i < 2u * WIRE_ROBOTS; ++i) {
         msg->input[i] = (double)cmd->u[i];
     }
 }
@@ -209,17 +233,18 @@ void tvo_step_telemetry_to_lcm(const tvo_controller_telemetry_t *tel, uint8_t ro
     if (tel == NULL || speed_state_mps == NULL || problem == NULL || msg == NULL) {
         return;
     }
-    const size_t dim = 2u * (size_t)robot_count;
+    /* A session of more robots than the message carries (a fleet's) has no vectors in it: dim 0. */
+    const size_t dim = robot_count <= WIRE_ROBOTS ? 2u * (size_t)robot_count : 0u;
     msg->objective_time_s = (double)tel->objective_time_s;
     msg->dim = (int32_t)dim;
-    for (size_t i = 0; i < dim && i < TVO_MAX_OUTPUT_DIM; ++i) {
+    for (size_t i = 0; i < dim; ++i) {
         msg->gradient[i] = (double)tel->gradient[i];
         msg->gradient_rate[i] = (double)tel->gradient_rate[i];
         msg->output_m[i] = (double)tel->output_m[i];
         msg->output_rate_mps[i] = (double)tel->output_rate_mps[i];
         msg->output_accel_mps2[i] = (double)tel->output_accel_mps2[i];
     }
-    for (size_t r = 0; r < robot_count && r < TVO_MAX_ROBOTS; ++r) {
+    for (size_t r = 0; 2u * r < dim; ++r) {
         msg->speed_state_mps[r] = (double)speed_state_mps[r];
     }
     const size_t multipliers = problem->objective.dual_dim;
@@ -254,7 +279,7 @@ tvo_status_t tvo_step_target_from_lcm_carried(const tvo_lcm_target_t *msg, uint8
     if (!(carry_s >= 0.0 && carry_s <= 1.0)) {
         return TVO_ERR_PARAM;
     }
-    if (!robot_count_matches(msg->robot_count, robot_count)) {
+    if (!robot_count_matches(msg->robot_count, robot_count) || robot_count > WIRE_ROBOTS) {
         return TVO_ERR_DIMENSION;
     }
     /* Every robot's target must take the sample: check all before feeding any (nothing half-kept). */

@@ -22,13 +22,43 @@
 extern "C" {
 #endif
 
+/** Robots the per-period messages carry (measurement_t, command_t, target_t, telemetry_t). A build may
+ *  drive more (TVO_MAX_ROBOTS): only a node that answers through a joint answer (a fleet link, node.h)
+ *  serves such sessions, from per-robot samples. */
+#define TVO_WIRE_MAX_ROBOTS TVO_LCM_MEASUREMENT_T_MAX_ROBOTS
+
+/** One robot's sample, in the wire's units. */
+typedef struct {
+    double position_m[2];
+    double heading_rad;
+    double speed_mps;
+    double output_rate_mps[2];     /* chain sessions: y', y'' when derivatives_valid */
+    double output_accel_mps2[2];
+} tvo_step_robot_sample_t;
+
+/** A joint measurement of the build's robots, as the node judges and steps it: a measurement_t
+ *  (tvo_step_measurement_from_wire), or a fleet link's per-robot samples gathered for a period. */
+typedef struct {
+    int64_t utime;
+    int64_t session_id;
+    int64_t sequence;
+    int32_t robot_count;           /* -1: more than the message carried (never a session's) */
+    uint8_t heading_valid;
+    uint8_t speed_valid;
+    uint8_t derivatives_valid;
+    tvo_step_robot_sample_t robot[TVO_MAX_ROBOTS];
+} tvo_step_measurement_t;
+
+/** The joint measurement a measurement_t carries (a robot_count beyond its arrays becomes -1). */
+void tvo_step_measurement_from_wire(const tvo_lcm_measurement_t *msg, tvo_step_measurement_t *out);
+
 /** Unicycle measurement (poses, headings, speeds) of robot_count robots, stamped stamp_tick. */
-tvo_status_t tvo_step_measurement_from_lcm(const tvo_lcm_measurement_t *msg, uint8_t robot_count, uint32_t stamp_tick,
+tvo_status_t tvo_step_unicycle_measurement(const tvo_step_measurement_t *msg, uint8_t robot_count, uint32_t stamp_tick,
                                            tvo_measurement_t *meas);
 
 /** Chain measurement: positions, and y', y'' when derivatives_valid. */
-tvo_status_t tvo_step_chain_measurement_from_lcm(const tvo_lcm_measurement_t *msg, uint8_t robot_count,
-                                                 uint32_t stamp_tick, tvo_chain_measurement_t *meas);
+tvo_status_t tvo_step_chain_measurement(const tvo_step_measurement_t *msg, uint8_t robot_count, uint32_t stamp_tick,
+                                        tvo_chain_measurement_t *meas);
 
 /** Why a command (or an ack) went out as it did: the edge's own status if not TVO_NODE_OK, else the
  *  core's call error if not TVO_OK, else the command's reason. */

@@ -43,6 +43,20 @@ static void through_the_wire(tvo_lcm_measurement_t *m)
     *m = back;
 }
 
+/* The node's two steps from a measurement_t: the joint measurement it carries, then the core's. */
+static tvo_step_measurement_t joint;
+static tvo_status_t unicycle_from_lcm(const tvo_lcm_measurement_t *wire, uint8_t robots, uint32_t tick, tvo_measurement_t *meas)
+{
+    tvo_step_measurement_from_wire(wire, &joint);
+    return tvo_step_unicycle_measurement(wire != NULL ? &joint : NULL, robots, tick, meas);
+}
+static tvo_status_t chain_from_lcm(const tvo_lcm_measurement_t *wire, uint8_t robots, uint32_t tick,
+                                   tvo_chain_measurement_t *meas)
+{
+    tvo_step_measurement_from_wire(wire, &joint);
+    return tvo_step_chain_measurement(wire != NULL ? &joint : NULL, robots, tick, meas);
+}
+
 static void test_measurement_round_trip_keeps_every_robot_and_field(void)
 {
     tvo_lcm_measurement_t wire;
@@ -50,7 +64,7 @@ static void test_measurement_round_trip_keeps_every_robot_and_field(void)
     through_the_wire(&wire);
     tvo_measurement_t meas;
     memset(&meas, 0x5A, sizeof(meas));
-    EF_ASSERT_STATUS(TVO_OK, tvo_step_measurement_from_lcm(&wire, 3u, 0xFFFFFFF0u, &meas));
+    EF_ASSERT_STATUS(TVO_OK, unicycle_from_lcm(&wire, 3u, 0xFFFFFFF0u, &meas));
     TEST_ASSERT_EQUAL_HEX32(0xFFFFFFF0u, meas.stamp_tick);
     for (int r = 0; r < 3; ++r) {
         TEST_ASSERT_TRUE(meas.position_m[r][0] == (tvo_real_t)(1.25 + r));
@@ -65,7 +79,7 @@ static void test_measurement_round_trip_keeps_every_robot_and_field(void)
     /* A boolean is 1 for any non-zero byte on the wire. */
     wire.heading_valid = -7;
     wire.speed_valid = 0;
-    EF_ASSERT_STATUS(TVO_OK, tvo_step_measurement_from_lcm(&wire, 3u, 0u, &meas));
+    EF_ASSERT_STATUS(TVO_OK, unicycle_from_lcm(&wire, 3u, 0u, &meas));
     TEST_ASSERT_EQUAL_UINT8(1u, meas.heading_valid);
     TEST_ASSERT_EQUAL_UINT8(0u, meas.speed_valid);
 }
@@ -79,20 +93,20 @@ static void test_measurement_robot_count_must_match_the_session(void)
         tvo_lcm_measurement_t wire;
         distinct_measurement(&wire, 3);
         wire.robot_count = bad[i];
-        EF_ASSERT_STATUS(TVO_ERR_DIMENSION, tvo_step_measurement_from_lcm(&wire, 3u, 0u, &meas));
-        EF_ASSERT_STATUS(TVO_ERR_DIMENSION, tvo_step_chain_measurement_from_lcm(&wire, 3u, 0u, &chain));
+        EF_ASSERT_STATUS(TVO_ERR_DIMENSION, unicycle_from_lcm(&wire, 3u, 0u, &meas));
+        EF_ASSERT_STATUS(TVO_ERR_DIMENSION, chain_from_lcm(&wire, 3u, 0u, &chain));
     }
     /* A session count past the core's: refused even when the message agrees. */
     tvo_lcm_measurement_t wire;
     distinct_measurement(&wire, TVO_MAX_ROBOTS + 1);
     EF_ASSERT_STATUS(TVO_ERR_DIMENSION,
-                     tvo_step_measurement_from_lcm(&wire, (uint8_t)(TVO_MAX_ROBOTS + 1), 0u, &meas));
+                     unicycle_from_lcm(&wire, (uint8_t)(TVO_MAX_ROBOTS + 1), 0u, &meas));
     EF_ASSERT_STATUS(TVO_ERR_DIMENSION,
-                     tvo_step_chain_measurement_from_lcm(&wire, (uint8_t)(TVO_MAX_ROBOTS + 1), 0u, &chain));
-    EF_ASSERT_STATUS(TVO_ERR_NULL, tvo_step_measurement_from_lcm(NULL, 1u, 0u, &meas));
-    EF_ASSERT_STATUS(TVO_ERR_NULL, tvo_step_measurement_from_lcm(&wire, 1u, 0u, NULL));
-    EF_ASSERT_STATUS(TVO_ERR_NULL, tvo_step_chain_measurement_from_lcm(NULL, 1u, 0u, &chain));
-    EF_ASSERT_STATUS(TVO_ERR_NULL, tvo_step_chain_measurement_from_lcm(&wire, 1u, 0u, NULL));
+                     chain_from_lcm(&wire, (uint8_t)(TVO_MAX_ROBOTS + 1), 0u, &chain));
+    EF_ASSERT_STATUS(TVO_ERR_NULL, unicycle_from_lcm(NULL, 1u, 0u, &meas));
+    EF_ASSERT_STATUS(TVO_ERR_NULL, unicycle_from_lcm(&wire, 1u, 0u, NULL));
+    EF_ASSERT_STATUS(TVO_ERR_NULL, chain_from_lcm(NULL, 1u, 0u, &chain));
+    EF_ASSERT_STATUS(TVO_ERR_NULL, chain_from_lcm(&wire, 1u, 0u, NULL));
 }
 
 static void test_measurement_values_beyond_the_scalar_become_infinite(void)
@@ -102,7 +116,7 @@ static void test_measurement_values_beyond_the_scalar_become_infinite(void)
     wire.position_m[0][0] = 1e300;
     wire.heading_rad[0] = -1e300;
     tvo_measurement_t meas;
-    EF_ASSERT_STATUS(TVO_OK, tvo_step_measurement_from_lcm(&wire, 1u, 0u, &meas));
+    EF_ASSERT_STATUS(TVO_OK, unicycle_from_lcm(&wire, 1u, 0u, &meas));
 #if TVO_USE_DOUBLE
     TEST_ASSERT_TRUE(meas.position_m[0][0] == 1e300 && meas.heading_rad[0] == -1e300);
 #else
@@ -118,7 +132,7 @@ static void test_chain_measurement_reads_derivatives_only_when_valid(void)
     wire.derivatives_valid = 1;
     through_the_wire(&wire);
     tvo_chain_measurement_t meas;
-    EF_ASSERT_STATUS(TVO_OK, tvo_step_chain_measurement_from_lcm(&wire, 2u, 77u, &meas));
+    EF_ASSERT_STATUS(TVO_OK, chain_from_lcm(&wire, 2u, 77u, &meas));
     TEST_ASSERT_EQUAL_UINT32(77u, meas.stamp_tick);
     for (int r = 0; r < 2; ++r) {
         for (int axis = 0; axis < 2; ++axis) {
@@ -131,7 +145,7 @@ static void test_chain_measurement_reads_derivatives_only_when_valid(void)
         }
     }
     wire.derivatives_valid = 0;
-    EF_ASSERT_STATUS(TVO_OK, tvo_step_chain_measurement_from_lcm(&wire, 2u, 77u, &meas));
+    EF_ASSERT_STATUS(TVO_OK, chain_from_lcm(&wire, 2u, 77u, &meas));
     for (int i = 0; i < 4; ++i) {
         TEST_ASSERT_TRUE(meas.y.d[0][i] != TVO_R(0.0));
         TEST_ASSERT_TRUE(meas.y.d[1][i] == TVO_R(0.0));
@@ -237,7 +251,7 @@ static void stepped_controller(int with_halfspace)
     ef_measurement(&wire, EF_SESSION_ID, 0, 0, 2);
     const uint32_t apply = epoch + (uint32_t)EF_PERIOD_US;
     tvo_measurement_t meas;
-    EF_ASSERT_STATUS(TVO_OK, tvo_step_measurement_from_lcm(&wire, 2u, apply - (uint32_t)EF_DELAY_US, &meas));
+    EF_ASSERT_STATUS(TVO_OK, unicycle_from_lcm(&wire, 2u, apply - (uint32_t)EF_DELAY_US, &meas));
     tvo_real_t y[TVO_MAX_OUTPUT_DIM] = {TVO_R(0.0), TVO_R(0.0), TVO_R(0.0), TVO_R(1.0)};
     EF_ASSERT_STATUS(TVO_OK, tvo_problem_choose_slack(&problem, y, TVO_R(0.0)));
     tvo_command_t cmd;
