@@ -233,7 +233,7 @@ static void print_usage(FILE *out)
             "  --keep-running      serve session after session (default: exit after a session's STOP)\n"
             "  --exit-with-parent  exit when the process that started this one dies (no orphans)\n"
             "  -h, --help          show this help\n",
-            TVO_FLEET_MAX_ROBOTS, TVO_WIRE_MAX_ROBOTS < TVO_MAX_ROBOTS ? TVO_WIRE_MAX_ROBOTS : TVO_MAX_ROBOTS);
+            TVO_FLEET_MAX_ROBOTS, TVO_WIRE_SESSION_ROBOTS);
 }
 
 typedef struct {

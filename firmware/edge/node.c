@@ -49,8 +49,7 @@ int tvo_node_set_answer(tvo_node_t *node, tvo_node_answer_fn answer, void *answe
 
 uint8_t tvo_node_max_robots(const tvo_node_t *node)
 {
-    const uint8_t wire = TVO_WIRE_MAX_ROBOTS < TVO_MAX_ROBOTS ? TVO_WIRE_MAX_ROBOTS : TVO_MAX_ROBOTS;
-    return (node != NULL && node->answer != NULL) ? (uint8_t)TVO_MAX_ROBOTS : wire;
+    return (node != NULL && node->answer != NULL) ? (uint8_t)TVO_MAX_ROBOTS : (uint8_t)TVO_WIRE_SESSION_ROBOTS;
 }
 
 const tvo_node_session_t *tvo_node_session(const tvo_node_t *node)

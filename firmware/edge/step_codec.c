@@ -14,7 +14,6 @@ _Static_assert(WIRE_ROBOTS_OF(tvo_lcm_command_t, input, 2) == TVO_WIRE_MAX_ROBOT
 _Static_assert(WIRE_ROBOTS_OF(tvo_lcm_target_t, position_m, 2) == TVO_WIRE_MAX_ROBOTS, "target_t: the wire's robots");
 _Static_assert(WIRE_ROBOTS_OF(tvo_lcm_telemetry_t, speed_state_mps, 1) == TVO_WIRE_MAX_ROBOTS, "telemetry_t: the wire's robots");
 _Static_assert(WIRE_ROBOTS_OF(tvo_lcm_telemetry_t, gradient, 2) == TVO_WIRE_MAX_ROBOTS, "telemetry_t: 2 outputs per robot");
-#define WIRE_ROBOTS (TVO_WIRE_MAX_ROBOTS < TVO_MAX_ROBOTS ? TVO_WIRE_MAX_ROBOTS : TVO_MAX_ROBOTS)
 
 /* The wire's numbers of the core's call errors, the core's reasons and the edge's statuses: every
  * status a command, telemetry or ack carries comes from these three tables (lcm_types/README.md). */
@@ -107,7 +106,7 @@ void tvo_step_measurement_from_wire(const tvo_lcm_measurement_t *msg, tvo_step_m
     out->utime = msg->utime;
     out->session_id = msg->session_id;
     out->sequence = msg->sequence;
-    out->robot_count = (msg->robot_count <= WIRE_ROBOTS) ? msg->robot_count : -1;
+    out->robot_count = (msg->robot_count <= TVO_WIRE_SESSION_ROBOTS) ? msg->robot_count : -1;
     out->heading_valid = msg->heading_valid ? 1u : 0u;
     out->speed_valid = msg->speed_valid ? 1u : 0u;
     out->derivatives_valid = msg->derivatives_valid ? 1u : 0u;
@@ -200,7 +199,7 @@ void tvo_step_command_to_lcm(const tvo_command_t *cmd, const tvo_step_stamp_t *s
         return;
     }
     command_stamp(stamp, cmd->flags, cmd->outcome, msg);
-    for (size_t r = 0; r < stamp->robot_count && r < WIRE_ROBOTS; ++r) {
+    for (size_t r = 0; r < stamp->robot_count && r < TVO_WIRE_SESSION_ROBOTS; ++r) {
         msg->speed_mps[r] = (double)cmd->speed_mps[r];
         msg->turn_rate_radps[r] = (double)cmd->turn_rate_radps[r];
     }
@@ -213,7 +212,7 @@ void tvo_step_chain_command_to_lcm(const tvo_chain_command_t *cmd, const tvo_ste
         return;
     }
     command_stamp(stamp, cmd->flags, cmd->outcome, msg);
-    for (size_t i = 0; i < 2u * (size_t)stamp->robot_count && i < 2u * WIRE_ROBOTS; ++i) {
+    for (size_t i = 0; i < 2u * (size_t)stamp->robot_count && i < 2u * TVO_WIRE_SESSION_ROBOTS; ++i) {
         msg->input[i] = (double)cmd->u[i];
     }
 }
@@ -234,7 +233,7 @@ void tvo_step_telemetry_to_lcm(const tvo_controller_telemetry_t *tel, uint8_t ro
         return;
     }
     /* A session of more robots than the message carries (a fleet's) has no vectors in it: dim 0. */
-    const size_t dim = robot_count <= WIRE_ROBOTS ? 2u * (size_t)robot_count : 0u;
+    const size_t dim = robot_count <= TVO_WIRE_SESSION_ROBOTS ? 2u * (size_t)robot_count : 0u;
     msg->objective_time_s = (double)tel->objective_time_s;
     msg->dim = (int32_t)dim;
     for (size_t i = 0; i < dim; ++i) {
@@ -279,7 +278,7 @@ tvo_status_t tvo_step_target_from_lcm_carried(const tvo_lcm_target_t *msg, uint8
     if (!(carry_s >= 0.0 && carry_s <= 1.0)) {
         return TVO_ERR_PARAM;
     }
-    if (!robot_count_matches(msg->robot_count, robot_count) || robot_count > WIRE_ROBOTS) {
+    if (!robot_count_matches(msg->robot_count, robot_count) || robot_count > TVO_WIRE_SESSION_ROBOTS) {
         return TVO_ERR_DIMENSION;
     }
     /* Every robot's target must take the sample: check all before feeding any (nothing half-kept). */

@@ -26,6 +26,8 @@ extern "C" {
  *  drive more (TVO_MAX_ROBOTS): only a node that answers through a joint answer (a fleet link, node.h)
  *  serves such sessions, from per-robot samples. */
 #define TVO_WIRE_MAX_ROBOTS TVO_LCM_MEASUREMENT_T_MAX_ROBOTS
+/** Robots a session answered in the per-period messages may have: the wire's, or fewer if the build drives fewer. */
+#define TVO_WIRE_SESSION_ROBOTS (TVO_WIRE_MAX_ROBOTS < TVO_MAX_ROBOTS ? TVO_WIRE_MAX_ROBOTS : TVO_MAX_ROBOTS)
 
 /** One robot's sample, in the wire's units. */
 typedef struct {
