@@ -383,10 +383,21 @@ def auth(b):
         return f"Not measured: {a['skipped']}.\n"
     rows = [(name, n(f["message_bytes"]), n(f["sign_instr"]), n(f["verify_instr"])) for name, f in a["messages"].items()]
     verdict = "within" if a["meets_target"] else "over"
-    return (table(["message (LCM-encoded)", "bytes", "sign", "verify"], rows)
+    shortest_name, shortest = min(((k, f) for k, f in a["messages"].items() if f["message_bytes"] > 0),
+                                  key=lambda kv: kv[1]["message_bytes"])
+    text = (table(["message (LCM-encoded)", "bytes", "sign", "verify"], rows)
             + f"\n{a['primitive']} on {a['board']}; median instructions of 33. Flash of the authentication "
               f"code in that link: {n(a['flash_bytes'])} B. A one-robot measurement and a command are {verdict} "
-              f"the target of {n(a['target_instr'])} instructions each.\n")
+              f"the target of {n(a['target_instr'])} instructions each; the shortest message, `{shortest_name}` "
+              f"({n(shortest['message_bytes'])} B), takes {n(shortest['sign_instr'])} to sign and "
+              f"{n(shortest['verify_instr'])} to verify.\n")
+    m0 = b.get("auth_cortex_m0plus", {})
+    if "messages" in m0:
+        rows = [(name, n(f["sign_instr"]), n(f["verify_instr"])) for name, f in m0["messages"].items()]
+        text += ("\n" + table(["message (ARMv6-M)", "sign", "verify"], rows)
+                 + f"\nThe same code on {m0['board']} (resolution {m0['resolution_instr']:g}), in "
+                   f"{n(m0['flash_bytes'])} B of flash.\n")
+    return text
 
 
 BENCH_BLOCKS = {"cost-m4f": cost_m4f, "cost-m0plus": cost_m0plus, "host-callgrind": host_callgrind,

@@ -1,7 +1,8 @@
 /*
  * Cost of message authentication on the board: signing and verifying (tvo_auth_sign / tvo_auth_open)
- * a one-robot measurement and a command, LCM-encoded as the node sends and receives them, each
- * bracketed by the cycle counter, AUTH_REPEATS times with rising counters.
+ * a one-robot measurement and a command, LCM-encoded as the node sends and receives them, and a
+ * fleet's per-robot sample and command (one robot's), each bracketed by the cycle counter,
+ * AUTH_REPEATS times with rising counters.
  *
  * Prints "AUTH <message> bytes <n> sign <median> verify <median>" in instructions under
  * qemu -icount shift=0 (counter ticks times the board's instructions per tick), then "AUTH_DONE".
@@ -14,6 +15,8 @@
 #include "board.h"
 #include "channels.h"
 #include "tvo_lcm_command_t.h"
+#include "tvo_lcm_fleet_command_t.h"
+#include "tvo_lcm_fleet_sample_t.h"
 #include "tvo_lcm_measurement_t.h"
 
 #define AUTH_REPEATS 33u
@@ -123,6 +126,41 @@ int main(void)
         fail("command encode");
     }
     measure("command", TVO_CHANNEL_COMMAND, (uint32_t)command_bytes);
+
+    /* A fleet's per-robot messages, as a node of a one-robot fleet (robot 0) hears and answers them. */
+    tvo_lcm_fleet_sample_t sample;
+    memset(&sample, 0, sizeof(sample));
+    sample.utime = measurement.utime;
+    sample.session_id = measurement.session_id;
+    sample.sequence = measurement.sequence;
+    sample.robot_count = 1;
+    sample.position_m[0] = 0.5;
+    sample.position_m[1] = -0.25;
+    sample.heading_rad = 0.1;
+    sample.speed_mps = 0.3;
+    sample.heading_valid = 1;
+    sample.speed_valid = 1;
+    const int sample_bytes = tvo_lcm_fleet_sample_t_encode(frame, 0, (int)sizeof(frame), &sample);
+    if (sample_bytes <= 0) {
+        fail("fleet sample encode");
+    }
+    measure("fleet_sample", TVO_CHANNEL_FLEET_SAMPLE "_R0", (uint32_t)sample_bytes);
+
+    tvo_lcm_fleet_command_t row;
+    memset(&row, 0, sizeof(row));
+    row.utime = command.utime;
+    row.session_id = command.session_id;
+    row.measurement_sequence = command.measurement_sequence;
+    row.robot_count = 1;
+    row.speed_mps = command.speed_mps[0];
+    row.turn_rate_radps = command.turn_rate_radps[0];
+    row.joint_speed_mps[0] = row.speed_mps;
+    row.joint_turn_rate_radps[0] = row.turn_rate_radps;
+    const int row_bytes = tvo_lcm_fleet_command_t_encode(frame, 0, (int)sizeof(frame), &row);
+    if (row_bytes <= 0) {
+        fail("fleet command encode");
+    }
+    measure("fleet_command", TVO_CHANNEL_FLEET_COMMAND "_R0", (uint32_t)row_bytes);
     tvo_board_puts("AUTH_DONE\n");
     tvo_board_exit(0);
 }
