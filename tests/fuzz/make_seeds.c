@@ -109,10 +109,31 @@ static int auth_seed(const char *dir, uint8_t variant, const char *name)
     return save(dir, "auth", name);
 }
 
+/* fuzz_fleet's seed: for each period, every robot's sample (the own robot's last), as kind-0 records. */
+static int fleet_seed(const char *dir, uint8_t variant, const char *name)
+{
+    const int robots = 2 + variant % 7; /* as fuzz_fleet.c reads the variant byte (TVO_FLEET_MAX_ROBOTS 8) */
+    const int own = (variant >> 3) % robots;
+    put(&variant, 1);
+    for (int n = 0; n < 30; ++n) {
+        for (int k = 0; k < robots; ++k) {
+            const int r = (own + 1 + k) % robots; /* the own robot last: its sample steps the node */
+            const int16_t x = (int16_t)(3000 * r + 3000 - 10 * n), y = (int16_t)(20 * n), heading = 1571, speed = 0;
+            const uint8_t payload[11] = {(uint8_t)r, (uint8_t)(k == 0 && n > 0 ? 1 : 0),
+                                         (uint8_t)x, (uint8_t)(x >> 8), (uint8_t)y, (uint8_t)(y >> 8),
+                                         (uint8_t)heading, (uint8_t)(heading >> 8), (uint8_t)speed, (uint8_t)(speed >> 8), 3};
+            const uint8_t header[4] = {0, sizeof(payload), 0, (uint8_t)(k == 0 ? 20 : 0)};
+            put(header, sizeof(header));
+            put(payload, sizeof(payload));
+        }
+    }
+    return save(dir, "fleet", name);
+}
+
 int main(int argc, char **argv)
 {
     if (argc != 2) {
-        fprintf(stderr, "usage: fuzz_make_seeds CORPUS_DIR (with subfolders node, session, frame, controller, auth)\n");
+        fprintf(stderr, "usage: fuzz_make_seeds CORPUS_DIR (with subfolders node, session, frame, controller, auth, fleet)\n");
         return 2;
     }
     const char *dir = argv[1];
@@ -124,6 +145,10 @@ int main(int argc, char **argv)
     failed |= node_seed(dir, 32, "obstacle");
     failed |= auth_seed(dir, 0, "signed_plant_clock");
     failed |= auth_seed(dir, 1, "signed_node_clock");
+    failed |= fleet_seed(dir, 20, "eight_robots_ring_position_only");
+    failed |= fleet_seed(dir, 48, "eight_robots_ring_obstacle");
+    failed |= fleet_seed(dir, 13, "eight_robots_node_clock");
+    failed |= fleet_seed(dir, 2, "four_robots");
 
     for (uint8_t variant = 0; variant < 64; variant = (uint8_t)(variant + 9)) {
         char name[32];
