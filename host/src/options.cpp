@@ -92,14 +92,14 @@ int check_leg(const SimOptions& o, const Scenario& scenario)
     const std::size_t robots = scenario.robot_count;
     const auto session_robots = static_cast<std::size_t>(tvo_lcm::session_t::MAX_ROBOTS);
     const std::string has = "scenario " + o.scenario + " has " + std::to_string(robots) + " robots";
-    if (robots > session_robots) {
-        return fail("--scenario", has + ", the session message (session_t) carries at most " +
-                                      std::to_string(session_robots));
-    }
     if (!o.fleet && robots > kMaxJointRobots) {
         return fail("--fleet", has + ", the joint measurement_t and command_t carry at most " +
                                    std::to_string(kMaxJointRobots) +
                                    ": run it with --fleet (per-robot messages to tvo_fleet_hub, tools/fleet)");
+    }
+    if (robots > session_robots) {
+        return fail("--scenario", has + ", the session message (session_t) carries at most " +
+                                      std::to_string(session_robots));
     }
     if (scenario.streamed && robots > kMaxJointRobots) {
         return fail("--target", has + ", a streamed target (target_t) carries at most " +
