@@ -210,7 +210,8 @@ int validate(SimOptions* o, const ScenarioFile& file, bool delay_given, bool dur
     }
     if (o->dry_run) {
         std::cout << "tvo_sim: dry run: scenario " << o->scenario << ", " << scenario.robot_count << " robot(s), "
-                  << (o->realtime ? "realtime" : "lockstep") << ", h = " << o->period_us << " us, " << o->steps
+                  << (o->realtime ? "realtime" : "lockstep") << (o->fleet ? ", per-robot messages (--fleet)" : "")
+                  << ", h = " << o->period_us << " us, " << o->steps
                   << " periods (" << number(static_cast<double>(o->steps * o->period_us) / kUsPerS)
                   << " s); wire times from " << o->start_utime_us << " us to at most " << o->start_utime_us + run_us
                   << " us; files in " << o->out_dir << " at most " << bound.total_bytes() << " bytes (run.csv "
