@@ -95,7 +95,7 @@ tvo_lcm::fleet_command_t row_of(std::int32_t robot, std::int32_t robots, std::in
     row.robot_count = robots;
     row.speed_mps = 0.1 * robot;
     row.turn_rate_radps = -0.2 * robot;
-    row.flags = 1 << robot;
+    row.flags = robot >= 0 ? 1 << robot : 0;
     return row;
 }
 

@@ -324,7 +324,8 @@ private:
         }
     }
 
-    // tvo_sim's per-robot samples: a period's N come back to back; the N-th starts the period.
+    // tvo_sim's per-robot samples: a period's N come back to back; once all N of one (session, sequence)
+    // are in, the period starts (a sample of another period drops an incomplete one).
     void on_plant_sample(const lcm::ReceiveBuffer* rbuf, const std::string& channel)
     {
         tvo_lcm::fleet_sample_t s;
