@@ -127,7 +127,8 @@ int run(const tvo_host::SimOptions& options)
     const PlantClock clock(options.start_utime_us);
     Scenario scenario = make_scenario(options.scenario, options.robots, options.target);
     scenario.barrier.apply(options.barrier);
-    LcmTransport transport(options.lcm_url, log_path, options.key_file, options.sender_id);
+    LcmTransport transport(options.lcm_url, log_path, options.key_file, options.sender_id,
+                           options.fleet ? scenario.robot_count : 0);
     FirmwareProcess firmware;
     if (!options.firmware.empty()) {
         firmware.spawn(options.firmware, options.lcm_url, options.key_file);

@@ -63,6 +63,7 @@ struct SimOptions {
 
     // Plumbing.
     std::string lcm_url;            // empty: LCM's default ($LCM_DEFAULT_URL or udpm)
+    bool fleet{false};              // per-robot leg: fleet_sample_t / fleet_command_t (tvo_fleet_hub)
     std::string key_file;           // empty: an unauthenticated bus; else the 32-byte key (tools/keygen)
     std::uint32_t sender_id{2};     // this plant's sender id on a keyed bus (TVO_AUTH_SENDER_PLANT)
     std::string firmware;           // tvo_firmware_node to spawn; empty: one is already running

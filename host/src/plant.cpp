@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace tvo_host {
 
@@ -42,7 +43,7 @@ UnicyclePlant::UnicyclePlant(std::size_t robot_count, const std::array<UnicycleS
     : robot_count_(robot_count), state_(initial)
 {
     if (robot_count < 1 || robot_count > kMaxRobots) {
-        throw std::invalid_argument("UnicyclePlant: robot count must be 1..4");
+        throw std::invalid_argument("UnicyclePlant: robot count must be 1.." + std::to_string(kMaxRobots));
     }
 }
 

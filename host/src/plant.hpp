@@ -11,8 +11,9 @@
 
 namespace tvo_host {
 
-/// Most robots one LCM message carries (measurement_t.MAX_ROBOTS).
-constexpr std::size_t kMaxRobots = 4;
+/// Most robots the simulator runs: the per-robot messages' limit (fleet_sample_t.MAX_ROBOTS, checked in
+/// plant_wire.hpp; this library has no LCM). More than measurement_t.MAX_ROBOTS need tvo_sim --fleet.
+constexpr std::size_t kMaxRobots = 8;
 
 struct UnicycleState {
     Eigen::Vector2d position_m{Eigen::Vector2d::Zero()};

@@ -54,10 +54,11 @@ struct OutputBound {
 };
 
 /// What a run of steps periods of period_us writes at most: the CSV, the LCM log (per period a
-/// measurement, a streamed target when streamed, the command and telemetry answering it, and in
+/// measurement (fleet: a fleet_sample_t per robot), a streamed target when streamed, the command
+/// (fleet: a fleet_command_t per robot) and telemetry answering it, and in
 /// realtime one more command and telemetry for the node's watchdog; the session handshake besides)
 /// and the JSON files. Messages of other sessions on the same LCM URL are logged too and not counted.
 OutputBound bound_outputs(std::int64_t steps, std::int64_t period_us, std::size_t robots, bool streamed,
-                          bool realtime);
+                          bool realtime, bool fleet);
 
 }  // namespace tvo_host

@@ -76,7 +76,7 @@ public:
     /// Sends STOP (at plant utime `utime`) and waits briefly for its ack; false if none came.
     bool stop(std::int64_t utime, std::chrono::milliseconds timeout);
 
-    void on_command(const tvo_lcm::command_t&) override {}
+    void on_command(const JointCommand&) override {}
     void on_session_ack(const tvo_lcm::session_ack_t& ack) override;
 
 private:

@@ -35,7 +35,7 @@ bool is_safe_stop(std::int32_t flags)
 
 /// A command the plant can act on: a time within the wire's range (so no arithmetic on it can
 /// overflow), our robot count and finite inputs.
-bool well_formed(const tvo_lcm::command_t& command, std::size_t robots)
+bool well_formed(const JointCommand& command, std::size_t robots)
 {
     if (command.utime < 0 || command.utime > TVO_WIRE_TIME_MAX_US ||
         command.robot_count != static_cast<std::int32_t>(robots)) {
@@ -87,7 +87,7 @@ std::int64_t SimLoop::sample_time_us(std::int64_t sequence) const
     return (sequence + 1) * options_.period_us - options_.delay_us;
 }
 
-void SimLoop::on_command(const tvo_lcm::command_t& command)
+void SimLoop::on_command(const JointCommand& command)
 {
     if (command.session_id != session_.session_id()) {
         ++counts_.other_session_commands;
@@ -95,7 +95,7 @@ void SimLoop::on_command(const tvo_lcm::command_t& command)
     }
     const std::size_t robots = scenario_.robot_count;
     const bool usable = well_formed(command, robots);
-    metrics_.add_command(command.turn_rate_radps, usable ? robots : 0,
+    metrics_.add_command(command.turn_rate_radps.data(), usable ? robots : 0,
                          !usable || is_fault(command.status, command.flags),
                          (command.flags & static_cast<std::int32_t>(TVO_FLAG_REGULARIZED)) != 0);
     if (command.status == static_cast<std::int32_t>(tvo_lcm::command_t::STATUS_ERR_NO_SESSION) && !restart_pending_ &&

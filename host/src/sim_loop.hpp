@@ -77,7 +77,7 @@ public:
     /// does not answer in time, or if a re-sent START is refused or never acknowledged.
     LoopResult run();
 
-    void on_command(const tvo_lcm::command_t& command) override;
+    void on_command(const JointCommand& command) override;
     void on_session_ack(const tvo_lcm::session_ack_t& ack) override;
     void on_telemetry(const tvo_lcm::telemetry_t& telemetry) override;
 
@@ -144,7 +144,7 @@ private:
     std::optional<std::int64_t> first_safe_stop_after_loss_utime_;
 
     bool heading_sent_{false};
-    tvo_lcm::measurement_t measurement_{};
+    JointMeasurement measurement_{};
     tvo_lcm::target_t target_{};
 };
 

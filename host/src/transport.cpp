@@ -17,9 +17,13 @@ constexpr std::size_t kBufferBytes = 4096;
 }  // namespace
 
 LcmTransport::LcmTransport(const std::string& url, const std::string& log_path, const std::string& key_file,
-                           std::uint32_t sender_id)
-    : lcm_(url), buffer_(kBufferBytes + TVO_AUTH_TRAILER_BYTES)
+                           std::uint32_t sender_id, std::size_t fleet_robots)
+    : lcm_(url), buffer_(kBufferBytes + TVO_AUTH_TRAILER_BYTES), fleet_robots_(fleet_robots), rows_(fleet_robots)
 {
+    if (fleet_robots > kMaxRobots) {
+        throw TransportError("the per-robot leg carries at most " + std::to_string(kMaxRobots) + " robots, got " +
+                             std::to_string(fleet_robots));
+    }
     if (!key_file.empty()) {
         std::uint8_t key[TVO_AUTH_KEY_BYTES];
         char why[300];
@@ -50,12 +54,12 @@ LcmTransport::LcmTransport(const std::string& url, const std::string& log_path, 
     event_.channel.reserve(32);
     // Fixed-size messages: their encoded sizes are constants, so one check covers every publish.
     const int largest = std::max({tvo_lcm::session_t{}.getEncodedSize(), tvo_lcm::measurement_t{}.getEncodedSize(),
-                                  tvo_lcm::target_t{}.getEncodedSize()});
+                                  tvo_lcm::fleet_sample_t{}.getEncodedSize(), tvo_lcm::target_t{}.getEncodedSize()});
     if (largest < 0 || static_cast<std::size_t>(largest) > kBufferBytes) {
         throw TransportError("the encode buffer (" + std::to_string(buffer_.size()) + " bytes) is smaller than a " +
                              std::to_string(largest) + "-byte message");
     }
-    lcm_.subscribe(TVO_CHANNEL_COMMAND, &LcmTransport::on_raw, this);
+    lcm_.subscribe(fleet_robots_ > 0 ? TVO_CHANNEL_FLEET_COMMAND : TVO_CHANNEL_COMMAND, &LcmTransport::on_raw, this);
     lcm_.subscribe(TVO_CHANNEL_SESSION_ACK, &LcmTransport::on_raw, this);
     lcm_.subscribe(TVO_CHANNEL_TELEMETRY, &LcmTransport::on_raw, this);
 }
@@ -103,9 +107,17 @@ void LcmTransport::publish(const tvo_lcm::session_t& msg)
     publish_encoded(session_channel_, msg);
 }
 
-void LcmTransport::publish(const tvo_lcm::measurement_t& msg)
+void LcmTransport::publish(const JointMeasurement& msg)
 {
-    publish_encoded(measurement_channel_, msg);
+    if (fleet_robots_ == 0) {
+        to_wire(msg, &measurement_);
+        publish_encoded(measurement_channel_, measurement_);
+        return;
+    }
+    for (std::size_t r = 0; r < fleet_robots_; ++r) {  // back to back: the hub gathers a period's samples
+        to_wire(msg, r, &sample_);
+        publish_encoded(fleet_sample_channel_, sample_);
+    }
 }
 
 void LcmTransport::publish(const tvo_lcm::target_t& msg)
@@ -133,7 +145,12 @@ void LcmTransport::on_raw(const lcm::ReceiveBuffer* rbuf, const std::string& cha
     // Decoding fixed-size messages into members allocates nothing.
     if (channel == TVO_CHANNEL_COMMAND) {
         if (command_.decode(rbuf->data, 0, size) >= 0) {
-            listener_->on_command(command_);
+            listener_->on_command(from_wire(command_));
+        }
+    } else if (channel == TVO_CHANNEL_FLEET_COMMAND) {
+        const JointCommand* joint = row_.decode(rbuf->data, 0, size) >= 0 ? rows_.add(row_) : nullptr;
+        if (joint != nullptr) {
+            listener_->on_command(*joint);
         }
     } else if (channel == TVO_CHANNEL_SESSION_ACK) {
         if (ack_.decode(rbuf->data, 0, size) >= 0) {

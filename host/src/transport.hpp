@@ -13,6 +13,7 @@
 
 #include "auth.h"
 #include "lcm_messages.hpp"
+#include "plant_wire.hpp"
 
 namespace tvo_host {
 
@@ -25,7 +26,8 @@ public:
 class TransportListener {
 public:
     virtual ~TransportListener() = default;
-    virtual void on_command(const tvo_lcm::command_t& command) = 0;
+    /// A joint command: a command_t, or (per-robot leg) every robot's fleet_command_t row of one period.
+    virtual void on_command(const JointCommand& command) = 0;
     virtual void on_session_ack(const tvo_lcm::session_ack_t& ack) = 0;
     virtual void on_telemetry(const tvo_lcm::telemetry_t& /*telemetry*/) {}
 };
@@ -37,8 +39,10 @@ public:
     /// Opens LCM on url (empty: LCM's default) and the log at log_path. TransportError with a fix on failure.
     /// With a key_file every message is signed as sender_id and every received one must open (auth.h);
     /// the log holds the messages without their trailers. Without one the bus is unauthenticated.
+    /// fleet_robots > 0: the per-robot leg for that many robots (fleet_sample_t out, fleet_command_t in,
+    /// plant_wire.hpp); 0: the joint leg (measurement_t, command_t).
     LcmTransport(const std::string& url, const std::string& log_path, const std::string& key_file = "",
-                 std::uint32_t sender_id = TVO_AUTH_SENDER_PLANT);
+                 std::uint32_t sender_id = TVO_AUTH_SENDER_PLANT, std::size_t fleet_robots = 0);
     ~LcmTransport();
     LcmTransport(const LcmTransport&) = delete;
     LcmTransport& operator=(const LcmTransport&) = delete;
@@ -48,7 +52,8 @@ public:
     void set_log_utime(std::int64_t utime) { log_utime_ = utime; }
 
     void publish(const tvo_lcm::session_t& msg);
-    void publish(const tvo_lcm::measurement_t& msg);
+    /// The period's sample on the run's leg: one measurement_t, or one fleet_sample_t per robot.
+    void publish(const JointMeasurement& msg);
     void publish(const tvo_lcm::target_t& msg);
 
     /// Waits up to timeout for one message and dispatches it.
@@ -79,13 +84,19 @@ private:
     tvo_auth_t auth_{};
     std::uint64_t unauthenticated_{0};
     std::uint64_t replayed_{0};
+    std::size_t fleet_robots_;
+    CommandAssembler rows_;
+    tvo_lcm::measurement_t measurement_{};
+    tvo_lcm::fleet_sample_t sample_{};
     tvo_lcm::command_t command_{};
+    tvo_lcm::fleet_command_t row_{};
     tvo_lcm::session_ack_t ack_{};
     tvo_lcm::telemetry_t telemetry_{};
     // Channel names as std::string once, so publishing builds no temporaries.
     const std::string session_channel_{TVO_CHANNEL_SESSION};
     const std::string measurement_channel_{TVO_CHANNEL_MEASUREMENT};
     const std::string target_channel_{TVO_CHANNEL_TARGET};
+    const std::string fleet_sample_channel_{TVO_CHANNEL_FLEET_SAMPLE};
 };
 
 }  // namespace tvo_host

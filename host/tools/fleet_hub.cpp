@@ -1,12 +1,13 @@
-// tvo_fleet_hub: the radio between tvo_sim and a fleet of nodes (tvo_firmware_node --own-robot k),
+// tvo_fleet_hub: the radio between tvo_sim --fleet and a fleet of nodes (tvo_firmware_node --own-robot k),
 // so that tvo_sim's plant, metrics and outputs serve a fleet unchanged (host/README.md, "A fleet").
 //
 // Plant bus (tvo_sim's URL)               Fleet bus (the nodes' URL)
 //   TVO_SESSION, TVO_TARGET       ->        the same, to every node
-//   TVO_MEASUREMENT (joint)       ->        fleet_sample_t per robot and node on TVO_FLEET_SAMPLE_R<k>:
-//                                           the other robots' first, node k's own robot last (its step)
-//   TVO_COMMAND (joint)           <-        fleet_command_t on TVO_FLEET_COMMAND_R<k>: row k from node k;
-//                                           a robot whose row did not come holds its last (zero-order hold)
+//   TVO_FLEET_SAMPLE (per robot,  ->        fleet_sample_t per robot and node on TVO_FLEET_SAMPLE_R<k>:
+//     a period's back to back)              the other robots' first, node k's own robot last (its step)
+//   TVO_FLEET_COMMAND (per robot) <-        fleet_command_t on TVO_FLEET_COMMAND_R<k>: row k from node k;
+//     one row per robot and period:         a robot whose row did not come holds its last (zero-order hold),
+//     node r's or the held one              so tvo_sim never waits on a lost row
 //   TVO_TELEMETRY                 <-        TVO_TELEMETRY_R<k>: the lowest-numbered answering node's
 //   TVO_SESSION_ACK               <-        TVO_SESSION_ACK_R<k>: once every node acked (a refusal at once)
 //
@@ -18,7 +19,7 @@
 // Keyed (--key-file, auth.h): every frame on both buses is opened or dropped and counted, never
 // answered. The plant's SESSION/TARGET frames go to the nodes as tvo_sim signed them (SENDER_PLANT);
 // robot j's samples are signed as SENDER_FLEET_ROBOT + j (each robot its own counter stream); to
-// tvo_sim the hub signs as SENDER_NODE, the node it stands for.
+// tvo_sim the hub signs as SENDER_NODE, the node it stands for; tvo_sim's samples open as its own.
 #include <sys/select.h>
 
 #include <algorithm>
@@ -52,7 +53,7 @@ namespace {
 volatile std::sig_atomic_t g_stop = 0;
 extern "C" void on_signal(int) { g_stop = 1; }
 
-constexpr int kMaxRobots = tvo_lcm::measurement_t::MAX_ROBOTS;
+constexpr int kMaxRobots = tvo_lcm::fleet_sample_t::MAX_ROBOTS;
 
 std::string robot_channel(const char* base, int robot) { return std::string(base) + "_R" + std::to_string(robot); }
 
@@ -150,7 +151,7 @@ public:
         }
         plant_.subscribe(TVO_CHANNEL_SESSION, &Hub::on_plant_raw, this);
         plant_.subscribe(TVO_CHANNEL_TARGET, &Hub::on_plant_raw, this);
-        plant_.subscribe(TVO_CHANNEL_MEASUREMENT, &Hub::on_measurement, this);
+        plant_.subscribe(TVO_CHANNEL_FLEET_SAMPLE, &Hub::on_plant_sample, this);
         fleet_.subscribe("TVO_SESSION_ACK_R[0-9]+", &Hub::on_ack, this);
         fleet_.subscribe(TVO_CHANNEL_FLEET_COMMAND "_R[0-9]+", &Hub::on_row, this);
         fleet_.subscribe("TVO_TELEMETRY_R[0-9]+", &Hub::on_telemetry, this);
@@ -323,48 +324,55 @@ private:
         }
     }
 
-    void on_measurement(const lcm::ReceiveBuffer* rbuf, const std::string& channel)
+    // tvo_sim's per-robot samples: a period's N come back to back; once all N of one (session, sequence)
+    // are in, the period starts (a sample of another period drops an incomplete one).
+    void on_plant_sample(const lcm::ReceiveBuffer* rbuf, const std::string& channel)
     {
-        tvo_lcm::measurement_t m;
+        tvo_lcm::fleet_sample_t s;
         const int length = plant_auth_.open(rbuf, channel);
         if (length < 0) {
             return;
         }
-        if (m.decode(rbuf->data, 0, length) != length || m.robot_count != o_.robots) {
-            std::cerr << "tvo_fleet_hub: a measurement that does not decode or is not of " << o_.robots
+        if (s.decode(rbuf->data, 0, length) != length || s.robot_count != o_.robots || s.robot < 0 ||
+            s.robot >= o_.robots) {
+            std::cerr << "tvo_fleet_hub: a sample that does not decode or is not one of " << o_.robots
                       << " robots (ignored)\n";
             return;
         }
-        measurement_ = m;
+        if (gathered_ == 0u || s.session_id != period_.session_id || s.sequence != period_.sequence) {
+            gathered_ = 0u;  // a new period: an incomplete one is never fanned out
+        }
+        gathered_ |= 1u << s.robot;
+        samples_[static_cast<std::size_t>(s.robot)] = s;
+        period_ = s;
+        if (gathered_ == (1u << o_.robots) - 1u) {
+            gathered_ = 0u;
+            fan_out();
+        }
+    }
+
+    // The period's samples to every node: robot j's to node k unless the link (j, k) drops it.
+    void fan_out()
+    {
         answers_.assign(static_cast<std::size_t>(o_.robots), Answer{});
         expected_.assign(static_cast<std::size_t>(o_.robots), false);
         awaiting_ = true;
-        for (int a = 0; a < m.robot_count; ++a) {
-            for (int b = a + 1; b < m.robot_count; ++b) {
-                min_pair_m_ = std::min(min_pair_m_, std::hypot(m.position_m[a][0] - m.position_m[b][0],
-                                                               m.position_m[a][1] - m.position_m[b][1]));
+        for (int a = 0; a < o_.robots; ++a) {
+            for (int b = a + 1; b < o_.robots; ++b) {
+                const auto& pa = samples_[static_cast<std::size_t>(a)].position_m;
+                const auto& pb = samples_[static_cast<std::size_t>(b)].position_m;
+                min_pair_m_ = std::min(min_pair_m_, std::hypot(pa[0] - pb[0], pa[1] - pb[1]));
             }
         }
         for (int k = 0; k < o_.robots; ++k) {
             for (int step = 1; step <= o_.robots; ++step) {
                 const int j = (k + step) % o_.robots;  // the own robot (j == k) last: it steps the node
-                if (dropped(0, j, k, m.sequence)) {
+                if (dropped(0, j, k, period_.sequence)) {
                     ++dropped_samples_;
                     continue;
                 }
-                tvo_lcm::fleet_sample_t s{};
-                s.utime = m.utime;
-                s.session_id = m.session_id;
-                s.sequence = m.sequence;
-                s.robot = j;
-                s.robot_count = m.robot_count;
-                s.position_m[0] = m.position_m[j][0];
-                s.position_m[1] = m.position_m[j][1];
-                s.heading_rad = m.heading_rad[j];
-                s.speed_mps = m.speed_mps[j];
-                s.heading_valid = m.heading_valid;
-                s.speed_valid = m.speed_valid;
-                robot_auth_[static_cast<std::size_t>(j)].publish(fleet_, sample_channels_[static_cast<std::size_t>(k)], s);
+                robot_auth_[static_cast<std::size_t>(j)].publish(fleet_, sample_channels_[static_cast<std::size_t>(k)],
+                                                                 samples_[static_cast<std::size_t>(j)]);
                 if (j == k) {
                     expected_[static_cast<std::size_t>(k)] = true;
                 }
@@ -377,7 +385,7 @@ private:
     {
         const int k = std::stoi(channel.substr(channel.rfind('R') + 1));
         if (!awaiting_ || k < 0 || k >= o_.robots || !expected_[static_cast<std::size_t>(k)] ||
-            sequence != measurement_.sequence) {
+            sequence != period_.sequence) {
             return -1;
         }
         return k;
@@ -444,7 +452,7 @@ private:
             }
         }
         if (!computed.empty()) {
-            fold_run_digest(static_cast<std::uint64_t>(measurement_.sequence));
+            fold_run_digest(static_cast<std::uint64_t>(period_.sequence));
             fold_run_digest(static_cast<std::uint64_t>(computed.front()->joint_digest));
         }
         if (computed.size() < 2) {
@@ -470,16 +478,16 @@ private:
         }
         if (spread_v > max_speed_spread_) {
             max_speed_spread_ = spread_v;
-            max_speed_spread_period_ = measurement_.sequence;
+            max_speed_spread_period_ = period_.sequence;
         }
         if (spread_w > max_turn_spread_) {
             max_turn_spread_ = spread_w;
-            max_turn_spread_period_ = measurement_.sequence;
+            max_turn_spread_period_ = period_.sequence;
         }
         max_disagreement_ = std::max({max_disagreement_, spread_v, spread_w});
         spreads_.push_back(std::max(spread_v, spread_w));
         if (!same) {
-            last_mismatch_period_ = measurement_.sequence;
+            last_mismatch_period_ = period_.sequence;
             ++mismatch_periods_;
             ++streak_;
             longest_streak_ = std::max(longest_streak_, streak_);
@@ -488,46 +496,50 @@ private:
         }
     }
 
-    // The joint command tvo_sim applies: each robot's row from its own node, else the row it holds.
+    // One row per robot to tvo_sim, the period's joint command: each robot's row from its own node, else
+    // the row it holds (status 0, no flags: the plant applies it as the command in force).
     void answer_plant()
     {
         const double h_s = static_cast<double>(start_.period_us) * 1e-6;
-        tvo_lcm::command_t cmd{};
-        cmd.utime = measurement_.utime + start_.delay_us;
-        cmd.session_id = measurement_.session_id;
-        cmd.measurement_sequence = measurement_.sequence;
-        cmd.robot_count = measurement_.robot_count;
-        cmd.status = tvo_lcm::command_t::STATUS_OK;
         std::optional<tvo_lcm::telemetry_t> tel;
+        std::int32_t flags = 0;
         for (int r = 0; r < o_.robots; ++r) {
             const Answer& a = answers_[static_cast<std::size_t>(r)];
             const bool came = expected_[static_cast<std::size_t>(r)] && a.command;
-            const bool lost = came && dropped(1, r, o_.robots, measurement_.sequence);
+            const bool lost = came && dropped(1, r, o_.robots, period_.sequence);
             dropped_commands_ += lost ? 1u : 0u;
             const bool fresh = came && !lost && a.row.status == tvo_lcm::command_t::STATUS_OK;
             refused_rows_ += (came && a.row.status != tvo_lcm::command_t::STATUS_OK) ? 1u : 0u;
+            tvo_lcm::fleet_command_t row{};
             if (fresh) {
                 check_limits(r, a.row, h_s);
                 held_[static_cast<std::size_t>(r)] = {a.row.speed_mps, a.row.turn_rate_radps};
-                cmd.flags |= a.row.flags;
+                row.flags = a.row.flags;
             } else if ((static_cast<std::uint32_t>(a.row.flags) & static_cast<std::uint32_t>(tvo_lcm::command_t::FLAG_SAFE_STOP)) != 0u && came && !lost) {
                 held_[static_cast<std::size_t>(r)] = {0.0, 0.0};
             } else {
                 ++held_rows_;
             }
-            cmd.speed_mps[r] = held_[static_cast<std::size_t>(r)][0];
-            cmd.turn_rate_radps[r] = held_[static_cast<std::size_t>(r)][1];
+            row.utime = period_.utime + start_.delay_us;
+            row.session_id = period_.session_id;
+            row.measurement_sequence = period_.sequence;
+            row.robot = r;
+            row.robot_count = o_.robots;
+            row.status = tvo_lcm::command_t::STATUS_OK;
+            row.speed_mps = held_[static_cast<std::size_t>(r)][0];
+            row.turn_rate_radps = held_[static_cast<std::size_t>(r)][1];
+            plant_auth_.publish(plant_, TVO_CHANNEL_FLEET_COMMAND, row);
+            flags |= row.flags;
             if (!tel && came && !lost) {
                 tel = a.tel;
             }
         }
         tvo_lcm::telemetry_t out = tel.value_or(tvo_lcm::telemetry_t{});
-        out.utime = cmd.utime;
-        out.session_id = cmd.session_id;
-        out.measurement_sequence = cmd.measurement_sequence;
-        out.status = cmd.status;
-        out.flags = cmd.flags;
-        plant_auth_.publish(plant_, TVO_CHANNEL_COMMAND, cmd);
+        out.utime = period_.utime + start_.delay_us;
+        out.session_id = period_.session_id;
+        out.measurement_sequence = period_.sequence;
+        out.status = tvo_lcm::command_t::STATUS_OK;
+        out.flags = flags;
         plant_auth_.publish(plant_, TVO_CHANNEL_TELEMETRY, out);
     }
 
@@ -565,7 +577,9 @@ private:
     std::uint32_t ack_mask_{0};
     bool stopped_{false};
     bool awaiting_{false};
-    tvo_lcm::measurement_t measurement_{};
+    std::array<tvo_lcm::fleet_sample_t, kMaxRobots> samples_{};  // the period's, by robot
+    tvo_lcm::fleet_sample_t period_{};                            // the newest sample: its period's stamp
+    std::uint32_t gathered_{0};                                   // bit r: robot r's sample of period_ is in
     std::vector<Answer> answers_;
     std::vector<bool> expected_;
     std::array<std::array<double, 2>, kMaxRobots> held_{};
@@ -585,7 +599,7 @@ private:
 int main(int argc, char** argv)
 {
     Options o;
-    CLI::App app{"tvo_fleet_hub: tvo_sim's joint messages to and from a fleet of per-robot nodes"};
+    CLI::App app{"tvo_fleet_hub: tvo_sim --fleet's per-robot messages to and from a fleet of per-robot nodes"};
     app.add_option("--plant-url", o.plant_url, "LCM URL shared with tvo_sim")->required();
     app.add_option("--fleet-url", o.fleet_url, "LCM URL shared with the nodes")->required();
     app.add_option("--robots", o.robots, "nodes, one per robot (robot k's node: --own-robot k)")

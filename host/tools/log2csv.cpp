@@ -172,7 +172,7 @@ tvo_host::Scenario scenario_of(const tvo_lcm::session_t& s)
 {
     tvo_host::Scenario sc;
     sc.name = "session " + std::to_string(s.session_id);
-    sc.robot_count = std::max<std::size_t>(1, clamp_count(s.robot_count, kMaxRobots));
+    sc.robot_count = std::max<std::size_t>(1, clamp_count(s.robot_count, tvo_lcm::session_t::MAX_ROBOTS));
     for (std::size_t r = 0; r < sc.robot_count; ++r) {
         const tvo_lcm::robot_t& robot = s.robot[r];
         sc.streamed = sc.streamed || robot.target.kind == tvo_lcm::path_t::KIND_STREAMED;
