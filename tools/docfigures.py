@@ -7,8 +7,8 @@
   tools/docfigures.py --bench PATH    take a new `tools/bench --json PATH` run (copied to
                                       tools/figures/bench.json), then rewrite
   tools/docfigures.py --runs          re-run the demo and scenario rows with build/host/tvo_sim
-                                      (tools/demo or tools/build builds it) into tools/figures/summaries/,
-                                      then rewrite
+                                      (tools/demo or tools/build builds it), and the fleet's columns with
+                                      tools/fleet --local, into tools/figures/summaries/, then rewrite
   tools/docfigures.py --snippet README.md -o FILE.c   write README.md's C snippet to FILE.c
   tools/docfigures.py --snippet R.md --name N -o F   the block marked <!-- snippet:N begin/end --> instead
 
@@ -66,6 +66,19 @@ for _name in SCENARIOS:
     RUNS[_name] = ["--scenario", _name]
     RUNS[_name + "-noisy"] = ["--scenario", _name, "--sigma", "1e-3", "--position-only"]
 NOISY = "`--sigma 1e-3 --position-only`"
+# The central node's run of the 4-robot fleet scenario, for the fleet's comparison.
+RUNS["fleet-formation-central"] = ["--scenario", str(REPO / "host/scenarios/fleet-formation.yaml")]
+# Each fleet column: (file stem in tools/figures/summaries, scenario, tools/fleet arguments); "KEY" is
+# replaced by a key tools/keygen makes for the run. On loopback (--local): the figures are the same in
+# network namespaces (tests/fleet runs both).
+FLEET4 = "host/scenarios/fleet-formation.yaml"
+FLEET8 = "host/scenarios/fleet/fleet-formation8.yaml"
+FLEET_RUNS = [("fleet4", FLEET4, []), ("fleet4-loss", FLEET4, ["--loss", "0.1"]),
+              ("fleet4-loss-until-8s", FLEET4, ["--loss", "0.1", "--loss-until-s", "8"]),
+              ("fleet8", FLEET8, []), ("fleet8-loss", FLEET8, ["--loss", "0.1"]),
+              ("fleet8-keyed", FLEET8, ["--key-file", "KEY"])]
+# Keys of tools/fleet's JSON that say where and how fast it ran, not what the fleet did.
+FLEET_UNKEPT = ("node_link_rx_packets_min", "scenario")
 
 
 def n(value):
@@ -218,6 +231,39 @@ def scenario_rows(runs, names, columns):
             s = runs[name + suffix]
             rows.append((f"{name}, {setting}", *(fmt(s) for _, fmt in columns)))
     return table(["run", *(h for h, _ in columns)], rows)
+
+
+def fleet(runs):
+    heads = ["4 robots, no loss", "10 % per link", "10 % until 8 s", "8 robots, no loss", "10 % per link",
+             "8, keyed"]
+    cols = [runs[stem] for stem, _, _ in FLEET_RUNS]
+    central = runs["fleet-formation-central"]
+
+    def row(label, fmt):
+        return (label, *(fmt(c) for c in cols))
+    rows = [
+        row("final tracking error (m)", lambda c: g(c["final_error_m"], 4)),
+        row("collisions, bound violation, limit violations",
+            lambda c: f"{c['collisions']}, {g(c['max_violation_frac'])}, {c['limit_violations']}"),
+        row("closest pair, sample instants (m)", lambda c: f"{c['min_pair_distance_sampled_m']:.4f}"),
+        row("periods whose digests differ", lambda c: f"{n(c['digest_mismatch_periods'])} of {n(c['compared_periods'])}"),
+        row("the last of them; longest run", lambda c: (f"{c['last_mismatch_period']}; {c['longest_disagreement_periods']}"
+                                                          if c["digest_mismatch_periods"] else "none")),
+        row("spread of a row across nodes: median, 99th percentile",
+            lambda c: f"{g(c['median_command_disagreement'])}, {g(c['p99_command_disagreement'])}"),
+        row("largest spread: speed (m/s); turn rate (rad/s), period",
+            lambda c: (f"{g(c['max_speed_disagreement_mps'])}; {g(c['max_turn_rate_disagreement_radps'], 4)}, "
+                       f"{c['max_turn_rate_disagreement_period']}" if c["max_command_disagreement"] else "none")),
+        row("samples lost, rows lost, rows held, samples predicted",
+            lambda c: f"{n(c['dropped_samples'])}, {n(c['dropped_commands'])}, {n(c['held_rows'])}, "
+                      f"{n(c['predicted_samples'])}"),
+        row("run's digest (`command_digest_run`)", lambda c: f"`{c['command_digest_run']}`"),
+    ]
+    return (table(["figure", *heads], rows)
+            + f"\nThe central node (one `tvo_firmware_node`: `tvo_sim --scenario {FLEET4}`) ends the 4-robot "
+              f"run at {g(central['final_error_m'], 4)} m. `tools/fleet FILE --local --json OUT` with the column's "
+              f"options (`--loss 0.1`, `--loss-until-s 8`, `--key-file K`), {n(cols[0]['periods'])} and "
+              f"{n(cols[3]['periods'])} periods; loss decided per link and period by a seeded hash (`--seed 1`).\n")
 
 
 def formation(runs):
@@ -403,7 +449,7 @@ def auth(b):
 BENCH_BLOCKS = {"cost-m4f": cost_m4f, "cost-m0plus": cost_m0plus, "host-callgrind": host_callgrind,
                 "ipopt": ipopt, "core-text": core_text, "footprint": footprint, "stack-written": stack_written,
                 "scaling": scaling, "auth": auth}
-RUN_BLOCKS = {"demo-runs": demo_runs, "formation": formation, "obstacles": obstacles,
+RUN_BLOCKS = {"demo-runs": demo_runs, "formation": formation, "obstacles": obstacles, "fleet": fleet,
               "infeasible-start": infeasible_start, "formation-equality": formation_equality}
 WIRE_BLOCKS = {"status-codes": status_codes, "flags": flags, "params": params, "parts": parts,
                "session-constants": session_constants}
@@ -501,6 +547,21 @@ def run_rows(sim, firmware):
             summary = json.loads((out / "summary.json").read_text())
             summary.pop("steps_per_s", None)  # wall clock: not a figure the READMEs give
             (RUNS_DIR / f"{stem}.json").write_text(json.dumps(summary, indent=2, sort_keys=True) + "\n")
+        key = pathlib.Path(tmp) / "fleet.key"
+        subprocess.run([REPO / "tools/keygen", key], check=True, capture_output=True)
+        for stem, scenario, args in FLEET_RUNS:
+            out = pathlib.Path(tmp) / stem
+            cmd = [REPO / "tools/fleet", REPO / scenario, "--local", "--port", "7815", "--json", out.with_suffix(".json"),
+                   "--out-dir", out, *[str(key) if a == "KEY" else a for a in args]]
+            print("docfigures: tools/fleet", scenario, " ".join(args), file=sys.stderr)
+            result = subprocess.run(cmd, text=True, capture_output=True)
+            if result.returncode != 0:
+                sys.exit(f"docfigures: {' '.join(map(str, cmd))} failed (exit {result.returncode}):\n"
+                         + result.stdout + result.stderr)
+            figures = json.loads(out.with_suffix(".json").read_text())
+            for unkept in FLEET_UNKEPT:
+                figures.pop(unkept, None)
+            (RUNS_DIR / f"{stem}.json").write_text(json.dumps(figures, indent=2, sort_keys=True) + "\n")
 
 
 def main():
