@@ -230,7 +230,7 @@ static int sample_valid(const tvo_lcm_fleet_sample_t *s)
     const int finite = isfinite(s->position_m[0]) && isfinite(s->position_m[1]) &&
                        (!s->heading_valid || isfinite(s->heading_rad)) && (!s->speed_valid || isfinite(s->speed_mps));
     return finite && s->robot_count >= 1 && s->robot_count <= TVO_FLEET_MAX_ROBOTS && s->robot >= 0 &&
-           s->robot < s->robot_count && s->sequence >= 0 && s->utime >= 0;
+           s->robot < s->robot_count && tvo_schedule_wire_time_ok(s->sequence) && tvo_schedule_wire_time_ok(s->utime);
 }
 
 static void state_of(const tvo_lcm_fleet_sample_t *s, tvo_fleet_robot_t *robot)
@@ -275,6 +275,7 @@ static void step(tvo_fleet_link_t *link, tvo_node_t *node, const tvo_lcm_fleet_s
     const tvo_node_session_t *s = tvo_node_session(node);
     const int running = s != NULL && s->session_id == own->session_id;
     const int64_t n = own->sequence;
+    const int32_t robots = own->robot_count; /* own is the link's rx: a transport re-entering it may reuse it */
     tvo_fleet_robot_t next[TVO_FLEET_MAX_ROBOTS];
     int32_t predicted = 0;
     uint32_t robot_periods = 0u;
@@ -284,7 +285,7 @@ static void step(tvo_fleet_link_t *link, tvo_node_t *node, const tvo_lcm_fleet_s
         const double delay_s = (double)s->schedule.timing.delay_us * 1e-6;
         int64_t span = (int64_t)s->schedule.timing.watchdog_periods;
         span = span < TVO_FLEET_MAX_PREDICT_PERIODS ? span : TVO_FLEET_MAX_PREDICT_PERIODS;
-        for (int32_t r = 0; r < own->robot_count; ++r) {
+        for (int32_t r = 0; r < robots; ++r) {
             next[r] = link->known[r];
             if (r == link->own_robot) {
                 state_of(own, &next[r]);
@@ -324,7 +325,7 @@ static void step(tvo_fleet_link_t *link, tvo_node_t *node, const tvo_lcm_fleet_s
     joint->robot_count = own->robot_count;
     joint->heading_valid = own->heading_valid ? 1u : 0u;
     joint->speed_valid = own->speed_valid ? 1u : 0u;
-    for (int32_t r = 0; r < own->robot_count; ++r) {
+    for (int32_t r = 0; r < robots; ++r) {
         tvo_step_robot_sample_t *sample = &joint->robot[r];
         const tvo_fleet_robot_t *robot = running ? &next[r] : NULL;
         if (robot == NULL) { /* no session of this id: the node answers for itself (NO_SESSION, other session) */
@@ -350,7 +351,7 @@ static void step(tvo_fleet_link_t *link, tvo_node_t *node, const tvo_lcm_fleet_s
     }
     link->predictions += robot_periods;
     link->last_step = n;
-    for (int32_t r = 0; r < own->robot_count; ++r) {
+    for (int32_t r = 0; r < robots; ++r) {
         link->known[r] = next[r];
         link->known_measured[r] = (uint8_t)(next[r].sequence == n && (r == link->own_robot ||
                                             (link->has_pending[r] && link->pending[r].sequence == n)));

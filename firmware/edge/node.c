@@ -39,8 +39,8 @@ void tvo_node_init(tvo_node_t *node, tvo_node_publish_fn publish, void *publish_
 
 int tvo_node_set_answer(tvo_node_t *node, tvo_node_answer_fn answer, void *answer_context)
 {
-    if (node == NULL || answer == NULL) {
-        return -1;
+    if (node == NULL || answer == NULL || node->state != TVO_NODE_IDLE) {
+        return -1; /* a running session's commands may be a chain's, which the answer cannot carry */
     }
     node->answer = answer;
     node->answer_context = answer_context;

@@ -131,7 +131,8 @@ void tvo_node_init(tvo_node_t *node, tvo_node_publish_fn publish, void *publish_
  * the build drives (TVO_MAX_ROBOTS, beyond the wire's TVO_WIRE_MAX_ROBOTS) and measurements come from
  * tvo_node_measure: a fleet link's. Such a node serves unicycle sessions only; a session of more robots
  * than the wire carries takes no streamed targets, and its telemetry carries no per-output vectors.
- * Set it before the first START. Returns 0, or -1 for a NULL node or answer.
+ * Set it while the node is idle (before the first START). Returns 0, or -1 for a NULL node or
+ * answer, or a node running a session.
  */
 int tvo_node_set_answer(tvo_node_t *node, tvo_node_answer_fn answer, void *answer_context);
 

@@ -106,7 +106,7 @@ void tvo_step_measurement_from_wire(const tvo_lcm_measurement_t *msg, tvo_step_m
     out->utime = msg->utime;
     out->session_id = msg->session_id;
     out->sequence = msg->sequence;
-    out->robot_count = (msg->robot_count <= TVO_WIRE_SESSION_ROBOTS) ? msg->robot_count : -1;
+    out->robot_count = (msg->robot_count >= 0 && msg->robot_count <= TVO_WIRE_SESSION_ROBOTS) ? msg->robot_count : -1;
     out->heading_valid = msg->heading_valid ? 1u : 0u;
     out->speed_valid = msg->speed_valid ? 1u : 0u;
     out->derivatives_valid = msg->derivatives_valid ? 1u : 0u;

@@ -44,14 +44,14 @@ typedef struct {
     int64_t utime;
     int64_t session_id;
     int64_t sequence;
-    int32_t robot_count;           /* -1: more than the message carried (never a session's) */
+    int32_t robot_count;           /* -1: negative, or more than the message carried (never a session's) */
     uint8_t heading_valid;
     uint8_t speed_valid;
     uint8_t derivatives_valid;
     tvo_step_robot_sample_t robot[TVO_MAX_ROBOTS];
 } tvo_step_measurement_t;
 
-/** The joint measurement a measurement_t carries (a robot_count beyond its arrays becomes -1). */
+/** The joint measurement a measurement_t carries (a negative robot_count, or one beyond its arrays, becomes -1). */
 void tvo_step_measurement_from_wire(const tvo_lcm_measurement_t *msg, tvo_step_measurement_t *out);
 
 /** Unicycle measurement (poses, headings, speeds) of robot_count robots, stamped stamp_tick. */

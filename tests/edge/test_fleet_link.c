@@ -241,6 +241,16 @@ static void test_bad_samples_are_refused(void)
     TEST_ASSERT_EQUAL_UINT32(0u, member_rec.count); /* unanswered */
 }
 
+/* An answer that must never be called (its node refuses it). */
+static void test_answer_unused(void *context, const tvo_step_stamp_t *stamp, uint32_t wire_flags, const tvo_command_t *command)
+{
+    (void)context;
+    (void)stamp;
+    (void)wire_flags;
+    (void)command;
+    TEST_FAIL_MESSAGE("an answer the node refused was called");
+}
+
 /* A START to a node (the fleet link's if link_node is its node): its ack's status and bad_param. */
 static void start_answer(tvo_lcm_session_t *start, tvo_fleet_link_t *via, tvo_node_t *node, ef_record_t *rec,
                          int channel, tvo_lcm_session_ack_t *ack)
@@ -273,6 +283,8 @@ static void test_a_node_with_an_answer_drives_unicycles_only(void)
     TEST_ASSERT_EQUAL_INT64(EF_SESSION_ID, ack.running_session_id); /* the running session runs on */
     start_answer(&start, NULL, &central, &central_rec, TVO_NODE_CH_SESSION_ACK, &ack);
     TEST_ASSERT_EQUAL_INT32(TVO_LCM_COMMAND_T_STATUS_OK, ack.status); /* a node answering in command_t takes it */
+    /* ... and cannot be given an answer while it runs that chain session (its commands are not rows). */
+    TEST_ASSERT_EQUAL_INT(-1, tvo_node_set_answer(&central, test_answer_unused, NULL));
 }
 
 #if TVO_FLEET_MAX_ROBOTS > TVO_WIRE_MAX_ROBOTS
@@ -315,6 +327,8 @@ static void test_a_fleet_of_more_robots_than_the_wire_carries(void)
     /* target_t carries the wire's robots: streamed targets are refused, naming the first robot. */
     start.robot[2].target.kind = TVO_LCM_PATH_T_KIND_STREAMED;
     start_answer(&start, &big, &big_node, &big_rec, TVO_FLEET_CH_SESSION_ACK, &ack);
+    TEST_ASSERT_EQUAL_INT32(TVO_LCM_COMMAND_T_STATUS_ERR_DIMENSION, ack.status);
+    TEST_ASSERT_EQUAL_INT32(TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, ack.bad_param);
     TEST_ASSERT_EQUAL_INT32(TVO_LCM_SESSION_ACK_T_PART_ROBOTS, ack.bad_part);
     TEST_ASSERT_EQUAL_INT32(2, ack.bad_index);
     ef_start(&start, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, N);
@@ -341,7 +355,9 @@ static void test_a_fleet_of_more_robots_than_the_wire_carries(void)
                                   tvo_fleet_link_receive(&big, &big_node, TVO_FLEET_CH_SAMPLE, wire, (uint32_t)len, 0));
             pose(r, n, &joint.robot[r].position_m[0], &joint.robot[r].position_m[1], &joint.robot[r].heading_rad);
         }
+        ef_record_clear(&reference_rec);
         TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_MEASUREMENT, tvo_node_measure(&reference, &joint, 0));
+        TEST_ASSERT_NULL(ef_record_nth(&reference_rec, TVO_NODE_CH_COMMAND, 0)); /* answered, not in command_t */
         tvo_lcm_fleet_command_t got;
         const ef_message_t *c = ef_record_nth(&big_rec, TVO_FLEET_CH_COMMAND, 0);
         const ef_message_t *t = ef_record_nth(&big_rec, TVO_FLEET_CH_TELEMETRY, 0);

@@ -84,6 +84,28 @@ static void test_measurement_round_trip_keeps_every_robot_and_field(void)
     TEST_ASSERT_EQUAL_UINT8(0u, meas.speed_valid);
 }
 
+static void test_a_robot_count_the_message_cannot_carry_becomes_minus_one(void)
+{
+    const int32_t bad[] = {INT32_MIN, -3, -1, TVO_WIRE_SESSION_ROBOTS + 1, INT32_MAX};
+    for (size_t i = 0; i < sizeof(bad) / sizeof(bad[0]); ++i) {
+        tvo_lcm_measurement_t wire;
+        distinct_measurement(&wire, TVO_WIRE_SESSION_ROBOTS);
+        wire.robot_count = bad[i];
+        tvo_step_measurement_t out;
+        memset(&out, 0x5A, sizeof(out));
+        tvo_step_measurement_from_wire(&wire, &out);
+        TEST_ASSERT_EQUAL_INT32(-1, out.robot_count);
+        TEST_ASSERT_TRUE(out.robot[0].position_m[0] == 0.0 && out.robot[0].heading_rad == 0.0); /* none copied */
+        TEST_ASSERT_EQUAL_INT64(wire.sequence, out.sequence);
+    }
+    tvo_lcm_measurement_t wire;
+    distinct_measurement(&wire, TVO_WIRE_SESSION_ROBOTS);
+    tvo_step_measurement_t out;
+    tvo_step_measurement_from_wire(&wire, &out);
+    TEST_ASSERT_EQUAL_INT32(TVO_WIRE_SESSION_ROBOTS, out.robot_count);
+    TEST_ASSERT_TRUE(out.robot[TVO_WIRE_SESSION_ROBOTS - 1].position_m[0] == wire.position_m[TVO_WIRE_SESSION_ROBOTS - 1][0]);
+}
+
 static void test_measurement_robot_count_must_match_the_session(void)
 {
     const int32_t bad[] = {INT32_MIN, -1, 0, 2, 4, TVO_MAX_ROBOTS + 1, INT32_MAX}; /* the session has 3 */
@@ -519,6 +541,7 @@ int main(void)
     RUN_TEST(test_wire_status_of_each_reason_error_and_edge_status);
     RUN_TEST(test_wire_flags_say_the_outcome);
     RUN_TEST(test_measurement_robot_count_must_match_the_session);
+    RUN_TEST(test_a_robot_count_the_message_cannot_carry_becomes_minus_one);
     RUN_TEST(test_measurement_values_beyond_the_scalar_become_infinite);
     RUN_TEST(test_chain_measurement_reads_derivatives_only_when_valid);
     RUN_TEST(test_command_round_trip_carries_the_stamp_and_each_robot);

@@ -53,6 +53,9 @@ static void check_answer(const tvo_lcm_fleet_command_t *m)
     if ((uint64_t)m->joint_digest != tvo_fleet_digest(&rows, m->robot_count)) {
         fuzz_fail("the digest is not the rows'");
     }
+    if (reference_limits && m->status == 0 && m->robot_count != session.robot_count) {
+        fuzz_fail("a computed command of another robot count than the session's");
+    }
     const int32_t mismatch_stop = (int32_t)(TVO_LCM_COMMAND_T_FLAG_SAFE_STOP | TVO_FLAG_SPEED_MISMATCH);
     if (m->status == 0 && ((m->flags & (int32_t)TVO_LCM_COMMAND_T_FLAG_HOLDING) != 0 ||
                            (stopped && (m->flags & mismatch_stop) != mismatch_stop))) {
