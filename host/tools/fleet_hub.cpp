@@ -44,7 +44,6 @@
 #include "auth_key_file.h"
 #include "channels.h"
 #include "lcm_messages.hpp"
-#include "tvo/status.h"
 #include "tvo_lcm/fleet_command_t.hpp"
 #include "tvo_lcm/fleet_sample_t.hpp"
 
@@ -152,9 +151,9 @@ public:
         plant_.subscribe(TVO_CHANNEL_SESSION, &Hub::on_plant_raw, this);
         plant_.subscribe(TVO_CHANNEL_TARGET, &Hub::on_plant_raw, this);
         plant_.subscribe(TVO_CHANNEL_FLEET_SAMPLE, &Hub::on_plant_sample, this);
-        fleet_.subscribe("TVO_SESSION_ACK_R[0-9]+", &Hub::on_ack, this);
+        fleet_.subscribe(TVO_CHANNEL_SESSION_ACK "_R[0-9]+", &Hub::on_ack, this);
         fleet_.subscribe(TVO_CHANNEL_FLEET_COMMAND "_R[0-9]+", &Hub::on_row, this);
-        fleet_.subscribe("TVO_TELEMETRY_R[0-9]+", &Hub::on_telemetry, this);
+        fleet_.subscribe(TVO_CHANNEL_TELEMETRY "_R[0-9]+", &Hub::on_telemetry, this);
         sample_channels_.resize(static_cast<std::size_t>(o.robots));
         for (int k = 0; k < o.robots; ++k) {
             sample_channels_[static_cast<std::size_t>(k)] = robot_channel(TVO_CHANNEL_FLEET_SAMPLE, k);
@@ -315,10 +314,10 @@ private:
             ack_mask_ = 0u;
         }
         ack_mask_ |= 1u << k;
-        if (ack.status != TVO_OK || ack_mask_ == (1u << o_.robots) - 1u) {
+        if (ack.status != tvo_lcm::command_t::STATUS_OK || ack_mask_ == (1u << o_.robots) - 1u) {
             plant_auth_.publish(plant_, TVO_CHANNEL_SESSION_ACK, ack);
             ack_mask_ = 0u;
-            if (ack.action == tvo_lcm::session_t::ACTION_STOP && ack.status == TVO_OK) {
+            if (ack.action == tvo_lcm::session_t::ACTION_STOP && ack.status == tvo_lcm::command_t::STATUS_OK) {
                 stopped_ = true;
             }
         }
