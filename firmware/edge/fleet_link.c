@@ -322,7 +322,7 @@ static void step(tvo_fleet_link_t *link, tvo_node_t *node, const tvo_lcm_fleet_s
     joint->utime = own->utime;
     joint->session_id = own->session_id;
     joint->sequence = own->sequence;
-    joint->robot_count = own->robot_count;
+    joint->robot_count = robots;
     joint->heading_valid = own->heading_valid ? 1u : 0u;
     joint->speed_valid = own->speed_valid ? 1u : 0u;
     for (int32_t r = 0; r < robots; ++r) {

@@ -95,15 +95,17 @@ static void publish_ack(tvo_node_t *node, const tvo_lcm_session_t *msg, const tv
                     tvo_lcm_session_ack_t_encode(node->buffer, 0, TVO_NODE_BUFFER_BYTES, &node->last_ack));
 }
 
-/* A unicycle command: to the node's answer if it has one, else out as command_t. */
-static void publish_command(tvo_node_t *node, const tvo_step_stamp_t *stamp, uint32_t wire_flags, const tvo_command_t *cmd)
+/* A command: to the node's answer if it has one (such a node runs unicycle sessions only), else out
+ * as command_t by its plant's codec. */
+static void publish_command(tvo_node_t *node, const tvo_edge_controller_ops_t *ops, const tvo_edge_command_t *cmd,
+                            const tvo_step_stamp_t *stamp, uint32_t wire_flags)
 {
     if (node->answer != NULL) {
-        node->answer(node->answer_context, stamp, wire_flags, cmd);
+        node->answer(node->answer_context, stamp, wire_flags, &cmd->unicycle);
         return;
     }
     tvo_lcm_command_t out;
-    tvo_step_command_to_lcm(cmd, stamp, &out);
+    ops->command_to_lcm(cmd, stamp, &out);
     publish_encoded(node, TVO_NODE_CH_COMMAND, tvo_lcm_command_t_encode(node->buffer, 0, TVO_NODE_BUFFER_BYTES, &out));
 }
 
@@ -120,13 +122,7 @@ static void publish_step(tvo_node_t *node, tvo_node_session_t *s, const tvo_edge
     if ((flags & TVO_FLAG_SPEED_MISMATCH) != 0u) {
         count(&node->counters.speed_mismatch);
     }
-    if (node->answer != NULL) {
-        publish_command(node, stamp, flags, &cmd->unicycle); /* such a node runs unicycle sessions only */
-    } else {
-        tvo_lcm_command_t out;
-        ops->command_to_lcm(cmd, stamp, &out);
-        publish_encoded(node, TVO_NODE_CH_COMMAND, tvo_lcm_command_t_encode(node->buffer, 0, TVO_NODE_BUFFER_BYTES, &out));
-    }
+    publish_command(node, ops, cmd, stamp, flags);
     tvo_lcm_telemetry_t tel;
     memset(&tel, 0, sizeof(tel));
     ops->telemetry_to_lcm(&s->controller, &s->problem, &tel);
@@ -311,11 +307,10 @@ static tvo_status_t build_session(const tvo_node_t *node, tvo_node_session_t *s,
         return st;
     }
     /* Robots the node's answers carry; a node that answers through its answer drives unicycles. */
-    if (timing.robot_count > tvo_node_max_robots(node) ||
-        (node->answer != NULL && timing.plant_kind != TVO_LCM_SESSION_T_PLANT_UNICYCLE)) {
+    const int too_many_robots = timing.robot_count > tvo_node_max_robots(node);
+    if (too_many_robots || (node->answer != NULL && timing.plant_kind != TVO_LCM_SESSION_T_PLANT_UNICYCLE)) {
         why->status = TVO_ERR_PARAM;
-        why->param = timing.robot_count > tvo_node_max_robots(node) ? TVO_SESSION_PARAM_ROBOT_COUNT
-                                                                     : TVO_SESSION_PARAM_PLANT_KIND;
+        why->param = too_many_robots ? TVO_SESSION_PARAM_ROBOT_COUNT : TVO_SESSION_PARAM_PLANT_KIND;
         return TVO_ERR_PARAM;
     }
     const tvo_edge_controller_ops_t *ops = tvo_edge_controller_ops(timing.plant_kind);
@@ -328,12 +323,14 @@ static tvo_status_t build_session(const tvo_node_t *node, tvo_node_session_t *s,
     tvo_problem_desc_t desc;
     st = tvo_session_decode_problem(msg, &desc, why);
     /* target_t carries the wire's robots: a larger session's targets cannot be streamed. */
-    for (uint8_t r = 0; st == TVO_OK && timing.robot_count > TVO_WIRE_MAX_ROBOTS && r < timing.robot_count; ++r) {
-        if (desc.target[r].kind == TVO_TARGET_STREAMED) {
-            why->status = st = TVO_ERR_DIMENSION;
-            why->param = TVO_SESSION_PARAM_OBJECTIVE;
-            why->part = TVO_LCM_SESSION_ACK_T_PART_ROBOTS;
-            why->index = (int32_t)r;
+    if (st == TVO_OK && timing.robot_count > TVO_WIRE_SESSION_ROBOTS) {
+        for (uint8_t r = 0; st == TVO_OK && r < timing.robot_count; ++r) {
+            if (desc.target[r].kind == TVO_TARGET_STREAMED) {
+                why->status = st = TVO_ERR_DIMENSION;
+                why->param = TVO_SESSION_PARAM_OBJECTIVE;
+                why->part = TVO_LCM_SESSION_ACK_T_PART_ROBOTS;
+                why->index = (int32_t)r;
+            }
         }
     }
     if (st == TVO_OK) {
@@ -411,13 +408,14 @@ static tvo_status_t answer_without_session(tvo_node_t *node, const node_input_t 
         (msg->robot_count >= 1 && msg->robot_count <= TVO_MAX_ROBOTS) ? (uint8_t)msg->robot_count : 0u;
     const tvo_step_stamp_t stamp = {tvo_schedule_clamp_time(msg->utime), msg->session_id, msg->sequence,
                                     {TVO_NODE_NO_SESSION, TVO_OK, TVO_REASON_NONE}, robot_count};
-    tvo_command_t stop;
+    tvo_edge_command_t stop;
     memset(&stop, 0, sizeof(stop));
-    stop.outcome = TVO_OUTCOME_STOPPED;
+    stop.unicycle.outcome = TVO_OUTCOME_STOPPED;
     const int32_t wire = tvo_step_wire_status(&stamp.why);
     count(&node->counters.refused[wire]);
     node->last_refusal = wire;
-    publish_command(node, &stamp, tvo_step_wire_flags(stop.flags, stop.outcome), &stop);
+    publish_command(node, tvo_edge_controller_ops(TVO_LCM_SESSION_T_PLANT_UNICYCLE), &stop, &stamp,
+                    tvo_step_wire_flags(stop.unicycle.flags, stop.unicycle.outcome));
     return TVO_OK;
 }
 
