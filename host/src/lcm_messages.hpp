@@ -2,6 +2,8 @@
 // (plain C) headers the channel names, status texts and flags.
 #pragma once
 
+#include "tvo_lcm/chain_command_t.hpp"
+#include "tvo_lcm/chain_sample_t.hpp"
 #include "tvo_lcm/command_header_t.hpp"
 #include "tvo_lcm/node_status_t.hpp"
 #include "tvo_lcm/session_ack_t.hpp"
