@@ -113,7 +113,7 @@ static void to_target(const lcm_recv_buf_t *rbuf, const char *channel, void *use
         return;
     }
     ++b->frames_to_target;
-    if (number == TVO_NODE_CH_MEASUREMENT && is_nth(b, ++b->measurements_to_target) && length > 2u) {
+    if (number == TVO_NODE_CH_SAMPLE && is_nth(b, ++b->measurements_to_target) && length > 2u) {
         corrupt(b->frame, length - 1u); /* length - 1: the delimiter stays */
         ++b->measurements_corrupted;
     }
@@ -289,7 +289,8 @@ int main(int argc, char **argv)
         return 1;
     }
     lcm_subscribe(b.lcm, TVO_CHANNEL_SESSION, to_target, &b);
-    lcm_subscribe(b.lcm, TVO_CHANNEL_MEASUREMENT, to_target, &b);
+    lcm_subscribe(b.lcm, TVO_CHANNEL_SAMPLE, to_target, &b);
+    lcm_subscribe(b.lcm, TVO_CHANNEL_CHAIN_SAMPLE, to_target, &b);
     lcm_subscribe(b.lcm, TVO_CHANNEL_TARGET, to_target, &b);
 
     uint8_t chunk[BRIDGE_READ_CHUNK];

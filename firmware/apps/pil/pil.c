@@ -73,7 +73,7 @@ static void report(int64_t now_us)
     put_count(" frames_received=", decoder.frames_ok);
     put_count(" frames_dropped=", decoder.frames_dropped);
     put_count(" frames_sent=", frames_sent);
-    put_node_count(" undecodable=", node.counters.undecodable);
+    put_node_count(" malformed=", node.counters.malformed);
     put_node_count(" accepted=", node.counters.accepted);
     put_node_count(" safe_stops=", node.counters.safe_stops);
     for (uint32_t status = 0u; status < TVO_LCM_NODE_COUNTERS_T_STATUS_SLOTS; ++status) {
@@ -119,14 +119,16 @@ int main(void)
             return 1;
         }
         keyed = 1;
-        tvo_node_init(&node, tvo_auth_link_publish, &link);
+        /* Interim boot id until the provisioned boot counter: the counter base, new at every provisioning. */
+        (void)tvo_node_init(&node, -1, counter_base <= (uint64_t)INT64_MAX ? (int64_t)counter_base : INT64_MAX,
+                            tvo_auth_link_publish, &link);
         tvo_board_puts("PIL: keyed: every message is authenticated\n");
     } else {
         tvo_board_puts("PIL: the bus is unauthenticated (no key provisioned)\n");
-        tvo_node_init(&node, publish, NULL);
+        (void)tvo_node_init(&node, -1, 1, publish, NULL); /* interim boot id until the provisioned boot counter */
     }
 #else
-    tvo_node_init(&node, publish, NULL);
+    (void)tvo_node_init(&node, -1, 1, publish, NULL); /* interim boot id until the provisioned boot counter */
 #endif
     tvo_frame_decoder_init(&decoder);
     tvo_board_puts("PIL ready\n");
