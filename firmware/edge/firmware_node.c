@@ -1,8 +1,8 @@
 /*
  * tvo_firmware_node: the control core behind LCM, as a host process (hardware-in-the-loop edge).
  *
- * Subscribes TVO_SESSION, TVO_MEASUREMENT and TVO_TARGET and publishes TVO_SESSION_ACK,
- * TVO_COMMAND and TVO_TELEMETRY. The logic (sessions, schedule, watchdog timer, codecs) is node.c's,
+ * Subscribes TVO_SESSION, TVO_SAMPLE, TVO_CHAIN_SAMPLE and TVO_TARGET and publishes TVO_NODE,
+ * TVO_SESSION_ACK, TVO_COMMAND (TVO_CHAIN_COMMAND) and TVO_TELEMETRY. The logic (sessions, schedule, watchdog timer, codecs) is node.c's,
  * shared with the processor-in-the-loop program; this file is the LCM transport, the node's clock
  * (CLOCK_MONOTONIC), the command line and the logs. SIGINT or SIGTERM ends the process with exit
  * code 0; so does a session STOP, unless --keep-running.
@@ -22,7 +22,6 @@
 
 #include "auth_key_file.h"
 #include "auth_link.h"
-#include "fleet_link.h"
 #include "node.h"
 
 /* The only global: set by SIGINT/SIGTERM, polled by the main loop. */
@@ -59,9 +58,6 @@ typedef struct {
     tvo_node_t node;     /* the transport-independent logic (node.h) */
     tvo_auth_link_t link; /* with --key-file: frames opened before the node, its messages signed */
     int keyed;
-    tvo_fleet_link_t fleet; /* with --own-robot: one robot's node of a fleet (fleet_link.h) */
-    int fleet_member;
-    char fleet_sample_channel[TVO_FLEET_CHANNEL_NAME_BYTES];
     log_limit_t limits[LOG_KEYS];
 } lcm_node_t;
 
@@ -83,16 +79,6 @@ static void publish(void *context, int channel, const uint8_t *data, uint32_t le
 {
     lcm_node_t *self = (lcm_node_t *)context;
     lcm_publish(self->lcm, tvo_node_channel_name(channel), data, length);
-}
-
-/* The fleet link's channels carry the own robot's number (fleet_link.h). */
-static void fleet_publish(void *context, int channel, const uint8_t *data, uint32_t length)
-{
-    lcm_node_t *self = (lcm_node_t *)context;
-    char name[TVO_FLEET_CHANNEL_NAME_BYTES];
-    if (tvo_fleet_channel_name(channel, self->fleet.own_robot, name, sizeof(name)) == 0) {
-        lcm_publish(self->lcm, name, data, length);
-    }
 }
 
 /* Whether a line of this kind may be written now; *suppressed gets how many were not. */
@@ -166,15 +152,14 @@ static void log_changes(lcm_node_t *self, const tvo_lcm_node_counters_t *before,
     char line[160];
     if (self->node.acks != acks_before) {
         log_ack(self);
-        return; /* a new session resets the counters: nothing else to compare */
     }
     for (int s = 0; s < TVO_LCM_NODE_COUNTERS_T_STATUS_SLOTS; ++s) {
         if (after->refused[s] > before->refused[s]) {
-            snprintf(line, sizeof(line), "measurement refused: %s", tvo_protocol_status_str(s));
+            snprintf(line, sizeof(line), "sample refused: %s", tvo_protocol_status_str(s));
             log_event(self, s, (uint32_t)(after->refused[s] - before->refused[s]), line);
         }
     }
-    log_event(self, LOG_UNDECODABLE, (uint32_t)(after->undecodable - before->undecodable),
+    log_event(self, LOG_UNDECODABLE, (uint32_t)(after->malformed - before->malformed),
               self->keyed ? "a message did not decode (ignored)"
                           : "a message did not decode (ignored; if the plant signs its messages, start the node "
                             "with the same --key-file)");
@@ -197,16 +182,7 @@ static void on_message(const lcm_recv_buf_t *rbuf, const char *channel, void *us
     lcm_node_t *self = (lcm_node_t *)user;
     const tvo_lcm_node_counters_t before = self->node.counters;
     const uint32_t acks_before = self->node.acks;
-    if (self->fleet_member) {
-        const int fleet_channel = strcmp(channel, self->fleet_sample_channel) == 0 ? (int)TVO_FLEET_CH_SAMPLE
-                                                                                   : tvo_node_channel_of(channel);
-        uint32_t length = rbuf->data_size;
-        if (!self->keyed || tvo_auth_link_open(&self->link, &self->node, fleet_channel, (const uint8_t *)rbuf->data,
-                                               rbuf->data_size, &length) == TVO_AUTH_OK) {
-            (void)tvo_fleet_link_receive(&self->fleet, &self->node, fleet_channel, (const uint8_t *)rbuf->data, length,
-                                         monotonic_us());
-        }
-    } else if (self->keyed) {
+    if (self->keyed) {
         (void)tvo_auth_link_receive(&self->link, &self->node, tvo_node_channel_of(channel),
                                     (const uint8_t *)rbuf->data, rbuf->data_size, monotonic_us());
     } else {
@@ -226,14 +202,13 @@ static void print_usage(FILE *out)
             "                      mode 0600); without it the bus is unauthenticated (lab use)\n"
             "  --sender-id N       this node's sender id on a keyed bus (default 1, a fleet node's 256 + I;\n"
             "                      unique per key holder)\n"
-            "  --own-robot I       a fleet node: drive robot I only, from per-robot samples on TVO_FLEET_SAMPLE_RI\n"
-            "                      (every robot's), answering on TVO_FLEET_COMMAND_RI (lcm_types/README.md, \"A fleet\");\n"
-            "                      this build's fleet sessions have up to %d robots, its other sessions up to %d\n"
+            "  --own-robot I       a fleet node: drive robot I only (it hears every robot's samples and evaluates\n"
+            "                      the joint law); default: every robot of the session. Sessions of up to %d robots\n"
             "  --lcm-url URL       LCM provider URL (default: $LCM_DEFAULT_URL, else LCM's default udpm)\n"
             "  --keep-running      serve session after session (default: exit after a session's STOP)\n"
             "  --exit-with-parent  exit when the process that started this one dies (no orphans)\n"
             "  -h, --help          show this help\n",
-            TVO_FLEET_MAX_ROBOTS, TVO_WIRE_SESSION_ROBOTS);
+            (int)TVO_NODE_MAX_ROBOTS);
 }
 
 typedef struct {
@@ -288,9 +263,9 @@ static int parse_args(int argc, char **argv, node_options_t *opt)
             const char *robot = arg[11] == '=' ? arg + 12 : argv[++i];
             char *end = NULL;
             const long r = strtol(robot, &end, 10);
-            if (end == robot || *end != '\0' || r < 0 || r >= TVO_FLEET_MAX_ROBOTS) {
+            if (end == robot || *end != '\0' || r < 0 || r >= TVO_NODE_MAX_ROBOTS) {
                 fprintf(stderr, "tvo_firmware_node: error: --own-robot takes a robot 0 .. %d, not '%s'\n",
-                        TVO_FLEET_MAX_ROBOTS - 1, robot);
+                        (int)TVO_NODE_MAX_ROBOTS - 1, robot);
                 return 2;
             }
             opt->own_robot = (int32_t)r;
@@ -360,16 +335,9 @@ int main(int argc, char **argv)
     const pid_t parent = getppid();
     /* Static: the node holds two session slots, the decoded message and the encode buffer (kilobytes). */
     static lcm_node_t self;
-    /* A keyed fleet node: node -> fleet link -> auth link (signs, names by robot) -> LCM. */
-    const int fleet = opt.own_robot >= 0;
-    if (fleet && (tvo_fleet_link_init(&self.fleet, &self.node, opt.own_robot, opt.key_file != NULL ? tvo_auth_link_publish : fleet_publish,
-                                      opt.key_file != NULL ? (void *)&self.link : (void *)&self) != 0 ||
-                  tvo_fleet_channel_name(TVO_FLEET_CH_SAMPLE, opt.own_robot, self.fleet_sample_channel,
-                                         sizeof(self.fleet_sample_channel)) != 0)) {
-        fprintf(stderr, "tvo_firmware_node: error: fleet link set-up failed\n");
-        return 1;
-    }
-    self.fleet_member = fleet;
+    /* Interim boot id until --boot-file (the LCM process's own work): the wall clock's seconds at start,
+     * which a restart more than a second later never repeats. */
+    const int64_t boot_id = (int64_t)time(NULL);
     if (opt.key_file != NULL) {
         uint8_t key[TVO_AUTH_KEY_BYTES];
         char why[300];
@@ -377,27 +345,26 @@ int main(int argc, char **argv)
             fprintf(stderr, "tvo_firmware_node: error: %s\n", why);
             return 2;
         }
-        const tvo_auth_status_t keyed = tvo_auth_link_init(&self.link, key, opt.sender_id, 1u,
-                                                           fleet ? fleet_publish : publish, &self);
+        const tvo_auth_status_t keyed = tvo_auth_link_init(&self.link, key, opt.sender_id, 1u, publish, &self);
         memset(key, 0, sizeof(key));
         if (keyed != TVO_AUTH_OK ||
-            tvo_auth_follow_clock(&self.link.auth, tvo_auth_wall_clock_counter, TVO_AUTH_NEW_SENDER_WINDOW_US) != TVO_AUTH_OK ||
-            (fleet && tvo_auth_link_set_namer(&self.link, tvo_fleet_link_channel_name, &self.fleet) != TVO_AUTH_OK)) {
+            tvo_auth_follow_clock(&self.link.auth, tvo_auth_wall_clock_counter, TVO_AUTH_NEW_SENDER_WINDOW_US) != TVO_AUTH_OK) {
             fprintf(stderr, "tvo_firmware_node: error: authentication set-up failed\n");
             return 1;
         }
         self.keyed = 1;
-    }
-    if (fleet) {
-        fprintf(stderr, "tvo_firmware_node: fleet node of robot %d on %s (%s; sessions of up to %d robots)\n",
-                (int)opt.own_robot, self.fleet_sample_channel, self.keyed ? "keyed bus" : "unauthenticated bus",
-                (int)tvo_node_max_robots(&self.node));
-    } else if (self.keyed) {
-        tvo_node_init(&self.node, tvo_auth_link_publish, &self.link);
     } else {
         fprintf(stderr, "tvo_firmware_node: the bus is unauthenticated (no --key-file): anyone on the network can "
                         "drive, stop or replace this session\n");
-        tvo_node_init(&self.node, publish, &self);
+    }
+    if (tvo_node_init(&self.node, (int8_t)opt.own_robot, boot_id, self.keyed ? tvo_auth_link_publish : publish,
+                      self.keyed ? (void *)&self.link : (void *)&self) != 0) {
+        fprintf(stderr, "tvo_firmware_node: error: node set-up failed (boot id %lld)\n", (long long)boot_id);
+        return 1;
+    }
+    if (opt.own_robot >= 0) {
+        fprintf(stderr, "tvo_firmware_node: node of robot %d (%s; sessions of up to %d robots)\n", (int)opt.own_robot,
+                self.keyed ? "keyed bus" : "unauthenticated bus", (int)TVO_NODE_MAX_ROBOTS);
     }
     for (int k = 0; k < LOG_KEYS; ++k) {
         self.limits[k].last_us = -1;
@@ -413,7 +380,8 @@ int main(int argc, char **argv)
         return 1;
     }
     lcm_subscribe(self.lcm, TVO_CHANNEL_SESSION, on_message, &self);
-    lcm_subscribe(self.lcm, self.fleet_member ? self.fleet_sample_channel : TVO_CHANNEL_MEASUREMENT, on_message, &self);
+    lcm_subscribe(self.lcm, TVO_CHANNEL_SAMPLE, on_message, &self);
+    lcm_subscribe(self.lcm, TVO_CHANNEL_CHAIN_SAMPLE, on_message, &self);
     lcm_subscribe(self.lcm, TVO_CHANNEL_TARGET, on_message, &self);
 
     int exit_code = 0;
@@ -433,14 +401,6 @@ int main(int argc, char **argv)
         }
     }
     log_flush(&self);
-    if (self.fleet_member) {
-        fprintf(stderr,
-                "tvo_firmware_node: fleet: %u samples taken (%u late), %u refused; %u robot-periods predicted; "
-                "%u own samples answered before every robot was heard; keyed: %u frames dropped unauthenticated, "
-                "%u replayed\n",
-                self.fleet.samples_taken, self.fleet.samples_late, self.fleet.samples_refused, self.fleet.predictions,
-                self.fleet.unheard_steps, self.link.dropped_unauthenticated, self.link.dropped_replayed);
-    }
     tvo_auth_clear(&self.link.auth);
     lcm_destroy(self.lcm);
     return exit_code;
