@@ -127,48 +127,61 @@ typedef struct {
     uint32_t acc[5];
 } poly_acc_t;
 
-/* acc = (acc + block + 2^128) * r mod 2^130 - 5 (partly reduced), for each full 16-byte block: the
+/* Whole 16-byte blocks of the padded AAD, in order: some in place, some assembled (the channel's end
+ * joined to the message's start, the message's zero-padded end, the lengths block). */
+typedef struct {
+    const uint8_t *data;
+    size_t blocks;
+} poly_segment_t;
+
+#define POLY_SEGMENTS 5u
+
+/* acc = (acc + block + 2^128) * r mod 2^130 - 5 (partly reduced), for every block of the segments: the
  * AEAD pads its associated data with zeros to whole blocks, so every block carries the 2^128 bit. The
- * arithmetic of Mbed TLS's poly1305_process (32x32 -> 64-bit products, r's top bits pre-scaled by 5/4). */
-static void poly_blocks(poly_acc_t *poly, const one_time_key_t *otk, const uint8_t *in, size_t blocks)
+ * arithmetic of Mbed TLS's poly1305_process (32x32 -> 64-bit products, r's top bits pre-scaled by 5/4),
+ * in one pass so r stays in registers. */
+static void poly_blocks(poly_acc_t *poly, const one_time_key_t *otk, const poly_segment_t *segments, size_t count)
 {
     const uint32_t r0 = otk->r[0], r1 = otk->r[1], r2 = otk->r[2], r3 = otk->r[3];
     const uint32_t rs1 = r1 + (r1 >> 2), rs2 = r2 + (r2 >> 2), rs3 = r3 + (r3 >> 2);
-    uint32_t a0 = poly->acc[0], a1 = poly->acc[1], a2 = poly->acc[2], a3 = poly->acc[3], a4 = poly->acc[4];
-    for (size_t b = 0u; b < blocks; ++b, in += BLOCK_BYTES) {
-        uint64_t d0 = (uint64_t)a0 + get_le32(in);
-        uint64_t d1 = (uint64_t)a1 + get_le32(in + 4u) + (d0 >> 32);
-        uint64_t d2 = (uint64_t)a2 + get_le32(in + 8u) + (d1 >> 32);
-        uint64_t d3 = (uint64_t)a3 + get_le32(in + 12u) + (d2 >> 32);
-        a0 = (uint32_t)d0;
-        a1 = (uint32_t)d1;
-        a2 = (uint32_t)d2;
-        a3 = (uint32_t)d3;
-        a4 += (uint32_t)(d3 >> 32) + 1u;
-        d0 = (uint64_t)a0 * r0 + (uint64_t)a1 * rs3 + (uint64_t)a2 * rs2 + (uint64_t)a3 * rs1;
-        d1 = (uint64_t)a0 * r1 + (uint64_t)a1 * r0 + (uint64_t)a2 * rs3 + (uint64_t)a3 * rs2 + (uint64_t)a4 * rs1;
-        d2 = (uint64_t)a0 * r2 + (uint64_t)a1 * r1 + (uint64_t)a2 * r0 + (uint64_t)a3 * rs3 + (uint64_t)a4 * rs2;
-        d3 = (uint64_t)a0 * r3 + (uint64_t)a1 * r2 + (uint64_t)a2 * r1 + (uint64_t)a3 * r0 + (uint64_t)a4 * rs3;
-        a4 *= r0;
-        d1 += d0 >> 32;
-        d2 += d1 >> 32;
-        d3 += d2 >> 32;
-        a0 = (uint32_t)d0;
-        a1 = (uint32_t)d1;
-        a2 = (uint32_t)d2;
-        a3 = (uint32_t)d3;
-        a4 += (uint32_t)(d3 >> 32);
-        /* The bits above 2^130 fold back times 5 (2^130 = 5 mod p). */
-        d0 = (uint64_t)a0 + (a4 >> 2) + (a4 & 0xfffffffcu);
-        a4 &= 3u;
-        a0 = (uint32_t)d0;
-        d0 = (uint64_t)a1 + (d0 >> 32);
-        a1 = (uint32_t)d0;
-        d0 = (uint64_t)a2 + (d0 >> 32);
-        a2 = (uint32_t)d0;
-        d0 = (uint64_t)a3 + (d0 >> 32);
-        a3 = (uint32_t)d0;
-        a4 += (uint32_t)(d0 >> 32);
+    uint32_t a0 = 0u, a1 = 0u, a2 = 0u, a3 = 0u, a4 = 0u;
+    for (size_t s = 0u; s < count && s < POLY_SEGMENTS; ++s) {
+        const uint8_t *in = segments[s].data;
+        for (size_t b = 0u; b < segments[s].blocks; ++b, in += BLOCK_BYTES) {
+            uint64_t d0 = (uint64_t)a0 + get_le32(in);
+            uint64_t d1 = (uint64_t)a1 + get_le32(in + 4u) + (d0 >> 32);
+            uint64_t d2 = (uint64_t)a2 + get_le32(in + 8u) + (d1 >> 32);
+            uint64_t d3 = (uint64_t)a3 + get_le32(in + 12u) + (d2 >> 32);
+            a0 = (uint32_t)d0;
+            a1 = (uint32_t)d1;
+            a2 = (uint32_t)d2;
+            a3 = (uint32_t)d3;
+            a4 += (uint32_t)(d3 >> 32) + 1u;
+            d0 = (uint64_t)a0 * r0 + (uint64_t)a1 * rs3 + (uint64_t)a2 * rs2 + (uint64_t)a3 * rs1;
+            d1 = (uint64_t)a0 * r1 + (uint64_t)a1 * r0 + (uint64_t)a2 * rs3 + (uint64_t)a3 * rs2 + (uint64_t)a4 * rs1;
+            d2 = (uint64_t)a0 * r2 + (uint64_t)a1 * r1 + (uint64_t)a2 * r0 + (uint64_t)a3 * rs3 + (uint64_t)a4 * rs2;
+            d3 = (uint64_t)a0 * r3 + (uint64_t)a1 * r2 + (uint64_t)a2 * r1 + (uint64_t)a3 * r0 + (uint64_t)a4 * rs3;
+            a4 *= r0;
+            d1 += d0 >> 32;
+            d2 += d1 >> 32;
+            d3 += d2 >> 32;
+            a0 = (uint32_t)d0;
+            a1 = (uint32_t)d1;
+            a2 = (uint32_t)d2;
+            a3 = (uint32_t)d3;
+            a4 += (uint32_t)(d3 >> 32);
+            /* The bits above 2^130 fold back times 5 (2^130 = 5 mod p). */
+            d0 = (uint64_t)a0 + (a4 >> 2) + (a4 & 0xfffffffcu);
+            a4 &= 3u;
+            a0 = (uint32_t)d0;
+            d0 = (uint64_t)a1 + (d0 >> 32);
+            a1 = (uint32_t)d0;
+            d0 = (uint64_t)a2 + (d0 >> 32);
+            a2 = (uint32_t)d0;
+            d0 = (uint64_t)a3 + (d0 >> 32);
+            a3 = (uint32_t)d0;
+            a4 += (uint32_t)(d0 >> 32);
+        }
     }
     poly->acc[0] = a0;
     poly->acc[1] = a1;
@@ -213,48 +226,51 @@ static void wipe_one_time_key(one_time_key_t *otk)
     }
 }
 
+/* Copies n < BLOCK_BYTES bytes into block at `at` (a short loop: cheaper than a library call here). */
+static void put_bytes(uint8_t block[BLOCK_BYTES], size_t at, const uint8_t *bytes, size_t n)
+{
+    for (size_t i = 0u; i < n && at + i < BLOCK_BYTES; ++i) {
+        block[at + i] = bytes[i];
+    }
+}
+
 /* The tag of AAD = channel (channel_length bytes, its NUL included) || message under the nonce. */
 static void compute_tag(const tvo_auth_t *auth, const char *channel, size_t channel_length, const uint8_t *message,
                         size_t length, const uint8_t nonce[NONCE_BYTES], uint8_t tag[TVO_AUTH_TAG_BYTES])
 {
     one_time_key_t otk;
-    poly_acc_t poly = {{0u, 0u, 0u, 0u, 0u}};
-    uint8_t block[BLOCK_BYTES]; /* public bytes only (channel, message, lengths): not wiped */
+    poly_acc_t poly;
+    /* Public bytes only (channel, message, lengths): not wiped. */
+    uint8_t joined[BLOCK_BYTES] = {0u};
+    uint8_t tail[BLOCK_BYTES] = {0u};
+    uint8_t lengths[BLOCK_BYTES] = {0u};
+    poly_segment_t segments[POLY_SEGMENTS];
+    size_t count = 0u;
     one_time_key(auth->key_words, nonce, &otk);
     /* The channel's whole blocks (none for the protocol's names), then its rest joined to the message's
      * first bytes in one block, the message's whole blocks in place, its rest padded with zeros. */
     const size_t channel_whole = channel_length / BLOCK_BYTES;
-    if (channel_whole > 0u) {
-        poly_blocks(&poly, &otk, (const uint8_t *)channel, channel_whole);
-    }
     const size_t channel_rest = channel_length % BLOCK_BYTES;
+    segments[count++] = (poly_segment_t){(const uint8_t *)channel, channel_whole};
     size_t taken = 0u;
     if (channel_rest > 0u) {
-        memcpy(block, channel + channel_length - channel_rest, channel_rest);
-        taken = BLOCK_BYTES - channel_rest;
-        if (taken > length) {
-            taken = length;
-        }
-        memcpy(block + channel_rest, message, taken);
-        memset(block + channel_rest + taken, 0, BLOCK_BYTES - channel_rest - taken);
-        poly_blocks(&poly, &otk, block, 1u);
+        taken = BLOCK_BYTES - channel_rest < length ? BLOCK_BYTES - channel_rest : length;
+        put_bytes(joined, 0u, (const uint8_t *)channel + channel_length - channel_rest, channel_rest);
+        put_bytes(joined, channel_rest, message, taken);
+        segments[count++] = (poly_segment_t){joined, 1u};
     }
-    const size_t whole = (length - taken) / BLOCK_BYTES;
-    if (whole > 0u) {
-        poly_blocks(&poly, &otk, message + taken, whole);
-    }
-    const size_t tail = (length - taken) % BLOCK_BYTES;
-    if (tail > 0u) {
-        memcpy(block, message + length - tail, tail);
-        memset(block + tail, 0, BLOCK_BYTES - tail);
-        poly_blocks(&poly, &otk, block, 1u);
+    segments[count++] = (poly_segment_t){message + taken, (length - taken) / BLOCK_BYTES};
+    const size_t rest = (length - taken) % BLOCK_BYTES;
+    if (rest > 0u) {
+        put_bytes(tail, 0u, message + length - rest, rest);
+        segments[count++] = (poly_segment_t){tail, 1u};
     }
     /* The lengths block: the AAD's length and the ciphertext's (0), little-endian 64-bit each. */
     const uint64_t aad_length = (uint64_t)channel_length + length;
-    put_le32(block, (uint32_t)aad_length);
-    put_le32(block + 4u, (uint32_t)(aad_length >> 32));
-    memset(block + 8u, 0, 8u);
-    poly_blocks(&poly, &otk, block, 1u);
+    put_le32(lengths, (uint32_t)aad_length);
+    put_le32(lengths + 4u, (uint32_t)(aad_length >> 32));
+    segments[count++] = (poly_segment_t){lengths, 1u};
+    poly_blocks(&poly, &otk, segments, count);
     poly_finish(&poly, &otk, tag);
     wipe_one_time_key(&otk);
 }
