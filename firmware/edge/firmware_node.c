@@ -10,10 +10,12 @@
  * --keep-running.
  *
  * Floods: each wake-up handles every message LCM has queued (up to a bound, and never past the node's
- * next deadline), so a burst of forged frames costs time, not genuine samples; LCM's receive thread
- * queues whatever arrives and never drops, and the kernel socket buffer behind it is sized
- * (udpm_socket.h), its drops counted. Every drop the node can see is counted: the node's counters
- * (node_counters_t, announced on TVO_NODE) and the socket's, both in the logs and at exit.
+ * next deadline), so a burst of forged frames costs time, not genuine samples. LCM's receive thread
+ * queues whatever arrives (its ring buffer grows rather than drop), but LCM 1.3.1 keeps at most 30
+ * messages per subscription and silently drops any more: the node's subscriptions are unbounded, so
+ * the only place a frame can be lost is the kernel socket buffer behind LCM, which is sized
+ * (udpm_socket.h) and whose drops are counted. Every drop the node can see is counted: the node's
+ * counters (node_counters_t, announced on TVO_NODE) and the socket's, both in the logs and at exit.
  */
 #define _POSIX_C_SOURCE 200809L
 
@@ -483,6 +485,11 @@ int main(int argc, char **argv)
     for (int k = 0; k < LOG_KEYS; ++k) {
         self.limits[k].last_us = -1;
     }
+    /* Sockets on LCM's port this process inherited (a plant that started it): not the node's own. */
+    int url_sized = 0;
+    const int port = tvo_udpm_url_port(opt.url, &url_sized);
+    tvo_udpm_socket_census_t inherited;
+    tvo_udpm_socket_census(&inherited, port);
     self.lcm = lcm_create(opt.url);
     if (self.lcm == NULL) {
         fprintf(stderr,
@@ -495,13 +502,19 @@ int main(int argc, char **argv)
     }
     for (int channel = TVO_NODE_CH_FIRST; channel <= TVO_NODE_CH_LAST; ++channel) {
         if (tvo_node_channel_is_input(channel)) {
-            lcm_subscribe(self.lcm, tvo_node_channel_name(channel), on_message, &self);
+            lcm_subscription_t *subscription = lcm_subscribe(self.lcm, tvo_node_channel_name(channel), on_message, &self);
+            /* LCM 1.3.1 queues at most 30 messages per subscription and drops the rest without a count:
+             * unbounded here, so a burst is dropped, if at all, by the kernel, which counts it. */
+            if (subscription == NULL || lcm_subscription_set_queue_capacity(subscription, 0) != 0) {
+                fprintf(stderr, "tvo_firmware_node: error: cannot subscribe to %s\n", tvo_node_channel_name(channel));
+                lcm_destroy(self.lcm);
+                return 1;
+            }
         }
     }
     /* LCM's receive socket exists once something is subscribed: size its buffer, unless the URL did. */
-    int url_sized = 0;
-    const int port = tvo_udpm_url_port(opt.url, &url_sized);
-    const int socket_found = port > 0 && tvo_udpm_socket_open(&self.socket, port, url_sized ? 0u : NODE_RECV_BUFFER_BYTES) == 0;
+    const int socket_found =
+        port > 0 && tvo_udpm_socket_open(&self.socket, port, url_sized ? 0u : NODE_RECV_BUFFER_BYTES, &inherited) == 0;
     char robots[64];
     if (opt.own_robot >= 0) {
         snprintf(robots, sizeof(robots), "robot %d's node", (int)opt.own_robot);

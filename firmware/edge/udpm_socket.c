@@ -54,7 +54,43 @@ static uint32_t kernel_drops(int fd)
     return meminfo[SK_MEMINFO_DROPS];
 }
 
-int tvo_udpm_socket_open(tvo_udpm_socket_t *sock, int port, uint32_t request_bytes)
+/* 1 if fd is a UDP (IPv4) socket bound to port. */
+static int bound_to(int fd, int port)
+{
+    int type = 0;
+    socklen_t type_size = sizeof(type);
+    struct sockaddr_in address;
+    socklen_t address_size = sizeof(address);
+    return getsockopt(fd, SOL_SOCKET, SO_TYPE, &type, &type_size) == 0 && type == SOCK_DGRAM &&
+           getsockname(fd, (struct sockaddr *)&address, &address_size) == 0 && address.sin_family == AF_INET &&
+           ntohs(address.sin_port) == port;
+}
+
+void tvo_udpm_socket_census(tvo_udpm_socket_census_t *census, int port)
+{
+    if (census == NULL) {
+        return;
+    }
+    census->count = 0;
+    for (int fd = 0; port > 0 && fd < FD_SCAN_LIMIT && census->count < TVO_UDPM_SOCKET_CENSUS_MAX; ++fd) {
+        if (bound_to(fd, port)) {
+            census->fd[census->count++] = fd;
+        }
+    }
+}
+
+static int listed(const tvo_udpm_socket_census_t *census, int fd)
+{
+    for (int i = 0; census != NULL && i < census->count && i < TVO_UDPM_SOCKET_CENSUS_MAX; ++i) {
+        if (census->fd[i] == fd) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+int tvo_udpm_socket_open(tvo_udpm_socket_t *sock, int port, uint32_t request_bytes,
+                         const tvo_udpm_socket_census_t *before)
 {
     if (sock == NULL) {
         return -1;
@@ -66,13 +102,7 @@ int tvo_udpm_socket_open(tvo_udpm_socket_t *sock, int port, uint32_t request_byt
         return -1;
     }
     for (int fd = 0; fd < FD_SCAN_LIMIT && sock->fd < 0; ++fd) {
-        int type = 0;
-        socklen_t type_size = sizeof(type);
-        struct sockaddr_in address;
-        socklen_t address_size = sizeof(address);
-        if (getsockopt(fd, SOL_SOCKET, SO_TYPE, &type, &type_size) == 0 && type == SOCK_DGRAM &&
-            getsockname(fd, (struct sockaddr *)&address, &address_size) == 0 && address.sin_family == AF_INET &&
-            ntohs(address.sin_port) == port) {
+        if (bound_to(fd, port) && !listed(before, fd)) {
             sock->fd = fd;
         }
     }

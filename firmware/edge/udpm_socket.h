@@ -21,6 +21,15 @@
 extern "C" {
 #endif
 
+/** UDP sockets bound to the port before LCM made its own (inherited from a parent: a plant that
+ *  started the node shares its port), which tvo_udpm_socket_open must pass over. */
+#define TVO_UDPM_SOCKET_CENSUS_MAX 16
+
+typedef struct {
+    int count;
+    int fd[TVO_UDPM_SOCKET_CENSUS_MAX];
+} tvo_udpm_socket_census_t;
+
 typedef struct {
     int fd;                      /* LCM's receive socket, or -1 (not udpm, or not found) */
     int port;                    /* the udpm URL's port */
@@ -35,12 +44,17 @@ typedef struct {
  */
 int tvo_udpm_url_port(const char *url, int *has_recv_buf_size);
 
+/** The UDP sockets this process has bound to `port` now: call it before lcm_create. */
+void tvo_udpm_socket_census(tvo_udpm_socket_census_t *census, int port);
+
 /**
- * Finds this process's UDP socket bound to `port` (LCM's receive socket: call after lcm_subscribe)
- * and, if request_bytes > 0, asks for that receive buffer: SO_RCVBUFFORCE when the process may,
- * else SO_RCVBUF (capped by the kernel). 0, or -1 if no such socket was found (sock->fd -1).
+ * Finds this process's UDP socket bound to `port` that the census (NULL: none) did not list: LCM's
+ * receive socket (call after lcm_subscribe), and, if request_bytes > 0, asks for that receive buffer:
+ * SO_RCVBUFFORCE when the process may, else SO_RCVBUF (capped by the kernel). 0, or -1 if no such
+ * socket was found (sock->fd -1).
  */
-int tvo_udpm_socket_open(tvo_udpm_socket_t *sock, int port, uint32_t request_bytes);
+int tvo_udpm_socket_open(tvo_udpm_socket_t *sock, int port, uint32_t request_bytes,
+                         const tvo_udpm_socket_census_t *before);
 
 /** Datagrams the kernel dropped on the socket since tvo_udpm_socket_open (0 if none was found). */
 uint32_t tvo_udpm_socket_drops(const tvo_udpm_socket_t *sock);
