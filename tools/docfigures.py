@@ -449,6 +449,16 @@ def auth(b):
               f"({n(parts['aad_padding_lengths_finish'])}); auth.c's tag of the same costs "
               f"{n(parts['tvo_auth_sign_empty_message'])}. Flash of the node's authentication code: "
               f"{n(m4['flash_bytes'])} B.\n")
+    forged = m4.get("forged_frame_instr", {})
+    host = a.get("host", {}).get("forged_frame_ns", {})
+    if forged:
+        text += ("\nWhat a forged frame costs the node, through its link, checks in the order of "
+                 "[lcm_types/README.md](../lcm_types/README.md#an-authenticated-bus): "
+                 + ", ".join(f"{k.replace('_', ' ')} {n(v)}" for k, v in forged.items())
+                 + " instructions on the Cortex-M4F (median of 33)"
+                 + (f"; on the host ({a['host']['machine']}), " + ", ".join(f"{n(v)} ns" for v in host.values())
+                    + " (the fastest of 5 batches; LCM's own handling of each datagram comes on top)" if host else "")
+                 + ".\n")
     period = b.get("keyed_period_instr", {})
     if "details" in period:
         d = period["details"]

@@ -19,7 +19,8 @@
  * <k> announce <instr>": the mean over a whole number of telemetry cycles is the figure (it carries the
  * telemetry at its rate; the median is a period without it); announce is the node's status messages
  * (tvo_node_poll: one a second while running) per period, outside the period's figure. Then
- * "PERIOD_DONE". A problem the build's limits cannot hold prints "PERIOD_SKIP <name>".
+ * "PERIOD_DONE". A problem the build's limits cannot hold prints "PERIOD_SKIP <name>". After the
+ * unicycle run, "FORGED <kind> instr <n>": what each kind of forged frame costs the node (see forged_frames).
  */
 #include <math.h>
 #include <stdint.h>
@@ -232,7 +233,7 @@ static uint32_t sample_frame(int32_t r, uint32_t n)
 static uint32_t median_ticks(const uint32_t *values, uint32_t count)
 {
     static uint32_t sorted[BENCH_PERIODS];
-    for (uint32_t i = 0u; i < count; ++i) {
+    for (uint32_t i = 0u; i < count && i < BENCH_PERIODS; ++i) {
         const uint32_t v = values[i];
         uint32_t j = i;
         while (j > 0u && sorted[j - 1u] > v) {
@@ -344,6 +345,54 @@ static void run(const char *name, int8_t own_robot, int32_t robot_count)
     tvo_board_puts("\n");
 }
 
+/* What a forged frame costs the node, by kind, through the same link while the session runs (after the
+ * unicycle run): a sample with a forged tag from the plant's sender id (a verify), from an unknown
+ * sender, cut short, with another fingerprint, and a replay of the plant's last sample. The median of
+ * FORGED_REPEATS each: "FORGED <kind> instr <n>". Each must be dropped. */
+#define FORGED_REPEATS 33u
+static void forged_frames(void)
+{
+    static const char *const names[5] = {"forged_tag", "unknown_sender", "cut_short", "other_fingerprint", "replay"};
+    static uint8_t genuine[sizeof(frame)];
+    static uint32_t ticks[FORGED_REPEATS];
+    const uint32_t length = sample_frame(0, BENCH_PERIODS - 1u); /* a sample of a period the node has served */
+    memcpy(genuine, frame, length);
+    (void)tvo_auth_link_receive(&link, &node, TVO_NODE_CH_SAMPLE, frame, length, 0); /* now a replay */
+    for (uint32_t kind = 0u; kind < 5u; ++kind) {
+        for (uint32_t i = 0u; i < FORGED_REPEATS; ++i) {
+            memcpy(frame, genuine, length);
+            uint8_t *trailer = frame + length - TVO_AUTH_TRAILER_BYTES;
+            uint32_t n = length;
+            if (kind <= 1u) {
+                const uint32_t sender = kind == 1u ? 0x10000u + i : TVO_AUTH_SENDER_PLANT;
+                trailer[0] = (uint8_t)(sender >> 24);
+                trailer[1] = (uint8_t)(sender >> 16);
+                trailer[2] = (uint8_t)(sender >> 8);
+                trailer[3] = (uint8_t)sender;
+                trailer[4] = 0x40u; /* a counter far above the plant's */
+                trailer[11] = (uint8_t)i;
+                trailer[12] ^= 0x01u;
+            } else if (kind == 2u) {
+                n = length - 1u;
+            } else if (kind == 3u) {
+                frame[0] ^= 0x5au;
+            }
+            const uint32_t drops = link.drops;
+            const uint32_t t0 = tvo_board_cycle_counter_read();
+            (void)tvo_auth_link_receive(&link, &node, TVO_NODE_CH_SAMPLE, frame, n, 0);
+            ticks[i] = tvo_board_cycle_counter_elapsed(t0, tvo_board_cycle_counter_read());
+            if (link.drops != drops + 1u) {
+                fail("a forged frame was not dropped");
+            }
+        }
+        tvo_board_puts("FORGED ");
+        tvo_board_puts(names[kind]);
+        tvo_board_puts(" instr ");
+        tvo_board_put_u32(instructions(median_ticks(ticks, FORGED_REPEATS)));
+        tvo_board_puts("\n");
+    }
+}
+
 int main(void)
 {
     if (tvo_node_check_buffer() != 0) {
@@ -352,6 +401,7 @@ int main(void)
     tvo_board_cycle_counter_start();
     unicycle_session();
     run("unicycle", -1, 1);
+    forged_frames();
 #if TVO_MAX_ROBOTS >= FLEET_ROBOTS && TVO_MAX_DISTANCE_BOUNDS >= FLEET_ROBOTS
     formation8_session();
     run("fleet8", FLEET_ROBOTS - 1, FLEET_ROBOTS);
