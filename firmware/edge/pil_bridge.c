@@ -1,16 +1,17 @@
 /*
  * tvo_pil_bridge: joins LCM and the serial link of a processor-in-the-loop target (QEMU's -serial
- * socket). Messages on the node's input channels (session, measurement, target: channels.h) go to
- * the target as frames (serial_frame.h: COBS + CRC-32, tagged with channels.h's numbers); frames from
- * the target (session ack, command, telemetry) are republished on LCM unchanged. The bridge decodes
- * no message: it moves LCM's encoded bytes, so the target sees exactly what tvo_firmware_node would.
+ * socket). Messages on the node's input channels (tvo_node_channel_is_input in channels.h) go to the
+ * target as frames (serial_frame.h: COBS + CRC-32, tagged with channels.h's numbers); frames from the
+ * target (its acks, commands, telemetry and announcements) are republished on LCM unchanged. The
+ * bridge decodes no message: it moves LCM's encoded bytes (trailers included on a keyed bus), so the
+ * target sees exactly what tvo_firmware_node would.
  *
  * Usage: tvo_pil_bridge --connect HOST:PORT [--lcm-url URL] [--corrupt-every N] [--connect-timeout-s S]
- *   --corrupt-every N   flip one bit in every N-th measurement frame sent to the target and in every
- *                       N-th command frame coming from it (a test of the framing: each end must drop
- *                       those frames, which then look like lost messages). Counted per channel, so
- *                       which messages are hit does not depend on timing (how often the plant repeated
- *                       its START); session frames are never hit (a lost STOP would leave the target
+ *   --corrupt-every N   flip one bit in every N-th sample frame sent to the target and in every N-th
+ *                       command frame coming from it (a test of the framing: each end must drop those
+ *                       frames, which then look like lost messages). Counted per kind, so which
+ *                       messages are hit does not depend on timing (how often the plant repeated its
+ *                       START); session frames are never hit (a lost STOP would leave the target
  *                       running).
  * Ends when the target closes the link (its program ended), on SIGINT/SIGTERM, or on an error;
  * prints the frame counts as key=value pairs. Exit code 0, or 1 on errors, 2 on bad arguments.
@@ -32,6 +33,7 @@
 
 #include <lcm/lcm.h>
 
+#include "auth.h"
 #include "channels.h"
 #include "serial_frame.h"
 
@@ -39,14 +41,20 @@ static volatile sig_atomic_t g_stop_signal = 0;
 
 #define BRIDGE_READ_CHUNK 4096
 #define BRIDGE_POLL_MS 100
+/* LCM messages handled per wake-up at most before the serial side is served again. */
+#define BRIDGE_DRAIN_MAX 256
+
+/* Every frame the link carries fits a serial frame: the largest message, signed. */
+_Static_assert(TVO_FRAME_MAX_PAYLOAD >= TVO_NODE_LARGEST_MESSAGE_BYTES + TVO_AUTH_TRAILER_BYTES,
+               "a serial frame holds a signed session_t");
 
 typedef struct {
     lcm_t *lcm;
     int socket_fd;
     unsigned long corrupt_every;
     unsigned long frames_to_target;
-    unsigned long measurements_to_target;
-    unsigned long measurements_corrupted;
+    unsigned long samples_to_target;
+    unsigned long samples_corrupted;
     unsigned long frames_from_target;         /* passed the checks and republished */
     unsigned long commands_from_target;       /* intact as sent, before any corruption */
     unsigned long commands_corrupted;
@@ -113,9 +121,10 @@ static void to_target(const lcm_recv_buf_t *rbuf, const char *channel, void *use
         return;
     }
     ++b->frames_to_target;
-    if (number == TVO_NODE_CH_SAMPLE && is_nth(b, ++b->measurements_to_target) && length > 2u) {
+    const int sample = number == TVO_NODE_CH_SAMPLE || number == TVO_NODE_CH_CHAIN_SAMPLE;
+    if (sample && is_nth(b, ++b->samples_to_target) && length > 2u) {
         corrupt(b->frame, length - 1u); /* length - 1: the delimiter stays */
-        ++b->measurements_corrupted;
+        ++b->samples_corrupted;
     }
     if (write_all(b->socket_fd, b->frame, length) != 0) {
         fprintf(stderr, "tvo_pil_bridge: error: writing to the target failed: %s\n", strerror(errno));
@@ -180,7 +189,9 @@ static int peek_channel(bridge_t *b)
  * is dropped and counted by the decoder) and republish it. */
 static void frame_from_target(bridge_t *b)
 {
-    if (peek_channel(b) == TVO_NODE_CH_COMMAND && is_nth(b, ++b->commands_from_target)) {
+    const int peeked = peek_channel(b);
+    const int command = peeked == TVO_NODE_CH_COMMAND || peeked == TVO_NODE_CH_CHAIN_COMMAND;
+    if (command && is_nth(b, ++b->commands_from_target)) {
         corrupt(b->raw, b->raw_length);
         ++b->commands_corrupted;
     }
@@ -288,10 +299,11 @@ int main(int argc, char **argv)
         close(b.socket_fd);
         return 1;
     }
-    lcm_subscribe(b.lcm, TVO_CHANNEL_SESSION, to_target, &b);
-    lcm_subscribe(b.lcm, TVO_CHANNEL_SAMPLE, to_target, &b);
-    lcm_subscribe(b.lcm, TVO_CHANNEL_CHAIN_SAMPLE, to_target, &b);
-    lcm_subscribe(b.lcm, TVO_CHANNEL_TARGET, to_target, &b);
+    for (int channel = TVO_NODE_CH_FIRST; channel <= TVO_NODE_CH_LAST; ++channel) {
+        if (tvo_node_channel_is_input(channel)) {
+            lcm_subscribe(b.lcm, tvo_node_channel_name(channel), to_target, &b);
+        }
+    }
 
     uint8_t chunk[BRIDGE_READ_CHUNK];
     int link_open = 1;
@@ -314,14 +326,21 @@ int main(int argc, char **argv)
                 link_open = 0; /* the target's program ended and QEMU closed the socket */
             }
         }
-        if (fds[0].revents & POLLIN) {
-            lcm_handle(b.lcm);
+        /* Everything LCM has queued, up to a bound, before the serial side is looked at again. */
+        for (int handled = 0; (fds[0].revents & POLLIN) && handled < BRIDGE_DRAIN_MAX; ++handled) {
+            if (lcm_handle(b.lcm) != 0) {
+                break;
+            }
+            struct pollfd more = {lcm_get_fileno(b.lcm), POLLIN, 0};
+            if (poll(&more, 1, 0) <= 0) {
+                break;
+            }
         }
     }
     fprintf(stderr,
-            "tvo_pil_bridge: frames to_target=%lu measurements_to_target=%lu measurements_corrupted=%lu "
+            "tvo_pil_bridge: frames to_target=%lu samples_to_target=%lu samples_corrupted=%lu "
             "from_target_ok=%lu from_target_dropped=%lu commands_from_target=%lu commands_corrupted=%lu\n",
-            b.frames_to_target, b.measurements_to_target, b.measurements_corrupted, b.frames_from_target,
+            b.frames_to_target, b.samples_to_target, b.samples_corrupted, b.frames_from_target,
             (unsigned long)b.decoder.frames_dropped, b.commands_from_target, b.commands_corrupted);
     lcm_destroy(b.lcm);
     close(b.socket_fd);

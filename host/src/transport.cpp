@@ -42,7 +42,7 @@ LcmTransport::LcmTransport(const std::string& url, const std::string& log_path, 
         std::fill(std::begin(key), std::end(key), std::uint8_t{0});
         if (status == TVO_AUTH_OK) {
             // Counters follow the wall clock (MAVLink's rule): a restarted plant starts above its old ones.
-            status = tvo_auth_follow_clock(&auth_, tvo_auth_wall_clock_counter, TVO_AUTH_NEW_SENDER_WINDOW_US);
+            status = tvo_auth_follow_clock(&auth_, tvo_auth_wall_clock_counter);
         }
         if (status != TVO_AUTH_OK) {
             throw TransportError(std::string("authentication set-up failed: ") + tvo_auth_status_str(status));
