@@ -84,6 +84,14 @@ void SimLoop::bind_nodes()
     }
 }
 
+std::int64_t SimLoop::silence_limit_us() const
+{
+    // A CLOCK_NODE node stops the robots itself within (watchdog_periods + 1) h of the last accepted apply
+    // instant, and says so every period: the plant gives it one more period (for the link) before it
+    // takes the silence for a dead node or link. CLOCK_PLANT (lockstep) counts unanswered samples instead.
+    return (options_.watchdog_periods + 2) * options_.period_us;
+}
+
 bool SimLoop::telemetry_due(std::int64_t sequence) const
 {
     return sequence % telemetry_every_ == 0;
@@ -113,7 +121,9 @@ void SimLoop::on_command(const JointCommand& command)
     const std::size_t robots = scenario_.robot_count;
     const std::int64_t arrival_us = options_.realtime ? std::max(now_us_, wall_plant_us()) : now_us_;
     if (silent_since_us_) {
-        silent_since_us_ = std::max(*silent_since_us_, arrival_us);  // the node speaks: rule 5's silence starts over
+        // The node speaks: rule 5's silence starts over, from the command's apply instant (the node's own
+        // watchdog counts from there) or its arrival, whichever is later.
+        silent_since_us_ = std::max({*silent_since_us_, arrival_us, command.utime - epoch_utime_});
     }
     const bool usable = well_formed(command, robots);
     metrics_.add_command(command.turn_rate_radps.data(), usable ? robots : 0,
@@ -449,9 +459,8 @@ bool SimLoop::wait_until(std::int64_t t_us)
     for (;;) {
         service_restart();
         const std::int64_t now = wall_plant_us();
-        if (!restart_pending_ && silent_since_us_ &&
-            now - *silent_since_us_ >= options_.watchdog_periods * options_.period_us) {
-            begin_restart();  // rule 5: no command for watchdog_periods h since the last (or the first sample)
+        if (!restart_pending_ && silent_since_us_ && now - *silent_since_us_ >= silence_limit_us()) {
+            begin_restart();  // rule 5: the node fell silent (not even its own safe stops came)
         }
         if (now >= t_us) {
             return true;
