@@ -217,14 +217,14 @@ void SimLoop::on_node_status(const tvo_lcm::node_status_t& status)
             continue;
         }
         if (node->boot_id != named[i]) {
-            begin_restart();  // the node restarted: the session it ran is gone
+            begin_restart(true);  // the node restarted: the session it ran is gone
             return;
         }
         if (node->state == tvo_lcm::node_status_t::STATE_RUNNING && node->session_id == session_.session_id()) {
             running_seen_[i] = std::max(running_seen_[i], node->utime);
         } else if (node->state == tvo_lcm::node_status_t::STATE_IDLE && running_seen_[i] >= 0 &&
                    node->utime > running_seen_[i]) {
-            begin_restart();  // it ran ours, and now runs nothing
+            begin_restart(true);  // it ran ours, and now runs nothing
             return;
         }
     }
@@ -358,7 +358,7 @@ SimLoop::Answer SimLoop::await_answer(std::int64_t sequence)
                 ++(no_command ? counts_.lost_answers : counts_.lost_telemetry);
                 unanswered_streak_ = no_command ? unanswered_streak_ + 1 : 0;
                 if (unanswered_streak_ >= options_.watchdog_periods) {
-                    begin_restart();  // rule 5: the node fell silent for watchdog_periods periods
+                    begin_restart(false);  // rule 5: the node fell silent for watchdog_periods periods
                 }
                 return Answer::Lost;
             }
@@ -372,7 +372,7 @@ SimLoop::Answer SimLoop::await_answer(std::int64_t sequence)
     return Answer::Received;
 }
 
-void SimLoop::begin_restart()
+void SimLoop::begin_restart(bool new_session)
 {
     if (restart_pending_) {
         return;
@@ -392,6 +392,7 @@ void SimLoop::begin_restart()
     // ... and start a new session: its START names the nodes' current boots, once they are heard.
     restart_pending_ = true;
     restart_begun_ = false;
+    restart_new_session_ = new_session;
     silent_since_us_.reset();
     ++counts_.session_restarts;
 }
@@ -414,9 +415,14 @@ void SimLoop::service_restart()
         if (!boots) {
             return;  // rule 1 again: not every robot has a node yet
         }
-        const auto id = static_cast<std::int32_t>(
-            (static_cast<std::uint32_t>(session_.session_id()) + 1u) & 0x7fffffffu);  // fresh: the node's replace rule
-        session_.restart(id, *boots, utime.value_or(session_.start_message().utime));
+        // A node that restarted or lost the session needs a new one, of a fresh id (the node's replace rule;
+        // the other nodes of a fleet still run the old id). Silence alone: the same START again, which a
+        // node that still runs it acks as a repeat, changing nothing.
+        const bool same = !restart_new_session_ && *boots == session_.boots();
+        const auto id = same ? session_.session_id()
+                             : static_cast<std::int32_t>((static_cast<std::uint32_t>(session_.session_id()) + 1u) &
+                                                         0x7fffffffu);
+        session_.restart(id, *boots, utime.value_or(clock_.now_utime()));
         restart_begun_ = true;
     }
     if (!session_.service(utime)) {
@@ -460,7 +466,7 @@ bool SimLoop::wait_until(std::int64_t t_us)
         service_restart();
         const std::int64_t now = wall_plant_us();
         if (!restart_pending_ && silent_since_us_ && now - *silent_since_us_ >= silence_limit_us()) {
-            begin_restart();  // rule 5: the node fell silent (not even its own safe stops came)
+            begin_restart(false);  // rule 5: the node fell silent (not even its own safe stops came)
         }
         if (now >= t_us) {
             return true;
