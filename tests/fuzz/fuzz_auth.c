@@ -17,7 +17,7 @@ static tvo_auth_t plant;      /* signs the plant's frames */
 static tvo_auth_t listener;   /* opens the node's */
 static tvo_lcm_session_t session;
 static int published;
-static uint8_t frame[8192 + TVO_AUTH_TRAILER_BYTES];
+static uint8_t frame[16384 + TVO_AUTH_TRAILER_BYTES];
 static const uint8_t key[TVO_AUTH_KEY_BYTES] = {7, 1, 8, 2, 8, 1, 8, 2, 8, 4, 5, 9, 0, 4, 5, 2,
                                                 3, 5, 3, 6, 0, 2, 8, 7, 4, 7, 1, 3, 5, 2, 6, 6};
 
@@ -29,13 +29,8 @@ static void transport(void *context, int channel, const uint8_t *data, uint32_t 
     if (tvo_auth_open(&listener, tvo_node_channel_name(channel), data, length, &message_length) != TVO_AUTH_OK) {
         fuzz_fail("the node published a frame that does not open with the key");
     }
-    if (channel == TVO_NODE_CH_COMMAND) {
-        tvo_lcm_command_t command;
-        if (tvo_lcm_command_t_decode(data, 0, (int)message_length, &command) < 0) {
-            fuzz_fail("the node published a command that does not decode");
-        }
-        fuzz_check_command(&command, &session);
-    }
+    tvo_lcm_command_header_t header;
+    (void)fuzz_check_published_command(channel, data, (uint32_t)message_length, &session, &header);
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
@@ -51,10 +46,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         tvo_auth_init(&listener, key, 99u, 1u) != TVO_AUTH_OK) {
         fuzz_fail("authentication set-up failed");
     }
-    tvo_node_init(&node, tvo_auth_link_publish, &link);
+    if (tvo_node_init(&node, -1, FUZZ_BOOT, tvo_auth_link_publish, &link) != 0) {
+        fuzz_fail("node init");
+    }
     fuzz_session(&session, data[0]);
     int64_t now = 5000000;
-    const int n = tvo_lcm_session_t_encode(frame, 0, 8192, &session);
+    const int n = tvo_lcm_session_t_encode(frame, 0, 16384, &session);
     size_t length = 0u;
     if (n <= 0 || tvo_auth_sign(&plant, TVO_CHANNEL_SESSION, frame, (size_t)n, sizeof(frame), &length) != TVO_AUTH_OK) {
         fuzz_fail("the reference session could not be signed");
@@ -66,7 +63,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     size_t i = 1;
     while (i + 5 <= size) {
         const uint8_t mode = data[i] % 4u;
-        const int channel = 1 + data[i + 1] % 6;
+        const int channel = 1 + data[i + 1] % TVO_NODE_CH_LAST;
         size_t message_length = (size_t)data[i + 2] | ((size_t)data[i + 3] << 8);
         now += 500 * (int64_t)data[i + 4];
         i += 5;
@@ -77,8 +74,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         if (message_length > size - i) {
             message_length = size - i;
         }
-        if (message_length > 8192u) {
-            message_length = 8192u;
+        if (message_length > 16384u) {
+            message_length = 16384u;
         }
         memcpy(frame, data + i, message_length);
         i += message_length;
