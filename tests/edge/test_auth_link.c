@@ -10,7 +10,7 @@
 #define H EF_PERIOD_US
 #define TAU EF_DELAY_US
 #define STEPS 40
-#define WIRE_CAPACITY 4096 /* a session_t is over 2 kB encoded */
+#define WIRE_CAPACITY 16384 /* a session_t is 11,427 bytes encoded */
 #define FRAME_CAPACITY (WIRE_CAPACITY + TVO_AUTH_TRAILER_BYTES)
 
 /* Every clock here is a fake in microseconds of "wall" time; counters follow it. */
@@ -56,8 +56,8 @@ static uint32_t encode_sign(tvo_auth_t *signer, int channel, const void *msg, ui
     case TVO_NODE_CH_SESSION:
         n = tvo_lcm_session_t_encode(frame, 0, WIRE_CAPACITY, (const tvo_lcm_session_t *)msg);
         break;
-    case TVO_NODE_CH_MEASUREMENT:
-        n = tvo_lcm_measurement_t_encode(frame, 0, WIRE_CAPACITY, (const tvo_lcm_measurement_t *)msg);
+    case TVO_NODE_CH_SAMPLE:
+        n = tvo_lcm_unicycle_sample_t_encode(frame, 0, WIRE_CAPACITY, (const tvo_lcm_unicycle_sample_t *)msg);
         break;
     default:
         n = tvo_lcm_target_t_encode(frame, 0, WIRE_CAPACITY, (const tvo_lcm_target_t *)msg);
@@ -119,7 +119,7 @@ static void start_node(void)
     TEST_ASSERT_EQUAL(TVO_AUTH_OK,
                       tvo_auth_link_init(&link, genuine_key, TVO_AUTH_SENDER_NODE, 1u, ef_record_publish, &rec));
     TEST_ASSERT_EQUAL(TVO_AUTH_OK, tvo_auth_follow_clock(&link.auth, fake_wall, TVO_AUTH_NEW_SENDER_WINDOW_US));
-    tvo_node_init(&node, tvo_auth_link_publish, &link);
+    TEST_ASSERT_EQUAL_INT(0, tvo_node_init(&node, -1, EF_BOOT, tvo_auth_link_publish, &link));
 }
 
 static void reset_world(void)
@@ -145,7 +145,7 @@ static void run_session(int with_attacks, frames_t *out)
     static uint8_t frame[FRAME_CAPACITY];
     static uint8_t forged[FRAME_CAPACITY];
     tvo_lcm_session_t start;
-    tvo_lcm_measurement_t meas;
+    tvo_lcm_unicycle_sample_t meas;
     reset_world();
     memset(out, 0, sizeof(*out));
 
@@ -157,10 +157,10 @@ static void run_session(int with_attacks, frames_t *out)
     for (int64_t j = 1; j <= STEPS; ++j) {
         fake_wall_us += H;
         const int64_t now = sample_utime(j);
-        ef_measurement(&meas, EF_SESSION_ID, now, j, 1);
-        meas.position_m[0][0] = 0.01 * (double)j;
-        const uint32_t length = encode_sign(&plant, TVO_NODE_CH_MEASUREMENT, &meas, frame);
-        deliver(TVO_NODE_CH_MEASUREMENT, frame, length, now, out);
+        ef_sample(&meas, EF_SESSION_ID, now, (int32_t)j, 0);
+        meas.position_m[0] = 0.01 * (double)j;
+        const uint32_t length = encode_sign(&plant, TVO_NODE_CH_SAMPLE, &meas, frame);
+        deliver(TVO_NODE_CH_SAMPLE, frame, length, now, out);
         if (!with_attacks) {
             memcpy(kept_measurement, frame, length);
             kept_measurement_length = length;
@@ -168,7 +168,7 @@ static void run_session(int with_attacks, frames_t *out)
         }
         uint32_t n = 0u;
         tvo_lcm_session_t evil_session;
-        tvo_lcm_measurement_t evil;
+        tvo_lcm_unicycle_sample_t evil;
         switch (j % 10) {
         case 1: /* a forged START of another session, signed with another key */
             ef_start(&evil_session, 666, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
@@ -182,24 +182,23 @@ static void run_session(int with_attacks, frames_t *out)
             attack(TVO_NODE_CH_SESSION, forged, n, now, &node.counters.unauthenticated);
             break;
         case 3: /* a forged measurement 20 s ahead whose sequence agrees, signed with another key */
-            ef_measurement(&evil, EF_SESSION_ID, now + 20000000, j + 2000, 1);
-            evil.position_m[0][0] = 5.0;
-            n = encode_sign(&forger, TVO_NODE_CH_MEASUREMENT, &evil, forged);
-            attack(TVO_NODE_CH_MEASUREMENT, forged, n, now, &node.counters.unauthenticated);
+            ef_sample(&evil, EF_SESSION_ID, now + 20000000, (int32_t)(j + 2000), 0);
+            evil.position_m[0] = 5.0;
+            n = encode_sign(&forger, TVO_NODE_CH_SAMPLE, &evil, forged);
+            attack(TVO_NODE_CH_SAMPLE, forged, n, now, &node.counters.unauthenticated);
             break;
         case 4: { /* a forged target sample */
             tvo_lcm_target_t target;
             memset(&target, 0, sizeof(target));
-            target.utime = now;
-            target.session_id = EF_SESSION_ID;
-            target.robot_count = 1;
-            target.position_m[0][0] = 9.0;
+            target.header.utime = now;
+            target.header.session_id = EF_SESSION_ID;
+            target.position_m[0] = 9.0;
             n = encode_sign(&forger, TVO_NODE_CH_TARGET, &target, forged);
             attack(TVO_NODE_CH_TARGET, forged, n, now, &node.counters.unauthenticated);
             break;
         }
         case 5: /* the genuine measurement just accepted, replayed */
-            attack(TVO_NODE_CH_MEASUREMENT, frame, length, now, &node.counters.replayed);
+            attack(TVO_NODE_CH_SAMPLE, frame, length, now, &node.counters.replayed);
             break;
         case 6: /* the genuine START, replayed */
             attack(TVO_NODE_CH_SESSION, kept_start, kept_start_length, now, &node.counters.replayed);
@@ -207,18 +206,18 @@ static void run_session(int with_attacks, frames_t *out)
         case 7: /* the genuine measurement with one bit of its tag flipped */
             memcpy(forged, frame, length);
             forged[length - 1u] ^= 0x40u;
-            attack(TVO_NODE_CH_MEASUREMENT, forged, length, now, &node.counters.unauthenticated);
+            attack(TVO_NODE_CH_SAMPLE, forged, length, now, &node.counters.unauthenticated);
             break;
         case 8: /* truncated tags: the genuine frame cut by 1 .. 16 bytes */
             for (uint32_t cut = 1u; cut <= TVO_AUTH_TAG_BYTES; ++cut) {
-                attack(TVO_NODE_CH_MEASUREMENT, frame, length - cut, now, &node.counters.unauthenticated);
+                attack(TVO_NODE_CH_SAMPLE, frame, length - cut, now, &node.counters.unauthenticated);
             }
             break;
         case 9: /* a forged vote of three samples that agree with each other */
             for (int64_t k = 0; k < 3; ++k) {
-                ef_measurement(&evil, EF_SESSION_ID, now + 1000000 + k * H, j + 500 + k, 1);
-                n = encode_sign(&forger, TVO_NODE_CH_MEASUREMENT, &evil, forged);
-                attack(TVO_NODE_CH_MEASUREMENT, forged, n, now, &node.counters.unauthenticated);
+                ef_sample(&evil, EF_SESSION_ID, now + 1000000 + k * H, (int32_t)(j + 500 + k), 0);
+                n = encode_sign(&forger, TVO_NODE_CH_SAMPLE, &evil, forged);
+                attack(TVO_NODE_CH_SAMPLE, forged, n, now, &node.counters.unauthenticated);
             }
             break;
         default: /* the genuine frame moved to another channel */
@@ -259,12 +258,11 @@ static void test_the_node_signs_what_it_publishes_and_the_plant_can_open_it(void
         size_t message_length = 0u;
         TEST_ASSERT_EQUAL(TVO_AUTH_OK, tvo_auth_open(&plant_receiver, TVO_CHANNEL_COMMAND, clean_commands.bytes[i],
                                                      clean_commands.length[i], &message_length));
-        tvo_lcm_command_t cmd;
+        tvo_lcm_unicycle_command_t cmd;
         TEST_ASSERT_EQUAL_INT((int)message_length,
-                              tvo_lcm_command_t_decode(clean_commands.bytes[i], 0, (int)message_length, &cmd));
-        TEST_ASSERT_EQUAL_INT64(EF_SESSION_ID, cmd.session_id);
-        TEST_ASSERT_EQUAL_INT32(0, cmd.status);
-        tvo_lcm_command_t_decode_cleanup(&cmd);
+                              tvo_lcm_unicycle_command_t_decode(clean_commands.bytes[i], 0, (int)message_length, &cmd));
+        TEST_ASSERT_EQUAL_INT64(EF_SESSION_ID, cmd.header.session_id);
+        TEST_ASSERT_EQUAL_INT32(0, cmd.header.status);
     }
     /* The same command frame twice: the plant refuses the second (a replayed command). */
     size_t message_length = 0u;
