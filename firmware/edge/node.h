@@ -109,6 +109,7 @@ typedef struct {
     uint8_t has_pending[TVO_MAX_ROBOTS];
     tvo_step_robot_state_t known[TVO_MAX_ROBOTS];      /* per robot: its last state a committed period used */
     uint8_t known_measured[TVO_MAX_ROBOTS];            /* known[r] came from r's own sample */
+    int64_t heard[TVO_MAX_ROBOTS];                     /* per robot: the sequence of its newest sample taken; -1 none */
     tvo_node_joint_command_t commands[2];              /* [0] the newest committed joint command, [1] the one before */
     int64_t last_step;                                 /* sequence of the last committed period; -1 none */
 } tvo_node_gathering_t;
@@ -128,6 +129,7 @@ typedef struct {
     tvo_step_period_t rows;                  /* every robot's row of the joint measurement */
     tvo_step_robot_state_t next[TVO_MAX_ROBOTS]; /* the robots' states the period commits, if it does */
     uint8_t measured[TVO_MAX_ROBOTS];        /* next[r] is r's own sample of the period */
+    int64_t heard[TVO_MAX_ROBOTS];           /* the sequence of r's newest sample the period takes */
     int32_t predicted;                       /* robots predicted (missing or late) */
     int unheard;                             /* a robot could not be predicted */
     tvo_edge_measurement_t measurement;

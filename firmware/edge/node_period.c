@@ -40,6 +40,7 @@ static void gather(tvo_node_gathering_t *g, const tvo_lcm_unicycle_sample_t *sam
     if (sequence == g->known[r].sequence && !g->known_measured[r]) {
         tvo_step_state_of(sample, &g->known[r]);
         g->known_measured[r] = 1u;
+        g->heard[r] = sequence > g->heard[r] ? sequence : g->heard[r];
     }
 }
 
@@ -86,8 +87,8 @@ static void predict_period(const tvo_node_gathering_t *g, int r, tvo_step_robot_
 
 /*
  * The rows of period n (the trigger's sequence) into the node's work: each robot's sample of n, or its
- * state predicted to n from the newest it has (CLOCK_PLANT, within watchdog_periods); work->unheard
- * when a robot has neither. Reads the session, changes nothing of it.
+ * state predicted to n from the newest it has (CLOCK_PLANT, its newest sample at most watchdog_periods
+ * periods old); work->unheard when a robot has neither. Reads the session, changes nothing of it.
  */
 static void gather_rows(const tvo_node_session_t *s, const tvo_lcm_unicycle_sample_t *trigger, tvo_node_period_work_t *work)
 {
@@ -105,10 +106,12 @@ static void gather_rows(const tvo_node_session_t *s, const tvo_lcm_unicycle_samp
         tvo_step_robot_state_t *next = &work->next[r];
         work->rows.sample[r] = NULL;
         work->measured[r] = 0u;
+        work->heard[r] = g->heard[r];
         if (r + 1u == timing->robot_count) {
             work->rows.sample[r] = trigger;
             tvo_step_state_of(trigger, next);
             work->measured[r] = 1u;
+            work->heard[r] = n;
             continue;
         }
         *next = g->known[r];
@@ -118,13 +121,16 @@ static void gather_rows(const tvo_node_session_t *s, const tvo_lcm_unicycle_samp
                 work->rows.sample[r] = p;
                 tvo_step_state_of(p, next);
                 work->measured[r] = 1u;
+                work->heard[r] = n;
                 continue;
             }
             if (p->header.sequence < n && p->header.sequence > next->sequence) {
                 tvo_step_state_of(p, next); /* an earlier period's sample (its step was missed) is still news */
+                work->heard[r] = p->header.sequence;
             }
         }
-        if (!predicts || next->sequence < 0 || next->sequence > n || n - next->sequence > span) {
+        const int64_t heard = work->heard[r];
+        if (!predicts || heard < 0 || next->sequence < 0 || next->sequence > n || n - heard > span) {
             work->unheard = 1; /* never heard, heard too long ago, or no prediction on the node's clock */
             return;
         }
@@ -146,6 +152,7 @@ static void gathering_commit(tvo_node_session_t *s, const tvo_node_period_work_t
     for (uint8_t r = 0; r < robots; ++r) {
         g->known[r] = work->next[r];
         g->known_measured[r] = work->measured[r];
+        g->heard[r] = work->heard[r];
         if (g->has_pending[r] && g->pending[r].header.sequence <= n) {
             g->has_pending[r] = 0u;
         }

@@ -70,8 +70,8 @@ void tvo_node_publish_answer(tvo_node_t *node, const tvo_node_session_t *s, cons
     const tvo_edge_mark_t mark = ops->mark(cmd);
     count_answer(node, &mark);
     publish_commands(node, s, cmd, stamp);
-    const uint32_t every = s->schedule.timing.telemetry_every;
-    if (stamp->sequence < 0 || every == 0u || (uint32_t)stamp->sequence % every != 0u) {
+    const int64_t every = (int64_t)s->schedule.timing.telemetry_every;
+    if (every <= 0 || (int64_t)stamp->sequence % every != 0) {
         return; /* a plant in lockstep knows which answers carry telemetry: those of multiples of every */
     }
     const uint32_t wire_flags = tvo_step_wire_flags(mark.flags, mark.outcome);

@@ -39,6 +39,7 @@ static void gathering_start(tvo_node_gathering_t *g)
     g->last_step = -1;
     for (int r = 0; r < TVO_MAX_ROBOTS; ++r) {
         g->known[r].sequence = -1;
+        g->heard[r] = -1;
     }
     g->commands[0].sequence = -1;
     g->commands[1].sequence = -1;
