@@ -6,11 +6,13 @@
 //   TVO_SESSION, TVO_TARGET     ->        forwarded as tvo_sim signed them, to every node
 //   TVO_SAMPLE (per robot)      ->        forwarded to node k unless the link (robot j -> node k) loses
 //                                         that period's (robot robot_count - 1's sample steps a node)
-//   TVO_COMMAND, TVO_TELEMETRY  <-        node k's own robot's, forwarded as the node signed them; where
-//     one of each robot per period        it did not step, refused, or the link (node k -> plant) lost
-//                                         it, the row robot k holds (zero-order hold: status 0, no
-//                                         flags) and its last telemetry, signed by the hub, so tvo_sim
-//                                         never waits on a message the hub dropped
+//   TVO_COMMAND, TVO_TELEMETRY  <-        node k's own robot's, forwarded as the node signed them, as
+//     one of each robot per period        they come (a keyed receiver takes each sender's frames only in
+//                                         the order it signed them); where it did not step, refused, or
+//                                         the link (node k -> plant) lost it, the row robot k holds
+//                                         (zero-order hold: status 0, no flags) and its last telemetry,
+//                                         signed by the hub once the period is complete, so tvo_sim never
+//                                         waits on a message the hub dropped
 //   TVO_SESSION_ACK, TVO_NODE   <-        forwarded as the nodes signed them
 //
 // Loss per link (--loss P): each sample link (robot j -> node k) and each command link (node k ->
@@ -138,16 +140,13 @@ private:
     std::uint64_t replayed_{0};
 };
 
-using Frame = std::vector<std::uint8_t>;
-
-// Node k's answer to the period: its command and telemetry as decoded, and their frames as it signed them.
+// Node k's answer to the period: its command and telemetry as decoded, and whether they went on to tvo_sim.
 struct Answer {
     bool command{false};
     bool telemetry{false};
+    bool forwarded{false};  // the command was computed (status 0) and its link did not lose it: passed on
     tvo_lcm::unicycle_command_t cmd{};
     tvo_lcm::telemetry_t tel{};
-    Frame cmd_frame;
-    Frame tel_frame;
 };
 
 class Hub {
@@ -341,12 +340,6 @@ private:
         }
     }
 
-    static Frame frame_of(const lcm::ReceiveBuffer* rbuf)
-    {
-        const auto* data = static_cast<const std::uint8_t*>(rbuf->data);
-        return Frame(data, data + rbuf->data_size);
-    }
-
     void to_every_node(const std::string& channel, const lcm::ReceiveBuffer* rbuf)
     {
         for (const auto& bus : node_bus_) {
@@ -442,7 +435,10 @@ private:
         Answer& a = answers_[static_cast<std::size_t>(k)];
         a.command = true;
         a.cmd = c;
-        a.cmd_frame = frame_of(rbuf);
+        a.forwarded = c.header.status == Header::STATUS_OK && !dropped(1, k, nodes_, period_.sequence);
+        if (a.forwarded) {
+            plant_.publish(channel, rbuf->data, static_cast<unsigned int>(rbuf->data_size));  // as the node signed it
+        }
         complete_if_answered();
     }
 
@@ -456,7 +452,9 @@ private:
         Answer& a = answers_[static_cast<std::size_t>(k)];
         a.telemetry = true;
         a.tel = tel;
-        a.tel_frame = frame_of(rbuf);
+        if (a.forwarded) {
+            plant_.publish(channel, rbuf->data, static_cast<unsigned int>(rbuf->data_size));  // follows its command
+        }
         complete_if_answered();
     }
 
@@ -553,7 +551,6 @@ private:
             if (fresh) {
                 check_limits(r, a.cmd, h_s);
                 held = {static_cast<double>(a.cmd.speed_mps), static_cast<double>(a.cmd.turn_rate_radps)};
-                plant_.publish(TVO_CHANNEL_COMMAND, a.cmd_frame.data(), static_cast<unsigned int>(a.cmd_frame.size()));
             } else {
                 if (came && !lost && (static_cast<std::uint32_t>(a.cmd.header.flags) &
                                       static_cast<std::uint32_t>(Header::FLAG_SAFE_STOP)) != 0u) {
@@ -572,8 +569,7 @@ private:
             }
             auto& last_tel = held_telemetry_[static_cast<std::size_t>(r)];
             if (fresh && a.telemetry) {
-                last_tel = a.tel;
-                plant_.publish(TVO_CHANNEL_TELEMETRY, a.tel_frame.data(), static_cast<unsigned int>(a.tel_frame.size()));
+                last_tel = a.tel;  // passed on when it came
             } else {
                 tvo_lcm::telemetry_t tel = last_tel;  // what robot r's node last said, restamped
                 tel.header = held_header(r);
