@@ -517,6 +517,33 @@ static void test_senders_are_remembered_up_to_the_limit(void)
     TEST_ASSERT_EQUAL_UINT32(TVO_AUTH_MAX_SENDERS, receiver.sender_count);
 }
 
+/* The variants for a known name length give the same frames, and refuse a length that is not the name's. */
+static void test_a_known_channel_length_signs_and_opens_the_same(void)
+{
+    make_key();
+    tvo_auth_t a, b, receiver;
+    uint8_t frame_a[64], frame_b[64];
+    size_t length_a = 0u, length_b = 0u, opened = 0u;
+    TEST_ASSERT_EQUAL(TVO_AUTH_OK, tvo_auth_init(&a, test_key, 9u, 77u));
+    TEST_ASSERT_EQUAL(TVO_AUTH_OK, tvo_auth_init(&b, test_key, 9u, 77u));
+    TEST_ASSERT_EQUAL(TVO_AUTH_OK, tvo_auth_init(&receiver, test_key, 1u, 1u));
+    memcpy(frame_a, "same message", 12u);
+    memcpy(frame_b, "same message", 12u);
+    TEST_ASSERT_EQUAL(TVO_AUTH_OK, tvo_auth_sign(&a, "TVO_SAMPLE", frame_a, 12u, sizeof(frame_a), &length_a));
+    TEST_ASSERT_EQUAL(TVO_AUTH_OK, tvo_auth_sign_channel(&b, "TVO_SAMPLE", 10u, frame_b, 12u, sizeof(frame_b), &length_b));
+    TEST_ASSERT_EQUAL_UINT32(length_a, length_b);
+    TEST_ASSERT_EQUAL_MEMORY(frame_a, frame_b, length_a);
+    TEST_ASSERT_EQUAL(TVO_AUTH_ERR_ARGUMENT, tvo_auth_open_channel(&receiver, "TVO_SAMPLE", 9u, frame_a, length_a, &opened));
+    TEST_ASSERT_EQUAL(TVO_AUTH_ERR_ARGUMENT, tvo_auth_open_channel(&receiver, "TVO_SAMPLE", 11u, frame_a, length_a, &opened));
+    TEST_ASSERT_EQUAL(TVO_AUTH_ERR_ARGUMENT, tvo_auth_open_channel(&receiver, "", 0u, frame_a, length_a, &opened));
+    TEST_ASSERT_EQUAL(TVO_AUTH_ERR_ARGUMENT,
+                      tvo_auth_sign_channel(&b, "TVO_SAMPLE", 4u, frame_b, 12u, sizeof(frame_b), &length_b));
+    TEST_ASSERT_EQUAL_UINT32(0u, length_b);
+    TEST_ASSERT_EQUAL_UINT64(78u, b.next_counter); /* nothing consumed by the refusal */
+    TEST_ASSERT_EQUAL(TVO_AUTH_OK, tvo_auth_open_channel(&receiver, "TVO_SAMPLE", 10u, frame_a, length_a, &opened));
+    TEST_ASSERT_EQUAL_UINT32(12u, opened);
+}
+
 static void test_bad_arguments_are_refused_and_consume_nothing(void)
 {
     make_key();
@@ -562,6 +589,7 @@ int main(void)
     RUN_TEST(test_a_node_counts_from_its_boot);
     RUN_TEST(test_a_plant_follows_its_clock);
     RUN_TEST(test_senders_are_remembered_up_to_the_limit);
+    RUN_TEST(test_a_known_channel_length_signs_and_opens_the_same);
     RUN_TEST(test_bad_arguments_are_refused_and_consume_nothing);
     return UNITY_END();
 }
