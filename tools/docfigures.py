@@ -326,17 +326,17 @@ def codec_sources():
 
 def status_codes(_b=None, _r=None):
     sources = codec_sources()
-    return table(["code", "`command_t.`", "from (C, `step_codec.c`'s tables)", "meaning"],
+    return table(["code", "`command_header_t.`", "from (C, `step_codec.c`'s tables)", "meaning"],
                  [(v, f"`{name}`", ", ".join(f"`{c}`" for c in sources.get(name, [])) or "(none)",
                    why or "success: the command was computed from this measurement")
-                  for name, v, _, why in lcm_constants("command_t", "STATUS_")])
+                  for name, v, _, why in lcm_constants("command_header_t", "STATUS_")])
 
 
 def flags(_b=None, _r=None):
     outcome = {"FLAG_HOLDING": "`TVO_OUTCOME_HELD`", "FLAG_SAFE_STOP": "`TVO_OUTCOME_STOPPED`"}
-    return table(["bit", "`command_t.`", "C (`tvo/status.h`)", "meaning"],
+    return table(["bit", "`command_header_t.`", "C (`tvo/status.h`)", "meaning"],
                  [(text, f"`{name}`", outcome.get(name, f"`TVO_{name}`"), why)
-                  for name, _, text, why in lcm_constants("command_t", "FLAG_")])
+                  for name, _, text, why in lcm_constants("command_header_t", "FLAG_")])
 
 
 def wire_param_names():

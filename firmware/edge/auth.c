@@ -343,8 +343,25 @@ void tvo_auth_clear(tvo_auth_t *auth)
     }
 }
 
+/* The name's bytes with its NUL if channel[channel_length] is its NUL and the length is in range, else 0. */
+static size_t known_channel_bytes(const char *channel, size_t channel_length)
+{
+    return (channel != NULL && channel_length >= 1u && channel_length <= TVO_AUTH_MAX_CHANNEL_BYTES &&
+            channel[channel_length] == '\0')
+               ? channel_length + 1u
+               : 0u;
+}
+
 tvo_auth_status_t tvo_auth_sign(tvo_auth_t *auth, const char *channel, uint8_t *message, size_t length,
                                 size_t capacity, size_t *signed_length)
+{
+    const size_t name_length = channel != NULL ? channel_bytes(channel) : 0u;
+    return tvo_auth_sign_channel(auth, channel, name_length > 0u ? name_length - 1u : 0u, message, length, capacity,
+                                 signed_length);
+}
+
+tvo_auth_status_t tvo_auth_sign_channel(tvo_auth_t *auth, const char *channel, size_t channel_length, uint8_t *message,
+                                        size_t length, size_t capacity, size_t *signed_length)
 {
     if (signed_length != NULL) {
         *signed_length = 0u;
@@ -355,7 +372,7 @@ tvo_auth_status_t tvo_auth_sign(tvo_auth_t *auth, const char *channel, uint8_t *
     if (!auth->keyed) {
         return TVO_AUTH_ERR_NOT_KEYED;
     }
-    const size_t name_length = channel_bytes(channel);
+    const size_t name_length = known_channel_bytes(channel, channel_length);
     if (name_length == 0u || capacity < TVO_AUTH_TRAILER_BYTES || length > capacity - TVO_AUTH_TRAILER_BYTES) {
         return TVO_AUTH_ERR_ARGUMENT;
     }
@@ -389,6 +406,14 @@ static int32_t find_sender(const tvo_auth_t *auth, uint32_t sender_id)
 tvo_auth_status_t tvo_auth_open(tvo_auth_t *auth, const char *channel, const uint8_t *frame, size_t frame_length,
                                 size_t *message_length)
 {
+    const size_t name_length = channel != NULL ? channel_bytes(channel) : 0u;
+    return tvo_auth_open_channel(auth, channel, name_length > 0u ? name_length - 1u : 0u, frame, frame_length,
+                                 message_length);
+}
+
+tvo_auth_status_t tvo_auth_open_channel(tvo_auth_t *auth, const char *channel, size_t channel_length,
+                                        const uint8_t *frame, size_t frame_length, size_t *message_length)
+{
     if (message_length != NULL) {
         *message_length = 0u;
     }
@@ -398,7 +423,7 @@ tvo_auth_status_t tvo_auth_open(tvo_auth_t *auth, const char *channel, const uin
     if (!auth->keyed) {
         return TVO_AUTH_ERR_NOT_KEYED;
     }
-    const size_t name_length = channel_bytes(channel);
+    const size_t name_length = known_channel_bytes(channel, channel_length);
     if (name_length == 0u) {
         return TVO_AUTH_ERR_ARGUMENT;
     }

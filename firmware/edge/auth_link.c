@@ -25,11 +25,9 @@ static uint64_t input_fingerprint(int channel)
 
 static uint64_t get_be64(const uint8_t *p)
 {
-    uint64_t v = 0u;
-    for (unsigned i = 0u; i < 8u; ++i) {
-        v = (v << 8) | p[i];
-    }
-    return v;
+    const uint32_t high = ((uint32_t)p[0] << 24) | ((uint32_t)p[1] << 16) | ((uint32_t)p[2] << 8) | p[3];
+    const uint32_t low = ((uint32_t)p[4] << 24) | ((uint32_t)p[5] << 16) | ((uint32_t)p[6] << 8) | p[7];
+    return ((uint64_t)high << 32) | low;
 }
 
 tvo_auth_status_t tvo_auth_link_init(tvo_auth_link_t *link, const uint8_t key[TVO_AUTH_KEY_BYTES],
@@ -51,6 +49,12 @@ tvo_auth_status_t tvo_auth_link_init(tvo_auth_link_t *link, const uint8_t key[TV
     link->transport_publish = transport_publish;
     link->transport_context = transport_context;
     link->last_refusal = TVO_AUTH_OK;
+    for (int channel = TVO_NODE_CH_FIRST; channel <= TVO_NODE_CH_LAST; ++channel) {
+        const char *name = tvo_node_channel_name(channel);
+        const size_t length = name != NULL ? strlen(name) : 0u;
+        link->fingerprint[channel] = input_fingerprint(channel);
+        link->name_length[channel] = (uint8_t)(length <= TVO_AUTH_MAX_CHANNEL_BYTES ? length : 0u);
+    }
     return TVO_AUTH_OK;
 }
 
@@ -67,7 +71,8 @@ void tvo_auth_link_publish(void *context, int channel, const uint8_t *data, uint
         return;
     }
     memcpy(link->frame, data, length);
-    if (tvo_auth_sign(&link->auth, name, link->frame, length, sizeof(link->frame), &signed_length) != TVO_AUTH_OK) {
+    if (tvo_auth_sign_channel(&link->auth, name, link->name_length[channel], link->frame, length, sizeof(link->frame),
+                              &signed_length) != TVO_AUTH_OK) {
         link->unsigned_drops += 1u; /* never sent unsigned: a keyed node does not fall back */
         return;
     }
@@ -95,13 +100,13 @@ tvo_auth_status_t tvo_auth_link_open(tvo_auth_link_t *link, tvo_node_t *node, in
     /* 1-3: the frame's shape, for the price of a comparison or two (no cryptography). */
     if (frame == NULL || !tvo_node_channel_is_input(channel) ||
         length != tvo_node_channel_message_bytes(channel) + TVO_AUTH_TRAILER_BYTES ||
-        get_be64(frame) != input_fingerprint(channel)) {
+        get_be64(frame) != link->fingerprint[channel]) {
         return drop(link, node, TVO_NODE_DROP_MALFORMED, TVO_AUTH_ERR_ARGUMENT);
     }
     /* 4-6: a used counter before the tag, the tag, then room for a new sender (auth.c). */
     size_t opened = 0u;
-    const tvo_auth_status_t status =
-        tvo_auth_open(&link->auth, tvo_node_channel_name(channel), frame, length, &opened);
+    const tvo_auth_status_t status = tvo_auth_open_channel(&link->auth, tvo_node_channel_name(channel),
+                                                          link->name_length[channel], frame, length, &opened);
     if (status != TVO_AUTH_OK) {
         return drop(link, node, status == TVO_AUTH_ERR_REPLAY ? TVO_NODE_DROP_REPLAYED : TVO_NODE_DROP_UNAUTHENTICATED,
                     status);

@@ -29,6 +29,8 @@ extern "C" {
 
 typedef struct {
     tvo_auth_t auth;
+    uint64_t fingerprint[TVO_NODE_CH_LAST + 1]; /* of each input channel's type (0: not an input), looked up once */
+    uint8_t name_length[TVO_NODE_CH_LAST + 1];  /* each channel's name's bytes (0: no channel), counted once */
     tvo_node_publish_fn transport_publish;   /* where signed frames go (LCM, a serial link) */
     void *transport_context;
     uint8_t frame[TVO_NODE_BUFFER_BYTES + TVO_AUTH_TRAILER_BYTES];

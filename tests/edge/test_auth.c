@@ -11,6 +11,15 @@
 
 #include "auth.h"
 #include "mbedtls/chachapoly.h"
+#include "tvo_lcm_chain_command_t.h"
+#include "tvo_lcm_chain_sample_t.h"
+#include "tvo_lcm_node_status_t.h"
+#include "tvo_lcm_session_ack_t.h"
+#include "tvo_lcm_session_t.h"
+#include "tvo_lcm_target_t.h"
+#include "tvo_lcm_telemetry_t.h"
+#include "tvo_lcm_unicycle_command_t.h"
+#include "tvo_lcm_unicycle_sample_t.h"
 #include "unity.h"
 
 void setUp(void) {}
@@ -89,6 +98,150 @@ static void test_tags_match_an_independent_implementation(void)
     }
     check_vector("TVO_MEASUREMENT", long_message, sizeof(long_message), 0xfffffffeu, 123456789012345u,
                  "df84f13d080971720a813ef64c3c8376");
+}
+
+/* One vector per message of the wire (lcm_types/README.md gives them to plant writers): the message's
+ * LCM encoding of documented field values (checked below against the generated code), its sender and
+ * counter (the plant's follow its clock; a node's are boot 17 << 40 | 5), and the tag python3-cryptography
+ * computed for key = bytes(range(32)). */
+typedef struct {
+    const char *type;
+    const char *channel;
+    uint32_t sender;
+    uint64_t counter;
+    const char *tag_hex;
+    const char *message_hex;
+} message_vector_t;
+
+static const message_vector_t message_vectors[] = {
+    {"unicycle_sample_t", "TVO_SAMPLE", 2u, UINT64_C(1700000000123456), "12fd9a9d7378e7a33eff43e2f9bf81d6",
+     "1029dfde5d7afbb400060a24182022400000002a0000000700033ff8000000000000bfd00000000000003f0000003f400000"
+    },
+    {"unicycle_command_t", "TVO_COMMAND", 1u, UINT64_C(18691697672197), "539d7a2ecf8602e3edf2bb6db49f81a9",
+     "6b041d8a70c23e9400060a24182049500000002a00000007000000003f000000be000000"
+    },
+    {"target_t", "TVO_TARGET", 2u, UINT64_C(1700000000123456), "037944e30780859a007a3d51d8f113a3",
+     "f93a33a5bb0da41b00060a24182022400000002a000000070040000000000000003ff00000000000003f0000000000000000"
+     "000000be8000003e00000000000000"
+    },
+    {"chain_sample_t", "TVO_CHAIN_SAMPLE", 2u, UINT64_C(1700000000123456), "1bcc6aa7da04430a0a35f36330264dc5",
+     "6a31d2ad2af09bff00060a24182022400000002a0000000700043fe00000000000003ff80000000000003e80000000000000"
+     "00000000bf800000"
+    },
+    {"chain_command_t", "TVO_CHAIN_COMMAND", 1u, UINT64_C(18691697672197), "1e437727c8f3d3e5a9524e03d7189cd0",
+     "b5a35cfd53b2198f00060a24182049500000002a00000007000000003e800000bf000000"
+    },
+    {"telemetry_t", "TVO_TELEMETRY", 1u, UINT64_C(18691697672197), "eb5fe433c4960fb4d5b1495ff4f48ef7",
+     "64a80c89a2783a0800060a24182049500000002a000000070000000000011170000123456789abcdef3ff8000000000000bf"
+     "d000000000000000000000000000000000000000000000000000000000000000000000000000003f40000000000000000000"
+     "0000000000"
+    },
+    {"node_status_t", "TVO_NODE", 1u, UINT64_C(18691697672197), "b816372a61705e484c4d853ed9a3a50d",
+     "accb19b75e21feed00000000004c4b40000000030000000000000011ff04010000002a000000070000000000000000000000"
+     "0000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000"
+     "0000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000"
+     "0000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000"
+     "0000000000000000000000"
+    },
+    {"session_ack_t", "TVO_SESSION_ACK", 1u, UINT64_C(18691697672197), "72ae96d317b82d1143b2b20c73383758",
+     "46e60650a9a02d9f00060a24181e40000000002a010000000000000011ff000000000000000000ffffffff0000002a"
+    },
+};
+
+static void test_every_message_has_a_vector_from_an_independent_implementation(void)
+{
+    static uint8_t message[256];
+    for (size_t v = 0u; v < sizeof(message_vectors) / sizeof(message_vectors[0]); ++v) {
+        const message_vector_t *m = &message_vectors[v];
+        const size_t length = strlen(m->message_hex) / 2u;
+        TEST_ASSERT_TRUE(length <= sizeof(message));
+        hex_to_bytes(m->message_hex, message, length);
+        check_vector(m->channel, message, length, m->sender, m->counter, m->tag_hex);
+    }
+}
+
+static void expect_encoding(const char *type, const uint8_t *bytes, int length)
+{
+    for (size_t v = 0u; v < sizeof(message_vectors) / sizeof(message_vectors[0]); ++v) {
+        if (strcmp(message_vectors[v].type, type) == 0) {
+            static uint8_t expected[256];
+            TEST_ASSERT_EQUAL_size_t(strlen(message_vectors[v].message_hex) / 2u, (size_t)length);
+            hex_to_bytes(message_vectors[v].message_hex, expected, (size_t)length);
+            TEST_ASSERT_EQUAL_HEX8_ARRAY_MESSAGE(expected, bytes, (uint32_t)length, type);
+            return;
+        }
+    }
+    TEST_FAIL_MESSAGE(type);
+}
+
+/* The vectors' bytes are the generated code's encoding of the field values lcm_types/README.md states. */
+static void test_the_vectors_are_the_lcm_encoding_of_their_fields(void)
+{
+    static uint8_t b[256];
+    const tvo_lcm_sample_header_t sh = {.utime = 1700000000123456LL, .session_id = 42, .sequence = 7, .robot = 0};
+    const tvo_lcm_command_header_t ch = {
+        .utime = 1700000000133456LL, .session_id = 42, .measurement_sequence = 7, .robot = 0, .status = 0, .flags = 0};
+    tvo_lcm_unicycle_sample_t s;
+    memset(&s, 0, sizeof(s));
+    s.header = sh;
+    s.has = TVO_LCM_UNICYCLE_SAMPLE_T_HAS_HEADING | TVO_LCM_UNICYCLE_SAMPLE_T_HAS_SPEED;
+    s.position_m[0] = 1.5;
+    s.position_m[1] = -0.25;
+    s.heading_rad = 0.5f;
+    s.speed_mps = 0.75f;
+    expect_encoding("unicycle_sample_t", b, tvo_lcm_unicycle_sample_t_encode(b, 0, (int)sizeof(b), &s));
+    const tvo_lcm_unicycle_command_t c = {.header = ch, .speed_mps = 0.5f, .turn_rate_radps = -0.125f};
+    expect_encoding("unicycle_command_t", b, tvo_lcm_unicycle_command_t_encode(b, 0, (int)sizeof(b), &c));
+    tvo_lcm_target_t t;
+    memset(&t, 0, sizeof(t));
+    t.header = sh;
+    t.position_m[0] = 2.0;
+    t.position_m[1] = 1.0;
+    t.velocity_mps[0] = 0.5f;
+    t.acceleration_mps2[1] = -0.25f;
+    t.jerk_mps3[0] = 0.125f;
+    expect_encoding("target_t", b, tvo_lcm_target_t_encode(b, 0, (int)sizeof(b), &t));
+    tvo_lcm_chain_sample_t cs;
+    memset(&cs, 0, sizeof(cs));
+    cs.header = sh;
+    cs.has = TVO_LCM_CHAIN_SAMPLE_T_HAS_DERIVATIVES;
+    cs.position_m[0] = 0.5;
+    cs.position_m[1] = 1.5;
+    cs.output_rate_mps[0] = 0.25f;
+    cs.output_accel_mps2[1] = -1.0f;
+    expect_encoding("chain_sample_t", b, tvo_lcm_chain_sample_t_encode(b, 0, (int)sizeof(b), &cs));
+    const tvo_lcm_chain_command_t cc = {.header = ch, .input = {0.25f, -0.5f}};
+    expect_encoding("chain_command_t", b, tvo_lcm_chain_command_t_encode(b, 0, (int)sizeof(b), &cc));
+    tvo_lcm_telemetry_t te;
+    memset(&te, 0, sizeof(te));
+    te.header = ch;
+    te.objective_time_us = 70000;
+    te.joint_digest = 0x0123456789abcdefLL;
+    te.output_m[0] = 1.5;
+    te.output_m[1] = -0.25;
+    te.speed_state_mps = 0.75f;
+    expect_encoding("telemetry_t", b, tvo_lcm_telemetry_t_encode(b, 0, (int)sizeof(b), &te));
+    tvo_lcm_node_status_t ns;
+    memset(&ns, 0, sizeof(ns));
+    ns.utime = 5000000;
+    ns.protocol_version = TVO_LCM_NODE_STATUS_T_PROTOCOL_VERSION;
+    ns.boot_id = 17;
+    ns.own_robot = -1;
+    ns.max_robots = 4;
+    ns.state = TVO_LCM_NODE_STATUS_T_STATE_RUNNING;
+    ns.session_id = 42;
+    ns.counters.accepted = 7;
+    expect_encoding("node_status_t", b, tvo_lcm_node_status_t_encode(b, 0, (int)sizeof(b), &ns));
+    tvo_lcm_session_ack_t ack;
+    memset(&ack, 0, sizeof(ack));
+    ack.utime = 1700000000000000LL;
+    ack.session_id = 42;
+    ack.action = TVO_LCM_SESSION_T_ACTION_START;
+    ack.boot_id = 17;
+    ack.own_robot = -1;
+    ack.bad_index = -1;
+    ack.running_session_id = 42;
+    expect_encoding("session_ack_t", b, tvo_lcm_session_ack_t_encode(b, 0, (int)sizeof(b), &ack));
 }
 
 /* A small deterministic generator for the sweep (xorshift32). */
@@ -364,6 +517,33 @@ static void test_senders_are_remembered_up_to_the_limit(void)
     TEST_ASSERT_EQUAL_UINT32(TVO_AUTH_MAX_SENDERS, receiver.sender_count);
 }
 
+/* The variants for a known name length give the same frames, and refuse a length that is not the name's. */
+static void test_a_known_channel_length_signs_and_opens_the_same(void)
+{
+    make_key();
+    tvo_auth_t a, b, receiver;
+    uint8_t frame_a[64], frame_b[64];
+    size_t length_a = 0u, length_b = 0u, opened = 0u;
+    TEST_ASSERT_EQUAL(TVO_AUTH_OK, tvo_auth_init(&a, test_key, 9u, 77u));
+    TEST_ASSERT_EQUAL(TVO_AUTH_OK, tvo_auth_init(&b, test_key, 9u, 77u));
+    TEST_ASSERT_EQUAL(TVO_AUTH_OK, tvo_auth_init(&receiver, test_key, 1u, 1u));
+    memcpy(frame_a, "same message", 12u);
+    memcpy(frame_b, "same message", 12u);
+    TEST_ASSERT_EQUAL(TVO_AUTH_OK, tvo_auth_sign(&a, "TVO_SAMPLE", frame_a, 12u, sizeof(frame_a), &length_a));
+    TEST_ASSERT_EQUAL(TVO_AUTH_OK, tvo_auth_sign_channel(&b, "TVO_SAMPLE", 10u, frame_b, 12u, sizeof(frame_b), &length_b));
+    TEST_ASSERT_EQUAL_UINT32(length_a, length_b);
+    TEST_ASSERT_EQUAL_MEMORY(frame_a, frame_b, length_a);
+    TEST_ASSERT_EQUAL(TVO_AUTH_ERR_ARGUMENT, tvo_auth_open_channel(&receiver, "TVO_SAMPLE", 9u, frame_a, length_a, &opened));
+    TEST_ASSERT_EQUAL(TVO_AUTH_ERR_ARGUMENT, tvo_auth_open_channel(&receiver, "TVO_SAMPLE", 11u, frame_a, length_a, &opened));
+    TEST_ASSERT_EQUAL(TVO_AUTH_ERR_ARGUMENT, tvo_auth_open_channel(&receiver, "", 0u, frame_a, length_a, &opened));
+    TEST_ASSERT_EQUAL(TVO_AUTH_ERR_ARGUMENT,
+                      tvo_auth_sign_channel(&b, "TVO_SAMPLE", 4u, frame_b, 12u, sizeof(frame_b), &length_b));
+    TEST_ASSERT_EQUAL_UINT32(0u, length_b);
+    TEST_ASSERT_EQUAL_UINT64(78u, b.next_counter); /* nothing consumed by the refusal */
+    TEST_ASSERT_EQUAL(TVO_AUTH_OK, tvo_auth_open_channel(&receiver, "TVO_SAMPLE", 10u, frame_a, length_a, &opened));
+    TEST_ASSERT_EQUAL_UINT32(12u, opened);
+}
+
 static void test_bad_arguments_are_refused_and_consume_nothing(void)
 {
     make_key();
@@ -399,6 +579,8 @@ int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_tags_match_an_independent_implementation);
+    RUN_TEST(test_every_message_has_a_vector_from_an_independent_implementation);
+    RUN_TEST(test_the_vectors_are_the_lcm_encoding_of_their_fields);
     RUN_TEST(test_tags_equal_mbed_tls_for_every_channel_and_message_length);
     RUN_TEST(test_a_genuine_stream_opens_and_a_replay_is_refused);
     RUN_TEST(test_a_used_counter_is_refused_before_the_tag);
@@ -407,6 +589,7 @@ int main(void)
     RUN_TEST(test_a_node_counts_from_its_boot);
     RUN_TEST(test_a_plant_follows_its_clock);
     RUN_TEST(test_senders_are_remembered_up_to_the_limit);
+    RUN_TEST(test_a_known_channel_length_signs_and_opens_the_same);
     RUN_TEST(test_bad_arguments_are_refused_and_consume_nothing);
     return UNITY_END();
 }
