@@ -330,17 +330,17 @@ def codec_sources():
 
 def status_codes(_b=None, _r=None):
     sources = codec_sources()
-    return table(["code", "`command_t.`", "from (C, `step_codec.c`'s tables)", "meaning"],
+    return table(["code", "`command_header_t.`", "from (C, `step_codec.c`'s tables)", "meaning"],
                  [(v, f"`{name}`", ", ".join(f"`{c}`" for c in sources.get(name, [])) or "(none)",
                    why or "success: the command was computed from this measurement")
-                  for name, v, _, why in lcm_constants("command_t", "STATUS_")])
+                  for name, v, _, why in lcm_constants("command_header_t", "STATUS_")])
 
 
 def flags(_b=None, _r=None):
     outcome = {"FLAG_HOLDING": "`TVO_OUTCOME_HELD`", "FLAG_SAFE_STOP": "`TVO_OUTCOME_STOPPED`"}
-    return table(["bit", "`command_t.`", "C (`tvo/status.h`)", "meaning"],
+    return table(["bit", "`command_header_t.`", "C (`tvo/status.h`)", "meaning"],
                  [(text, f"`{name}`", outcome.get(name, f"`TVO_{name}`"), why)
-                  for name, _, text, why in lcm_constants("command_t", "FLAG_")])
+                  for name, _, text, why in lcm_constants("command_header_t", "FLAG_")])
 
 
 def wire_param_names():
@@ -425,24 +425,57 @@ def scaling(b):
 
 def auth(b):
     a = b["auth"]
-    if "skipped" in a:
-        return f"Not measured: {a['skipped']}.\n"
-    rows = [(name, n(f["message_bytes"]), n(f["sign_instr"]), n(f["verify_instr"])) for name, f in a["messages"].items()]
-    verdict = "within" if a["meets_target"] else "over"
-    shortest_name, shortest = min(((k, f) for k, f in a["messages"].items() if f["message_bytes"] > 0),
-                                  key=lambda kv: kv[1]["message_bytes"])
-    text = (table(["message (LCM-encoded)", "bytes", "sign", "verify"], rows)
-            + f"\n{a['primitive']} on {a['board']}; median instructions of 33. Flash of the authentication "
-              f"code in that link: {n(a['flash_bytes'])} B. A one-robot measurement and a command are {verdict} "
-              f"the target of {n(a['target_instr'])} instructions each; the shortest message, `{shortest_name}` "
-              f"({n(shortest['message_bytes'])} B), takes {n(shortest['sign_instr'])} to sign and "
-              f"{n(shortest['verify_instr'])} to verify.\n")
-    m0 = b.get("auth_cortex_m0plus", {})
-    if "messages" in m0:
-        rows = [(name, n(f["sign_instr"]), n(f["verify_instr"])) for name, f in m0["messages"].items()]
+    m4 = a.get("cortex-m4f", {})
+    if "sign_instr" not in m4:
+        return f"Not measured: {m4.get('skipped', 'no figures in the bench run')}.\n"
+    per_period = list(m4["sign_instr"])
+    others = list(m4["other_messages"])
+    rows = [(f"`{name}`", n(m4["message_bytes"][name]), n(m4["sign_instr"][name]), n(m4["verify_instr"][name]),
+             n(m4["mbedtls_chachapoly_instr"][name])) for name in per_period]
+    rows += [(name, n(f["message_bytes"]), n(f["sign_instr"]), n(f["verify_instr"]),
+              n(m4["mbedtls_chachapoly_instr"][name])) for name, f in m4["other_messages"].items()]
+    verdict = "within" if m4["meets_target"] else "over"
+    worst = max(max(m4["sign_instr"].values()), max(m4["verify_instr"].values()))
+    parts = m4["mbedtls_fixed_parts_instr"]
+    text = (table(["message (LCM-encoded)", "bytes", "sign", "verify", "Mbed TLS's chachapoly"], rows)
+            + f"\nOn {m4['board']}; {m4['statistic']}, resolution {m4['resolution_instr']:g}. The messages of every "
+              f"period ({', '.join(f'`{x}`' for x in per_period)}) are {verdict} the target of "
+              f"{n(m4['target_instr'])} instructions each (the most: {n(worst)}); the others ({', '.join(others)}) "
+              f"are not per period. The last column is Mbed TLS's chachapoly on the same message (starts, the AAD, "
+              f"finish: the tag the bench checks ours against), of which an empty message's "
+              f"{n(parts['tag_empty_message'])} go to its ChaCha20 key stream block "
+              f"({n(parts['chacha20_key_stream_block'])}, a 64-byte block XORed into zeros), poly1305_starts "
+              f"({n(parts['poly1305_starts'])}), the AAD, its padding, the lengths block and the tag "
+              f"({n(parts['aad_padding_lengths_finish'])}); auth.c's tag of the same costs "
+              f"{n(parts['tvo_auth_sign_empty_message'])}. Flash of the node's authentication code: "
+              f"{n(m4['flash_bytes'])} B.\n")
+    forged = m4.get("forged_frame_instr", {})
+    host = a.get("host", {}).get("forged_frame_ns", {})
+    if forged:
+        text += ("\nWhat a forged frame costs the node, through its link, checks in the order of "
+                 "[lcm_types/README.md](../lcm_types/README.md#an-authenticated-bus): "
+                 + ", ".join(f"{k.replace('_', ' ')} {n(v)}" for k, v in forged.items())
+                 + " instructions on the Cortex-M4F (median of 33)"
+                 + (f"; on the host ({a['host']['machine']}), " + ", ".join(f"{n(v)} ns" for v in host.values())
+                    + " (the fastest of 5 batches; LCM's own handling of each datagram comes on top)" if host else "")
+                 + ".\n")
+    period = b.get("keyed_period_instr", {})
+    if "details" in period:
+        d = period["details"]
+        verdict = "within" if period["meets_target"] else "over"
+        text += ("\n" + table(["keyed period", "mean", "median", "min", "max"],
+                               [(f"`{name}`", n(x["mean"]), n(x["median"]), n(x["min"]), n(x["max"]))
+                                for name, x in d.items()])
+                 + f"\nOne keyed period through the real receive path (a signed sample in, the auth link, the node, "
+                   f"the step, the command signed out, telemetry every {d['unicycle']['telemetry_every']} periods); "
+                   f"{period['statistic']}. `unicycle`: one robot on the default build, {verdict} its target of "
+                   f"{n(period['target_unicycle_instr'])}; `fleet8`: robot 7's node of an 8-robot formation "
+                   f"(8 sample verifies, the joint step, its command) on the fleet build.\n")
+    m0 = a.get("cortex-m0plus", {})
+    if "sign_instr" in m0:
+        rows = [(f"`{name}`", n(m0["sign_instr"][name]), n(m0["verify_instr"][name])) for name in m0["sign_instr"]]
         text += ("\n" + table(["message (ARMv6-M)", "sign", "verify"], rows)
-                 + f"\nThe same code on {m0['board']} (resolution {m0['resolution_instr']:g}), in "
-                   f"{n(m0['flash_bytes'])} B of flash.\n")
+                 + f"\nThe same code on {m0['board']} (resolution {m0['resolution_instr']:g}).\n")
     return text
 
 

@@ -3,17 +3,21 @@
 Cortex-M4F), tvo_pil_bridge between its serial port and LCM, and tvo_sim as the plant.
 
   tools/pil_run.py --elf PIL.elf --bridge tvo_pil_bridge --sim tvo_sim [--corrupt-every N]
-                   [--lcm-url URL] -- [tvo_sim options...]
+                   [--lcm-url URL] [--boot-file PATH] -- [tvo_sim options...]
 
-tvo_sim runs without --firmware: the node it talks to is the microcontroller. With --key-file among
-tvo_sim's options the target is provisioned with the same key: the key region (board.h's layout, at
-the ELF's tvo_board_key_region_start) is written by QEMU's loader at boot, never into the image, with
-the counter base taken from this machine's clock (microseconds since the Unix epoch). The exit code is
-tvo_sim's (non-zero also when QEMU or the bridge fail). Writes <out-dir>/pil.json with the counts the
-target printed on its console at the end (target_<key>: frames, node counters, its clock) and the
-bridge's (bridge_<key>), both as key=value lines, and the run's wall time (wall_s).
+tvo_sim runs without --firmware: the node it talks to is the microcontroller. The target is
+provisioned at every boot (board.h's provisioned region, at the ELF's
+tvo_board_provisioned_region_start, written by QEMU's loader, never into the image) with its boot id:
+the next number of a counter file kept on this machine, under an exclusive lock, the same file and
+format as tvo_firmware_node's (--boot-file; default $XDG_STATE_HOME/tvo-flat/node-boot-id, else
+~/.local/state/tvo-flat/node-boot-id), so a boot id never repeats across runs. With --key-file among
+tvo_sim's options the same key is provisioned too. The exit code is tvo_sim's (non-zero also when QEMU
+or the bridge fail). Writes <out-dir>/pil.json with the counts the target printed on its console at
+the end (target_<key>: frames, node counters, its boot id, its clock) and the bridge's (bridge_<key>),
+both as key=value lines, and the run's wall time (wall_s).
 """
 import argparse
+import fcntl
 import json
 import os
 import re
@@ -59,27 +63,76 @@ def counts_after(prefix, text):
     return {key: int(value) for key, value in re.findall(r"(\w+)=(-?\d+)", lines[-1])}
 
 
-KEY_MAGIC = b"TVOK"  # board.h: TVO_BOARD_KEY_MAGIC, then the key, then the counter base (uint64 LE)
+# board.h's provisioned region: "TVOB", the boot id (int64 LE), then "TVOK" and the key if keyed.
+BOOT_MAGIC = b"TVOB"
+KEY_MAGIC = b"TVOK"
+MAX_BOOT_ID = 2**23 - 1  # a node signs with boot id << 40 (firmware/edge/auth.h)
+BOOT_FILE = "tvo-flat/node-boot-id"  # under the state folder, as firmware/edge/boot_file.h
 
 
-def key_region_blob(key_file):
-    """board.h's key region for the key in key_file (64 hex digits, owner-only), counter base = now."""
+def default_boot_file():
+    state = os.environ.get("XDG_STATE_HOME", "")
+    if state.startswith("/"):
+        return os.path.join(state, BOOT_FILE)
+    home = os.environ.get("HOME", "")
+    if not home.startswith("/"):
+        sys.exit("pil: neither XDG_STATE_HOME nor HOME is an absolute path: give the boot file (--boot-file PATH)")
+    return os.path.join(home, ".local/state", BOOT_FILE)
+
+
+def next_boot_id(path, option):
+    """The counter file's next boot id, written back under an exclusive lock (firmware/edge/boot_file.c's rules)."""
+    def fail(what):
+        sys.exit(f"pil: boot file '{path}': {what} ({option})")
+    folder = os.path.dirname(path)
+    try:
+        os.makedirs(folder, mode=0o700, exist_ok=True)
+        fd = os.open(path, os.O_RDWR | os.O_CREAT | os.O_CLOEXEC, 0o600)
+    except OSError as e:
+        fail(f"cannot open it for reading and writing: {e.strerror}")
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX)  # another node may be taking its number
+        text = os.pread(fd, 32, 0).decode("ascii", "replace")
+        if len(text) >= 32 or not re.fullmatch(r"\d*\n?", text):
+            fail(f"expected the last boot id (a whole number and a newline), found {text[:20]!r}; a node's boot ids "
+                 "must never repeat, so fix the file by hand (a number above every id used) rather than removing it")
+        last = int(text) if text.strip() else 0
+        if last >= MAX_BOOT_ID:
+            fail(f"every boot id up to {MAX_BOOT_ID} is used")
+        line = f"{last + 1}\n".encode()
+        os.pwrite(fd, line, 0)
+        os.ftruncate(fd, len(line))
+        os.fsync(fd)
+        return last + 1
+    except OSError as e:
+        fail(f"cannot take the next boot id: {e.strerror}")
+    finally:
+        os.close(fd)
+
+
+def read_key(key_file):
+    """The 32-byte key of key_file (64 hex digits, owner-only), as tvo_firmware_node reads it."""
     mode = os.stat(key_file).st_mode
     if mode & (stat.S_IRWXG | stat.S_IRWXO):
         sys.exit(f"pil: key file '{key_file}': group or others may access it (chmod 600)")
     text = open(key_file, encoding="ascii").read().removesuffix("\n")
     if not re.fullmatch(r"[0-9a-fA-F]{64}", text):
         sys.exit(f"pil: key file '{key_file}': expected 64 hexadecimal digits")
-    return KEY_MAGIC + bytes.fromhex(text) + struct.pack("<Q", time.time_ns() // 1000)
+    return bytes.fromhex(text)
 
 
-def key_region_address(elf):
-    """Where the ELF's linker script put the key region."""
+def provisioned_region(boot_id, key):
+    """board.h's provisioned region for this boot: the boot id, and the key if there is one."""
+    return BOOT_MAGIC + struct.pack("<q", boot_id) + (KEY_MAGIC + key if key else b"")
+
+
+def provisioned_region_address(elf):
+    """Where the ELF's linker script put the provisioned region."""
     nm = shutil.which("arm-none-eabi-nm") or sys.exit("pil: arm-none-eabi-nm not found (binutils-arm-none-eabi)")
     out = subprocess.run([nm, elf], capture_output=True, text=True, check=True).stdout
-    m = re.search(r"^([0-9a-f]+) \w tvo_board_key_region_start$", out, re.M)
+    m = re.search(r"^([0-9a-f]+) \w tvo_board_provisioned_region_start$", out, re.M)
     if not m:
-        sys.exit(f"pil: {elf} has no key region (tvo_board_key_region_start): built without Mbed TLS?")
+        sys.exit(f"pil: {elf} has no provisioned region (tvo_board_provisioned_region_start): not the PIL program?")
     return int(m.group(1), 16)
 
 
@@ -104,6 +157,8 @@ def main():
     parser.add_argument("--qemu", default="qemu-system-arm")
     parser.add_argument("--corrupt-every", type=int, default=0)
     parser.add_argument("--lcm-url", default="")
+    parser.add_argument("--boot-file", default="",
+                        help="the boot counter file (default: tvo_firmware_node's, under $XDG_STATE_HOME)")
     parser.add_argument("sim_args", nargs="*")
     args = parser.parse_args()
 
@@ -117,14 +172,15 @@ def main():
     qemu_log = tempfile.TemporaryFile(mode="w+")
     bridge_log = tempfile.TemporaryFile(mode="w+")
     key_file = option_value(args.sim_args, "--key-file", "")
-    provision = []
-    key_dir = tempfile.TemporaryDirectory()  # the key region's bytes, owner-only, gone at exit
-    if key_file:
-        blob_path = os.path.join(key_dir.name, "key_region.bin")
-        fd = os.open(blob_path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
-        with os.fdopen(fd, "wb") as blob:
-            blob.write(key_region_blob(key_file))
-        provision = ["-device", f"loader,file={blob_path},addr={key_region_address(args.elf):#x},force-raw=on"]
+    key = read_key(key_file) if key_file else b""
+    boot_id = next_boot_id(args.boot_file or default_boot_file(),
+                           "--boot-file" if args.boot_file else "the default boot file; choose another with --boot-file")
+    region_dir = tempfile.TemporaryDirectory()  # the region's bytes (the key among them), owner-only, gone at exit
+    blob_path = os.path.join(region_dir.name, "provisioned_region.bin")
+    fd = os.open(blob_path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
+    with os.fdopen(fd, "wb") as blob:
+        blob.write(provisioned_region(boot_id, key))
+    provision = ["-device", f"loader,file={blob_path},addr={provisioned_region_address(args.elf):#x},force-raw=on"]
     qemu = subprocess.Popen(
         [args.qemu, "-M", "mps2-an386", "-cpu", "cortex-m4", "-nographic", "-monitor", "none",
          "-semihosting-config", "enable=on,target=native",

@@ -1,41 +1,123 @@
-/* The protocol's channel table; see channels.h. */
+/* The protocol's channel table and the names of its codes; see channels.h. */
 #include "channels.h"
 
 #include <stddef.h>
 #include <string.h>
 
 #include "tvo/status.h"
-#include "tvo_lcm_command_t.h"
+#include "tvo_lcm_command_header_t.h"
+#include "tvo_lcm_node_counters_t.h"
+#include "tvo_lcm_node_status_t.h"
 #include "tvo_lcm_session_ack_t.h"
+#include "tvo_lcm_session_t.h"
 
 /* The wire's flags that shape a command are the core's bits (the HOLDING and SAFE_STOP bits are the
  * wire's own, derived from the outcome in step_codec.c): a build where one drifts fails here. The
  * statuses and parameters are the wire's own numbers, mapped in the codecs. */
 #define WIRE_EQUALS_CORE(wire, core) _Static_assert((wire) == (core), #wire " must equal " #core)
-#define FLAG_ON_WIRE(name) WIRE_EQUALS_CORE(TVO_LCM_COMMAND_T_FLAG_##name, TVO_FLAG_##name)
+#define FLAG_ON_WIRE(name) WIRE_EQUALS_CORE(TVO_LCM_COMMAND_HEADER_T_FLAG_##name, TVO_FLAG_##name)
 FLAG_ON_WIRE(OMEGA_SATURATED); FLAG_ON_WIRE(ACCEL_SATURATED); FLAG_ON_WIRE(SPEED_SATURATED); FLAG_ON_WIRE(LOW_SPEED);
 FLAG_ON_WIRE(PREDICTED); FLAG_ON_WIRE(REGULARIZED); FLAG_ON_WIRE(SPEED_MISMATCH);
+/* The core's flags fit the wire's int16 field, and none of them takes the wire's own two bits. */
+_Static_assert((TVO_FLAG_OMEGA_SATURATED | TVO_FLAG_ACCEL_SATURATED | TVO_FLAG_SPEED_SATURATED | TVO_FLAG_LOW_SPEED |
+                TVO_FLAG_PREDICTED | TVO_FLAG_REGULARIZED | TVO_FLAG_SPEED_MISMATCH) <= 0x7fff,
+               "command_header_t.flags is an int16");
+_Static_assert(((TVO_FLAG_OMEGA_SATURATED | TVO_FLAG_ACCEL_SATURATED | TVO_FLAG_SPEED_SATURATED | TVO_FLAG_LOW_SPEED |
+                 TVO_FLAG_PREDICTED | TVO_FLAG_REGULARIZED | TVO_FLAG_SPEED_MISMATCH) &
+                (TVO_LCM_COMMAND_HEADER_T_FLAG_HOLDING | TVO_LCM_COMMAND_HEADER_T_FLAG_SAFE_STOP)) == 0,
+               "HOLDING and SAFE_STOP are the wire's own bits");
+/* Every wire status has a slot in node_counters_t.refused. */
+_Static_assert(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_MEASUREMENT < TVO_LCM_NODE_COUNTERS_T_STATUS_SLOTS,
+               "node_counters_t.refused has a slot per wire status");
+/* One limit for the whole wire (session_codec.c checks that it holds the build's robots). */
+_Static_assert(TVO_LCM_SESSION_T_MAX_ROBOTS <= INT8_MAX, "a robot index is an int8 on the wire");
 
-static const char *const channel_names[] = {
-    NULL, TVO_CHANNEL_SESSION, TVO_CHANNEL_SESSION_ACK, TVO_CHANNEL_MEASUREMENT,
-    TVO_CHANNEL_TARGET, TVO_CHANNEL_COMMAND, TVO_CHANNEL_TELEMETRY};
+/* The encoded sizes (lcm-gen's _encoded_size of each type: fixed arrays only, so one size per type;
+ * test_channels checks each against the generated code). */
+#define BYTES_SESSION 11427u
+#define BYTES_SESSION_ACK 47u
+#define BYTES_UNICYCLE_SAMPLE 50u
+#define BYTES_TARGET 65u
+#define BYTES_UNICYCLE_COMMAND 36u
+#define BYTES_TELEMETRY 105u
+#define BYTES_NODE_STATUS 211u
+#define BYTES_CHAIN_SAMPLE 58u
+#define BYTES_CHAIN_COMMAND 36u
+_Static_assert(BYTES_SESSION == TVO_NODE_LARGEST_MESSAGE_BYTES, "session_t is the largest message");
+
+typedef struct {
+    const char *name;
+    uint32_t message_bytes;
+    uint8_t input;          /* a node takes it */
+} channel_t;
+
+static const channel_t channels[TVO_NODE_CH_LAST + 1] = {
+    [TVO_NODE_CH_SESSION] = {TVO_CHANNEL_SESSION, BYTES_SESSION, 1u},
+    [TVO_NODE_CH_SESSION_ACK] = {TVO_CHANNEL_SESSION_ACK, BYTES_SESSION_ACK, 0u},
+    [TVO_NODE_CH_SAMPLE] = {TVO_CHANNEL_SAMPLE, BYTES_UNICYCLE_SAMPLE, 1u},
+    [TVO_NODE_CH_TARGET] = {TVO_CHANNEL_TARGET, BYTES_TARGET, 1u},
+    [TVO_NODE_CH_COMMAND] = {TVO_CHANNEL_COMMAND, BYTES_UNICYCLE_COMMAND, 0u},
+    [TVO_NODE_CH_TELEMETRY] = {TVO_CHANNEL_TELEMETRY, BYTES_TELEMETRY, 0u},
+    [TVO_NODE_CH_NODE] = {TVO_CHANNEL_NODE, BYTES_NODE_STATUS, 0u},
+    [TVO_NODE_CH_CHAIN_SAMPLE] = {TVO_CHANNEL_CHAIN_SAMPLE, BYTES_CHAIN_SAMPLE, 1u},
+    [TVO_NODE_CH_CHAIN_COMMAND] = {TVO_CHANNEL_CHAIN_COMMAND, BYTES_CHAIN_COMMAND, 0u},
+};
+
+static const channel_t *channel_of(int channel)
+{
+    return (channel >= TVO_NODE_CH_FIRST && channel <= TVO_NODE_CH_LAST) ? &channels[channel] : NULL;
+}
 
 const char *tvo_node_channel_name(int channel)
 {
-    if (channel < TVO_NODE_CH_SESSION || channel > TVO_NODE_CH_TELEMETRY) {
-        return NULL;
-    }
-    return channel_names[channel];
+    const channel_t *c = channel_of(channel);
+    return c != NULL ? c->name : NULL;
 }
 
 int tvo_node_channel_of(const char *name)
 {
-    for (int channel = TVO_NODE_CH_SESSION; name != NULL && channel <= TVO_NODE_CH_TELEMETRY; ++channel) {
-        if (strcmp(name, channel_names[channel]) == 0) {
+    for (int channel = TVO_NODE_CH_FIRST; name != NULL && channel <= TVO_NODE_CH_LAST; ++channel) {
+        if (strcmp(name, channels[channel].name) == 0) {
             return channel;
         }
     }
     return 0;
+}
+
+int tvo_node_channel_is_input(int channel)
+{
+    const channel_t *c = channel_of(channel);
+    return c != NULL && c->input;
+}
+
+uint32_t tvo_node_channel_message_bytes(int channel)
+{
+    const channel_t *c = channel_of(channel);
+    return c != NULL ? c->message_bytes : 0u;
+}
+
+static uint64_t fnv_double(uint64_t hash, double value)
+{
+    uint64_t bits = 0u;
+    memcpy(&bits, &value, sizeof(bits));
+    for (int b = 0; b < 8; ++b) {
+        hash ^= (bits >> (8 * b)) & 0xffu;
+        hash *= 0x100000001b3ull;
+    }
+    return hash;
+}
+
+uint64_t tvo_joint_digest(const double *speed_mps, const double *turn_rate_radps, int32_t robot_count)
+{
+    if (speed_mps == NULL || turn_rate_radps == NULL || robot_count < 0) {
+        return 0u;
+    }
+    uint64_t hash = 0xcbf29ce484222325ull;
+    for (int32_t r = 0; r < robot_count && r < TVO_LCM_SESSION_T_MAX_ROBOTS; ++r) {
+        hash = fnv_double(hash, speed_mps[r]);
+        hash = fnv_double(hash, turn_rate_radps[r]);
+    }
+    return hash;
 }
 
 const char *tvo_protocol_part_str(int32_t part)
@@ -66,7 +148,7 @@ const char *tvo_protocol_param_str(int32_t param)
     case TVO_LCM_SESSION_ACK_T_PARAM_SPEED_MAX: return "speed_max_mps";
     case TVO_LCM_SESSION_ACK_T_PARAM_MIN_SPEED: return "min_speed_mps";
     case TVO_LCM_SESSION_ACK_T_PARAM_WATCHDOG: return "watchdog_periods";
-    case TVO_LCM_SESSION_ACK_T_PARAM_ROBOT_COUNT: return "robot_count";
+    case TVO_LCM_SESSION_ACK_T_PARAM_ROBOT_COUNT: return "robot_count (at most the node's max_robots; a chain: 1)";
     case TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE: return "the problem (robot, barrier, distance, halfspace, obstacle, offset)";
     case TVO_LCM_SESSION_ACK_T_PARAM_VELOCITY_SOURCE: return "velocity_source";
     case TVO_LCM_SESSION_ACK_T_PARAM_INITIAL_SPEED: return "robot[].initial_speed_mps";
@@ -74,6 +156,8 @@ const char *tvo_protocol_param_str(int32_t param)
     case TVO_LCM_SESSION_ACK_T_PARAM_CLOCK_SOURCE: return "clock_source";
     case TVO_LCM_SESSION_ACK_T_PARAM_PLANT_KIND: return "plant_kind";
     case TVO_LCM_SESSION_ACK_T_PARAM_SESSION_ID: return "session_id";
+    case TVO_LCM_SESSION_ACK_T_PARAM_PROTOCOL_VERSION: return "protocol_version (node_status_t.PROTOCOL_VERSION)";
+    case TVO_LCM_SESSION_ACK_T_PARAM_TELEMETRY_EVERY: return "telemetry_every (0 .. 2^20)";
     default: return "unknown parameter";
     }
 }
@@ -82,15 +166,18 @@ const char *tvo_node_status_str(tvo_node_status_t status)
 {
     switch (status) {
     case TVO_NODE_OK: return "ok";
-    case TVO_NODE_WRONG_ROBOT_COUNT: return "measurement for another robot count than the session's";
+    case TVO_NODE_WRONG_ROBOT: return "sample or target of a robot the session does not have";
     case TVO_NODE_IMPLAUSIBLE_STAMP: return "stamp does not fit the session's schedule";
     case TVO_NODE_NOT_LATER_PERIOD: return "sample serves no later period than the last accepted one";
     case TVO_NODE_STALE: return "sample too old for the period it would serve";
     case TVO_NODE_MISSING_DERIVATIVES: return "chain session reads derivatives the sample lacks";
     case TVO_NODE_REFUSAL_STREAK: return "refusals in a row: safe stop";
     case TVO_NODE_SESSION_CONFLICT: return "session id already running with other parameters";
-    case TVO_NODE_NO_SESSION: return "no such session running (send START)";
+    case TVO_NODE_NO_SESSION: return "no such session running";
     case TVO_NODE_UNKNOWN_ACTION: return "session action neither START nor STOP";
+    case TVO_NODE_ROBOT_UNHEARD: return "a robot has no sample this period and cannot be predicted";
+    case TVO_NODE_WRONG_PLANT: return "sample of another plant kind than the session's";
+    case TVO_NODE_NOT_FINITE: return "sample value not finite (NaN or Inf)";
     case TVO_NODE_STATUS_COUNT: break;
     }
     return "unknown edge status";
@@ -99,27 +186,27 @@ const char *tvo_node_status_str(tvo_node_status_t status)
 const char *tvo_protocol_status_str(int32_t status)
 {
     switch (status) {
-    case TVO_LCM_COMMAND_T_STATUS_OK: return "ok";
-    case TVO_LCM_COMMAND_T_STATUS_ERR_NULL: return "null pointer";
-    case TVO_LCM_COMMAND_T_STATUS_ERR_NOT_FINITE: return "input not finite (NaN or Inf)";
-    case TVO_LCM_COMMAND_T_STATUS_ERR_DIMENSION: return "dimension out of range";
-    case TVO_LCM_COMMAND_T_STATUS_ERR_PARAM: return "parameter out of range";
-    case TVO_LCM_COMMAND_T_STATUS_ERR_CAPACITY: return "fixed-size table full";
-    case TVO_LCM_COMMAND_T_STATUS_ERR_NOT_INITIALIZED: return "not initialised";
-    case TVO_LCM_COMMAND_T_STATUS_ERR_NOT_POSITIVE_DEFINITE: return "Hessian not positive definite";
-    case TVO_LCM_COMMAND_T_STATUS_ERR_NUMERIC: return "result not finite";
-    case TVO_LCM_COMMAND_T_STATUS_ERR_STALE: return "measurement stale (older than one period)";
-    case TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER: return "timestamp did not advance";
-    case TVO_LCM_COMMAND_T_STATUS_ERR_FUTURE_STAMP: return "timestamp in the future";
-    case TVO_LCM_COMMAND_T_STATUS_ERR_NO_MEASUREMENT: return "no measurement this period";
-    case TVO_LCM_COMMAND_T_STATUS_ERR_MISSING_FIELD: return "measurement lacks a field the configuration needs";
-    case TVO_LCM_COMMAND_T_STATUS_ERR_TARGET_NOT_READY: return "streamed target has no sample yet";
-    case TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG: return "watchdog expired: safe stop";
-    case TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP: return "stamp does not fit the session's schedule";
-    case TVO_LCM_COMMAND_T_STATUS_ERR_SESSION_CONFLICT: return "session id already running with other parameters";
-    case TVO_LCM_COMMAND_T_STATUS_ERR_NO_SESSION: return "no such session running (send START)";
-    case TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_MEASUREMENT:
-        return "measurement beyond the robot's workspace, heading range or speed";
+    case TVO_LCM_COMMAND_HEADER_T_STATUS_OK: return "ok";
+    case TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NULL: return "null pointer";
+    case TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NOT_FINITE: return "input not finite (NaN or Inf)";
+    case TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_DIMENSION: return "dimension out of range";
+    case TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM: return "parameter out of range";
+    case TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_CAPACITY: return "fixed-size table full";
+    case TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NOT_INITIALIZED: return "not initialised";
+    case TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NOT_POSITIVE_DEFINITE: return "Hessian not positive definite";
+    case TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NUMERIC: return "result not finite";
+    case TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_STALE: return "sample stale (older than one period)";
+    case TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_OUT_OF_ORDER: return "timestamp did not advance";
+    case TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_FUTURE_STAMP: return "timestamp in the future";
+    case TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NO_MEASUREMENT: return "no sample (of every robot) this period";
+    case TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_MISSING_FIELD: return "sample lacks a field the configuration needs";
+    case TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_TARGET_NOT_READY: return "streamed target has no sample yet";
+    case TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_WATCHDOG: return "watchdog expired: safe stop";
+    case TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_STAMP: return "stamp does not fit the session's schedule";
+    case TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_SESSION_CONFLICT: return "session id already running with other parameters";
+    case TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NO_SESSION: return "no such session running";
+    case TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_MEASUREMENT:
+        return "sample beyond the robot's workspace, heading range or speed";
     default: return "unknown status";
     }
 }

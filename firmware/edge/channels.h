@@ -1,8 +1,9 @@
 /*
  * The protocol's names, written once: LCM channel names, the numbers that tag frames on a serial
- * link, and the names of the problem's parts in a session ack. No dependencies but the generated
- * message constants, so every transport (the LCM node, the PIL program, the bridge) and the host
- * (C++, through extern "C") share one table.
+ * link, which channels a node takes, each channel's fixed message size, the edge's own statuses and
+ * the names of the wire's codes. No dependencies but the generated message constants, so every
+ * transport (the LCM node, the PIL program, the bridge) and the host (C++, through extern "C") share
+ * one table. lcm_types/README.md is the contract.
  */
 #ifndef TVO_CHANNELS_H
 #define TVO_CHANNELS_H
@@ -13,7 +14,7 @@
 extern "C" {
 #endif
 
-/** Every time and sequence on the wire lies in [0, TVO_WIRE_TIME_MAX_US]: sums of two never overflow int64. */
+/** Every time on the wire lies in [0, TVO_WIRE_TIME_MAX_US]: sums of two never overflow int64. */
 #define TVO_WIRE_TIME_MAX_US ((int64_t)1 << 60)
 
 /**
@@ -26,53 +27,79 @@ extern "C" {
 /* LCM channels of the protocol (the host uses the same names). */
 #define TVO_CHANNEL_SESSION "TVO_SESSION"
 #define TVO_CHANNEL_SESSION_ACK "TVO_SESSION_ACK"
-#define TVO_CHANNEL_MEASUREMENT "TVO_MEASUREMENT"
+#define TVO_CHANNEL_SAMPLE "TVO_SAMPLE"
 #define TVO_CHANNEL_TARGET "TVO_TARGET"
 #define TVO_CHANNEL_COMMAND "TVO_COMMAND"
 #define TVO_CHANNEL_TELEMETRY "TVO_TELEMETRY"
-/* A fleet's per-robot messages (fleet_sample_t, fleet_command_t): on the fleet bus, node k's channel is
- * the name with "_R<k>" (fleet_link.h); the bare name is the plant's per-robot leg (tvo_sim --fleet). */
-#define TVO_CHANNEL_FLEET_SAMPLE "TVO_FLEET_SAMPLE"
-#define TVO_CHANNEL_FLEET_COMMAND "TVO_FLEET_COMMAND"
+#define TVO_CHANNEL_NODE "TVO_NODE"
+#define TVO_CHANNEL_CHAIN_SAMPLE "TVO_CHAIN_SAMPLE"
+#define TVO_CHANNEL_CHAIN_COMMAND "TVO_CHAIN_COMMAND"
 
 /** Channel numbers; they also tag frames on a serial link. */
 typedef enum {
-    TVO_NODE_CH_SESSION = 1,
-    TVO_NODE_CH_SESSION_ACK = 2,
-    TVO_NODE_CH_MEASUREMENT = 3,
-    TVO_NODE_CH_TARGET = 4,
-    TVO_NODE_CH_COMMAND = 5,
-    TVO_NODE_CH_TELEMETRY = 6
+    TVO_NODE_CH_SESSION = 1,        /* session_t, plant -> nodes (in) */
+    TVO_NODE_CH_SESSION_ACK = 2,    /* session_ack_t, node -> plant */
+    TVO_NODE_CH_SAMPLE = 3,         /* unicycle_sample_t, plant -> nodes (in) */
+    TVO_NODE_CH_TARGET = 4,         /* target_t, plant -> nodes (in) */
+    TVO_NODE_CH_COMMAND = 5,        /* unicycle_command_t, node -> plant */
+    TVO_NODE_CH_TELEMETRY = 6,      /* telemetry_t, node -> plant */
+    TVO_NODE_CH_NODE = 7,           /* node_status_t, node -> plants */
+    TVO_NODE_CH_CHAIN_SAMPLE = 8,   /* chain_sample_t, plant -> node (in) */
+    TVO_NODE_CH_CHAIN_COMMAND = 9   /* chain_command_t, node -> plant */
 } tvo_node_channel_t;
+
+/** The first and last channel numbers (every number between is a channel). */
+#define TVO_NODE_CH_FIRST TVO_NODE_CH_SESSION
+#define TVO_NODE_CH_LAST TVO_NODE_CH_CHAIN_COMMAND
 
 /** LCM channel name of a channel, or NULL. */
 const char *tvo_node_channel_name(int channel);
 /** Channel of an LCM channel name, or 0. */
 int tvo_node_channel_of(const char *name);
+/** 1 if a node takes the channel (SESSION, SAMPLE, TARGET, CHAIN_SAMPLE), else 0. */
+int tvo_node_channel_is_input(int channel);
+/**
+ * The encoded size in bytes of the one message type a channel carries (every type has fixed arrays
+ * only, so each has one size, the 8-byte fingerprint included), or 0 for no channel. A frame of
+ * another length (a keyed one: plus the 28-byte trailer) is no message of that channel.
+ */
+uint32_t tvo_node_channel_message_bytes(int channel);
+/** The largest of them: session_t's. */
+#define TVO_NODE_LARGEST_MESSAGE_BYTES 11427u
+
+/**
+ * FNV-1a 64 of a joint command, the digest in telemetry_t.joint_digest: speed then turn rate of robots
+ * 0 .. robot_count-1 (a chain's two inputs in their place), each as an IEEE-754 double's bits, least
+ * significant byte first, so the same on every machine. 0 for NULL arrays or a negative count.
+ */
+uint64_t tvo_joint_digest(const double *speed_mps, const double *turn_rate_radps, int32_t robot_count);
 
 /**
  * The edge's own answers, apart from the core's (tvo/status.h): what the node refuses or answers with
  * before, beside or instead of the core's step. The codec maps them, with the core's errors and
- * reasons, to command_t.status (step_codec.c: tvo_step_wire_status).
+ * reasons, to command_header_t.status (step_codec.c: tvo_step_wire_status).
  */
 typedef enum {
     TVO_NODE_OK = 0,
-    TVO_NODE_WRONG_ROBOT_COUNT = 1,   /* a measurement's robot_count is not the session's */
+    TVO_NODE_WRONG_ROBOT = 1,         /* a sample's or target's robot is not one of the session's */
     TVO_NODE_IMPLAUSIBLE_STAMP = 2,   /* the stamp (or stamp and sequence) does not fit the schedule */
     TVO_NODE_NOT_LATER_PERIOD = 3,    /* the sample serves no later period than the last accepted one */
     TVO_NODE_STALE = 4,               /* the sample is too old for the period it would serve */
     TVO_NODE_MISSING_DERIVATIVES = 5, /* a chain session reads derivatives the sample does not carry */
     TVO_NODE_REFUSAL_STREAK = 6,      /* CLOCK_PLANT: watchdog_periods refusals in a row stop the robots */
     TVO_NODE_SESSION_CONFLICT = 7,    /* a START reuses the running session's id with other content */
-    TVO_NODE_NO_SESSION = 8,          /* no such session is running (send START) */
+    TVO_NODE_NO_SESSION = 8,          /* no such session is running (a STOP of another id) */
     TVO_NODE_UNKNOWN_ACTION = 9,      /* a session message that is neither START nor STOP */
+    TVO_NODE_ROBOT_UNHEARD = 10,      /* a robot of the period has no sample and cannot be predicted */
+    TVO_NODE_WRONG_PLANT = 11,        /* a sample of another plant than the session's (unicycle, chain) */
+    TVO_NODE_NOT_FINITE = 12,         /* a robot's sample, checked on arrival, has a NaN or infinite value */
     TVO_NODE_STATUS_COUNT
 } tvo_node_status_t;
 
 /** Short English description of an edge status, for logs. */
 const char *tvo_node_status_str(tvo_node_status_t status);
 
-/** Short English description of a wire status (command_t.STATUS_*), for a plant's or the node's logs. */
+/** Short English description of a wire status (command_header_t.STATUS_*), for a plant's or the node's logs. */
 const char *tvo_protocol_status_str(int32_t status);
 
 /** Short name of a problem part named by a session ack (session_ack_t.PART_*), for logs. */

@@ -38,19 +38,27 @@ typedef struct {
     tvo_reason_t reason;
 } tvo_edge_mark_t;
 
+/** A period's samples, as the plant's controller reads them. */
+typedef struct {
+    const tvo_step_period_t *unicycle;       /* PLANT_UNICYCLE: every robot's row (sampled or predicted) */
+    const tvo_lcm_chain_sample_t *chain;     /* PLANT_CHAIN: the one robot's sample */
+} tvo_edge_samples_t;
+
 typedef struct {
     const char *name;
+    int sample_channel;     /* where its samples arrive (TVO_NODE_CH_SAMPLE, TVO_NODE_CH_CHAIN_SAMPLE) */
+    int command_channel;    /* where its commands go (TVO_NODE_CH_COMMAND, TVO_NODE_CH_CHAIN_COMMAND) */
     /** Relative degree of the flat output (bounds the barrier's m_r below). */
     uint8_t (*relative_degree)(const tvo_lcm_session_t *msg);
     /** Configuration from the START, then the core's init (which names the culprit in *why). */
     tvo_status_t (*init)(tvo_edge_controller_t *ctl, const tvo_lcm_session_t *msg, const tvo_objective_t *objective,
                          uint32_t epoch_tick, tvo_session_reject_t *why);
-    /** The wire's measurement for the core: TVO_NODE_OK, or the edge's refusal (it lacks what ctl's
-     *  configuration reads: TVO_NODE_MISSING_DERIVATIVES; another robot count). */
-    tvo_node_status_t (*measurement)(const tvo_edge_controller_t *ctl, const tvo_step_measurement_t *msg, uint8_t robot_count,
-                                uint32_t stamp_tick, tvo_edge_measurement_t *meas);
-    /* The core's sampled-data loop, the same seven for every plant (edge_controller.c's EDGE_LOOP_OPS):
-     * init (above), step, miss, safe_stop, holding, mark, clock. The others map the wire to the plant. */
+    /** The period's samples as the core's measurement: TVO_NODE_OK, or the edge's refusal (they lack
+     *  what ctl's configuration reads: TVO_NODE_MISSING_DERIVATIVES). */
+    tvo_node_status_t (*measurement)(const tvo_edge_controller_t *ctl, const tvo_edge_samples_t *samples,
+                                     uint8_t robot_count, uint32_t stamp_tick, tvo_edge_measurement_t *meas);
+    /* The core's sampled-data loop, the same for every plant (edge_controller.c's EDGE_LOOP_OPS): init
+     * (above), step, miss, safe_stop, holding, mark, committed, clock. The others map the wire to the plant. */
     /** The core's step: a transaction (a whole period committed, or nothing changed and the refusal's
      *  command: the one in force, or the watchdog's stop). */
     tvo_status_t (*step)(tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas, uint32_t apply_tick,
@@ -62,9 +70,19 @@ typedef struct {
     void (*holding)(const tvo_edge_controller_t *ctl, tvo_edge_command_t *cmd);
     /** A command's flags, outcome and reason. */
     tvo_edge_mark_t (*mark)(const tvo_edge_command_t *cmd);
-    void (*command_to_lcm)(const tvo_edge_command_t *cmd, const tvo_step_stamp_t *stamp, tvo_lcm_command_t *msg);
-    /** The controller's part of the telemetry (its last good step). */
-    void (*telemetry_to_lcm)(const tvo_edge_controller_t *ctl, const tvo_problem_t *problem, tvo_lcm_telemetry_t *msg);
+    /** 1 if the step that delivered cmd took its measurement (the core committed the period: applied,
+     *  or the speed mismatch's stop, whose measurement was accepted), as the command's outcome says. */
+    int (*committed)(const tvo_edge_command_t *cmd);
+    /** Robot `robot`'s command (the chain: robot 0's u) encoded into buffer: its length, or <= 0. */
+    int (*encode_command)(const tvo_edge_command_t *cmd, const tvo_step_stamp_t *stamp, int32_t robot, uint8_t *buffer,
+                          uint32_t capacity);
+    /** The joint command's digest (telemetry_t.joint_digest) and its rows as doubles, for prediction
+     *  (the chain: its inputs; it has one robot, never predicted). */
+    uint64_t (*digest)(const tvo_edge_command_t *cmd, uint8_t robot_count);
+    void (*rows)(const tvo_edge_command_t *cmd, uint8_t robot_count, double *speed_mps, double *turn_rate_radps);
+    /** Robot `robot`'s part of the telemetry: the controller's last good step (the chain keeps none). */
+    void (*telemetry_to_lcm)(const tvo_edge_controller_t *ctl, const tvo_problem_t *problem, uint8_t robot,
+                             tvo_lcm_telemetry_t *msg);
     tvo_sample_clock_t *(*clock)(tvo_edge_controller_t *ctl);
 } tvo_edge_controller_ops_t;
 

@@ -3,6 +3,10 @@
 set(tvo_edge_dir ${CMAKE_CURRENT_LIST_DIR})
 set(tvo_edge_node_sources
   ${tvo_edge_dir}/node.c
+  ${tvo_edge_dir}/node_sessions.c
+  ${tvo_edge_dir}/node_start.c
+  ${tvo_edge_dir}/node_period.c
+  ${tvo_edge_dir}/node_publish.c
   ${tvo_edge_dir}/schedule.c
   ${tvo_edge_dir}/schedule_plant_clock.c
   ${tvo_edge_dir}/schedule_node_clock.c
@@ -12,5 +16,3 @@ set(tvo_edge_node_sources
   ${tvo_edge_dir}/channels.c)
 # The authenticated link in front of the node (auth_link.c; link tvo_auth, which brings Mbed TLS).
 set(tvo_edge_auth_link_sources ${tvo_edge_dir}/auth_link.c)
-# The fleet link in front of the node (fleet_link.c): one robot's node of a fleet, per-robot samples in.
-set(tvo_edge_fleet_link_sources ${tvo_edge_dir}/fleet_link.c)

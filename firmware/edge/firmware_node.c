@@ -1,11 +1,21 @@
 /*
  * tvo_firmware_node: the control core behind LCM, as a host process (hardware-in-the-loop edge).
  *
- * Subscribes TVO_SESSION, TVO_MEASUREMENT and TVO_TARGET and publishes TVO_SESSION_ACK,
- * TVO_COMMAND and TVO_TELEMETRY. The logic (sessions, schedule, watchdog timer, codecs) is node.c's,
- * shared with the processor-in-the-loop program; this file is the LCM transport, the node's clock
- * (CLOCK_MONOTONIC), the command line and the logs. SIGINT or SIGTERM ends the process with exit
- * code 0; so does a session STOP, unless --keep-running.
+ * Subscribes the node's input channels (channels.h: TVO_SESSION, TVO_SAMPLE, TVO_CHAIN_SAMPLE,
+ * TVO_TARGET) and publishes its acks, commands, telemetry and announcements (TVO_NODE). The logic
+ * (sessions, periods, the watchdog timer, codecs, announcements) is node.c's, shared with the
+ * processor-in-the-loop program; this file is the LCM transport, the node's identity (its boot id,
+ * from a counter file: boot_file.h), the node's clock (CLOCK_MONOTONIC), the command line and the
+ * logs. SIGINT or SIGTERM ends the process with exit code 0; so does a session STOP, unless
+ * --keep-running.
+ *
+ * Floods: each wake-up handles every message LCM has queued (up to a bound, and never past the node's
+ * next deadline), so a burst of forged frames costs time, not genuine samples. LCM's receive thread
+ * queues whatever arrives (its ring buffer grows rather than drop), but LCM 1.3.1 keeps at most 30
+ * messages per subscription and silently drops any more: the node's subscriptions are unbounded, so
+ * the only place a frame can be lost is the kernel socket buffer behind LCM, which is sized
+ * (udpm_socket.h) and whose drops are counted. Every drop the node can see is counted: the node's
+ * counters (node_counters_t, announced on TVO_NODE) and the socket's, both in the logs and at exit.
  */
 #define _POSIX_C_SOURCE 200809L
 
@@ -22,25 +32,36 @@
 
 #include "auth_key_file.h"
 #include "auth_link.h"
-#include "fleet_link.h"
+#include "boot_file.h"
 #include "node.h"
+#include "udpm_socket.h"
 
 /* The only global: set by SIGINT/SIGTERM, polled by the main loop. */
 static volatile sig_atomic_t g_stop_signal = 0;
 
 /* Longest wait for a message before the stop flag, the parent and the node's timer are checked. */
 #define NODE_POLL_US 100000
+/* Messages handled per wake-up at most (a flood is drained in turns with the node's timer). */
+#define NODE_DRAIN_MAX 4096
+/* The kernel receive buffer asked for: 1 s of a 10,000 frames/s flood of ~80-byte datagrams at the
+ * kernel's ~1.5 KiB accounting each, should LCM's receive thread not run for that long. */
+#define NODE_RECV_BUFFER_BYTES (16u * 1024u * 1024u)
 /* Each kind of log line is written at most once per this interval, with a count of the rest. */
 #define NODE_LOG_INTERVAL_US 1000000
+
 /* Log keys: one per refusal status, then the other kinds of event. */
 enum {
-    LOG_UNDECODABLE = TVO_LCM_NODE_COUNTERS_T_STATUS_SLOTS,
+    LOG_MALFORMED = TVO_LCM_NODE_COUNTERS_T_STATUS_SLOTS,
+    LOG_UNAUTHENTICATED,
+    LOG_REPLAYED,
+    LOG_WRONG_BOOT,
+    LOG_IDLE,
     LOG_OTHER_SESSION,
+    LOG_PREDICTED,
     LOG_SAFE_STOP,
     LOG_TARGET,
     LOG_SPEED_MISMATCH,
-    LOG_UNAUTHENTICATED,
-    LOG_REPLAYED,
+    LOG_SOCKET_DROPS,
     LOG_START_DONE,
     LOG_START_REFUSED,
     LOG_STOP,
@@ -56,12 +77,11 @@ typedef struct {
 
 typedef struct {
     lcm_t *lcm;
-    tvo_node_t node;     /* the transport-independent logic (node.h) */
-    tvo_auth_link_t link; /* with --key-file: frames opened before the node, its messages signed */
+    tvo_node_t node;      /* the transport-independent logic (node.h) */
+    tvo_auth_link_t link; /* with --key-file: frames checked and opened before the node, its messages signed */
     int keyed;
-    tvo_fleet_link_t fleet; /* with --own-robot: one robot's node of a fleet (fleet_link.h) */
-    int fleet_member;
-    char fleet_sample_channel[TVO_FLEET_CHANNEL_NAME_BYTES];
+    tvo_udpm_socket_t socket; /* LCM's receive socket (udpm), for its buffer and its drops */
+    uint32_t socket_drops;    /* the kernel's drops on it, as last read */
     log_limit_t limits[LOG_KEYS];
 } lcm_node_t;
 
@@ -85,16 +105,6 @@ static void publish(void *context, int channel, const uint8_t *data, uint32_t le
     lcm_publish(self->lcm, tvo_node_channel_name(channel), data, length);
 }
 
-/* The fleet link's channels carry the own robot's number (fleet_link.h). */
-static void fleet_publish(void *context, int channel, const uint8_t *data, uint32_t length)
-{
-    lcm_node_t *self = (lcm_node_t *)context;
-    char name[TVO_FLEET_CHANNEL_NAME_BYTES];
-    if (tvo_fleet_channel_name(channel, self->fleet.own_robot, name, sizeof(name)) == 0) {
-        lcm_publish(self->lcm, name, data, length);
-    }
-}
-
 /* Whether a line of this kind may be written now; *suppressed gets how many were not. */
 static int log_allowed(lcm_node_t *self, int key, uint32_t events, uint32_t *suppressed)
 {
@@ -113,10 +123,11 @@ static int log_allowed(lcm_node_t *self, int key, uint32_t events, uint32_t *sup
 static void log_event(lcm_node_t *self, int key, uint32_t events, const char *what)
 {
     uint32_t suppressed = 0;
-    if (events > 0u) {
-        snprintf(self->limits[key].text, sizeof(self->limits[key].text), "%s", what);
+    if (events == 0u) {
+        return;
     }
-    if (events > 0u && log_allowed(self, key, events, &suppressed)) {
+    snprintf(self->limits[key].text, sizeof(self->limits[key].text), "%s", what);
+    if (log_allowed(self, key, events, &suppressed)) {
         if (suppressed > 0u) {
             fprintf(stderr, "tvo_firmware_node: %s (and %u more like it in the last second)\n", what, suppressed);
         } else {
@@ -130,8 +141,8 @@ static void log_flush(lcm_node_t *self)
 {
     for (int k = 0; k < LOG_KEYS; ++k) {
         if (self->limits[k].unwritten > 0u) {
-            fprintf(stderr, "tvo_firmware_node: %s (%u more like it since the last line of its kind)\n", self->limits[k].text,
-                    self->limits[k].unwritten);
+            fprintf(stderr, "tvo_firmware_node: %s (%u more like it since the last line of its kind)\n",
+                    self->limits[k].text, self->limits[k].unwritten);
             self->limits[k].unwritten = 0;
         }
     }
@@ -144,7 +155,7 @@ static void log_ack(lcm_node_t *self)
     const char *action = ack->action == TVO_LCM_SESSION_T_ACTION_START  ? "START"
                          : ack->action == TVO_LCM_SESSION_T_ACTION_STOP ? "STOP"
                                                                         : "session message";
-    if (ack->status == TVO_OK) {
+    if (ack->status == TVO_LCM_COMMAND_HEADER_T_STATUS_OK) {
         snprintf(line, sizeof(line), "%s of session %lld done (running: %lld)", action, (long long)ack->session_id,
                  (long long)ack->running_session_id);
     } else {
@@ -153,65 +164,80 @@ static void log_ack(lcm_node_t *self)
                  tvo_protocol_param_str(ack->bad_param), tvo_protocol_part_str(ack->bad_part), (int)ack->bad_index,
                  (long long)ack->running_session_id);
     }
-    const int key = ack->action == TVO_LCM_SESSION_T_ACTION_START ? (ack->status == TVO_OK ? LOG_START_DONE : LOG_START_REFUSED)
+    const int key = ack->action == TVO_LCM_SESSION_T_ACTION_START
+                        ? (ack->status == TVO_LCM_COMMAND_HEADER_T_STATUS_OK ? LOG_START_DONE : LOG_START_REFUSED)
                     : ack->action == TVO_LCM_SESSION_T_ACTION_STOP ? LOG_STOP
                                                                    : LOG_OTHER_ACK;
     log_event(self, key, 1u, line);
 }
 
-/* What changed in the counters during one message or timer call, as rate-limited log lines. */
+static uint32_t grew(int32_t after, int32_t before)
+{
+    return after > before ? (uint32_t)(after - before) : 0u;
+}
+
+/* What changed in the counters (since boot) during one message or timer call, as rate-limited lines. */
 static void log_changes(lcm_node_t *self, const tvo_lcm_node_counters_t *before, uint32_t acks_before)
 {
-    const tvo_lcm_node_counters_t *after = &self->node.counters;
+    const tvo_lcm_node_counters_t *after = tvo_node_counters(&self->node);
     char line[160];
     if (self->node.acks != acks_before) {
         log_ack(self);
-        return; /* a new session resets the counters: nothing else to compare */
     }
     for (int s = 0; s < TVO_LCM_NODE_COUNTERS_T_STATUS_SLOTS; ++s) {
         if (after->refused[s] > before->refused[s]) {
-            snprintf(line, sizeof(line), "measurement refused: %s", tvo_protocol_status_str(s));
-            log_event(self, s, (uint32_t)(after->refused[s] - before->refused[s]), line);
+            snprintf(line, sizeof(line), "sample refused: %s", tvo_protocol_status_str(s));
+            log_event(self, s, grew(after->refused[s], before->refused[s]), line);
         }
     }
-    log_event(self, LOG_UNDECODABLE, (uint32_t)(after->undecodable - before->undecodable),
-              self->keyed ? "a message did not decode (ignored)"
-                          : "a message did not decode (ignored; if the plant signs its messages, start the node "
-                            "with the same --key-file)");
-    log_event(self, LOG_OTHER_SESSION, (uint32_t)(after->other_session - before->other_session),
-              "a message for another session id (ignored)");
-    log_event(self, LOG_SAFE_STOP, (uint32_t)(after->safe_stops - before->safe_stops), "safe stop published");
-    log_event(self, LOG_TARGET, (uint32_t)(after->targets_refused - before->targets_refused),
-              "streamed target sample refused");
-    log_event(self, LOG_UNAUTHENTICATED, (uint32_t)(after->unauthenticated - before->unauthenticated),
+    log_event(self, LOG_MALFORMED, grew(after->malformed, before->malformed),
+              self->keyed ? "a frame that is no message of its channel was dropped (length or fingerprint)"
+                          : "a frame that is no message of its channel was dropped (if the plant signs its messages, "
+                            "start the node with the same --key-file)");
+    log_event(self, LOG_UNAUTHENTICATED, grew(after->unauthenticated, before->unauthenticated),
               "a frame without a valid tag was dropped (forged, altered, or another key)");
-    log_event(self, LOG_REPLAYED, (uint32_t)(after->replayed - before->replayed),
+    log_event(self, LOG_REPLAYED, grew(after->replayed, before->replayed),
               "a frame with a used counter was dropped (a replay)");
-    log_event(self, LOG_SPEED_MISMATCH, (uint32_t)(after->speed_mismatch - before->speed_mismatch),
+    log_event(self, LOG_WRONG_BOOT, grew(after->wrong_boot, before->wrong_boot),
+              "a START or STOP naming another boot of this node was dropped (a recording, or another node's)");
+    log_event(self, LOG_IDLE, grew(after->idle, before->idle), "a sample or target arrived while no session ran (dropped)");
+    log_event(self, LOG_OTHER_SESSION, grew(after->other_session, before->other_session),
+              "a sample or target of another session id was ignored");
+    log_event(self, LOG_PREDICTED, grew(after->predicted, before->predicted), "a robot's missing sample was predicted");
+    log_event(self, LOG_SAFE_STOP, grew(after->safe_stops, before->safe_stops), "safe stop published");
+    log_event(self, LOG_TARGET, grew(after->targets_refused, before->targets_refused), "streamed target sample refused");
+    log_event(self, LOG_SPEED_MISMATCH, grew(after->speed_mismatch, before->speed_mismatch),
               "measured speed contradicts the commanded speed (stalled wheels?)");
+}
+
+/* The kernel's drops on LCM's socket since the last look, as a log line. */
+static void log_socket_drops(lcm_node_t *self)
+{
+    const uint32_t drops = tvo_udpm_socket_drops(&self->socket);
+    if (drops != self->socket_drops) {
+        char line[200];
+        snprintf(line, sizeof(line),
+                 "the kernel dropped datagrams on the node's socket (its receive buffer of %u B was full: "
+                 "%u since start)", self->socket.buffer_bytes, drops);
+        log_event(self, LOG_SOCKET_DROPS, drops - self->socket_drops, line);
+        self->socket_drops = drops;
+    }
 }
 
 /* Every subscribed channel arrives here encoded; node.c decodes it (the same path as on the MCU). */
 static void on_message(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
 {
     lcm_node_t *self = (lcm_node_t *)user;
-    const tvo_lcm_node_counters_t before = self->node.counters;
+    const tvo_lcm_node_counters_t before = *tvo_node_counters(&self->node);
     const uint32_t acks_before = self->node.acks;
-    if (self->fleet_member) {
-        const int fleet_channel = strcmp(channel, self->fleet_sample_channel) == 0 ? (int)TVO_FLEET_CH_SAMPLE
-                                                                                   : tvo_node_channel_of(channel);
-        uint32_t length = rbuf->data_size;
-        if (!self->keyed || tvo_auth_link_open(&self->link, &self->node, fleet_channel, (const uint8_t *)rbuf->data,
-                                               rbuf->data_size, &length) == TVO_AUTH_OK) {
-            (void)tvo_fleet_link_receive(&self->fleet, &self->node, fleet_channel, (const uint8_t *)rbuf->data, length,
-                                         monotonic_us());
-        }
-    } else if (self->keyed) {
-        (void)tvo_auth_link_receive(&self->link, &self->node, tvo_node_channel_of(channel),
-                                    (const uint8_t *)rbuf->data, rbuf->data_size, monotonic_us());
+    const int number = tvo_node_channel_of(channel);
+    if (self->keyed) {
+        (void)tvo_auth_link_receive(&self->link, &self->node, number, (const uint8_t *)rbuf->data, rbuf->data_size,
+                                    monotonic_us());
+    } else if (!tvo_node_channel_is_input(number)) {
+        tvo_node_count_drop(&self->node, TVO_NODE_DROP_MALFORMED); /* not subscribed: cannot happen; counted if it does */
     } else {
-        (void)tvo_node_handle(&self->node, tvo_node_channel_of(channel), (const uint8_t *)rbuf->data,
-                              rbuf->data_size, monotonic_us());
+        (void)tvo_node_handle(&self->node, number, (const uint8_t *)rbuf->data, rbuf->data_size, monotonic_us());
     }
     log_changes(self, &before, acks_before);
 }
@@ -219,52 +245,67 @@ static void on_message(const lcm_recv_buf_t *rbuf, const char *channel, void *us
 static void print_usage(FILE *out)
 {
     fprintf(out,
-            "Usage: tvo_firmware_node [--key-file FILE [--sender-id N]] [--own-robot I] [--lcm-url URL]\n"
-            "                         [--keep-running] [--exit-with-parent]\n"
-            "Runs the TV-O controller behind LCM: sessions on TVO_SESSION, measurements in, commands out.\n"
+            "Usage: tvo_firmware_node [--key-file FILE [--sender-id N]] [--own-robot I] [--boot-file PATH]\n"
+            "                         [--lcm-url URL] [--keep-running] [--exit-with-parent]\n"
+            "Runs the TV-O controller behind LCM: sessions on TVO_SESSION, samples in, commands out; announces\n"
+            "itself on TVO_NODE (its boot id, which a START must name).\n"
             "  --key-file FILE     authenticate every message both ways with this 32-byte key (tools/keygen;\n"
             "                      mode 0600); without it the bus is unauthenticated (lab use)\n"
-            "  --sender-id N       this node's sender id on a keyed bus (default 1, a fleet node's 256 + I;\n"
+            "  --sender-id N       this node's sender id on a keyed bus (default 1, robot I's node 256 + I;\n"
             "                      unique per key holder)\n"
-            "  --own-robot I       a fleet node: drive robot I only, from per-robot samples on TVO_FLEET_SAMPLE_RI\n"
-            "                      (every robot's), answering on TVO_FLEET_COMMAND_RI (lcm_types/README.md, \"A fleet\");\n"
-            "                      this build's fleet sessions have up to %d robots, its other sessions up to %d\n"
+            "  --own-robot I       drive robot I only (a fleet's node: it hears every robot's samples and\n"
+            "                      evaluates the joint law); default: every robot of the session. Sessions of\n"
+            "                      up to %d robots\n"
+            "  --boot-file PATH    the boot counter, incremented at every start so a boot id never repeats\n"
+            "                      (default $XDG_STATE_HOME/%s, else ~/.local/state/%s)\n"
             "  --lcm-url URL       LCM provider URL (default: $LCM_DEFAULT_URL, else LCM's default udpm)\n"
             "  --keep-running      serve session after session (default: exit after a session's STOP)\n"
             "  --exit-with-parent  exit when the process that started this one dies (no orphans)\n"
             "  -h, --help          show this help\n",
-            TVO_FLEET_MAX_ROBOTS, TVO_WIRE_SESSION_ROBOTS);
+            (int)TVO_NODE_MAX_ROBOTS, TVO_BOOT_FILE_RELATIVE_PATH, TVO_BOOT_FILE_RELATIVE_PATH);
 }
 
 typedef struct {
-    const char *key_file; /* NULL: unauthenticated */
+    const char *key_file;  /* NULL: unauthenticated */
     uint32_t sender_id;
-    const char *url;      /* NULL: LCM's default */
+    const char *boot_file; /* NULL: the default path */
+    const char *url;       /* NULL: LCM's default */
     int keep_running;
     int exit_with_parent;
-    int32_t own_robot;    /* -1: the whole joint command (no fleet) */
+    int32_t own_robot;     /* -1: every robot of the session */
 } node_options_t;
+
+/* The value of option `name` at argv[*i] ("--name VALUE" or "--name=VALUE"), advancing *i; else NULL. */
+static const char *option_value(int argc, char **argv, int *i, const char *name)
+{
+    const size_t n = strlen(name);
+    if (strncmp(argv[*i], name, n) != 0) {
+        return NULL;
+    }
+    if (argv[*i][n] == '=') {
+        return argv[*i] + n + 1;
+    }
+    if (argv[*i][n] == '\0' && *i + 1 < argc) {
+        return argv[++*i];
+    }
+    return NULL;
+}
 
 /* Returns 0 and fills *opt, 1 after --help, or 2 after printing why the arguments are bad. */
 static int parse_args(int argc, char **argv, node_options_t *opt)
 {
     memset(opt, 0, sizeof(*opt));
-    opt->sender_id = TVO_AUTH_SENDER_NODE;
     opt->own_robot = -1;
     int sender_id_given = 0;
     for (int i = 1; i < argc; ++i) {
-        const char *arg = argv[i];
         const char *value = NULL;
-        if ((strcmp(arg, "--key-file") == 0 || strcmp(arg, "--sender-id") == 0) && i + 1 < argc) {
-            value = argv[++i];
-        } else if (strncmp(arg, "--key-file=", 11) == 0 || strncmp(arg, "--sender-id=", 12) == 0) {
-            value = strchr(arg, '=') + 1;
-        }
-        if (value != NULL && strncmp(arg, "--key-file", 10) == 0) {
+        if ((value = option_value(argc, argv, &i, "--key-file")) != NULL) {
             opt->key_file = value;
-            continue;
-        }
-        if (value != NULL) {
+        } else if ((value = option_value(argc, argv, &i, "--boot-file")) != NULL) {
+            opt->boot_file = value;
+        } else if ((value = option_value(argc, argv, &i, "--lcm-url")) != NULL) {
+            opt->url = value;
+        } else if ((value = option_value(argc, argv, &i, "--sender-id")) != NULL) {
             char *end = NULL;
             errno = 0;
             const unsigned long id = strtoul(value, &end, 10);
@@ -275,40 +316,33 @@ static int parse_args(int argc, char **argv, node_options_t *opt)
             }
             opt->sender_id = (uint32_t)id;
             sender_id_given = 1;
-            continue;
-        }
-        if (strcmp(arg, "-h") == 0 || strcmp(arg, "--help") == 0) {
-            print_usage(stdout);
-            return 1;
-        } else if (strcmp(arg, "--lcm-url") == 0 && i + 1 < argc) {
-            opt->url = argv[++i];
-        } else if (strncmp(arg, "--lcm-url=", 10) == 0) {
-            opt->url = arg + 10;
-        } else if ((strcmp(arg, "--own-robot") == 0 && i + 1 < argc) || strncmp(arg, "--own-robot=", 12) == 0) {
-            const char *robot = arg[11] == '=' ? arg + 12 : argv[++i];
+        } else if ((value = option_value(argc, argv, &i, "--own-robot")) != NULL) {
             char *end = NULL;
-            const long r = strtol(robot, &end, 10);
-            if (end == robot || *end != '\0' || r < 0 || r >= TVO_FLEET_MAX_ROBOTS) {
+            const long r = strtol(value, &end, 10);
+            if (end == value || *end != '\0' || r < 0 || r >= TVO_NODE_MAX_ROBOTS) {
                 fprintf(stderr, "tvo_firmware_node: error: --own-robot takes a robot 0 .. %d, not '%s'\n",
-                        TVO_FLEET_MAX_ROBOTS - 1, robot);
+                        (int)TVO_NODE_MAX_ROBOTS - 1, value);
                 return 2;
             }
             opt->own_robot = (int32_t)r;
-        } else if (strcmp(arg, "--keep-running") == 0) {
+        } else if (strcmp(argv[i], "-h") == 0 || strcmp(argv[i], "--help") == 0) {
+            print_usage(stdout);
+            return 1;
+        } else if (strcmp(argv[i], "--keep-running") == 0) {
             opt->keep_running = 1;
-        } else if (strcmp(arg, "--exit-with-parent") == 0) {
+        } else if (strcmp(argv[i], "--exit-with-parent") == 0) {
             opt->exit_with_parent = 1;
         } else {
-            fprintf(stderr, "tvo_firmware_node: error: unexpected argument '%s' (see --help)\n", arg);
+            fprintf(stderr, "tvo_firmware_node: error: unexpected argument '%s' (see --help)\n", argv[i]);
             return 2;
         }
-    }
-    if (opt->own_robot >= 0 && !sender_id_given) {
-        opt->sender_id = TVO_AUTH_SENDER_FLEET_NODE + (uint32_t)opt->own_robot; /* each fleet node its own stream */
     }
     if (sender_id_given && opt->key_file == NULL) {
         fprintf(stderr, "tvo_firmware_node: error: --sender-id needs --key-file (it names this node on a keyed bus)\n");
         return 2;
+    }
+    if (!sender_id_given) { /* each node its own counter stream */
+        opt->sender_id = opt->own_robot >= 0 ? TVO_AUTH_SENDER_FLEET_NODE + (uint32_t)opt->own_robot : TVO_AUTH_SENDER_NODE;
     }
     return 0;
 }
@@ -322,11 +356,9 @@ static int install_signal_handlers(void)
     return (sigaction(SIGINT, &sa, NULL) == 0 && sigaction(SIGTERM, &sa, NULL) == 0) ? 0 : -1;
 }
 
-/* Waits for LCM traffic until deadline_us (node clock) at most; -1 on a receive error. */
-static int wait_and_handle(lcm_t *lcm, int64_t deadline_us)
+/* 1 if LCM has a message queued (its notify pipe is readable) within wait_us, 0 if not, -1 on error. */
+static int lcm_ready(lcm_t *lcm, int64_t wait_us)
 {
-    int64_t wait_us = deadline_us - monotonic_us();
-    wait_us = wait_us < 0 ? 0 : (wait_us > NODE_POLL_US ? NODE_POLL_US : wait_us);
     const int fd = lcm_get_fileno(lcm);
     fd_set readable;
     FD_ZERO(&readable);
@@ -336,9 +368,68 @@ static int wait_and_handle(lcm_t *lcm, int64_t deadline_us)
     tv.tv_usec = (suseconds_t)(wait_us % 1000000);
     const int ready = select(fd + 1, &readable, NULL, NULL, &tv);
     if (ready < 0) {
-        return g_stop_signal ? 0 : -1; /* a signal interrupts the wait: a request to stop */
+        return (errno == EINTR) ? 0 : -1; /* a signal interrupts the wait: the loop looks at it */
     }
-    return (ready > 0) ? lcm_handle(lcm) : 0;
+    return ready > 0;
+}
+
+/* Waits for LCM traffic until deadline_us (node clock) at most, then handles every queued message, up
+ * to NODE_DRAIN_MAX and not past the deadline (the node's timer comes first). -1 on a receive error. */
+static int wait_and_drain(lcm_t *lcm, int64_t deadline_us)
+{
+    int64_t wait_us = deadline_us - monotonic_us();
+    wait_us = wait_us < 0 ? 0 : (wait_us > NODE_POLL_US ? NODE_POLL_US : wait_us);
+    int ready = lcm_ready(lcm, wait_us);
+    for (int handled = 0; ready > 0 && handled < NODE_DRAIN_MAX && !g_stop_signal; ++handled) {
+        if (lcm_handle(lcm) != 0) {
+            return -1;
+        }
+        if (monotonic_us() >= deadline_us) {
+            break;
+        }
+        ready = lcm_ready(lcm, 0);
+    }
+    return ready < 0 ? -1 : 0;
+}
+
+/* The node's boot id from its counter file; exit code 2 after saying why not. */
+static int take_boot_id(const node_options_t *opt, int64_t *boot_id)
+{
+    char default_path[4096];
+    char why[600];
+    const char *path = opt->boot_file;
+    if (path == NULL) {
+        if (tvo_boot_file_default_path(default_path, sizeof(default_path), why, sizeof(why)) != 0) {
+            fprintf(stderr, "tvo_firmware_node: error: %s (--boot-file PATH)\n", why);
+            return 2;
+        }
+        path = default_path;
+    }
+    if (tvo_boot_file_next(path, boot_id, why, sizeof(why)) != 0) {
+        fprintf(stderr, "tvo_firmware_node: error: %s (%s)\n", why,
+                opt->boot_file != NULL ? "--boot-file" : "the default boot file; choose another with --boot-file PATH");
+        return 2;
+    }
+    return 0;
+}
+
+/* The counts at exit, one line of key=value (the node's counters since boot, the socket's drops). */
+static void print_summary(const lcm_node_t *self)
+{
+    const tvo_lcm_node_counters_t *c = tvo_node_counters(&self->node);
+    fprintf(stderr,
+            "tvo_firmware_node: counts boot_id=%lld accepted=%d malformed=%d unauthenticated=%d replayed=%d "
+            "wrong_boot=%d idle=%d other_session=%d predicted=%d safe_stops=%d targets_refused=%d "
+            "speed_mismatch=%d sessions=%d socket_drops=%u unsigned_drops=%u",
+            (long long)self->node.boot_id, c->accepted, c->malformed, c->unauthenticated, c->replayed, c->wrong_boot,
+            c->idle, c->other_session, c->predicted, c->safe_stops, c->targets_refused, c->speed_mismatch, c->sessions,
+            tvo_udpm_socket_drops(&self->socket), self->link.unsigned_drops);
+    for (int s = 0; s < TVO_LCM_NODE_COUNTERS_T_STATUS_SLOTS; ++s) {
+        if (c->refused[s] != 0) {
+            fprintf(stderr, " refused_%d=%d", s, c->refused[s]);
+        }
+    }
+    fprintf(stderr, "\n");
 }
 
 int main(int argc, char **argv)
@@ -360,48 +451,45 @@ int main(int argc, char **argv)
     const pid_t parent = getppid();
     /* Static: the node holds two session slots, the decoded message and the encode buffer (kilobytes). */
     static lcm_node_t self;
-    /* A keyed fleet node: node -> fleet link -> auth link (signs, names by robot) -> LCM. */
-    const int fleet = opt.own_robot >= 0;
-    if (fleet && (tvo_fleet_link_init(&self.fleet, &self.node, opt.own_robot, opt.key_file != NULL ? tvo_auth_link_publish : fleet_publish,
-                                      opt.key_file != NULL ? (void *)&self.link : (void *)&self) != 0 ||
-                  tvo_fleet_channel_name(TVO_FLEET_CH_SAMPLE, opt.own_robot, self.fleet_sample_channel,
-                                         sizeof(self.fleet_sample_channel)) != 0)) {
-        fprintf(stderr, "tvo_firmware_node: error: fleet link set-up failed\n");
-        return 1;
-    }
-    self.fleet_member = fleet;
-    if (opt.key_file != NULL) {
-        uint8_t key[TVO_AUTH_KEY_BYTES];
+    uint8_t key[TVO_AUTH_KEY_BYTES];
+    if (opt.key_file != NULL) { /* read before the boot id is spent: a bad key file changes nothing */
         char why[300];
         if (tvo_auth_key_file_read(opt.key_file, key, why, sizeof(why)) != 0) {
             fprintf(stderr, "tvo_firmware_node: error: %s\n", why);
             return 2;
         }
-        const tvo_auth_status_t keyed = tvo_auth_link_init(&self.link, key, opt.sender_id, 1u,
-                                                           fleet ? fleet_publish : publish, &self);
+    }
+    int64_t boot_id = 0;
+    const int boot_status = take_boot_id(&opt, &boot_id);
+    if (boot_status != 0) {
         memset(key, 0, sizeof(key));
-        if (keyed != TVO_AUTH_OK ||
-            tvo_auth_follow_clock(&self.link.auth, tvo_auth_wall_clock_counter, TVO_AUTH_NEW_SENDER_WINDOW_US) != TVO_AUTH_OK ||
-            (fleet && tvo_auth_link_set_namer(&self.link, tvo_fleet_link_channel_name, &self.fleet) != TVO_AUTH_OK)) {
-            fprintf(stderr, "tvo_firmware_node: error: authentication set-up failed\n");
+        return boot_status;
+    }
+    if (opt.key_file != NULL) {
+        const tvo_auth_status_t keyed = tvo_auth_link_init(&self.link, key, opt.sender_id, boot_id, publish, &self);
+        memset(key, 0, sizeof(key));
+        if (keyed != TVO_AUTH_OK) {
+            fprintf(stderr, "tvo_firmware_node: error: authentication set-up failed: %s\n", tvo_auth_status_str(keyed));
             return 1;
         }
         self.keyed = 1;
-    }
-    if (fleet) {
-        fprintf(stderr, "tvo_firmware_node: fleet node of robot %d on %s (%s; sessions of up to %d robots)\n",
-                (int)opt.own_robot, self.fleet_sample_channel, self.keyed ? "keyed bus" : "unauthenticated bus",
-                (int)tvo_node_max_robots(&self.node));
-    } else if (self.keyed) {
-        tvo_node_init(&self.node, tvo_auth_link_publish, &self.link);
     } else {
         fprintf(stderr, "tvo_firmware_node: the bus is unauthenticated (no --key-file): anyone on the network can "
                         "drive, stop or replace this session\n");
-        tvo_node_init(&self.node, publish, &self);
+    }
+    if (tvo_node_init(&self.node, (int8_t)opt.own_robot, boot_id, self.keyed ? tvo_auth_link_publish : publish,
+                      self.keyed ? (void *)&self.link : (void *)&self) != 0) {
+        fprintf(stderr, "tvo_firmware_node: error: node set-up failed (boot id %lld)\n", (long long)boot_id);
+        return 1;
     }
     for (int k = 0; k < LOG_KEYS; ++k) {
         self.limits[k].last_us = -1;
     }
+    /* Sockets on LCM's port this process inherited (a plant that started it): not the node's own. */
+    int url_sized = 0;
+    const int port = tvo_udpm_url_port(opt.url, &url_sized);
+    tvo_udpm_socket_census_t inherited;
+    tvo_udpm_socket_census(&inherited, port);
     self.lcm = lcm_create(opt.url);
     if (self.lcm == NULL) {
         fprintf(stderr,
@@ -412,35 +500,57 @@ int main(int argc, char **argv)
                 opt.url != NULL ? opt.url : "LCM default");
         return 1;
     }
-    lcm_subscribe(self.lcm, TVO_CHANNEL_SESSION, on_message, &self);
-    lcm_subscribe(self.lcm, self.fleet_member ? self.fleet_sample_channel : TVO_CHANNEL_MEASUREMENT, on_message, &self);
-    lcm_subscribe(self.lcm, TVO_CHANNEL_TARGET, on_message, &self);
+    for (int channel = TVO_NODE_CH_FIRST; channel <= TVO_NODE_CH_LAST; ++channel) {
+        if (tvo_node_channel_is_input(channel)) {
+            lcm_subscription_t *subscription = lcm_subscribe(self.lcm, tvo_node_channel_name(channel), on_message, &self);
+            /* LCM 1.3.1 queues at most 30 messages per subscription and drops the rest without a count:
+             * unbounded here, so a burst is dropped, if at all, by the kernel, which counts it. */
+            if (subscription == NULL || lcm_subscription_set_queue_capacity(subscription, 0) != 0) {
+                fprintf(stderr, "tvo_firmware_node: error: cannot subscribe to %s\n", tvo_node_channel_name(channel));
+                lcm_destroy(self.lcm);
+                return 1;
+            }
+        }
+    }
+    /* LCM's receive socket exists once something is subscribed: size its buffer, unless the URL did. */
+    const int socket_found =
+        port > 0 && tvo_udpm_socket_open(&self.socket, port, url_sized ? 0u : NODE_RECV_BUFFER_BYTES, &inherited) == 0;
+    char robots[64];
+    if (opt.own_robot >= 0) {
+        snprintf(robots, sizeof(robots), "robot %d's node", (int)opt.own_robot);
+    } else {
+        snprintf(robots, sizeof(robots), "every robot's node");
+    }
+    fprintf(stderr, "tvo_firmware_node: boot %lld, %s, %s, sessions of up to %d robots", (long long)boot_id, robots,
+            self.keyed ? "keyed" : "unauthenticated", (int)TVO_NODE_MAX_ROBOTS);
+    if (socket_found) {
+        fprintf(stderr, ", receive buffer %u B%s", self.socket.buffer_bytes,
+                self.socket.forced || url_sized || self.socket.buffer_bytes >= NODE_RECV_BUFFER_BYTES
+                    ? ""
+                    : " (capped by net.core.rmem_max; root may raise it: sysctl -w net.core.rmem_max=16777216)");
+    }
+    fprintf(stderr, "\n");
 
     int exit_code = 0;
-    while (!g_stop_signal && (opt.keep_running || !self.node.stop_requested)) {
+    while (!g_stop_signal && (opt.keep_running || !tvo_node_stop_requested(&self.node))) {
         if (opt.exit_with_parent && getppid() != parent) {
             fprintf(stderr, "tvo_firmware_node: the parent process is gone; exiting\n");
             break;
         }
-        const tvo_lcm_node_counters_t before = self.node.counters;
+        const tvo_lcm_node_counters_t before = *tvo_node_counters(&self.node);
         const uint32_t acks_before = self.node.acks;
         const int64_t deadline = tvo_node_poll(&self.node, monotonic_us());
         log_changes(&self, &before, acks_before);
-        if (wait_and_handle(self.lcm, deadline) < 0) {
+        log_socket_drops(&self);
+        if (wait_and_drain(self.lcm, deadline) < 0) {
             fprintf(stderr, "tvo_firmware_node: error: LCM receive failed\n");
             exit_code = 1;
             break;
         }
     }
+    log_socket_drops(&self);
     log_flush(&self);
-    if (self.fleet_member) {
-        fprintf(stderr,
-                "tvo_firmware_node: fleet: %u samples taken (%u late), %u refused; %u robot-periods predicted; "
-                "%u own samples answered before every robot was heard; keyed: %u frames dropped unauthenticated, "
-                "%u replayed\n",
-                self.fleet.samples_taken, self.fleet.samples_late, self.fleet.samples_refused, self.fleet.predictions,
-                self.fleet.unheard_steps, self.link.dropped_unauthenticated, self.link.dropped_replayed);
-    }
+    print_summary(&self);
     tvo_auth_clear(&self.link.auth);
     lcm_destroy(self.lcm);
     return exit_code;

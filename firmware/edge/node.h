@@ -2,23 +2,35 @@
  * The firmware node, independent of the transport: encoded LCM messages and the node's own clock
  * in, encoded messages out through a publish callback. tvo_firmware_node runs it behind LCM on the
  * host; the processor-in-the-loop program runs the same code on the microcontroller behind a
- * serial link. lcm_types/README.md ("Sessions", "Timing", "Writing your own plant") is the contract; in short:
+ * serial link. One node drives every robot of its sessions (own_robot -1) or one robot of a fleet
+ * (own_robot k): the same program on the same wire, which evaluates the joint law either way and
+ * publishes the rows of the robots it drives. lcm_types/README.md ("Sessions", "Timing", "Writing
+ * your own plant") is the contract; in short:
  *
- *   TVO_SESSION      START builds a session in a spare slot and switches to it only if every check
- *                    passed (a refused START changes nothing); a repeat of the running START is
- *                    acked again; the running id with other content is refused; STOP ends it.
- *   TVO_MEASUREMENT  (of the running session) one answer per measurement: the controller's command
- *                    applied at the period the sample serves, or, if refused, the command in force
- *                    with the reason; nothing from a refused message is kept. The first accepted
- *                    measurement chooses the barrier slack s0 (the paper's rule, in the core's step).
- *   TVO_TARGET       a streamed target sample.
- *   timer            (CLOCK_NODE) each period that passed without an accepted measurement is counted
- *                    by the core (tvo_controller_miss); once its watchdog stops the robots, a safe
- *                    stop stamped now, every period until measurements are accepted again.
+ *   TVO_NODE          (out) the node's announcement (node_status_t: its boot, own robot, state,
+ *                     counters since it started), at the first poll, every 250 ms idle, every 1 s
+ *                     running, and at once when a START is taken or a STOP ends the session.
+ *   TVO_SESSION       a START or STOP that names another boot of this node (node_boot_id) is dropped
+ *                     unanswered (counted: wrong_boot). Else: START builds a session in a spare slot
+ *                     and switches to it only if every check passed (a refused START changes
+ *                     nothing); a repeat of the running START is acked again; the running id with
+ *                     other content is refused; STOP ends it.
+ *   TVO_SAMPLE        one robot's sample (TVO_CHAIN_SAMPLE for a chain session) of the running session:
+ *                     gathered per robot; the last robot's (robot_count - 1) steps the period with
+ *                     every robot's sample of that period, a missing one predicted (CLOCK_PLANT);
+ *                     one command per driven robot answers it (the computed one, or the command in
+ *                     force with the refusal's reason): nothing from a refused period is kept.
+ *                     Telemetry (one per driven robot) follows the answer to every telemetry_every-th
+ *                     sequence. While idle: dropped, counted (idle).
+ *   TVO_TARGET        one robot's streamed target sample.
+ *   timer             (CLOCK_NODE) each period that passed without an accepted sample is counted by
+ *                     the core (tvo_controller_miss); once its watchdog stops the robots, a safe stop
+ *                     per driven robot, stamped now, every period until samples are accepted again.
  *
- * What each message does in each state (idle, running) is one table in node.c, the README's
- * "Sessions" table row by row; which period a measurement serves is the session's schedule, one
- * object per clock mode (schedule.h).
+ * The node's files, one job each: node.c (these entry points: decoding, classification, counters),
+ * node_sessions.c (the session table), node_start.c (building a session from a START),
+ * node_period.c (gathering samples, prediction, the period's step), node_publish.c (commands,
+ * telemetry at its rate, acks, announcements); node_private.h joins them.
  *
  * Times: the node's clock now_us is int64 microseconds, monotonic, in [0, TVO_WIRE_TIME_MAX_US].
  * Every integer from the wire is range-checked before arithmetic (session_codec.h).
@@ -32,27 +44,33 @@
 #include "edge_controller.h"
 #include "schedule.h"
 #include "tvo_lcm_node_counters_t.h"
+#include "tvo_lcm_node_status_t.h"
+#include "tvo_lcm_session_ack_t.h"
 #include "tvo_lcm_target_t.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-/** Encode buffer size: command, telemetry and ack are each well under 1 kB encoded. */
-#define TVO_NODE_BUFFER_BYTES 2048
+/** Encode buffer size: every message the node publishes fits (tvo_node_check_buffer; node_status_t,
+ *  the largest, is 211 bytes). */
+#define TVO_NODE_BUFFER_BYTES 256
 
-/** tvo_node_poll's answer when no deadline is pending. */
+/** tvo_node_poll's answer when no deadline is pending (never: the node always announces itself). */
 #define TVO_NODE_NO_DEADLINE TVO_SCHEDULE_NO_DEADLINE
+
+/** The most robots a session of this node may have: the build's, within the wire's. */
+#define TVO_NODE_MAX_ROBOTS (TVO_MAX_ROBOTS < TVO_LCM_SESSION_T_MAX_ROBOTS ? TVO_MAX_ROBOTS : TVO_LCM_SESSION_T_MAX_ROBOTS)
 
 typedef void (*tvo_node_publish_fn)(void *context, int channel, const uint8_t *data, uint32_t length);
 
-/**
- * Where a node's commands go instead of command_t (tvo_node_set_answer): a fleet link, which answers
- * with a row of the joint command. stamp: when, which session and measurement, and why
- * (tvo_step_wire_status); wire_flags: command_t.flags; command: every robot's row.
- */
-typedef void (*tvo_node_answer_fn)(void *context, const tvo_step_stamp_t *stamp, uint32_t wire_flags,
-                                   const tvo_command_t *command);
+/** Frames a transport (an authenticated link) dropped before the node saw them: counted in its counters. */
+typedef enum {
+    TVO_NODE_DROP_MALFORMED = 0,      /* not a message of its channel (length, fingerprint) */
+    TVO_NODE_DROP_UNAUTHENTICATED = 1, /* keyed: the tag did not verify */
+    TVO_NODE_DROP_REPLAYED = 2,       /* keyed: the counter was not above its sender's last */
+    TVO_NODE_DROP_COUNT
+} tvo_node_drop_t;
 
 /** The node's states (lcm_types/README.md "Sessions"): idle, or running one session. */
 typedef enum {
@@ -61,54 +79,124 @@ typedef enum {
     TVO_NODE_STATE_COUNT
 } tvo_node_state_t;
 
-/** What a decoded message is to the node in its state: a row of the session table (node.c). */
+/** What a decoded message is to the node in its state: a row of the session table (node_sessions.c). */
 typedef enum {
     TVO_NODE_EVENT_NONE = 0,           /* nothing handled yet, or a message that did not decode */
+    TVO_NODE_EVENT_WRONG_BOOT,         /* a session message that names another boot of this node */
     TVO_NODE_EVENT_START,              /* START of an id that is not running */
     TVO_NODE_EVENT_START_REPEAT,       /* START of the running id, the same content (any utime) */
     TVO_NODE_EVENT_START_CONFLICT,     /* START of the running id with other content */
     TVO_NODE_EVENT_STOP,               /* STOP of the running id */
     TVO_NODE_EVENT_STOP_OTHER,         /* STOP of an id that is not running */
     TVO_NODE_EVENT_OTHER_ACTION,       /* a session message that is neither START nor STOP */
-    TVO_NODE_EVENT_MEASUREMENT,        /* of the running session; when idle, of any */
-    TVO_NODE_EVENT_MEASUREMENT_OTHER,  /* of another session id than the running one */
+    TVO_NODE_EVENT_SAMPLE,             /* a robot's sample of the running session; when idle, of any */
+    TVO_NODE_EVENT_SAMPLE_OTHER,       /* of another session id than the running one */
     TVO_NODE_EVENT_TARGET,             /* a streamed target sample of the running session; when idle, of any */
     TVO_NODE_EVENT_TARGET_OTHER,       /* of another session id than the running one */
     TVO_NODE_EVENT_COUNT
 } tvo_node_event_t;
 
-/** A session: its controller and problem, and its schedule (clock mode, timing, where it stands). */
+/** The joint command a robot's prediction follows: in force from the period its sequence serves on. */
+typedef struct {
+    int64_t sequence;                        /* the sample it answered; -1: none (robots at rest) */
+    double speed_mps[TVO_MAX_ROBOTS];
+    double turn_rate_radps[TVO_MAX_ROBOTS];
+} tvo_node_joint_command_t;
+
+/** What the running session knows of its robots between periods (node_period.c). */
+typedef struct {
+    tvo_lcm_unicycle_sample_t pending[TVO_MAX_ROBOTS]; /* per robot: its newest sample of a period not yet stepped */
+    uint8_t has_pending[TVO_MAX_ROBOTS];
+    tvo_step_robot_state_t known[TVO_MAX_ROBOTS];      /* per robot: its last state a committed period used */
+    uint8_t known_measured[TVO_MAX_ROBOTS];            /* known[r] came from r's own sample */
+    int64_t heard[TVO_MAX_ROBOTS];                     /* per robot: the sequence of its newest sample taken; -1 none */
+    tvo_node_joint_command_t commands[2];              /* [0] the newest committed joint command, [1] the one before */
+    int64_t last_step;                                 /* sequence of the last committed period; -1 none */
+} tvo_node_gathering_t;
+
+/** A session: its controller and problem, its schedule, and what it gathered of its robots. */
 typedef struct {
     tvo_edge_controller_t controller;
     tvo_problem_t problem;             /* objective, targets and constraint terms the controller points into */
     tvo_schedule_t schedule;
-    int64_t session_id;
+    tvo_node_gathering_t gathering;
+    int32_t session_id;
     uint64_t content_hash;             /* of the START past its utime: a repeat is recognised */
 } tvo_node_session_t;
 
+/** A period's scratch (node_period.c): written before it is read, nothing between periods. */
 typedef struct {
+    tvo_step_period_t rows;                  /* every robot's row of the joint measurement */
+    tvo_step_robot_state_t next[TVO_MAX_ROBOTS]; /* the robots' states the period commits, if it does */
+    uint8_t measured[TVO_MAX_ROBOTS];        /* next[r] is r's own sample of the period */
+    int64_t heard[TVO_MAX_ROBOTS];           /* the sequence of r's newest sample the period takes */
+    int32_t predicted;                       /* robots predicted (missing or late) */
+    int unheard;                             /* a robot could not be predicted */
+    tvo_edge_measurement_t measurement;
+    tvo_edge_command_t command;
+} tvo_node_period_work_t;
+
+typedef struct {
+    int8_t own_robot;                        /* the robot this node drives, or -1: every robot */
+    int64_t boot_id;                         /* > 0, never the same twice for this node */
     tvo_node_session_t slot[2];              /* the running session and a spare to build a START in */
     uint8_t running;                         /* index of the running slot */
     uint8_t state;                           /* tvo_node_state_t */
     union {                                  /* the message being handled: decoded in place, not on the stack */
         tvo_lcm_session_t session;
-        tvo_lcm_measurement_t measurement;
+        tvo_lcm_unicycle_sample_t unicycle;
+        tvo_lcm_chain_sample_t chain;
         tvo_lcm_target_t target;
     } rx;
-    tvo_step_measurement_t measurement;      /* rx.measurement as the node judges it */
+    tvo_node_period_work_t work;
     uint8_t buffer[TVO_NODE_BUFFER_BYTES];   /* encode buffer: publishing allocates nothing */
+    tvo_lcm_node_status_t status;            /* the announcement being encoded */
     tvo_node_publish_fn publish;
     void *publish_context;
-    tvo_node_answer_fn answer;               /* NULL: commands go out as command_t */
-    void *answer_context;
     uint8_t stop_requested;                  /* a STOP ended the running session */
-    tvo_lcm_node_counters_t counters;        /* since the running session started (in telemetry) */
+    uint8_t announced;                       /* an announcement went out (the first poll makes one) */
+    int64_t next_announcement_us;            /* node clock */
+    tvo_lcm_node_counters_t counters;        /* since init (node_status_t.counters) */
     tvo_lcm_session_ack_t last_ack;          /* the last ack published, for the transport's log */
     uint32_t acks;                           /* acks published since init */
     tvo_node_event_t last_event;             /* what the last decoded message was, for the transport's log */
-    int32_t last_refusal;                    /* why the last measurement was refused (command_t.STATUS_*) */
-    int32_t last_target_status;              /* how the last streamed target sample was taken (command_t.STATUS_*) */
+    int32_t last_refusal;                    /* why the last sample was refused (command_header_t.STATUS_*) */
+    int32_t last_target_status;              /* how the last streamed target sample was taken (command_header_t.STATUS_*) */
 } tvo_node_t;
+
+/**
+ * A node of boot boot_id (> 0) driving own_robot (0 .. TVO_NODE_MAX_ROBOTS - 1), or every robot of
+ * its sessions (-1), publishing through publish. Returns 0, or -1 for a NULL node or publish, or an
+ * argument out of range (the node is then unusable: every call on it changes nothing).
+ */
+int tvo_node_init(tvo_node_t *node, int8_t own_robot, int64_t boot_id, tvo_node_publish_fn publish,
+                  void *publish_context);
+
+/**
+ * Handles one encoded message on `channel` at node time now_us. Returns the channel it was, or 0 if
+ * it is not one the node takes (not counted), or it is no message of its channel (counted:
+ * malformed; a frame whose length is not the channel's message size, or that does not decode).
+ */
+int tvo_node_handle(tvo_node_t *node, int channel, const uint8_t *data, uint32_t length, int64_t now_us);
+
+/**
+ * The node's timer: publishes what is due at now_us (its announcement; a CLOCK_NODE session's safe
+ * stops) and returns the next deadline on the node's clock. Call it at least at every deadline it
+ * returns; calling it more often is harmless.
+ */
+int64_t tvo_node_poll(tvo_node_t *node, int64_t now_us);
+
+/** Counts a frame a transport dropped before the node saw it (TVO_NODE_DROP_*). */
+void tvo_node_count_drop(tvo_node_t *node, tvo_node_drop_t why);
+
+/** The node's counters since init (node_status_t.counters), or NULL for a NULL node. */
+const tvo_lcm_node_counters_t *tvo_node_counters(const tvo_node_t *node);
+
+/** 1 if a STOP ended the running session (tvo_firmware_node then exits), else 0. */
+int tvo_node_stop_requested(const tvo_node_t *node);
+
+/** The running session, or NULL. */
+const tvo_node_session_t *tvo_node_session(const tvo_node_t *node);
 
 /** One transition of the session table: the state after a message, if its action took effect or not. */
 typedef struct {
@@ -121,45 +209,9 @@ typedef struct {
 /** The session table's cell for (state, event) (tests and logs); 0 unless both are in range. */
 int tvo_node_transition_info(tvo_node_state_t state, tvo_node_event_t event, tvo_node_transition_info_t *info);
 
-/** 0 if the encode buffer holds every message the node publishes (sizes are constants). */
+/** 0 if the encode buffer holds every message the node publishes and the channel table's sizes are
+ *  the generated code's (a start-up self-check), else -1. */
 int tvo_node_check_buffer(void);
-
-void tvo_node_init(tvo_node_t *node, tvo_node_publish_fn publish, void *publish_context);
-
-/**
- * Commands go to `answer` instead of out as command_t, so that sessions may have as many robots as
- * the build drives (TVO_MAX_ROBOTS, beyond the wire's TVO_WIRE_MAX_ROBOTS) and measurements come from
- * tvo_node_measure: a fleet link's. Such a node serves unicycle sessions only; a session of more robots
- * than the wire carries takes no streamed targets, and its telemetry carries no per-output vectors.
- * Set it while the node is idle (before the first START). Returns 0, or -1 for a NULL node or
- * answer, or a node running a session.
- */
-int tvo_node_set_answer(tvo_node_t *node, tvo_node_answer_fn answer, void *answer_context);
-
-/** Most robots a session of this node may have: the build's with an answer, else also the wire's. */
-uint8_t tvo_node_max_robots(const tvo_node_t *node);
-
-/**
- * Handles one encoded message on `channel` at node time now_us. Returns the channel it was, or 0
- * if it is not one the node takes or did not decode (counted in counters.undecodable).
- */
-int tvo_node_handle(tvo_node_t *node, int channel, const uint8_t *data, uint32_t length, int64_t now_us);
-
-/**
- * A joint measurement already decoded (a fleet link's, gathered from per-robot samples), handled as
- * a measurement on TVO_MEASUREMENT is. Returns TVO_NODE_CH_MEASUREMENT, or 0 for a NULL argument.
- */
-int tvo_node_measure(tvo_node_t *node, const tvo_step_measurement_t *measurement, int64_t now_us);
-
-/**
- * The node's timer (CLOCK_NODE sessions): publishes what is due at now_us (a safe stop) and
- * returns the next deadline on the node's clock, or TVO_NODE_NO_DEADLINE. Call it at least at
- * every deadline it returns; calling it more often is harmless.
- */
-int64_t tvo_node_poll(tvo_node_t *node, int64_t now_us);
-
-/** The running session, or NULL. */
-const tvo_node_session_t *tvo_node_session(const tvo_node_t *node);
 
 #ifdef __cplusplus
 }

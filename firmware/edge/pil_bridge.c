@@ -1,16 +1,23 @@
 /*
  * tvo_pil_bridge: joins LCM and the serial link of a processor-in-the-loop target (QEMU's -serial
- * socket). Messages on the node's input channels (session, measurement, target: channels.h) go to
- * the target as frames (serial_frame.h: COBS + CRC-32, tagged with channels.h's numbers); frames from
- * the target (session ack, command, telemetry) are republished on LCM unchanged. The bridge decodes
- * no message: it moves LCM's encoded bytes, so the target sees exactly what tvo_firmware_node would.
+ * socket). Messages on the node's input channels (tvo_node_channel_is_input in channels.h) go to the
+ * target as frames (serial_frame.h: COBS + CRC-32, tagged with channels.h's numbers); frames from the
+ * target (its acks, commands, telemetry and announcements) are republished on LCM unchanged. The
+ * bridge moves LCM's encoded bytes (trailers included on a keyed bus), so the target sees exactly
+ * what tvo_firmware_node would, with one exception, the link's own queue policy: a session_t is
+ * 11.4 kB, and QEMU's UART carries about 4 kB/s (a START takes 3 s), while a plant repeats its
+ * START every 100 .. 800 ms until the ack comes; queued behind each other, six repeats held the first
+ * sample back 18 s. So a repeat of the session message in flight (same session id and action) is held
+ * while that one is on its way (until the target acks it, or for its length at 2 kB/s): dropped if the
+ * ack comes (the plant hears it), written if not. Other session messages, and every other frame, go at
+ * once. The bridge reads the session id and action of session messages and acks, nothing else.
  *
  * Usage: tvo_pil_bridge --connect HOST:PORT [--lcm-url URL] [--corrupt-every N] [--connect-timeout-s S]
- *   --corrupt-every N   flip one bit in every N-th measurement frame sent to the target and in every
- *                       N-th command frame coming from it (a test of the framing: each end must drop
- *                       those frames, which then look like lost messages). Counted per channel, so
- *                       which messages are hit does not depend on timing (how often the plant repeated
- *                       its START); session frames are never hit (a lost STOP would leave the target
+ *   --corrupt-every N   flip one bit in every N-th sample frame sent to the target and in every N-th
+ *                       command frame coming from it (a test of the framing: each end must drop those
+ *                       frames, which then look like lost messages). Counted per kind, so which
+ *                       messages are hit does not depend on timing (how often the plant repeated its
+ *                       START); session frames are never hit (a lost STOP would leave the target
  *                       running).
  * Ends when the target closes the link (its program ended), on SIGINT/SIGTERM, or on an error;
  * prints the frame counts as key=value pairs. Exit code 0, or 1 on errors, 2 on bad arguments.
@@ -32,21 +39,33 @@
 
 #include <lcm/lcm.h>
 
+#include "auth.h"
 #include "channels.h"
 #include "serial_frame.h"
+#include "tvo_lcm_session_ack_t.h"
+#include "tvo_lcm_session_t.h"
 
 static volatile sig_atomic_t g_stop_signal = 0;
 
 #define BRIDGE_READ_CHUNK 4096
 #define BRIDGE_POLL_MS 100
+/* LCM messages handled per wake-up at most before the serial side is served again. */
+#define BRIDGE_DRAIN_MAX 256
+/* The slowest link a held session repeat waits for: the one in flight gets its length at this rate. */
+#define SESSION_LINK_FLOOR_BYTES_PER_S 2000.0
+#define SESSION_IN_FLIGHT_MIN_S 0.5
+
+/* Every frame the link carries fits a serial frame: the largest message, signed. */
+_Static_assert(TVO_FRAME_MAX_PAYLOAD >= TVO_NODE_LARGEST_MESSAGE_BYTES + TVO_AUTH_TRAILER_BYTES,
+               "a serial frame holds a signed session_t");
 
 typedef struct {
     lcm_t *lcm;
     int socket_fd;
     unsigned long corrupt_every;
     unsigned long frames_to_target;
-    unsigned long measurements_to_target;
-    unsigned long measurements_corrupted;
+    unsigned long samples_to_target;
+    unsigned long samples_corrupted;
     unsigned long frames_from_target;         /* passed the checks and republished */
     unsigned long commands_from_target;       /* intact as sent, before any corruption */
     unsigned long commands_corrupted;
@@ -59,7 +78,43 @@ typedef struct {
      * holds, so an overlong frame still overflows the decoder and is dropped there. */
     uint8_t raw[TVO_FRAME_MAX_ENCODED + 1u];
     size_t raw_length;
+    /* The session message on its way to the target, and a repeat of it held meanwhile. */
+    int session_in_flight;
+    int32_t flight_session_id;
+    int8_t flight_action;
+    double flight_until_s;                    /* written then; given up on (not acked) at this time */
+    int repeat_held;
+    uint8_t held[TVO_FRAME_MAX_ENCODED];
+    size_t held_length;
+    unsigned long repeats_held;               /* repeats that waited for the link */
+    unsigned long repeats_dropped;            /* repeats the target's ack made unneeded */
 } bridge_t;
+
+static double monotonic_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* The session id and action of a session message or an ack (LCM-encoded; a keyed frame's trailer after
+ * it is not read); 0, or -1 if it does not decode. */
+static int session_of(int channel, const uint8_t *data, uint32_t length, int32_t *session_id, int8_t *action)
+{
+    static tvo_lcm_session_t session;
+    tvo_lcm_session_ack_t ack;
+    if (channel == TVO_NODE_CH_SESSION && tvo_lcm_session_t_decode(data, 0, (int)length, &session) > 0) {
+        *session_id = session.session_id;
+        *action = session.action;
+        return 0;
+    }
+    if (channel == TVO_NODE_CH_SESSION_ACK && tvo_lcm_session_ack_t_decode(data, 0, (int)length, &ack) > 0) {
+        *session_id = ack.session_id;
+        *action = ack.action;
+        return 0;
+    }
+    return -1;
+}
 
 static void on_signal(int signo)
 {
@@ -100,6 +155,38 @@ static void corrupt(uint8_t *frame, size_t length)
     }
 }
 
+static void write_to_target(bridge_t *b, const uint8_t *frame, size_t length)
+{
+    ++b->frames_to_target;
+    if (write_all(b->socket_fd, frame, length) != 0) {
+        fprintf(stderr, "tvo_pil_bridge: error: writing to the target failed: %s\n", strerror(errno));
+        b->failed = 1;
+    }
+}
+
+/* A session message goes on its way: the link is busy with it until its ack, or its length at the floor rate. */
+static void session_in_flight(bridge_t *b, int32_t session_id, int8_t action, size_t length)
+{
+    const double transfer_s = (double)length / SESSION_LINK_FLOOR_BYTES_PER_S;
+    b->session_in_flight = 1;
+    b->flight_session_id = session_id;
+    b->flight_action = action;
+    b->flight_until_s = monotonic_s() + (transfer_s > SESSION_IN_FLIGHT_MIN_S ? transfer_s : SESSION_IN_FLIGHT_MIN_S);
+}
+
+/* The session message in flight was not acked in its time: the held repeat, if any, goes now. */
+static void session_timer(bridge_t *b)
+{
+    if (b->session_in_flight && monotonic_s() >= b->flight_until_s) {
+        b->session_in_flight = 0;
+        if (b->repeat_held) {
+            b->repeat_held = 0;
+            session_in_flight(b, b->flight_session_id, b->flight_action, b->held_length);
+            write_to_target(b, b->held, b->held_length);
+        }
+    }
+}
+
 static void to_target(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
 {
     bridge_t *b = (bridge_t *)user;
@@ -112,15 +199,27 @@ static void to_target(const lcm_recv_buf_t *rbuf, const char *channel, void *use
                 rbuf->data_size, channel);
         return;
     }
-    ++b->frames_to_target;
-    if (number == TVO_NODE_CH_MEASUREMENT && is_nth(b, ++b->measurements_to_target) && length > 2u) {
+    int32_t session_id = 0;
+    int8_t action = 0;
+    if (number == TVO_NODE_CH_SESSION &&
+        session_of(number, (const uint8_t *)rbuf->data, rbuf->data_size, &session_id, &action) == 0) {
+        session_timer(b);
+        if (b->session_in_flight && session_id == b->flight_session_id && action == b->flight_action) {
+            memcpy(b->held, b->frame, length); /* the newest repeat waits for the link */
+            b->held_length = length;
+            b->repeats_held += b->repeat_held ? 0u : 1u;
+            b->repeat_held = 1;
+            return;
+        }
+        b->repeat_held = 0; /* another session message: a held repeat of the last one is stale */
+        session_in_flight(b, session_id, action, length);
+    }
+    const int sample = number == TVO_NODE_CH_SAMPLE || number == TVO_NODE_CH_CHAIN_SAMPLE;
+    if (sample && is_nth(b, ++b->samples_to_target) && length > 2u) {
         corrupt(b->frame, length - 1u); /* length - 1: the delimiter stays */
-        ++b->measurements_corrupted;
+        ++b->samples_corrupted;
     }
-    if (write_all(b->socket_fd, b->frame, length) != 0) {
-        fprintf(stderr, "tvo_pil_bridge: error: writing to the target failed: %s\n", strerror(errno));
-        b->failed = 1;
-    }
+    write_to_target(b, b->frame, length);
 }
 
 static int connect_to(const char *host_port, double timeout_s)
@@ -180,7 +279,9 @@ static int peek_channel(bridge_t *b)
  * is dropped and counted by the decoder) and republish it. */
 static void frame_from_target(bridge_t *b)
 {
-    if (peek_channel(b) == TVO_NODE_CH_COMMAND && is_nth(b, ++b->commands_from_target)) {
+    const int peeked = peek_channel(b);
+    const int command = peeked == TVO_NODE_CH_COMMAND || peeked == TVO_NODE_CH_CHAIN_COMMAND;
+    if (command && is_nth(b, ++b->commands_from_target)) {
         corrupt(b->raw, b->raw_length);
         ++b->commands_corrupted;
     }
@@ -197,6 +298,15 @@ static void frame_from_target(bridge_t *b)
     if (name == NULL) {
         fprintf(stderr, "tvo_pil_bridge: frame on unknown channel %u (dropped)\n", (unsigned)channel);
         return;
+    }
+    int32_t session_id = 0;
+    int8_t action = 0;
+    if (channel == TVO_NODE_CH_SESSION_ACK && b->session_in_flight &&
+        session_of(channel, b->payload, (uint32_t)length, &session_id, &action) == 0 &&
+        session_id == b->flight_session_id && action == b->flight_action) {
+        b->session_in_flight = 0; /* it arrived: the plant hears the ack, a held repeat is not needed */
+        b->repeats_dropped += b->repeat_held ? 1u : 0u;
+        b->repeat_held = 0;
     }
     ++b->frames_from_target;
     lcm_publish(b->lcm, name, b->payload, (unsigned)length);
@@ -288,9 +398,11 @@ int main(int argc, char **argv)
         close(b.socket_fd);
         return 1;
     }
-    lcm_subscribe(b.lcm, TVO_CHANNEL_SESSION, to_target, &b);
-    lcm_subscribe(b.lcm, TVO_CHANNEL_MEASUREMENT, to_target, &b);
-    lcm_subscribe(b.lcm, TVO_CHANNEL_TARGET, to_target, &b);
+    for (int channel = TVO_NODE_CH_FIRST; channel <= TVO_NODE_CH_LAST; ++channel) {
+        if (tvo_node_channel_is_input(channel)) {
+            lcm_subscribe(b.lcm, tvo_node_channel_name(channel), to_target, &b);
+        }
+    }
 
     uint8_t chunk[BRIDGE_READ_CHUNK];
     int link_open = 1;
@@ -313,14 +425,24 @@ int main(int argc, char **argv)
                 link_open = 0; /* the target's program ended and QEMU closed the socket */
             }
         }
-        if (fds[0].revents & POLLIN) {
-            lcm_handle(b.lcm);
+        session_timer(&b);
+        /* Everything LCM has queued, up to a bound, before the serial side is looked at again. */
+        for (int handled = 0; (fds[0].revents & POLLIN) && handled < BRIDGE_DRAIN_MAX; ++handled) {
+            if (lcm_handle(b.lcm) != 0) {
+                break;
+            }
+            struct pollfd more = {lcm_get_fileno(b.lcm), POLLIN, 0};
+            if (poll(&more, 1, 0) <= 0) {
+                break;
+            }
         }
     }
     fprintf(stderr,
-            "tvo_pil_bridge: frames to_target=%lu measurements_to_target=%lu measurements_corrupted=%lu "
+            "tvo_pil_bridge: frames to_target=%lu session_repeats_held=%lu session_repeats_dropped=%lu "
+            "samples_to_target=%lu samples_corrupted=%lu "
             "from_target_ok=%lu from_target_dropped=%lu commands_from_target=%lu commands_corrupted=%lu\n",
-            b.frames_to_target, b.measurements_to_target, b.measurements_corrupted, b.frames_from_target,
+            b.frames_to_target, b.repeats_held, b.repeats_dropped, b.samples_to_target, b.samples_corrupted,
+            b.frames_from_target,
             (unsigned long)b.decoder.frames_dropped, b.commands_from_target, b.commands_corrupted);
     lcm_destroy(b.lcm);
     close(b.socket_fd);

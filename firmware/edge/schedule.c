@@ -48,7 +48,7 @@ int64_t tvo_schedule_plant_utime(const tvo_schedule_t *schedule, int64_t schedul
     return tvo_schedule_clamp_time(schedule_us - schedule->anchor.offset_us);
 }
 
-tvo_node_status_t tvo_schedule_place(const tvo_schedule_t *schedule, const tvo_step_measurement_t *msg, int64_t now_us,
+tvo_node_status_t tvo_schedule_place(const tvo_schedule_t *schedule, const tvo_lcm_sample_header_t *msg, int64_t now_us,
                                 tvo_schedule_placement_t *placement)
 {
     memset(placement, 0, sizeof(*placement));

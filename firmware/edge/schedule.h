@@ -51,16 +51,16 @@ typedef struct {
     /** A repeat of the running START (same content): what a later one may still move. */
     void (*repeat_start)(tvo_schedule_t *schedule, const tvo_lcm_session_t *msg);
     /** The period a measurement (wire times already in range) serves and its stamp, or why none. */
-    tvo_node_status_t (*place)(const tvo_schedule_t *schedule, const tvo_step_measurement_t *msg, int64_t now_us,
+    tvo_node_status_t (*place)(const tvo_schedule_t *schedule, const tvo_lcm_sample_header_t *msg, int64_t now_us,
                           tvo_schedule_placement_t *placement);
     /** A measurement was served at *placement: what the clock mode restarts from it. */
     void (*accepted)(tvo_schedule_t *schedule, const tvo_schedule_placement_t *placement);
     /** A refused measurement's vote on the anchor: 1 when the vote carries and *moved holds the anchor
      *  it agrees on (the schedule keeps only the vote's count until the caller commits *moved). */
-    int (*vote)(tvo_schedule_t *schedule, const tvo_step_measurement_t *msg, const tvo_step_why_t *refusal, int64_t now_us,
+    int (*vote)(tvo_schedule_t *schedule, const tvo_lcm_sample_header_t *msg, const tvo_step_why_t *refusal, int64_t now_us,
                 tvo_schedule_anchor_t *moved);
     /** The plant time a refusal is stamped with: never before the measurement. */
-    int64_t (*refusal_utime)(const tvo_schedule_t *schedule, const tvo_step_measurement_t *msg, int64_t now_us);
+    int64_t (*refusal_utime)(const tvo_schedule_t *schedule, const tvo_lcm_sample_header_t *msg, int64_t now_us);
     /** Counts a refusal; 1 when the clock mode's own rule stops the robots. The one such rule is
      *  CLOCK_PLANT's streak (schedule_plant_clock.c): with no timer there, watchdog_periods refusals in a
      *  row stand for the periods the core's watchdog would count, and the node answers TVO_NODE_REFUSAL_STREAK. */
@@ -131,7 +131,7 @@ void tvo_schedule_start(tvo_schedule_t *schedule, const tvo_schedule_ops_t *ops,
  * rule), and that its command could be stamped on the wire and its age counted by the core's
  * uint32 ticks. TVO_NODE_IMPLAUSIBLE_STAMP, _NOT_LATER_PERIOD or _STALE say why it serves no period.
  */
-tvo_node_status_t tvo_schedule_place(const tvo_schedule_t *schedule, const tvo_step_measurement_t *msg, int64_t now_us,
+tvo_node_status_t tvo_schedule_place(const tvo_schedule_t *schedule, const tvo_lcm_sample_header_t *msg, int64_t now_us,
                                 tvo_schedule_placement_t *placement);
 
 /** A measurement was served at `placement`: the sequence and the watchdog are anchored on it. */

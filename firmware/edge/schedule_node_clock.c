@@ -35,7 +35,7 @@ static void node_repeat_start(tvo_schedule_t *schedule, const tvo_lcm_session_t 
     (void)msg;
 }
 
-static tvo_node_status_t node_place(const tvo_schedule_t *schedule, const tvo_step_measurement_t *msg, int64_t now_us,
+static tvo_node_status_t node_place(const tvo_schedule_t *schedule, const tvo_lcm_sample_header_t *msg, int64_t now_us,
                                tvo_schedule_placement_t *placement)
 {
     placement->stamp_us = msg->utime + schedule->anchor.offset_us;
@@ -59,12 +59,11 @@ static void node_accepted(tvo_schedule_t *schedule, const tvo_schedule_placement
  * one offset, TVO_SCHEDULE_ANCHOR_VOTES in a row, re-anchor the schedule to it. Once tracking started
  * the offset is fixed (the objective's time is counting).
  */
-static int node_vote(tvo_schedule_t *schedule, const tvo_step_measurement_t *msg, const tvo_step_why_t *refusal, int64_t now_us,
+static int node_vote(tvo_schedule_t *schedule, const tvo_lcm_sample_header_t *msg, const tvo_step_why_t *refusal, int64_t now_us,
                      tvo_schedule_anchor_t *moved)
 {
     *moved = schedule->anchor;
-    const int in_range = tvo_schedule_wire_time_ok(msg->utime) && tvo_schedule_wire_time_ok(msg->sequence) &&
-                         msg->robot_count == (int32_t)schedule->timing.robot_count;
+    const int in_range = tvo_schedule_wire_time_ok(msg->utime) && tvo_schedule_wire_time_ok(msg->sequence);
     const int timing_refusal =
         refusal->node == TVO_NODE_IMPLAUSIBLE_STAMP || refusal->node == TVO_NODE_STALE ||
         (refusal->node == TVO_NODE_OK && refusal->error == TVO_OK &&
@@ -83,7 +82,7 @@ static int node_vote(tvo_schedule_t *schedule, const tvo_step_measurement_t *msg
 }
 
 /* The measurement's stamp, or the node's now (plant clock) if later. */
-static int64_t node_refusal_utime(const tvo_schedule_t *schedule, const tvo_step_measurement_t *msg, int64_t now_us)
+static int64_t node_refusal_utime(const tvo_schedule_t *schedule, const tvo_lcm_sample_header_t *msg, int64_t now_us)
 {
     const int64_t stamp = tvo_schedule_clamp_time(msg->utime);
     const int64_t plant_now = tvo_schedule_plant_utime(schedule, now_us);

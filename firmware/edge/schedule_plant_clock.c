@@ -65,7 +65,7 @@ static void plant_repeat_start(tvo_schedule_t *schedule, const tvo_lcm_session_t
     }
 }
 
-static tvo_node_status_t plant_place(const tvo_schedule_t *schedule, const tvo_step_measurement_t *msg, int64_t now_us,
+static tvo_node_status_t plant_place(const tvo_schedule_t *schedule, const tvo_lcm_sample_header_t *msg, int64_t now_us,
                                 tvo_schedule_placement_t *placement)
 {
     (void)now_us;
@@ -110,13 +110,12 @@ static void plant_accepted(tvo_schedule_t *schedule, const tvo_schedule_placemen
  * window move the window to the last of them (a plant that could not be served within it, its
  * robot inside an obstacle or its target stream late, is not refused for ever).
  */
-static int plant_vote(tvo_schedule_t *schedule, const tvo_step_measurement_t *msg, const tvo_step_why_t *refusal, int64_t now_us,
+static int plant_vote(tvo_schedule_t *schedule, const tvo_lcm_sample_header_t *msg, const tvo_step_why_t *refusal, int64_t now_us,
                       tvo_schedule_anchor_t *moved)
 {
     (void)now_us;
     *moved = schedule->anchor;
-    const int in_range = tvo_schedule_wire_time_ok(msg->utime) && tvo_schedule_wire_time_ok(msg->sequence) &&
-                         msg->robot_count == (int32_t)schedule->timing.robot_count;
+    const int in_range = tvo_schedule_wire_time_ok(msg->utime) && tvo_schedule_wire_time_ok(msg->sequence);
     if (!in_range || refusal->node != TVO_NODE_IMPLAUSIBLE_STAMP) {
         schedule->votes = 0u;
         return 0;
@@ -142,7 +141,7 @@ static int plant_vote(tvo_schedule_t *schedule, const tvo_step_measurement_t *ms
     return 1;
 }
 
-static int64_t plant_refusal_utime(const tvo_schedule_t *schedule, const tvo_step_measurement_t *msg, int64_t now_us)
+static int64_t plant_refusal_utime(const tvo_schedule_t *schedule, const tvo_lcm_sample_header_t *msg, int64_t now_us)
 {
     (void)schedule;
     (void)now_us;

@@ -13,11 +13,15 @@
 #include <stddef.h>
 #include <stdint.h>
 
-/** Largest payload a frame carries (an encoded session message is well below). */
-#define TVO_FRAME_MAX_PAYLOAD 4096u
+/** Largest payload a frame carries: the largest message of the wire (session_t) with an authentication
+ *  trailer, rounded up to 64 bytes (pil.c and pil_bridge.c check at build time that it holds them). */
+#define TVO_FRAME_MAX_PAYLOAD 11456u
 /** Packet = channel + payload + CRC; COBS adds one byte per 254 plus one; then the 0x00 delimiter. */
-#define TVO_FRAME_MAX_PACKET (1u + TVO_FRAME_MAX_PAYLOAD + 4u)
-#define TVO_FRAME_MAX_ENCODED (TVO_FRAME_MAX_PACKET + TVO_FRAME_MAX_PACKET / 254u + 2u)
+#define TVO_FRAME_PACKET_BYTES(payload_bytes) (1u + (payload_bytes) + 4u)
+#define TVO_FRAME_ENCODED_BYTES(payload_bytes)                                                                       \
+    (TVO_FRAME_PACKET_BYTES(payload_bytes) + TVO_FRAME_PACKET_BYTES(payload_bytes) / 254u + 2u)
+#define TVO_FRAME_MAX_PACKET TVO_FRAME_PACKET_BYTES(TVO_FRAME_MAX_PAYLOAD)
+#define TVO_FRAME_MAX_ENCODED TVO_FRAME_ENCODED_BYTES(TVO_FRAME_MAX_PAYLOAD)
 
 typedef enum {
     TVO_FRAME_OK = 0,
@@ -33,8 +37,8 @@ typedef enum {
 uint32_t tvo_crc32(uint32_t crc, const uint8_t *data, size_t length);
 
 /**
- * Encodes one frame into out (capacity out_capacity >= TVO_FRAME_MAX_ENCODED is always enough),
- * delimiter included; *out_length receives its length.
+ * Encodes one frame into out (capacity TVO_FRAME_ENCODED_BYTES(payload_length) is always enough;
+ * TVO_FRAME_MAX_ENCODED for any payload), delimiter included; *out_length receives its length.
  */
 tvo_frame_status_t tvo_frame_encode(uint8_t channel, const uint8_t *payload, size_t payload_length, uint8_t *out,
                                     size_t out_capacity, size_t *out_length);
@@ -52,8 +56,9 @@ void tvo_frame_decoder_init(tvo_frame_decoder_t *decoder);
 
 /**
  * Consumes one byte. On TVO_FRAME_OK a frame ended with this byte and passed its checks: *channel,
- * payload[0 .. *payload_length) hold it (payload capacity >= TVO_FRAME_MAX_PAYLOAD). Errors mean a
- * frame ended with this byte and was dropped (and counted).
+ * payload[0 .. *payload_length) hold it (payload capacity >= TVO_FRAME_MAX_PAYLOAD). payload may be
+ * the decoder's own buffer (a board saves a second frame's worth of RAM): the payload is then valid
+ * until the next byte is pushed. Errors mean a frame ended with this byte and was dropped (and counted).
  */
 tvo_frame_status_t tvo_frame_decoder_push(tvo_frame_decoder_t *decoder, uint8_t byte, uint8_t *channel,
                                           uint8_t *payload, size_t *payload_length);

@@ -10,6 +10,7 @@
 #include "internal/constraints.h"
 #include "internal/sample_clock.h"
 #include "step_codec.h"
+#include "tvo_lcm_node_status_t.h"
 #include "wire_real.h"
 
 /* The wire's fixed arrays must hold what the core can use (the reverse is checked per count). */
@@ -26,6 +27,7 @@ SESSION_PARAM_ON_WIRE(ACCEL_MAX); SESSION_PARAM_ON_WIRE(SPEED_MAX); SESSION_PARA
 SESSION_PARAM_ON_WIRE(WATCHDOG); SESSION_PARAM_ON_WIRE(ROBOT_COUNT); SESSION_PARAM_ON_WIRE(OBJECTIVE);
 SESSION_PARAM_ON_WIRE(VELOCITY_SOURCE); SESSION_PARAM_ON_WIRE(INITIAL_SPEED); SESSION_PARAM_ON_WIRE(EPOCH);
 SESSION_PARAM_ON_WIRE(CLOCK_SOURCE); SESSION_PARAM_ON_WIRE(PLANT_KIND); SESSION_PARAM_ON_WIRE(SESSION_ID);
+SESSION_PARAM_ON_WIRE(PROTOCOL_VERSION); SESSION_PARAM_ON_WIRE(TELEMETRY_EVERY);
 
 /* Each configuration's fields onto the START's (the wire's ids), one table each. */
 static const uint8_t session_param_of_unicycle[TVO_PARAM_COUNT] = {
@@ -93,6 +95,9 @@ tvo_status_t tvo_session_decode_timing(const tvo_lcm_session_t *msg, tvo_session
         return reject(why, TVO_ERR_NULL, TVO_SESSION_PARAM_NONE, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
     }
     memset(timing, 0, sizeof(*timing));
+    if (msg->protocol_version != TVO_LCM_NODE_STATUS_T_PROTOCOL_VERSION) {
+        return reject_param(why, TVO_SESSION_PARAM_PROTOCOL_VERSION); /* its fields may mean something else */
+    }
     if (msg->session_id < 0) {
         return reject_param(why, TVO_SESSION_PARAM_SESSION_ID); /* -1 means "none" in acks and commands */
     }
@@ -124,6 +129,15 @@ tvo_status_t tvo_session_decode_timing(const tvo_lcm_session_t *msg, tvo_session
     if (msg->plant_kind != TVO_LCM_SESSION_T_PLANT_UNICYCLE && msg->plant_kind != TVO_LCM_SESSION_T_PLANT_CHAIN) {
         return reject_param(why, TVO_SESSION_PARAM_PLANT_KIND);
     }
+    if (msg->plant_kind == TVO_LCM_SESSION_T_PLANT_CHAIN && msg->robot_count != 1) {
+        return reject_param(why, TVO_SESSION_PARAM_ROBOT_COUNT); /* chain_sample_t, chain_command_t: one robot */
+    }
+    if (msg->telemetry_every < 0 || msg->telemetry_every > TVO_SESSION_TELEMETRY_EVERY_MAX) {
+        return reject_param(why, TVO_SESSION_PARAM_TELEMETRY_EVERY);
+    }
+    /* 0: the fewest periods that span the default interval (period_us >= 1 here: no division by 0). */
+    const int64_t default_every = (TVO_SESSION_TELEMETRY_DEFAULT_US + msg->period_us - 1) / msg->period_us;
+    timing->telemetry_every = (uint32_t)(msg->telemetry_every > 0 ? (int64_t)msg->telemetry_every : default_every);
     timing->clock_source = msg->clock_source;
     timing->epoch_utime = msg->epoch_utime;
     timing->period_us = msg->period_us;
@@ -465,8 +479,8 @@ uint64_t tvo_session_content_hash(const uint8_t *data, uint32_t length)
     return hash;
 }
 
-void tvo_session_ack(const tvo_lcm_session_t *msg, const tvo_session_reject_t *why, int64_t running_session_id,
-                     tvo_lcm_session_ack_t *ack)
+void tvo_session_ack(const tvo_lcm_session_t *msg, const tvo_session_reject_t *why, int32_t running_session_id,
+                     int64_t boot_id, int8_t own_robot, tvo_lcm_session_ack_t *ack)
 {
     if (ack == NULL) {
         return;
@@ -479,7 +493,9 @@ void tvo_session_ack(const tvo_lcm_session_t *msg, const tvo_session_reject_t *w
     }
     const tvo_step_why_t answer = {(why != NULL) ? why->node : TVO_NODE_OK, (why != NULL) ? why->status : TVO_OK,
                                    TVO_REASON_NONE};
-    ack->status = tvo_step_wire_status(&answer);
+    ack->boot_id = boot_id;
+    ack->own_robot = own_robot;
+    ack->status = (int8_t)tvo_step_wire_status(&answer);
     ack->bad_param = (why != NULL) ? (int32_t)why->param : 0;
     ack->bad_part = (why != NULL) ? why->part : TVO_LCM_SESSION_ACK_T_PART_NONE;
     ack->bad_index = (why != NULL) ? why->index : -1;

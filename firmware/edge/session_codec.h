@@ -45,8 +45,15 @@ typedef enum {
     TVO_SESSION_PARAM_EPOCH = 15,
     TVO_SESSION_PARAM_CLOCK_SOURCE = 16,
     TVO_SESSION_PARAM_PLANT_KIND = 17,
-    TVO_SESSION_PARAM_SESSION_ID = 18
+    TVO_SESSION_PARAM_SESSION_ID = 18,
+    TVO_SESSION_PARAM_PROTOCOL_VERSION = 19,
+    TVO_SESSION_PARAM_TELEMETRY_EVERY = 20
 } tvo_session_param_t;
+
+/** The most periods between telemetry messages a START may ask for (session_t.telemetry_every). */
+#define TVO_SESSION_TELEMETRY_EVERY_MAX ((int32_t)1 << 20)
+/** The default telemetry rate (telemetry_every 0): every ceil(this / period_us)-th period, about 10 Hz. */
+#define TVO_SESSION_TELEMETRY_DEFAULT_US 100000
 
 /** Why a session message was refused: the edge's status, else the core's error, the parameter, the
  *  problem part and its entry (the ack carries their wire values: tvo_session_ack). */
@@ -71,14 +78,17 @@ typedef struct {
     int64_t period_us;
     int64_t delay_us;
     uint32_t watchdog_periods;
+    uint32_t telemetry_every; /* >= 1: telemetry after the answers to sequences that are multiples of it */
     uint8_t robot_count;
     int32_t plant_kind;     /* TVO_LCM_SESSION_T_PLANT_* */
 } tvo_session_timing_t;
 
 /**
- * The wire checks of a START that need no core: action, times within TVO_WIRE_TIME_MAX_US, the
- * epoch within TVO_SESSION_EPOCH_SPAN_US of the message's own utime, timing ranges, robot count, plant kind,
- * clock source. TVO_OK or TVO_ERR_PARAM with *why naming the parameter.
+ * The wire checks of a START that need no core: the protocol version, the session id, times within
+ * TVO_WIRE_TIME_MAX_US, the epoch within TVO_SESSION_EPOCH_SPAN_US of the message's own utime, timing
+ * ranges, the robot count (1 .. the build's TVO_MAX_ROBOTS; a chain: 1), plant kind, clock source,
+ * telemetry_every (0 .. TVO_SESSION_TELEMETRY_EVERY_MAX; 0 becomes the default). TVO_OK or
+ * TVO_ERR_PARAM with *why naming the parameter.
  */
 tvo_status_t tvo_session_decode_timing(const tvo_lcm_session_t *msg, tvo_session_timing_t *timing,
                                        tvo_session_reject_t *why);
@@ -111,9 +121,10 @@ int32_t tvo_session_part_from_problem(uint8_t problem_part);
  */
 uint64_t tvo_session_content_hash(const uint8_t *data, uint32_t length);
 
-/** The ack of a session message. running_session_id is -1 when no session runs. */
-void tvo_session_ack(const tvo_lcm_session_t *msg, const tvo_session_reject_t *why, int64_t running_session_id,
-                     tvo_lcm_session_ack_t *ack);
+/** The ack of a session message by the node of boot boot_id driving own_robot (-1: every robot).
+ *  running_session_id is -1 when no session runs. */
+void tvo_session_ack(const tvo_lcm_session_t *msg, const tvo_session_reject_t *why, int32_t running_session_id,
+                     int64_t boot_id, int8_t own_robot, tvo_lcm_session_ack_t *ack);
 
 #ifdef __cplusplus
 }

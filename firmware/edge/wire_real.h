@@ -1,8 +1,9 @@
-/* A wire double as the core's scalar, for both codecs. */
+/* A wire double as the core's scalar, and a core scalar as a wire float, for both codecs. */
 #ifndef TVO_WIRE_REAL_H
 #define TVO_WIRE_REAL_H
 
 #include <float.h>
+#include <math.h>
 
 #include "tvo/config.h"
 
@@ -19,6 +20,21 @@ static inline tvo_real_t tvo_wire_real(double value)
     }
 #endif
     return (tvo_real_t)value;
+}
+
+/* A value for a float field of the wire: the float32 core's value exactly; a double build's rounded,
+ * beyond float range +-infinity (never the undefined conversion). */
+static inline float tvo_wire_float(tvo_real_t value)
+{
+#if TVO_USE_DOUBLE
+    if (value > (double)FLT_MAX) {
+        return INFINITY;
+    }
+    if (value < -(double)FLT_MAX) {
+        return -INFINITY;
+    }
+#endif
+    return (float)value;
 }
 
 #endif /* TVO_WIRE_REAL_H */

@@ -1,6 +1,7 @@
 # Runs tvo_firmware_node and plant_client side by side on LCM_URL and checks the client's final error.
-# Usage: cmake -DNODE=... -DCLIENT=... -DLCM_URL=... -DDURATION_S=... -DMAX_ERROR_M=... -P run_plant_client.cmake
-foreach(var NODE CLIENT LCM_URL DURATION_S MAX_ERROR_M)
+# Usage: cmake -DNODE=... -DCLIENT=... -DLCM_URL=... -DDURATION_S=... -DMAX_ERROR_M=... -DBOOT_FILE=...
+#        -P run_plant_client.cmake
+foreach(var NODE CLIENT LCM_URL DURATION_S MAX_ERROR_M BOOT_FILE)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "run_plant_client.cmake: -D${var}=... is required")
   endif()
@@ -8,7 +9,7 @@ endforeach()
 # Two COMMANDs run at once (as a pipeline: the node's stdout, which is empty, feeds the client's stdin).
 # The node exits after the client's STOP; TIMEOUT ends both if either hangs.
 execute_process(
-  COMMAND ${NODE} --lcm-url ${LCM_URL}
+  COMMAND ${NODE} --lcm-url ${LCM_URL} --boot-file ${BOOT_FILE}
   COMMAND ${CLIENT} ${LCM_URL} ${DURATION_S}
   OUTPUT_VARIABLE out
   ERROR_VARIABLE err

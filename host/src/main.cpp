@@ -12,6 +12,8 @@
 #include <filesystem>
 #include <iostream>
 #include <new>
+#include <optional>
+#include <vector>
 
 #include "constraint_metrics.hpp"
 #include "firmware_process.hpp"
@@ -47,24 +49,53 @@ void install_signal_handlers()
 
 constexpr std::chrono::milliseconds kStartTimeout{5000};
 constexpr std::chrono::milliseconds kStopTimeout{1000};
+// After STOP each node announces itself at once with its final counters (then it exits, unless kept running).
+constexpr std::chrono::milliseconds kFinalAnnouncementTimeout{500};
 constexpr std::chrono::milliseconds kChildExitTimeout{2000};
 // A run that completed with a robot in contact (summary key collisions > 0).
 constexpr int kExitCollision = 3;
 constexpr int kExitUsage = 2;
 
-std::int64_t make_session_id()
+/// A fresh session id (session_t.session_id: an int32 >= 0) for this run.
+std::int32_t make_session_id()
 {
-    const auto ticks = std::chrono::steady_clock::now().time_since_epoch().count();
-    return (static_cast<std::int64_t>(getpid()) << 32) ^ static_cast<std::int64_t>(ticks);
+    const auto ticks = static_cast<std::uint64_t>(std::chrono::steady_clock::now().time_since_epoch().count());
+    const std::uint64_t mixed = (static_cast<std::uint64_t>(getpid()) * 0x9e3779b97f4a7c15ull) ^ ticks;
+    return static_cast<std::int32_t>((mixed ^ (mixed >> 31)) & 0x7fffffffu);
+}
+
+/// Waits until every named node announced itself after `since` (its final counters, after STOP).
+void await_final_announcements(tvo_host::LcmTransport& transport, const std::vector<std::int64_t>& boots,
+                               std::chrono::steady_clock::time_point since)
+{
+    const auto deadline = std::chrono::steady_clock::now() + kFinalAnnouncementTimeout;
+    const auto all_in = [&] {
+        for (const std::int64_t boot : boots) {
+            const auto heard = transport.nodes().heard_at(boot);
+            const tvo_lcm::node_status_t* node = transport.nodes().of_boot(boot);
+            if (!heard || *heard < since || node->state != tvo_lcm::node_status_t::STATE_IDLE) {
+                return false;
+            }
+        }
+        return true;
+    };
+    while (!all_in() && std::chrono::steady_clock::now() < deadline) {
+        transport.wait(std::chrono::duration_cast<std::chrono::microseconds>(deadline - std::chrono::steady_clock::now()));
+    }
 }
 
 /// STOP the session and let the child go; a child that ignores STOP is terminated.
-void finish(tvo_host::SessionClient& session, tvo_host::FirmwareProcess& firmware, std::int64_t stop_utime)
+void finish(tvo_host::LcmTransport& transport, tvo_host::SessionClient& session, tvo_host::FirmwareProcess& firmware,
+            std::int64_t stop_utime)
 {
     if (g_signal != 0) {
         firmware.send_signal(g_signal);  // a signal sent to us alone reaches the child too
     }
+    const auto stopped_at = std::chrono::steady_clock::now();
     const bool acked = session.stop(stop_utime, kStopTimeout);
+    if (acked && g_signal == 0) {
+        await_final_announcements(transport, session.named(), stopped_at);
+    }
     if (!firmware.spawned()) {
         return;
     }
@@ -73,6 +104,23 @@ void finish(tvo_host::SessionClient& session, tvo_host::FirmwareProcess& firmwar
     } else if (!firmware.wait_for_exit(kChildExitTimeout)) {
         std::cerr << "tvo_sim: warning: the firmware node did not exit after STOP; terminating it\n";
         firmware.terminate();
+    }
+}
+
+/// The named nodes' counters (their newest announcements), summed: the summary's node_* keys.
+void add_node_counters(const tvo_host::LcmTransport& transport, const std::vector<std::int64_t>& boots,
+                       tvo_host::RunSummary* summary)
+{
+    tvo_host::NodeCounterSums sums;
+    bool any = false;
+    for (const std::int64_t boot : boots) {
+        if (const tvo_lcm::node_status_t* node = transport.nodes().of_boot(boot)) {
+            sums.add(node->counters);
+            any = true;
+        }
+    }
+    if (any) {
+        summary->node_counters = sums;
     }
 }
 
@@ -127,26 +175,35 @@ int run(const tvo_host::SimOptions& options)
     const PlantClock clock(options.start_utime_us);
     Scenario scenario = make_scenario(options.scenario, options.robots, options.target);
     scenario.barrier.apply(options.barrier);
-    LcmTransport transport(options.lcm_url, log_path, options.key_file, options.sender_id,
-                           options.fleet ? scenario.robot_count : 0);
+    // Subscribed before the node is spawned: its first announcement (TVO_NODE, its boot) is heard.
+    LcmTransport transport(options.lcm_url, log_path, scenario.robot_count, options.key_file, options.sender_id);
     FirmwareProcess firmware;
     if (!options.firmware.empty()) {
         firmware.spawn(options.firmware, options.lcm_url, options.key_file);
+    }
+    const auto keep_waiting = [&firmware] { return g_signal == 0 && (!firmware.spawned() || firmware.running()); };
+    const std::optional<NodeBoots> boots = await_nodes(transport, scenario.robot_count, kStartTimeout, keep_waiting);
+    if (!boots) {
+        if (g_signal != 0) {
+            std::cerr << "tvo_sim: interrupted\n";
+            return 128 + g_signal;
+        }
+        std::cerr << "tvo_sim: error: the firmware node " << firmware.exit_description() << " before it announced itself\n";
+        return 1;
     }
     // Lockstep: START and epoch at --start-utime-us, every START alike (deterministic). Realtime: each
     // START stamped with the plant's current time; the epoch a fixed lead after the first.
     const std::int64_t start_utime = options.realtime ? clock.now_utime() : options.start_utime_us;
     const std::int64_t epoch_utime = options.realtime ? start_utime + kNodeClockEpochLeadUs : start_utime;
     const auto stamp = [&clock, &options] { return options.realtime ? clock.now_utime() : options.start_utime_us; };
-    SessionClient session(transport, make_start_session(options, scenario, make_session_id(), start_utime, epoch_utime),
-                          stamp);
+    SessionClient session(
+        transport, make_start_session(options, scenario, make_session_id(), start_utime, epoch_utime, *boots), stamp);
     const auto stop_utime = [&](std::int64_t steps) {
         return options.realtime ? clock.now_utime() : epoch_utime + steps * options.period_us;
     };
-    const auto keep_waiting = [&firmware] { return g_signal == 0 && (!firmware.spawned() || firmware.running()); };
     if (!session.start(kStartTimeout, keep_waiting)) {
         if (g_signal != 0) {
-            finish(session, firmware, stop_utime(0));
+            finish(transport, session, firmware, stop_utime(0));
             std::cerr << "tvo_sim: interrupted\n";
             return 128 + g_signal;
         }
@@ -154,9 +211,9 @@ int run(const tvo_host::SimOptions& options)
                   << " before acknowledging the session\n";
         return 1;
     }
-    if (session.ack().status != TVO_OK) {
+    if (session.refused()) {
         std::cerr << "tvo_sim: error: " << describe_rejection(session.ack(), options) << '\n';
-        finish(session, firmware, stop_utime(0));
+        finish(transport, session, firmware, stop_utime(0));
         return 1;
     }
 
@@ -174,10 +231,10 @@ int run(const tvo_host::SimOptions& options)
             std::cerr << "; the firmware node " << firmware.exit_description();
         }
         std::cerr << '\n';
-        finish(session, firmware, stop_utime(options.steps));
+        finish(transport, session, firmware, stop_utime(options.steps));
         return 1;
     }
-    finish(session, firmware, stop_utime(result.steps));
+    finish(transport, session, firmware, stop_utime(result.steps));
     if (!recorder.close()) {
         std::cerr << "tvo_sim: error: writing " << csv_path << " failed\n";
         return 1;
@@ -206,17 +263,8 @@ int run(const tvo_host::SimOptions& options)
     summary.session_restarts = result.session_restarts;
     summary.safe_stop_commands = result.safe_stop_commands;
     summary.first_safe_stop_after_loss_s = result.first_safe_stop_after_loss_s;
-    if (result.node_counters) {
-        const tvo_lcm::node_counters_t& c = *result.node_counters;
-        const auto count = [](std::int32_t n) { return static_cast<std::uint64_t>(std::max<std::int32_t>(n, 0)); };
-        std::uint64_t refused = 0;
-        for (const std::int32_t n : c.refused) {
-            refused += count(n);
-        }
-        summary.node_accepted = count(c.accepted);
-        summary.node_refused = refused;
-        summary.node_safe_stops = count(c.safe_stops);
-    }
+    summary.signed_bus = transport.keyed();
+    add_node_counters(transport, session.named(), &summary);
     add_constraint_figures(scenario, monitor, metrics, &summary);
     print_summary_table(std::cout, summary, options);
     write_summary_json(options.summary_json, summary);

@@ -20,10 +20,10 @@
 #include "sim_ranges.hpp"
 #include "run_recorder.hpp"
 #include "scenario_file.hpp"
-#include "plant_wire.hpp"    // kMaxJointRobots
 #include "sim_loop.hpp"      // kNodeClockEpochLeadUs
 
 extern "C" {
+#include "session_codec.h"     // TVO_SESSION_TELEMETRY_EVERY_MAX
 #include "tvo/config.h"        // TVO_BARRIER_MAX_DEGREE
 #include "tvo/sample_clock.h"  // TVO_MAX_TICK_SPAN, tvo_sample_clock_watchdog_ok
 #include "internal/sample_clock.h"
@@ -52,6 +52,8 @@ constexpr std::int64_t kMaxDelayedPeriods = 1000;
 constexpr std::uint64_t kMaxOutputMib = 65536;
 // Realtime stamps go on past the last period (the START handshake, stalls, the STOP): an hour of slack.
 constexpr std::int64_t kRealtimeWireSlackUs = 3600LL * 1000000LL;
+// Samples are numbered by period on the wire: sample_header_t.sequence is an int32 >= 0.
+constexpr std::int64_t kMaxSequence = 2147483647;
 
 int fail(const std::string& option, const std::string& why)
 {
@@ -86,32 +88,6 @@ std::filesystem::path existing_folder(const std::filesystem::path& path)
     return folder;
 }
 
-/// The scenario's robots against what the messages of the run carry; -1 or 2.
-int check_leg(const SimOptions& o, const Scenario& scenario)
-{
-    const std::size_t robots = scenario.robot_count;
-    const auto session_robots = static_cast<std::size_t>(tvo_lcm::session_t::MAX_ROBOTS);
-    const std::string has = "scenario " + o.scenario + " has " + std::to_string(robots) + " robots";
-    if (!o.fleet && robots > kMaxJointRobots) {
-        return fail("--fleet", has + ", the joint measurement_t and command_t carry at most " +
-                                   std::to_string(kMaxJointRobots) +
-                                   ": run it with --fleet (per-robot messages to tvo_fleet_hub, tools/fleet)");
-    }
-    if (robots > session_robots) {
-        return fail("--scenario", has + ", the session message (session_t) carries at most " +
-                                      std::to_string(session_robots));
-    }
-    if (scenario.streamed && robots > kMaxJointRobots) {
-        return fail("--target", has + ", a streamed target (target_t) carries at most " +
-                                    std::to_string(kMaxJointRobots));
-    }
-    if (o.fleet && !o.firmware.empty()) {
-        return fail("--fleet", "the per-robot leg talks to tvo_fleet_hub and its nodes, not to a spawned node "
-                               "(--firmware)");
-    }
-    return -1;
-}
-
 /// Cross-option checks, derived microsecond timing and the bound on the files; returns -1 or 2.
 int validate(SimOptions* o, const ScenarioFile& file, bool delay_given, bool duration_given, bool robots_given,
              bool target_given, bool link_loss_given)
@@ -123,9 +99,6 @@ int validate(SimOptions* o, const ScenarioFile& file, bool delay_given, bool dur
         return fail("--target", "scenario " + o->scenario + " has its own targets (only 'streamed' applies)");
     }
     const Scenario scenario = instantiate_scenario(file, o->robots, o->target);
-    if (const int leg = check_leg(*o, scenario); leg >= 0) {
-        return leg;
-    }
     if (!duration_given) {
         o->duration_s = scenario.duration_s;
     }
@@ -147,6 +120,11 @@ int validate(SimOptions* o, const ScenarioFile& file, bool delay_given, bool dur
     if (o->steps < 1) {
         return fail("--duration-s", "must cover at least one period (--period-s " + number(o->period_s) + "), got " +
                                         number(o->duration_s));
+    }
+    if (o->steps > kMaxSequence) {
+        return fail("--duration-s", "a run of " + number(o->duration_s) + " s at --period-s " + number(o->period_s) +
+                                        " has " + std::to_string(o->steps) + " periods; the wire numbers them up to " +
+                                        std::to_string(kMaxSequence) + " (sample_header_t.sequence, int32)");
     }
     if (tvo_sample_clock_watchdog_ok(static_cast<std::uint32_t>(o->period_us),
                                      static_cast<std::uint32_t>(o->watchdog_periods)) == 0) {
@@ -181,7 +159,7 @@ int validate(SimOptions* o, const ScenarioFile& file, bool delay_given, bool dur
                         ") and must stay within 2^60 us (TVO_WIRE_TIME_MAX_US)");
     }
     const OutputBound bound =
-        bound_outputs(o->steps, o->period_us, scenario.robot_count, scenario.streamed, o->realtime, o->fleet);
+        bound_outputs(o->steps, o->period_us, scenario.robot_count, scenario.streamed, o->realtime);
     const std::uint64_t limit_bytes = o->max_output_mib << 20;
     if (bound.total_bytes() > limit_bytes) {
         return fail("--duration-s", "a run of " + number(o->duration_s) + " s at --period-s " + number(o->period_s) +
@@ -210,7 +188,7 @@ int validate(SimOptions* o, const ScenarioFile& file, bool delay_given, bool dur
     }
     if (o->dry_run) {
         std::cout << "tvo_sim: dry run: scenario " << o->scenario << ", " << scenario.robot_count << " robot(s), "
-                  << (o->realtime ? "realtime" : "lockstep") << (o->fleet ? ", per-robot messages (--fleet)" : "")
+                  << (o->realtime ? "realtime" : "lockstep")
                   << ", h = " << o->period_us << " us, " << o->steps
                   << " periods (" << number(static_cast<double>(o->steps * o->period_us) / kUsPerS)
                   << " s); wire times from " << o->start_utime_us << " us to at most " << o->start_utime_us + run_us
@@ -284,8 +262,14 @@ int parse_options(int argc, char** argv, SimOptions* o)
         ->check(real_in(kMinSpeed))
         ->capture_default_str();
     app.add_option("--watchdog-periods", o->watchdog_periods, "safe stop after this many periods without a "
-                   "valid measurement (at most (2^30 - 1) us / h: the node's watchdog span)")
+                   "valid measurement (at most (2^30 - 1) us / h: the node's watchdog span); the plant stops its "
+                   "robots and starts a new session after as long without a command")
         ->check(whole_in<std::int32_t>(kMinWatchdogPeriods, kMaxWatchdogPeriods))
+        ->capture_default_str();
+    app.add_option("--telemetry-every", o->telemetry_every, "the node's telemetry follows the commands of every "
+                   "this-many-th period (session_t.telemetry_every); 0: the node's default, the fewest periods "
+                   "that span 100 ms. run.csv's telemetry columns hold each robot's newest")
+        ->check(whole_in<std::int32_t>(0, TVO_SESSION_TELEMETRY_EVERY_MAX))
         ->capture_default_str();
     app.add_option("--scenario", o->scenario, "what to run: a scenario file FILE.yaml, or a built-in scenario's name "
                    "(--list-scenarios lists them)")
@@ -351,10 +335,6 @@ int parse_options(int argc, char** argv, SimOptions* o)
                    "(start + duration) stay within 2^60 us")
         ->check(whole_in<std::int64_t>(0, TVO_WIRE_TIME_MAX_US, "us"))
         ->capture_default_str();
-    app.add_flag("--fleet", o->fleet, "per-robot messages: each period one fleet_sample_t per robot on "
-                 "TVO_FLEET_SAMPLE out, one fleet_command_t per robot on TVO_FLEET_COMMAND in (joined into the "
-                 "joint command), for tvo_fleet_hub; needed above the joint messages' " + std::to_string(kMaxJointRobots) +
-                 " robots");
     app.add_option("--lcm-url", o->lcm_url, "LCM URL for this run and the spawned firmware [default: "
                    "$LCM_DEFAULT_URL or LCM's udpm default]");
     app.add_option("--key-file", o->key_file, "authenticate every message both ways with this key file (32 bytes "

@@ -45,6 +45,7 @@ struct SimOptions {
     double speed_max_mps{5.0};
     double min_speed_mps{0.05};
     std::int32_t watchdog_periods{10};
+    std::int32_t telemetry_every{0};  // session_t.telemetry_every: 0, the node's default (about 10 Hz)
 
     // Scenario (scenario.hpp). robots and the ellipse/circle choice shape the demo only.
     std::string scenario{"demo"};
@@ -63,7 +64,6 @@ struct SimOptions {
 
     // Plumbing.
     std::string lcm_url;            // empty: LCM's default ($LCM_DEFAULT_URL or udpm)
-    bool fleet{false};              // per-robot leg: fleet_sample_t / fleet_command_t (tvo_fleet_hub)
     std::string key_file;           // empty: an unauthenticated bus; else the 32-byte key (tools/keygen)
     std::uint32_t sender_id{2};     // this plant's sender id on a keyed bus (TVO_AUTH_SENDER_PLANT)
     std::string firmware;           // tvo_firmware_node to spawn; empty: one is already running

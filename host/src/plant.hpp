@@ -11,9 +11,9 @@
 
 namespace tvo_host {
 
-/// Most robots the simulator runs: the per-robot messages' limit (fleet_sample_t.MAX_ROBOTS, checked in
-/// plant_wire.hpp; this library has no LCM). More than measurement_t.MAX_ROBOTS need tvo_sim --fleet.
-constexpr std::size_t kMaxRobots = 8;
+/// Most robots the simulator runs: the wire's limit (session_t.MAX_ROBOTS, checked in plant_wire.hpp; this
+/// library has no LCM). A node takes up to its build's (node_status_t.max_robots).
+constexpr std::size_t kMaxRobots = 32;
 
 struct UnicycleState {
     Eigen::Vector2d position_m{Eigen::Vector2d::Zero()};

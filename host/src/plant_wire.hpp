@@ -1,48 +1,40 @@
 // The plant's messages in one place: a period's sample of every robot and the joint command it
-// applies, sized by the simulator's limit (kMaxRobots), and their two legs on the wire: joint
-// (measurement_t / command_t, at most measurement_t::MAX_ROBOTS robots) or per robot (tvo_sim --fleet:
-// one fleet_sample_t and one fleet_command_t per robot and period; lcm_types/README.md, "A fleet").
+// applies, sized by the simulator's limit (kMaxRobots, the wire's), and their per-robot messages on the
+// wire (lcm_types/README.md, "Writing your own plant"): one unicycle_sample_t per robot and period out,
+// in robot order; one unicycle_command_t per robot in, joined into the joint command.
 #pragma once
 
 #include <array>
+#include <bitset>
 #include <cstddef>
 #include <cstdint>
 
 #include "lcm_messages.hpp"
 #include "plant.hpp"
-#include "tvo_lcm/fleet_command_t.hpp"
-#include "tvo_lcm/fleet_sample_t.hpp"
 
 namespace tvo_host {
 
-static_assert(kMaxRobots == static_cast<std::size_t>(tvo_lcm::fleet_sample_t::MAX_ROBOTS) &&
-                  kMaxRobots == static_cast<std::size_t>(tvo_lcm::fleet_command_t::MAX_ROBOTS),
-              "the simulator's limit is the per-robot messages' limit");
+static_assert(kMaxRobots == static_cast<std::size_t>(tvo_lcm::session_t::MAX_ROBOTS),
+              "the simulator's limit is the wire's");
 
-/// Most robots the joint messages carry; a larger scenario needs the per-robot leg (--fleet).
-constexpr std::size_t kMaxJointRobots = static_cast<std::size_t>(tvo_lcm::measurement_t::MAX_ROBOTS);
-static_assert(sizeof(tvo_lcm::command_t::speed_mps) / sizeof(double) == kMaxJointRobots &&
-                  sizeof(tvo_lcm::target_t::position_m) / sizeof(tvo_lcm::target_t::position_m[0]) == kMaxJointRobots,
-              "command_t and target_t carry measurement_t's robots");
-
-/// One period's sample of every robot, as the plant measured it (measurement_t's fields).
+/// One period's sample of every robot, as the plant measured it.
 struct JointMeasurement {
     std::int64_t utime{0};
-    std::int64_t session_id{0};
-    std::int64_t sequence{0};
+    std::int32_t session_id{0};
+    std::int32_t sequence{0};
     std::int32_t robot_count{0};
     std::array<std::array<double, 2>, kMaxRobots> position_m{};
-    std::array<double, kMaxRobots> heading_rad{};
+    std::array<double, kMaxRobots> heading_rad{};  // unwrapped, as the plant integrates it
     std::array<double, kMaxRobots> speed_mps{};
     bool heading_valid{false};
     bool speed_valid{false};
 };
 
-/// A command for every robot, as the plant's rules see it (command_t's fields).
+/// A command for every robot, as the plant's rules see it: one period's unicycle_command_t of each robot.
 struct JointCommand {
     std::int64_t utime{0};
-    std::int64_t session_id{0};
-    std::int64_t measurement_sequence{0};
+    std::int32_t session_id{0};
+    std::int32_t measurement_sequence{0};
     std::int32_t robot_count{0};
     std::int32_t status{0};
     std::int32_t flags{0};
@@ -50,31 +42,28 @@ struct JointCommand {
     std::array<double, kMaxRobots> turn_rate_radps{};
 };
 
-/// The joint leg's sample (robot_count <= kMaxJointRobots: tvo_sim's options refuse more without --fleet).
-void to_wire(const JointMeasurement& in, tvo_lcm::measurement_t* out);
-/// The per-robot leg: robot `robot`'s sample of the period.
-void to_wire(const JointMeasurement& in, std::size_t robot, tvo_lcm::fleet_sample_t* out);
-/// The joint leg's command as the plant handles it.
-JointCommand from_wire(const tvo_lcm::command_t& in);
+/// Robot `robot`'s sample of the period. The heading goes out wrapped to [-pi, pi], where the wire's
+/// float resolves it to 2.4e-7 rad (unicycle_sample_t.lcm).
+void to_wire(const JointMeasurement& in, std::size_t robot, tvo_lcm::unicycle_sample_t* out);
 
-/// The per-robot leg's commands: joins one period's rows (fleet_command_t, one per robot) into the
-/// joint command, complete when every robot's row of one (session, sequence) arrived. Its status is the
-/// first refusing row's (in robot order), else 0; its flags every row's; its utime the latest row's.
-/// A row of another (session, sequence) starts over: a period's rows come back to back, and one whose
-/// rows did not all come is never applied (as a lost joint command). A row naming no robot of the run
-/// (robot or robot_count off) cannot join any command and is dropped.
+/// Joins one period's commands (unicycle_command_t, one per robot) into the joint command, complete when
+/// every robot's command of one (session, sequence) arrived. Its status is the first refusing robot's (in
+/// robot order), else 0; its flags every robot's; its utime the latest command's. A command of another
+/// (session, sequence) starts over: a period's commands come back to back, and one whose commands did not
+/// all come is never applied (as a lost command). A node's own safe stops (sequence -1) join the same way,
+/// one set per period. A command naming no robot of the run cannot join any command and is dropped.
 class CommandAssembler {
 public:
     explicit CommandAssembler(std::size_t robots) : robots_(robots) {}
 
-    /// The joint command `row` completes, else nullptr (valid until the next call).
-    const JointCommand* add(const tvo_lcm::fleet_command_t& row);
+    /// The joint command `command` completes, else nullptr (valid until the next call).
+    const JointCommand* add(const tvo_lcm::unicycle_command_t& command);
 
 private:
     std::size_t robots_;
-    std::uint32_t arrived_{0};  // bit r: robot r's row of joint_'s (session, sequence) is in
+    std::bitset<kMaxRobots> arrived_;  // robot r's command of joint_'s (session, sequence) is in
     JointCommand joint_{};
-    std::array<std::int64_t, kMaxRobots> utime_{};  // each row's own, joined on completion
+    std::array<std::int64_t, kMaxRobots> utime_{};  // each command's own, joined on completion
     std::array<std::int32_t, kMaxRobots> status_{};
     std::array<std::int32_t, kMaxRobots> flags_{};
 };

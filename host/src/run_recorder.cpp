@@ -6,8 +6,6 @@
 #include <stdexcept>
 
 #include "lcm_messages.hpp"
-#include "tvo_lcm/fleet_command_t.hpp"
-#include "tvo_lcm/fleet_sample_t.hpp"
 
 namespace tvo_host {
 
@@ -116,16 +114,16 @@ std::uint64_t RunRecorder::max_bytes(std::int64_t steps, std::size_t robots, dou
 }
 
 OutputBound bound_outputs(std::int64_t steps, std::int64_t period_us, std::size_t robots, bool streamed,
-                          bool realtime, bool fleet)
+                          bool realtime)
 {
-    const std::uint64_t command = fleet ? robots * log_event_bytes<tvo_lcm::fleet_command_t>(TVO_CHANNEL_FLEET_COMMAND)
-                                        : log_event_bytes<tvo_lcm::command_t>(TVO_CHANNEL_COMMAND);
-    const std::uint64_t measurement = fleet ? robots * log_event_bytes<tvo_lcm::fleet_sample_t>(TVO_CHANNEL_FLEET_SAMPLE)
-                                            : log_event_bytes<tvo_lcm::measurement_t>(TVO_CHANNEL_MEASUREMENT);
-    const std::uint64_t answer = command + log_event_bytes<tvo_lcm::telemetry_t>(TVO_CHANNEL_TELEMETRY);
-    const std::uint64_t per_period = measurement +
-                                     (streamed ? log_event_bytes<tvo_lcm::target_t>(TVO_CHANNEL_TARGET) : 0) +
-                                     answer * (realtime ? 2 : 1);
+    const std::uint64_t command = robots * log_event_bytes<tvo_lcm::unicycle_command_t>(TVO_CHANNEL_COMMAND);
+    const std::uint64_t sample = robots * log_event_bytes<tvo_lcm::unicycle_sample_t>(TVO_CHANNEL_SAMPLE);
+    const std::uint64_t target = robots * log_event_bytes<tvo_lcm::target_t>(TVO_CHANNEL_TARGET);
+    const std::uint64_t telemetry = robots * log_event_bytes<tvo_lcm::telemetry_t>(TVO_CHANNEL_TELEMETRY);
+    // A node per robot at most, and the node of every robot.
+    const std::uint64_t announcements = (robots + 1) * log_event_bytes<tvo_lcm::node_status_t>(TVO_CHANNEL_NODE);
+    const std::uint64_t per_period = sample + (streamed ? target : 0) + command * (realtime ? 2 : 1) + telemetry +
+                                     announcements;
     const std::uint64_t session = kSessionExchanges * (log_event_bytes<tvo_lcm::session_t>(TVO_CHANNEL_SESSION) +
                                                        log_event_bytes<tvo_lcm::session_ack_t>(TVO_CHANNEL_SESSION_ACK));
     const std::uint64_t periods = static_cast<std::uint64_t>(std::max<std::int64_t>(steps, 0));

@@ -53,12 +53,12 @@ struct OutputBound {
     std::uint64_t total_bytes() const { return csv_bytes + lcm_log_bytes + json_bytes; }
 };
 
-/// What a run of steps periods of period_us writes at most: the CSV, the LCM log (per period a
-/// measurement (fleet: a fleet_sample_t per robot), a streamed target when streamed, the command
-/// (fleet: a fleet_command_t per robot) and telemetry answering it, and in
-/// realtime one more command and telemetry for the node's watchdog; the session handshake besides)
-/// and the JSON files. Messages of other sessions on the same LCM URL are logged too and not counted.
+/// What a run of steps periods of period_us writes at most: the CSV, the LCM log (per period each
+/// robot's sample, streamed target when streamed, command and telemetry, in realtime one more command per
+/// robot for the node's watchdog; at most one announcement per period of each node of the run (the log
+/// takes no more); the session handshakes besides) and the JSON files. Messages of other sessions on the
+/// same LCM URL are logged too and not counted.
 OutputBound bound_outputs(std::int64_t steps, std::int64_t period_us, std::size_t robots, bool streamed,
-                          bool realtime, bool fleet);
+                          bool realtime);
 
 }  // namespace tvo_host

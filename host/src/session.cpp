@@ -5,7 +5,10 @@
 #include <stdexcept>
 #include <utility>
 
+#include "plant_wire.hpp"
+
 extern "C" {
+#include "session_codec.h"  // TVO_SESSION_TELEMETRY_DEFAULT_US: the node's default telemetry interval
 #include "tvo/barrier.h"
 }
 
@@ -148,19 +151,44 @@ std::string option_for(std::int32_t param, const SimOptions& o)
     case tvo_lcm::session_ack_t::PARAM_WATCHDOG: out << "--watchdog-periods " << o.watchdog_periods; break;
     case tvo_lcm::session_ack_t::PARAM_ROBOT_COUNT: out << "--robots " << o.robots; break;
     case tvo_lcm::session_ack_t::PARAM_EPOCH: out << "--start-utime-us " << o.start_utime_us; break;
+    case tvo_lcm::session_ack_t::PARAM_TELEMETRY_EVERY: out << "--telemetry-every " << o.telemetry_every; break;
     default: break;
     }
     return out.str();
 }
+
+/// The different boots of a START's robots, in robot order of first appearance.
+std::vector<std::int64_t> named_boots(const tvo_lcm::session_t& s)
+{
+    std::vector<std::int64_t> named;
+    for (std::int32_t r = 0; r < s.robot_count && r < tvo_lcm::session_t::MAX_ROBOTS; ++r) {
+        if (std::find(named.begin(), named.end(), s.node_boot_id[r]) == named.end()) {
+            named.push_back(s.node_boot_id[r]);
+        }
+    }
+    return named;
+}
 }  // namespace
 
-tvo_lcm::session_t make_start_session(const SimOptions& o, const Scenario& scenario, std::int64_t session_id,
-                                      std::int64_t utime, std::int64_t epoch_utime)
+std::int64_t telemetry_every_periods(std::int32_t telemetry_every, std::int64_t period_us)
+{
+    if (telemetry_every > 0) {
+        return telemetry_every;
+    }
+    return (TVO_SESSION_TELEMETRY_DEFAULT_US + period_us - 1) / std::max<std::int64_t>(period_us, 1);
+}
+
+tvo_lcm::session_t make_start_session(const SimOptions& o, const Scenario& scenario, std::int32_t session_id,
+                                      std::int64_t utime, std::int64_t epoch_utime, const NodeBoots& boots)
 {
     tvo_lcm::session_t msg{};
     msg.utime = utime;
+    msg.protocol_version = tvo_lcm::node_status_t::PROTOCOL_VERSION;
     msg.session_id = session_id;
     msg.action = tvo_lcm::session_t::ACTION_START;
+    for (std::size_t r = 0; r < scenario.robot_count; ++r) {
+        msg.node_boot_id[r] = boots[r];
+    }
     msg.clock_source = o.realtime ? static_cast<std::int32_t>(tvo_lcm::session_t::CLOCK_NODE)
                                   : static_cast<std::int32_t>(tvo_lcm::session_t::CLOCK_PLANT);
     msg.epoch_utime = epoch_utime;
@@ -169,6 +197,7 @@ tvo_lcm::session_t make_start_session(const SimOptions& o, const Scenario& scena
     msg.delay_compensation = o.delay_compensation;
     msg.zoh_aware = o.zoh_aware;
     msg.watchdog_periods = o.watchdog_periods;
+    msg.telemetry_every = o.telemetry_every;
     msg.plant_kind = tvo_lcm::session_t::PLANT_UNICYCLE;
     msg.velocity_source = o.position_only ? static_cast<std::int32_t>(tvo_lcm::session_t::VELOCITY_FROM_POSITION)
                                           : static_cast<std::int32_t>(tvo_lcm::session_t::VELOCITY_FROM_POSE);
@@ -188,6 +217,9 @@ std::string describe_rejection(const tvo_lcm::session_ack_t& ack, const SimOptio
 {
     std::ostringstream out;
     out << "the firmware rejected the session (" << tvo_protocol_status_str(ack.status) << ")";
+    if (ack.own_robot >= 0) {
+        out << " at the node of robot " << static_cast<int>(ack.own_robot);
+    }
     if (ack.bad_param != tvo_lcm::session_ack_t::PARAM_NONE) {
         out << ": parameter " << tvo_protocol_param_str(ack.bad_param);
         const std::string option = option_for(ack.bad_param, options);
@@ -209,29 +241,99 @@ std::string describe_rejection(const tvo_lcm::session_ack_t& ack, const SimOptio
     return out.str();
 }
 
+std::optional<NodeBoots> await_nodes(LcmTransport& transport, std::size_t robots, std::chrono::milliseconds timeout,
+                                     const std::function<bool()>& keep_waiting)
+{
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    std::optional<NodeBoots> boots = transport.nodes().assignment(robots);
+    while (!boots) {
+        if (!keep_waiting()) {
+            return std::nullopt;
+        }
+        const auto now = std::chrono::steady_clock::now();
+        if (now >= deadline) {
+            throw TransportError("no node for every robot of the run announced itself on " TVO_CHANNEL_NODE " within " +
+                                 std::to_string(timeout.count()) + " ms (heard: " + transport.nodes().describe() +
+                                 "; a run of " + std::to_string(robots) +
+                                 " robot(s) needs one node of every robot, or one node per robot: "
+                                 "is tvo_firmware_node running on the same LCM URL" +
+                                 (transport.keyed() ? std::string(", with the same --key-file") : std::string()) +
+                                 "? pass --firmware PATH to spawn it)");
+        }
+        // A node announces itself every 250 ms while idle: short slices notice it and keep_waiting promptly.
+        transport.wait(std::min(std::chrono::duration_cast<std::chrono::microseconds>(deadline - now),
+                                std::chrono::microseconds(50000)));
+        boots = transport.nodes().assignment(robots);
+    }
+    for (std::size_t r = 0; r < robots; ++r) {
+        const tvo_lcm::node_status_t* node = transport.nodes().of_boot((*boots)[r]);
+        if (node != nullptr && static_cast<std::size_t>(node->max_robots) < robots) {
+            throw TransportError("the node " +
+                                 (node->own_robot >= 0 ? "of robot " + std::to_string(node->own_robot)
+                                                       : std::string("of every robot")) +
+                                 " (boot " + std::to_string(node->boot_id) + ") takes sessions of up to " +
+                                 std::to_string(node->max_robots) + " robots; this run has " + std::to_string(robots) +
+                                 " (a node built with larger limits takes more: tvo_firmware_node_fleet)");
+        }
+    }
+    return boots;
+}
+
 SessionClient::SessionClient(LcmTransport& transport, const tvo_lcm::session_t& start,
                              std::function<std::int64_t()> stamp)
-    : transport_(transport), session_(start), stamp_(std::move(stamp))
+    : transport_(transport), session_(start), stamp_(std::move(stamp)), named_(named_boots(start))
 {
 }
 
-bool SessionClient::is_start_ack(const tvo_lcm::session_ack_t& ack) const
+NodeBoots SessionClient::boots() const
 {
-    return ack.session_id == session_.session_id && ack.action == tvo_lcm::session_t::ACTION_START;
+    NodeBoots boots{};
+    std::copy(std::begin(session_.node_boot_id), std::end(session_.node_boot_id), boots.begin());
+    return boots;
+}
+
+void SessionClient::begin_exchange(std::int8_t action)
+{
+    awaited_action_ = action;
+    acked_.assign(named_.size(), false);
+    refusal_.reset();
+    ack_ = tvo_lcm::session_ack_t{};
+}
+
+bool SessionClient::exchange_done() const
+{
+    return refusal_.has_value() || std::all_of(acked_.begin(), acked_.end(), [](bool b) { return b; });
 }
 
 void SessionClient::on_session_ack(const tvo_lcm::session_ack_t& ack)
 {
-    if (ack.session_id == session_.session_id && ack.action == awaited_action_) {
-        ack_ = ack;
-        acked_ = true;
+    if (ack.session_id != session_.session_id || ack.action != awaited_action_) {
+        return;
+    }
+    const auto named = std::find(named_.begin(), named_.end(), ack.boot_id);
+    if (named == named_.end()) {
+        return;  // not a node this session names (an ack of another boot cannot answer it)
+    }
+    acked_[static_cast<std::size_t>(named - named_.begin())] = true;
+    ack_ = ack;
+    if (ack.status != TVO_OK && !refusal_) {
+        refusal_ = ack;
     }
 }
 
-bool SessionClient::await_ack(std::int8_t action, std::chrono::steady_clock::time_point deadline)
+void SessionClient::publish_start(std::optional<std::int64_t> utime)
 {
-    awaited_action_ = action;
-    while (!acked_) {
+    if (!first_copy_) {
+        session_.utime = utime.value_or(stamp_());
+    }
+    first_copy_ = false;
+    transport_.set_log_utime(session_.utime);
+    transport_.publish(session_);
+}
+
+bool SessionClient::await_exchange(std::chrono::steady_clock::time_point deadline)
+{
+    while (!exchange_done()) {
         const auto now = std::chrono::steady_clock::now();
         if (now >= deadline) {
             return false;
@@ -244,44 +346,58 @@ bool SessionClient::await_ack(std::int8_t action, std::chrono::steady_clock::tim
     return true;
 }
 
-void SessionClient::send_start_again(std::optional<std::int64_t> utime)
-{
-    session_.utime = utime.value_or(stamp_());
-    transport_.set_log_utime(session_.utime);
-    transport_.publish(session_);
-}
-
 bool SessionClient::start(std::chrono::milliseconds timeout, const std::function<bool()>& keep_waiting)
 {
     transport_.set_listener(this);
-    transport_.set_log_utime(session_.utime);
-    acked_ = false;
+    begin_exchange(tvo_lcm::session_t::ACTION_START);
+    first_copy_ = true;
+    repeats_.reset();
     const auto deadline = std::chrono::steady_clock::now() + timeout;
-    StartRepeats repeats;
-    bool first = true;
     while (std::chrono::steady_clock::now() < deadline) {
         if (!keep_waiting()) {
             return false;
         }
         const auto now = std::chrono::steady_clock::now();
-        if (repeats.due(now)) {
-            if (first) {
-                transport_.publish(session_);
-                first = false;
-            } else {
-                send_start_again();
-            }
-            repeats.sent(now);
+        if (repeats_.due(now)) {
+            publish_start(std::nullopt);
+            repeats_.sent(now);
         }
-        if (await_ack(tvo_lcm::session_t::ACTION_START, repeats.next(now))) {
+        if (await_exchange(std::min(deadline, repeats_.next(now)))) {
             return true;
         }
     }
     // A keyed node drops what it cannot verify without a word, so a key mismatch looks like silence.
-    throw TransportError("no session ack from the firmware node within " + std::to_string(timeout.count()) +
+    throw TransportError("no session ack from every named node within " + std::to_string(timeout.count()) +
                          " ms (is tvo_firmware_node running on the same LCM URL" +
                          (transport_.keyed() ? std::string(", with the same --key-file") : std::string()) +
                          "? pass --firmware PATH to spawn it)");
+}
+
+void SessionClient::restart(std::int32_t session_id, const NodeBoots& boots, std::int64_t utime)
+{
+    session_.session_id = session_id;
+    session_.action = tvo_lcm::session_t::ACTION_START;
+    session_.utime = utime;
+    for (std::int32_t r = 0; r < session_.robot_count; ++r) {
+        session_.node_boot_id[r] = boots[static_cast<std::size_t>(r)];
+    }
+    named_ = named_boots(session_);
+    begin_exchange(tvo_lcm::session_t::ACTION_START);
+    first_copy_ = true;
+    repeats_.reset();
+}
+
+bool SessionClient::service(std::optional<std::int64_t> utime)
+{
+    if (exchange_done()) {
+        return true;
+    }
+    const auto now = std::chrono::steady_clock::now();
+    if (repeats_.due(now)) {
+        publish_start(utime);
+        repeats_.sent(now);
+    }
+    return false;
 }
 
 bool SessionClient::stop(std::int64_t utime, std::chrono::milliseconds timeout)
@@ -291,9 +407,9 @@ bool SessionClient::stop(std::int64_t utime, std::chrono::milliseconds timeout)
     tvo_lcm::session_t stop = session_;
     stop.utime = utime;
     stop.action = tvo_lcm::session_t::ACTION_STOP;
-    acked_ = false;
+    begin_exchange(tvo_lcm::session_t::ACTION_STOP);
     transport_.publish(stop);
-    return await_ack(tvo_lcm::session_t::ACTION_STOP, std::chrono::steady_clock::now() + timeout);
+    return await_exchange(std::chrono::steady_clock::now() + timeout);
 }
 
 }  // namespace tvo_host

@@ -5,9 +5,6 @@
 #include <cmath>
 #include <string>
 
-extern "C" {
-}
-
 namespace tvo_host {
 
 namespace {
@@ -22,23 +19,24 @@ constexpr std::int64_t kCheckStepUs = 1000;
 // Lockstep: longest wait for the node to acknowledge a re-sent START (as for the first START).
 constexpr std::chrono::milliseconds kRestartTimeout{5000};
 
+using Header = tvo_lcm::command_header_t;
+
 bool is_fault(std::int32_t status, std::int32_t flags)
 {
-    const auto bad_flags = static_cast<std::int32_t>(tvo_lcm::command_t::FLAG_HOLDING | tvo_lcm::command_t::FLAG_SAFE_STOP);
+    const auto bad_flags = static_cast<std::int32_t>(Header::FLAG_HOLDING | Header::FLAG_SAFE_STOP);
     return status != 0 || (flags & bad_flags) != 0;
 }
 
 bool is_safe_stop(std::int32_t flags)
 {
-    return (flags & static_cast<std::int32_t>(tvo_lcm::command_t::FLAG_SAFE_STOP)) != 0;
+    return (flags & static_cast<std::int32_t>(Header::FLAG_SAFE_STOP)) != 0;
 }
 
 /// A command the plant can act on: a time within the wire's range (so no arithmetic on it can
-/// overflow), our robot count and finite inputs.
+/// overflow) and finite inputs.
 bool well_formed(const JointCommand& command, std::size_t robots)
 {
-    if (command.utime < 0 || command.utime > TVO_WIRE_TIME_MAX_US ||
-        command.robot_count != static_cast<std::int32_t>(robots)) {
+    if (command.utime < 0 || command.utime > TVO_WIRE_TIME_MAX_US) {
         return false;
     }
     for (std::size_t r = 0; r < robots; ++r) {
@@ -67,9 +65,28 @@ SimLoop::SimLoop(const SimOptions& options, const Scenario& scenario, LcmTranspo
       noise_(MeasurementNoiseConfig{options.sigma, options.sigma, options.sigma}, options.seed),
       disturbance_(DisturbanceConfig{options.disturbance_speed_mps, options.disturbance_turn_radps}, options.seed),
       faults_(FaultConfig{options.drop_prob, options.extra_delay_us}, options.seed),
-      sent_(static_cast<std::size_t>(options.steps), false)
+      sent_(static_cast<std::size_t>(options.steps), false),
+      telemetry_every_(telemetry_every_periods(options.telemetry_every, options.period_us))
 {
     pending_.reserve(kPendingReserve);
+    telemetry_sequence_.fill(-1);
+    bind_nodes();
+}
+
+void SimLoop::bind_nodes()
+{
+    const std::vector<std::int64_t>& named = session_.named();
+    roles_.assign(named.size(), -1);
+    running_seen_.assign(named.size(), -1);
+    for (std::size_t i = 0; i < named.size(); ++i) {
+        const tvo_lcm::node_status_t* node = transport_.nodes().of_boot(named[i]);
+        roles_[i] = node != nullptr ? node->own_robot : static_cast<std::int8_t>(-1);
+    }
+}
+
+bool SimLoop::telemetry_due(std::int64_t sequence) const
+{
+    return sequence % telemetry_every_ == 0;
 }
 
 std::int64_t SimLoop::wall_plant_us() const
@@ -94,21 +111,17 @@ void SimLoop::on_command(const JointCommand& command)
         return;
     }
     const std::size_t robots = scenario_.robot_count;
+    const std::int64_t arrival_us = options_.realtime ? std::max(now_us_, wall_plant_us()) : now_us_;
+    if (silent_since_us_) {
+        silent_since_us_ = std::max(*silent_since_us_, arrival_us);  // the node speaks: rule 5's silence starts over
+    }
     const bool usable = well_formed(command, robots);
     metrics_.add_command(command.turn_rate_radps.data(), usable ? robots : 0,
                          !usable || is_fault(command.status, command.flags),
                          (command.flags & static_cast<std::int32_t>(TVO_FLAG_REGULARIZED)) != 0);
-    if (command.status == static_cast<std::int32_t>(tvo_lcm::command_t::STATUS_ERR_NO_SESSION) && !restart_pending_ &&
-        command.measurement_sequence > restart_acked_through_sequence_) {
-        // The node lost our session (it restarted): START again, from the loop (not from inside LCM's handler).
-        restart_pending_ = true;
-        restart_repeats_.reset();
-        ++counts_.session_restarts;
-    }
     const bool answers_ours = sent(command.measurement_sequence);
     if (answers_ours && command.measurement_sequence >= answered_sequence_) {
         answered_sequence_ = command.measurement_sequence;
-        answered_status_ = command.status;
     }
     const bool safe_stop = is_safe_stop(command.flags);
     if (usable && answers_ours && command.status != TVO_OK && !safe_stop) {
@@ -120,7 +133,6 @@ void SimLoop::on_command(const JointCommand& command)
         ++counts_.ignored_commands;
         return;
     }
-    const std::int64_t arrival_us = options_.realtime ? std::max(now_us_, wall_plant_us()) : now_us_;
     if (options_.realtime && options_.has_link_loss()) {
         if (answers_ours && command.status == TVO_OK &&
             sample_time_us(command.measurement_sequence) < options_.link_loss_start_us) {
@@ -131,7 +143,7 @@ void SimLoop::on_command(const JointCommand& command)
             first_safe_stop_after_loss_utime_ = command.utime;
         }
     }
-    last_queued_sequence_ = std::max(last_queued_sequence_, command.measurement_sequence);
+    last_queued_sequence_ = std::max<std::int64_t>(last_queued_sequence_, command.measurement_sequence);
     PendingCommand pending;
     pending.apply_us = command.utime - epoch_utime_ + faults_.extra_delay_us();
     pending.sequence = command.measurement_sequence;
@@ -160,31 +172,52 @@ void SimLoop::on_command(const JointCommand& command)
 
 void SimLoop::on_session_ack(const tvo_lcm::session_ack_t& ack)
 {
-    if (!restart_pending_ || !session_.is_start_ack(ack)) {
-        return;  // e.g. the node's repeated ack of a START sent twice at the start
-    }
-    restart_pending_ = false;
-    // Measurements sent until now may still reach the node before this START did: their
-    // tvo_lcm::command_t::STATUS_ERR_NO_SESSION answers belong to this restart, not to a new one.
-    restart_acked_through_sequence_ = last_sent_sequence_;
-    if (ack.status != TVO_OK) {
-        restart_refused_ = ack;
+    if (restart_pending_ && restart_begun_) {
+        session_.on_session_ack(ack);  // the new session's START (the node's repeated acks of the first go nowhere)
     }
 }
 
 void SimLoop::on_telemetry(const tvo_lcm::telemetry_t& telemetry)
 {
-    if (telemetry.session_id != session_.session_id()) {
+    const tvo_lcm::command_header_t& h = telemetry.header;
+    if (h.session_id != session_.session_id() || h.robot < 0 ||
+        static_cast<std::size_t>(h.robot) >= scenario_.robot_count) {
         return;
     }
-    counts_.node_counters = telemetry.counters;
-    if (telemetry.measurement_sequence < telemetry_sequence_) {
+    const auto r = static_cast<std::size_t>(h.robot);
+    if (h.measurement_sequence < telemetry_sequence_[r]) {
         return;
     }
-    telemetry_sequence_ = telemetry.measurement_sequence;
-    telemetry_.barrier_c = telemetry.barrier_c;
-    telemetry_.barrier_slack = telemetry.barrier_slack;
-    telemetry_.regularization = telemetry.regularization;
+    telemetry_sequence_[r] = h.measurement_sequence;
+    telemetry_[r].barrier_c = telemetry.barrier_c;
+    telemetry_[r].barrier_slack = telemetry.barrier_slack;
+    telemetry_[r].regularization = telemetry.regularization;
+}
+
+void SimLoop::on_node_status(const tvo_lcm::node_status_t& status)
+{
+    (void)status;  // the transport's directory has it: judge every named node by its current role
+    if (restart_pending_) {
+        return;
+    }
+    const std::vector<std::int64_t>& named = session_.named();
+    for (std::size_t i = 0; i < named.size(); ++i) {
+        const tvo_lcm::node_status_t* node = transport_.nodes().current(roles_[i]);
+        if (node == nullptr) {
+            continue;
+        }
+        if (node->boot_id != named[i]) {
+            begin_restart();  // the node restarted: the session it ran is gone
+            return;
+        }
+        if (node->state == tvo_lcm::node_status_t::STATE_RUNNING && node->session_id == session_.session_id()) {
+            running_seen_[i] = std::max(running_seen_[i], node->utime);
+        } else if (node->state == tvo_lcm::node_status_t::STATE_IDLE && running_seen_[i] >= 0 &&
+                   node->utime > running_seen_[i]) {
+            begin_restart();  // it ran ours, and now runs nothing
+            return;
+        }
+    }
 }
 
 void SimLoop::check_constraints(std::int64_t t_us)
@@ -238,20 +271,20 @@ bool SimLoop::publish_sample(std::int64_t sequence, std::int64_t sample_us)
     const double t_s = static_cast<double>(sample_us) * kSPerUs;
     if (scenario_.streamed) {
         // The target source is independent of the pose sensor: it is streamed even when a pose is lost.
-        target_.utime = utime;
-        target_.session_id = session_.session_id();
-        target_.sequence = sequence;
-        target_.robot_count = robots;
+        target_.header.utime = utime;
+        target_.header.session_id = session_.session_id();
+        target_.header.sequence = static_cast<std::int32_t>(sequence);
         for (std::size_t r = 0; r < scenario_.robot_count; ++r) {
             const auto deriv = scenario_.targets[r].derivatives(t_s);
+            target_.header.robot = static_cast<std::int8_t>(r);
             for (int axis = 0; axis < 2; ++axis) {
-                target_.position_m[r][axis] = deriv[0][axis];
-                target_.velocity_mps[r][axis] = deriv[1][axis];
-                target_.acceleration_mps2[r][axis] = deriv[2][axis];
-                target_.jerk_mps3[r][axis] = deriv[3][axis];
+                target_.position_m[axis] = deriv[0][axis];
+                target_.velocity_mps[axis] = static_cast<float>(deriv[1][axis]);
+                target_.acceleration_mps2[axis] = static_cast<float>(deriv[2][axis]);
+                target_.jerk_mps3[axis] = static_cast<float>(deriv[3][axis]);
             }
+            transport_.publish(target_);
         }
-        transport_.publish(target_);
     }
     if (options_.link_lost_at(sample_us)) {
         ++counts_.link_lost_measurements;
@@ -262,7 +295,7 @@ bool SimLoop::publish_sample(std::int64_t sequence, std::int64_t sample_us)
     }
     measurement_.utime = utime;
     measurement_.session_id = session_.session_id();
-    measurement_.sequence = sequence;
+    measurement_.sequence = static_cast<std::int32_t>(sequence);
     measurement_.robot_count = robots;
     // Position-only: the first sample still carries the heading, which the controller needs to start.
     const bool send_heading = !options_.position_only || !heading_sent_;
@@ -277,25 +310,35 @@ bool SimLoop::publish_sample(std::int64_t sequence, std::int64_t sample_us)
     }
     heading_sent_ = true;
     sent_[static_cast<std::size_t>(sequence)] = true;
-    last_sent_sequence_ = sequence;
+    silent_since_us_ = silent_since_us_.value_or(sample_us);
     transport_.publish(measurement_);
     return true;
 }
 
 SimLoop::Answer SimLoop::await_answer(std::int64_t sequence)
 {
-    // The telemetry follows its command: waiting for both keeps the CSV's telemetry columns in step.
-    // A node without our session answers tvo_lcm::command_t::STATUS_ERR_NO_SESSION and has no telemetry to send.
+    // Every robot's command, and its telemetry when this period carries some (the node sends it right
+    // after the commands of every telemetry_every-th sequence): waiting for both keeps the CSV's
+    // telemetry columns in step, and the run deterministic.
     const auto timeout = std::chrono::duration_cast<std::chrono::microseconds>(
         std::chrono::duration<double>(options_.answer_timeout_s));
     const auto deadline = std::chrono::steady_clock::now() + timeout;
-    const auto answered = [&] {
-        return answered_sequence_ >= sequence &&
-               (telemetry_sequence_ >= sequence || answered_status_ == static_cast<std::int32_t>(tvo_lcm::command_t::STATUS_ERR_NO_SESSION));
+    const bool with_telemetry = telemetry_due(sequence);
+    const auto telemetry_in = [&] {
+        for (std::size_t r = 0; r < scenario_.robot_count; ++r) {
+            if (telemetry_sequence_[r] < sequence) {
+                return false;
+            }
+        }
+        return true;
     };
+    const auto answered = [&] { return answered_sequence_ >= sequence && (!with_telemetry || telemetry_in()); };
     while (!answered()) {
         if (stopping()) {
             return Answer::Interrupted;
+        }
+        if (restart_pending_) {
+            return Answer::Restart;  // a node restarted or lost the session: this sample will not be answered
         }
         const auto left = std::chrono::duration_cast<std::chrono::microseconds>(deadline -
                                                                                 std::chrono::steady_clock::now());
@@ -303,6 +346,10 @@ SimLoop::Answer SimLoop::await_answer(std::int64_t sequence)
             const bool no_command = answered_sequence_ < sequence;
             if (options_.on_missing_answer == MissingAnswer::Hold) {
                 ++(no_command ? counts_.lost_answers : counts_.lost_telemetry);
+                unanswered_streak_ = no_command ? unanswered_streak_ + 1 : 0;
+                if (unanswered_streak_ >= options_.watchdog_periods) {
+                    begin_restart();  // rule 5: the node fell silent for watchdog_periods periods
+                }
                 return Answer::Lost;
             }
             throw TransportError(std::string(no_command ? "no command" : "no telemetry") +
@@ -311,25 +358,70 @@ SimLoop::Answer SimLoop::await_answer(std::int64_t sequence)
         }
         transport_.wait(left);
     }
+    unanswered_streak_ = 0;
     return Answer::Received;
+}
+
+void SimLoop::begin_restart()
+{
+    if (restart_pending_) {
+        return;
+    }
+    // Stop the robots now (a plant's own safe stop, in force until a command of the new session) ...
+    const std::int64_t now = options_.realtime ? std::max(now_us_, wall_plant_us()) : now_us_;
+    advance_to(now);
+    pending_.clear();
+    applied_ = PendingCommand{};
+    applied_.apply_us = now;
+    applied_.sequence = -1;
+    applied_.flags = static_cast<std::int32_t>(Header::FLAG_SAFE_STOP);
+    for (std::size_t r = 0; r < scenario_.robot_count; ++r) {
+        plant_.hold(r, UnicycleInput{});
+    }
+    last_queued_sequence_ = std::max(last_queued_sequence_, answered_sequence_);
+    // ... and start a new session: its START names the nodes' current boots, once they are heard.
+    restart_pending_ = true;
+    restart_begun_ = false;
+    silent_since_us_.reset();
+    ++counts_.session_restarts;
 }
 
 void SimLoop::service_restart()
 {
     if (restart_refused_) {
-        throw TransportError("the node lost the session and refused it again: " +
+        throw TransportError("a node lost the session and refused the new one: " +
                              describe_rejection(*restart_refused_, options_));
     }
     if (!restart_pending_) {
         return;
     }
-    const auto now = std::chrono::steady_clock::now();
-    if (restart_repeats_.due(now)) {
-        // Stamped with the plant's clock now (lockstep: its simulated time): the node's first sample
-        // of a session must follow its START closely.
-        session_.send_start_again(options_.realtime ? std::nullopt : std::optional<std::int64_t>(epoch_utime_ + now_us_));
-        restart_repeats_.sent(now);
+    // Stamped with the plant's clock now (lockstep: its simulated time): a session's first sample must
+    // follow its START closely.
+    const std::optional<std::int64_t> utime =
+        options_.realtime ? std::nullopt : std::optional<std::int64_t>(epoch_utime_ + now_us_);
+    if (!restart_begun_) {
+        const std::optional<NodeBoots> boots = transport_.nodes().assignment(scenario_.robot_count);
+        if (!boots) {
+            return;  // rule 1 again: not every robot has a node yet
+        }
+        const auto id = static_cast<std::int32_t>(
+            (static_cast<std::uint32_t>(session_.session_id()) + 1u) & 0x7fffffffu);  // fresh: the node's replace rule
+        session_.restart(id, *boots, utime.value_or(session_.start_message().utime));
+        restart_begun_ = true;
     }
+    if (!session_.service(utime)) {
+        return;
+    }
+    if (session_.refused()) {
+        restart_refused_ = session_.ack();
+        throw TransportError("a node lost the session and refused the new one: " +
+                             describe_rejection(*restart_refused_, options_));
+    }
+    restart_pending_ = false;
+    restart_begun_ = false;
+    bind_nodes();
+    silent_since_us_.reset();  // counted again from the new session's first sample
+    unanswered_streak_ = 0;
 }
 
 bool SimLoop::await_restart()
@@ -341,11 +433,13 @@ bool SimLoop::await_restart()
         }
         const auto now = std::chrono::steady_clock::now();
         if (now >= deadline) {
-            throw TransportError("the node lost the session and did not acknowledge it again within " +
-                                 std::to_string(kRestartTimeout.count()) + " ms");
+            throw TransportError("a node restarted, lost the session or fell silent, and no new session was acknowledged "
+                                 "by every robot's node within " +
+                                 std::to_string(kRestartTimeout.count()) + " ms (heard: " +
+                                 transport_.nodes().describe() + ")");
         }
-        const auto until_repeat = restart_repeats_.next(now);
-        transport_.wait(std::chrono::duration_cast<std::chrono::microseconds>(std::min(deadline, until_repeat) - now));
+        transport_.wait(std::chrono::duration_cast<std::chrono::microseconds>(
+            std::min(deadline, now + std::chrono::milliseconds(50)) - now));
     }
     return true;
 }
@@ -355,6 +449,10 @@ bool SimLoop::wait_until(std::int64_t t_us)
     for (;;) {
         service_restart();
         const std::int64_t now = wall_plant_us();
+        if (!restart_pending_ && silent_since_us_ &&
+            now - *silent_since_us_ >= options_.watchdog_periods * options_.period_us) {
+            begin_restart();  // rule 5: no command for watchdog_periods h since the last (or the first sample)
+        }
         if (now >= t_us) {
             return true;
         }
@@ -375,7 +473,7 @@ void SimLoop::record(std::int64_t t_us)
         const double error_m = (plant_.state(r).position_m - references[r]).norm();
         worst_m = std::max(worst_m, error_m);
         recorder_.row(t_s, r, plant_.state(r), references[r], error_m, applied_.input[r], applied_.status,
-                      applied_.flags, telemetry_);
+                      applied_.flags, telemetry_[r]);
     }
     metrics_.add_error_sample(t_s, worst_m);
 }
@@ -400,8 +498,11 @@ LoopResult SimLoop::run()
         }
         advance_to(sample_us);
         transport_.set_log_utime(epoch_utime_ + sample_us);
-        if (publish_sample(n, sample_us) && !options_.realtime &&
-            (await_answer(n) == Answer::Interrupted || !await_restart())) {
+        if (publish_sample(n, sample_us) && !options_.realtime && await_answer(n) == Answer::Interrupted) {
+            interrupted = true;
+            break;
+        }
+        if (!options_.realtime && restart_pending_ && !await_restart()) {
             interrupted = true;
             break;
         }

@@ -7,13 +7,16 @@
 //   boundary); the command answering it is applied at its utime, nominally t_{n+1} (+ any injected
 //   extra delay), and held until the next one. The robots hold zero input until the first command;
 //   the run ends at T = steps h.
-// Commands (edge_spec, "the plant's rules"): one is applied only if it carries our session id and
-//   either answers a measurement we sent that is newer than the command in force, or is a safe stop.
-//   A command with status tvo_lcm::command_t::STATUS_ERR_NO_SESSION means the node lost our session (it restarted): the
-//   START is sent again (repeated until acknowledged) and the run goes on.
-// Lockstep (session CLOCK_PLANT): after publishing measurement n the loop blocks (wall-clock
-//   timeout) until the command and the telemetry answering n arrive, so the run is deterministic
-//   and as fast as the transport. Epoch = --start-utime-us.
+// Commands (lcm_types/README.md, "Writing your own plant"): one robot's each, joined per period into the
+//   joint command (CommandAssembler); it is applied only if it carries our session id and either answers a
+//   sample we sent that is newer than the command in force, or is a safe stop.
+// The nodes (rule 5): when a node we named announces a new boot, or says it is idle after it ran our
+//   session, or (realtime) no command came for watchdog_periods h, the plant stops its robots and starts
+//   a new session (fresh id) naming the nodes' current boots; lockstep waits for every ack.
+// Lockstep (session CLOCK_PLANT): after publishing the samples of period n the loop blocks (wall-clock
+//   timeout) until every robot's command answering n arrives, and its telemetry when n carries some
+//   (every telemetry_every-th sequence), so the run is deterministic and as fast as the transport.
+//   Epoch = --start-utime-us.
 // Realtime (session CLOCK_NODE): plant time follows the plant's monotonic clock (PlantClock), which
 //   starts before the first START; the epoch is that START's utime + kNodeClockEpochLeadUs and the
 //   loop waits for it. Commands take effect at their utime, or on arrival when they come late
@@ -25,6 +28,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdint>
+#include <array>
 #include <optional>
 #include <vector>
 
@@ -60,10 +64,9 @@ struct LoopResult {
     std::uint64_t link_lost_measurements{0};  // not sent because of --link-loss
     std::uint64_t ignored_commands{0};        // ours by id but answering nothing we sent (newer), or malformed
     std::uint64_t other_session_commands{0};  // for another session id
-    std::uint64_t session_restarts{0};        // tvo_lcm::command_t::STATUS_ERR_NO_SESSION seen: START sent again
+    std::uint64_t session_restarts{0};        // rule 5: robots stopped, a new session started
     std::uint64_t safe_stop_commands{0};      // safe stops applied to the plant
     std::optional<double> first_safe_stop_after_loss_s;  // realtime with --link-loss, see README
-    std::optional<tvo_lcm::node_counters_t> node_counters;  // from the newest telemetry of our session
     bool interrupted{false};
 };
 
@@ -80,6 +83,7 @@ public:
     void on_command(const JointCommand& command) override;
     void on_session_ack(const tvo_lcm::session_ack_t& ack) override;
     void on_telemetry(const tvo_lcm::telemetry_t& telemetry) override;
+    void on_node_status(const tvo_lcm::node_status_t& status) override;
 
 private:
     struct PendingCommand {
@@ -89,15 +93,18 @@ private:
         std::int32_t status{0};
         std::int32_t flags{0};
     };
-    enum class Answer { Received, Lost, Interrupted };
+    enum class Answer { Received, Lost, Restart, Interrupted };
 
     void advance_to(std::int64_t t_us);
     void integrate_to(std::int64_t t_us);
     void check_constraints(std::int64_t t_us);
     bool publish_sample(std::int64_t sequence, std::int64_t sample_us);  // false if not sent
     Answer await_answer(std::int64_t sequence);
+    void bind_nodes();                           // the roles of the nodes the session names
+    void begin_restart();                        // rule 5: robots stopped, a new session due
     bool await_restart();                        // lockstep; false when interrupted
     void service_restart();                      // (re)sends START while a restart is pending
+    bool telemetry_due(std::int64_t sequence) const;
     bool wait_until(std::int64_t t_us);          // realtime; false when interrupted
     bool sent(std::int64_t sequence) const;
     std::int64_t sample_time_us(std::int64_t sequence) const;
@@ -127,17 +134,20 @@ private:
     PendingCommand applied_{};               // command in force (as commanded, before disturbance)
     std::int64_t last_queued_sequence_{-1};
     std::int64_t answered_sequence_{-1};     // newest sent measurement a command answered
-    std::int32_t answered_status_{0};        // that command's status
-    std::int64_t telemetry_sequence_{-1};    // newest telemetry received
-    StepTelemetry telemetry_{};              // newest received (lockstep: of the command in force)
+    const std::int64_t telemetry_every_;     // the periods whose answers carry telemetry
+    std::array<std::int64_t, kMaxRobots> telemetry_sequence_{};  // per robot: newest telemetry received
+    std::array<StepTelemetry, kMaxRobots> telemetry_{};          // per robot: newest received
     LoopResult counts_{};                    // the counters of the result, filled as the run goes
 
-    // Session restart (the node answered tvo_lcm::command_t::STATUS_ERR_NO_SESSION).
+    // Rule 5: a new session when a node restarted, lost ours or fell silent.
+    std::vector<std::int8_t> roles_;          // per named boot: its node's own_robot
+    std::vector<std::int64_t> running_seen_;  // per named boot: node utime it last said it runs ours, -1 none
     bool restart_pending_{false};
-    StartRepeats restart_repeats_;              // the restart's START copies, backing off as the first session's
+    bool restart_begun_{false};               // the new session's START is out (its nodes were heard)
     std::optional<tvo_lcm::session_ack_t> restart_refused_;
-    std::int64_t last_sent_sequence_{-1};
-    std::int64_t restart_acked_through_sequence_{-1};  // newest sent when the last restart was acked
+    std::optional<std::int64_t> silent_since_us_;  // realtime: plant time of the newest command of ours, or of
+                                                   // the session's first sample before any came
+    std::int64_t unanswered_streak_{0};       // lockstep: sent samples in a row that got no answer
 
     // --link-loss figures (realtime): plant-clock utimes from the commands' own stamps.
     std::optional<std::int64_t> last_answer_before_loss_utime_;

@@ -1,6 +1,7 @@
 // Summary table and JSON; see summary.hpp.
 #include "summary.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -59,6 +60,27 @@ void write_json_file(const std::string& path, const nlohmann::json& json)
 }
 }  // namespace
 
+void NodeCounterSums::add(const tvo_lcm::node_counters_t& c)
+{
+    const auto count = [](std::int32_t n) { return static_cast<std::uint64_t>(std::max<std::int32_t>(n, 0)); };
+    accepted += count(c.accepted);
+    for (std::size_t s = 0; s < refused_by_status.size(); ++s) {
+        refused_by_status[s] += count(c.refused[s]);
+        refused += count(c.refused[s]);
+    }
+    malformed += count(c.malformed);
+    unauthenticated += count(c.unauthenticated);
+    replayed += count(c.replayed);
+    wrong_boot += count(c.wrong_boot);
+    idle += count(c.idle);
+    other_session += count(c.other_session);
+    predicted += count(c.predicted);
+    safe_stops += count(c.safe_stops);
+    targets_refused += count(c.targets_refused);
+    speed_mismatch += count(c.speed_mismatch);
+    sessions += count(c.sessions);
+}
+
 void print_summary_table(std::ostream& out, const RunSummary& s, const SimOptions& o)
 {
     std::ostringstream mode;
@@ -92,10 +114,19 @@ void print_summary_table(std::ostream& out, const RunSummary& s, const SimOption
     line(out, "commands ignored", std::to_string(s.ignored_commands) + " (+ " +
                                       std::to_string(s.other_session_commands) + " for other sessions)");
     line(out, "session restarts", std::to_string(s.session_restarts));
-    if (s.node_accepted && s.node_refused && s.node_safe_stops) {
-        line(out, "node: accepted / refused", std::to_string(*s.node_accepted) + " / " +
-                                                  std::to_string(*s.node_refused) + " measurements, " +
-                                                  std::to_string(*s.node_safe_stops) + " safe stops");
+    line(out, "bus", s.signed_bus ? "signed (every message signed and opened: --key-file)"
+                                  : "unsigned (anyone on the network may send: --key-file signs it)");
+    if (s.node_counters) {
+        const NodeCounterSums& c = *s.node_counters;
+        line(out, "node: accepted / refused", std::to_string(c.accepted) + " / " + std::to_string(c.refused) +
+                                                  " periods, " + std::to_string(c.safe_stops) + " safe stops");
+        if (c.malformed + c.unauthenticated + c.replayed + c.wrong_boot + c.idle + c.other_session > 0) {
+            line(out, "node: dropped", std::to_string(c.malformed) + " malformed, " + std::to_string(c.unauthenticated) +
+                                           " unauthenticated, " + std::to_string(c.replayed) + " replayed, " +
+                                           std::to_string(c.wrong_boot) + " for another boot, " +
+                                           std::to_string(c.idle) + " while idle, " + std::to_string(c.other_session) +
+                                           " of another session");
+        }
     }
     if (s.collisions) {
         line(out, "collisions", std::to_string(*s.collisions));
@@ -148,9 +179,32 @@ void write_summary_json(const std::string& path, const RunSummary& s)
         }
     };
     put("first_safe_stop_after_loss_s", s.first_safe_stop_after_loss_s);
-    put_count("node_accepted", s.node_accepted);
-    put_count("node_refused", s.node_refused);
-    put_count("node_safe_stops", s.node_safe_stops);
+    json["signed"] = s.signed_bus;
+    if (s.node_counters) {
+        const NodeCounterSums& c = *s.node_counters;
+        json["node_accepted"] = c.accepted;
+        json["node_refused"] = c.refused;
+        json["node_safe_stops"] = c.safe_stops;
+        nlohmann::json by_status = nlohmann::json::object();
+        for (std::size_t status = 0; status < c.refused_by_status.size(); ++status) {
+            if (c.refused_by_status[status] > 0) {
+                by_status[std::to_string(status)] = c.refused_by_status[status];
+            }
+        }
+        json["node_counters"] = {{"accepted", c.accepted},
+                                 {"refused", by_status},
+                                 {"malformed", c.malformed},
+                                 {"unauthenticated", c.unauthenticated},
+                                 {"replayed", c.replayed},
+                                 {"wrong_boot", c.wrong_boot},
+                                 {"idle", c.idle},
+                                 {"other_session", c.other_session},
+                                 {"predicted", c.predicted},
+                                 {"safe_stops", c.safe_stops},
+                                 {"targets_refused", c.targets_refused},
+                                 {"speed_mismatch", c.speed_mismatch},
+                                 {"sessions", c.sessions}};
+    }
     put_count("collisions", s.collisions);
     put("min_clearance_m", s.min_clearance_m);
     put("min_distance_m", s.min_distance_m);

@@ -1,15 +1,36 @@
 // The run's summary: a table on stdout and a JSON file for scripts and tests.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <ostream>
 #include <string>
 
+#include "lcm_messages.hpp"
 #include "options.hpp"
 #include "scenario.hpp"
 
 namespace tvo_host {
+
+/// node_counters_t of one or more nodes, summed (each counter saturates at 2^31 - 1 on its node).
+struct NodeCounterSums {
+    std::uint64_t accepted{0};
+    std::uint64_t refused{0};                   // every status
+    std::array<std::uint64_t, tvo_lcm::node_counters_t::STATUS_SLOTS> refused_by_status{};
+    std::uint64_t malformed{0};
+    std::uint64_t unauthenticated{0};
+    std::uint64_t replayed{0};
+    std::uint64_t wrong_boot{0};
+    std::uint64_t idle{0};
+    std::uint64_t other_session{0};
+    std::uint64_t predicted{0};
+    std::uint64_t safe_stops{0};
+    std::uint64_t targets_refused{0};
+    std::uint64_t speed_mismatch{0};
+    std::uint64_t sessions{0};
+    void add(const tvo_lcm::node_counters_t& c);
+};
 
 struct RunSummary {
     double final_error_m{0.0};
@@ -31,10 +52,10 @@ struct RunSummary {
     std::uint64_t safe_stop_commands{0};
     std::optional<double> first_safe_stop_after_loss_s;  // realtime runs with --link-loss
 
-    // The node's own counters, from the newest telemetry of our session (absent if none came).
-    std::optional<std::uint64_t> node_accepted;
-    std::optional<std::uint64_t> node_refused;
-    std::optional<std::uint64_t> node_safe_stops;
+    bool signed_bus{false};  // every message signed and opened (--key-file)
+    // The run's nodes' own counters since they started, from their newest announcements (TVO_NODE: at
+    // the end, the one each node makes after STOP), summed over the nodes; absent if none was heard.
+    std::optional<NodeCounterSums> node_counters;
 
     // Where the scenario has them (host/README.md defines each); absent keys do not apply.
     std::optional<std::uint64_t> collisions;

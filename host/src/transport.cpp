@@ -5,24 +5,32 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <limits>
 
 #include "auth_key_file.h"
 
 namespace tvo_host {
 
 namespace {
-// Larger than any of the protocol's fixed-size messages (session_t is the biggest, ~2 kB with the
-// problem's constraints); the constructor checks it against the encoded sizes.
-constexpr std::size_t kBufferBytes = 4096;
+// Larger than any of the protocol's fixed-size messages (session_t is the biggest, 11.4 kB with 32
+// robots); the constructor checks it against the encoded sizes.
+constexpr std::size_t kBufferBytes = 16384;
+
+// The plant time a published message is logged at: its own stamp.
+std::int64_t utime_of(const tvo_lcm::session_t& msg) { return msg.utime; }
+template <class Msg>
+std::int64_t utime_of(const Msg& msg)
+{
+    return msg.header.utime;
+}
 }  // namespace
 
-LcmTransport::LcmTransport(const std::string& url, const std::string& log_path, const std::string& key_file,
-                           std::uint32_t sender_id, std::size_t fleet_robots)
-    : lcm_(url), buffer_(kBufferBytes + TVO_AUTH_TRAILER_BYTES), fleet_robots_(fleet_robots), rows_(fleet_robots)
+LcmTransport::LcmTransport(const std::string& url, const std::string& log_path, std::size_t robots,
+                           const std::string& key_file, std::uint32_t sender_id)
+    : lcm_(url), buffer_(kBufferBytes + TVO_AUTH_TRAILER_BYTES), robots_(robots), commands_(robots)
 {
-    if (fleet_robots > kMaxRobots) {
-        throw TransportError("the per-robot leg carries at most " + std::to_string(kMaxRobots) + " robots, got " +
-                             std::to_string(fleet_robots));
+    if (robots < 1 || robots > kMaxRobots) {
+        throw TransportError("a run has 1 .. " + std::to_string(kMaxRobots) + " robots, got " + std::to_string(robots));
     }
     if (!key_file.empty()) {
         std::uint8_t key[TVO_AUTH_KEY_BYTES];
@@ -34,7 +42,7 @@ LcmTransport::LcmTransport(const std::string& url, const std::string& log_path, 
         std::fill(std::begin(key), std::end(key), std::uint8_t{0});
         if (status == TVO_AUTH_OK) {
             // Counters follow the wall clock (MAVLink's rule): a restarted plant starts above its old ones.
-            status = tvo_auth_follow_clock(&auth_, tvo_auth_wall_clock_counter, TVO_AUTH_NEW_SENDER_WINDOW_US);
+            status = tvo_auth_follow_clock(&auth_, tvo_auth_wall_clock_counter);
         }
         if (status != TVO_AUTH_OK) {
             throw TransportError(std::string("authentication set-up failed: ") + tvo_auth_status_str(status));
@@ -52,14 +60,16 @@ LcmTransport::LcmTransport(const std::string& url, const std::string& log_path, 
         throw TransportError("cannot write the LCM log " + log_path);
     }
     event_.channel.reserve(32);
+    announcement_logged_utime_.fill(std::numeric_limits<std::int64_t>::min());
     // Fixed-size messages: their encoded sizes are constants, so one check covers every publish.
-    const int largest = std::max({tvo_lcm::session_t{}.getEncodedSize(), tvo_lcm::measurement_t{}.getEncodedSize(),
-                                  tvo_lcm::fleet_sample_t{}.getEncodedSize(), tvo_lcm::target_t{}.getEncodedSize()});
+    const int largest = std::max({tvo_lcm::session_t{}.getEncodedSize(), tvo_lcm::unicycle_sample_t{}.getEncodedSize(),
+                                  tvo_lcm::target_t{}.getEncodedSize()});
     if (largest < 0 || static_cast<std::size_t>(largest) > kBufferBytes) {
         throw TransportError("the encode buffer (" + std::to_string(buffer_.size()) + " bytes) is smaller than a " +
                              std::to_string(largest) + "-byte message");
     }
-    lcm_.subscribe(fleet_robots_ > 0 ? TVO_CHANNEL_FLEET_COMMAND : TVO_CHANNEL_COMMAND, &LcmTransport::on_raw, this);
+    lcm_.subscribe(TVO_CHANNEL_NODE, &LcmTransport::on_raw, this);
+    lcm_.subscribe(TVO_CHANNEL_COMMAND, &LcmTransport::on_raw, this);
     lcm_.subscribe(TVO_CHANNEL_SESSION_ACK, &LcmTransport::on_raw, this);
     lcm_.subscribe(TVO_CHANNEL_TELEMETRY, &LcmTransport::on_raw, this);
 }
@@ -99,7 +109,7 @@ void LcmTransport::publish_encoded(const std::string& channel, const Msg& msg)
     if (lcm_.publish(channel, buffer_.data(), static_cast<unsigned>(frame_size)) != 0) {
         throw TransportError("LCM publish on " + channel + " failed");
     }
-    log(channel, buffer_.data(), size, msg.utime);
+    log(channel, buffer_.data(), size, utime_of(msg));
 }
 
 void LcmTransport::publish(const tvo_lcm::session_t& msg)
@@ -109,14 +119,10 @@ void LcmTransport::publish(const tvo_lcm::session_t& msg)
 
 void LcmTransport::publish(const JointMeasurement& msg)
 {
-    if (fleet_robots_ == 0) {
-        to_wire(msg, &measurement_);
-        publish_encoded(measurement_channel_, measurement_);
-        return;
-    }
-    for (std::size_t r = 0; r < fleet_robots_; ++r) {  // back to back: the hub gathers a period's samples
+    // In robot order: a node that drives every robot steps on the last one's.
+    for (std::size_t r = 0; r < robots_; ++r) {
         to_wire(msg, r, &sample_);
-        publish_encoded(fleet_sample_channel_, sample_);
+        publish_encoded(sample_channel_, sample_);
     }
 }
 
@@ -138,28 +144,51 @@ void LcmTransport::on_raw(const lcm::ReceiveBuffer* rbuf, const std::string& cha
         }
         size = static_cast<int>(message_size);
     }
-    log(channel, rbuf->data, size, log_utime_);
+    if (channel != TVO_CHANNEL_NODE) {
+        log(channel, rbuf->data, size, log_utime_);
+    }
+    // Decoding fixed-size messages into members allocates nothing. A frame of another length than its
+    // message's is no message of that channel (a keyed frame's trailer is gone by now).
+    if (channel == TVO_CHANNEL_NODE) {
+        if (status_.decode(rbuf->data, 0, size) == size) {
+            log_announcement(channel, rbuf->data, size);
+            nodes_.heard(status_, std::chrono::steady_clock::now());
+            if (listener_ != nullptr) {
+                listener_->on_node_status(status_);
+            }
+        }
+        return;
+    }
     if (listener_ == nullptr) {
         return;
     }
-    // Decoding fixed-size messages into members allocates nothing.
     if (channel == TVO_CHANNEL_COMMAND) {
-        if (command_.decode(rbuf->data, 0, size) >= 0) {
-            listener_->on_command(from_wire(command_));
-        }
-    } else if (channel == TVO_CHANNEL_FLEET_COMMAND) {
-        const JointCommand* joint = row_.decode(rbuf->data, 0, size) >= 0 ? rows_.add(row_) : nullptr;
+        const JointCommand* joint = command_.decode(rbuf->data, 0, size) == size ? commands_.add(command_) : nullptr;
         if (joint != nullptr) {
             listener_->on_command(*joint);
         }
     } else if (channel == TVO_CHANNEL_SESSION_ACK) {
-        if (ack_.decode(rbuf->data, 0, size) >= 0) {
+        if (ack_.decode(rbuf->data, 0, size) == size) {
             listener_->on_session_ack(ack_);
         }
     } else if (channel == TVO_CHANNEL_TELEMETRY) {
-        if (telemetry_.decode(rbuf->data, 0, size) >= 0) {
+        if (telemetry_.decode(rbuf->data, 0, size) == size) {
             listener_->on_telemetry(telemetry_);
         }
+    }
+}
+
+void LcmTransport::log_announcement(const std::string& channel, const void* data, std::int32_t size)
+{
+    // At most one per node of the run (each robot's, the every-robot one) and plant time (bound_outputs).
+    const int role = status_.own_robot;
+    if (role < -1 || role >= static_cast<int>(robots_)) {
+        return;
+    }
+    std::int64_t& last = announcement_logged_utime_[static_cast<std::size_t>(role + 1)];
+    if (last < log_utime_) {
+        last = log_utime_;
+        log(channel, data, size, log_utime_);
     }
 }
 

@@ -2,6 +2,7 @@
 // firmware sends, and logs every message both ways in LCM's own log format (lcm-logplayer replays it).
 #pragma once
 
+#include <array>
 #include <chrono>
 #include <cstdint>
 #include <memory>
@@ -13,6 +14,7 @@
 
 #include "auth.h"
 #include "lcm_messages.hpp"
+#include "nodes.hpp"
 #include "plant_wire.hpp"
 
 namespace tvo_host {
@@ -26,10 +28,13 @@ public:
 class TransportListener {
 public:
     virtual ~TransportListener() = default;
-    /// A joint command: a command_t, or (per-robot leg) every robot's fleet_command_t row of one period.
+    /// A joint command: every robot's unicycle_command_t of one period (CommandAssembler).
     virtual void on_command(const JointCommand& command) = 0;
     virtual void on_session_ack(const tvo_lcm::session_ack_t& ack) = 0;
+    /// One robot's telemetry.
     virtual void on_telemetry(const tvo_lcm::telemetry_t& /*telemetry*/) {}
+    /// A node's announcement, after the transport's NodeDirectory took it.
+    virtual void on_node_status(const tvo_lcm::node_status_t& /*status*/) {}
 };
 
 enum class WaitResult { Timeout, Handled, Interrupted };
@@ -39,10 +44,10 @@ public:
     /// Opens LCM on url (empty: LCM's default) and the log at log_path. TransportError with a fix on failure.
     /// With a key_file every message is signed as sender_id and every received one must open (auth.h);
     /// the log holds the messages without their trailers. Without one the bus is unauthenticated.
-    /// fleet_robots > 0: the per-robot leg for that many robots (fleet_sample_t out, fleet_command_t in,
-    /// plant_wire.hpp); 0: the joint leg (measurement_t, command_t).
-    LcmTransport(const std::string& url, const std::string& log_path, const std::string& key_file = "",
-                 std::uint32_t sender_id = TVO_AUTH_SENDER_PLANT, std::size_t fleet_robots = 0);
+    /// robots: the run's, whose commands are joined (CommandAssembler). It subscribes at once, so the
+    /// first announcement of a node spawned after it is heard (nodes()).
+    LcmTransport(const std::string& url, const std::string& log_path, std::size_t robots, const std::string& key_file = "",
+                 std::uint32_t sender_id = TVO_AUTH_SENDER_PLANT);
     ~LcmTransport();
     LcmTransport(const LcmTransport&) = delete;
     LcmTransport& operator=(const LcmTransport&) = delete;
@@ -52,9 +57,13 @@ public:
     void set_log_utime(std::int64_t utime) { log_utime_ = utime; }
 
     void publish(const tvo_lcm::session_t& msg);
-    /// The period's sample on the run's leg: one measurement_t, or one fleet_sample_t per robot.
+    /// The period's samples: one unicycle_sample_t per robot, in robot order, back to back.
     void publish(const JointMeasurement& msg);
+    /// One robot's streamed target sample.
     void publish(const tvo_lcm::target_t& msg);
+
+    /// The nodes heard so far (every TVO_NODE announcement, whoever listens).
+    const NodeDirectory& nodes() const { return nodes_; }
 
     /// Waits up to timeout for one message and dispatches it.
     WaitResult wait(std::chrono::microseconds timeout);
@@ -71,6 +80,7 @@ private:
     void publish_encoded(const std::string& channel, const Msg& msg);
     void on_raw(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
     void log(const std::string& channel, const void* data, std::int32_t size, std::int64_t utime);
+    void log_announcement(const std::string& channel, const void* data, std::int32_t size);
 
     lcm::LCM lcm_;
     std::unique_ptr<lcm::LogFile> log_;
@@ -84,19 +94,19 @@ private:
     tvo_auth_t auth_{};
     std::uint64_t unauthenticated_{0};
     std::uint64_t replayed_{0};
-    std::size_t fleet_robots_;
-    CommandAssembler rows_;
-    tvo_lcm::measurement_t measurement_{};
-    tvo_lcm::fleet_sample_t sample_{};
-    tvo_lcm::command_t command_{};
-    tvo_lcm::fleet_command_t row_{};
+    std::size_t robots_;
+    CommandAssembler commands_;
+    NodeDirectory nodes_;
+    tvo_lcm::unicycle_sample_t sample_{};
+    tvo_lcm::unicycle_command_t command_{};
     tvo_lcm::session_ack_t ack_{};
     tvo_lcm::telemetry_t telemetry_{};
+    tvo_lcm::node_status_t status_{};
+    std::array<std::int64_t, kMaxRobots + 1> announcement_logged_utime_{};  // per role (own_robot + 1)
     // Channel names as std::string once, so publishing builds no temporaries.
     const std::string session_channel_{TVO_CHANNEL_SESSION};
-    const std::string measurement_channel_{TVO_CHANNEL_MEASUREMENT};
+    const std::string sample_channel_{TVO_CHANNEL_SAMPLE};
     const std::string target_channel_{TVO_CHANNEL_TARGET};
-    const std::string fleet_sample_channel_{TVO_CHANNEL_FLEET_SAMPLE};
 };
 
 }  // namespace tvo_host

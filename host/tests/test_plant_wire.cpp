@@ -1,15 +1,18 @@
-// Checks of the plant's two legs on the wire (plant_wire.hpp): a period's sample as measurement_t and
-// as per-robot fleet_sample_t, command_t and fleet_command_t rows into the joint command (up to the
-// simulator's 8 robots), and tvo_sim's refusal of a scenario the joint messages cannot carry without
-// --fleet. Plain asserts (no framework): exit code 0 = pass.
+// Checks of the plant's messages on the wire (plant_wire.hpp, nodes.hpp): a period's sample as one
+// unicycle_sample_t per robot, unicycle_command_t per robot joined into the joint command (up to the
+// wire's 32 robots), the nodes' announcements into each robot's node boot (rule 1), and tvo_sim's
+// duration limit from the wire's int32 sequence. Plain asserts (no framework): exit code 0 = pass.
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "nodes.hpp"
 #include "options.hpp"
 #include "plant_wire.hpp"
+#include "session.hpp"
 
 namespace {
 
@@ -25,6 +28,7 @@ using tvo_host::CommandAssembler;
 using tvo_host::JointCommand;
 using tvo_host::JointMeasurement;
 using tvo_host::kMaxRobots;
+using tvo_host::NodeDirectory;
 
 JointMeasurement sample_of(std::size_t robots)
 {
@@ -45,98 +49,144 @@ JointMeasurement sample_of(std::size_t robots)
 
 void test_samples()
 {
-    const JointMeasurement m = sample_of(4);
-    tvo_lcm::measurement_t joint{};
-    tvo_host::to_wire(m, &joint);
-    check(joint.utime == m.utime && joint.session_id == 77 && joint.sequence == 3 && joint.robot_count == 4 &&
-              joint.heading_valid && !joint.speed_valid,
-          "joint sample: stamp, session, sequence, count and flags");
-    check(joint.position_m[3][0] == 4.0 && joint.position_m[3][1] == -5.0 && joint.heading_rad[3] == m.heading_rad[3] &&
-              joint.speed_mps[2] == 2.5,
-          "joint sample: every robot's pose and speed");
-    const JointMeasurement m8 = sample_of(kMaxRobots);
+    const JointMeasurement m = sample_of(kMaxRobots);
     bool rows_ok = true;
     for (std::size_t r = 0; r < kMaxRobots; ++r) {
-        tvo_lcm::fleet_sample_t s{};
-        tvo_host::to_wire(m8, r, &s);
-        rows_ok = rows_ok && s.utime == m8.utime && s.session_id == 77 && s.sequence == 3 &&
-                  s.robot == static_cast<std::int32_t>(r) && s.robot_count == 8 &&
-                  s.position_m[0] == m8.position_m[r][0] && s.position_m[1] == m8.position_m[r][1] &&
-                  s.heading_rad == m8.heading_rad[r] && s.speed_mps == m8.speed_mps[r] && s.heading_valid &&
-                  !s.speed_valid;
+        tvo_lcm::unicycle_sample_t s{};
+        tvo_host::to_wire(m, r, &s);
+        rows_ok = rows_ok && s.header.utime == m.utime && s.header.session_id == 77 && s.header.sequence == 3 &&
+                  s.header.robot == static_cast<std::int8_t>(r) && s.position_m[0] == m.position_m[r][0] &&
+                  s.position_m[1] == m.position_m[r][1] && s.heading_rad == static_cast<float>(m.heading_rad[r]) &&
+                  s.speed_mps == static_cast<float>(m.speed_mps[r]) &&
+                  s.has == tvo_lcm::unicycle_sample_t::HAS_HEADING;
     }
-    check(rows_ok, "per-robot samples: robot r's own pose, the period's stamp, 8 robots");
+    check(rows_ok, "per-robot samples: robot r's own pose, the period's stamp, 32 robots, HAS_HEADING only");
+
+    // The plant's heading is unwrapped (continuous); the wire's is in [-pi, pi] (its float's best resolution).
+    JointMeasurement turned = sample_of(1);
+    turned.heading_rad[0] = -10.0;
+    tvo_lcm::unicycle_sample_t s{};
+    tvo_host::to_wire(turned, 0, &s);
+    const double expected = -10.0 + 4.0 * M_PI;
+    check(std::fabs(static_cast<double>(s.heading_rad) - expected) < 1e-6 && s.heading_rad <= static_cast<float>(M_PI) &&
+              s.heading_rad >= static_cast<float>(-M_PI),
+          "heading -10 rad goes out wrapped: -10 + 4 pi");
+    turned.heading_valid = false;
+    turned.speed_valid = true;
+    tvo_host::to_wire(turned, 0, &s);
+    check(s.has == tvo_lcm::unicycle_sample_t::HAS_SPEED, "has: HAS_SPEED only");
 }
 
-void test_joint_command()
+tvo_lcm::unicycle_command_t command_of(std::int8_t robot, std::int32_t sequence)
 {
-    tvo_lcm::command_t c{};
-    c.utime = 42;
-    c.session_id = 7;
-    c.measurement_sequence = 9;
-    c.robot_count = 4;
-    c.status = 12;
-    c.flags = 0x21;
-    c.speed_mps[3] = 1.5;
-    c.turn_rate_radps[0] = -0.25;
-    const JointCommand j = tvo_host::from_wire(c);
-    check(j.utime == 42 && j.session_id == 7 && j.measurement_sequence == 9 && j.robot_count == 4 && j.status == 12 &&
-              j.flags == 0x21 && j.speed_mps[3] == 1.5 && j.turn_rate_radps[0] == -0.25,
-          "command_t as the joint command");
-}
-
-tvo_lcm::fleet_command_t row_of(std::int32_t robot, std::int32_t robots, std::int64_t sequence)
-{
-    tvo_lcm::fleet_command_t row{};
-    row.utime = 2000 + robot;
-    row.session_id = 7;
-    row.measurement_sequence = sequence;
-    row.robot = robot;
-    row.robot_count = robots;
-    row.speed_mps = 0.1 * robot;
-    row.turn_rate_radps = -0.2 * robot;
-    row.flags = robot >= 0 ? 1 << robot : 0;
-    return row;
+    tvo_lcm::unicycle_command_t c{};
+    c.header.utime = 2000 + robot;
+    c.header.session_id = 7;
+    c.header.measurement_sequence = sequence;
+    c.header.robot = robot;
+    c.header.flags = static_cast<std::int16_t>(robot >= 0 && robot < 15 ? 1 << robot : 0);
+    c.speed_mps = 0.125f * static_cast<float>(robot);
+    c.turn_rate_radps = -0.25f * static_cast<float>(robot);
+    return c;
 }
 
 void test_assembler()
 {
-    CommandAssembler rows(kMaxRobots);
-    const auto n = static_cast<std::int32_t>(kMaxRobots);
+    CommandAssembler commands(kMaxRobots);
+    const auto n = static_cast<std::int8_t>(kMaxRobots);
     const JointCommand* joint = nullptr;
     bool early = false;
-    for (std::int32_t r = n - 1; r >= 0; --r) {  // any order
-        joint = rows.add(row_of(r, n, 5));
+    for (int r = n - 1; r >= 0; --r) {  // any order
+        joint = commands.add(command_of(static_cast<std::int8_t>(r), 5));
         early = early || (r > 0 && joint != nullptr);
     }
-    check(!early && joint != nullptr, "8 robots: complete with the last robot's row, not before");
+    check(!early && joint != nullptr, "32 robots: complete with the last robot's command, not before");
     bool values_ok = joint != nullptr && joint->robot_count == n && joint->measurement_sequence == 5 &&
-                     joint->session_id == 7 && joint->status == 0 && joint->flags == 0xff && joint->utime == 2000 + n - 1;
-    for (std::int32_t r = 0; joint != nullptr && r < n; ++r) {
-        values_ok = values_ok && joint->speed_mps[static_cast<std::size_t>(r)] == 0.1 * r &&
-                    joint->turn_rate_radps[static_cast<std::size_t>(r)] == -0.2 * r;
+                     joint->session_id == 7 && joint->status == 0 && joint->flags == 0x7fff && joint->utime == 2000 + n - 1;
+    for (int r = 0; joint != nullptr && r < n; ++r) {
+        values_ok = values_ok && joint->speed_mps[static_cast<std::size_t>(r)] == 0.125 * r &&
+                    joint->turn_rate_radps[static_cast<std::size_t>(r)] == -0.25 * r;
     }
-    check(values_ok, "each robot's row in its place; flags joined, the latest utime");
+    check(values_ok, "each robot's command in its place; flags joined, the latest utime");
 
-    // A period whose rows did not all come is replaced by the next one's.
+    // A period whose commands did not all come is replaced by the next one's.
     CommandAssembler three(3);
-    three.add(row_of(0, 3, 10));
-    three.add(row_of(1, 3, 10));
-    check(three.add(row_of(0, 3, 11)) == nullptr && three.add(row_of(2, 3, 11)) == nullptr,
+    three.add(command_of(0, 10));
+    three.add(command_of(1, 10));
+    check(three.add(command_of(0, 11)) == nullptr && three.add(command_of(2, 11)) == nullptr,
           "an incomplete period is dropped: the next period starts over");
-    tvo_lcm::fleet_command_t refused = row_of(1, 3, 11);
-    refused.status = 9;
+    tvo_lcm::unicycle_command_t refused = command_of(1, 11);
+    refused.header.status = 9;
     joint = three.add(refused);
     check(joint != nullptr && joint->measurement_sequence == 11 && joint->status == 9,
-          "complete on the third row of sequence 11; status the refusing row's");
-    check(three.add(row_of(3, 3, 12)) == nullptr && three.add(row_of(0, 4, 12)) == nullptr &&
-              three.add(row_of(-1, 3, 12)) == nullptr,
-          "rows naming no robot of the run are dropped");
-    three.add(row_of(0, 3, 12));
-    three.add(row_of(1, 3, 12));
-    tvo_lcm::fleet_command_t other = row_of(2, 3, 12);
-    other.session_id = 8;
-    check(three.add(other) == nullptr, "a row of another session does not complete this one");
+          "complete on the third command of sequence 11; status the refusing robot's");
+    check(three.add(command_of(3, 12)) == nullptr && three.add(command_of(-1, 12)) == nullptr,
+          "commands naming no robot of the run are dropped");
+    three.add(command_of(0, 12));
+    three.add(command_of(1, 12));
+    tvo_lcm::unicycle_command_t other = command_of(2, 12);
+    other.header.session_id = 8;
+    check(three.add(other) == nullptr, "a command of another session does not complete this one");
+
+    // The node's own safe stops all carry sequence -1: each period's set joins on its own.
+    CommandAssembler two(2);
+    check(two.add(command_of(0, -1)) == nullptr && two.add(command_of(1, -1)) != nullptr,
+          "a period's safe stops of both robots join");
+    check(two.add(command_of(0, -1)) == nullptr, "the next period's first safe stop does not complete at once");
+}
+
+tvo_lcm::node_status_t announcement(std::int8_t own_robot, std::int64_t boot, std::int64_t utime)
+{
+    tvo_lcm::node_status_t s{};
+    s.utime = utime;
+    s.protocol_version = tvo_lcm::node_status_t::PROTOCOL_VERSION;
+    s.boot_id = boot;
+    s.own_robot = own_robot;
+    s.max_robots = 8;
+    s.session_id = -1;
+    return s;
+}
+
+void test_directory()
+{
+    using Clock = NodeDirectory::Clock;
+    const Clock::time_point t0 = Clock::now();
+    NodeDirectory every;
+    check(!every.assignment(1), "no node heard: no assignment");
+    every.heard(announcement(-1, 41, 10), t0);
+    const auto boots = every.assignment(3);
+    check(boots && (*boots)[0] == 41 && (*boots)[2] == 41 && (*boots)[3] == 0,
+          "one node of every robot: its boot names robots 0 .. 2, none past them");
+    every.heard(announcement(-1, 42, 5), t0 + std::chrono::milliseconds(10));
+    check(every.assignment(1) && (*every.assignment(1))[0] == 42, "a new boot of the role takes it at once");
+    every.heard(announcement(-1, 41, 20), t0 + std::chrono::milliseconds(20));
+    check((*every.assignment(1))[0] == 42, "a late announcement of the old boot does not take it back");
+    every.heard(announcement(-1, 41, 30), t0 + NodeDirectory::kCurrentWindow + std::chrono::milliseconds(20));
+    check((*every.assignment(1))[0] == 41, "a lower boot, once the current one fell silent for the window, does");
+
+    NodeDirectory fleet;
+    fleet.heard(announcement(0, 7, 1), t0);
+    fleet.heard(announcement(-1, 9, 1), t0);
+    check(!fleet.assignment(2), "robot 0 has its own node, robot 1 none: no assignment (not mixed with every-robot)");
+    fleet.heard(announcement(1, 8, 1), t0);
+    const auto own = fleet.assignment(2);
+    check(own && (*own)[0] == 7 && (*own)[1] == 8, "each robot its own node");
+    check(fleet.of_boot(8) != nullptr && fleet.of_boot(8)->own_robot == 1 && fleet.heard_at(8) == t0,
+          "a boot's announcement and when it was heard");
+
+    NodeDirectory other;
+    tvo_lcm::node_status_t v2 = announcement(-1, 5, 1);
+    v2.protocol_version = 2;
+    other.heard(v2, t0);
+    check(!other.assignment(1) && other.foreign() == 1 && other.describe().find("protocol 2") != std::string::npos,
+          "another protocol's node is not taken, and said so");
+}
+
+void test_telemetry_rate()
+{
+    check(tvo_host::telemetry_every_periods(0, 10000) == 10 && tvo_host::telemetry_every_periods(0, 30000) == 4 &&
+              tvo_host::telemetry_every_periods(0, 200000) == 1 && tvo_host::telemetry_every_periods(3, 10000) == 3,
+          "telemetry every n-th period: the fewest spanning 100 ms by default, else as asked");
 }
 
 /// tvo_sim's exit code for a command line, its error text in *err.
@@ -158,20 +208,17 @@ int parse(std::vector<std::string> args, std::string* err)
     return rc;
 }
 
-void test_leg_options()
+void test_options()
 {
-    const std::string robots = std::to_string(tvo_host::kMaxJointRobots + 1);
     std::string err;
-    const int joint = parse({"--scenario", "demo", "--robots", robots, "--dry-run", "--out-dir", "/tmp"}, &err);
-    check(joint == 2 && err.find("--fleet") != std::string::npos, "more robots than measurement_t carries: refused, naming --fleet");
-    const int fleet = parse({"--scenario", "demo", "--robots", robots, "--fleet", "--dry-run", "--out-dir", "/tmp"}, &err);
-    const bool session_carries = tvo_host::kMaxJointRobots + 1 <= static_cast<std::size_t>(tvo_lcm::session_t::MAX_ROBOTS);
-    check(session_carries ? fleet == 0 : (fleet == 2 && err.find("session_t") != std::string::npos),
-          "with --fleet: run if session_t carries the robots, else refused naming session_t");
-    const int four = parse({"--scenario", "demo", "--robots", "4", "--dry-run", "--out-dir", "/tmp"}, &err);
-    check(four == 0, "4 robots on the joint leg: fine");
-    const int spawn = parse({"--scenario", "demo", "--fleet", "--firmware", "/bin/true", "--dry-run"}, &err);
-    check(spawn == 2 && err.find("--fleet") != std::string::npos, "--fleet with --firmware: refused");
+    const int many = parse({"--scenario", "demo", "--robots", std::to_string(kMaxRobots), "--dry-run", "--out-dir", "/tmp"},
+                           &err);
+    check(many == 0, "32 robots (the wire's limit): a run");
+    const int sequence = parse({"--period-s", "1e-6", "--duration-s", "3000", "--dry-run", "--out-dir", "/tmp",
+                                "--max-output-mib", "65536"},
+                               &err);
+    check(sequence == 2 && err.find("int32") != std::string::npos,
+          "more periods than an int32 sequence numbers: refused, naming the wire's sequence");
 }
 
 }  // namespace
@@ -179,9 +226,10 @@ void test_leg_options()
 int main()
 {
     test_samples();
-    test_joint_command();
     test_assembler();
-    test_leg_options();
+    test_directory();
+    test_telemetry_rate();
+    test_options();
     if (g_failures != 0) {
         std::printf("%d check(s) failed\n", g_failures);
         return 1;

@@ -1,5 +1,5 @@
-// Checks of the session START built from the scenarios (every field of the nested v2 types, the
-// clock source) and of the rejection message. Plain asserts (no framework): exit code 0 = pass.
+// Checks of the session START built from the scenarios (every field of the nested types, the clock
+// source, the protocol, each robot's node boot, the telemetry rate) and of the rejection message. Plain asserts (no framework): exit code 0 = pass.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -31,7 +31,11 @@ using tvo_host::TargetKind;
 
 tvo_lcm::session_t start_of(const Scenario& scenario, const SimOptions& options)
 {
-    return tvo_host::make_start_session(options, scenario, 77, 1000123, 1300123);
+    tvo_host::NodeBoots boots{};
+    for (std::size_t r = 0; r < tvo_host::kMaxRobots; ++r) {
+        boots[r] = 500 + static_cast<std::int64_t>(r);
+    }
+    return tvo_host::make_start_session(options, scenario, 77, 1000123, 1300123, boots);
 }
 
 void test_demo_ellipse()
@@ -40,6 +44,10 @@ void test_demo_ellipse()
     const Scenario demo = tvo_host::make_demo_scenario(2, TargetKind::Ellipse);
     const tvo_lcm::session_t msg = start_of(demo, options);
     check(msg.action == tvo_lcm::session_t::ACTION_START && msg.session_id == 77, "START with the session id");
+    check(msg.protocol_version == tvo_lcm::node_status_t::PROTOCOL_VERSION, "the protocol version of this wire");
+    check(msg.node_boot_id[0] == 500 && msg.node_boot_id[1] == 501 && msg.node_boot_id[2] == 0,
+          "each robot's node boot, none past the robots");
+    check(msg.telemetry_every == 0, "telemetry at the node's default rate unless asked");
     check(msg.utime == 1000123 && msg.epoch_utime == 1300123, "utime and epoch as given");
     check(msg.clock_source == tvo_lcm::session_t::CLOCK_PLANT, "lockstep: CLOCK_PLANT");
     check(msg.period_us == options.period_us && msg.delay_us == options.delay_us &&
@@ -125,12 +133,19 @@ void test_rejection_message()
     ack.bad_param = TVO_PARAM_OBJECTIVE;
     ack.bad_part = tvo_lcm::session_ack_t::PART_OBSTACLES;
     ack.bad_index = 3;
+    ack.own_robot = -1;
     const std::string text = tvo_host::describe_rejection(ack, options);
     std::printf("     %s\n", text.c_str());
-    check(text.find("part of the problem: obstacles, entry 3") != std::string::npos, "rejection names the entry");
+    check(text.find("part of the problem: obstacles, entry 3") != std::string::npos &&
+              text.find("node of robot") == std::string::npos,
+          "rejection names the entry; the node of every robot needs no name");
+    ack.own_robot = 2;
+    check(tvo_host::describe_rejection(ack, options).find("at the node of robot 2") != std::string::npos,
+          "a fleet node's refusal names its robot");
     ack.bad_part = tvo_lcm::session_ack_t::PART_NONE;
     ack.bad_index = -1;
     ack.bad_param = TVO_PARAM_GAINS;
+    ack.own_robot = -1;
     const std::string gains = tvo_host::describe_rejection(ack, options);
     check(gains.find("--gains") != std::string::npos && gains.find("entry") == std::string::npos,
           "rejection of a parameter names its option, no entry");

@@ -1,25 +1,26 @@
-// tvo_fleet_hub: the radio between tvo_sim --fleet and a fleet of nodes (tvo_firmware_node --own-robot k),
-// so that tvo_sim's plant, metrics and outputs serve a fleet unchanged (host/README.md, "A fleet").
+// tvo_fleet_hub: the test's radio between tvo_sim and a fleet of nodes (tvo_firmware_node --own-robot k),
+// each node on its own LCM URL, so that the loss of every link can be chosen per period and the run
+// still repeats exactly (host/README.md, "A fleet"). Without loss it only forwards.
 //
-// Plant bus (tvo_sim's URL)               Fleet bus (the nodes' URL)
-//   TVO_SESSION, TVO_TARGET       ->        the same, to every node
-//   TVO_FLEET_SAMPLE (per robot,  ->        fleet_sample_t per robot and node on TVO_FLEET_SAMPLE_R<k>:
-//     a period's back to back)              the other robots' first, node k's own robot last (its step)
-//   TVO_FLEET_COMMAND (per robot) <-        fleet_command_t on TVO_FLEET_COMMAND_R<k>: row k from node k;
-//     one row per robot and period:         a robot whose row did not come holds its last (zero-order hold),
-//     node r's or the held one              so tvo_sim never waits on a lost row
-//   TVO_TELEMETRY                 <-        TVO_TELEMETRY_R<k>: the lowest-numbered answering node's
-//   TVO_SESSION_ACK               <-        TVO_SESSION_ACK_R<k>: once every node acked (a refusal at once)
+// Plant bus (tvo_sim's URL)             Node k's bus (its own URL)
+//   TVO_SESSION, TVO_TARGET     ->        forwarded as tvo_sim signed them, to every node
+//   TVO_SAMPLE (per robot)      ->        forwarded to node k unless the link (robot j -> node k) loses
+//                                         that period's (robot robot_count - 1's sample steps a node)
+//   TVO_COMMAND, TVO_TELEMETRY  <-        node k's own robot's, forwarded as the node signed them, as
+//     one of each robot per period        they come (a keyed receiver takes each sender's frames only in
+//                                         the order it signed them); where it did not step, refused, or
+//                                         the link (node k -> plant) lost it, the row robot k holds
+//                                         (zero-order hold: status 0, no flags) and its last telemetry,
+//                                         signed by the hub once the period is complete, so tvo_sim never
+//                                         waits on a message the hub dropped
+//   TVO_SESSION_ACK, TVO_NODE   <-        forwarded as the nodes signed them
 //
 // Loss per link (--loss P): each sample link (robot j -> node k) and each command link (node k ->
-// plant) drops a period's message with probability P, decided by a seeded hash of (link, period),
-// so the hub knows which answers to await and the run stays lockstep and repeatable.
-// Agreement: per period, the digests of the nodes that computed a command are compared, and the
-// largest spread of any robot's row across them is recorded (--json).
-// Keyed (--key-file, auth.h): every frame on both buses is opened or dropped and counted, never
-// answered. The plant's SESSION/TARGET frames go to the nodes as tvo_sim signed them (SENDER_PLANT);
-// robot j's samples are signed as SENDER_FLEET_ROBOT + j (each robot its own counter stream); to
-// tvo_sim the hub signs as SENDER_NODE, the node it stands for; tvo_sim's samples open as its own.
+// plant) drops a period's message with probability P, decided by a seeded hash of (link, period).
+// Agreement (--json): per period, the joint digests (telemetry_t.joint_digest: fleet runs ask every
+// period's telemetry) of the nodes that computed a command; the nodes' counters from their last
+// announcements. Keyed (--key-file, auth.h): every frame the hub takes is opened first (a forged or
+// replayed one is dropped and counted, never forwarded); what it writes itself it signs as --sender-id.
 #include <sys/select.h>
 
 #include <algorithm>
@@ -27,11 +28,12 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
-#include <cstdio>
 #include <cstdint>
+#include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -42,19 +44,23 @@
 
 #include "auth.h"
 #include "auth_key_file.h"
-#include "channels.h"
 #include "lcm_messages.hpp"
-#include "tvo_lcm/fleet_command_t.hpp"
-#include "tvo_lcm/fleet_sample_t.hpp"
+
+extern "C" {
+#include "session_codec.h"  // TVO_SESSION_TELEMETRY_DEFAULT_US: the node's default telemetry interval
+}
 
 namespace {
 
 volatile std::sig_atomic_t g_stop = 0;
 extern "C" void on_signal(int) { g_stop = 1; }
 
-constexpr int kMaxRobots = tvo_lcm::fleet_sample_t::MAX_ROBOTS;
-
-std::string robot_channel(const char* base, int robot) { return std::string(base) + "_R" + std::to_string(robot); }
+constexpr int kMaxRobots = tvo_lcm::session_t::MAX_ROBOTS;
+// The hub's own sender id on a keyed bus (tvo_sim 2, node k 256 + k): what it writes itself.
+constexpr std::uint32_t kHubSenderId = 3;
+// After every node acked the STOP: how long the hub still forwards (each node's announcement after STOP).
+constexpr std::chrono::milliseconds kLinger{300};
+using Header = tvo_lcm::command_header_t;
 
 std::uint64_t splitmix64(std::uint64_t x)
 {
@@ -66,16 +72,16 @@ std::uint64_t splitmix64(std::uint64_t x)
 
 struct Options {
     std::string plant_url;
-    std::string fleet_url;
-    int robots{0};
+    std::vector<std::string> node_urls;  // node k's: it drives robot k
     double loss{0.0};
     double loss_until_s{-1.0};  // < 0: loss for the whole run
     std::uint64_t seed{1};
     std::string json_path;
     std::string key_file;  // empty: unauthenticated buses
+    std::uint32_t sender_id{kHubSenderId};
 };
 
-// One signing or opening end on a keyed bus (auth.h), or a pass-through on an unkeyed one.
+// Opening (and signing) on a keyed bus (auth.h), a pass-through on an unkeyed one.
 class AuthEnd {
 public:
     AuthEnd() = default;
@@ -87,7 +93,7 @@ public:
     {
         tvo_auth_status_t status = tvo_auth_init(&auth_, key, sender_id, 1u);
         if (status == TVO_AUTH_OK) {
-            status = tvo_auth_follow_clock(&auth_, tvo_auth_wall_clock_counter, TVO_AUTH_NEW_SENDER_WINDOW_US);
+            status = tvo_auth_follow_clock(&auth_, tvo_auth_wall_clock_counter);
         }
         if (status != TVO_AUTH_OK) {
             throw std::runtime_error(std::string("authentication set-up failed: ") + tvo_auth_status_str(status));
@@ -129,34 +135,47 @@ public:
 private:
     tvo_auth_t auth_{};
     bool keyed_{false};
-    std::array<std::uint8_t, 4096 + TVO_AUTH_TRAILER_BYTES> frame_{};
+    std::array<std::uint8_t, 512 + TVO_AUTH_TRAILER_BYTES> frame_{};  // commands and telemetry only
     std::uint64_t unauthenticated_{0};
     std::uint64_t replayed_{0};
 };
 
+// Node k's answer to the period: its command and telemetry as decoded, and whether they went on to tvo_sim.
 struct Answer {
     bool command{false};
     bool telemetry{false};
-    tvo_lcm::fleet_command_t row{};
+    bool forwarded{false};  // the command was computed (status 0) and its link did not lose it: passed on
+    tvo_lcm::unicycle_command_t cmd{};
     tvo_lcm::telemetry_t tel{};
 };
 
 class Hub {
 public:
-    explicit Hub(const Options& o) : o_(o), plant_(o.plant_url), fleet_(o.fleet_url)
+    explicit Hub(const Options& o) : o_(o), nodes_(static_cast<int>(o.node_urls.size())), plant_(o.plant_url)
     {
-        if (!plant_.good() || !fleet_.good()) {
-            throw std::runtime_error("cannot open LCM on " + o.plant_url + " or " + o.fleet_url);
+        if (!plant_.good()) {
+            throw std::runtime_error("cannot open LCM on " + o.plant_url);
         }
-        plant_.subscribe(TVO_CHANNEL_SESSION, &Hub::on_plant_raw, this);
-        plant_.subscribe(TVO_CHANNEL_TARGET, &Hub::on_plant_raw, this);
-        plant_.subscribe(TVO_CHANNEL_FLEET_SAMPLE, &Hub::on_plant_sample, this);
-        fleet_.subscribe(TVO_CHANNEL_SESSION_ACK "_R[0-9]+", &Hub::on_ack, this);
-        fleet_.subscribe(TVO_CHANNEL_FLEET_COMMAND "_R[0-9]+", &Hub::on_row, this);
-        fleet_.subscribe(TVO_CHANNEL_TELEMETRY "_R[0-9]+", &Hub::on_telemetry, this);
-        sample_channels_.resize(static_cast<std::size_t>(o.robots));
-        for (int k = 0; k < o.robots; ++k) {
-            sample_channels_[static_cast<std::size_t>(k)] = robot_channel(TVO_CHANNEL_FLEET_SAMPLE, k);
+        for (const std::string& url : o.node_urls) {
+            node_bus_.push_back(std::make_unique<lcm::LCM>(url));
+            if (!node_bus_.back()->good()) {
+                throw std::runtime_error("cannot open LCM on " + url);
+            }
+        }
+        plant_.subscribe(TVO_CHANNEL_SESSION, &Hub::on_plant_session, this);
+        plant_.subscribe(TVO_CHANNEL_TARGET, &Hub::on_plant_target, this);
+        plant_.subscribe(TVO_CHANNEL_SAMPLE, &Hub::on_plant_sample, this);
+        for (int k = 0; k < nodes_; ++k) {
+            node_ends_.push_back(std::make_unique<NodeEnd>(NodeEnd{this, k}));
+            lcm::LCM& bus = *node_bus_[static_cast<std::size_t>(k)];
+            for (const char* channel : {TVO_CHANNEL_SESSION_ACK, TVO_CHANNEL_NODE, TVO_CHANNEL_COMMAND, TVO_CHANNEL_TELEMETRY}) {
+                bus.subscribe(channel, &NodeEnd::on_frame, node_ends_.back().get());
+            }
+        }
+        last_status_.resize(static_cast<std::size_t>(nodes_));
+        node_open_.resize(static_cast<std::size_t>(nodes_));
+        for (auto& end : node_open_) {
+            end = std::make_unique<AuthEnd>();
         }
         if (!o.key_file.empty()) {
             std::uint8_t key[TVO_AUTH_KEY_BYTES];
@@ -164,31 +183,39 @@ public:
             if (tvo_auth_key_file_read(o.key_file.c_str(), key, why, sizeof(why)) != 0) {
                 throw std::runtime_error(why);
             }
-            plant_auth_.key(key, TVO_AUTH_SENDER_NODE);
-            fleet_auth_.key(key, TVO_AUTH_SENDER_FLEET_ROBOT + kMaxRobots);  // opens only: its id signs nothing
-            for (int j = 0; j < o.robots; ++j) {
-                robot_auth_[static_cast<std::size_t>(j)].key(key, TVO_AUTH_SENDER_FLEET_ROBOT + static_cast<std::uint32_t>(j));
+            plant_auth_.key(key, o.sender_id);
+            for (auto& end : node_open_) {
+                end->key(key, o.sender_id);  // opens only: the hub signs towards tvo_sim with plant_auth_
             }
             std::fill(std::begin(key), std::end(key), std::uint8_t{0});
         }
     }
 
-    bool finished() const { return stopped_; }
+    bool finished() const { return stopped_at_.has_value(); }
 
     void run()
     {
-        const int fds[2] = {plant_.getFileno(), fleet_.getFileno()};
-        while (!g_stop && !stopped_) {
+        std::vector<int> fds{plant_.getFileno()};
+        for (const auto& bus : node_bus_) {
+            fds.push_back(bus->getFileno());
+        }
+        const int top = *std::max_element(fds.begin(), fds.end());
+        while (!g_stop && !(stopped_at_ && std::chrono::steady_clock::now() - *stopped_at_ > kLinger)) {
             fd_set readable;
             FD_ZERO(&readable);
-            FD_SET(fds[0], &readable);
-            FD_SET(fds[1], &readable);
-            timeval tv{0, 100000};
-            const int ready = select(std::max(fds[0], fds[1]) + 1, &readable, nullptr, nullptr, &tv);
-            if (ready > 0 && FD_ISSET(fds[1], &readable)) {
-                fleet_.handle();
+            for (const int fd : fds) {
+                FD_SET(fd, &readable);
             }
-            if (ready > 0 && FD_ISSET(fds[0], &readable)) {
+            timeval tv{0, 50000};
+            if (select(top + 1, &readable, nullptr, nullptr, &tv) <= 0) {
+                continue;
+            }
+            for (std::size_t k = 0; k < node_bus_.size(); ++k) {  // the nodes' first: answers before new samples
+                if (FD_ISSET(fds[k + 1], &readable)) {
+                    node_bus_[k]->handle();
+                }
+            }
+            if (FD_ISSET(fds[0], &readable)) {
                 plant_.handle();
             }
         }
@@ -198,23 +225,11 @@ public:
     {
         nlohmann::json j;
         j["robots"] = robots_;
-        j["nodes"] = o_.robots;
+        j["nodes"] = nodes_;
         j["loss"] = o_.loss;
         j["periods"] = periods_;
         j["compared_periods"] = compared_periods_;
-        j["max_command_disagreement"] = max_disagreement_;
         j["digest_mismatch_periods"] = mismatch_periods_;
-        j["max_speed_disagreement_mps"] = max_speed_spread_;
-        j["max_speed_disagreement_period"] = max_speed_spread_period_;
-        j["max_turn_rate_disagreement_radps"] = max_turn_spread_;
-        j["max_turn_rate_disagreement_period"] = max_turn_spread_period_;
-        std::vector<double> sorted = spreads_;
-        std::sort(sorted.begin(), sorted.end());
-        const auto quantile = [&sorted](double q) {
-            return sorted.empty() ? 0.0 : sorted[static_cast<std::size_t>(q * static_cast<double>(sorted.size() - 1))];
-        };
-        j["median_command_disagreement"] = quantile(0.5);
-        j["p99_command_disagreement"] = quantile(0.99);
         j["last_mismatch_period"] = last_mismatch_period_;
         if (o_.loss_until_s >= 0.0) {
             j["loss_end_period"] = loss_end_period();
@@ -235,8 +250,26 @@ public:
             std::isfinite(min_pair_m_) ? nlohmann::json(min_pair_m_) : nlohmann::json(nullptr);
         j["command_digest_run"] = run_digest_hex();
         j["keyed"] = !o_.key_file.empty();
-        j["hub_unauthenticated"] = plant_auth_.unauthenticated() + fleet_auth_.unauthenticated();
-        j["hub_replayed"] = plant_auth_.replayed() + fleet_auth_.replayed();
+        std::uint64_t hub_unauthenticated = plant_auth_.unauthenticated();
+        std::uint64_t hub_replayed = plant_auth_.replayed();
+        for (const auto& end : node_open_) {
+            hub_unauthenticated += end->unauthenticated();
+            hub_replayed += end->replayed();
+        }
+        j["hub_unauthenticated"] = hub_unauthenticated;
+        j["hub_replayed"] = hub_replayed;
+        // Each node's counters since it started, from its last announcement (after STOP: the final ones).
+        nlohmann::json unauthenticated = nlohmann::json::array();
+        nlohmann::json replayed = nlohmann::json::array();
+        nlohmann::json malformed = nlohmann::json::array();
+        for (const auto& status : last_status_) {
+            unauthenticated.push_back(status ? nlohmann::json(status->counters.unauthenticated) : nlohmann::json(nullptr));
+            replayed.push_back(status ? nlohmann::json(status->counters.replayed) : nlohmann::json(nullptr));
+            malformed.push_back(status ? nlohmann::json(status->counters.malformed) : nlohmann::json(nullptr));
+        }
+        j["node_unauthenticated"] = unauthenticated;
+        j["node_replayed"] = replayed;
+        j["node_malformed"] = malformed;
         if (o_.json_path.empty()) {
             std::cout << j.dump(2) << '\n';
             return;
@@ -246,6 +279,24 @@ public:
     }
 
 private:
+    // Node k's bus: LCM calls a member function with no room for k, so each node has its own receiver.
+    struct NodeEnd {
+        Hub* hub;
+        int k;
+        void on_frame(const lcm::ReceiveBuffer* rbuf, const std::string& channel)
+        {
+            if (channel == TVO_CHANNEL_COMMAND) {
+                hub->on_command(k, rbuf, channel);
+            } else if (channel == TVO_CHANNEL_TELEMETRY) {
+                hub->on_telemetry(k, rbuf, channel);
+            } else if (channel == TVO_CHANNEL_SESSION_ACK) {
+                hub->on_ack(k, rbuf, channel);
+            } else if (channel == TVO_CHANNEL_NODE) {
+                hub->on_announcement(k, rbuf, channel);
+            }
+        }
+    };
+
     bool dropped(int kind, int from, int to, std::int64_t period) const
     {
         if (o_.loss <= 0.0 || (o_.loss_until_s >= 0.0 && period >= loss_end_period())) {
@@ -264,6 +315,15 @@ private:
                                     : 0;
     }
 
+    bool telemetry_due(std::int64_t sequence) const
+    {
+        const std::int64_t every = start_.telemetry_every > 0
+                                       ? start_.telemetry_every
+                                       : (TVO_SESSION_TELEMETRY_DEFAULT_US + start_.period_us - 1) /
+                                             std::max<std::int64_t>(start_.period_us, 1);
+        return sequence % every == 0;
+    }
+
     // FNV-1a 64 over (sequence, digest) of every compared period: one figure for a whole run's commands.
     std::string run_digest_hex() const
     {
@@ -280,146 +340,149 @@ private:
         }
     }
 
-    void on_plant_raw(const lcm::ReceiveBuffer* rbuf, const std::string& channel)
+    void to_every_node(const std::string& channel, const lcm::ReceiveBuffer* rbuf)
+    {
+        for (const auto& bus : node_bus_) {
+            bus->publish(channel, rbuf->data, static_cast<unsigned int>(rbuf->data_size));  // as signed by tvo_sim
+        }
+    }
+
+    void on_plant_session(const lcm::ReceiveBuffer* rbuf, const std::string& channel)
     {
         const int length = plant_auth_.open(rbuf, channel);
         if (length < 0) {
             return;
         }
-        if (channel == TVO_CHANNEL_SESSION) {
-            tvo_lcm::session_t s;
-            if (s.decode(rbuf->data, 0, length) == length &&
-                s.action == tvo_lcm::session_t::ACTION_START) {
-                start_ = s;
-                robots_ = s.robot_count;
-            }
+        tvo_lcm::session_t s;
+        if (s.decode(rbuf->data, 0, length) == length && s.action == tvo_lcm::session_t::ACTION_START) {
+            start_ = s;
+            robots_ = std::min(s.robot_count, kMaxRobots);
         }
-        fleet_.publish(channel, rbuf->data, static_cast<unsigned int>(rbuf->data_size));  // as signed by tvo_sim
+        to_every_node(channel, rbuf);
     }
 
-    void on_ack(const lcm::ReceiveBuffer* rbuf, const std::string& channel)
+    void on_plant_target(const lcm::ReceiveBuffer* rbuf, const std::string& channel)
     {
-        tvo_lcm::session_ack_t ack;
-        const int length = fleet_auth_.open(rbuf, channel);
-        if (length < 0 || ack.decode(rbuf->data, 0, length) != length) {
-            return;
-        }
-        const int k = std::stoi(channel.substr(channel.rfind('R') + 1));
-        if (k < 0 || k >= o_.robots) {
-            return;
-        }
-        if (ack.session_id != ack_session_ || ack.action != ack_action_) {
-            ack_session_ = ack.session_id;
-            ack_action_ = ack.action;
-            ack_mask_ = 0u;
-        }
-        ack_mask_ |= 1u << k;
-        if (ack.status != tvo_lcm::command_t::STATUS_OK || ack_mask_ == (1u << o_.robots) - 1u) {
-            plant_auth_.publish(plant_, TVO_CHANNEL_SESSION_ACK, ack);
-            ack_mask_ = 0u;
-            if (ack.action == tvo_lcm::session_t::ACTION_STOP && ack.status == tvo_lcm::command_t::STATUS_OK) {
-                stopped_ = true;
-            }
+        if (plant_auth_.open(rbuf, channel) >= 0) {
+            to_every_node(channel, rbuf);
         }
     }
 
-    // tvo_sim's per-robot samples: a period's N come back to back; once all N of one (session, sequence)
-    // are in, the period starts (a sample of another period drops an incomplete one).
+    // tvo_sim's samples, a period's in robot order: robot j's to node k unless the link (j, k) loses it;
+    // the last robot's starts the period (it steps every node that hears it).
     void on_plant_sample(const lcm::ReceiveBuffer* rbuf, const std::string& channel)
     {
-        tvo_lcm::fleet_sample_t s;
         const int length = plant_auth_.open(rbuf, channel);
-        if (length < 0) {
+        tvo_lcm::unicycle_sample_t s;
+        if (length < 0 || s.decode(rbuf->data, 0, length) != length || s.header.robot < 0 ||
+            s.header.robot >= robots_ || robots_ != nodes_) {
+            std::cerr << "tvo_fleet_hub: a sample that does not decode or is not one of " << robots_
+                      << " robots with a node each (ignored)\n";
             return;
         }
-        if (s.decode(rbuf->data, 0, length) != length || s.robot_count != o_.robots || s.robot < 0 ||
-            s.robot >= o_.robots) {
-            std::cerr << "tvo_fleet_hub: a sample that does not decode or is not one of " << o_.robots
-                      << " robots (ignored)\n";
-            return;
+        const int j = s.header.robot;
+        const std::int64_t n = s.header.sequence;
+        samples_[static_cast<std::size_t>(j)] = s;
+        for (int k = 0; k < nodes_; ++k) {
+            if (dropped(0, j, k, n)) {
+                ++dropped_samples_;
+                continue;
+            }
+            node_bus_[static_cast<std::size_t>(k)]->publish(channel, rbuf->data, static_cast<unsigned int>(rbuf->data_size));
         }
-        if (gathered_ == 0u || s.session_id != period_.session_id || s.sequence != period_.sequence) {
-            gathered_ = 0u;  // a new period: an incomplete one is never fanned out
-        }
-        gathered_ |= 1u << s.robot;
-        samples_[static_cast<std::size_t>(s.robot)] = s;
-        period_ = s;
-        if (gathered_ == (1u << o_.robots) - 1u) {
-            gathered_ = 0u;
-            fan_out();
+        if (j == robots_ - 1) {
+            begin_period(s);
         }
     }
 
-    // The period's samples to every node: robot j's to node k unless the link (j, k) drops it.
-    void fan_out()
+    void begin_period(const tvo_lcm::unicycle_sample_t& trigger)
     {
-        answers_.assign(static_cast<std::size_t>(o_.robots), Answer{});
-        expected_.assign(static_cast<std::size_t>(o_.robots), false);
-        awaiting_ = true;
-        for (int a = 0; a < o_.robots; ++a) {
-            for (int b = a + 1; b < o_.robots; ++b) {
+        period_ = trigger.header;
+        answers_.assign(static_cast<std::size_t>(nodes_), Answer{});
+        expected_.assign(static_cast<std::size_t>(nodes_), false);
+        with_telemetry_ = telemetry_due(period_.sequence);
+        for (int a = 0; a < robots_; ++a) {
+            for (int b = a + 1; b < robots_; ++b) {
                 const auto& pa = samples_[static_cast<std::size_t>(a)].position_m;
                 const auto& pb = samples_[static_cast<std::size_t>(b)].position_m;
                 min_pair_m_ = std::min(min_pair_m_, std::hypot(pa[0] - pb[0], pa[1] - pb[1]));
             }
         }
-        for (int k = 0; k < o_.robots; ++k) {
-            for (int step = 1; step <= o_.robots; ++step) {
-                const int j = (k + step) % o_.robots;  // the own robot (j == k) last: it steps the node
-                if (dropped(0, j, k, period_.sequence)) {
-                    ++dropped_samples_;
-                    continue;
-                }
-                robot_auth_[static_cast<std::size_t>(j)].publish(fleet_, sample_channels_[static_cast<std::size_t>(k)],
-                                                                 samples_[static_cast<std::size_t>(j)]);
-                if (j == k) {
-                    expected_[static_cast<std::size_t>(k)] = true;
-                }
-            }
+        for (int k = 0; k < nodes_; ++k) {
+            expected_[static_cast<std::size_t>(k)] = !dropped(0, robots_ - 1, k, period_.sequence);
         }
+        awaiting_ = true;
         complete_if_answered();
     }
 
-    int answering_node(const std::string& channel, std::int64_t sequence) const
+    // Node k's answer to the period being awaited, else -1.
+    int answering(int k, const Header& h) const
     {
-        const int k = std::stoi(channel.substr(channel.rfind('R') + 1));
-        if (!awaiting_ || k < 0 || k >= o_.robots || !expected_[static_cast<std::size_t>(k)] ||
-            sequence != period_.sequence) {
+        if (!awaiting_ || !expected_[static_cast<std::size_t>(k)] || h.session_id != period_.session_id ||
+            h.measurement_sequence != period_.sequence || h.robot != k) {
             return -1;
         }
         return k;
     }
 
-    void on_row(const lcm::ReceiveBuffer* rbuf, const std::string& channel)
+    void on_command(int k, const lcm::ReceiveBuffer* rbuf, const std::string& channel)
     {
-        tvo_lcm::fleet_command_t row;
-        const int length = fleet_auth_.open(rbuf, channel);
-        if (length < 0 || row.decode(rbuf->data, 0, length) != length) {
+        tvo_lcm::unicycle_command_t c;
+        const int length = node_open_[static_cast<std::size_t>(k)]->open(rbuf, channel);
+        if (length < 0 || c.decode(rbuf->data, 0, length) != length || answering(k, c.header) < 0) {
             return;
         }
-        const int k = answering_node(channel, row.measurement_sequence);
-        if (k < 0 || row.robot != k) {
-            return;
+        Answer& a = answers_[static_cast<std::size_t>(k)];
+        a.command = true;
+        a.cmd = c;
+        a.forwarded = c.header.status == Header::STATUS_OK && !dropped(1, k, nodes_, period_.sequence);
+        if (a.forwarded) {
+            plant_.publish(channel, rbuf->data, static_cast<unsigned int>(rbuf->data_size));  // as the node signed it
         }
-        answers_[static_cast<std::size_t>(k)].command = true;
-        answers_[static_cast<std::size_t>(k)].row = row;
         complete_if_answered();
     }
 
-    void on_telemetry(const lcm::ReceiveBuffer* rbuf, const std::string& channel)
+    void on_telemetry(int k, const lcm::ReceiveBuffer* rbuf, const std::string& channel)
     {
         tvo_lcm::telemetry_t tel;
-        const int length = fleet_auth_.open(rbuf, channel);
-        if (length < 0 || tel.decode(rbuf->data, 0, length) != length) {
+        const int length = node_open_[static_cast<std::size_t>(k)]->open(rbuf, channel);
+        if (length < 0 || tel.decode(rbuf->data, 0, length) != length || answering(k, tel.header) < 0) {
             return;
         }
-        const int k = answering_node(channel, tel.measurement_sequence);
-        if (k < 0) {
-            return;
+        Answer& a = answers_[static_cast<std::size_t>(k)];
+        a.telemetry = true;
+        a.tel = tel;
+        if (a.forwarded) {
+            plant_.publish(channel, rbuf->data, static_cast<unsigned int>(rbuf->data_size));  // follows its command
         }
-        answers_[static_cast<std::size_t>(k)].telemetry = true;
-        answers_[static_cast<std::size_t>(k)].tel = tel;
         complete_if_answered();
+    }
+
+    void on_ack(int k, const lcm::ReceiveBuffer* rbuf, const std::string& channel)
+    {
+        tvo_lcm::session_ack_t ack;
+        const int length = node_open_[static_cast<std::size_t>(k)]->open(rbuf, channel);
+        if (length < 0 || ack.decode(rbuf->data, 0, length) != length) {
+            return;
+        }
+        plant_.publish(channel, rbuf->data, static_cast<unsigned int>(rbuf->data_size));  // as the node signed it
+        if (ack.action == tvo_lcm::session_t::ACTION_STOP && ack.status == Header::STATUS_OK) {
+            stop_acked_ |= 1ull << k;
+            if (stop_acked_ == (1ull << nodes_) - 1u && !stopped_at_) {
+                stopped_at_ = std::chrono::steady_clock::now();
+            }
+        }
+    }
+
+    void on_announcement(int k, const lcm::ReceiveBuffer* rbuf, const std::string& channel)
+    {
+        tvo_lcm::node_status_t status;
+        const int length = node_open_[static_cast<std::size_t>(k)]->open(rbuf, channel);
+        if (length < 0 || status.decode(rbuf->data, 0, length) != length) {
+            return;
+        }
+        last_status_[static_cast<std::size_t>(k)] = status;
+        plant_.publish(channel, rbuf->data, static_cast<unsigned int>(rbuf->data_size));
     }
 
     void complete_if_answered()
@@ -427,9 +490,9 @@ private:
         if (!awaiting_) {
             return;
         }
-        for (int k = 0; k < o_.robots; ++k) {
+        for (int k = 0; k < nodes_; ++k) {
             const Answer& a = answers_[static_cast<std::size_t>(k)];
-            if (expected_[static_cast<std::size_t>(k)] && !(a.command && a.telemetry)) {
+            if (expected_[static_cast<std::size_t>(k)] && !(a.command && (a.telemetry || !with_telemetry_))) {
                 return;
             }
         }
@@ -439,15 +502,15 @@ private:
         answer_plant();
     }
 
-    // Agreement among the nodes that computed a command this period (status 0).
+    // Agreement among the nodes that computed a command this period (status 0), by their joint digests.
     void compare()
     {
-        std::vector<const tvo_lcm::fleet_command_t*> computed;
-        for (int k = 0; k < o_.robots; ++k) {
+        std::vector<const tvo_lcm::telemetry_t*> computed;
+        for (int k = 0; k < nodes_; ++k) {
             const Answer& a = answers_[static_cast<std::size_t>(k)];
-            if (expected_[static_cast<std::size_t>(k)] && a.row.status == tvo_lcm::command_t::STATUS_OK) {
-                computed.push_back(&a.row);
-                predicted_ += static_cast<std::uint64_t>(std::max(a.row.predicted, 0));
+            if (expected_[static_cast<std::size_t>(k)] && a.telemetry && a.tel.header.status == Header::STATUS_OK) {
+                computed.push_back(&a.tel);
+                predicted_ += static_cast<std::uint64_t>(std::max<int>(a.tel.predicted_robots, 0));
             }
         }
         if (!computed.empty()) {
@@ -458,33 +521,10 @@ private:
             return;
         }
         ++compared_periods_;
-        double spread_v = 0.0;
-        double spread_w = 0.0;
         bool same = true;
-        for (const auto* c : computed) {
-            same = same && c->joint_digest == computed.front()->joint_digest;
+        for (const auto* t : computed) {
+            same = same && t->joint_digest == computed.front()->joint_digest;
         }
-        for (int r = 0; r < robots_; ++r) {
-            double v_lo = std::numeric_limits<double>::infinity(), v_hi = -v_lo, w_lo = v_lo, w_hi = -v_lo;
-            for (const auto* c : computed) {
-                v_lo = std::min(v_lo, c->joint_speed_mps[r]);
-                v_hi = std::max(v_hi, c->joint_speed_mps[r]);
-                w_lo = std::min(w_lo, c->joint_turn_rate_radps[r]);
-                w_hi = std::max(w_hi, c->joint_turn_rate_radps[r]);
-            }
-            spread_v = std::max(spread_v, v_hi - v_lo);
-            spread_w = std::max(spread_w, w_hi - w_lo);
-        }
-        if (spread_v > max_speed_spread_) {
-            max_speed_spread_ = spread_v;
-            max_speed_spread_period_ = period_.sequence;
-        }
-        if (spread_w > max_turn_spread_) {
-            max_turn_spread_ = spread_w;
-            max_turn_spread_period_ = period_.sequence;
-        }
-        max_disagreement_ = std::max({max_disagreement_, spread_v, spread_w});
-        spreads_.push_back(std::max(spread_v, spread_w));
         if (!same) {
             last_mismatch_period_ = period_.sequence;
             ++mismatch_periods_;
@@ -495,101 +535,107 @@ private:
         }
     }
 
-    // One row per robot to tvo_sim, the period's joint command: each robot's row from its own node, else
-    // the row it holds (status 0, no flags: the plant applies it as the command in force).
+    // One command per robot to tvo_sim, the period's joint command: robot r's from its own node, else the
+    // row it holds (status 0, no flags: the plant applies it as the command in force); its telemetry likewise.
     void answer_plant()
     {
         const double h_s = static_cast<double>(start_.period_us) * 1e-6;
-        std::optional<tvo_lcm::telemetry_t> tel;
-        std::int32_t flags = 0;
-        for (int r = 0; r < o_.robots; ++r) {
+        for (int r = 0; r < robots_; ++r) {
             const Answer& a = answers_[static_cast<std::size_t>(r)];
             const bool came = expected_[static_cast<std::size_t>(r)] && a.command;
-            const bool lost = came && dropped(1, r, o_.robots, period_.sequence);
+            const bool lost = came && dropped(1, r, nodes_, period_.sequence);
             dropped_commands_ += lost ? 1u : 0u;
-            const bool fresh = came && !lost && a.row.status == tvo_lcm::command_t::STATUS_OK;
-            refused_rows_ += (came && a.row.status != tvo_lcm::command_t::STATUS_OK) ? 1u : 0u;
-            tvo_lcm::fleet_command_t row{};
+            const bool fresh = came && !lost && a.cmd.header.status == Header::STATUS_OK;
+            refused_rows_ += (came && a.cmd.header.status != Header::STATUS_OK) ? 1u : 0u;
+            auto& held = held_[static_cast<std::size_t>(r)];
             if (fresh) {
-                check_limits(r, a.row, h_s);
-                held_[static_cast<std::size_t>(r)] = {a.row.speed_mps, a.row.turn_rate_radps};
-                row.flags = a.row.flags;
-            } else if ((static_cast<std::uint32_t>(a.row.flags) & static_cast<std::uint32_t>(tvo_lcm::command_t::FLAG_SAFE_STOP)) != 0u && came && !lost) {
-                held_[static_cast<std::size_t>(r)] = {0.0, 0.0};
+                check_limits(r, a.cmd, h_s);
+                held = {static_cast<double>(a.cmd.speed_mps), static_cast<double>(a.cmd.turn_rate_radps)};
             } else {
-                ++held_rows_;
+                if (came && !lost && (static_cast<std::uint32_t>(a.cmd.header.flags) &
+                                      static_cast<std::uint32_t>(Header::FLAG_SAFE_STOP)) != 0u) {
+                    held = {0.0, 0.0};
+                } else {
+                    ++held_rows_;
+                }
+                tvo_lcm::unicycle_command_t row{};
+                row.header = held_header(r);
+                row.speed_mps = static_cast<float>(held[0]);
+                row.turn_rate_radps = static_cast<float>(held[1]);
+                plant_auth_.publish(plant_, TVO_CHANNEL_COMMAND, row);
             }
-            row.utime = period_.utime + start_.delay_us;
-            row.session_id = period_.session_id;
-            row.measurement_sequence = period_.sequence;
-            row.robot = r;
-            row.robot_count = o_.robots;
-            row.status = tvo_lcm::command_t::STATUS_OK;
-            row.speed_mps = held_[static_cast<std::size_t>(r)][0];
-            row.turn_rate_radps = held_[static_cast<std::size_t>(r)][1];
-            plant_auth_.publish(plant_, TVO_CHANNEL_FLEET_COMMAND, row);
-            flags |= row.flags;
-            if (!tel && came && !lost) {
-                tel = a.tel;
+            if (!with_telemetry_) {
+                continue;
+            }
+            auto& last_tel = held_telemetry_[static_cast<std::size_t>(r)];
+            if (fresh && a.telemetry) {
+                last_tel = a.tel;  // passed on when it came
+            } else {
+                tvo_lcm::telemetry_t tel = last_tel;  // what robot r's node last said, restamped
+                tel.header = held_header(r);
+                plant_auth_.publish(plant_, TVO_CHANNEL_TELEMETRY, tel);
             }
         }
-        tvo_lcm::telemetry_t out = tel.value_or(tvo_lcm::telemetry_t{});
-        out.utime = period_.utime + start_.delay_us;
-        out.session_id = period_.session_id;
-        out.measurement_sequence = period_.sequence;
-        out.status = tvo_lcm::command_t::STATUS_OK;
-        out.flags = flags;
-        plant_auth_.publish(plant_, TVO_CHANNEL_TELEMETRY, out);
     }
 
-    // A computed row against the session's limits; the speed step against the same node's last row.
-    void check_limits(int r, const tvo_lcm::fleet_command_t& row, double h_s)
+    Header held_header(int r) const
     {
-        const double v = row.speed_mps;
-        const double w = row.turn_rate_radps;
+        Header h{};
+        h.utime = period_.utime + start_.delay_us;
+        h.session_id = period_.session_id;
+        h.measurement_sequence = period_.sequence;
+        h.robot = static_cast<std::int8_t>(r);
+        h.status = Header::STATUS_OK;
+        h.flags = 0;
+        return h;
+    }
+
+    // A computed command against the session's limits; the speed step against the same node's last one.
+    void check_limits(int r, const tvo_lcm::unicycle_command_t& c, double h_s)
+    {
+        const double v = c.speed_mps;
+        const double w = c.turn_rate_radps;
         max_speed_ = std::max(max_speed_, std::fabs(v));
         max_turn_ = std::max(max_turn_, std::fabs(w));
         const double tol = 1e-6;
         bool bad = std::fabs(v) > start_.speed_max_mps * (1.0 + tol) || std::fabs(w) > start_.omega_max_radps * (1.0 + tol);
         auto& last = last_row_[static_cast<std::size_t>(r)];
-        if (last && last->first == row.measurement_sequence - 1) {
+        if (last && last->first == c.header.measurement_sequence - 1) {
             const double dv = std::fabs(v - last->second);
             max_speed_step_ = std::max(max_speed_step_, dv);
             bad = bad || dv > start_.accel_max_mps2 * h_s * (1.0 + tol) + 1e-9;
         }
-        last = std::make_pair(row.measurement_sequence, v);
+        last = std::make_pair(static_cast<std::int64_t>(c.header.measurement_sequence), v);
         limit_violations_ += bad ? 1u : 0u;
     }
 
     const Options& o_;
+    const int nodes_;
     lcm::LCM plant_;
-    lcm::LCM fleet_;
-    std::vector<std::string> sample_channels_;
-    AuthEnd plant_auth_;                           // tvo_sim's bus: opens its frames, signs as its node
-    AuthEnd fleet_auth_;                           // the nodes' bus: opens their frames
-    std::array<AuthEnd, kMaxRobots> robot_auth_;   // robot j's samples, each its own sender
+    std::vector<std::unique_ptr<lcm::LCM>> node_bus_;
+    std::vector<std::unique_ptr<NodeEnd>> node_ends_;
+    AuthEnd plant_auth_;                              // tvo_sim's bus: opens its frames, signs the hub's own
+    std::vector<std::unique_ptr<AuthEnd>> node_open_; // node k's bus: opens its frames
+    std::vector<std::optional<tvo_lcm::node_status_t>> last_status_;
     std::uint64_t run_digest_{0xcbf29ce484222325ull};
     tvo_lcm::session_t start_{};
     int robots_{0};
-    std::int64_t ack_session_{-2};
-    std::int8_t ack_action_{0};
-    std::uint32_t ack_mask_{0};
-    bool stopped_{false};
+    std::uint64_t stop_acked_{0};
+    std::optional<std::chrono::steady_clock::time_point> stopped_at_;
     bool awaiting_{false};
-    std::array<tvo_lcm::fleet_sample_t, kMaxRobots> samples_{};  // the period's, by robot
-    tvo_lcm::fleet_sample_t period_{};                            // the newest sample: its period's stamp
-    std::uint32_t gathered_{0};                                   // bit r: robot r's sample of period_ is in
+    bool with_telemetry_{false};
+    std::array<tvo_lcm::unicycle_sample_t, kMaxRobots> samples_{};  // the newest of each robot
+    tvo_lcm::sample_header_t period_{};                             // the period's trigger
     std::vector<Answer> answers_;
     std::vector<bool> expected_;
     std::array<std::array<double, 2>, kMaxRobots> held_{};
+    std::array<tvo_lcm::telemetry_t, kMaxRobots> held_telemetry_{};
     std::array<std::optional<std::pair<std::int64_t, double>>, kMaxRobots> last_row_{};
     std::uint64_t periods_{0}, compared_periods_{0}, mismatch_periods_{0}, streak_{0}, longest_streak_{0};
     std::uint64_t predicted_{0}, dropped_samples_{0}, dropped_commands_{0}, held_rows_{0}, refused_rows_{0};
     std::uint64_t limit_violations_{0};
-    double max_speed_spread_{0.0}, max_turn_spread_{0.0};
-    std::int64_t max_speed_spread_period_{-1}, max_turn_spread_period_{-1}, last_mismatch_period_{-1};
-    std::vector<double> spreads_;
-    double max_disagreement_{0.0}, max_speed_{0.0}, max_turn_{0.0}, max_speed_step_{0.0};
+    std::int64_t last_mismatch_period_{-1};
+    double max_speed_{0.0}, max_turn_{0.0}, max_speed_step_{0.0};
     double min_pair_m_{std::numeric_limits<double>::infinity()};
 };
 
@@ -598,18 +644,24 @@ private:
 int main(int argc, char** argv)
 {
     Options o;
-    CLI::App app{"tvo_fleet_hub: tvo_sim --fleet's per-robot messages to and from a fleet of per-robot nodes"};
+    CLI::App app{"tvo_fleet_hub: the radio between tvo_sim and a fleet of per-robot nodes, each on its own LCM URL, "
+                 "with loss per link"};
     app.add_option("--plant-url", o.plant_url, "LCM URL shared with tvo_sim")->required();
-    app.add_option("--fleet-url", o.fleet_url, "LCM URL shared with the nodes")->required();
-    app.add_option("--robots", o.robots, "nodes, one per robot (robot k's node: --own-robot k)")
-        ->required()
-        ->check(CLI::Range(1, kMaxRobots));
+    app.add_option("--node-url", o.node_urls, "node k's LCM URL (it runs --own-robot k), once per node in robot order")
+        ->required();
     app.add_option("--loss", o.loss, "probability that a link drops a period's message")->check(CLI::Range(0.0, 1.0));
     app.add_option("--loss-until-s", o.loss_until_s, "the links lose nothing from this plant time on (re-agreement)");
     app.add_option("--seed", o.seed, "seed of the loss pattern");
     app.add_option("--json", o.json_path, "write the agreement figures here (default: stdout)");
-    app.add_option("--key-file", o.key_file, "sign and open every message on both buses with this key (tools/keygen)");
+    app.add_option("--key-file", o.key_file, "open every frame on every bus with this key (tools/keygen); sign the "
+                   "hub's own");
+    app.add_option("--sender-id", o.sender_id, "the hub's sender id on a keyed bus (unique per key holder)")
+        ->capture_default_str();
     CLI11_PARSE(app, argc, argv);
+    if (o.node_urls.size() > static_cast<std::size_t>(kMaxRobots)) {
+        std::cerr << "tvo_fleet_hub: error: --node-url: at most " << kMaxRobots << " nodes (session_t.MAX_ROBOTS)\n";
+        return 2;
+    }
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
     try {

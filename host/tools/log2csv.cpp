@@ -1,20 +1,23 @@
 // tvo_log2csv: an LCM event log (.lcmlog; tvo_sim's run.lcmlog, or lcm-logger's from a real robot) as
 // the run CSV that tools/plot_run.py reads, written by the simulator's own RunRecorder (one header).
 //
-// One row per robot per measurement of the session, in sequence order:
+// One row per robot per period of the session (each robot's unicycle_sample_t of that sequence), in
+// sequence order, then robot order:
 //   t_s        the sample's time from the session's epoch (session_t.epoch_utime of its START)
 //   pose       as measured (heading nan when the sample carries none)
-//   target     the session's target at t_s (on-board path from its START, or the streamed sample of
-//              the same sequence); with formation offsets the constrained minimiser, as tvo_sim
-//   command    the node's answer to this measurement (same session and sequence); a sample the node
-//              did not answer keeps the previous answer (what the plant holds) and is counted
-//   telemetry  of the step that answered it, else the previous one
+//   target     the session's target at t_s (on-board path from its START, or the robot's streamed
+//              sample of the same sequence); with formation offsets the constrained minimiser, as tvo_sim
+//   command    the robot's command answering this period (same session, sequence and robot); a sample
+//              the node did not answer keeps the robot's previous command (what the plant holds) and is
+//              counted
+//   telemetry  the robot's telemetry of the step that answered it, else its previous one (a node sends
+//              telemetry every session_t.telemetry_every-th period)
 // Messages that do not decode, duplicates and other sessions are counted and reported, not fatal.
 // A keyed bus's recording (lcm-logger's; its frames end in a 28-byte authentication trailer) converts
 // as it is, the trailers ignored and unchecked (reported); with --key-file only the frames that open
 // are read, the others counted (forged or altered: unauthenticated; a used counter: replayed).
 //
-// Exit codes: 0 done; 1 the output cannot be written or the session has no measurement;
+// Exit codes: 0 done; 1 the output cannot be written or the session has no sample;
 // 2 bad command line, or a log that is missing, unreadable or holds no LCM event.
 #include <algorithm>
 #include <array>
@@ -47,7 +50,7 @@ using tvo_host::kMaxRobots;
 
 constexpr double kSPerUs = 1e-6;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-// A measurement waits this many later samples for its command and telemetry before its rows are
+// A period waits this many later periods for its commands and telemetry before its rows are
 // written: answers arrive within a period or two; the window keeps memory bounded on day-long logs.
 constexpr std::int64_t kAnswerWindow = 256;
 
@@ -59,7 +62,8 @@ int usage_error(const std::string& what)
 
 /// What the first pass learns about one session.
 struct SessionInfo {
-    std::uint64_t measurements{0};
+    std::uint64_t samples{0};                 // unicycle_sample_t messages, every robot's
+    std::int32_t top_robot{-1};               // the largest robot index sampled
     std::optional<tvo_lcm::session_t> start;  // its first START
 };
 
@@ -68,8 +72,9 @@ struct Counts {
     std::map<std::string, std::uint64_t> other_channels;  // not the protocol's
     std::uint64_t events{0};
     std::uint64_t other_session{0};
-    std::uint64_t bad_robot_count{0};
+    std::uint64_t bad_robot{0};       // samples and answers naming no robot of the session
     std::uint64_t duplicates{0};
+    std::uint64_t missing_samples{0}; // robots without a sample in a period another robot's sample has
     std::uint64_t unanswered{0};
     std::uint64_t late_answers{0};  // answers to rows already written
     std::uint64_t safe_stops{0};
@@ -124,6 +129,7 @@ private:
     lcm::LogEvent event_{};
 };
 
+// LCM's decoders read the message and leave what follows (an unchecked authentication trailer).
 template <class Msg>
 bool decode(const lcm::LogEvent& event, Msg* msg)
 {
@@ -172,7 +178,7 @@ tvo_host::Scenario scenario_of(const tvo_lcm::session_t& s)
 {
     tvo_host::Scenario sc;
     sc.name = "session " + std::to_string(s.session_id);
-    sc.robot_count = std::max<std::size_t>(1, clamp_count(s.robot_count, tvo_lcm::session_t::MAX_ROBOTS));
+    sc.robot_count = std::max<std::size_t>(1, clamp_count(s.robot_count, kMaxRobots));
     for (std::size_t r = 0; r < sc.robot_count; ++r) {
         const tvo_lcm::robot_t& robot = s.robot[r];
         sc.streamed = sc.streamed || robot.target.kind == tvo_lcm::path_t::KIND_STREAMED;
@@ -213,9 +219,12 @@ bool decodes(int channel, const lcm::LogEvent& event)
     switch (channel) {
     case TVO_NODE_CH_SESSION_ACK: { tvo_lcm::session_ack_t m{}; return decode(event, &m); }
     case TVO_NODE_CH_TARGET: { tvo_lcm::target_t m{}; return decode(event, &m); }
-    case TVO_NODE_CH_COMMAND: { tvo_lcm::command_t m{}; return decode(event, &m); }
+    case TVO_NODE_CH_COMMAND: { tvo_lcm::unicycle_command_t m{}; return decode(event, &m); }
     case TVO_NODE_CH_TELEMETRY: { tvo_lcm::telemetry_t m{}; return decode(event, &m); }
-    default: return true;  // measurement and session: decoded by the caller
+    case TVO_NODE_CH_NODE: { tvo_lcm::node_status_t m{}; return decode(event, &m); }
+    case TVO_NODE_CH_CHAIN_SAMPLE: { tvo_lcm::chain_sample_t m{}; return decode(event, &m); }
+    case TVO_NODE_CH_CHAIN_COMMAND: { tvo_lcm::chain_command_t m{}; return decode(event, &m); }
+    default: return true;  // samples and sessions: decoded by the caller
     }
 }
 
@@ -224,19 +233,22 @@ int encoded_size(int channel)
 {
     switch (channel) {
     case TVO_NODE_CH_SESSION: return tvo_lcm::session_t{}.getEncodedSize();
-    case TVO_NODE_CH_MEASUREMENT: return tvo_lcm::measurement_t{}.getEncodedSize();
+    case TVO_NODE_CH_SAMPLE: return tvo_lcm::unicycle_sample_t{}.getEncodedSize();
     case TVO_NODE_CH_TARGET: return tvo_lcm::target_t{}.getEncodedSize();
     case TVO_NODE_CH_SESSION_ACK: return tvo_lcm::session_ack_t{}.getEncodedSize();
-    case TVO_NODE_CH_COMMAND: return tvo_lcm::command_t{}.getEncodedSize();
+    case TVO_NODE_CH_COMMAND: return tvo_lcm::unicycle_command_t{}.getEncodedSize();
     case TVO_NODE_CH_TELEMETRY: return tvo_lcm::telemetry_t{}.getEncodedSize();
+    case TVO_NODE_CH_NODE: return tvo_lcm::node_status_t{}.getEncodedSize();
+    case TVO_NODE_CH_CHAIN_SAMPLE: return tvo_lcm::chain_sample_t{}.getEncodedSize();
+    case TVO_NODE_CH_CHAIN_COMMAND: return tvo_lcm::chain_command_t{}.getEncodedSize();
     default: return 0;
     }
 }
 
-/// First pass: the sessions in the log (by their measurements and STARTs) and what does not decode.
-std::map<std::int64_t, SessionInfo> scan_sessions(EventReader& log, Counts* counts)
+/// First pass: the sessions in the log (by their samples and STARTs) and what does not decode.
+std::map<std::int32_t, SessionInfo> scan_sessions(EventReader& log, Counts* counts)
 {
-    std::map<std::int64_t, SessionInfo> sessions;
+    std::map<std::int32_t, SessionInfo> sessions;
     for (const lcm::LogEvent* event = log.next(); event != nullptr; event = log.next()) {
         ++counts->events;
         const int channel = tvo_node_channel_of(event->channel.c_str());
@@ -244,11 +256,13 @@ std::map<std::int64_t, SessionInfo> scan_sessions(EventReader& log, Counts* coun
             ++counts->unchecked_trailers;   // LCM's decoders read the message and leave the trailer
         }
         bool ok = decodes(channel, *event);
-        if (channel == TVO_NODE_CH_MEASUREMENT) {
-            tvo_lcm::measurement_t m{};
+        if (channel == TVO_NODE_CH_SAMPLE) {
+            tvo_lcm::unicycle_sample_t m{};
             ok = decode(*event, &m);
             if (ok) {
-                ++sessions[m.session_id].measurements;
+                SessionInfo& info = sessions[m.header.session_id];
+                ++info.samples;
+                info.top_robot = std::max<std::int32_t>(info.top_robot, m.header.robot);
             }
         } else if (channel == TVO_NODE_CH_SESSION) {
             tvo_lcm::session_t s{};
@@ -266,43 +280,46 @@ std::map<std::int64_t, SessionInfo> scan_sessions(EventReader& log, Counts* coun
     return sessions;
 }
 
-/// One measurement waiting for its answer.
-struct PendingRow {
-    tvo_lcm::measurement_t measurement;
-    std::optional<tvo_lcm::command_t> command;
-    std::optional<tvo_host::StepTelemetry> telemetry;
-    std::optional<tvo_lcm::target_t> target;
+/// One period waiting for its answers: per robot its sample, command, telemetry and streamed target.
+struct PendingPeriod {
+    std::array<std::optional<tvo_lcm::unicycle_sample_t>, kMaxRobots> sample;
+    std::array<std::optional<tvo_lcm::unicycle_command_t>, kMaxRobots> command;
+    std::array<std::optional<tvo_host::StepTelemetry>, kMaxRobots> telemetry;
+    std::array<std::optional<tvo_lcm::target_t>, kMaxRobots> target;
 };
 
 /// Second pass: the rows of one session, written through RunRecorder.
 class Converter {
 public:
-    Converter(std::int64_t session_id, const std::optional<tvo_lcm::session_t>& start, tvo_host::RunRecorder& out,
-              Counts& counts)
-        : session_id_(session_id), start_(start), out_(out), counts_(counts)
+    Converter(std::int32_t session_id, const SessionInfo& info, tvo_host::RunRecorder& out, Counts& counts)
+        : session_id_(session_id), start_(info.start), out_(out), counts_(counts)
     {
         if (start_) {
             scenario_ = scenario_of(*start_);
             epoch_utime_ = start_->epoch_utime;
+            robots_ = scenario_.robot_count;
+        } else {
+            robots_ = static_cast<std::size_t>(std::clamp<std::int32_t>(info.top_robot + 1, 1,
+                                                                        static_cast<std::int32_t>(kMaxRobots)));
         }
     }
 
     void on_event(const lcm::LogEvent& event)
     {
         switch (tvo_node_channel_of(event.channel.c_str())) {
-        case TVO_NODE_CH_MEASUREMENT: {
-            tvo_lcm::measurement_t m{};
-            if (decode(event, &m) && m.session_id == session_id_) {
-                on_measurement(m);
+        case TVO_NODE_CH_SAMPLE: {
+            tvo_lcm::unicycle_sample_t m{};
+            if (decode(event, &m) && m.header.session_id == session_id_) {
+                on_sample(m);
             }
             break;
         }
-        case TVO_NODE_CH_COMMAND: on_answer<tvo_lcm::command_t>(event); break;
+        case TVO_NODE_CH_COMMAND: on_answer<tvo_lcm::unicycle_command_t>(event); break;
         case TVO_NODE_CH_TELEMETRY: on_answer<tvo_lcm::telemetry_t>(event); break;
         case TVO_NODE_CH_TARGET: {
             tvo_lcm::target_t t{};
-            if (decode(event, &t) && t.session_id == session_id_) {
-                pending_target_[t.sequence] = t;
+            if (decode(event, &t) && t.header.session_id == session_id_ && robot_of(t.header.robot)) {
+                pending_target_[t.header.sequence][static_cast<std::size_t>(t.header.robot)] = t;
                 while (pending_target_.size() > static_cast<std::size_t>(kAnswerWindow)) {
                     pending_target_.erase(pending_target_.begin());
                 }
@@ -317,26 +334,33 @@ public:
     double last_t_s() const { return last_t_s_; }
 
 private:
-    void on_measurement(const tvo_lcm::measurement_t& m)
+    using Targets = std::array<std::optional<tvo_lcm::target_t>, kMaxRobots>;
+
+    bool robot_of(std::int32_t robot) const { return robot >= 0 && static_cast<std::size_t>(robot) < robots_; }
+
+    void on_sample(const tvo_lcm::unicycle_sample_t& m)
     {
-        if (m.robot_count < 1 || m.robot_count > tvo_lcm::measurement_t::MAX_ROBOTS) {
-            ++counts_.bad_robot_count;
+        const std::int64_t n = m.header.sequence;
+        if (!robot_of(m.header.robot)) {
+            ++counts_.bad_robot;
             return;
         }
-        if (m.sequence <= written_through_ || pending_.count(m.sequence) != 0) {
+        const auto r = static_cast<std::size_t>(m.header.robot);
+        const auto period = pending_.find(n);
+        if (n <= written_through_ || (period != pending_.end() && period->second.sample[r])) {
             ++counts_.duplicates;
             return;
         }
         if (!epoch_utime_) {
-            epoch_utime_ = m.utime;  // no START in the log: time from the first sample
+            epoch_utime_ = m.header.utime;  // no START in the log: time from the first sample
         }
-        PendingRow& row = pending_[m.sequence];
-        row.measurement = m;
-        const auto target = pending_target_.find(m.sequence);
-        if (target != pending_target_.end()) {
-            row.target = target->second;
+        PendingPeriod& row = pending_[n];
+        row.sample[r] = m;
+        const auto targets = pending_target_.find(n);
+        if (targets != pending_target_.end()) {
+            row.target[r] = targets->second[r];
         }
-        flush_through(m.sequence - kAnswerWindow);
+        flush_through(n - kAnswerWindow);
     }
 
     template <class Msg>
@@ -346,61 +370,62 @@ private:
         if (!decode(event, &msg)) {
             return;  // counted by the first pass
         }
-        if (msg.session_id != session_id_) {
+        const tvo_lcm::command_header_t& h = msg.header;
+        if (h.session_id != session_id_) {
             ++counts_.other_session;
             return;
         }
-        if (msg.measurement_sequence < 0) {
-            counts_.safe_stops += std::is_same<Msg, tvo_lcm::command_t>::value ? 1u : 0u;
+        if (h.measurement_sequence < 0) {
+            counts_.safe_stops += std::is_same<Msg, tvo_lcm::unicycle_command_t>::value ? 1u : 0u;
             return;
         }
-        const auto row = pending_.find(msg.measurement_sequence);
+        if (!robot_of(h.robot)) {
+            ++counts_.bad_robot;
+            return;
+        }
+        const auto row = pending_.find(h.measurement_sequence);
         if (row == pending_.end()) {
-            counts_.late_answers += msg.measurement_sequence <= written_through_ ? 1u : 0u;
+            counts_.late_answers += h.measurement_sequence <= written_through_ ? 1u : 0u;
             return;
         }
-        attach(msg, &row->second);
+        attach(msg, static_cast<std::size_t>(h.robot), &row->second);
     }
 
     // The first computed answer wins over a refusal; a refusal is kept only if nothing else came.
-    static void attach(const tvo_lcm::command_t& c, PendingRow* row)
+    static void attach(const tvo_lcm::unicycle_command_t& c, std::size_t r, PendingPeriod* row)
     {
-        if (!row->command || (row->command->status != 0 && c.status == 0)) {
-            row->command = c;
+        if (!row->command[r] || (row->command[r]->header.status != 0 && c.header.status == 0)) {
+            row->command[r] = c;
         }
     }
-    static void attach(const tvo_lcm::telemetry_t& t, PendingRow* row)
+    static void attach(const tvo_lcm::telemetry_t& t, std::size_t r, PendingPeriod* row)
     {
-        if (!row->telemetry) {
-            row->telemetry = tvo_host::StepTelemetry{t.barrier_c, t.barrier_slack, t.regularization};
+        if (!row->telemetry[r]) {
+            row->telemetry[r] = tvo_host::StepTelemetry{t.barrier_c, t.barrier_slack, t.regularization};
         }
     }
 
-    /// The reference of each robot at t_s: the START's paths, or the streamed sample held constant.
-    std::array<Eigen::Vector2d, kMaxRobots> references(double t_s, const PendingRow& row, std::size_t robots)
+    /// The reference of each robot at t_s: the START's paths, or the streamed samples held constant.
+    std::array<Eigen::Vector2d, kMaxRobots> references(double t_s, const PendingPeriod& row)
     {
         std::array<Eigen::Vector2d, kMaxRobots> none;
         none.fill(Eigen::Vector2d::Constant(kNaN));
         if (scenario_.streamed || !start_) {
-            if (!row.target) {
-                return none;
-            }
-            for (std::size_t r = 0; r < robots; ++r) {
+            for (std::size_t r = 0; r < robots_; ++r) {
+                if (!row.target[r]) {
+                    return none;
+                }
                 tvo_host::PolyCoeffs constant{};
-                constant[0][0] = row.target->position_m[r][0];
-                constant[1][0] = row.target->position_m[r][1];
+                constant[0][0] = row.target[r]->position_m[0];
+                constant[1][0] = row.target[r]->position_m[1];
                 scenario_.targets[r] = tvo_host::TargetPath::polynomial(constant);
             }
             if (!start_) {
-                scenario_.robot_count = robots;
+                scenario_.robot_count = robots_;
                 scenario_.weights.fill(Eigen::Vector2d::Ones());
             }
         }
-        auto refs = scenario_.references(t_s);
-        for (std::size_t r = scenario_.robot_count; r < robots; ++r) {
-            refs[r] = none[r];  // more robots measured than the START describes
-        }
-        return refs;
+        return scenario_.references(t_s);
     }
 
     void flush_through(std::int64_t sequence)
@@ -412,43 +437,51 @@ private:
         }
     }
 
-    void write(const PendingRow& row)
+    void write(const PendingPeriod& row)
     {
-        const tvo_lcm::measurement_t& m = row.measurement;
-        if (row.command) {
-            held_ = *row.command;
-        } else {
-            ++counts_.unanswered;
+        const tvo_lcm::unicycle_sample_t* first = nullptr;
+        for (std::size_t r = 0; r < robots_ && first == nullptr; ++r) {
+            first = row.sample[r] ? &*row.sample[r] : nullptr;
         }
-        if (row.telemetry) {
-            telemetry_ = *row.telemetry;
-        }
-        const auto robots = static_cast<std::size_t>(m.robot_count);
-        const double t_s = static_cast<double>(m.utime - *epoch_utime_) * kSPerUs;
+        const double t_s = static_cast<double>(first->header.utime - *epoch_utime_) * kSPerUs;
         last_t_s_ = t_s;
-        const auto refs = references(t_s, row, robots);
-        for (std::size_t r = 0; r < robots; ++r) {
+        const auto refs = references(t_s, row);
+        for (std::size_t r = 0; r < robots_; ++r) {
+            if (!row.sample[r]) {
+                ++counts_.missing_samples;
+                continue;
+            }
+            const tvo_lcm::unicycle_sample_t& m = *row.sample[r];
+            if (row.command[r]) {
+                held_[r] = *row.command[r];
+            } else {
+                ++counts_.unanswered;
+            }
+            if (row.telemetry[r]) {
+                telemetry_[r] = *row.telemetry[r];
+            }
             tvo_host::UnicycleState pose;
-            pose.position_m = {m.position_m[r][0], m.position_m[r][1]};
-            pose.heading_rad = m.heading_valid ? m.heading_rad[r] : kNaN;
-            const tvo_host::UnicycleInput command{held_.speed_mps[r], held_.turn_rate_radps[r]};
-            out_.row(t_s, r, pose, refs[r], (pose.position_m - refs[r]).norm(), command, held_.status, held_.flags,
-                     telemetry_);
+            pose.position_m = {m.position_m[0], m.position_m[1]};
+            pose.heading_rad = (m.has & tvo_lcm::unicycle_sample_t::HAS_HEADING) != 0 ? m.heading_rad : kNaN;
+            const tvo_host::UnicycleInput command{held_[r].speed_mps, held_[r].turn_rate_radps};
+            out_.row(t_s, r, pose, refs[r], (pose.position_m - refs[r]).norm(), command, held_[r].header.status,
+                     held_[r].header.flags, telemetry_[r]);
+            ++counts_.rows;
         }
-        counts_.rows += robots;
     }
 
-    std::int64_t session_id_;
+    std::int32_t session_id_;
     std::optional<tvo_lcm::session_t> start_;
     tvo_host::Scenario scenario_;
+    std::size_t robots_{1};
     std::optional<std::int64_t> epoch_utime_;
     tvo_host::RunRecorder& out_;
     Counts& counts_;
-    std::map<std::int64_t, PendingRow> pending_;
-    std::map<std::int64_t, tvo_lcm::target_t> pending_target_;
+    std::map<std::int64_t, PendingPeriod> pending_;
+    std::map<std::int64_t, Targets> pending_target_;
     std::int64_t written_through_{-1};
-    tvo_lcm::command_t held_{};  // before the first answer: zero command, status 0
-    tvo_host::StepTelemetry telemetry_{};
+    std::array<tvo_lcm::unicycle_command_t, kMaxRobots> held_{};  // before the first answer: zero command, status 0
+    std::array<tvo_host::StepTelemetry, kMaxRobots> telemetry_{};
     double last_t_s_{0.0};
 };
 
@@ -461,11 +494,11 @@ std::string join(const std::map<std::string, std::uint64_t>& by_channel)
     return out.str();
 }
 
-std::string session_list(const std::map<std::int64_t, SessionInfo>& sessions)
+std::string session_list(const std::map<std::int32_t, SessionInfo>& sessions)
 {
     std::ostringstream out;
     for (const auto& [id, info] : sessions) {
-        out << "\n  " << id << ": " << info.measurements << " measurement messages" << (info.start ? "" : ", no START");
+        out << "\n  " << id << ": " << info.samples << " samples" << (info.start ? "" : ", no START");
     }
     return out.str();
 }
@@ -477,10 +510,10 @@ int main(int argc, char** argv)
     std::string log_path;
     std::string csv_path;
     std::string scenario_json;
-    std::int64_t session_id = 0;
+    std::int32_t session_id = 0;
     CLI::App app{"Turns an LCM event log (tvo_sim's run.lcmlog, or lcm-logger's recording of a robot) into the "
-                 "run CSV that tools/plot_run.py plots: one row per robot per measurement of the session, paired "
-                 "with the node's command and telemetry by session and sequence.",
+                 "run CSV that tools/plot_run.py plots: one row per robot per sample period of the session, paired "
+                 "with the robot's command and telemetry by session, sequence and robot.",
                  "log2csv"};
     app.add_option("log", log_path, "the .lcmlog to read")->required();
     app.add_option("-o,--output", csv_path, "CSV to write [default: <log>.csv]");
@@ -535,7 +568,7 @@ int main(int argc, char** argv)
     } wipe{&key};
 
     Counts counts;
-    std::map<std::int64_t, SessionInfo> sessions;
+    std::map<std::int32_t, SessionInfo> sessions;
     {
         EventReader log(log_path, keyed, &counts);
         if (!log.good()) {
@@ -553,16 +586,16 @@ int main(int argc, char** argv)
         return usage_error(log_path + " holds no LCM event (not an LCM event log, or empty)");
     }
     for (auto it = sessions.begin(); it != sessions.end();) {  // a START alone is not a run
-        it = it->second.measurements == 0 ? sessions.erase(it) : std::next(it);
+        it = it->second.samples == 0 ? sessions.erase(it) : std::next(it);
     }
     if (session->count() > 0 && sessions.count(session_id) == 0) {
-        return usage_error("--session " + std::to_string(session_id) + ": no measurement of it in " + log_path +
-                           "; sessions with measurements:" + (sessions.empty() ? " none" : session_list(sessions)));
+        return usage_error("--session " + std::to_string(session_id) + ": no sample of it in " + log_path +
+                           "; sessions with samples:" + (sessions.empty() ? " none" : session_list(sessions)));
     }
     if (session->count() == 0) {
         if (sessions.empty()) {
-            std::cerr << "log2csv: error: " << log_path << " holds no decodable measurement on "
-                      << TVO_CHANNEL_MEASUREMENT << " (" << counts.events << " events)\n";
+            std::cerr << "log2csv: error: " << log_path << " holds no decodable sample on "
+                      << TVO_CHANNEL_SAMPLE << " (" << counts.events << " events)\n";
             return 1;
         }
         if (sessions.size() > 1) {
@@ -575,7 +608,7 @@ int main(int argc, char** argv)
 
     try {
         tvo_host::RunRecorder out(csv_path);
-        Converter converter(session_id, info.start, out, counts);
+        Converter converter(session_id, info, out, counts);
         EventReader log(log_path, keyed, nullptr);   // counted in the first pass
         for (const lcm::LogEvent* event = log.next(); event != nullptr; event = log.next()) {
             converter.on_event(*event);
@@ -598,17 +631,18 @@ int main(int argc, char** argv)
         return 1;
     }
 
-    std::cout << "log2csv: session " << session_id << ": " << counts.rows << " rows (" << info.measurements
-              << " measurement messages) -> " << csv_path << '\n';
+    std::cout << "log2csv: session " << session_id << ": " << counts.rows << " rows (" << info.samples
+              << " samples) -> " << csv_path << '\n';
     if (!info.start) {
         std::cout << "log2csv: no START of the session in the log: time counts from the first sample and the "
                      "reference is the streamed target where there is one, else nan\n";
     }
     const std::pair<const char*, std::uint64_t> notes[] = {
-        {"measurements without an answer (previous command kept)", counts.unanswered},
+        {"samples without an answer (the robot's previous command kept)", counts.unanswered},
         {"answers that came after their row was written", counts.late_answers},
-        {"duplicate measurements (ignored)", counts.duplicates},
-        {"measurements with a robot count out of range (ignored)", counts.bad_robot_count},
+        {"duplicate samples (ignored)", counts.duplicates},
+        {"samples and answers naming no robot of the session (ignored)", counts.bad_robot},
+        {"robots without a sample in a period of the others' (no row)", counts.missing_samples},
         {"commands and telemetry of other sessions (ignored)", counts.other_session},
         {"safe stops of the node", counts.safe_stops},
         {"frames dropped by --key-file: their tag did not verify (forged, altered, another key)",

@@ -3,9 +3,9 @@
 # tree takes its own block, so two trees testing at once (a fresh clone beside a working tree) do not
 # hear each other: Linux delivers a multicast datagram to every socket bound to its port, whatever
 # group the socket joined.
-set(TVO_TEST_LCM_PORT_BLOCK 100)
+set(TVO_TEST_LCM_PORT_BLOCK 200)
 set(TVO_TEST_LCM_PORT_BASE "" CACHE STRING
-  "First UDP port of this tree's LCM tests (empty: a block in 10000..29999 chosen by the build folder's path)")
+  "First UDP port of this tree's LCM tests (empty: a block in 10000..49999 chosen by the build folder's path)")
 if(TVO_TEST_LCM_PORT_BASE STREQUAL "")
   string(MD5 tvo_tree_hash "${CMAKE_BINARY_DIR}")
   string(SUBSTRING "${tvo_tree_hash}" 0 6 tvo_tree_hash)

@@ -1,6 +1,6 @@
 /*
- * Shared helpers of the edge tests: a valid START message to edit, measurements on a session's
- * schedule, and a recording publish callback for the node. Header-only (static inline), so each
+ * Shared helpers of the edge tests: a valid START message to edit (naming the fixture node's boot),
+ * one robot's samples, and a recording publish callback for the node. Header-only (static inline), so each
  * test stays one translation unit plus the code under test.
  */
 #ifndef TVO_EDGE_FIXTURE_H
@@ -28,6 +28,9 @@
 #define EF_EPOCH_LEAD 300000
 #define EF_EPOCH (EF_UTIME + EF_EPOCH_LEAD)
 #define EF_SESSION_ID 4242
+/* The fixture node's boot, and another (an earlier boot's, or another node's). */
+#define EF_BOOT ((int64_t)7001)
+#define EF_OTHER_BOOT ((int64_t)7000)
 
 /* Values at and past the ends of the wire ranges. */
 #define EF_TWO_POW_60 ((int64_t)1 << 60)
@@ -72,13 +75,18 @@ static inline void ef_line_path(tvo_lcm_path_t *path, double x0, double y0, doub
     path->coeff[1][0] = y0;
 }
 
-/** A valid START of `robots` unicycles (robot r tracks a line at y = r), PLANT clock, no constraints. */
-static inline void ef_start(tvo_lcm_session_t *m, int64_t session_id, int32_t clock_source, int32_t robots)
+/** A valid START of `robots` unicycles (robot r tracks a line at y = r), PLANT clock, no constraints,
+ *  telemetry after every answer, naming EF_BOOT for every robot. */
+static inline void ef_start(tvo_lcm_session_t *m, int32_t session_id, int32_t clock_source, int32_t robots)
 {
     memset(m, 0, sizeof(*m));
     m->utime = EF_UTIME;
+    m->protocol_version = TVO_LCM_NODE_STATUS_T_PROTOCOL_VERSION;
     m->session_id = session_id;
     m->action = TVO_LCM_SESSION_T_ACTION_START;
+    for (int32_t r = 0; r < TVO_LCM_SESSION_T_MAX_ROBOTS; ++r) {
+        m->node_boot_id[r] = EF_BOOT;
+    }
     m->clock_source = clock_source;
     m->epoch_utime = EF_EPOCH;
     m->period_us = EF_PERIOD_US;
@@ -86,6 +94,7 @@ static inline void ef_start(tvo_lcm_session_t *m, int64_t session_id, int32_t cl
     m->delay_compensation = 1;
     m->zoh_aware = 0;
     m->watchdog_periods = EF_WATCHDOG;
+    m->telemetry_every = 1;
     m->plant_kind = TVO_LCM_SESSION_T_PLANT_UNICYCLE;
     m->velocity_source = TVO_LCM_SESSION_T_VELOCITY_FROM_POSE;
     m->filter_tf_s = 0.05;
@@ -116,24 +125,24 @@ static inline void ef_start(tvo_lcm_session_t *m, int64_t session_id, int32_t cl
     m->robot_radius_m = 0.1;
 }
 
-/** A measurement of `robots` robots at rest at (0, r) heading east, heading valid, speed not. */
-static inline void ef_measurement(tvo_lcm_measurement_t *m, int64_t session_id, int64_t utime, int64_t sequence,
-                                  int32_t robots)
+/** Robot `robot`'s sample: at rest at (0, robot) heading east, heading measured, speed not. */
+static inline void ef_sample(tvo_lcm_unicycle_sample_t *m, int32_t session_id, int64_t utime, int32_t sequence,
+                             int8_t robot)
 {
     memset(m, 0, sizeof(*m));
-    m->utime = utime;
-    m->session_id = session_id;
-    m->sequence = sequence;
-    m->robot_count = robots;
-    for (int32_t r = 0; r < robots && r < TVO_LCM_MEASUREMENT_T_MAX_ROBOTS; ++r) {
-        m->position_m[r][0] = 0.0;
-        m->position_m[r][1] = (double)r;
-        m->heading_rad[r] = 0.0;
-        m->speed_mps[r] = 0.0;
-    }
-    m->heading_valid = 1;
-    m->speed_valid = 0;
+    m->header.utime = utime;
+    m->header.session_id = session_id;
+    m->header.sequence = sequence;
+    m->header.robot = robot;
+    m->position_m[0] = 0.0;
+    m->position_m[1] = (double)robot;
+    m->heading_rad = 0.0f;
+    m->speed_mps = 0.0f;
+    m->has = TVO_LCM_UNICYCLE_SAMPLE_T_HAS_HEADING;
 }
+
+/** The node of boot EF_BOOT driving own_robot (-1: every robot), publishing into `rec` (0 on success). */
+static inline int ef_node_init(tvo_node_t *node, int8_t own_robot, void *rec);
 
 /* ------------------------------------------------------------------------------------------------
  * A recording publish callback
@@ -164,6 +173,11 @@ static inline void ef_record_publish(void *context, int channel, const uint8_t *
     m->channel = channel;
     m->length = length;
     memcpy(m->data, data, length);
+}
+
+static inline int ef_node_init(tvo_node_t *node, int8_t own_robot, void *rec)
+{
+    return tvo_node_init(node, own_robot, EF_BOOT, ef_record_publish, rec);
 }
 
 static inline void ef_record_clear(ef_record_t *rec)

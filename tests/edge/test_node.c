@@ -1,12 +1,14 @@
 /*
- * The node (firmware/edge/node.c) through its raw-bytes entry, as a transport drives it: encoded
- * messages and the node's clock (a plain int64 passed in) in, encoded acks, commands and telemetry
- * out through a recording publish callback, decoded with the generated tvo_lcm_*_decode. Covers the
- * session table, CLOCK_PLANT and CLOCK_NODE timing (the timer included), "nothing from a refused
- * message is kept" (byte comparison of the running session before and after), telemetry counters,
- * the slack rule, and one test per integer-from-the-wire site at the int64/int32 extremes (the
- * test_node_ubsan variant runs them all under UBSan and ASan). The contract: /work/edge_spec.md
- * (lcm_types/README.md "Sessions", "Timing").
+ * The node (firmware/edge/node*.c) through its raw-bytes entry, as a transport drives it: encoded
+ * messages and the node's clock (a plain int64 passed in) in, encoded acks, commands, telemetry and
+ * announcements out through a recording publish callback, decoded with the generated
+ * tvo_lcm_*_decode. A one-robot session (robot 0's sample steps every period, exactly as v2's joint
+ * measurement did): the session table with the boot check, CLOCK_PLANT and CLOCK_NODE timing (the
+ * timer included), "nothing from a refused message is kept" (byte comparison of the running session
+ * before and after), counters, announcements, the telemetry rate, the slack rule, and one test per
+ * integer-from-the-wire site at its extremes (the test_node_ubsan variant runs them all under UBSan
+ * and ASan). Sessions of several robots (gathering, prediction): test_node_fleet.c. The contract:
+ * lcm_types/README.md "Sessions", "Timing".
  */
 #include "edge_fixture.h"
 
@@ -19,23 +21,31 @@ void tearDown(void);
 #define TAU ((int64_t)EF_DELAY_US)
 #define W ((int64_t)EF_WATCHDOG)
 #define SEQ0 ((int64_t)1000)            /* the plant's sequence of period 0 */
-#define OTHER_ID ((int64_t)777)
+#define OTHER_ID ((int32_t)777)
 #define NODE_T0 ((int64_t)7000000)      /* node clock when the CLOCK_NODE START arrives */
 #define OFFSET (NODE_T0 - EF_UTIME)     /* node clock minus plant clock */
 
 static tvo_node_t node;
-static ef_record_t rec;
-static uint8_t wire[8192];
+static ef_record_t rec;                 /* everything the node publishes but its announcements */
+static ef_record_t announcements;       /* its node_status_t on TVO_NODE */
+static uint8_t wire[16384];
 static tvo_lcm_session_t start;
 static tvo_node_session_t snapshot;
 static tvo_lcm_node_counters_t snapshot_counters;
 static uint8_t snapshot_running;
 static tvo_lcm_telemetry_t last_telemetry;
 
+static void record(void *context, int channel, const uint8_t *data, uint32_t length)
+{
+    (void)context;
+    ef_record_publish(channel == TVO_NODE_CH_NODE ? &announcements : &rec, channel, data, length);
+}
+
 void setUp(void)
 {
     ef_record_clear(&rec);
-    tvo_node_init(&node, ef_record_publish, &rec);
+    ef_record_clear(&announcements);
+    TEST_ASSERT_EQUAL_INT(0, tvo_node_init(&node, -1, EF_BOOT, record, NULL));
 }
 
 void tearDown(void) {}
@@ -51,11 +61,18 @@ static int send_session(const tvo_lcm_session_t *m, int64_t now_us)
     return tvo_node_handle(&node, TVO_NODE_CH_SESSION, wire, (uint32_t)n, now_us);
 }
 
-static int send_measurement(const tvo_lcm_measurement_t *m, int64_t now_us)
+static int send_sample(const tvo_lcm_unicycle_sample_t *m, int64_t now_us)
 {
-    const int n = tvo_lcm_measurement_t_encode(wire, 0, (int)sizeof(wire), m);
+    const int n = tvo_lcm_unicycle_sample_t_encode(wire, 0, (int)sizeof(wire), m);
     TEST_ASSERT_TRUE(n > 0);
-    return tvo_node_handle(&node, TVO_NODE_CH_MEASUREMENT, wire, (uint32_t)n, now_us);
+    return tvo_node_handle(&node, TVO_NODE_CH_SAMPLE, wire, (uint32_t)n, now_us);
+}
+
+static int send_chain_sample(const tvo_lcm_chain_sample_t *m, int64_t now_us)
+{
+    const int n = tvo_lcm_chain_sample_t_encode(wire, 0, (int)sizeof(wire), m);
+    TEST_ASSERT_TRUE(n > 0);
+    return tvo_node_handle(&node, TVO_NODE_CH_CHAIN_SAMPLE, wire, (uint32_t)n, now_us);
 }
 
 static int send_target(const tvo_lcm_target_t *m, int64_t now_us)
@@ -71,7 +88,7 @@ static tvo_lcm_session_ack_t the_ack(int line)
     tvo_lcm_session_ack_t ack;
     memset(&ack, 0, sizeof(ack));
     UNITY_TEST_ASSERT_EQUAL_UINT32(1u, ef_record_count(&rec, TVO_NODE_CH_SESSION_ACK), line, "acks published");
-    UNITY_TEST_ASSERT_EQUAL_UINT32(0u, ef_record_count(&rec, TVO_NODE_CH_COMMAND), line, "an ack comes alone");
+    UNITY_TEST_ASSERT_EQUAL_UINT32(1u, rec.count, line, "an ack comes alone");
     const ef_message_t *m = ef_record_nth(&rec, TVO_NODE_CH_SESSION_ACK, 0);
     if (m == NULL) {
         UNITY_TEST_FAIL(line, "no ack");
@@ -79,15 +96,17 @@ static tvo_lcm_session_ack_t the_ack(int line)
     }
     UNITY_TEST_ASSERT_EQUAL_INT((int)m->length, tvo_lcm_session_ack_t_decode(m->data, 0, (int)m->length, &ack), line,
                                 "ack decodes");
+    UNITY_TEST_ASSERT_EQUAL_INT64(EF_BOOT, ack.boot_id, line, "the ack names the node's boot");
+    UNITY_TEST_ASSERT_EQUAL_INT(-1, ack.own_robot, line, "and its robot: every robot");
     return ack;
 }
 #define THE_ACK() the_ack(__LINE__)
 
 /* The only command published since the last clear, and the telemetry that follows it (in
- * last_telemetry), which must carry the command's stamp fields. */
-static tvo_lcm_command_t the_command(int line)
+ * last_telemetry), which must carry the command's header. */
+static tvo_lcm_unicycle_command_t the_command(int line)
 {
-    tvo_lcm_command_t cmd;
+    tvo_lcm_unicycle_command_t cmd;
     memset(&cmd, 0, sizeof(cmd));
     UNITY_TEST_ASSERT_EQUAL_UINT32(0u, rec.overflow, line, "recorder overflow");
     UNITY_TEST_ASSERT_EQUAL_UINT32(1u, ef_record_count(&rec, TVO_NODE_CH_COMMAND), line, "commands published");
@@ -95,43 +114,28 @@ static tvo_lcm_command_t the_command(int line)
     UNITY_TEST_ASSERT_EQUAL_UINT32(2u, rec.count, line, "messages published");
     UNITY_TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_COMMAND, rec.message[0].channel, line, "the command comes first");
     const ef_message_t *m = &rec.message[0];
-    UNITY_TEST_ASSERT_EQUAL_INT((int)m->length, tvo_lcm_command_t_decode(m->data, 0, (int)m->length, &cmd), line,
-                                "command decodes");
+    UNITY_TEST_ASSERT_EQUAL_INT((int)m->length, tvo_lcm_unicycle_command_t_decode(m->data, 0, (int)m->length, &cmd),
+                                line, "command decodes");
     m = &rec.message[1];
     memset(&last_telemetry, 0, sizeof(last_telemetry));
     UNITY_TEST_ASSERT_EQUAL_INT((int)m->length, tvo_lcm_telemetry_t_decode(m->data, 0, (int)m->length, &last_telemetry),
                                 line, "telemetry decodes");
-    UNITY_TEST_ASSERT_EQUAL_INT64(cmd.utime, last_telemetry.utime, line, "telemetry utime");
-    UNITY_TEST_ASSERT_EQUAL_INT64(cmd.session_id, last_telemetry.session_id, line, "telemetry session");
-    UNITY_TEST_ASSERT_EQUAL_INT64(cmd.measurement_sequence, last_telemetry.measurement_sequence, line,
+    UNITY_TEST_ASSERT_EQUAL_INT64(cmd.header.utime, last_telemetry.header.utime, line, "telemetry utime");
+    UNITY_TEST_ASSERT_EQUAL_INT64(cmd.header.session_id, last_telemetry.header.session_id, line, "telemetry session");
+    UNITY_TEST_ASSERT_EQUAL_INT64(cmd.header.measurement_sequence, last_telemetry.header.measurement_sequence, line,
                                   "telemetry sequence");
-    UNITY_TEST_ASSERT_EQUAL_INT(cmd.status, last_telemetry.status, line, "telemetry status");
-    UNITY_TEST_ASSERT_EQUAL_INT(cmd.flags, last_telemetry.flags, line, "telemetry flags");
-    UNITY_TEST_ASSERT_EQUAL_MEMORY(&node.counters, &last_telemetry.counters, sizeof(node.counters), line,
-                                   "telemetry counters are the node's");
-    for (int r = 0; r < TVO_LCM_MEASUREMENT_T_MAX_ROBOTS; ++r) {
-        UNITY_TEST_ASSERT(isfinite(cmd.speed_mps[r]) && isfinite(cmd.turn_rate_radps[r]), line, "finite command");
-    }
+    UNITY_TEST_ASSERT_EQUAL_INT(cmd.header.robot, last_telemetry.header.robot, line, "telemetry robot");
+    UNITY_TEST_ASSERT_EQUAL_INT(0, cmd.header.robot, line, "robot 0's command");
+    UNITY_TEST_ASSERT_EQUAL_INT(cmd.header.status, last_telemetry.header.status, line, "telemetry status");
+    UNITY_TEST_ASSERT_EQUAL_INT(cmd.header.flags, last_telemetry.header.flags, line, "telemetry flags");
+    UNITY_TEST_ASSERT_EQUAL_INT(0, last_telemetry.predicted_robots, line, "one robot: nothing predicted");
+    const double speed = (double)cmd.speed_mps, turn = (double)cmd.turn_rate_radps;
+    UNITY_TEST_ASSERT(tvo_joint_digest(&speed, &turn, 1) == (uint64_t)last_telemetry.joint_digest, line,
+                      "telemetry digest is the command's");
+    UNITY_TEST_ASSERT(isfinite(cmd.speed_mps) && isfinite(cmd.turn_rate_radps), line, "finite command");
     return cmd;
 }
 #define THE_COMMAND() the_command(__LINE__)
-
-/* The only command published since the last clear, with no telemetry (no session to report). */
-static tvo_lcm_command_t the_sessionless_command(int line)
-{
-    tvo_lcm_command_t cmd;
-    memset(&cmd, 0, sizeof(cmd));
-    UNITY_TEST_ASSERT_EQUAL_UINT32(1u, rec.count, line, "messages published");
-    const ef_message_t *m = ef_record_nth(&rec, TVO_NODE_CH_COMMAND, 0);
-    if (m == NULL) {
-        UNITY_TEST_FAIL(line, "no command");
-        return cmd;
-    }
-    UNITY_TEST_ASSERT_EQUAL_INT((int)m->length, tvo_lcm_command_t_decode(m->data, 0, (int)m->length, &cmd), line,
-                                "command decodes");
-    return cmd;
-}
-#define THE_SESSIONLESS_COMMAND() the_sessionless_command(__LINE__)
 
 static void expect_nothing_published(int line)
 {
@@ -139,12 +143,10 @@ static void expect_nothing_published(int line)
 }
 #define EXPECT_NOTHING_PUBLISHED() expect_nothing_published(__LINE__)
 
-static void expect_safe_stop(const tvo_lcm_command_t *cmd, int line)
+static void expect_safe_stop(const tvo_lcm_unicycle_command_t *cmd, int line)
 {
-    UNITY_TEST_ASSERT(((uint32_t)cmd->flags & TVO_LCM_COMMAND_T_FLAG_SAFE_STOP) != 0u, line, "SAFE_STOP flag");
-    for (int r = 0; r < TVO_LCM_MEASUREMENT_T_MAX_ROBOTS; ++r) {
-        UNITY_TEST_ASSERT(cmd->speed_mps[r] == 0.0 && cmd->turn_rate_radps[r] == 0.0, line, "v = omega = 0");
-    }
+    UNITY_TEST_ASSERT(((uint32_t)cmd->header.flags & TVO_LCM_COMMAND_HEADER_T_FLAG_SAFE_STOP) != 0u, line, "SAFE_STOP flag");
+    UNITY_TEST_ASSERT(cmd->speed_mps == 0.0f && cmd->turn_rate_radps == 0.0f, line, "v = omega = 0");
 }
 #define EXPECT_SAFE_STOP(cmd) expect_safe_stop(&(cmd), __LINE__)
 
@@ -169,6 +171,12 @@ static void take_snapshot(void)
     memcpy(&snapshot, session_without_scratch(s), sizeof(snapshot));
     memcpy(&snapshot_counters, &node.counters, sizeof(snapshot_counters));
     snapshot_running = node.running;
+}
+
+/* The counters alone (a node that runs nothing). */
+static void take_snapshot_of_counters(void)
+{
+    memcpy(&snapshot_counters, &node.counters, sizeof(snapshot_counters));
 }
 
 /* The running session is the snapshot's, byte for byte, but for the CLOCK_PLANT refusal streak, the
@@ -208,7 +216,7 @@ static void assert_session_kept(int line)
 }
 #define ASSERT_SESSION_KEPT() assert_session_kept(__LINE__)
 
-/* ... and not even a counter moved (a repeated START, an ignored message). */
+/* ... and not even a counter moved (a repeated START). */
 static void assert_session_and_counters_kept(int line)
 {
     assert_session_kept(line);
@@ -227,9 +235,9 @@ static int64_t plant_apply(int64_t j)
 }
 
 /* CLOCK_PLANT: the genuine sample for period j, stamped apply - tau, numbered by period. */
-static void plant_meas(tvo_lcm_measurement_t *m, int64_t j)
+static void plant_meas(tvo_lcm_unicycle_sample_t *m, int64_t j)
 {
-    ef_measurement(m, EF_SESSION_ID, plant_apply(j) - TAU, SEQ0 + j, 1);
+    ef_sample(m, EF_SESSION_ID, plant_apply(j) - TAU, (int32_t)(SEQ0 + j), 0);
 }
 
 /* CLOCK_NODE: period j's apply instant on the node's clock. */
@@ -243,12 +251,12 @@ static int64_t node_arrival(int64_t j)
 {
     return node_apply(j) - 4000;
 }
-static void node_meas(tvo_lcm_measurement_t *m, int64_t j, int64_t sequence)
+static void node_meas(tvo_lcm_unicycle_sample_t *m, int64_t j, int32_t sequence)
 {
-    ef_measurement(m, EF_SESSION_ID, node_arrival(j) - OFFSET - 1000, sequence, 1);
+    ef_sample(m, EF_SESSION_ID, node_arrival(j) - OFFSET - 1000, sequence, 0);
 }
 
-static void start_session(int64_t id, int32_t clock_source, int64_t now_us)
+static void start_session(int32_t id, int32_t clock_source, int64_t now_us)
 {
     ef_start(&start, id, clock_source, 1);
     ef_record_clear(&rec);
@@ -259,16 +267,16 @@ static void start_session(int64_t id, int32_t clock_source, int64_t now_us)
 }
 
 /* Sends a measurement and expects it accepted, answered for apply instant utime. */
-static tvo_lcm_command_t expect_accepted(const tvo_lcm_measurement_t *m, int64_t now_us, int64_t utime, int line)
+static tvo_lcm_unicycle_command_t expect_accepted(const tvo_lcm_unicycle_sample_t *m, int64_t now_us, int64_t utime, int line)
 {
     ef_record_clear(&rec);
-    UNITY_TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_MEASUREMENT, send_measurement(m, now_us), line, "handled");
-    const tvo_lcm_command_t cmd = the_command(line);
-    ef_assert_status(TVO_OK, cmd.status, line);
-    UNITY_TEST_ASSERT_EQUAL_INT64(utime, cmd.utime, line, "command utime: the apply instant");
-    UNITY_TEST_ASSERT_EQUAL_INT64(m->sequence, cmd.measurement_sequence, line, "sequence echoed");
-    UNITY_TEST_ASSERT_EQUAL_INT64(m->session_id, cmd.session_id, line, "session echoed");
-    UNITY_TEST_ASSERT(((uint32_t)cmd.flags & (TVO_LCM_COMMAND_T_FLAG_HOLDING | TVO_LCM_COMMAND_T_FLAG_SAFE_STOP)) == 0u, line,
+    UNITY_TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_SAMPLE, send_sample(m, now_us), line, "handled");
+    const tvo_lcm_unicycle_command_t cmd = the_command(line);
+    ef_assert_status(TVO_OK, cmd.header.status, line);
+    UNITY_TEST_ASSERT_EQUAL_INT64(utime, cmd.header.utime, line, "command utime: the apply instant");
+    UNITY_TEST_ASSERT_EQUAL_INT64(m->header.sequence, cmd.header.measurement_sequence, line, "sequence echoed");
+    UNITY_TEST_ASSERT_EQUAL_INT64(m->header.session_id, cmd.header.session_id, line, "session echoed");
+    UNITY_TEST_ASSERT(((uint32_t)cmd.header.flags & (TVO_LCM_COMMAND_HEADER_T_FLAG_HOLDING | TVO_LCM_COMMAND_HEADER_T_FLAG_SAFE_STOP)) == 0u, line,
                       "neither holding nor stopping");
     return cmd;
 }
@@ -276,38 +284,38 @@ static tvo_lcm_command_t expect_accepted(const tvo_lcm_measurement_t *m, int64_t
 
 /*
  * Sends a measurement of the running session and expects it refused for `reason` (holding) or,
- * when reason is TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG, answered with a safe stop; the running session is kept byte for
+ * when reason is TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_WATCHDOG, answered with a safe stop; the running session is kept byte for
  * byte unless it is a safe stop. The answer's utime is never before the measurement's stamp:
  * CLOCK_PLANT the stamp itself, CLOCK_NODE the later of the stamp and now (plant clock).
  */
-static tvo_lcm_command_t expect_refused(const tvo_lcm_measurement_t *m, int64_t now_us, int32_t reason, int line)
+static tvo_lcm_unicycle_command_t expect_refused(const tvo_lcm_unicycle_sample_t *m, int64_t now_us, int32_t reason, int line)
 {
     const tvo_node_session_t *s = tvo_node_session(&node);
     UNITY_TEST_ASSERT_NOT_NULL(s, line, "no session");
     const int clock_node = s->schedule.timing.clock_source == TVO_LCM_SESSION_T_CLOCK_NODE;
     const int64_t offset = s->schedule.anchor.offset_us;
     take_snapshot();
-    const int32_t refused_before = node.counters.refused[reason == TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG ? 0 : reason];
+    const int32_t refused_before = node.counters.refused[reason == TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_WATCHDOG ? 0 : reason];
     ef_record_clear(&rec);
-    UNITY_TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_MEASUREMENT, send_measurement(m, now_us), line, "handled");
-    const tvo_lcm_command_t cmd = the_command(line);
-    ef_assert_status((int)reason, cmd.status, line);
-    UNITY_TEST_ASSERT_EQUAL_INT64(m->sequence, cmd.measurement_sequence, line, "sequence echoed");
-    UNITY_TEST_ASSERT_EQUAL_INT64(m->session_id, cmd.session_id, line, "session echoed");
-    const int64_t stamp = m->utime < 0 ? 0 : (m->utime > EF_TWO_POW_60 ? EF_TWO_POW_60 : m->utime);
+    UNITY_TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_SAMPLE, send_sample(m, now_us), line, "handled");
+    const tvo_lcm_unicycle_command_t cmd = the_command(line);
+    ef_assert_status((int)reason, cmd.header.status, line);
+    UNITY_TEST_ASSERT_EQUAL_INT64(m->header.sequence, cmd.header.measurement_sequence, line, "sequence echoed");
+    UNITY_TEST_ASSERT_EQUAL_INT64(m->header.session_id, cmd.header.session_id, line, "session echoed");
+    const int64_t stamp = m->header.utime < 0 ? 0 : (m->header.utime > EF_TWO_POW_60 ? EF_TWO_POW_60 : m->header.utime);
     if (clock_node) {
         int64_t now = now_us < 0 ? 0 : (now_us > EF_TWO_POW_60 ? EF_TWO_POW_60 : now_us);
         now -= offset;
         now = now < 0 ? 0 : (now > EF_TWO_POW_60 ? EF_TWO_POW_60 : now);
-        UNITY_TEST_ASSERT_EQUAL_INT64(stamp > now ? stamp : now, cmd.utime, line, "refusal utime");
+        UNITY_TEST_ASSERT_EQUAL_INT64(stamp > now ? stamp : now, cmd.header.utime, line, "refusal utime");
     } else {
-        UNITY_TEST_ASSERT_EQUAL_INT64(stamp, cmd.utime, line, "refusal utime is the measurement's");
+        UNITY_TEST_ASSERT_EQUAL_INT64(stamp, cmd.header.utime, line, "refusal utime is the measurement's");
     }
-    if (reason == TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG) {
+    if (reason == TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_WATCHDOG) {
         expect_safe_stop(&cmd, line);
         return cmd;
     }
-    UNITY_TEST_ASSERT_EQUAL_HEX32(TVO_LCM_COMMAND_T_FLAG_HOLDING, (uint32_t)cmd.flags, line, "HOLDING, nothing else");
+    UNITY_TEST_ASSERT_EQUAL_HEX32(TVO_LCM_COMMAND_HEADER_T_FLAG_HOLDING, (uint32_t)cmd.header.flags, line, "HOLDING, nothing else");
     UNITY_TEST_ASSERT_EQUAL_INT32(refused_before + 1, node.counters.refused[reason], line, "refusal counted");
     UNITY_TEST_ASSERT_EQUAL_INT(reason, node.last_refusal, line, "last_refusal");
     assert_session_kept(line);
@@ -320,7 +328,7 @@ static void plant_session_after(int64_t accepted)
 {
     start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
     for (int64_t j = 1; j <= accepted; ++j) {
-        tvo_lcm_measurement_t m;
+        tvo_lcm_unicycle_sample_t m;
         plant_meas(&m, j);
         (void)EXPECT_ACCEPTED(m, 0, plant_apply(j));
     }
@@ -331,8 +339,8 @@ static void node_session_after(int64_t accepted)
 {
     start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_NODE, NODE_T0);
     for (int64_t j = 1; j <= accepted; ++j) {
-        tvo_lcm_measurement_t m;
-        node_meas(&m, j, j);
+        tvo_lcm_unicycle_sample_t m;
+        node_meas(&m, j, (int32_t)j);
         (void)EXPECT_ACCEPTED(m, node_arrival(j), node_apply(j) - OFFSET);
     }
 }
@@ -344,7 +352,7 @@ static void node_session_after(int64_t accepted)
 static void test_start_when_idle_runs_the_session_and_acks_ok(void)
 {
     TEST_ASSERT_NULL(tvo_node_session(&node));
-    TEST_ASSERT_EQUAL_INT64(TVO_NODE_NO_DEADLINE, tvo_node_poll(&node, 0));
+    TEST_ASSERT_EQUAL_INT64(TVO_LCM_NODE_STATUS_T_IDLE_PERIOD_US, tvo_node_poll(&node, 0)); /* the next announcement */
     ef_start(&start, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
     TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_SESSION, send_session(&start, 0));
     const tvo_lcm_session_ack_t ack = THE_ACK();
@@ -361,8 +369,10 @@ static void test_start_when_idle_runs_the_session_and_acks_ok(void)
     TEST_ASSERT_EQUAL_INT64(EF_SESSION_ID, s->session_id);
     TEST_ASSERT_EQUAL_INT64(0, s->schedule.anchor.offset_us); /* CLOCK_PLANT: the plant's clock is the schedule's */
     TEST_ASSERT_EQUAL_UINT32(1u, node.acks);
-    TEST_ASSERT_EQUAL_UINT8(0u, node.stop_requested);
-    TEST_ASSERT_EQUAL_INT64(TVO_NODE_NO_DEADLINE, tvo_node_poll(&node, 0)); /* CLOCK_PLANT has no timer */
+    TEST_ASSERT_EQUAL_INT(0, tvo_node_stop_requested(&node));
+    TEST_ASSERT_EQUAL_INT32(1, node.counters.sessions);
+    /* CLOCK_PLANT has no timer: the next deadline is the running node's next announcement. */
+    TEST_ASSERT_EQUAL_INT64(TVO_LCM_NODE_STATUS_T_RUNNING_PERIOD_US, tvo_node_poll(&node, 0));
 }
 
 static void test_start_with_a_new_id_replaces_the_running_session(void)
@@ -377,16 +387,17 @@ static void test_start_with_a_new_id_replaces_the_running_session(void)
     EF_ASSERT_STATUS(TVO_OK, ack.status);
     TEST_ASSERT_EQUAL_INT64(OTHER_ID, ack.running_session_id);
     TEST_ASSERT_EQUAL_INT64(OTHER_ID, tvo_node_session(&node)->session_id);
-    TEST_ASSERT_EQUAL_INT32(0, node.counters.accepted); /* counters are the new session's */
-    /* The old one's measurements are another session's now. */
-    tvo_lcm_measurement_t m;
+    TEST_ASSERT_EQUAL_INT32(2, node.counters.accepted); /* counters are the node's, since it started */
+    TEST_ASSERT_EQUAL_INT32(2, node.counters.sessions);
+    /* The old one's samples are another session's now. */
+    tvo_lcm_unicycle_sample_t m;
     plant_meas(&m, 3);
     ef_record_clear(&rec);
-    (void)send_measurement(&m, 0);
+    (void)send_sample(&m, 0);
     EXPECT_NOTHING_PUBLISHED();
     TEST_ASSERT_EQUAL_INT32(1, node.counters.other_session);
     /* The new session starts its own schedule: period 1 of h = 20 ms. */
-    ef_measurement(&m, OTHER_ID, EF_EPOCH + 2 * H - TAU, 5, 1);
+    ef_sample(&m, OTHER_ID, EF_EPOCH + 2 * H - TAU, 5, 0);
     (void)EXPECT_ACCEPTED(m, 0, EF_EPOCH + 2 * H);
 }
 
@@ -451,19 +462,19 @@ static void make_invalid(tvo_lcm_session_t *m, int which)
 }
 
 static const refusal_t invalid_starts[] = {
-    {"period 0", TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_PERIOD, TVO_LCM_SESSION_ACK_T_PART_NONE, -1},
-    {"negative gain", TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_GAINS, TVO_LCM_SESSION_ACK_T_PART_NONE, -1},
-    {"epoch beyond the span", TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_EPOCH, TVO_LCM_SESSION_ACK_T_PART_NONE, -1},
-    {"distance robot 5", TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_DISTANCE, 0},
-    {"relaxation degree 1", TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_BARRIER, -1},
-    {"gain 3e38", TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_GAINS, TVO_LCM_SESSION_ACK_T_PART_NONE, -1},
-    {"target coefficient 1e30", TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 0},
-    {"target 2e4 m out", TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 0},
-    {"obstacle 1e5 m out", TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_OBSTACLES, 0},
-    {"wall moving at 1e6 m/s", TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_HALFSPACE, -1},
-    {"robot 1's weight -1", TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 1},
-    {"obstacles 0 and 2 overlap", TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_OBSTACLES, 2},
-    {"target kind 9", TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 0},
+    {"period 0", TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_PERIOD, TVO_LCM_SESSION_ACK_T_PART_NONE, -1},
+    {"negative gain", TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_GAINS, TVO_LCM_SESSION_ACK_T_PART_NONE, -1},
+    {"epoch beyond the span", TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_EPOCH, TVO_LCM_SESSION_ACK_T_PART_NONE, -1},
+    {"distance robot 5", TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_DISTANCE, 0},
+    {"relaxation degree 1", TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_BARRIER, -1},
+    {"gain 3e38", TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_GAINS, TVO_LCM_SESSION_ACK_T_PART_NONE, -1},
+    {"target coefficient 1e30", TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 0},
+    {"target 2e4 m out", TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 0},
+    {"obstacle 1e5 m out", TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_OBSTACLES, 0},
+    {"wall moving at 1e6 m/s", TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_HALFSPACE, -1},
+    {"robot 1's weight -1", TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 1},
+    {"obstacles 0 and 2 overlap", TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_OBSTACLES, 2},
+    {"target kind 9", TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 0},
 };
 
 static void test_refused_start_while_running_changes_nothing(void)
@@ -481,7 +492,7 @@ static void test_refused_start_while_running_changes_nothing(void)
             const tvo_lcm_session_ack_t ack = THE_ACK();
             const refusal_t *r = &invalid_starts[which];
             /* The running id with other (here: invalid) content is a conflict before it is invalid. */
-            TEST_ASSERT_EQUAL_INT_MESSAGE(same_id ? TVO_LCM_COMMAND_T_STATUS_ERR_SESSION_CONFLICT : r->status, ack.status, r->what);
+            TEST_ASSERT_EQUAL_INT_MESSAGE(same_id ? TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_SESSION_CONFLICT : r->status, ack.status, r->what);
             if (!same_id) {
                 EF_ASSERT_PARAM(r->param, ack.bad_param);
                 TEST_ASSERT_EQUAL_INT32(r->part, ack.bad_part);
@@ -492,7 +503,7 @@ static void test_refused_start_while_running_changes_nothing(void)
             ASSERT_SESSION_AND_COUNTERS_KEPT();
             TEST_ASSERT_EQUAL_UINT8(stop_requested, node.stop_requested);
             /* The old session answers on, on its own schedule. */
-            tvo_lcm_measurement_t m;
+            tvo_lcm_unicycle_sample_t m;
             plant_meas(&m, 3);
             (void)EXPECT_ACCEPTED(m, 0, plant_apply(3));
         }
@@ -549,20 +560,24 @@ static void test_start_of_the_running_id_with_other_content_is_a_conflict(void)
     ef_record_clear(&rec);
     (void)send_session(&start, 0);
     const tvo_lcm_session_ack_t ack = THE_ACK();
-    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_SESSION_CONFLICT, ack.status);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_SESSION_CONFLICT, ack.status);
     TEST_ASSERT_EQUAL_INT64(EF_SESSION_ID, ack.running_session_id);
     ASSERT_SESSION_AND_COUNTERS_KEPT();
-    tvo_lcm_measurement_t m;
+    tvo_lcm_unicycle_sample_t m;
     plant_meas(&m, 3);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(3));
 }
 
-static void stop_message(tvo_lcm_session_t *m, int64_t id)
+/* A STOP of `id`, naming the node's boot for one robot (a plant's STOP names the boots as its START). */
+static void stop_message(tvo_lcm_session_t *m, int32_t id)
 {
     memset(m, 0, sizeof(*m));
     m->utime = EF_UTIME + 1000000;
+    m->protocol_version = TVO_LCM_NODE_STATUS_T_PROTOCOL_VERSION;
     m->session_id = id;
     m->action = TVO_LCM_SESSION_T_ACTION_STOP;
+    m->robot_count = 1;
+    m->node_boot_id[0] = EF_BOOT;
 }
 
 static void test_stop_of_the_running_session_ends_it_and_a_start_begins_anew(void)
@@ -578,13 +593,14 @@ static void test_stop_of_the_running_session_ends_it_and_a_start_begins_anew(voi
     TEST_ASSERT_EQUAL_INT64(EF_SESSION_ID, ack.session_id);
     TEST_ASSERT_EQUAL_INT64(-1, ack.running_session_id);
     TEST_ASSERT_NULL(tvo_node_session(&node));
-    TEST_ASSERT_EQUAL_UINT8(1u, node.stop_requested);
-    /* Its measurements now get the safe stop that asks for a START. */
-    tvo_lcm_measurement_t m;
+    TEST_ASSERT_EQUAL_INT(1, tvo_node_stop_requested(&node));
+    /* Its samples are now dropped unanswered (counted: idle). */
+    tvo_lcm_unicycle_sample_t m;
     plant_meas(&m, 3);
     ef_record_clear(&rec);
-    (void)send_measurement(&m, 0);
-    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_NO_SESSION, THE_SESSIONLESS_COMMAND().status);
+    (void)send_sample(&m, 0);
+    EXPECT_NOTHING_PUBLISHED();
+    TEST_ASSERT_EQUAL_INT32(1, node.counters.idle);
     /* The same START again (a plant that re-sends it) starts afresh. */
     start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
     TEST_ASSERT_EQUAL_UINT8(0u, node.stop_requested);
@@ -602,7 +618,7 @@ static void test_stop_of_another_id_is_refused_and_the_session_runs_on(void)
     ef_record_clear(&rec);
     (void)send_session(&stop, 0);
     tvo_lcm_session_ack_t ack = THE_ACK();
-    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_NO_SESSION, ack.status);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NO_SESSION, ack.status);
     TEST_ASSERT_EQUAL_INT64(OTHER_ID, ack.session_id);
     TEST_ASSERT_EQUAL_INT64(EF_SESSION_ID, ack.running_session_id);
     TEST_ASSERT_EQUAL_UINT8(0u, node.stop_requested);
@@ -611,7 +627,7 @@ static void test_stop_of_another_id_is_refused_and_the_session_runs_on(void)
     setUp();
     (void)send_session(&stop, 0);
     ack = THE_ACK();
-    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_NO_SESSION, ack.status);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NO_SESSION, ack.status);
     TEST_ASSERT_EQUAL_INT64(-1, ack.running_session_id);
     TEST_ASSERT_EQUAL_UINT8(0u, node.stop_requested);
 }
@@ -631,7 +647,7 @@ static void test_unknown_actions_are_refused_and_change_nothing(void)
             ef_record_clear(&rec);
             (void)send_session(&start, 0);
             const tvo_lcm_session_ack_t ack = THE_ACK();
-            EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, ack.status);
+            EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, ack.status);
             TEST_ASSERT_EQUAL_INT8(bad[i], ack.action);
             TEST_ASSERT_EQUAL_INT64(running ? EF_SESSION_ID : -1, ack.running_session_id);
             if (running) {
@@ -643,48 +659,59 @@ static void test_unknown_actions_are_refused_and_change_nothing(void)
     }
 }
 
-static void test_measurement_without_a_session_is_answered_with_a_safe_stop(void)
+static void test_samples_and_targets_while_idle_are_dropped_and_counted(void)
 {
-    tvo_lcm_measurement_t m;
-    ef_measurement(&m, 31337, 123456, 17, 2);
-    TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_MEASUREMENT, send_measurement(&m, 0));
-    const tvo_lcm_command_t cmd = THE_SESSIONLESS_COMMAND();
-    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_NO_SESSION, cmd.status);
-    TEST_ASSERT_EQUAL_HEX32(TVO_LCM_COMMAND_T_FLAG_SAFE_STOP, (uint32_t)cmd.flags);
-    EXPECT_SAFE_STOP(cmd);
-    TEST_ASSERT_EQUAL_INT64(31337, cmd.session_id);
-    TEST_ASSERT_EQUAL_INT64(17, cmd.measurement_sequence);
-    TEST_ASSERT_EQUAL_INT64(123456, cmd.utime);
-    TEST_ASSERT_EQUAL_INT32(2, cmd.robot_count);
-    TEST_ASSERT_EQUAL_INT32(1, node.counters.refused[TVO_LCM_COMMAND_T_STATUS_ERR_NO_SESSION]);
+    tvo_lcm_unicycle_sample_t m;
+    ef_sample(&m, 31337, 123456, 17, 0);
+    TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_SAMPLE, send_sample(&m, 0));
+    EXPECT_NOTHING_PUBLISHED(); /* no NO_SESSION stop: the plant learns a restart from TVO_NODE */
+    TEST_ASSERT_EQUAL_INT32(1, node.counters.idle);
+    tvo_lcm_target_t t;
+    memset(&t, 0, sizeof(t));
+    t.header.session_id = 31337;
+    TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_TARGET, send_target(&t, 0));
+    EXPECT_NOTHING_PUBLISHED();
+    TEST_ASSERT_EQUAL_INT32(2, node.counters.idle);
     TEST_ASSERT_NULL(tvo_node_session(&node));
+    /* ... and after a STOP ended the session, the same. */
+    plant_session_after(1);
+    tvo_lcm_session_t stop;
+    ef_start(&stop, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+    stop.action = TVO_LCM_SESSION_T_ACTION_STOP;
+    (void)send_session(&stop, 0);
+    TEST_ASSERT_NULL(tvo_node_session(&node));
+    plant_meas(&m, 2);
+    ef_record_clear(&rec);
+    (void)send_sample(&m, 0);
+    EXPECT_NOTHING_PUBLISHED();
+    TEST_ASSERT_EQUAL_INT32(3, node.counters.idle);
 }
 
 static void test_messages_of_another_session_are_ignored_and_counted(void)
 {
     plant_session_after(2);
     take_snapshot();
-    tvo_lcm_measurement_t m;
+    tvo_lcm_unicycle_sample_t m;
     plant_meas(&m, 3);
-    m.session_id = OTHER_ID;
+    m.header.session_id = OTHER_ID;
     ef_record_clear(&rec);
-    TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_MEASUREMENT, send_measurement(&m, 0));
+    TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_SAMPLE, send_sample(&m, 0));
     EXPECT_NOTHING_PUBLISHED();
     TEST_ASSERT_EQUAL_INT32(1, node.counters.other_session);
     tvo_lcm_target_t t;
     memset(&t, 0, sizeof(t));
-    t.utime = plant_apply(2);
-    t.session_id = OTHER_ID;
-    t.robot_count = 1;
+    t.header.utime = plant_apply(2);
+    t.header.session_id = OTHER_ID;
+    t.header.robot = 0;
     TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_TARGET, send_target(&t, 0));
     EXPECT_NOTHING_PUBLISHED();
     TEST_ASSERT_EQUAL_INT32(2, node.counters.other_session);
     TEST_ASSERT_EQUAL_INT32(0, node.counters.targets_refused);
     ASSERT_SESSION_KEPT();
-    /* The genuine stream goes on; the telemetry reports what was ignored. */
-    m.session_id = EF_SESSION_ID;
+    /* The genuine stream goes on. */
+    m.header.session_id = EF_SESSION_ID;
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(3));
-    TEST_ASSERT_EQUAL_INT32(2, last_telemetry.counters.other_session);
+    TEST_ASSERT_EQUAL_INT32(2, node.counters.other_session);
 }
 
 /* ------------------------------------------------------------------------------------------------
@@ -701,14 +728,18 @@ typedef enum {
     SEND_STOP_RUNNING,          /* STOP of the running id */
     SEND_STOP_OTHER,            /* STOP of an id not running */
     SEND_OTHER_ACTION,          /* action 7 */
-    SEND_MEASUREMENT_OWN,       /* a genuine measurement of the running id (idle: of any id) */
-    SEND_MEASUREMENT_OTHER,     /* a measurement of another id */
+    SEND_START_OTHER_BOOT,      /* a valid START of a new id naming an earlier boot of the node */
+    SEND_STOP_OTHER_BOOT,       /* STOP of the running id naming an earlier boot */
+    SEND_SAMPLE_OWN,            /* a genuine sample of the running id (idle: of any id) */
+    SEND_SAMPLE_OTHER,          /* a sample of another id */
     SEND_TARGET_OWN,            /* a target sample of the running id (idle: of any id) */
     SEND_TARGET_OTHER           /* a target sample of another id */
 } row_message_t;
 
 /* What the row says comes back. */
-typedef enum { ANSWER_NONE, ANSWER_ACK, ANSWER_SAFE_STOP_ONLY, ANSWER_COMMAND } row_answer_t;
+typedef enum { ANSWER_NONE, ANSWER_ACK, ANSWER_COMMAND } row_answer_t;
+/* Which counter the row's message moves by one (the others stay). */
+typedef enum { COUNTED_NONE, COUNTED_OTHER_SESSION, COUNTED_IDLE, COUNTED_WRONG_BOOT } row_counter_t;
 
 typedef struct {
     const char *readme;         /* the README's row: "state | message | action | ack / answer" */
@@ -720,62 +751,71 @@ typedef struct {
     int32_t status;             /* the ack's or the command's status */
     int64_t running_after;      /* the ack's running_session_id: an id, or -1 */
     int kept;                   /* "nothing changes": the running session byte for byte, counters too */
-    int other_session_counted;  /* counters.other_session moved by one */
+    row_counter_t counted;      /* ... but for this counter */
 } readme_row_t;
 
 #define ID_A EF_SESSION_ID
 #define ID_B OTHER_ID
+#define ERR(name) TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_##name
 
 static const readme_row_t readme_rows[] = {
+    {"any (idle) | START, STOP or another action naming another boot | dropped | none (counted: wrong_boot)", ROW_IDLE,
+     SEND_START_OTHER_BOOT, TVO_NODE_EVENT_WRONG_BOOT, TVO_NODE_IDLE, ANSWER_NONE, 0, -1, 0, COUNTED_WRONG_BOOT},
+    {"any (running A) | START, STOP or another action naming another boot | dropped: A runs on | none (wrong_boot)",
+     ROW_RUNNING_A, SEND_STOP_OTHER_BOOT, TVO_NODE_EVENT_WRONG_BOOT, TVO_NODE_RUNNING, ANSWER_NONE, 0, ID_A, 1,
+     COUNTED_WRONG_BOOT},
     {"idle | START that passes every check | the session is built and runs | status 0, running_session_id = its id",
-     ROW_IDLE, SEND_START_VALID_NEW_ID, TVO_NODE_EVENT_START, TVO_NODE_RUNNING, ANSWER_ACK, TVO_OK, ID_B, 0, 0},
+     ROW_IDLE, SEND_START_VALID_NEW_ID, TVO_NODE_EVENT_START, TVO_NODE_RUNNING, ANSWER_ACK, TVO_OK, ID_B, 0, COUNTED_NONE},
     {"running A | START of a new id B that passes every check | B replaces A | 0, running B", ROW_RUNNING_A,
-     SEND_START_VALID_NEW_ID, TVO_NODE_EVENT_START, TVO_NODE_RUNNING, ANSWER_ACK, TVO_OK, ID_B, 0, 0},
+     SEND_START_VALID_NEW_ID, TVO_NODE_EVENT_START, TVO_NODE_RUNNING, ANSWER_ACK, TVO_OK, ID_B, 0, COUNTED_NONE},
     {"any (idle) | START that fails a check | nothing changes | the status, bad_param ...; running -1", ROW_IDLE,
-     SEND_START_INVALID, TVO_NODE_EVENT_START, TVO_NODE_IDLE, ANSWER_ACK, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, -1, 0, 0},
+     SEND_START_INVALID, TVO_NODE_EVENT_START, TVO_NODE_IDLE, ANSWER_ACK, ERR(PARAM), -1, 0, COUNTED_NONE},
     {"any (running A) | START that fails a check | nothing changes: A keeps running | the status ...; running A",
-     ROW_RUNNING_A, SEND_START_INVALID, TVO_NODE_EVENT_START, TVO_NODE_RUNNING, ANSWER_ACK, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, ID_A, 1, 0},
+     ROW_RUNNING_A, SEND_START_INVALID, TVO_NODE_EVENT_START, TVO_NODE_RUNNING, ANSWER_ACK, ERR(PARAM), ID_A, 1,
+     COUNTED_NONE},
     {"running A | START of A, the same content (any utime) | nothing: a repeat | 0 again", ROW_RUNNING_A,
-     SEND_START_REPEAT, TVO_NODE_EVENT_START_REPEAT, TVO_NODE_RUNNING, ANSWER_ACK, TVO_OK, ID_A, 1, 0},
-    {"running A | START of A with other content | refused | TVO_LCM_COMMAND_T_STATUS_ERR_SESSION_CONFLICT (17)", ROW_RUNNING_A,
-     SEND_START_OTHER_CONTENT, TVO_NODE_EVENT_START_CONFLICT, TVO_NODE_RUNNING, ANSWER_ACK, TVO_LCM_COMMAND_T_STATUS_ERR_SESSION_CONFLICT,
-     ID_A, 1, 0},
+     SEND_START_REPEAT, TVO_NODE_EVENT_START_REPEAT, TVO_NODE_RUNNING, ANSWER_ACK, TVO_OK, ID_A, 1, COUNTED_NONE},
+    {"running A | START of A with other content | refused | STATUS_ERR_SESSION_CONFLICT (17)", ROW_RUNNING_A,
+     SEND_START_OTHER_CONTENT, TVO_NODE_EVENT_START_CONFLICT, TVO_NODE_RUNNING, ANSWER_ACK, ERR(SESSION_CONFLICT), ID_A,
+     1, COUNTED_NONE},
     {"running A | STOP of A | the session ends | 0, running -1", ROW_RUNNING_A, SEND_STOP_RUNNING, TVO_NODE_EVENT_STOP,
-     TVO_NODE_IDLE, ANSWER_ACK, TVO_OK, -1, 0, 0},
-    {"any (idle) | STOP of another id | ignored | TVO_LCM_COMMAND_T_STATUS_ERR_NO_SESSION (18)", ROW_IDLE, SEND_STOP_OTHER,
-     TVO_NODE_EVENT_STOP_OTHER, TVO_NODE_IDLE, ANSWER_ACK, TVO_LCM_COMMAND_T_STATUS_ERR_NO_SESSION, -1, 0, 0},
-    {"any (running A) | STOP of another id | ignored | TVO_LCM_COMMAND_T_STATUS_ERR_NO_SESSION (18)", ROW_RUNNING_A, SEND_STOP_OTHER,
-     TVO_NODE_EVENT_STOP_OTHER, TVO_NODE_RUNNING, ANSWER_ACK, TVO_LCM_COMMAND_T_STATUS_ERR_NO_SESSION, ID_A, 1, 0},
-    {"any (idle) | another action | ignored | TVO_LCM_COMMAND_T_STATUS_ERR_PARAM", ROW_IDLE, SEND_OTHER_ACTION, TVO_NODE_EVENT_OTHER_ACTION,
-     TVO_NODE_IDLE, ANSWER_ACK, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, -1, 0, 0},
-    {"any (running A) | another action | ignored | TVO_LCM_COMMAND_T_STATUS_ERR_PARAM", ROW_RUNNING_A, SEND_OTHER_ACTION,
-     TVO_NODE_EVENT_OTHER_ACTION, TVO_NODE_RUNNING, ANSWER_ACK, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, ID_A, 1, 0},
-    {"idle | measurement | answered with a safe stop, status TVO_LCM_COMMAND_T_STATUS_ERR_NO_SESSION | command only", ROW_IDLE,
-     SEND_MEASUREMENT_OWN, TVO_NODE_EVENT_MEASUREMENT, TVO_NODE_IDLE, ANSWER_SAFE_STOP_ONLY, TVO_LCM_COMMAND_T_STATUS_ERR_NO_SESSION, -1, 0,
-     0},
-    {"running A | measurement of another session id | ignored, counted (other_session) | none", ROW_RUNNING_A,
-     SEND_MEASUREMENT_OTHER, TVO_NODE_EVENT_MEASUREMENT_OTHER, TVO_NODE_RUNNING, ANSWER_NONE, 0, ID_A, 1, 1},
-    {"running A | target of another session id | ignored, counted (other_session) | none", ROW_RUNNING_A,
-     SEND_TARGET_OTHER, TVO_NODE_EVENT_TARGET_OTHER, TVO_NODE_RUNNING, ANSWER_NONE, 0, ID_A, 1, 1},
+     TVO_NODE_IDLE, ANSWER_ACK, TVO_OK, -1, 0, COUNTED_NONE},
+    {"any (idle) | STOP of another id | ignored | STATUS_ERR_NO_SESSION (18)", ROW_IDLE, SEND_STOP_OTHER,
+     TVO_NODE_EVENT_STOP_OTHER, TVO_NODE_IDLE, ANSWER_ACK, ERR(NO_SESSION), -1, 0, COUNTED_NONE},
+    {"any (running A) | STOP of another id | ignored | STATUS_ERR_NO_SESSION (18)", ROW_RUNNING_A, SEND_STOP_OTHER,
+     TVO_NODE_EVENT_STOP_OTHER, TVO_NODE_RUNNING, ANSWER_ACK, ERR(NO_SESSION), ID_A, 1, COUNTED_NONE},
+    {"any (idle) | another action | ignored | STATUS_ERR_PARAM", ROW_IDLE, SEND_OTHER_ACTION, TVO_NODE_EVENT_OTHER_ACTION,
+     TVO_NODE_IDLE, ANSWER_ACK, ERR(PARAM), -1, 0, COUNTED_NONE},
+    {"any (running A) | another action | ignored | STATUS_ERR_PARAM", ROW_RUNNING_A, SEND_OTHER_ACTION,
+     TVO_NODE_EVENT_OTHER_ACTION, TVO_NODE_RUNNING, ANSWER_ACK, ERR(PARAM), ID_A, 1, COUNTED_NONE},
+    {"idle | sample | dropped | none (counted: idle)", ROW_IDLE, SEND_SAMPLE_OWN, TVO_NODE_EVENT_SAMPLE, TVO_NODE_IDLE,
+     ANSWER_NONE, 0, -1, 0, COUNTED_IDLE},
+    {"idle | target | dropped | none (counted: idle)", ROW_IDLE, SEND_TARGET_OWN, TVO_NODE_EVENT_TARGET, TVO_NODE_IDLE,
+     ANSWER_NONE, 0, -1, 0, COUNTED_IDLE},
+    {"running A | sample of another session id | ignored | none (counted: other_session)", ROW_RUNNING_A,
+     SEND_SAMPLE_OTHER, TVO_NODE_EVENT_SAMPLE_OTHER, TVO_NODE_RUNNING, ANSWER_NONE, 0, ID_A, 1, COUNTED_OTHER_SESSION},
+    {"running A | target of another session id | ignored | none (counted: other_session)", ROW_RUNNING_A,
+     SEND_TARGET_OTHER, TVO_NODE_EVENT_TARGET_OTHER, TVO_NODE_RUNNING, ANSWER_NONE, 0, ID_A, 1, COUNTED_OTHER_SESSION},
     /* Transitions of the table that the README's table leaves to other sections: */
-    {"(Timing) running A | measurement of A | served | command and telemetry", ROW_RUNNING_A, SEND_MEASUREMENT_OWN,
-     TVO_NODE_EVENT_MEASUREMENT, TVO_NODE_RUNNING, ANSWER_COMMAND, TVO_OK, ID_A, 0, 0},
+    {"(Timing) running A | the period's last robot's sample of A | served | command(s), telemetry at its rate",
+     ROW_RUNNING_A, SEND_SAMPLE_OWN, TVO_NODE_EVENT_SAMPLE, TVO_NODE_RUNNING, ANSWER_COMMAND, TVO_OK, ID_A, 0,
+     COUNTED_NONE},
     {"(Streamed targets) running A | target of A | taken (here refused: A's target is not streamed) | none",
-     ROW_RUNNING_A, SEND_TARGET_OWN, TVO_NODE_EVENT_TARGET, TVO_NODE_RUNNING, ANSWER_NONE, 0, ID_A, 0, 0},
-    {"(not in the README) idle | target | ignored, not counted | none", ROW_IDLE, SEND_TARGET_OWN,
-     TVO_NODE_EVENT_TARGET, TVO_NODE_IDLE, ANSWER_NONE, 0, -1, 0, 0},
+     ROW_RUNNING_A, SEND_TARGET_OWN, TVO_NODE_EVENT_TARGET, TVO_NODE_RUNNING, ANSWER_NONE, 0, ID_A, 0, COUNTED_NONE},
 };
 
 static void send_row_message(row_message_t message)
 {
     tvo_lcm_session_t msg;
-    tvo_lcm_measurement_t m;
+    tvo_lcm_unicycle_sample_t m;
     tvo_lcm_target_t t;
     switch (message) {
     case SEND_START_VALID_NEW_ID:
     case SEND_START_INVALID:
+    case SEND_START_OTHER_BOOT:
         ef_start(&msg, ID_B, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
         msg.period_us = (message == SEND_START_INVALID) ? 0 : msg.period_us;
+        msg.node_boot_id[0] = (message == SEND_START_OTHER_BOOT) ? EF_OTHER_BOOT : EF_BOOT;
         (void)send_session(&msg, 0);
         return;
     case SEND_START_REPEAT:
@@ -787,7 +827,9 @@ static void send_row_message(row_message_t message)
         return;
     case SEND_STOP_RUNNING:
     case SEND_STOP_OTHER:
-        stop_message(&msg, message == SEND_STOP_RUNNING ? ID_A : ID_B);
+    case SEND_STOP_OTHER_BOOT:
+        stop_message(&msg, message == SEND_STOP_OTHER ? ID_B : ID_A);
+        msg.node_boot_id[0] = (message == SEND_STOP_OTHER_BOOT) ? EF_OTHER_BOOT : EF_BOOT;
         (void)send_session(&msg, 0);
         return;
     case SEND_OTHER_ACTION:
@@ -795,18 +837,18 @@ static void send_row_message(row_message_t message)
         msg.action = 7;
         (void)send_session(&msg, 0);
         return;
-    case SEND_MEASUREMENT_OWN:
-    case SEND_MEASUREMENT_OTHER:
+    case SEND_SAMPLE_OWN:
+    case SEND_SAMPLE_OTHER:
         plant_meas(&m, 2);
-        m.session_id = (message == SEND_MEASUREMENT_OWN) ? ID_A : ID_B;
-        (void)send_measurement(&m, 0);
+        m.header.session_id = (message == SEND_SAMPLE_OWN) ? ID_A : ID_B;
+        (void)send_sample(&m, 0);
         return;
     case SEND_TARGET_OWN:
     case SEND_TARGET_OTHER:
         memset(&t, 0, sizeof(t));
-        t.utime = EF_EPOCH;
-        t.session_id = (message == SEND_TARGET_OWN) ? ID_A : ID_B;
-        t.robot_count = 1;
+        t.header.utime = EF_EPOCH;
+        t.header.session_id = (message == SEND_TARGET_OWN) ? ID_A : ID_B;
+        t.header.robot = 0;
         (void)send_target(&t, 0);
         return;
     default:
@@ -815,7 +857,8 @@ static void send_row_message(row_message_t message)
 }
 
 /* Sends each row's message in its state and checks the row: what the node took it for, the table's
- * cell for it, the state after, and the answer. Every reachable cell of the table is some row's. */
+ * cell for it, the state after, the answer and the counters. Every reachable cell of the table is
+ * some row's. */
 static void test_each_readme_session_row_is_what_the_table_does(void)
 {
     uint8_t covered[TVO_NODE_STATE_COUNT][TVO_NODE_EVENT_COUNT];
@@ -826,8 +869,11 @@ static void test_each_readme_session_row_is_what_the_table_does(void)
         tvo_node_state_t before = TVO_NODE_IDLE;
         if (row->state == ROW_RUNNING_A) {
             plant_session_after(1);
-            take_snapshot();
             before = TVO_NODE_RUNNING;
+        }
+        take_snapshot_of_counters();
+        if (row->state == ROW_RUNNING_A) {
+            take_snapshot();
         }
         TEST_ASSERT_EQUAL_INT_MESSAGE(before, node.state, row->readme);
         ef_record_clear(&rec);
@@ -850,15 +896,9 @@ static void test_each_readme_session_row_is_what_the_table_does(void)
             }
             break;
         }
-        case ANSWER_SAFE_STOP_ONLY: {
-            const tvo_lcm_command_t cmd = THE_SESSIONLESS_COMMAND();
-            TEST_ASSERT_EQUAL_INT_MESSAGE(row->status, cmd.status, row->readme);
-            EXPECT_SAFE_STOP(cmd);
-            break;
-        }
         case ANSWER_COMMAND: {
-            const tvo_lcm_command_t cmd = THE_COMMAND();
-            TEST_ASSERT_EQUAL_INT_MESSAGE(row->status, cmd.status, row->readme);
+            const tvo_lcm_unicycle_command_t cmd = THE_COMMAND();
+            TEST_ASSERT_EQUAL_INT_MESSAGE(row->status, cmd.header.status, row->readme);
             break;
         }
         case ANSWER_NONE:
@@ -868,14 +908,16 @@ static void test_each_readme_session_row_is_what_the_table_does(void)
         }
         const tvo_node_session_t *s = tvo_node_session(&node);
         TEST_ASSERT_EQUAL_INT64_MESSAGE(row->running_after, s != NULL ? s->session_id : -1, row->readme);
+        snapshot_counters.other_session += (row->counted == COUNTED_OTHER_SESSION) ? 1 : 0;
+        snapshot_counters.idle += (row->counted == COUNTED_IDLE) ? 1 : 0;
+        snapshot_counters.wrong_boot += (row->counted == COUNTED_WRONG_BOOT) ? 1 : 0;
         if (row->kept) {
-            if (row->other_session_counted) {
-                snapshot_counters.other_session++;
-            }
             ASSERT_SESSION_AND_COUNTERS_KEPT();
+        } else if (row->counted != COUNTED_NONE) {
+            TEST_ASSERT_EQUAL_MEMORY_MESSAGE(&snapshot_counters, &node.counters, sizeof(node.counters), row->readme);
         }
         if (row->message == SEND_STOP_RUNNING) {
-            TEST_ASSERT_EQUAL_UINT8_MESSAGE(1u, node.stop_requested, row->readme);
+            TEST_ASSERT_EQUAL_INT_MESSAGE(1, tvo_node_stop_requested(&node), row->readme);
         }
     }
     for (int state = 0; state < (int)TVO_NODE_STATE_COUNT; ++state) {
@@ -896,18 +938,18 @@ static void test_each_readme_session_row_is_what_the_table_does(void)
 static void test_idle_cells_the_classification_cannot_reach_are_marked_so(void)
 {
     const tvo_node_event_t unreachable[] = {TVO_NODE_EVENT_START_REPEAT, TVO_NODE_EVENT_START_CONFLICT,
-                                            TVO_NODE_EVENT_STOP, TVO_NODE_EVENT_MEASUREMENT_OTHER,
+                                            TVO_NODE_EVENT_STOP, TVO_NODE_EVENT_SAMPLE_OTHER,
                                             TVO_NODE_EVENT_TARGET_OTHER};
     for (size_t i = 0; i < sizeof(unreachable) / sizeof(unreachable[0]); ++i) {
         tvo_node_transition_info_t cell;
         TEST_ASSERT_TRUE(tvo_node_transition_info(TVO_NODE_IDLE, unreachable[i], &cell));
         TEST_ASSERT_EQUAL_UINT8(0u, cell.reachable);
     }
-    /* Every message, whatever its id, when idle: START, STOP_OTHER, OTHER_ACTION, MEASUREMENT, TARGET. */
-    const row_message_t all[] = {SEND_START_INVALID,     SEND_START_REPEAT,      SEND_START_OTHER_CONTENT,
-                                 SEND_STOP_RUNNING,      SEND_STOP_OTHER,        SEND_OTHER_ACTION,
-                                 SEND_MEASUREMENT_OWN,   SEND_MEASUREMENT_OTHER, SEND_TARGET_OWN,
-                                 SEND_TARGET_OTHER};
+    /* Every message, whatever its id, when idle: START, STOP_OTHER, OTHER_ACTION, WRONG_BOOT, SAMPLE, TARGET. */
+    const row_message_t all[] = {SEND_START_INVALID,    SEND_START_REPEAT,    SEND_START_OTHER_CONTENT,
+                                 SEND_STOP_RUNNING,     SEND_STOP_OTHER,      SEND_OTHER_ACTION,
+                                 SEND_START_OTHER_BOOT, SEND_STOP_OTHER_BOOT, SEND_SAMPLE_OWN,
+                                 SEND_SAMPLE_OTHER,     SEND_TARGET_OWN,      SEND_TARGET_OTHER};
     for (size_t i = 0; i < sizeof(all) / sizeof(all[0]); ++i) {
         setUp();
         send_row_message(all[i]);
@@ -931,9 +973,9 @@ static void test_plant_period_is_the_apply_instant_nearest_stamp_plus_tau(void)
     for (size_t i = 0; i < sizeof(jitters) / sizeof(jitters[0]); ++i) {
         setUp();
         start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
-        tvo_lcm_measurement_t m;
+        tvo_lcm_unicycle_sample_t m;
         plant_meas(&m, 3);
-        m.utime += jitters[i];
+        m.header.utime += jitters[i];
         (void)EXPECT_ACCEPTED(m, 0, plant_apply(3));
         const tvo_node_session_t *s = tvo_node_session(&node);
         TEST_ASSERT_EQUAL_INT64(3, s->schedule.last_period);
@@ -944,9 +986,9 @@ static void test_plant_period_is_the_apply_instant_nearest_stamp_plus_tau(void)
     /* Half a period later than the nominal stamp: the next period (and its sequence must say so). */
     setUp();
     start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
-    tvo_lcm_measurement_t m;
+    tvo_lcm_unicycle_sample_t m;
     plant_meas(&m, 3);
-    m.utime += H / 2;
+    m.header.utime += H / 2;
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(4));
 }
 
@@ -956,59 +998,58 @@ static void test_plant_age_outside_zero_to_h_is_refused_by_the_controller(void)
     ef_start(&start, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
     start.delay_us = 0;
     (void)send_session(&start, 0);
-    tvo_lcm_measurement_t m;
-    ef_measurement(&m, EF_SESSION_ID, plant_apply(3) + 3000, SEQ0 + 3, 1);
-    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_FUTURE_STAMP);
-    ef_measurement(&m, EF_SESSION_ID, plant_apply(3), SEQ0 + 3, 1);
+    tvo_lcm_unicycle_sample_t m;
+    ef_sample(&m, EF_SESSION_ID, plant_apply(3) + 3000, SEQ0 + 3, 0);
+    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_FUTURE_STAMP);
+    ef_sample(&m, EF_SESSION_ID, plant_apply(3), SEQ0 + 3, 0);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(3));
     /* tau = h: a stamp more than a period before its apply instant is stale. */
     setUp();
     ef_start(&start, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
     start.delay_us = H;
     (void)send_session(&start, 0);
-    ef_measurement(&m, EF_SESSION_ID, plant_apply(3) - H - 4000, SEQ0 + 3, 1);
-    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_STALE);
-    ef_measurement(&m, EF_SESSION_ID, plant_apply(3) - H, SEQ0 + 3, 1);
+    ef_sample(&m, EF_SESSION_ID, plant_apply(3) - H - 4000, SEQ0 + 3, 0);
+    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_STALE);
+    ef_sample(&m, EF_SESSION_ID, plant_apply(3) - H, SEQ0 + 3, 0);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(3));
 }
 
 static void test_plant_duplicates_and_reordering_are_out_of_order(void)
 {
     plant_session_after(1);
-    tvo_lcm_measurement_t m;
+    tvo_lcm_unicycle_sample_t m;
     plant_meas(&m, 1);
-    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER); /* duplicate */
+    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_OUT_OF_ORDER); /* duplicate */
     plant_meas(&m, 3);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(3)); /* a lost period: consistent stamp and sequence */
     plant_meas(&m, 2);
-    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER); /* arrives late */
+    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_OUT_OF_ORDER); /* arrives late */
     plant_meas(&m, 0);
-    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER);
+    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_OUT_OF_ORDER);
     plant_meas(&m, 4);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(4));
 }
 
 /* Field by field (a struct's padding is not part of it). */
-static void assert_same_command(const tvo_lcm_command_t *a, const tvo_lcm_command_t *b)
+static void assert_same_command(const tvo_lcm_unicycle_command_t *a, const tvo_lcm_unicycle_command_t *b)
 {
-    TEST_ASSERT_EQUAL_INT64(a->utime, b->utime);
-    TEST_ASSERT_EQUAL_INT64(a->session_id, b->session_id);
-    TEST_ASSERT_EQUAL_INT64(a->measurement_sequence, b->measurement_sequence);
-    TEST_ASSERT_EQUAL_INT32(a->robot_count, b->robot_count);
-    TEST_ASSERT_EQUAL_MEMORY(a->speed_mps, b->speed_mps, sizeof(a->speed_mps));
-    TEST_ASSERT_EQUAL_MEMORY(a->turn_rate_radps, b->turn_rate_radps, sizeof(a->turn_rate_radps));
-    TEST_ASSERT_EQUAL_MEMORY(a->input, b->input, sizeof(a->input));
-    TEST_ASSERT_EQUAL_INT32(a->status, b->status);
-    TEST_ASSERT_EQUAL_INT32(a->flags, b->flags);
+    TEST_ASSERT_EQUAL_INT64(a->header.utime, b->header.utime);
+    TEST_ASSERT_EQUAL_INT64(a->header.session_id, b->header.session_id);
+    TEST_ASSERT_EQUAL_INT64(a->header.measurement_sequence, b->header.measurement_sequence);
+    TEST_ASSERT_EQUAL_INT32(a->header.robot, b->header.robot);
+    TEST_ASSERT_EQUAL_MEMORY(&a->speed_mps, &b->speed_mps, sizeof(a->speed_mps));
+    TEST_ASSERT_EQUAL_MEMORY(&a->turn_rate_radps, &b->turn_rate_radps, sizeof(a->turn_rate_radps));
+    TEST_ASSERT_EQUAL_INT32(a->header.status, b->header.status);
+    TEST_ASSERT_EQUAL_INT32(a->header.flags, b->header.flags);
 }
 
 static void test_plant_stray_stamps_cost_the_genuine_stream_nothing(void)
 {
     /* A reference node sees the genuine stream only. */
-    static tvo_lcm_command_t reference[6];
+    static tvo_lcm_unicycle_command_t reference[6];
     plant_session_after(0);
     for (int64_t j = 1; j <= 5; ++j) {
-        tvo_lcm_measurement_t m;
+        tvo_lcm_unicycle_sample_t m;
         plant_meas(&m, j);
         reference[j] = EXPECT_ACCEPTED(m, 0, plant_apply(j));
     }
@@ -1016,33 +1057,33 @@ static void test_plant_stray_stamps_cost_the_genuine_stream_nothing(void)
     setUp();
     plant_session_after(0);
     for (int64_t j = 1; j <= 5; ++j) {
-        tvo_lcm_measurement_t m;
+        tvo_lcm_unicycle_sample_t m;
         plant_meas(&m, j);
-        const tvo_lcm_command_t cmd = EXPECT_ACCEPTED(m, 0, plant_apply(j));
+        const tvo_lcm_unicycle_command_t cmd = EXPECT_ACCEPTED(m, 0, plant_apply(j));
         assert_same_command(&reference[j], &cmd);
-        tvo_lcm_measurement_t stray;
+        tvo_lcm_unicycle_sample_t stray;
         switch (j) {
         case 1: /* a stamp 20 s ahead with the next sequence */
-            ef_measurement(&stray, EF_SESSION_ID, plant_apply(2000), SEQ0 + j + 1, 1);
-            (void)EXPECT_REFUSED(stray, 0, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
+            ef_sample(&stray, EF_SESSION_ID, plant_apply(2000), (int32_t)(SEQ0 + j + 1), 0);
+            (void)EXPECT_REFUSED(stray, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
             break;
         case 2: /* a stamp in the past */
-            ef_measurement(&stray, EF_SESSION_ID, plant_apply(0) - TAU, SEQ0 + j + 1, 1);
-            (void)EXPECT_REFUSED(stray, 0, TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER);
+            ef_sample(&stray, EF_SESSION_ID, plant_apply(0) - TAU, (int32_t)(SEQ0 + j + 1), 0);
+            (void)EXPECT_REFUSED(stray, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_OUT_OF_ORDER);
             break;
         case 3: /* before the epoch */
-            ef_measurement(&stray, EF_SESSION_ID, EF_EPOCH - 10 * H, SEQ0 + j + 1, 1);
-            (void)EXPECT_REFUSED(stray, 0, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
+            ef_sample(&stray, EF_SESSION_ID, EF_EPOCH - 10 * H, (int32_t)(SEQ0 + j + 1), 0);
+            (void)EXPECT_REFUSED(stray, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
             break;
         case 4: /* the right stamp, a wild sequence */
             plant_meas(&stray, j + 1);
-            stray.sequence = SEQ0 + ((int64_t)1 << 40);
-            (void)EXPECT_REFUSED(stray, 0, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
+            stray.header.sequence = (int32_t)SEQ0 + (1 << 30);
+            (void)EXPECT_REFUSED(stray, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
             break;
         default: /* garbage values of the right fingerprint */
             plant_meas(&stray, j + 1);
-            stray.position_m[0][0] = (double)NAN;
-            (void)EXPECT_REFUSED(stray, 0, TVO_LCM_COMMAND_T_STATUS_ERR_NOT_FINITE);
+            stray.position_m[0] = (double)NAN;
+            (void)EXPECT_REFUSED(stray, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NOT_FINITE);
             break;
         }
     }
@@ -1051,13 +1092,13 @@ static void test_plant_stray_stamps_cost_the_genuine_stream_nothing(void)
 static void test_plant_huge_sequences_are_refused(void)
 {
     plant_session_after(1);
-    const int64_t bad[] = {SEQ0 + 2 + 1, SEQ0 + ((int64_t)1 << 40), EF_TWO_POW_60, EF_TWO_POW_60 + 1, INT64_MAX};
+    const int32_t bad[] = {(int32_t)SEQ0 + 2 + 1, (int32_t)SEQ0 + (1 << 30), INT32_MAX, -1, INT32_MIN};
     for (size_t i = 0; i < sizeof(bad) / sizeof(bad[0]); ++i) {
         const int64_t j = 2 + (int64_t)i;
-        tvo_lcm_measurement_t m;
+        tvo_lcm_unicycle_sample_t m;
         plant_meas(&m, j);
-        m.sequence = bad[i];
-        (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
+        m.header.sequence = bad[i];
+        (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
         /* A watchdog's worth of refusals would stop: keep below it with the genuine sample. */
         plant_meas(&m, j);
         (void)EXPECT_ACCEPTED(m, 0, plant_apply(j));
@@ -1068,11 +1109,11 @@ static void test_plant_huge_sequences_are_refused(void)
  * three samples in a row agree on it: j and j + 1 refused, j + 2 served. */
 static void plant_jump_to(int64_t j)
 {
-    tvo_lcm_measurement_t m;
+    tvo_lcm_unicycle_sample_t m;
     plant_meas(&m, j);
-    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
+    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
     plant_meas(&m, j + 1);
-    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
+    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
     plant_meas(&m, j + 2);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(j + 2));
 }
@@ -1080,7 +1121,7 @@ static void plant_jump_to(int64_t j)
 static void test_plant_gap_with_consistent_sequence_is_accepted(void)
 {
     plant_session_after(1);
-    tvo_lcm_measurement_t m;
+    tvo_lcm_unicycle_sample_t m;
     /* A gap within the watchdog's span is served at once. */
     plant_meas(&m, 1 + EF_WATCHDOG);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(1 + EF_WATCHDOG));
@@ -1090,7 +1131,7 @@ static void test_plant_gap_with_consistent_sequence_is_accepted(void)
     /* A gap beyond the controller's tick span is stale: the plant must START anew. */
     const int64_t beyond = last + (int64_t)TVO_MAX_TICK_SPAN / H + 1;
     plant_meas(&m, beyond);
-    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_STALE);
+    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_STALE);
     plant_meas(&m, last + 1); /* ends the streak of refusals before the next jump's two */
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(last + 1));
     /* The longest gap the span holds, once three samples agree on it. */
@@ -1102,11 +1143,11 @@ static void test_plant_gap_with_consistent_sequence_is_accepted(void)
 static void test_plant_one_sample_far_ahead_costs_one_refusal(void)
 {
     plant_session_after(5);
-    tvo_lcm_measurement_t m;
+    tvo_lcm_unicycle_sample_t m;
     plant_meas(&m, 5 + 2000);
-    const tvo_lcm_command_t refused = EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
-    TEST_ASSERT_TRUE(((uint32_t)refused.flags & TVO_LCM_COMMAND_T_FLAG_HOLDING) != 0u);
-    TEST_ASSERT_TRUE(((uint32_t)refused.flags & TVO_LCM_COMMAND_T_FLAG_SAFE_STOP) == 0u);
+    const tvo_lcm_unicycle_command_t refused = EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
+    TEST_ASSERT_TRUE(((uint32_t)refused.header.flags & TVO_LCM_COMMAND_HEADER_T_FLAG_HOLDING) != 0u);
+    TEST_ASSERT_TRUE(((uint32_t)refused.header.flags & TVO_LCM_COMMAND_HEADER_T_FLAG_SAFE_STOP) == 0u);
     for (int64_t j = 6; j < 6 + 50; ++j) {
         plant_meas(&m, j);
         (void)EXPECT_ACCEPTED(m, 0, plant_apply(j));
@@ -1114,7 +1155,7 @@ static void test_plant_one_sample_far_ahead_costs_one_refusal(void)
     /* Strays interleaved with the genuine stream never add up to a vote: each served sample ends the streak. */
     for (int64_t j = 56; j < 56 + 6; ++j) {
         plant_meas(&m, j + 2000);
-        (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
+        (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
         plant_meas(&m, j);
         (void)EXPECT_ACCEPTED(m, 0, plant_apply(j));
     }
@@ -1123,40 +1164,59 @@ static void test_plant_one_sample_far_ahead_costs_one_refusal(void)
 static void test_plant_watchdog_refusals_in_a_row_give_a_safe_stop_until_one_is_accepted(void)
 {
     plant_session_after(2);
-    tvo_lcm_measurement_t dup;
+    tvo_lcm_unicycle_sample_t dup;
     plant_meas(&dup, 2);
     for (int64_t k = 1; k < W; ++k) {
-        (void)EXPECT_REFUSED(dup, 0, TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER);
+        (void)EXPECT_REFUSED(dup, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_OUT_OF_ORDER);
     }
     TEST_ASSERT_EQUAL_INT32(0, node.counters.safe_stops);
-    tvo_lcm_command_t cmd = EXPECT_REFUSED(dup, 0, TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG);
-    TEST_ASSERT_EQUAL_INT64(SEQ0 + 2, cmd.measurement_sequence);
+    tvo_lcm_unicycle_command_t cmd = EXPECT_REFUSED(dup, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_WATCHDOG);
+    TEST_ASSERT_EQUAL_INT64(SEQ0 + 2, cmd.header.measurement_sequence);
     TEST_ASSERT_EQUAL_INT32(1, node.counters.safe_stops);
-    cmd = EXPECT_REFUSED(dup, 0, TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG); /* and on, until one is accepted */
+    cmd = EXPECT_REFUSED(dup, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_WATCHDOG); /* and on, until one is accepted */
     TEST_ASSERT_EQUAL_INT32(2, node.counters.safe_stops);
-    TEST_ASSERT_EQUAL_INT32(W + 1, node.counters.refused[TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER]);
+    TEST_ASSERT_EQUAL_INT32(W + 1, node.counters.refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_OUT_OF_ORDER]);
     /* The controller dropped to rest: it holds zero until a measurement is accepted. */
     const tvo_node_session_t *s = tvo_node_session(&node);
     TEST_ASSERT_TRUE(s->controller.u.unicycle.internal.held.speed_mps[0] == TVO_R(0.0));
     TEST_ASSERT_TRUE(s->controller.u.unicycle.internal.speed_state_mps[0] == TVO_R(0.0));
-    tvo_lcm_measurement_t m;
+    tvo_lcm_unicycle_sample_t m;
     plant_meas(&m, 3);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(3));
     TEST_ASSERT_EQUAL_UINT32(0u, tvo_node_session(&node)->schedule.clock.plant.refused_in_row);
     plant_meas(&dup, 3);
-    (void)EXPECT_REFUSED(dup, 0, TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER); /* the count restarted */
+    (void)EXPECT_REFUSED(dup, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_OUT_OF_ORDER); /* the count restarted */
 }
 
-static void test_plant_wrong_robot_count_and_non_finite_values_are_refused(void)
+static void test_plant_wrong_robot_plant_and_non_finite_values_are_refused(void)
 {
     plant_session_after(1);
-    tvo_lcm_measurement_t m;
+    tvo_lcm_unicycle_sample_t m;
+    /* A robot the session does not have: refused, counted, unanswered (it steps no period). */
+    const int8_t robots[] = {INT8_MIN, -1, 1, INT8_MAX};
+    for (size_t i = 0; i < sizeof(robots) / sizeof(robots[0]); ++i) {
+        plant_meas(&m, 2);
+        m.header.robot = robots[i];
+        take_snapshot();
+        ef_record_clear(&rec);
+        TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_SAMPLE, send_sample(&m, 0));
+        EXPECT_NOTHING_PUBLISHED();
+        TEST_ASSERT_EQUAL_INT32((int32_t)i + 1, node.counters.refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_DIMENSION]);
+        ASSERT_SESSION_KEPT();
+    }
+    /* A chain's sample to a unicycle session: refused, counted under ERR_PARAM, unanswered. */
+    tvo_lcm_chain_sample_t chain;
+    memset(&chain, 0, sizeof(chain));
+    chain.header = m.header;
+    chain.header.robot = 0;
+    ef_record_clear(&rec);
+    TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_CHAIN_SAMPLE, send_chain_sample(&chain, 0));
+    EXPECT_NOTHING_PUBLISHED();
+    TEST_ASSERT_EQUAL_INT32(1, node.counters.refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM]);
+    ASSERT_SESSION_KEPT();
     plant_meas(&m, 2);
-    m.robot_count = 2;
-    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_DIMENSION);
-    plant_meas(&m, 2);
-    m.heading_rad[0] = (double)INFINITY;
-    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_NOT_FINITE);
+    m.heading_rad = INFINITY;
+    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NOT_FINITE);
     plant_meas(&m, 2);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(2));
 }
@@ -1172,28 +1232,27 @@ static void test_node_clock_offset_comes_from_the_start_and_commands_are_in_plan
     TEST_ASSERT_EQUAL_INT64(OFFSET, s->schedule.anchor.offset_us);
     TEST_ASSERT_EQUAL_INT64(EF_EPOCH + OFFSET, s->schedule.anchor.epoch_schedule_us);
     /* Arriving 3 ms after A_0: serves period 1. */
-    tvo_lcm_measurement_t m;
+    tvo_lcm_unicycle_sample_t m;
     const int64_t now = node_apply(0) + 3000;
-    ef_measurement(&m, EF_SESSION_ID, now - OFFSET - 1000, 42, 1);
+    ef_sample(&m, EF_SESSION_ID, now - OFFSET - 1000, 42, 0);
     (void)EXPECT_ACCEPTED(m, now, node_apply(1) - OFFSET);
-    TEST_ASSERT_EQUAL_INT64(now, last_telemetry.node_time_us);
     /* Before the epoch: period 0 (if the sample is young enough for it). */
     setUp();
     start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_NODE, NODE_T0);
     const int64_t early = node_apply(0) - 6000;
-    ef_measurement(&m, EF_SESSION_ID, early - OFFSET - 1000, 7, 1);
+    ef_sample(&m, EF_SESSION_ID, early - OFFSET - 1000, 7, 0);
     (void)EXPECT_ACCEPTED(m, early, node_apply(0) - OFFSET);
     /* A second sample before A_0 serves the next period, not the one already served (its stamp,
      * 1 ms ahead of the node's clock, is young enough for A_1). */
     const int64_t soon = node_apply(0) - 1000;
-    ef_measurement(&m, EF_SESSION_ID, node_apply(0) - OFFSET, 8, 1);
+    ef_sample(&m, EF_SESSION_ID, node_apply(0) - OFFSET, 8, 0);
     (void)EXPECT_ACCEPTED(m, soon, node_apply(1) - OFFSET);
 }
 
 static void test_node_clock_sequence_is_only_echoed(void)
 {
     node_session_after(1);
-    tvo_lcm_measurement_t m;
+    tvo_lcm_unicycle_sample_t m;
     node_meas(&m, 2, 123456789); /* any sequence in range */
     (void)EXPECT_ACCEPTED(m, node_arrival(2), node_apply(2) - OFFSET);
     node_meas(&m, 3, 5);         /* even going back */
@@ -1203,14 +1262,14 @@ static void test_node_clock_sequence_is_only_echoed(void)
 static void test_node_clock_stamp_more_than_half_a_period_ahead_is_implausible(void)
 {
     node_session_after(1);
-    tvo_lcm_measurement_t m;
+    tvo_lcm_unicycle_sample_t m;
     const int64_t now = node_apply(1) + 1000;
-    ef_measurement(&m, EF_SESSION_ID, now - OFFSET + H / 2 + 1, 2, 1);
-    (void)EXPECT_REFUSED(m, now, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
-    ef_measurement(&m, EF_SESSION_ID, now - OFFSET + 20000000, 2, 1); /* 20 s ahead */
-    (void)EXPECT_REFUSED(m, now, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
+    ef_sample(&m, EF_SESSION_ID, now - OFFSET + H / 2 + 1, 2, 0);
+    (void)EXPECT_REFUSED(m, now, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
+    ef_sample(&m, EF_SESSION_ID, now - OFFSET + 20000000, 2, 0); /* 20 s ahead */
+    (void)EXPECT_REFUSED(m, now, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
     /* Exactly h/2 ahead: within the tolerance; A_2 = now + 9 ms is after it. */
-    ef_measurement(&m, EF_SESSION_ID, now - OFFSET + H / 2, 2, 1);
+    ef_sample(&m, EF_SESSION_ID, now - OFFSET + H / 2, 2, 0);
     (void)EXPECT_ACCEPTED(m, now, node_apply(2) - OFFSET);
     /* The genuine stream is not locked out by the stray. */
     node_meas(&m, 3, 3);
@@ -1220,16 +1279,16 @@ static void test_node_clock_stamp_more_than_half_a_period_ahead_is_implausible(v
 static void test_node_clock_stale_and_repeated_stamps_are_refused(void)
 {
     node_session_after(1);
-    tvo_lcm_measurement_t m;
+    tvo_lcm_unicycle_sample_t m;
     /* Arriving at A_1 + 2 ms: serves A_2; sampled 1 ms after A_0 is 19 ms old there. */
     const int64_t now = node_apply(1) + 2000;
-    ef_measurement(&m, EF_SESSION_ID, node_apply(0) + 1000 - OFFSET, 2, 1);
-    (void)EXPECT_REFUSED(m, now, TVO_LCM_COMMAND_T_STATUS_ERR_STALE);
+    ef_sample(&m, EF_SESSION_ID, node_apply(0) + 1000 - OFFSET, 2, 0);
+    (void)EXPECT_REFUSED(m, now, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_STALE);
     /* A sample stamped at A_2 itself (1 ms ahead of the node's clock) serves A_2 with age 0; the
      * same stamp again serves A_3 with age h, but is not newer than the last accepted one. */
-    ef_measurement(&m, EF_SESSION_ID, node_apply(2) - OFFSET, 2, 1);
+    ef_sample(&m, EF_SESSION_ID, node_apply(2) - OFFSET, 2, 0);
     (void)EXPECT_ACCEPTED(m, node_apply(2) - 1000, node_apply(2) - OFFSET);
-    (void)EXPECT_REFUSED(m, node_apply(2) - 500, TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER);
+    (void)EXPECT_REFUSED(m, node_apply(2) - 500, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_OUT_OF_ORDER);
     node_meas(&m, 3, 3);
     (void)EXPECT_ACCEPTED(m, node_arrival(3), node_apply(3) - OFFSET);
 }
@@ -1239,37 +1298,62 @@ static void test_node_timer_has_no_deadline_before_the_first_accepted_measuremen
     start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_NODE, NODE_T0);
     const int64_t times[] = {0, NODE_T0, node_apply(0), node_apply(100), EF_TWO_POW_60, INT64_MAX, INT64_MIN};
     for (size_t i = 0; i < sizeof(times) / sizeof(times[0]); ++i) {
-        TEST_ASSERT_EQUAL_INT64(TVO_NODE_NO_DEADLINE, tvo_node_poll(&node, times[i]));
+        const int64_t deadline = tvo_node_poll(&node, times[i]);
+        TEST_ASSERT_EQUAL_INT64(node.next_announcement_us, deadline); /* no timer: only the next announcement */
     }
-    tvo_lcm_measurement_t m;
+    tvo_lcm_unicycle_sample_t m;
     node_meas(&m, 1, 1);
-    m.position_m[0][1] = (double)NAN;
-    (void)EXPECT_REFUSED(m, node_arrival(1), TVO_LCM_COMMAND_T_STATUS_ERR_NOT_FINITE); /* a refusal does not arm it */
+    m.position_m[1] = (double)NAN;
+    (void)EXPECT_REFUSED(m, node_arrival(1), TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NOT_FINITE); /* a refusal does not arm it */
     ef_record_clear(&rec);
-    TEST_ASSERT_EQUAL_INT64(TVO_NODE_NO_DEADLINE, tvo_node_poll(&node, node_apply(50)));
+    const int64_t deadline = tvo_node_poll(&node, node_apply(50));
+    TEST_ASSERT_EQUAL_INT64(node.next_announcement_us, deadline);
     EXPECT_NOTHING_PUBLISHED();
+}
+
+/* What tvo_node_poll answers when the timer's next deadline is `timer`: the earlier of it and the
+ * node's next announcement (read after the poll, which may have announced). */
+static int64_t with_announcement(int64_t timer)
+{
+    return timer < node.next_announcement_us ? timer : node.next_announcement_us;
+}
+
+/* The only message published since the last clear: a command, with no telemetry (the node's own stop). */
+static tvo_lcm_unicycle_command_t the_own_stop(int line)
+{
+    tvo_lcm_unicycle_command_t cmd;
+    memset(&cmd, 0, sizeof(cmd));
+    UNITY_TEST_ASSERT_EQUAL_UINT32(1u, rec.count, line, "one message: the stop, no telemetry");
+    const ef_message_t *m = ef_record_nth(&rec, TVO_NODE_CH_COMMAND, 0);
+    if (m == NULL) {
+        UNITY_TEST_FAIL(line, "no command");
+        return cmd;
+    }
+    UNITY_TEST_ASSERT_EQUAL_INT((int)m->length, tvo_lcm_unicycle_command_t_decode(m->data, 0, (int)m->length, &cmd),
+                                line, "command decodes");
+    return cmd;
 }
 
 static void expect_timer_stop(int64_t now, int64_t next_deadline, int line)
 {
     ef_record_clear(&rec);
     const int64_t deadline = tvo_node_poll(&node, now);
-    const tvo_lcm_command_t cmd = the_command(line);
-    ef_assert_status(TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG, cmd.status, line);
-    UNITY_TEST_ASSERT_EQUAL_HEX32(TVO_LCM_COMMAND_T_FLAG_SAFE_STOP, (uint32_t)cmd.flags, line, "flags");
+    const tvo_lcm_unicycle_command_t cmd = the_own_stop(line);
+    ef_assert_status(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_WATCHDOG, cmd.header.status, line);
+    UNITY_TEST_ASSERT_EQUAL_HEX32(TVO_LCM_COMMAND_HEADER_T_FLAG_SAFE_STOP, (uint32_t)cmd.header.flags, line, "flags");
     expect_safe_stop(&cmd, line);
-    UNITY_TEST_ASSERT_EQUAL_INT64(-1, cmd.measurement_sequence, line, "the node's own stop answers nothing");
-    UNITY_TEST_ASSERT_EQUAL_INT64(now - OFFSET, cmd.utime, line, "stamped now, in plant time");
-    UNITY_TEST_ASSERT_EQUAL_INT64(EF_SESSION_ID, cmd.session_id, line, "session");
-    UNITY_TEST_ASSERT_EQUAL_INT64(now, last_telemetry.node_time_us, line, "node time");
-    UNITY_TEST_ASSERT_EQUAL_INT64(next_deadline, deadline, line, "next deadline");
+    UNITY_TEST_ASSERT_EQUAL_INT64(-1, cmd.header.measurement_sequence, line, "the node's own stop answers nothing");
+    UNITY_TEST_ASSERT_EQUAL_INT64(now - OFFSET, cmd.header.utime, line, "stamped now, in plant time");
+    UNITY_TEST_ASSERT_EQUAL_INT64(EF_SESSION_ID, cmd.header.session_id, line, "session");
+    UNITY_TEST_ASSERT_EQUAL_INT64(with_announcement(next_deadline), deadline, line, "next deadline");
 }
 #define EXPECT_TIMER_STOP(now, next) expect_timer_stop((now), (next), __LINE__)
 
 static void expect_timer_quiet(int64_t now, int64_t deadline, int line)
 {
     ef_record_clear(&rec);
-    UNITY_TEST_ASSERT_EQUAL_INT64(deadline, tvo_node_poll(&node, now), line, "deadline");
+    const int64_t answer = tvo_node_poll(&node, now);
+    UNITY_TEST_ASSERT_EQUAL_INT64(with_announcement(deadline), answer, line, "deadline");
     expect_nothing_published(line);
 }
 #define EXPECT_TIMER_QUIET(now, deadline) expect_timer_quiet((now), (deadline), __LINE__)
@@ -1295,11 +1379,11 @@ static void test_node_timer_stops_at_last_apply_plus_watchdog_periods_then_every
     const tvo_node_session_t *s = tvo_node_session(&node);
     TEST_ASSERT_TRUE(s->controller.u.unicycle.internal.held.speed_mps[0] == TVO_R(0.0));
     /* Tracking resumes with the next accepted measurement, and the timer restarts from it. */
-    tvo_lcm_measurement_t m;
+    tvo_lcm_unicycle_sample_t m;
     const int64_t j = 10 + W;
     node_meas(&m, j, 99);
-    const tvo_lcm_command_t cmd = EXPECT_ACCEPTED(m, node_arrival(j), node_apply(j) - OFFSET);
-    TEST_ASSERT_TRUE(cmd.speed_mps[0] != 0.0 || cmd.turn_rate_radps[0] != 0.0);
+    const tvo_lcm_unicycle_command_t cmd = EXPECT_ACCEPTED(m, node_arrival(j), node_apply(j) - OFFSET);
+    TEST_ASSERT_TRUE(cmd.speed_mps != 0.0f || cmd.turn_rate_radps != 0.0f);
     EXPECT_TIMER_QUIET(node_arrival(j), node_apply(j + W));
     EXPECT_TIMER_STOP(node_apply(j + W), node_apply(j + W + 1));
 }
@@ -1308,13 +1392,15 @@ static void test_node_timer_is_not_moved_by_refused_measurements(void)
 {
     node_session_after(2);
     const int64_t due = node_apply(2 + W);
-    tvo_lcm_measurement_t m;
+    tvo_lcm_unicycle_sample_t m;
     node_meas(&m, 3, 3);
-    m.robot_count = 3;
-    (void)EXPECT_REFUSED(m, node_arrival(3), TVO_LCM_COMMAND_T_STATUS_ERR_DIMENSION);
+    m.header.robot = 3;
+    ef_record_clear(&rec);
+    (void)send_sample(&m, node_arrival(3));
+    EXPECT_NOTHING_PUBLISHED(); /* no robot of the session: refused on arrival, unanswered */
     node_meas(&m, 4, 4);
-    m.position_m[0][0] = (double)NAN;
-    (void)EXPECT_REFUSED(m, node_arrival(4), TVO_LCM_COMMAND_T_STATUS_ERR_NOT_FINITE);
+    m.position_m[0] = (double)NAN;
+    (void)EXPECT_REFUSED(m, node_arrival(4), TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NOT_FINITE);
     EXPECT_TIMER_QUIET(due - 1, due);
     EXPECT_TIMER_STOP(due, node_apply(3 + W));
 }
@@ -1342,66 +1428,111 @@ static void test_stop_disarms_the_timer(void)
  * Telemetry counters, undecodable input, the slack rule
  * --------------------------------------------------------------------------------------------- */
 
-static void test_telemetry_counts_every_kind_of_event(void)
+/* The latest announcement published since the last clear of `announcements`, decoded. */
+static tvo_lcm_node_status_t latest_announcement(int line)
+{
+    tvo_lcm_node_status_t status;
+    memset(&status, 0, sizeof(status));
+    UNITY_TEST_ASSERT(announcements.count > 0u, line, "an announcement");
+    if (announcements.count == 0u) {
+        return status;
+    }
+    const ef_message_t *m = &announcements.message[announcements.count - 1u];
+    UNITY_TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_NODE, m->channel, line, "on TVO_NODE");
+    UNITY_TEST_ASSERT_EQUAL_INT((int)m->length, tvo_lcm_node_status_t_decode(m->data, 0, (int)m->length, &status), line,
+                                "node_status_t decodes");
+    return status;
+}
+#define LATEST_ANNOUNCEMENT() latest_announcement(__LINE__)
+
+static void test_counters_count_every_kind_of_event_and_the_announcement_carries_them(void)
 {
     plant_session_after(2);
-    tvo_lcm_measurement_t m;
+    tvo_lcm_unicycle_sample_t m;
     plant_meas(&m, 2);
-    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER);
+    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_OUT_OF_ORDER);
     plant_meas(&m, 3);
-    m.position_m[0][0] = (double)NAN;
-    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_NOT_FINITE);
+    m.position_m[0] = (double)NAN;
+    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NOT_FINITE);
     plant_meas(&m, 3);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(3));
-    /* Undecodable: garbage, truncated, empty, NULL on the node's input channels. */
+    /* Malformed: garbage, truncated, padded, empty, NULL; the right length with another type's
+     * fingerprint (a chain sample's bytes cut to a unicycle sample's length). */
     static const uint8_t garbage[16] = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16};
     plant_meas(&m, 3);
-    const int n = tvo_lcm_measurement_t_encode(wire, 0, (int)sizeof(wire), &m);
+    const int n = tvo_lcm_unicycle_sample_t_encode(wire, 0, (int)sizeof(wire), &m);
+    TEST_ASSERT_EQUAL_INT((int)tvo_node_channel_message_bytes(TVO_NODE_CH_SAMPLE), n);
+    static uint8_t other_type[128];
+    tvo_lcm_chain_sample_t chain;
+    memset(&chain, 0, sizeof(chain));
+    TEST_ASSERT_TRUE(tvo_lcm_chain_sample_t_encode(other_type, 0, (int)sizeof(other_type), &chain) > n);
     ef_record_clear(&rec);
-    TEST_ASSERT_EQUAL_INT(0, tvo_node_handle(&node, TVO_NODE_CH_MEASUREMENT, garbage, sizeof(garbage), 0));
-    TEST_ASSERT_EQUAL_INT(0, tvo_node_handle(&node, TVO_NODE_CH_MEASUREMENT, wire, (uint32_t)n - 1u, 0));
+    TEST_ASSERT_EQUAL_INT(0, tvo_node_handle(&node, TVO_NODE_CH_SAMPLE, garbage, sizeof(garbage), 0));
+    TEST_ASSERT_EQUAL_INT(0, tvo_node_handle(&node, TVO_NODE_CH_SAMPLE, wire, (uint32_t)n - 1u, 0));
+    TEST_ASSERT_EQUAL_INT(0, tvo_node_handle(&node, TVO_NODE_CH_SAMPLE, wire, (uint32_t)n + 1u, 0));
     TEST_ASSERT_EQUAL_INT(0, tvo_node_handle(&node, TVO_NODE_CH_SESSION, garbage, sizeof(garbage), 0));
     TEST_ASSERT_EQUAL_INT(0, tvo_node_handle(&node, TVO_NODE_CH_TARGET, wire, 0u, 0));
-    TEST_ASSERT_EQUAL_INT(0, tvo_node_handle(&node, TVO_NODE_CH_MEASUREMENT, NULL, 100u, 0));
-    TEST_ASSERT_EQUAL_INT(0, tvo_node_handle(&node, TVO_NODE_CH_MEASUREMENT, wire, UINT32_MAX, 0));
+    TEST_ASSERT_EQUAL_INT(0, tvo_node_handle(&node, TVO_NODE_CH_SAMPLE, NULL, (uint32_t)n, 0));
+    TEST_ASSERT_EQUAL_INT(0, tvo_node_handle(&node, TVO_NODE_CH_SAMPLE, wire, UINT32_MAX, 0));
+    TEST_ASSERT_EQUAL_INT(0, tvo_node_handle(&node, TVO_NODE_CH_SAMPLE, other_type, (uint32_t)n, 0));
     EXPECT_NOTHING_PUBLISHED();
-    TEST_ASSERT_EQUAL_INT32(6, node.counters.undecodable);
+    TEST_ASSERT_EQUAL_INT32(8, node.counters.malformed);
+    /* A transport's drops before the node (an authenticated link's). */
+    tvo_node_count_drop(&node, TVO_NODE_DROP_MALFORMED);
+    tvo_node_count_drop(&node, TVO_NODE_DROP_UNAUTHENTICATED);
+    tvo_node_count_drop(&node, TVO_NODE_DROP_REPLAYED);
+    tvo_node_count_drop(&node, TVO_NODE_DROP_REPLAYED);
+    tvo_node_count_drop(&node, TVO_NODE_DROP_COUNT); /* not a drop: nothing */
+    tvo_node_count_drop(NULL, TVO_NODE_DROP_REPLAYED);
     /* Not the node's channels (its own outputs, unknown numbers): not taken, not counted. */
-    const int others[] = {TVO_NODE_CH_COMMAND, TVO_NODE_CH_TELEMETRY, TVO_NODE_CH_SESSION_ACK, 0, -1, 99, INT32_MIN};
+    const int others[] = {TVO_NODE_CH_COMMAND, TVO_NODE_CH_TELEMETRY, TVO_NODE_CH_SESSION_ACK, TVO_NODE_CH_NODE,
+                          TVO_NODE_CH_CHAIN_COMMAND, 0, -1, 10, 99, INT32_MIN};
     for (size_t i = 0; i < sizeof(others) / sizeof(others[0]); ++i) {
         TEST_ASSERT_EQUAL_INT(0, tvo_node_handle(&node, others[i], wire, (uint32_t)n, 0));
     }
     EXPECT_NOTHING_PUBLISHED();
-    TEST_ASSERT_EQUAL_INT32(6, node.counters.undecodable);
+    TEST_ASSERT_EQUAL_INT32(9, node.counters.malformed);
     /* Another session's; a target the session cannot take (its target is not streamed). */
-    m.session_id = OTHER_ID;
-    (void)send_measurement(&m, 0);
+    m.header.session_id = OTHER_ID;
+    (void)send_sample(&m, 0);
     tvo_lcm_target_t t;
     memset(&t, 0, sizeof(t));
-    t.utime = plant_apply(2);
-    t.session_id = EF_SESSION_ID;
-    t.robot_count = 1;
+    t.header.utime = plant_apply(2);
+    t.header.session_id = EF_SESSION_ID;
+    t.header.robot = 0;
     (void)send_target(&t, 0);
     TEST_ASSERT_EQUAL_INT32(1, node.counters.targets_refused);
-    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, node.last_target_status);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, node.last_target_status);
     /* A safe stop: watchdog_periods refusals in a row. */
     plant_meas(&m, 3);
     for (int64_t k = 0; k < W; ++k) {
         ef_record_clear(&rec);
-        (void)send_measurement(&m, 0);
+        (void)send_sample(&m, 0);
     }
     plant_meas(&m, 4);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(4));
-    const tvo_lcm_node_counters_t *c = &last_telemetry.counters;
+    /* The next announcement carries them (the START at node time 0 announced; the next is due 1 s later). */
+    ef_record_clear(&announcements);
+    (void)tvo_node_poll(&node, TVO_LCM_NODE_STATUS_T_RUNNING_PERIOD_US - 1);
+    TEST_ASSERT_EQUAL_UINT32(0u, announcements.count);
+    (void)tvo_node_poll(&node, TVO_LCM_NODE_STATUS_T_RUNNING_PERIOD_US);
+    const tvo_lcm_node_status_t status = LATEST_ANNOUNCEMENT();
+    TEST_ASSERT_EQUAL_MEMORY(tvo_node_counters(&node), &status.counters, sizeof(status.counters));
+    const tvo_lcm_node_counters_t *c = &status.counters;
     TEST_ASSERT_EQUAL_INT32(4, c->accepted);
-    TEST_ASSERT_EQUAL_INT32(1 + (int32_t)W, c->refused[TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER]);
-    TEST_ASSERT_EQUAL_INT32(1, c->refused[TVO_LCM_COMMAND_T_STATUS_ERR_NOT_FINITE]);
-    TEST_ASSERT_EQUAL_INT32(6, c->undecodable);
+    TEST_ASSERT_EQUAL_INT32(1 + (int32_t)W, c->refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_OUT_OF_ORDER]);
+    TEST_ASSERT_EQUAL_INT32(1, c->refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NOT_FINITE]);
+    TEST_ASSERT_EQUAL_INT32(9, c->malformed);
+    TEST_ASSERT_EQUAL_INT32(1, c->unauthenticated);
+    TEST_ASSERT_EQUAL_INT32(2, c->replayed);
     TEST_ASSERT_EQUAL_INT32(1, c->other_session);
     TEST_ASSERT_EQUAL_INT32(1, c->safe_stops);
     TEST_ASSERT_EQUAL_INT32(1, c->targets_refused);
     TEST_ASSERT_EQUAL_INT32(0, c->speed_mismatch);
-    TEST_ASSERT_EQUAL_INT64(0, last_telemetry.node_time_us); /* CLOCK_PLANT */
+    TEST_ASSERT_EQUAL_INT32(0, c->wrong_boot);
+    TEST_ASSERT_EQUAL_INT32(0, c->idle);
+    TEST_ASSERT_EQUAL_INT32(0, c->predicted);
+    TEST_ASSERT_EQUAL_INT32(1, c->sessions);
     int32_t refused = 0;
     for (int i = 0; i < TVO_LCM_NODE_COUNTERS_T_STATUS_SLOTS; ++i) {
         refused += c->refused[i];
@@ -1409,22 +1540,21 @@ static void test_telemetry_counts_every_kind_of_event(void)
     TEST_ASSERT_EQUAL_INT32(2 + (int32_t)W, refused);
 }
 
-static void test_telemetry_counts_speed_mismatch_steps(void)
+static void test_counters_count_speed_mismatch_steps(void)
 {
     /* A plant that reports a speed beyond anything it was commanded (|v| <= speed_max = 2), yet
      * plausible (below 2 speed_max + 0.5); 10 m/s is refused, as the next test says. */
     plant_session_after(0);
     for (int64_t j = 1; j <= (int64_t)TVO_SPEED_MISMATCH_PERIODS + 1; ++j) {
-        tvo_lcm_measurement_t m;
+        tvo_lcm_unicycle_sample_t m;
         plant_meas(&m, j);
-        m.speed_valid = 1;
-        m.speed_mps[0] = 4.0;
-        const tvo_lcm_command_t cmd = EXPECT_ACCEPTED(m, 0, plant_apply(j));
-        const int flagged = ((uint32_t)cmd.flags & TVO_FLAG_SPEED_MISMATCH) != 0u;
+        m.has |= TVO_LCM_UNICYCLE_SAMPLE_T_HAS_SPEED;
+        m.speed_mps = 4.0f;
+        const tvo_lcm_unicycle_command_t cmd = EXPECT_ACCEPTED(m, 0, plant_apply(j));
+        const int flagged = ((uint32_t)cmd.header.flags & TVO_FLAG_SPEED_MISMATCH) != 0u;
         TEST_ASSERT_EQUAL_INT(j >= (int64_t)TVO_SPEED_MISMATCH_PERIODS, flagged);
     }
     TEST_ASSERT_EQUAL_INT32(2, node.counters.speed_mismatch);
-    TEST_ASSERT_EQUAL_INT32(2, last_telemetry.counters.speed_mismatch);
 }
 
 static void test_plant_implausible_measurements_are_refused_and_keep_nothing(void)
@@ -1433,21 +1563,21 @@ static void test_plant_implausible_measurements_are_refused_and_keep_nothing(voi
      * each refused with its own status and nothing of it kept; the stream then goes on. */
     plant_session_after(2);
     for (int which = 0; which < 3; ++which) {
-        tvo_lcm_measurement_t m;
+        tvo_lcm_unicycle_sample_t m;
         plant_meas(&m, 3 + 2 * which);
         switch (which) {
         case 0:
-            m.speed_valid = 1;
-            m.speed_mps[0] = 1e3;
+            m.has |= TVO_LCM_UNICYCLE_SAMPLE_T_HAS_SPEED;
+            m.speed_mps = (float)1e3;
             break;
-        case 1: m.position_m[0][0] = 1e6; break;
-        default: m.heading_rad[0] = 1e6; break;
+        case 1: m.position_m[0] = 1e6; break;
+        default: m.heading_rad = 1e6; break;
         }
-        (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_MEASUREMENT);
+        (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_MEASUREMENT);
         plant_meas(&m, 4 + 2 * which); /* the genuine stream goes on (and the watchdog's count restarts) */
         (void)EXPECT_ACCEPTED(m, 0, plant_apply(4 + 2 * which));
     }
-    TEST_ASSERT_EQUAL_INT32(3, node.counters.refused[TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_MEASUREMENT]);
+    TEST_ASSERT_EQUAL_INT32(3, node.counters.refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_MEASUREMENT]);
 }
 
 /* A START whose robot 0 streams its target and must stay in x <= 0.5 (a half-space). */
@@ -1464,10 +1594,10 @@ static void streamed_constrained_start(tvo_lcm_session_t *m)
 static void target_at_epoch(tvo_lcm_target_t *t)
 {
     memset(t, 0, sizeof(*t));
-    t->utime = EF_EPOCH;
-    t->session_id = EF_SESSION_ID;
-    t->robot_count = 1;
-    t->position_m[0][0] = 0.2;
+    t->header.utime = EF_EPOCH;
+    t->header.session_id = EF_SESSION_ID;
+    t->header.robot = 0;
+    t->position_m[0] = 0.2;
 }
 
 static void test_slack_rule_is_undone_when_the_first_step_fails(void)
@@ -1479,9 +1609,9 @@ static void test_slack_rule_is_undone_when_the_first_step_fails(void)
     (void)send_session(&start, 0);
     TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_TARGET, send_target(&t, 0));
     EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
-    tvo_lcm_measurement_t m;
+    tvo_lcm_unicycle_sample_t m;
     plant_meas(&m, 2);
-    m.position_m[0][0] = 1.0;
+    m.position_m[0] = 1.0;
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(2));
     const tvo_real_t reference_slack = tvo_node_session(&node)->problem.barrier.slack0;
     TEST_ASSERT_TRUE(reference_slack > TVO_R(0.0));
@@ -1489,16 +1619,16 @@ static void test_slack_rule_is_undone_when_the_first_step_fails(void)
     /* Now a first sample at x = 2 whose step fails (no target sample yet), then as above. */
     setUp();
     (void)send_session(&start, 0);
-    tvo_lcm_measurement_t first;
+    tvo_lcm_unicycle_sample_t first;
     plant_meas(&first, 1);
-    first.position_m[0][0] = 2.0;
+    first.position_m[0] = 2.0;
     ef_record_clear(&rec);
-    (void)send_measurement(&first, 0);
-    const tvo_lcm_command_t cmd = THE_COMMAND();
-    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_TARGET_NOT_READY, cmd.status);
-    TEST_ASSERT_TRUE(cmd.utime >= first.utime);
-    TEST_ASSERT_TRUE(((uint32_t)cmd.flags & (TVO_LCM_COMMAND_T_FLAG_HOLDING | TVO_LCM_COMMAND_T_FLAG_SAFE_STOP)) != 0u);
-    TEST_ASSERT_EQUAL_INT32(1, node.counters.refused[TVO_LCM_COMMAND_T_STATUS_ERR_TARGET_NOT_READY]);
+    (void)send_sample(&first, 0);
+    const tvo_lcm_unicycle_command_t cmd = THE_COMMAND();
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_TARGET_NOT_READY, cmd.header.status);
+    TEST_ASSERT_TRUE(cmd.header.utime >= first.header.utime);
+    TEST_ASSERT_TRUE(((uint32_t)cmd.header.flags & (TVO_LCM_COMMAND_HEADER_T_FLAG_HOLDING | TVO_LCM_COMMAND_HEADER_T_FLAG_SAFE_STOP)) != 0u);
+    TEST_ASSERT_EQUAL_INT32(1, node.counters.refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_TARGET_NOT_READY]);
     TEST_ASSERT_EQUAL_INT32(0, node.counters.accepted);
     const tvo_node_session_t *s = tvo_node_session(&node);
     TEST_ASSERT_EQUAL_UINT8(0u, s->problem.slack_chosen);
@@ -1527,15 +1657,15 @@ static void test_target_stamped_at_epoch_minus_tau_is_carried_to_the_epoch(void)
     streamed_session(TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
     tvo_lcm_target_t t;
     target_at_epoch(&t);
-    t.utime = EF_EPOCH - H - 1;
+    t.header.utime = EF_EPOCH - H - 1;
     (void)send_target(&t, 0);
-    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER, node.last_target_status);
-    t.utime = EF_EPOCH - TAU;
-    t.position_m[0][0] = 1.0;
-    t.velocity_mps[0][0] = 2.0;
-    t.acceleration_mps2[0][0] = 0.5;
-    t.jerk_mps3[0][0] = 0.25;
-    t.position_m[0][1] = -1.0;
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_OUT_OF_ORDER, node.last_target_status);
+    t.header.utime = EF_EPOCH - TAU;
+    t.position_m[0] = 1.0;
+    t.velocity_mps[0] = 2.0;
+    t.acceleration_mps2[0] = 0.5;
+    t.jerk_mps3[0] = 0.25;
+    t.position_m[1] = -1.0;
     (void)send_target(&t, 0);
     EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
     const tvo_target_t *target = &tvo_node_session(&node)->problem.target[0];
@@ -1549,7 +1679,7 @@ static void test_target_stamped_at_epoch_minus_tau_is_carried_to_the_epoch(void)
     TEST_ASSERT_EQUAL_FLOAT(0.25f, (float)sample->deriv[3][0]);
     TEST_ASSERT_EQUAL_FLOAT(-1.0f, (float)sample->deriv[0][1]);
     /* The first measurement, stamped at the same instant, is served with it. */
-    tvo_lcm_measurement_t m;
+    tvo_lcm_unicycle_sample_t m;
     plant_meas(&m, 0);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(0));
 }
@@ -1565,21 +1695,51 @@ static void test_plant_first_measurement_beyond_the_tick_span_is_implausible(voi
     start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
     const int64_t twenty_minutes = (int64_t)20 * 60 * 1000000;
     for (int64_t k = 0; k < W + 1; ++k) {
-        tvo_lcm_measurement_t m;
-        ef_measurement(&m, EF_SESSION_ID, EF_EPOCH + twenty_minutes + k * H - TAU, k, 1);
-        (void)EXPECT_REFUSED(m, 0, k + 1 < W ? TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP : TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG);
+        tvo_lcm_unicycle_sample_t m;
+        ef_sample(&m, EF_SESSION_ID, EF_EPOCH + twenty_minutes + k * H - TAU, (int32_t)k, 0);
+        (void)EXPECT_REFUSED(m, 0, k + 1 < W ? TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_STAMP : TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_WATCHDOG);
     }
-    TEST_ASSERT_EQUAL_INT32((int32_t)W + 1, node.counters.refused[TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP]);
+    TEST_ASSERT_EQUAL_INT32((int32_t)W + 1, node.counters.refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_STAMP]);
     /* The first sample anchors the sequence, so it must follow the later of the START and the epoch
      * within a second (or watchdog_periods periods if longer): the last period inside that window is
      * served, the next one is not. */
     const int64_t window = (W * H > 1000000) ? W * H : 1000000;
     const int64_t last = ((EF_UTIME > EF_EPOCH ? EF_UTIME : EF_EPOCH) + window - EF_EPOCH + TAU) / H;
-    tvo_lcm_measurement_t m;
+    tvo_lcm_unicycle_sample_t m;
     plant_meas(&m, last + 1);
-    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG);
+    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_WATCHDOG);
     plant_meas(&m, last);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(last));
+}
+
+/* A chain session's answer: one chain_command_t (robot 0) and its telemetry, decoded. */
+static tvo_lcm_chain_command_t the_chain_command(int with_telemetry, int line)
+{
+    tvo_lcm_chain_command_t cmd;
+    memset(&cmd, 0, sizeof(cmd));
+    UNITY_TEST_ASSERT_EQUAL_UINT32(with_telemetry ? 2u : 1u, rec.count, line, "messages published");
+    UNITY_TEST_ASSERT_EQUAL_UINT32(0u, ef_record_count(&rec, TVO_NODE_CH_COMMAND), line, "no unicycle command");
+    const ef_message_t *m = ef_record_nth(&rec, TVO_NODE_CH_CHAIN_COMMAND, 0);
+    if (m == NULL) {
+        UNITY_TEST_FAIL(line, "no chain command");
+        return cmd;
+    }
+    UNITY_TEST_ASSERT_EQUAL_INT((int)m->length, tvo_lcm_chain_command_t_decode(m->data, 0, (int)m->length, &cmd), line,
+                                "chain command decodes");
+    if (with_telemetry) {
+        m = ef_record_nth(&rec, TVO_NODE_CH_TELEMETRY, 0);
+        UNITY_TEST_ASSERT_NOT_NULL(m, line, "telemetry");
+        if (m != NULL) {
+            tvo_lcm_telemetry_t tel;
+            UNITY_TEST_ASSERT_EQUAL_INT((int)m->length, tvo_lcm_telemetry_t_decode(m->data, 0, (int)m->length, &tel),
+                                        line, "telemetry decodes");
+            UNITY_TEST_ASSERT_EQUAL_INT(cmd.header.status, tel.header.status, line, "telemetry status");
+            UNITY_TEST_ASSERT_EQUAL_INT64(cmd.header.utime, tel.header.utime, line, "telemetry utime");
+            const double u0 = (double)cmd.input[0], u1 = (double)cmd.input[1];
+            UNITY_TEST_ASSERT(tvo_joint_digest(&u0, &u1, 1) == (uint64_t)tel.joint_digest, line, "digest of u");
+        }
+    }
+    return cmd;
 }
 
 static void test_chain_session_runs_through_the_node(void)
@@ -1591,43 +1751,66 @@ static void test_chain_session_runs_through_the_node(void)
         (void)send_session(&start, NODE_T0);
         EF_ASSERT_STATUS(TVO_OK, THE_ACK().status);
         const int node_clock = clock == TVO_LCM_SESSION_T_CLOCK_NODE;
-        tvo_lcm_command_t cmd;
+        tvo_lcm_chain_command_t cmd;
+        tvo_lcm_chain_sample_t c;
         for (int64_t j = 1; j <= 3; ++j) {
-            tvo_lcm_measurement_t m;
+            tvo_lcm_unicycle_sample_t m;
             if (node_clock) {
-                node_meas(&m, j, j);
+                node_meas(&m, j, (int32_t)j);
             } else {
                 plant_meas(&m, j);
             }
+            memset(&c, 0, sizeof(c));
+            c.header = m.header;
+            c.position_m[0] = m.position_m[0];
+            c.position_m[1] = m.position_m[1];
+            const int64_t now = node_clock ? node_arrival(j) : 0;
             if (j == 2) {
                 /* The session reads y' as measured (no filters): a sample without it is refused. */
-                (void)EXPECT_REFUSED(m, node_clock ? node_arrival(j) : 0, TVO_LCM_COMMAND_T_STATUS_ERR_MISSING_FIELD);
+                take_snapshot();
+                ef_record_clear(&rec);
+                TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_CHAIN_SAMPLE, send_chain_sample(&c, now));
+                cmd = the_chain_command(1, __LINE__);
+                EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_MISSING_FIELD, cmd.header.status);
+                TEST_ASSERT_EQUAL_HEX32(TVO_LCM_COMMAND_HEADER_T_FLAG_HOLDING, (uint32_t)cmd.header.flags);
+                ASSERT_SESSION_KEPT();
+                /* ... and a unicycle's sample: not this session's plant, refused unanswered. */
+                ef_record_clear(&rec);
+                (void)send_sample(&m, now);
+                EXPECT_NOTHING_PUBLISHED();
+                TEST_ASSERT_EQUAL_INT32(1, node.counters.refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM]);
             }
-            m.derivatives_valid = 1;
-            cmd = EXPECT_ACCEPTED(m, node_clock ? node_arrival(j) : 0,
-                                  node_clock ? node_apply(j) - OFFSET : plant_apply(j));
-            TEST_ASSERT_TRUE(cmd.input[0] != 0.0);       /* the chain's u, x and y */
-            TEST_ASSERT_TRUE(cmd.speed_mps[0] == 0.0);   /* no unicycle command */
+            c.has = TVO_LCM_CHAIN_SAMPLE_T_HAS_DERIVATIVES;
+            ef_record_clear(&rec);
+            TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_CHAIN_SAMPLE, send_chain_sample(&c, now));
+            cmd = the_chain_command(1, __LINE__);
+            EF_ASSERT_STATUS(TVO_OK, cmd.header.status);
+            TEST_ASSERT_EQUAL_INT64(node_clock ? node_apply(j) - OFFSET : plant_apply(j), cmd.header.utime);
+            TEST_ASSERT_EQUAL_INT(c.header.sequence, cmd.header.measurement_sequence);
+            TEST_ASSERT_EQUAL_INT(0, cmd.header.robot);
+            TEST_ASSERT_TRUE(cmd.input[0] != 0.0f); /* the chain's u, x and y */
         }
         if (node_clock) {
             EXPECT_TIMER_QUIET(node_arrival(3), node_apply(3 + W));
             ef_record_clear(&rec);
             (void)tvo_node_poll(&node, node_apply(3 + W));
-            cmd = THE_COMMAND();
+            cmd = the_chain_command(0, __LINE__); /* the node's own stop: no telemetry */
+            TEST_ASSERT_EQUAL_INT(-1, cmd.header.measurement_sequence);
         } else {
-            tvo_lcm_measurement_t dup;
-            plant_meas(&dup, 3);
             for (int64_t k = 1; k < W; ++k) {
-                cmd = EXPECT_REFUSED(dup, 0, TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER);
-                TEST_ASSERT_TRUE(cmd.input[0] != 0.0); /* the chain's held u */
+                ef_record_clear(&rec);
+                (void)send_chain_sample(&c, 0); /* a duplicate */
+                cmd = the_chain_command(1, __LINE__);
+                EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_OUT_OF_ORDER, cmd.header.status);
+                TEST_ASSERT_TRUE(cmd.input[0] != 0.0f); /* the chain's held u */
             }
-            cmd = EXPECT_REFUSED(dup, 0, TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG);
+            ef_record_clear(&rec);
+            (void)send_chain_sample(&c, 0);
+            cmd = the_chain_command(1, __LINE__);
         }
-        EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG, cmd.status);
-        TEST_ASSERT_EQUAL_HEX32(TVO_LCM_COMMAND_T_FLAG_SAFE_STOP, (uint32_t)cmd.flags);
-        for (int i = 0; i < 8; ++i) {
-            TEST_ASSERT_TRUE(cmd.input[i] == 0.0);
-        }
+        EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_WATCHDOG, cmd.header.status);
+        TEST_ASSERT_EQUAL_HEX32(TVO_LCM_COMMAND_HEADER_T_FLAG_SAFE_STOP, (uint32_t)cmd.header.flags);
+        TEST_ASSERT_TRUE(cmd.input[0] == 0.0f && cmd.input[1] == 0.0f);
         TEST_ASSERT_TRUE(tvo_node_session(&node)->controller.u.chain.internal.held.u[0] == TVO_R(0.0));
     }
 }
@@ -1647,11 +1830,11 @@ static void session_whose_law_fails_next(void)
     target_at_epoch(&t);
     (void)send_target(&t, 0);
     for (int64_t j = 1; j <= 2; ++j) {
-        tvo_lcm_measurement_t m;
+        tvo_lcm_unicycle_sample_t m;
         plant_meas(&m, j);
         (void)EXPECT_ACCEPTED(m, 0, plant_apply(j));
     }
-    t.utime = plant_apply(3);
+    t.header.utime = plant_apply(3);
     (void)send_target(&t, 0);
     EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
 }
@@ -1665,25 +1848,25 @@ static void test_node_clock_reanchors_on_agreeing_measurements_before_tracking(v
     const int64_t offset = NODE_T0 - EF_UTIME; /* the true node-minus-plant clock offset */
     const int64_t latency = 100;
     start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_NODE, NODE_T0 + start_delay);
-    tvo_lcm_measurement_t stray;
-    ef_measurement(&stray, EF_SESSION_ID, EF_EPOCH + 40 * H, 1000, 1);
+    tvo_lcm_unicycle_sample_t stray;
+    ef_sample(&stray, EF_SESSION_ID, EF_EPOCH + 40 * H, 1000, 0);
     ef_record_clear(&rec);
-    (void)send_measurement(&stray, EF_EPOCH + offset + 40 * H - 500000);
-    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP, THE_COMMAND().status);
+    (void)send_sample(&stray, EF_EPOCH + offset + 40 * H - 500000);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_STAMP, THE_COMMAND().header.status);
     for (int64_t k = 0; k < 6; ++k) {
         const int64_t sample = EF_EPOCH + (k + 1) * H - TAU;
-        tvo_lcm_measurement_t m;
-        ef_measurement(&m, EF_SESSION_ID, sample, k, 1);
+        tvo_lcm_unicycle_sample_t m;
+        ef_sample(&m, EF_SESSION_ID, sample, (int32_t)k, 0);
         ef_record_clear(&rec);
-        (void)send_measurement(&m, sample + offset + latency);
-        const tvo_lcm_command_t cmd = THE_COMMAND();
+        (void)send_sample(&m, sample + offset + latency);
+        const tvo_lcm_unicycle_command_t cmd = THE_COMMAND();
         if (k < 2) {
-            EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP, cmd.status);
+            EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_STAMP, cmd.header.status);
         } else {
-            EF_ASSERT_STATUS(TVO_OK, cmd.status);
+            EF_ASSERT_STATUS(TVO_OK, cmd.header.status);
             /* Applied at the period's instant on the plant's clock, as if the START had been on time
              * (to the measurement's own transit). */
-            TEST_ASSERT_INT64_WITHIN(latency, sample + TAU, cmd.utime);
+            TEST_ASSERT_INT64_WITHIN(latency, sample + TAU, cmd.header.utime);
         }
     }
     TEST_ASSERT_INT64_WITHIN(latency, offset, tvo_node_session(&node)->schedule.anchor.offset_us);
@@ -1707,24 +1890,24 @@ static void test_node_clock_reanchor_whose_trial_the_core_stops_commits_nothing_
     EF_ASSERT_STATUS(TVO_OK, THE_ACK().status);
     for (int64_t k = 0; k < 6; ++k) {
         const int64_t sample = EF_EPOCH + (k + 1) * H - TAU;
-        tvo_lcm_measurement_t m;
-        ef_measurement(&m, EF_SESSION_ID, sample, k, 1);
+        tvo_lcm_unicycle_sample_t m;
+        ef_sample(&m, EF_SESSION_ID, sample, (int32_t)k, 0);
         if (k == 2) {
-            m.position_m[0][0] = (double)NAN;
+            m.position_m[0] = (double)NAN;
         }
         ef_record_clear(&rec);
-        (void)send_measurement(&m, sample + offset + latency);
-        const tvo_lcm_command_t cmd = THE_COMMAND();
+        (void)send_sample(&m, sample + offset + latency);
+        const tvo_lcm_unicycle_command_t cmd = THE_COMMAND();
         if (k == 2) {
-            EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG, cmd.status); /* the core's stop */
+            EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_WATCHDOG, cmd.header.status); /* the core's stop */
             EXPECT_SAFE_STOP(cmd);
             TEST_ASSERT_EQUAL_INT64(offset + start_delay, tvo_node_session(&node)->schedule.anchor.offset_us);
         } else if (k < 5) {
-            EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP, cmd.status);
+            EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_STAMP, cmd.header.status);
         } else {
-            EF_ASSERT_STATUS(TVO_OK, cmd.status);
-            TEST_ASSERT_INT64_WITHIN(latency, sample + TAU, cmd.utime);
-            TEST_ASSERT_DOUBLE_WITHIN(1e-6, (double)((k + 1) * H) * 1e-6, last_telemetry.objective_time_s);
+            EF_ASSERT_STATUS(TVO_OK, cmd.header.status);
+            TEST_ASSERT_INT64_WITHIN(latency, sample + TAU, cmd.header.utime);
+            TEST_ASSERT_INT32_WITHIN(1, (int32_t)((k + 1) * H), last_telemetry.objective_time_us);
         }
     }
     TEST_ASSERT_INT64_WITHIN(latency, offset, tvo_node_session(&node)->schedule.anchor.offset_us);
@@ -1739,15 +1922,15 @@ static void test_plant_target_beyond_the_next_period_is_refused(void)
     target_at_epoch(&t);
     (void)send_target(&t, 0);
     EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
-    tvo_lcm_measurement_t m;
+    tvo_lcm_unicycle_sample_t m;
     plant_meas(&m, 1);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(1));
     tvo_lcm_target_t stray = t;
-    stray.utime = EF_EPOCH + 10000000;
+    stray.header.utime = EF_EPOCH + 10000000;
     (void)send_target(&stray, 0);
-    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP, node.last_target_status);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_STAMP, node.last_target_status);
     TEST_ASSERT_EQUAL_INT32(1, node.counters.targets_refused);
-    t.utime = plant_apply(2) - TAU;
+    t.header.utime = plant_apply(2) - TAU;
     (void)send_target(&t, 0);
     EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
     plant_meas(&m, 2);
@@ -1776,8 +1959,8 @@ static void test_plant_first_window_starts_at_a_later_epoch(void)
     (void)send_session(&start, 0);
     EF_ASSERT_STATUS(TVO_OK, THE_ACK().status);
     const int64_t epoch = start.epoch_utime;
-    tvo_lcm_measurement_t m;
-    ef_measurement(&m, EF_SESSION_ID, epoch + 50 * H - TAU, 50, 1);
+    tvo_lcm_unicycle_sample_t m;
+    ef_sample(&m, EF_SESSION_ID, epoch + 50 * H - TAU, 50, 0);
     (void)EXPECT_ACCEPTED(m, 0, epoch + 50 * H);
 }
 
@@ -1787,9 +1970,9 @@ static void test_plant_repeated_start_moves_the_first_window(void)
     start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
     const int64_t j = first_period_past_window(EF_UTIME + 3000000) - 10;
     TEST_ASSERT_TRUE(j > first_period_past_window(EF_UTIME));
-    tvo_lcm_measurement_t m;
+    tvo_lcm_unicycle_sample_t m;
     plant_meas(&m, j);
-    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP); /* past the first START's window */
+    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_STAMP); /* past the first START's window */
     tvo_lcm_session_t again = start;
     again.utime = EF_UTIME + 3000000;
     ef_record_clear(&rec);
@@ -1822,18 +2005,18 @@ static void test_plant_samples_past_the_first_window_that_agree_move_it(void)
      * numbering move the window, and the third is served; a lone stray or a disagreeing one does not. */
     start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
     const int64_t j = first_period_past_window(EF_UTIME) + 200;
-    tvo_lcm_measurement_t m;
+    tvo_lcm_unicycle_sample_t m;
     plant_meas(&m, j);
-    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
+    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
     plant_meas(&m, j + 1);
-    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
+    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
     plant_meas(&m, j + 2);
-    m.sequence += 7; /* a stray: its numbering disagrees, so the vote starts again */
-    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG);
+    m.header.sequence += 7; /* a stray: its numbering disagrees, so the vote starts again */
+    (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_WATCHDOG);
     const int64_t window_start = tvo_node_session(&node)->schedule.anchor.first_window_utime;
     for (int64_t k = 3; k <= 4; ++k) {
         plant_meas(&m, j + k);
-        (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG);
+        (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_WATCHDOG);
         TEST_ASSERT_EQUAL_INT64(window_start, tvo_node_session(&node)->schedule.anchor.first_window_utime);
     }
     plant_meas(&m, j + 5);
@@ -1849,13 +2032,13 @@ static void test_plant_strays_the_node_refuses_do_not_move_the_first_window(void
     start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
     const int64_t far = first_period_past_window(EF_UTIME) + 48000; /* 8 min ahead */
     const int64_t window_start = tvo_node_session(&node)->schedule.anchor.first_window_utime;
-    tvo_lcm_measurement_t m;
+    tvo_lcm_unicycle_sample_t m;
     for (int64_t k = 0; k < 3; ++k) {
         plant_meas(&m, far + k);
-        m.position_m[0][0] = (double)NAN;
+        m.position_m[0] = (double)NAN;
         ef_record_clear(&rec);
-        (void)send_measurement(&m, 0);
-        TEST_ASSERT_TRUE(THE_COMMAND().status != TVO_OK);
+        (void)send_sample(&m, 0);
+        TEST_ASSERT_TRUE(THE_COMMAND().header.status != TVO_OK);
         TEST_ASSERT_EQUAL_INT64(window_start, tvo_node_session(&node)->schedule.anchor.first_window_utime);
     }
     plant_meas(&m, 2);
@@ -1869,13 +2052,13 @@ static void test_plant_target_stream_may_start_late(void)
     streamed_session(TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
     tvo_lcm_target_t t;
     target_at_epoch(&t);
-    t.utime = plant_apply(50) - TAU;
+    t.header.utime = plant_apply(50) - TAU;
     (void)send_target(&t, 0);
-    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP, node.last_target_status);
-    t.utime = plant_apply(1);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_STAMP, node.last_target_status);
+    t.header.utime = plant_apply(1);
     (void)send_target(&t, 0);
     EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
-    tvo_lcm_measurement_t m;
+    tvo_lcm_unicycle_sample_t m;
     plant_meas(&m, 1);
     (void)EXPECT_ACCEPTED(m, 0, plant_apply(1));
 
@@ -1884,20 +2067,20 @@ static void test_plant_target_stream_may_start_late(void)
     setUp();
     streamed_session(TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
     const int64_t j = first_period_past_window(EF_UTIME) + 50;
-    t.utime = plant_apply(j);
+    t.header.utime = plant_apply(j);
     (void)send_target(&t, 0);
-    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP, node.last_target_status);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_STAMP, node.last_target_status);
     for (int64_t k = 0; k < 2; ++k) {
         plant_meas(&m, j + k);
-        (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
+        (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
     }
     plant_meas(&m, j + 2);
     ef_record_clear(&rec);
-    (void)send_measurement(&m, 0);
+    (void)send_sample(&m, 0);
     /* The window moved, but there is no target yet: the third refusal in a row, so a safe stop. */
-    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG, THE_COMMAND().status);
-    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_TARGET_NOT_READY, node.last_refusal);
-    t.utime = plant_apply(j + 3);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_WATCHDOG, THE_COMMAND().header.status);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_TARGET_NOT_READY, node.last_refusal);
+    t.header.utime = plant_apply(j + 3);
     (void)send_target(&t, 0);
     EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
     plant_meas(&m, j + 3);
@@ -1915,7 +2098,7 @@ static void test_plant_target_two_to_the_32_us_old_is_not_taken_for_a_new_one(vo
     EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
     const int64_t jump = (int64_t)TVO_MAX_TICK_SPAN / H; /* the longest silence a session spans */
     int64_t j = 1;
-    tvo_lcm_measurement_t m;
+    tvo_lcm_unicycle_sample_t m;
     int64_t last = 0;
     while (plant_apply(j) - EF_EPOCH <= ((int64_t)1 << 32) + 120000000) {
         if (j == 1) {
@@ -1926,17 +2109,17 @@ static void test_plant_target_two_to_the_32_us_old_is_not_taken_for_a_new_one(vo
             plant_jump_to(j - 2); /* a jump past the watchdog's span: served once three samples agree */
             last = j;
         }
-        t.utime = plant_apply(j + 1) - TAU;
+        t.header.utime = plant_apply(j + 1) - TAU;
         (void)send_target(&t, 0);
         EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
         j += jump;
     }
     tvo_lcm_target_t stray = t;
-    stray.utime = plant_apply(last) + 60000000 - ((int64_t)1 << 32);
-    stray.position_m[0][0] = 99.0;
+    stray.header.utime = plant_apply(last) + 60000000 - ((int64_t)1 << 32);
+    stray.position_m[0] = 99.0;
     (void)send_target(&stray, 0);
-    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER, node.last_target_status);
-    t.utime = plant_apply(last + 1);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_OUT_OF_ORDER, node.last_target_status);
+    t.header.utime = plant_apply(last + 1);
     (void)send_target(&t, 0);
     EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
     plant_meas(&m, last + 1);
@@ -1955,15 +2138,15 @@ static void test_node_clock_sample_two_to_the_32_us_old_is_stale(void)
     (void)send_session(&start, NODE_T0);
     EF_ASSERT_STATUS(TVO_OK, THE_ACK().status);
     const int64_t offset = NODE_T0 - big;
-    tvo_lcm_measurement_t m;
+    tvo_lcm_unicycle_sample_t m;
     for (int64_t j = 1; j <= 2; ++j) {
         const int64_t apply_node = start.epoch_utime + offset + j * H;
-        ef_measurement(&m, EF_SESSION_ID, apply_node - 5000 - offset, j, 1);
+        ef_sample(&m, EF_SESSION_ID, apply_node - 5000 - offset, (int32_t)j, 0);
         if (j == 2) {
-            tvo_lcm_measurement_t stray = m;
-            stray.utime = m.utime - ((int64_t)1 << 32) - 1000;
-            stray.position_m[0][0] = 50.0;
-            (void)EXPECT_REFUSED(stray, apply_node - 4000, TVO_LCM_COMMAND_T_STATUS_ERR_STALE);
+            tvo_lcm_unicycle_sample_t stray = m;
+            stray.header.utime = m.header.utime - ((int64_t)1 << 32) - 1000;
+            stray.position_m[0] = 50.0;
+            (void)EXPECT_REFUSED(stray, apply_node - 4000, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_STALE);
         }
         (void)EXPECT_ACCEPTED(m, apply_node - 4000, apply_node - offset);
     }
@@ -1973,14 +2156,14 @@ static void test_plant_refusal_by_the_step_keeps_nothing(void)
 {
     session_whose_law_fails_next();
     take_snapshot();
-    tvo_lcm_measurement_t m;
+    tvo_lcm_unicycle_sample_t m;
     plant_meas(&m, 3);
     ef_record_clear(&rec);
-    (void)send_measurement(&m, 0);
-    const tvo_lcm_command_t cmd = THE_COMMAND();
-    TEST_ASSERT_TRUE(cmd.status != TVO_OK);
-    TEST_ASSERT_EQUAL_HEX32(TVO_LCM_COMMAND_T_FLAG_HOLDING, (uint32_t)cmd.flags);
-    TEST_ASSERT_TRUE(cmd.utime >= m.utime);
+    (void)send_sample(&m, 0);
+    const tvo_lcm_unicycle_command_t cmd = THE_COMMAND();
+    TEST_ASSERT_TRUE(cmd.header.status != TVO_OK);
+    TEST_ASSERT_EQUAL_HEX32(TVO_LCM_COMMAND_HEADER_T_FLAG_HOLDING, (uint32_t)cmd.header.flags);
+    TEST_ASSERT_TRUE(cmd.header.utime >= m.header.utime);
     const tvo_node_session_t *s = tvo_node_session(&node);
     const tvo_sample_clock_t *before = &snapshot.controller.u.unicycle.internal.loop.clock;
     const tvo_sample_clock_t *after = &s->controller.u.unicycle.internal.loop.clock;
@@ -1990,7 +2173,7 @@ static void test_plant_refusal_by_the_step_keeps_nothing(void)
         (void)snprintf(text, sizeof(text),
                        "refused (status %d) yet the controller's clock moved: last_apply_tick %u -> %u, "
                        "elapsed %llu -> %llu, periods_without_measurement %u -> %u",
-                       (int)cmd.status, (unsigned)before->last_apply_tick, (unsigned)after->last_apply_tick,
+                       (int)cmd.header.status, (unsigned)before->last_apply_tick, (unsigned)after->last_apply_tick,
                        (unsigned long long)before->elapsed.ticks, (unsigned long long)after->elapsed.ticks,
                        (unsigned)before->periods_without_measurement, (unsigned)after->periods_without_measurement);
         TEST_FAIL_MESSAGE(text);
@@ -2001,7 +2184,7 @@ static void test_plant_refusal_by_the_step_keeps_nothing(void)
 static void test_node_clock_a_law_failure_after_the_timer_stop_is_answered_with_a_safe_stop(void)
 {
     /* After a silence the timer stopped, a measurement the law then fails on (its streamed target
-     * sample lies ahead of it) was answered TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG flagged HOLDING with v = omega = 0: the
+     * sample lies ahead of it) was answered TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_WATCHDOG flagged HOLDING with v = omega = 0: the
      * core had stopped, the node said "hold". The answer is the core's: a safe stop. */
     ef_start(&start, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_NODE, 1);
     start.delay_compensation = 0;
@@ -2013,19 +2196,19 @@ static void test_node_clock_a_law_failure_after_the_timer_stop_is_answered_with_
     target_at_epoch(&t);
     (void)send_target(&t, node_apply(0));
     EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
-    tvo_lcm_measurement_t m;
+    tvo_lcm_unicycle_sample_t m;
     for (int64_t j = 1; j <= 2; ++j) {
-        node_meas(&m, j, j);
+        node_meas(&m, j, (int32_t)j);
         (void)EXPECT_ACCEPTED(m, node_arrival(j), node_apply(j) - OFFSET);
     }
     EXPECT_TIMER_STOP(node_apply(2 + W), node_apply(3 + W));
     const int64_t j = 5 + W;
-    t.utime = node_arrival(j) - OFFSET + H / 2 - 1; /* plausible, and after the sample below */
+    t.header.utime = node_arrival(j) - OFFSET + H / 2 - 1; /* plausible, and after the sample below */
     (void)send_target(&t, node_arrival(j));
     EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
-    node_meas(&m, j, j);
-    const tvo_lcm_command_t cmd = EXPECT_REFUSED(m, node_arrival(j), TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG);
-    TEST_ASSERT_EQUAL_HEX32(TVO_LCM_COMMAND_T_FLAG_SAFE_STOP, (uint32_t)cmd.flags);
+    node_meas(&m, j, (int32_t)j);
+    const tvo_lcm_unicycle_command_t cmd = EXPECT_REFUSED(m, node_arrival(j), TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_WATCHDOG);
+    TEST_ASSERT_EQUAL_HEX32(TVO_LCM_COMMAND_HEADER_T_FLAG_SAFE_STOP, (uint32_t)cmd.header.flags);
 }
 
 static void test_plant_step_refusals_count_toward_the_watchdog(void)
@@ -2033,22 +2216,22 @@ static void test_plant_step_refusals_count_toward_the_watchdog(void)
     /* A refusal by the controller's step (the law) and refusals of the node's own checks (duplicates)
      * in a row: watchdog_periods of them must end in a safe stop. */
     session_whose_law_fails_next();
-    tvo_lcm_measurement_t m;
+    tvo_lcm_unicycle_sample_t m;
     plant_meas(&m, 3);
     ef_record_clear(&rec);
-    (void)send_measurement(&m, 0);
-    tvo_lcm_command_t cmd = THE_COMMAND();
-    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_FUTURE_STAMP, cmd.status);
+    (void)send_sample(&m, 0);
+    tvo_lcm_unicycle_command_t cmd = THE_COMMAND();
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_FUTURE_STAMP, cmd.header.status);
     TEST_ASSERT_EQUAL_UINT32(1u, tvo_node_session(&node)->schedule.clock.plant.refused_in_row);
-    tvo_lcm_measurement_t dup;
+    tvo_lcm_unicycle_sample_t dup;
     plant_meas(&dup, 2);
     for (int64_t refusals = 1; refusals < W; ++refusals) {
         ef_record_clear(&rec);
-        (void)send_measurement(&dup, 0);
+        (void)send_sample(&dup, 0);
         cmd = THE_COMMAND();
     }
-    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_WATCHDOG, cmd.status);
-    TEST_ASSERT_TRUE(((uint32_t)cmd.flags & TVO_LCM_COMMAND_T_FLAG_SAFE_STOP) != 0u);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_WATCHDOG, cmd.header.status);
+    TEST_ASSERT_TRUE(((uint32_t)cmd.header.flags & TVO_LCM_COMMAND_HEADER_T_FLAG_SAFE_STOP) != 0u);
 }
 
 /* ------------------------------------------------------------------------------------------------
@@ -2181,119 +2364,175 @@ static void edit_offset_kind(tvo_lcm_session_t *m, int64_t v)
 
 static void test_start_utime_extremes(void)
 {
-    EXPECT_START_SITE(edit_utime, time_extremes, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_EPOCH, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+    EXPECT_START_SITE(edit_utime, time_extremes, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_EPOCH, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
 }
 
 static void test_start_epoch_extremes(void)
 {
-    EXPECT_START_SITE(edit_epoch, time_extremes, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_EPOCH, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+    EXPECT_START_SITE(edit_epoch, time_extremes, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_EPOCH, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
     const int64_t far[] = {EF_UTIME + (int64_t)TVO_MAX_TICK_SPAN + 1, EF_TWO_POW_60};
-    EXPECT_START_SITE(edit_epoch, far, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_EPOCH, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+    EXPECT_START_SITE(edit_epoch, far, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_EPOCH, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
 }
 
 static void test_start_period_extremes(void)
 {
     const int64_t bad[] = {INT64_MIN, -1, 0, (int64_t)TVO_MAX_TICK_SPAN + 1, EF_TWO_POW_60 + 1, INT64_MAX};
-    EXPECT_START_SITE(edit_period, bad, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_PERIOD, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+    EXPECT_START_SITE(edit_period, bad, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_PERIOD, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
 }
 
 static void test_start_delay_extremes(void)
 {
     const int64_t bad[] = {INT64_MIN, -1, H + 1, EF_TWO_POW_60 + 1, INT64_MAX};
-    EXPECT_START_SITE(edit_delay, bad, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_DELAY, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+    EXPECT_START_SITE(edit_delay, bad, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_DELAY, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
 }
 
 static void test_start_watchdog_extremes(void)
 {
     const int64_t bad[] = {INT32_MIN, -1, 0, (int64_t)(TVO_MAX_TICK_SPAN / (uint32_t)EF_PERIOD_US) + 1, INT32_MAX};
-    EXPECT_START_SITE(edit_watchdog, bad, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_WATCHDOG, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+    EXPECT_START_SITE(edit_watchdog, bad, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_WATCHDOG, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
 }
 
 static void test_start_robot_count_extremes(void)
 {
-    const int64_t bad[] = {INT32_MIN, -1, 0, TVO_MAX_ROBOTS + 1, INT32_MAX};
-    EXPECT_START_SITE(edit_robot_count, bad, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_ROBOT_COUNT, TVO_LCM_SESSION_ACK_T_PART_NONE,
-                      -1);
+    /* Robots the wire names but the build does not drive: refused, naming the count. */
+    const int64_t beyond_build[] = {TVO_MAX_ROBOTS + 1, TVO_LCM_SESSION_T_MAX_ROBOTS};
+    if (TVO_MAX_ROBOTS < TVO_LCM_SESSION_T_MAX_ROBOTS) {
+        EXPECT_START_SITE(edit_robot_count, beyond_build, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM,
+                          TVO_LCM_SESSION_ACK_T_PARAM_ROBOT_COUNT, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+    }
+    /* A count that names no robot (so no boot of this node): dropped unanswered, wrong_boot. */
+    const int32_t names_none[] = {INT32_MIN, -1, 0, TVO_LCM_SESSION_T_MAX_ROBOTS + 1, INT32_MAX};
+    for (size_t i = 0; i < sizeof(names_none) / sizeof(names_none[0]); ++i) {
+        for (int running = 0; running < 2; ++running) {
+            setUp();
+            if (running) {
+                plant_session_after(1);
+                take_snapshot();
+            }
+            ef_start(&start, OTHER_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 2);
+            start.robot_count = names_none[i];
+            ef_record_clear(&rec);
+            TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_SESSION, send_session(&start, 0));
+            EXPECT_NOTHING_PUBLISHED();
+            TEST_ASSERT_EQUAL_INT32(1, node.counters.wrong_boot);
+            if (running) {
+                snapshot_counters.wrong_boot++;
+                ASSERT_SESSION_AND_COUNTERS_KEPT();
+            } else {
+                TEST_ASSERT_NULL(tvo_node_session(&node));
+            }
+        }
+    }
+}
+
+static void edit_protocol_version(tvo_lcm_session_t *m, int64_t v) { m->protocol_version = as_int32(v); }
+static void edit_telemetry_every(tvo_lcm_session_t *m, int64_t v) { m->telemetry_every = as_int32(v); }
+
+static void test_start_protocol_version_extremes(void)
+{
+    const int64_t bad[] = {INT32_MIN, -1, 0, 2, TVO_LCM_NODE_STATUS_T_PROTOCOL_VERSION + 1, INT32_MAX};
+    EXPECT_START_SITE(edit_protocol_version, bad, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM,
+                      TVO_LCM_SESSION_ACK_T_PARAM_PROTOCOL_VERSION, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+}
+
+static void test_start_telemetry_every_extremes(void)
+{
+    const int64_t bad[] = {INT32_MIN, -1, TVO_SESSION_TELEMETRY_EVERY_MAX + 1, INT32_MAX};
+    EXPECT_START_SITE(edit_telemetry_every, bad, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM,
+                      TVO_LCM_SESSION_ACK_T_PARAM_TELEMETRY_EVERY, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+    /* The ends of the range run: 0 is the default (the fewest periods spanning 100 ms), 2^20 at most. */
+    const int32_t good[] = {0, 1, TVO_SESSION_TELEMETRY_EVERY_MAX};
+    const uint32_t every[] = {(uint32_t)((TVO_SESSION_TELEMETRY_DEFAULT_US + H - 1) / H), 1u,
+                              (uint32_t)TVO_SESSION_TELEMETRY_EVERY_MAX};
+    for (size_t i = 0; i < sizeof(good) / sizeof(good[0]); ++i) {
+        setUp();
+        ef_start(&start, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+        start.telemetry_every = good[i];
+        ef_record_clear(&rec);
+        (void)send_session(&start, 0);
+        EF_ASSERT_STATUS(TVO_OK, THE_ACK().status);
+        TEST_ASSERT_EQUAL_UINT32(every[i], tvo_node_session(&node)->schedule.timing.telemetry_every);
+    }
 }
 
 static void test_start_clock_source_extremes(void)
 {
-    EXPECT_START_SITE(edit_clock_source, kind32_extremes, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_CLOCK_SOURCE,
+    EXPECT_START_SITE(edit_clock_source, kind32_extremes, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_CLOCK_SOURCE,
                       TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
 }
 
 static void test_start_plant_kind_extremes(void)
 {
-    EXPECT_START_SITE(edit_plant_kind, kind32_extremes, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_PLANT_KIND,
+    EXPECT_START_SITE(edit_plant_kind, kind32_extremes, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_PLANT_KIND,
                       TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
 }
 
 static void test_start_velocity_source_extremes(void)
 {
-    EXPECT_START_SITE(edit_velocity_source, kind32_extremes, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_VELOCITY_SOURCE,
+    EXPECT_START_SITE(edit_velocity_source, kind32_extremes, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_VELOCITY_SOURCE,
                       TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
 }
 
 static void test_start_chain_relative_degree_extremes(void)
 {
     const int64_t bad[] = {INT32_MIN, -1, 0, TVO_MAX_RELATIVE_DEGREE + 1, INT32_MAX};
-    EXPECT_START_SITE(edit_chain_degree, bad, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_GAINS, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
+    EXPECT_START_SITE(edit_chain_degree, bad, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_GAINS, TVO_LCM_SESSION_ACK_T_PART_NONE, -1);
 }
 
 static void test_start_relaxation_degree_extremes(void)
 {
     const int64_t bad[] = {INT32_MIN, -1, (int64_t)UINT8_MAX + 1, INT32_MAX};
-    EXPECT_START_SITE(edit_relaxation_degree, bad, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE,
+    EXPECT_START_SITE(edit_relaxation_degree, bad, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE,
                       TVO_LCM_SESSION_ACK_T_PART_BARRIER, -1);
 }
 
 static void test_start_count_extremes(void)
 {
     const int64_t distance[] = {INT32_MIN, -1, TVO_LCM_SESSION_T_MAX_DISTANCE_BOUNDS + 1, INT32_MAX};
-    EXPECT_START_SITE(edit_distance_count, distance, TVO_LCM_COMMAND_T_STATUS_ERR_CAPACITY, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE,
+    EXPECT_START_SITE(edit_distance_count, distance, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_CAPACITY, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE,
                       TVO_LCM_SESSION_ACK_T_PART_DISTANCE, -1);
     const int64_t halfspace[] = {INT32_MIN, -1, TVO_LCM_SESSION_T_MAX_HALFSPACES + 1, INT32_MAX};
-    EXPECT_START_SITE(edit_halfspace_count, halfspace, TVO_LCM_COMMAND_T_STATUS_ERR_CAPACITY, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE,
+    EXPECT_START_SITE(edit_halfspace_count, halfspace, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_CAPACITY, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE,
                       TVO_LCM_SESSION_ACK_T_PART_HALFSPACE, -1);
     const int64_t obstacles[] = {INT32_MIN, -1, TVO_LCM_SESSION_T_MAX_OBSTACLES + 1, INT32_MAX};
-    EXPECT_START_SITE(edit_obstacle_count, obstacles, TVO_LCM_COMMAND_T_STATUS_ERR_CAPACITY, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE,
+    EXPECT_START_SITE(edit_obstacle_count, obstacles, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_CAPACITY, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE,
                       TVO_LCM_SESSION_ACK_T_PART_OBSTACLES, -1);
     const int64_t offsets[] = {INT32_MIN, -1, TVO_LCM_SESSION_T_MAX_OFFSETS + 1, INT32_MAX};
-    EXPECT_START_SITE(edit_offset_count, offsets, TVO_LCM_COMMAND_T_STATUS_ERR_CAPACITY, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE,
+    EXPECT_START_SITE(edit_offset_count, offsets, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_CAPACITY, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE,
                       TVO_LCM_SESSION_ACK_T_PART_OFFSETS, -1);
 }
 
 static void test_start_robot_index_extremes(void)
 {
-    EXPECT_START_SITE(edit_distance_robot_a, robot_index_extremes, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE,
+    EXPECT_START_SITE(edit_distance_robot_a, robot_index_extremes, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE,
                       TVO_LCM_SESSION_ACK_T_PART_DISTANCE, 0);
-    EXPECT_START_SITE(edit_distance_robot_b, robot_index_extremes, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE,
+    EXPECT_START_SITE(edit_distance_robot_b, robot_index_extremes, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE,
                       TVO_LCM_SESSION_ACK_T_PART_DISTANCE, 0);
-    EXPECT_START_SITE(edit_halfspace_robot, robot_index_extremes, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE,
+    EXPECT_START_SITE(edit_halfspace_robot, robot_index_extremes, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE,
                       TVO_LCM_SESSION_ACK_T_PART_HALFSPACE, 0);
-    EXPECT_START_SITE(edit_offset_robot_a, robot_index_extremes, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE,
+    EXPECT_START_SITE(edit_offset_robot_a, robot_index_extremes, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE,
                       TVO_LCM_SESSION_ACK_T_PART_OFFSETS, 0);
-    EXPECT_START_SITE(edit_offset_robot_b, robot_index_extremes, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE,
+    EXPECT_START_SITE(edit_offset_robot_b, robot_index_extremes, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE,
                       TVO_LCM_SESSION_ACK_T_PART_OFFSETS, 0);
 }
 
 static void test_start_path_kind_extremes(void)
 {
     const int64_t bad[] = {INT32_MIN, -1, TVO_LCM_PATH_T_KIND_STREAMED + 1, INT32_MAX};
-    EXPECT_START_SITE(edit_target_kind, bad, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 1);
-    EXPECT_START_SITE(edit_offset_kind, bad, TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_OFFSETS, 0);
+    EXPECT_START_SITE(edit_target_kind, bad, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 1);
+    EXPECT_START_SITE(edit_offset_kind, bad, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_OFFSETS, 0);
 }
 
 static void test_start_session_id_extremes(void)
 {
     /* Any id >= 0 is an id like any other; a negative one is refused (-1 means "none" in acks). */
-    const int64_t ids[] = {0, INT64_MAX};
+    const int32_t ids[] = {0, INT32_MAX};
     for (size_t i = 0; i < sizeof(ids) / sizeof(ids[0]); ++i) {
         setUp();
         start_session(ids[i], TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
-        tvo_lcm_measurement_t m;
+        tvo_lcm_unicycle_sample_t m;
         plant_meas(&m, 1);
-        m.session_id = ids[i];
+        m.header.session_id = ids[i];
         (void)EXPECT_ACCEPTED(m, 0, plant_apply(1));
         tvo_lcm_session_t stop;
         stop_message(&stop, ids[i]);
@@ -2302,14 +2541,14 @@ static void test_start_session_id_extremes(void)
         EF_ASSERT_STATUS(TVO_OK, THE_ACK().status);
         TEST_ASSERT_NULL(tvo_node_session(&node));
     }
-    const int64_t negative[] = {INT64_MIN, -1};
+    const int32_t negative[] = {INT32_MIN, -1};
     for (size_t i = 0; i < sizeof(negative) / sizeof(negative[0]); ++i) {
         setUp();
         tvo_lcm_session_t bad;
         ef_start(&bad, negative[i], TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
         ef_record_clear(&rec);
         (void)send_session(&bad, 0);
-        EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, THE_ACK().status);
+        EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, THE_ACK().status);
         TEST_ASSERT_EQUAL_INT32(TVO_LCM_SESSION_ACK_T_PARAM_SESSION_ID, THE_ACK().bad_param);
         TEST_ASSERT_NULL(tvo_node_session(&node));
     }
@@ -2319,97 +2558,105 @@ static void test_start_session_id_extremes(void)
  * Integers from the wire at their extremes: measurements, targets, the clock
  * --------------------------------------------------------------------------------------------- */
 
-static void test_measurement_utime_extremes(void)
+static void test_sample_utime_extremes(void)
 {
     for (int anchored = 0; anchored < 2; ++anchored) {
         for (size_t i = 0; i < sizeof(time_extremes) / sizeof(time_extremes[0]); ++i) {
             setUp();
             plant_session_after(anchored);
-            tvo_lcm_measurement_t m;
+            tvo_lcm_unicycle_sample_t m;
             plant_meas(&m, anchored + 1);
-            m.utime = time_extremes[i];
-            (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
+            m.header.utime = time_extremes[i];
+            (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
             setUp();
             node_session_after(anchored);
             node_meas(&m, anchored + 1, anchored + 1);
-            m.utime = time_extremes[i];
-            (void)EXPECT_REFUSED(m, node_arrival(anchored + 1), TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
+            m.header.utime = time_extremes[i];
+            (void)EXPECT_REFUSED(m, node_arrival(anchored + 1), TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
         }
     }
 }
 
-static void test_measurement_sequence_extremes(void)
+static void test_sample_sequence_extremes(void)
 {
+    const int32_t negative[] = {INT32_MIN, -1};
     for (int anchored = 0; anchored < 2; ++anchored) {
-        for (size_t i = 0; i < sizeof(time_extremes) / sizeof(time_extremes[0]); ++i) {
+        for (size_t i = 0; i < sizeof(negative) / sizeof(negative[0]); ++i) {
             setUp();
             plant_session_after(anchored);
-            tvo_lcm_measurement_t m;
+            tvo_lcm_unicycle_sample_t m;
             plant_meas(&m, anchored + 1);
-            m.sequence = time_extremes[i];
-            (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
+            m.header.sequence = negative[i];
+            (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
             setUp();
             node_session_after(anchored);
-            node_meas(&m, anchored + 1, time_extremes[i]);
-            (void)EXPECT_REFUSED(m, node_arrival(anchored + 1), TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
+            node_meas(&m, anchored + 1, negative[i]);
+            (void)EXPECT_REFUSED(m, node_arrival(anchored + 1), TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_STAMP);
         }
     }
-    /* The ends of the range are sequences like any other. */
-    setUp();
-    start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
-    tvo_lcm_measurement_t m;
-    plant_meas(&m, 1);
-    m.sequence = EF_TWO_POW_60 - 1;
-    (void)EXPECT_ACCEPTED(m, 0, plant_apply(1));
-    plant_meas(&m, 2);
-    m.sequence = EF_TWO_POW_60;
-    (void)EXPECT_ACCEPTED(m, 0, plant_apply(2));
-}
-
-static void test_measurement_robot_count_extremes(void)
-{
-    const int64_t bad[] = {INT32_MIN, -1, 0, 2, TVO_LCM_MEASUREMENT_T_MAX_ROBOTS + 1, INT32_MAX};
-    for (size_t i = 0; i < sizeof(bad) / sizeof(bad[0]); ++i) {
+    /* The ends of the range are sequences like any other (no answer's telemetry is lost at them). */
+    const int32_t ends[] = {0, INT32_MAX - 1};
+    for (size_t i = 0; i < sizeof(ends) / sizeof(ends[0]); ++i) {
         setUp();
-        plant_session_after(1);
-        tvo_lcm_measurement_t m;
+        start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
+        tvo_lcm_unicycle_sample_t m;
+        plant_meas(&m, 1);
+        m.header.sequence = ends[i];
+        (void)EXPECT_ACCEPTED(m, 0, plant_apply(1));
         plant_meas(&m, 2);
-        m.robot_count = as_int32(bad[i]);
-        (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_T_STATUS_ERR_DIMENSION);
-        /* Without a session: the safe stop carries a robot count only if it is one. */
-        setUp();
-        ef_record_clear(&rec);
-        (void)send_measurement(&m, 0);
-        const tvo_lcm_command_t cmd = THE_SESSIONLESS_COMMAND();
-        TEST_ASSERT_TRUE(cmd.robot_count >= 0 && cmd.robot_count <= TVO_MAX_ROBOTS);
-        EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_NO_SESSION, cmd.status);
+        m.header.sequence = ends[i] + 1;
+        (void)EXPECT_ACCEPTED(m, 0, plant_apply(2));
     }
 }
 
-static void test_measurement_session_id_extremes(void)
+static void test_sample_robot_extremes(void)
 {
-    const int64_t ids[] = {INT64_MIN, -1, INT64_MAX};
+    const int8_t bad[] = {INT8_MIN, -1, 1, TVO_LCM_SESSION_T_MAX_ROBOTS, INT8_MAX};
+    for (size_t i = 0; i < sizeof(bad) / sizeof(bad[0]); ++i) {
+        for (int clock = TVO_LCM_SESSION_T_CLOCK_PLANT; clock <= TVO_LCM_SESSION_T_CLOCK_NODE; ++clock) {
+            setUp();
+            if (clock == TVO_LCM_SESSION_T_CLOCK_PLANT) {
+                plant_session_after(1);
+            } else {
+                node_session_after(1);
+            }
+            take_snapshot();
+            tvo_lcm_unicycle_sample_t m;
+            plant_meas(&m, 2);
+            m.header.robot = bad[i];
+            ef_record_clear(&rec);
+            TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_SAMPLE, send_sample(&m, node_arrival(2)));
+            EXPECT_NOTHING_PUBLISHED();
+            snapshot_counters.refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_DIMENSION]++;
+            TEST_ASSERT_EQUAL_INT32(1, node.counters.refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_DIMENSION]);
+            ASSERT_SESSION_AND_COUNTERS_KEPT();
+        }
+    }
+}
+
+static void test_sample_session_id_extremes(void)
+{
+    const int32_t ids[] = {INT32_MIN, -1, INT32_MAX};
     for (size_t i = 0; i < sizeof(ids) / sizeof(ids[0]); ++i) {
         setUp();
         plant_session_after(1);
         take_snapshot();
-        tvo_lcm_measurement_t m;
+        tvo_lcm_unicycle_sample_t m;
         plant_meas(&m, 2);
-        m.session_id = ids[i];
+        m.header.session_id = ids[i];
         ef_record_clear(&rec);
-        (void)send_measurement(&m, 0);
+        (void)send_sample(&m, 0);
         EXPECT_NOTHING_PUBLISHED();
         TEST_ASSERT_EQUAL_INT32(1, node.counters.other_session);
-        ASSERT_SESSION_KEPT();
-        /* Idle: the safe stop echoes whatever id and time it was given, clamped to the wire range. */
+        snapshot_counters.other_session++;
+        ASSERT_SESSION_AND_COUNTERS_KEPT();
+        /* Idle: dropped whatever its id, time and sequence. */
         setUp();
-        m.utime = (i == 0) ? INT64_MIN : INT64_MAX;
-        m.sequence = ids[i];
-        (void)send_measurement(&m, 0);
-        const tvo_lcm_command_t cmd = THE_SESSIONLESS_COMMAND();
-        TEST_ASSERT_EQUAL_INT64(ids[i], cmd.session_id);
-        TEST_ASSERT_EQUAL_INT64(ids[i], cmd.measurement_sequence);
-        TEST_ASSERT_EQUAL_INT64(i == 0 ? 0 : EF_TWO_POW_60, cmd.utime);
+        m.header.utime = (i == 0) ? INT64_MIN : INT64_MAX;
+        m.header.sequence = ids[i];
+        (void)send_sample(&m, 0);
+        EXPECT_NOTHING_PUBLISHED();
+        TEST_ASSERT_EQUAL_INT32(1, node.counters.idle);
     }
 }
 
@@ -2425,43 +2672,44 @@ static void test_target_utime_robot_count_and_session_extremes(void)
         target_at_epoch(&t);
         int32_t refused = 0;
         for (size_t i = 0; i < sizeof(time_extremes) / sizeof(time_extremes[0]); ++i) {
-            t.utime = time_extremes[i];
+            t.header.utime = time_extremes[i];
             ef_record_clear(&rec);
             TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_TARGET, send_target(&t, now));
             EXPECT_NOTHING_PUBLISHED();
-            EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP, node.last_target_status);
+            EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_STAMP, node.last_target_status);
             TEST_ASSERT_EQUAL_INT32(++refused, node.counters.targets_refused);
         }
-        t.utime = EF_EPOCH;
-        const int64_t counts[] = {INT32_MIN, -1, 0, 2, INT32_MAX};
-        for (size_t i = 0; i < sizeof(counts) / sizeof(counts[0]); ++i) {
-            t.robot_count = as_int32(counts[i]);
+        t.header.utime = EF_EPOCH;
+        const int8_t robots[] = {INT8_MIN, -1, 1, INT8_MAX};
+        for (size_t i = 0; i < sizeof(robots) / sizeof(robots[0]); ++i) {
+            t.header.robot = robots[i];
             (void)send_target(&t, now);
-            EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_DIMENSION, node.last_target_status);
+            EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_DIMENSION, node.last_target_status);
             TEST_ASSERT_EQUAL_INT32(++refused, node.counters.targets_refused);
         }
-        t.robot_count = 1;
-        const int64_t ids[] = {INT64_MIN, -1, INT64_MAX};
+        t.header.robot = 0;
+        const int32_t ids[] = {INT32_MIN, -1, INT32_MAX};
         for (size_t i = 0; i < sizeof(ids) / sizeof(ids[0]); ++i) {
-            t.session_id = ids[i];
+            t.header.session_id = ids[i];
             (void)send_target(&t, now);
             TEST_ASSERT_EQUAL_INT32((int32_t)i + 1, node.counters.other_session);
         }
         ASSERT_SESSION_KEPT(); /* no target stream was touched */
         /* The sequence is not read: its extremes are harmless. */
-        t.session_id = EF_SESSION_ID;
-        t.sequence = INT64_MIN;
+        t.header.session_id = EF_SESSION_ID;
+        t.header.sequence = INT32_MIN;
         (void)send_target(&t, now);
         EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
         TEST_ASSERT_EQUAL_UINT8(1u, tvo_node_session(&node)->problem.target[0].u.streamed.has_sample);
     }
-    /* Without a session: ignored. */
+    /* Without a session: dropped, counted. */
     setUp();
     tvo_lcm_target_t t;
     target_at_epoch(&t);
-    t.utime = INT64_MIN;
+    t.header.utime = INT64_MIN;
     TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_TARGET, send_target(&t, INT64_MAX));
     EXPECT_NOTHING_PUBLISHED();
+    TEST_ASSERT_EQUAL_INT32(1, node.counters.idle);
 }
 
 static void test_node_clock_extremes(void)
@@ -2475,14 +2723,14 @@ static void test_node_clock_extremes(void)
         TEST_ASSERT_EQUAL_INT64(clamped - EF_UTIME, tvo_node_session(&node)->schedule.anchor.offset_us);
         /* Measurements, polls and a STOP at every extreme: answers stay within the wire range. */
         for (size_t k = 0; k < sizeof(nows) / sizeof(nows[0]); ++k) {
-            tvo_lcm_measurement_t m;
-            ef_measurement(&m, EF_SESSION_ID, EF_EPOCH + (int64_t)k * H, (int64_t)k, 1);
+            tvo_lcm_unicycle_sample_t m;
+            ef_sample(&m, EF_SESSION_ID, EF_EPOCH + (int64_t)k * H, (int32_t)k, 0);
             ef_record_clear(&rec);
-            (void)send_measurement(&m, nows[k]);
-            const tvo_lcm_command_t cmd = THE_COMMAND();
-            TEST_ASSERT_TRUE(cmd.utime >= 0 && cmd.utime <= EF_TWO_POW_60);
+            (void)send_sample(&m, nows[k]);
+            const tvo_lcm_unicycle_command_t cmd = THE_COMMAND();
+            TEST_ASSERT_TRUE(cmd.header.utime >= 0 && cmd.header.utime <= EF_TWO_POW_60);
             const int64_t deadline = tvo_node_poll(&node, nows[k]);
-            TEST_ASSERT_TRUE(deadline == TVO_NODE_NO_DEADLINE || (deadline >= 0 && deadline <= 3 * EF_TWO_POW_60));
+            TEST_ASSERT_TRUE(deadline >= 0 && deadline <= 3 * EF_TWO_POW_60); /* the announcement's at the latest */
         }
         tvo_lcm_session_t stop;
         stop_message(&stop, EF_SESSION_ID);
@@ -2500,10 +2748,10 @@ static void test_node_clock_extremes(void)
             start.epoch_utime = utimes[u];
             (void)send_session(&start, nows[i]);
             EF_ASSERT_STATUS(TVO_OK, THE_ACK().status);
-            tvo_lcm_measurement_t m;
-            ef_measurement(&m, EF_SESSION_ID, utimes[u], 1, 1);
+            tvo_lcm_unicycle_sample_t m;
+            ef_sample(&m, EF_SESSION_ID, utimes[u], 1, 0);
             ef_record_clear(&rec);
-            (void)send_measurement(&m, nows[i]);
+            (void)send_sample(&m, nows[i]);
             (void)THE_COMMAND();
             for (size_t k = 0; k < sizeof(nows) / sizeof(nows[0]); ++k) {
                 ef_record_clear(&rec);
@@ -2513,7 +2761,7 @@ static void test_node_clock_extremes(void)
         }
     }
     /* NULL node: nothing, no crash. */
-    TEST_ASSERT_EQUAL_INT(0, tvo_node_handle(NULL, TVO_NODE_CH_MEASUREMENT, wire, 10u, 0));
+    TEST_ASSERT_EQUAL_INT(0, tvo_node_handle(NULL, TVO_NODE_CH_SAMPLE, wire, 10u, 0));
     TEST_ASSERT_EQUAL_INT64(TVO_NODE_NO_DEADLINE, tvo_node_poll(NULL, 0));
     TEST_ASSERT_NULL(tvo_node_session(NULL));
 }
@@ -2531,21 +2779,301 @@ static void test_commands_stay_within_the_wire_time_range(void)
         start.epoch_utime = EF_TWO_POW_60;
         (void)send_session(&start, EF_TWO_POW_60);
         EF_ASSERT_STATUS(TVO_OK, THE_ACK().status);
-        tvo_lcm_measurement_t m;
-        ef_measurement(&m, EF_SESSION_ID, EF_TWO_POW_60, 1, 1); /* the latest stamp the wire allows */
+        tvo_lcm_unicycle_sample_t m;
+        ef_sample(&m, EF_SESSION_ID, EF_TWO_POW_60, 1, 0); /* the latest stamp the wire allows */
         ef_record_clear(&rec);
-        (void)send_measurement(&m, EF_TWO_POW_60);
-        const tvo_lcm_command_t cmd = THE_COMMAND();
-        if (cmd.utime < 0 || cmd.utime > EF_TWO_POW_60) {
+        (void)send_sample(&m, EF_TWO_POW_60);
+        const tvo_lcm_unicycle_command_t cmd = THE_COMMAND();
+        if (cmd.header.utime < 0 || cmd.header.utime > EF_TWO_POW_60) {
             const size_t used = strlen(text);
             (void)snprintf(text + used, sizeof(text) - used, "%s: command utime 2^60 + %lld (status %d); ",
                            clock == TVO_LCM_SESSION_T_CLOCK_PLANT ? "CLOCK_PLANT" : "CLOCK_NODE",
-                           (long long)(cmd.utime - EF_TWO_POW_60), (int)cmd.status);
+                           (long long)(cmd.header.utime - EF_TWO_POW_60), (int)cmd.header.status);
         }
     }
     if (text[0] != '\0') {
         TEST_FAIL_MESSAGE(text); /* outside the wire range */
     }
+}
+
+/* ------------------------------------------------------------------------------------------------
+ * The node's identity: init, the boot check, announcements
+ * --------------------------------------------------------------------------------------------- */
+
+static void test_init_refuses_bad_arguments_and_leaves_an_unusable_node(void)
+{
+    TEST_ASSERT_EQUAL_INT(-1, tvo_node_init(NULL, -1, EF_BOOT, record, NULL));
+    const int8_t robots[] = {INT8_MIN, -2, (int8_t)TVO_NODE_MAX_ROBOTS};
+    for (size_t i = 0; i < sizeof(robots) / sizeof(robots[0]); ++i) {
+        TEST_ASSERT_EQUAL_INT(-1, tvo_node_init(&node, robots[i], EF_BOOT, record, NULL));
+    }
+    const int64_t boots[] = {INT64_MIN, -1, 0};
+    for (size_t i = 0; i < sizeof(boots) / sizeof(boots[0]); ++i) {
+        TEST_ASSERT_EQUAL_INT(-1, tvo_node_init(&node, -1, boots[i], record, NULL));
+    }
+    TEST_ASSERT_EQUAL_INT(-1, tvo_node_init(&node, -1, EF_BOOT, NULL, NULL));
+    /* An unusable node takes nothing, publishes nothing, counts nothing. */
+    ef_start(&start, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+    ef_record_clear(&rec);
+    TEST_ASSERT_EQUAL_INT(0, send_session(&start, 0));
+    TEST_ASSERT_EQUAL_INT64(TVO_NODE_NO_DEADLINE, tvo_node_poll(&node, 0));
+    tvo_node_count_drop(&node, TVO_NODE_DROP_REPLAYED);
+    EXPECT_NOTHING_PUBLISHED();
+    TEST_ASSERT_EQUAL_UINT32(0u, announcements.count);
+    TEST_ASSERT_EQUAL_INT32(0, node.counters.replayed);
+    TEST_ASSERT_NULL(tvo_node_session(&node));
+    /* The ends of the good ranges. */
+    TEST_ASSERT_EQUAL_INT(0, tvo_node_init(&node, (int8_t)(TVO_NODE_MAX_ROBOTS - 1), INT64_MAX, record, NULL));
+    TEST_ASSERT_EQUAL_INT(0, tvo_node_init(&node, 0, 1, record, NULL));
+    TEST_ASSERT_NULL(tvo_node_counters(NULL));
+    TEST_ASSERT_EQUAL_INT(0, tvo_node_stop_requested(NULL));
+}
+
+static void test_a_session_message_naming_another_boot_is_dropped_unanswered(void)
+{
+    /* Idle: a START whose robot 1 names an earlier boot of this node (a recording from before its
+     * restart) runs nothing and is not answered. */
+    ef_start(&start, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 2);
+    start.node_boot_id[1] = EF_OTHER_BOOT;
+    ef_record_clear(&rec);
+    TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_SESSION, send_session(&start, 0));
+    EXPECT_NOTHING_PUBLISHED();
+    TEST_ASSERT_EQUAL_UINT32(0u, announcements.count);
+    TEST_ASSERT_NULL(tvo_node_session(&node));
+    TEST_ASSERT_EQUAL_INT32(1, node.counters.wrong_boot);
+    TEST_ASSERT_EQUAL_INT(TVO_NODE_EVENT_WRONG_BOOT, node.last_event);
+    /* A boot past robot_count is not read: a one-robot START naming this boot for robot 0 runs. */
+    ef_start(&start, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+    start.node_boot_id[1] = EF_OTHER_BOOT;
+    start.node_boot_id[TVO_LCM_SESSION_T_MAX_ROBOTS - 1] = 0;
+    ef_record_clear(&rec);
+    (void)send_session(&start, 0);
+    EF_ASSERT_STATUS(TVO_OK, THE_ACK().status);
+    /* Running: a START of a new id, a repeat, a STOP and another action naming another boot change
+     * nothing and are not answered; the session answers on. */
+    setUp();
+    plant_session_after(2);
+    take_snapshot();
+    tvo_lcm_session_t msg;
+    for (int which = 0; which < 4; ++which) {
+        if (which < 2) {
+            ef_start(&msg, which == 0 ? OTHER_ID : EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+        } else {
+            stop_message(&msg, EF_SESSION_ID);
+            msg.action = (which == 2) ? TVO_LCM_SESSION_T_ACTION_STOP : 7;
+        }
+        msg.node_boot_id[0] = EF_OTHER_BOOT;
+        ef_record_clear(&rec);
+        TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_SESSION, send_session(&msg, 0));
+        EXPECT_NOTHING_PUBLISHED();
+        snapshot_counters.wrong_boot++;
+        ASSERT_SESSION_AND_COUNTERS_KEPT();
+        TEST_ASSERT_EQUAL_INT(0, tvo_node_stop_requested(&node));
+    }
+    tvo_lcm_unicycle_sample_t m;
+    plant_meas(&m, 3);
+    (void)EXPECT_ACCEPTED(m, 0, plant_apply(3));
+}
+
+static void test_a_node_of_one_robot_takes_a_start_that_names_its_boot_for_its_robot(void)
+{
+    TEST_ASSERT_EQUAL_INT(0, tvo_node_init(&node, 1, EF_BOOT, record, NULL));
+    /* Robot 1 names this node; robot 0 names another node (any boot). */
+    ef_start(&start, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 2);
+    start.node_boot_id[0] = 424242;
+    ef_record_clear(&rec);
+    (void)send_session(&start, 0);
+    const ef_message_t *m = ef_record_nth(&rec, TVO_NODE_CH_SESSION_ACK, 0);
+    TEST_ASSERT_NOT_NULL(m);
+    tvo_lcm_session_ack_t ack;
+    TEST_ASSERT_EQUAL_INT((int)m->length, tvo_lcm_session_ack_t_decode(m->data, 0, (int)m->length, &ack));
+    EF_ASSERT_STATUS(TVO_OK, ack.status);
+    TEST_ASSERT_EQUAL_INT64(EF_BOOT, ack.boot_id);
+    TEST_ASSERT_EQUAL_INT(1, ack.own_robot);
+    TEST_ASSERT_NOT_NULL(tvo_node_session(&node));
+    /* Robot 1 naming another boot, or a session without a robot 1: dropped. */
+    ef_start(&start, OTHER_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 2);
+    start.node_boot_id[1] = EF_OTHER_BOOT;
+    ef_record_clear(&rec);
+    (void)send_session(&start, 0);
+    EXPECT_NOTHING_PUBLISHED();
+    ef_start(&start, OTHER_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+    (void)send_session(&start, 0);
+    EXPECT_NOTHING_PUBLISHED();
+    TEST_ASSERT_EQUAL_INT32(2, node.counters.wrong_boot);
+    TEST_ASSERT_EQUAL_INT64(EF_SESSION_ID, tvo_node_session(&node)->session_id);
+}
+
+static void expect_announcement(int64_t now, int32_t state, int32_t session_id, int line)
+{
+    const tvo_lcm_node_status_t status = latest_announcement(line);
+    UNITY_TEST_ASSERT_EQUAL_INT64(now, status.utime, line, "the node's clock");
+    UNITY_TEST_ASSERT_EQUAL_INT32(TVO_LCM_NODE_STATUS_T_PROTOCOL_VERSION, status.protocol_version, line, "protocol");
+    UNITY_TEST_ASSERT_EQUAL_INT64(EF_BOOT, status.boot_id, line, "boot");
+    UNITY_TEST_ASSERT_EQUAL_INT(-1, status.own_robot, line, "every robot");
+    UNITY_TEST_ASSERT_EQUAL_INT(TVO_NODE_MAX_ROBOTS, status.max_robots, line, "the build's robots");
+    UNITY_TEST_ASSERT_EQUAL_INT(state, status.state, line, "state");
+    UNITY_TEST_ASSERT_EQUAL_INT32(session_id, status.session_id, line, "session");
+    UNITY_TEST_ASSERT_EQUAL_MEMORY(&node.counters, &status.counters, sizeof(status.counters), line, "counters");
+}
+#define EXPECT_ANNOUNCEMENT(now, state, id) expect_announcement((now), (state), (id), __LINE__)
+
+static void expect_announcements(uint32_t count, int line)
+{
+    UNITY_TEST_ASSERT_EQUAL_UINT32(count, announcements.count, line, "announcements");
+    UNITY_TEST_ASSERT_EQUAL_UINT32(0u, announcements.overflow, line, "announcement recorder overflow");
+}
+#define EXPECT_ANNOUNCEMENTS(count) expect_announcements((count), __LINE__)
+
+static void test_the_node_announces_itself_idle_running_and_at_each_change(void)
+{
+    const int64_t idle_us = TVO_LCM_NODE_STATUS_T_IDLE_PERIOD_US, running_us = TVO_LCM_NODE_STATUS_T_RUNNING_PERIOD_US;
+    const int64_t t0 = 1000;
+    /* The first poll announces, idle; then every 250 ms. */
+    TEST_ASSERT_EQUAL_INT64(t0 + idle_us, tvo_node_poll(&node, t0));
+    EXPECT_ANNOUNCEMENTS(1u);
+    EXPECT_ANNOUNCEMENT(t0, TVO_LCM_NODE_STATUS_T_STATE_IDLE, -1);
+    TEST_ASSERT_EQUAL_INT64(t0 + idle_us, tvo_node_poll(&node, t0 + idle_us - 1));
+    EXPECT_ANNOUNCEMENTS(1u);
+    TEST_ASSERT_EQUAL_INT64(t0 + 2 * idle_us, tvo_node_poll(&node, t0 + idle_us));
+    EXPECT_ANNOUNCEMENTS(2u);
+    /* A START taken: at once, running; then every second. */
+    const int64_t t1 = t0 + idle_us + 5000;
+    start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, t1);
+    EXPECT_ANNOUNCEMENTS(3u);
+    EXPECT_ANNOUNCEMENT(t1, TVO_LCM_NODE_STATUS_T_STATE_RUNNING, EF_SESSION_ID);
+    TEST_ASSERT_EQUAL_INT64(t1 + running_us, tvo_node_poll(&node, t1 + running_us - 1));
+    EXPECT_ANNOUNCEMENTS(3u);
+    /* A repeat, a conflict, a refused START, a STOP of another id: no change, no announcement. */
+    tvo_lcm_session_t msg;
+    ef_start(&msg, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+    (void)send_session(&msg, t1 + 1);
+    msg.gain_kp = 41.0;
+    (void)send_session(&msg, t1 + 2);
+    ef_start(&msg, OTHER_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+    msg.period_us = 0;
+    (void)send_session(&msg, t1 + 3);
+    stop_message(&msg, OTHER_ID);
+    (void)send_session(&msg, t1 + 4);
+    EXPECT_ANNOUNCEMENTS(3u);
+    TEST_ASSERT_EQUAL_INT64(t1 + 2 * running_us, tvo_node_poll(&node, t1 + running_us));
+    EXPECT_ANNOUNCEMENTS(4u);
+    EXPECT_ANNOUNCEMENT(t1 + running_us, TVO_LCM_NODE_STATUS_T_STATE_RUNNING, EF_SESSION_ID);
+    /* A STOP that ends the session: at once, idle, and 250 ms after. */
+    const int64_t t2 = t1 + running_us + 7;
+    stop_message(&msg, EF_SESSION_ID);
+    (void)send_session(&msg, t2);
+    EXPECT_ANNOUNCEMENTS(5u);
+    EXPECT_ANNOUNCEMENT(t2, TVO_LCM_NODE_STATUS_T_STATE_IDLE, -1);
+    TEST_ASSERT_EQUAL_INT64(t2 + idle_us, tvo_node_poll(&node, t2 + 1));
+    EXPECT_ANNOUNCEMENTS(5u);
+    /* A START that replaces a running one is a START taken too. */
+    start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, t2 + 10);
+    start_session(OTHER_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, t2 + 20);
+    EXPECT_ANNOUNCEMENTS(7u);
+    EXPECT_ANNOUNCEMENT(t2 + 20, TVO_LCM_NODE_STATUS_T_STATE_RUNNING, OTHER_ID);
+    TEST_ASSERT_EQUAL_INT32(3, node.counters.sessions);
+}
+
+/* ------------------------------------------------------------------------------------------------
+ * Telemetry at its rate; one robot's period is the core's step
+ * --------------------------------------------------------------------------------------------- */
+
+/* The answer to a sample whose sequence is `sequence` carries telemetry iff it is a multiple of every. */
+static void test_telemetry_follows_the_answers_to_multiples_of_telemetry_every(void)
+{
+    const int32_t everies[] = {0, 3};
+    const int32_t expected_every[] = {(int32_t)((TVO_SESSION_TELEMETRY_DEFAULT_US + H - 1) / H), 3};
+    for (size_t e = 0; e < sizeof(everies) / sizeof(everies[0]); ++e) {
+        for (int clock = TVO_LCM_SESSION_T_CLOCK_PLANT; clock <= TVO_LCM_SESSION_T_CLOCK_NODE; ++clock) {
+            setUp();
+            ef_start(&start, EF_SESSION_ID, clock, 1);
+            start.telemetry_every = everies[e];
+            (void)send_session(&start, NODE_T0);
+            const int node_clock = clock == TVO_LCM_SESSION_T_CLOCK_NODE;
+            const int32_t every = expected_every[e];
+            TEST_ASSERT_EQUAL_UINT32((uint32_t)every, tvo_node_session(&node)->schedule.timing.telemetry_every);
+            uint32_t telemetry = 0u;
+            for (int64_t j = 1; j <= 25; ++j) {
+                tvo_lcm_unicycle_sample_t m;
+                if (node_clock) {
+                    node_meas(&m, j, (int32_t)(SEQ0 + j));
+                } else {
+                    plant_meas(&m, j);
+                }
+                ef_record_clear(&rec);
+                (void)send_sample(&m, node_clock ? node_arrival(j) : 0);
+                const int carries = (m.header.sequence % every) == 0;
+                TEST_ASSERT_EQUAL_UINT32(1u, ef_record_count(&rec, TVO_NODE_CH_COMMAND));
+                TEST_ASSERT_EQUAL_UINT32(carries ? 1u : 0u, ef_record_count(&rec, TVO_NODE_CH_TELEMETRY));
+                telemetry += carries ? 1u : 0u;
+                if (carries) {
+                    (void)THE_COMMAND(); /* the telemetry carries the command's header */
+                    /* A refusal of the same sequence (a duplicate) carries it too. */
+                    ef_record_clear(&rec);
+                    (void)send_sample(&m, node_clock ? node_arrival(j) + 1 : 0);
+                    TEST_ASSERT_TRUE(THE_COMMAND().header.status != TVO_LCM_COMMAND_HEADER_T_STATUS_OK);
+                }
+            }
+            TEST_ASSERT_TRUE(telemetry >= 2u);
+            if (node_clock) {
+                /* The node's own stops carry none. */
+                ef_record_clear(&rec);
+                (void)tvo_node_poll(&node, node_apply(25 + W));
+                TEST_ASSERT_EQUAL_UINT32(1u, ef_record_count(&rec, TVO_NODE_CH_COMMAND));
+                TEST_ASSERT_EQUAL_UINT32(0u, ef_record_count(&rec, TVO_NODE_CH_TELEMETRY));
+            }
+        }
+    }
+}
+
+/* A one-robot session steps on each sample, exactly as the core's own step would: a reference
+ * controller stepped directly with the same measurement gives the same command, bit for bit, over
+ * a run with a lost period and a refused duplicate. */
+static void test_one_robot_periods_are_the_cores_own_steps(void)
+{
+    ef_start(&start, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+    start_session(EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
+    static tvo_problem_t problem;
+    static tvo_controller_t reference;
+    tvo_problem_desc_t desc;
+    tvo_controller_config_t cfg;
+    tvo_session_reject_t why;
+    TEST_ASSERT_EQUAL_INT(TVO_OK, tvo_session_decode_problem(&start, &desc, &why));
+    uint8_t part = 0;
+    TEST_ASSERT_EQUAL_INT(TVO_OK, tvo_problem_init(&problem, &desc, 2u, &part));
+    TEST_ASSERT_EQUAL_INT(TVO_OK, tvo_session_decode_unicycle(&start, &cfg, &why));
+    tvo_param_t bad = TVO_PARAM_NONE;
+    TEST_ASSERT_EQUAL_INT(TVO_OK, tvo_controller_init(&reference, &cfg, &problem.objective, (uint32_t)EF_EPOCH, &bad));
+    for (int64_t j = 1; j <= 30; ++j) {
+        if (j == 4) {
+            continue; /* lost */
+        }
+        tvo_lcm_unicycle_sample_t m;
+        plant_meas(&m, j);
+        m.position_m[0] = 0.01 * (double)j;
+        m.position_m[1] = 0.3 - 0.002 * (double)(j * j);
+        m.heading_rad = 0.05f * (float)j;
+        const tvo_lcm_unicycle_command_t got = EXPECT_ACCEPTED(m, 0, plant_apply(j));
+        tvo_measurement_t meas;
+        memset(&meas, 0, sizeof(meas));
+        meas.stamp_tick = (uint32_t)m.header.utime;
+        meas.position_m[0][0] = (tvo_real_t)m.position_m[0];
+        meas.position_m[0][1] = (tvo_real_t)m.position_m[1];
+        meas.heading_rad[0] = (tvo_real_t)m.heading_rad;
+        meas.heading_valid = 1u;
+        tvo_command_t want;
+        TEST_ASSERT_EQUAL_INT(TVO_OK, tvo_controller_step(&reference, &meas, (uint32_t)plant_apply(j), &want));
+        TEST_ASSERT_EQUAL_INT(TVO_OUTCOME_APPLIED, want.outcome);
+        const float speed = (float)want.speed_mps[0], turn = (float)want.turn_rate_radps[0];
+        TEST_ASSERT_EQUAL_MEMORY(&speed, &got.speed_mps, sizeof(speed));
+        TEST_ASSERT_EQUAL_MEMORY(&turn, &got.turn_rate_radps, sizeof(turn));
+        TEST_ASSERT_EQUAL_INT(tvo_step_wire_flags(want.flags, TVO_OUTCOME_APPLIED), got.header.flags);
+        if (j == 10) {
+            (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_OUT_OF_ORDER); /* the core never sees it */
+        }
+    }
+    TEST_ASSERT_TRUE(tvo_node_session(&node)->controller.u.unicycle.internal.held.speed_mps[0] != TVO_R(0.0));
 }
 
 static void test_encode_buffer_holds_every_message(void)
@@ -2565,7 +3093,7 @@ int main(void)
     RUN_TEST(test_stop_of_the_running_session_ends_it_and_a_start_begins_anew);
     RUN_TEST(test_stop_of_another_id_is_refused_and_the_session_runs_on);
     RUN_TEST(test_unknown_actions_are_refused_and_change_nothing);
-    RUN_TEST(test_measurement_without_a_session_is_answered_with_a_safe_stop);
+    RUN_TEST(test_samples_and_targets_while_idle_are_dropped_and_counted);
     RUN_TEST(test_messages_of_another_session_are_ignored_and_counted);
     RUN_TEST(test_each_readme_session_row_is_what_the_table_does);
     RUN_TEST(test_idle_cells_the_classification_cannot_reach_are_marked_so);
@@ -2578,7 +3106,7 @@ int main(void)
     RUN_TEST(test_plant_one_sample_far_ahead_costs_one_refusal);
     RUN_TEST(test_target_stamped_at_epoch_minus_tau_is_carried_to_the_epoch);
     RUN_TEST(test_plant_watchdog_refusals_in_a_row_give_a_safe_stop_until_one_is_accepted);
-    RUN_TEST(test_plant_wrong_robot_count_and_non_finite_values_are_refused);
+    RUN_TEST(test_plant_wrong_robot_plant_and_non_finite_values_are_refused);
     RUN_TEST(test_node_clock_offset_comes_from_the_start_and_commands_are_in_plant_time);
     RUN_TEST(test_node_clock_sequence_is_only_echoed);
     RUN_TEST(test_node_clock_stamp_more_than_half_a_period_ahead_is_implausible);
@@ -2588,8 +3116,8 @@ int main(void)
     RUN_TEST(test_node_timer_is_not_moved_by_refused_measurements);
     RUN_TEST(test_plant_clock_sessions_have_no_timer);
     RUN_TEST(test_stop_disarms_the_timer);
-    RUN_TEST(test_telemetry_counts_every_kind_of_event);
-    RUN_TEST(test_telemetry_counts_speed_mismatch_steps);
+    RUN_TEST(test_counters_count_every_kind_of_event_and_the_announcement_carries_them);
+    RUN_TEST(test_counters_count_speed_mismatch_steps);
     RUN_TEST(test_plant_implausible_measurements_are_refused_and_keep_nothing);
     RUN_TEST(test_slack_rule_is_undone_when_the_first_step_fails);
     RUN_TEST(test_plant_first_measurement_beyond_the_tick_span_is_implausible);
@@ -2613,6 +3141,8 @@ int main(void)
     RUN_TEST(test_start_delay_extremes);
     RUN_TEST(test_start_watchdog_extremes);
     RUN_TEST(test_start_robot_count_extremes);
+    RUN_TEST(test_start_protocol_version_extremes);
+    RUN_TEST(test_start_telemetry_every_extremes);
     RUN_TEST(test_start_clock_source_extremes);
     RUN_TEST(test_start_plant_kind_extremes);
     RUN_TEST(test_start_velocity_source_extremes);
@@ -2622,13 +3152,19 @@ int main(void)
     RUN_TEST(test_start_robot_index_extremes);
     RUN_TEST(test_start_path_kind_extremes);
     RUN_TEST(test_start_session_id_extremes);
-    RUN_TEST(test_measurement_utime_extremes);
-    RUN_TEST(test_measurement_sequence_extremes);
-    RUN_TEST(test_measurement_robot_count_extremes);
-    RUN_TEST(test_measurement_session_id_extremes);
+    RUN_TEST(test_sample_utime_extremes);
+    RUN_TEST(test_sample_sequence_extremes);
+    RUN_TEST(test_sample_robot_extremes);
+    RUN_TEST(test_sample_session_id_extremes);
     RUN_TEST(test_target_utime_robot_count_and_session_extremes);
     RUN_TEST(test_node_clock_extremes);
     RUN_TEST(test_commands_stay_within_the_wire_time_range);
     RUN_TEST(test_encode_buffer_holds_every_message);
+    RUN_TEST(test_init_refuses_bad_arguments_and_leaves_an_unusable_node);
+    RUN_TEST(test_a_session_message_naming_another_boot_is_dropped_unanswered);
+    RUN_TEST(test_a_node_of_one_robot_takes_a_start_that_names_its_boot_for_its_robot);
+    RUN_TEST(test_the_node_announces_itself_idle_running_and_at_each_change);
+    RUN_TEST(test_telemetry_follows_the_answers_to_multiples_of_telemetry_every);
+    RUN_TEST(test_one_robot_periods_are_the_cores_own_steps);
     return UNITY_END();
 }

@@ -109,6 +109,67 @@ static void test_valid_start_decodes_its_timing(void)
     TEST_ASSERT_EQUAL_UINT32(EF_WATCHDOG, timing.watchdog_periods);
     TEST_ASSERT_EQUAL_UINT8(3u, timing.robot_count);
     TEST_ASSERT_EQUAL_INT32(TVO_LCM_SESSION_T_PLANT_UNICYCLE, timing.plant_kind);
+    TEST_ASSERT_EQUAL_UINT32(1u, timing.telemetry_every); /* the fixture asks for every answer's */
+}
+
+static void test_protocol_version_other_than_this_wires_is_refused_first(void)
+{
+    const int32_t bad[] = {INT32_MIN, -1, 0, 1, 2, TVO_LCM_NODE_STATUS_T_PROTOCOL_VERSION + 1, INT32_MAX};
+    for (size_t i = 0; i < sizeof(bad) / sizeof(bad[0]); ++i) {
+        ef_start(&msg, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+        msg.protocol_version = bad[i];
+        EXPECT_TIMING_REFUSED(TVO_SESSION_PARAM_PROTOCOL_VERSION);
+        msg.period_us = 0; /* its other fields may mean something else: the version is named first */
+        EXPECT_TIMING_REFUSED(TVO_SESSION_PARAM_PROTOCOL_VERSION);
+    }
+}
+
+static void test_telemetry_every_zero_is_the_default_rate_and_its_range_is_checked(void)
+{
+    /* 0: the fewest periods spanning 100 ms, for every period from 1 us to the longest. */
+    const int64_t periods[] = {1, 3, 9999, 10000, 10001, 33333, 100000, 100001, (int64_t)TVO_MAX_TICK_SPAN};
+    for (size_t i = 0; i < sizeof(periods) / sizeof(periods[0]); ++i) {
+        ef_start(&msg, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+        msg.period_us = periods[i];
+        msg.delay_us = 0;
+        msg.watchdog_periods = 1;
+        msg.telemetry_every = 0;
+        tvo_session_timing_t timing;
+        tvo_session_reject_t why;
+        EF_ASSERT_STATUS(TVO_OK, decode_timing(&timing, &why));
+        const uint32_t every = timing.telemetry_every;
+        TEST_ASSERT_TRUE(every >= 1u);
+        TEST_ASSERT_TRUE((int64_t)every * periods[i] >= TVO_SESSION_TELEMETRY_DEFAULT_US || every == 1u);
+        TEST_ASSERT_TRUE(every == 1u || (int64_t)(every - 1u) * periods[i] < TVO_SESSION_TELEMETRY_DEFAULT_US);
+    }
+    ef_start(&msg, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+    msg.telemetry_every = 0;
+    tvo_session_timing_t timing;
+    tvo_session_reject_t why;
+    EF_ASSERT_STATUS(TVO_OK, decode_timing(&timing, &why));
+    TEST_ASSERT_EQUAL_UINT32(10u, timing.telemetry_every); /* h = 10 ms: 10 Hz */
+    msg.telemetry_every = TVO_SESSION_TELEMETRY_EVERY_MAX;
+    EF_ASSERT_STATUS(TVO_OK, decode_timing(&timing, &why));
+    TEST_ASSERT_EQUAL_UINT32((uint32_t)TVO_SESSION_TELEMETRY_EVERY_MAX, timing.telemetry_every);
+    const int32_t bad[] = {INT32_MIN, -1, TVO_SESSION_TELEMETRY_EVERY_MAX + 1, INT32_MAX};
+    for (size_t i = 0; i < sizeof(bad) / sizeof(bad[0]); ++i) {
+        msg.telemetry_every = bad[i];
+        EXPECT_TIMING_REFUSED(TVO_SESSION_PARAM_TELEMETRY_EVERY);
+    }
+}
+
+static void test_a_chain_session_has_one_robot(void)
+{
+    for (int32_t robots = 2; robots <= TVO_MAX_ROBOTS; ++robots) {
+        ef_start(&msg, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, robots);
+        msg.plant_kind = TVO_LCM_SESSION_T_PLANT_CHAIN;
+        EXPECT_TIMING_REFUSED(TVO_SESSION_PARAM_ROBOT_COUNT);
+    }
+    ef_start(&msg, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+    msg.plant_kind = TVO_LCM_SESSION_T_PLANT_CHAIN;
+    tvo_session_timing_t timing;
+    tvo_session_reject_t why;
+    EF_ASSERT_STATUS(TVO_OK, decode_timing(&timing, &why));
 }
 
 static void test_utime_and_epoch_outside_the_wire_range_name_the_epoch(void)
@@ -260,7 +321,7 @@ static void test_null_arguments_are_refused(void)
     EF_ASSERT_STATUS(TVO_ERR_NULL, tvo_session_decode_problem(&msg, NULL, &why));
     EF_ASSERT_STATUS(TVO_ERR_NULL, tvo_session_decode_path(NULL, &target));
     EF_ASSERT_STATUS(TVO_ERR_NULL, tvo_session_decode_path(&msg.robot[0].target, NULL));
-    tvo_session_ack(&msg, &why, 1, NULL); /* must not crash */
+    tvo_session_ack(&msg, &why, 1, EF_BOOT, -1, NULL); /* must not crash */
 }
 
 /* ------------------------------------------------------------------------------------------------
@@ -702,39 +763,41 @@ static void test_problem_parts_map_to_the_acks_names(void)
 
 static void test_ack_carries_the_message_the_reason_and_the_running_session(void)
 {
-    ef_start(&msg, INT64_MIN, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+    ef_start(&msg, INT32_MIN, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
     msg.utime = 123456789;
     const tvo_session_reject_t why = {TVO_NODE_OK, TVO_ERR_CAPACITY, TVO_SESSION_PARAM_OBJECTIVE,
                                       TVO_LCM_SESSION_ACK_T_PART_HALFSPACE, 3};
     tvo_lcm_session_ack_t ack;
     memset(&ack, 0x5A, sizeof(ack));
-    tvo_session_ack(&msg, &why, INT64_MAX, &ack);
+    tvo_session_ack(&msg, &why, INT32_MAX, INT64_MAX, 7, &ack);
     TEST_ASSERT_EQUAL_INT64(123456789, ack.utime);
-    TEST_ASSERT_EQUAL_INT64(INT64_MIN, ack.session_id);
+    TEST_ASSERT_EQUAL_INT32(INT32_MIN, ack.session_id);
+    TEST_ASSERT_EQUAL_INT64(INT64_MAX, ack.boot_id); /* the answering node's boot and robot */
+    TEST_ASSERT_EQUAL_INT(7, ack.own_robot);
     TEST_ASSERT_EQUAL_INT8(TVO_LCM_SESSION_T_ACTION_START, ack.action);
-    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_CAPACITY, ack.status); /* the core's error, in the wire's numbers */
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_CAPACITY, ack.status); /* the core's error, in the wire's numbers */
     EF_ASSERT_PARAM(TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, ack.bad_param);
     TEST_ASSERT_EQUAL_INT32(TVO_LCM_SESSION_ACK_T_PART_HALFSPACE, ack.bad_part);
     TEST_ASSERT_EQUAL_INT32(3, ack.bad_index);
-    TEST_ASSERT_EQUAL_INT64(INT64_MAX, ack.running_session_id);
+    TEST_ASSERT_EQUAL_INT32(INT32_MAX, ack.running_session_id);
 
     /* The edge's own refusals, in the wire's numbers. */
     const tvo_session_reject_t conflict = {TVO_NODE_SESSION_CONFLICT, TVO_OK, TVO_SESSION_PARAM_NONE,
                                            TVO_LCM_SESSION_ACK_T_PART_NONE, -1};
-    tvo_session_ack(&msg, &conflict, 1, &ack);
-    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_SESSION_CONFLICT, ack.status);
+    tvo_session_ack(&msg, &conflict, 1, EF_BOOT, -1, &ack);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_SESSION_CONFLICT, ack.status);
     const tvo_session_reject_t no_session = {TVO_NODE_NO_SESSION, TVO_OK, TVO_SESSION_PARAM_NONE,
                                              TVO_LCM_SESSION_ACK_T_PART_NONE, -1};
-    tvo_session_ack(&msg, &no_session, 1, &ack);
-    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_NO_SESSION, ack.status);
+    tvo_session_ack(&msg, &no_session, 1, EF_BOOT, -1, &ack);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NO_SESSION, ack.status);
     const tvo_session_reject_t unknown = {TVO_NODE_UNKNOWN_ACTION, TVO_OK, TVO_SESSION_PARAM_NONE,
                                           TVO_LCM_SESSION_ACK_T_PART_NONE, -1};
-    tvo_session_ack(&msg, &unknown, 1, &ack);
-    EF_ASSERT_STATUS(TVO_LCM_COMMAND_T_STATUS_ERR_PARAM, ack.status);
+    tvo_session_ack(&msg, &unknown, 1, EF_BOOT, -1, &ack);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, ack.status);
 
     /* Without a reason: done, nothing named; with no session running: -1. */
     memset(&ack, 0x5A, sizeof(ack));
-    tvo_session_ack(&msg, NULL, -1, &ack);
+    tvo_session_ack(&msg, NULL, -1, EF_BOOT, -1, &ack);
     EF_ASSERT_STATUS(TVO_OK, ack.status);
     TEST_ASSERT_EQUAL_INT32(0, ack.bad_param);
     TEST_ASSERT_EQUAL_INT32(TVO_LCM_SESSION_ACK_T_PART_NONE, ack.bad_part);
@@ -743,18 +806,21 @@ static void test_ack_carries_the_message_the_reason_and_the_running_session(void
 
     /* Through the wire and back. */
     uint8_t buffer[TVO_NODE_BUFFER_BYTES];
-    tvo_session_ack(&msg, &why, 77, &ack);
+    tvo_session_ack(&msg, &why, 77, EF_BOOT, 2, &ack);
     const int n = tvo_lcm_session_ack_t_encode(buffer, 0, (int)sizeof(buffer), &ack);
     TEST_ASSERT_TRUE(n > 0);
     tvo_lcm_session_ack_t back;
     TEST_ASSERT_EQUAL_INT(n, tvo_lcm_session_ack_t_decode(buffer, 0, n, &back));
     TEST_ASSERT_EQUAL_INT32(3, back.bad_index);
     TEST_ASSERT_EQUAL_INT32(TVO_LCM_SESSION_ACK_T_PART_HALFSPACE, back.bad_part);
-    TEST_ASSERT_EQUAL_INT64(77, back.running_session_id);
+    TEST_ASSERT_EQUAL_INT32(77, back.running_session_id);
+    TEST_ASSERT_EQUAL_INT64(EF_BOOT, back.boot_id);
+    TEST_ASSERT_EQUAL_INT(2, back.own_robot);
+    TEST_ASSERT_EQUAL_INT((int)tvo_node_channel_message_bytes(TVO_NODE_CH_SESSION_ACK), n);
 }
 
-static uint8_t encoded_a[8192];
-static uint8_t encoded_b[8192];
+static uint8_t encoded_a[16384];
+static uint8_t encoded_b[16384];
 
 static void test_content_hash_ignores_only_the_utime(void)
 {
@@ -796,6 +862,9 @@ int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_valid_start_decodes_its_timing);
+    RUN_TEST(test_protocol_version_other_than_this_wires_is_refused_first);
+    RUN_TEST(test_telemetry_every_zero_is_the_default_rate_and_its_range_is_checked);
+    RUN_TEST(test_a_chain_session_has_one_robot);
     RUN_TEST(test_utime_and_epoch_outside_the_wire_range_name_the_epoch);
     RUN_TEST(test_times_at_the_ends_of_the_wire_range_are_accepted);
     RUN_TEST(test_epoch_lead_is_limited_to_the_controllers_tick_span);

@@ -105,7 +105,7 @@ void Bus::set_key(const std::uint8_t (&key)[TVO_AUTH_KEY_BYTES], std::uint32_t s
     // node) sees this plant's counters rise.
     tvo_auth_status_t status = tvo_auth_init(&auth_, key, sender_id, 1u);
     if (status == TVO_AUTH_OK) {
-        status = tvo_auth_follow_clock(&auth_, tvo_auth_wall_clock_counter, TVO_AUTH_NEW_SENDER_WINDOW_US);
+        status = tvo_auth_follow_clock(&auth_, tvo_auth_wall_clock_counter);
     }
     if (status != TVO_AUTH_OK) {
         throw std::runtime_error(std::string("authentication set-up failed: ") + tvo_auth_status_str(status));

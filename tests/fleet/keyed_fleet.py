@@ -3,15 +3,17 @@
 
 Usage: keyed_fleet.py BUILD_DIR SCENARIO PORT OUT_DIR
 
-Runs the scenario unkeyed, then keyed while an attacker on the fleet bus (no key) answers every 5th
-genuine frame it hears on each fleet sample and fleet command channel with (a) the same frame again (a replay) and (b) a
-forgery: the message altered (a sample's x moved 1 m, a command's bytes changed) under a trailer of the
-same sender with the next counter, tagged with another key. Passes only if the keyed run's final error
-and joint-command digest over the run equal the unkeyed run's, the nodes agree every period, every
-node dropped forged and replayed samples (node_unauthenticated, node_replayed >= 1 each) and the hub
-forged and replayed commands (hub_unauthenticated, hub_replayed >= 1).
+Runs the scenario unkeyed, then keyed while an attacker on every node's link (no key) answers every 5th
+genuine frame it hears on TVO_SAMPLE (towards the node) and TVO_COMMAND (towards the hub) with (a) the
+same frame again (a replay) and (b) a forgery: the message altered (a sample's x moved 1 m, a command's
+bytes changed) under a trailer of the same sender with the next counter, tagged with another key.
+Passes only if the keyed run's final error and joint-command digest over the run equal the unkeyed
+run's, the nodes agree every period, every node dropped forged and replayed samples (its counters
+unauthenticated, replayed >= 1 each, from its last announcement) and the hub forged and replayed
+commands (hub_unauthenticated, hub_replayed >= 1).
 """
 import json
+import select
 import socket
 import struct
 import subprocess
@@ -26,7 +28,7 @@ except ImportError:
     sys.exit(77)
 
 REPO = Path(__file__).resolve().parents[2]
-GROUP = "239.255.76.69"  # tools/fleet's fleet bus
+GROUP = "239.255.76.69"  # tools/fleet's node links: node k on port PORT + 1 + k
 MAGIC = 0x4C433032       # LCM's short-message header
 TRAILER = 28             # auth.h: sender id, counter, tag
 
@@ -36,16 +38,17 @@ def lcm_packet(seq, channel, data):
 
 
 class Attacker(threading.Thread):
-    def __init__(self, port):
+    def __init__(self, ports):
         super().__init__(daemon=True)
-        self.port = port
         self.key = ChaCha20Poly1305(bytes(range(32)))  # not the fleet's key
-        self.rx = socket.socket(socket.AF_INET, socket.SOCK_DGRAM, socket.IPPROTO_UDP)
-        self.rx.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
-        self.rx.bind(("", port))
-        self.rx.setsockopt(socket.IPPROTO_IP, socket.IP_ADD_MEMBERSHIP,
-                           socket.inet_aton(GROUP) + socket.inet_aton("0.0.0.0"))
-        self.rx.settimeout(0.1)
+        self.rx = {}
+        for port in ports:
+            rx = socket.socket(socket.AF_INET, socket.SOCK_DGRAM, socket.IPPROTO_UDP)
+            rx.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+            rx.bind(("", port))
+            rx.setsockopt(socket.IPPROTO_IP, socket.IP_ADD_MEMBERSHIP, socket.inet_aton(GROUP) + socket.inet_aton("0.0.0.0"))
+            rx.setblocking(False)
+            self.rx[rx] = port
         self.tx = socket.socket(socket.AF_INET, socket.SOCK_DGRAM, socket.IPPROTO_UDP)
         self.tx.setsockopt(socket.IPPROTO_IP, socket.IP_MULTICAST_TTL, 0)
         self.tx.setsockopt(socket.IPPROTO_IP, socket.IP_MULTICAST_LOOP, 1)
@@ -58,38 +61,39 @@ class Attacker(threading.Thread):
         message, trailer = frame[:-TRAILER], frame[-TRAILER:]
         sender, counter = struct.unpack(">IQ", trailer[:12])
         altered = bytearray(message)
-        if "SAMPLE" in channel:  # fingerprint, utime, session, sequence, robot, robot_count, then x
-            x = struct.unpack(">d", altered[40:48])[0]
-            altered[40:48] = struct.pack(">d", x + 1.0)
+        if "SAMPLE" in channel:  # fingerprint 8, header: utime 8, session 4, sequence 4, robot 1; has 1; then x
+            x = struct.unpack(">d", altered[26:34])[0]
+            altered[26:34] = struct.pack(">d", x + 1.0)
         else:
             altered[-9] ^= 0x40
         nonce = struct.pack(">IQ", sender, counter + 1)
         tag = self.key.encrypt(nonce, b"", channel.encode() + b"\0" + bytes(altered))
         return bytes(altered) + nonce + tag
 
-    def send(self, channel, data):
+    def send(self, port, channel, data):
         self.seq += 1
-        self.tx.sendto(lcm_packet(self.seq, channel, data), (GROUP, self.port))
+        self.tx.sendto(lcm_packet(self.seq, channel, data), (GROUP, port))
 
     def run(self):
         while not self.stop.is_set():
-            try:
-                packet = self.rx.recv(65536)
-            except socket.timeout:
-                continue
-            if len(packet) < 8 or struct.unpack(">I", packet[:4])[0] != MAGIC or packet[4] & 0x40:
-                continue  # not ours, or one of our own packets (seqno 0x40000000 + n)
-            end = packet.index(b"\0", 8)
-            channel, frame = packet[8:end].decode(), packet[end + 1:]
-            kind = "sample" if channel.startswith("TVO_FLEET_SAMPLE_R") else (
-                "command" if channel.startswith("TVO_FLEET_COMMAND_R") else None)
-            if kind is None or len(frame) <= TRAILER:
-                continue
-            self.seen[channel] = self.seen.get(channel, 0) + 1
-            if self.seen[channel] % 5 == 0:
-                self.send(channel, frame)                     # the replay
-                self.send(channel, self.forge(channel, frame))  # the forgery
-                self.sent[kind] += 2
+            ready, _, _ = select.select(list(self.rx), [], [], 0.1)
+            for rx in ready:
+                self.take(self.rx[rx], rx.recv(65536))
+
+    def take(self, port, packet):
+        if len(packet) < 8 or struct.unpack(">I", packet[:4])[0] != MAGIC or packet[4] & 0x40:
+            return  # not ours, or one of our own packets (seqno 0x40000000 + n)
+        end = packet.index(b"\0", 8)
+        channel, frame = packet[8:end].decode(), packet[end + 1:]
+        kind = {"TVO_SAMPLE": "sample", "TVO_COMMAND": "command"}.get(channel)
+        if kind is None or len(frame) <= TRAILER:
+            return
+        link = (port, channel)
+        self.seen[link] = self.seen.get(link, 0) + 1
+        if self.seen[link] % 5 == 0:
+            self.send(port, channel, frame)                     # the replay
+            self.send(port, channel, self.forge(channel, frame))  # the forgery
+            self.sent[kind] += 2
 
 
 def fleet(build, scenario, port, out, *extra):
@@ -109,7 +113,7 @@ def main():
     key = out / "fleet.key"
     key.unlink(missing_ok=True)
     subprocess.run([str(REPO / "tools/keygen"), str(key)], check=True, stdout=subprocess.DEVNULL)
-    attacker = Attacker(port)
+    attacker = Attacker([port + 1 + k for k in range(plain["nodes"])])
     attacker.start()
     try:
         keyed = fleet(build, scenario, port, out / "keyed", "--key-file", str(key))
@@ -127,7 +131,7 @@ def main():
             failures.append(f"{name} = {keyed.get(name)}, expected {bound}")
     if not keyed.get("keyed"):
         failures.append("the hub did not run keyed")
-    for name in ("node_unauthenticated", "node_replayed"):
+    for name in ("node_unauthenticated", "node_replayed"):  # each node's counters, from its announcements
         print(f"{name}: {keyed.get(name)}")
         if not keyed.get(name) or any(c is None or c < 1 for c in keyed[name]):
             failures.append(f"{name} = {keyed.get(name)}: some node counted nothing")
@@ -136,7 +140,7 @@ def main():
         if not keyed.get(name):
             failures.append(f"{name} = {keyed.get(name)}: the hub counted nothing")
     if attacker.sent["sample"] == 0 or attacker.sent["command"] == 0:
-        failures.append(f"the attacker sent {attacker.sent}: it heard no fleet traffic")
+        failures.append(f"the attacker sent {attacker.sent}: it heard no traffic on the nodes' links")
     for f in failures:
         print(f"FAIL: {f}")
     return 1 if failures else 0

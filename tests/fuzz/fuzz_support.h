@@ -13,9 +13,13 @@
 #include <string.h>
 
 #include "node.h"
+#include "tvo_lcm_node_status_t.h"
+#include "tvo_lcm_chain_command_t.h"
+#include "tvo_lcm_unicycle_command_t.h"
 #include "wire_real.h"
 
 #define FUZZ_SESSION_ID 42
+#define FUZZ_BOOT ((int64_t)4711) /* the fuzzed node's boot, which the reference STARTs name */
 #define FUZZ_EPOCH_US 1000000
 #define FUZZ_PERIOD_US 10000
 #define FUZZ_DELAY_US 5000
@@ -26,13 +30,19 @@ static inline void fuzz_fail(const char *invariant)
     abort();
 }
 
-/* The demo's session, varied by `variant`: clock source, plant kind, velocity source, constraints. */
+/* The demo's session, varied by `variant`: clock source, plant kind, velocity source, constraints,
+ * robots (a chain has one), telemetry after every answer or at the default rate (bit 6). */
 static inline void fuzz_session(tvo_lcm_session_t *s, uint8_t variant)
 {
     memset(s, 0, sizeof(*s));
     s->utime = FUZZ_EPOCH_US;
+    s->protocol_version = TVO_LCM_NODE_STATUS_T_PROTOCOL_VERSION;
     s->session_id = FUZZ_SESSION_ID;
     s->action = TVO_LCM_SESSION_T_ACTION_START;
+    for (int r = 0; r < TVO_LCM_SESSION_T_MAX_ROBOTS; ++r) {
+        s->node_boot_id[r] = FUZZ_BOOT;
+    }
+    s->telemetry_every = (variant & 64u) ? 0 : 1;
     s->clock_source = (variant & 1u) ? TVO_LCM_SESSION_T_CLOCK_NODE : TVO_LCM_SESSION_T_CLOCK_PLANT;
     s->epoch_utime = FUZZ_EPOCH_US;
     s->period_us = FUZZ_PERIOD_US;
@@ -52,7 +62,7 @@ static inline void fuzz_session(tvo_lcm_session_t *s, uint8_t variant)
     s->chain_gains[0] = 2.56;
     s->chain_gains[1] = 3.2;
     s->chain_input_max = 100.0;
-    s->robot_count = (variant & 8u) ? 2 : 1;
+    s->robot_count = ((variant & 8u) && !(variant & 2u)) ? 2 : 1; /* a chain has one robot */
     for (int r = 0; r < s->robot_count; ++r) {
         s->robot[r].tracking_weight[0] = 1.0;
         s->robot[r].tracking_weight[1] = 1.0;
@@ -92,58 +102,106 @@ static inline double fuzz_core_limit(double wire)
     return (double)tvo_wire_real(wire);
 }
 
-/* Every command the node publishes: finite, within the session's limits, a safe stop all zero, and
- * status 0 only with a computed command. */
-static inline void fuzz_check_command(const tvo_lcm_command_t *m, const tvo_lcm_session_t *s)
+/* What every command's header must say: status 0 is a computed command, or the speed mismatch's stop
+ * (its sample was accepted), never a held or stopped one. */
+static inline void fuzz_check_header(const tvo_lcm_command_header_t *h)
 {
-    const double slack = 1e-6; /* the command's own float rounding against the limit */
-    for (int r = 0; r < 4; ++r) {
-        if (!isfinite(m->speed_mps[r]) || !isfinite(m->turn_rate_radps[r])) {
-            fuzz_fail("command not finite");
-        }
-        if (s != NULL && s->plant_kind == TVO_LCM_SESSION_T_PLANT_UNICYCLE) {
-            if (fabs(m->turn_rate_radps[r]) > fuzz_core_limit(s->omega_max_radps) * (1.0 + slack)) {
-                fuzz_fail("|omega| beyond omega_max");
-            }
-            if (fabs(m->speed_mps[r]) > fuzz_core_limit(s->speed_max_mps) * (1.0 + slack)) {
-                fuzz_fail("|v| beyond speed_max");
-            }
-        }
-        if ((m->flags & (int32_t)TVO_LCM_COMMAND_T_FLAG_SAFE_STOP) && (m->speed_mps[r] != 0.0 || m->turn_rate_radps[r] != 0.0)) {
-            fuzz_fail("safe stop not all zero");
-        }
-    }
-    for (int i = 0; i < 8; ++i) {
-        if (!isfinite(m->input[i])) {
-            fuzz_fail("chain input not finite");
-        }
-        if (s != NULL && s->plant_kind == TVO_LCM_SESSION_T_PLANT_CHAIN &&
-            fabs(m->input[i]) > fuzz_core_limit(s->chain_input_max) * (1.0 + slack)) {
-            fuzz_fail("|u| beyond chain_input_max");
-        }
-        if ((m->flags & (int32_t)TVO_LCM_COMMAND_T_FLAG_SAFE_STOP) && m->input[i] != 0.0) {
-            fuzz_fail("safe stop not all zero (chain)");
-        }
-    }
-    /* Status 0 is a computed command, or the speed mismatch's stop (the measurement was accepted). */
-    const int32_t mismatch_stop = (int32_t)(TVO_LCM_COMMAND_T_FLAG_SAFE_STOP | TVO_FLAG_SPEED_MISMATCH);
-    if (m->status == 0 && ((m->flags & (int32_t)TVO_LCM_COMMAND_T_FLAG_HOLDING) != 0 ||
-                           ((m->flags & (int32_t)TVO_LCM_COMMAND_T_FLAG_SAFE_STOP) != 0 && (m->flags & mismatch_stop) != mismatch_stop))) {
+    const int32_t flags = h->flags;
+    const int32_t mismatch_stop = (int32_t)(TVO_LCM_COMMAND_HEADER_T_FLAG_SAFE_STOP | TVO_FLAG_SPEED_MISMATCH);
+    if (h->status == 0 && ((flags & (int32_t)TVO_LCM_COMMAND_HEADER_T_FLAG_HOLDING) != 0 ||
+                           ((flags & (int32_t)TVO_LCM_COMMAND_HEADER_T_FLAG_SAFE_STOP) != 0 &&
+                            (flags & mismatch_stop) != mismatch_stop))) {
         fuzz_fail("status OK on a holding or stop command");
+    }
+    if (h->utime < 0 || h->utime > TVO_WIRE_TIME_MAX_US) {
+        fuzz_fail("a command stamped outside the wire's range");
     }
 }
 
-/* Statuses the node gives before the controller steps: such a refusal must change nothing. */
+/* A unicycle command the node publishes: finite, within the session's limits (s, when its limits
+ * bind), a safe stop all zero. */
+static inline void fuzz_check_unicycle_command(const tvo_lcm_unicycle_command_t *m, const tvo_lcm_session_t *s)
+{
+    const double slack = 1e-6; /* the command's own float rounding against the limit */
+    const double v = (double)m->speed_mps, w = (double)m->turn_rate_radps;
+    fuzz_check_header(&m->header);
+    if (!isfinite(v) || !isfinite(w)) {
+        fuzz_fail("command not finite");
+    }
+    if (s != NULL && s->plant_kind == TVO_LCM_SESSION_T_PLANT_UNICYCLE) {
+        if (fabs(w) > fuzz_core_limit(s->omega_max_radps) * (1.0 + slack)) {
+            fuzz_fail("|omega| beyond omega_max");
+        }
+        if (fabs(v) > fuzz_core_limit(s->speed_max_mps) * (1.0 + slack)) {
+            fuzz_fail("|v| beyond speed_max");
+        }
+    }
+    if ((m->header.flags & (int32_t)TVO_LCM_COMMAND_HEADER_T_FLAG_SAFE_STOP) && (v != 0.0 || w != 0.0)) {
+        fuzz_fail("safe stop not all zero");
+    }
+}
+
+/* The chain's command, likewise (its limit: chain_input_max). */
+static inline void fuzz_check_chain_command(const tvo_lcm_chain_command_t *m, const tvo_lcm_session_t *s)
+{
+    const double slack = 1e-6;
+    fuzz_check_header(&m->header);
+    for (int i = 0; i < 2; ++i) {
+        const double u = (double)m->input[i];
+        if (!isfinite(u)) {
+            fuzz_fail("chain input not finite");
+        }
+        if (s != NULL && s->plant_kind == TVO_LCM_SESSION_T_PLANT_CHAIN &&
+            fabs(u) > fuzz_core_limit(s->chain_input_max) * (1.0 + slack)) {
+            fuzz_fail("|u| beyond chain_input_max");
+        }
+        if ((m->header.flags & (int32_t)TVO_LCM_COMMAND_HEADER_T_FLAG_SAFE_STOP) && u != 0.0) {
+            fuzz_fail("safe stop not all zero (chain)");
+        }
+    }
+}
+
+/* A published frame's command (either plant's), checked; 1 if it was one. */
+static inline int fuzz_check_published_command(int channel, const uint8_t *data, uint32_t length,
+                                               const tvo_lcm_session_t *s, tvo_lcm_command_header_t *header)
+{
+    if (channel == TVO_NODE_CH_COMMAND) {
+        tvo_lcm_unicycle_command_t m;
+        if (tvo_lcm_unicycle_command_t_decode(data, 0, (int)length, &m) != (int)length) {
+            fuzz_fail("the node published a command that does not decode");
+        }
+        fuzz_check_unicycle_command(&m, s);
+        *header = m.header;
+        return 1;
+    }
+    if (channel == TVO_NODE_CH_CHAIN_COMMAND) {
+        tvo_lcm_chain_command_t m;
+        if (tvo_lcm_chain_command_t_decode(data, 0, (int)length, &m) != (int)length) {
+            fuzz_fail("the node published a chain command that does not decode");
+        }
+        fuzz_check_chain_command(&m, s);
+        *header = m.header;
+        return 1;
+    }
+    return 0;
+}
+
+/* Refusals that must change nothing of the session but the schedule's votes and refusal streak: the
+ * node's own (before the core's step) and the core's (a transaction). Not these: a safe stop (the
+ * watchdog's, which a refusal may commit), and the law's refusals (TARGET_NOT_READY, NUMERIC,
+ * NOT_POSITIVE_DEFINITE), after which a re-anchor the samples voted for is kept. */
 static inline int fuzz_refused_before_step(int32_t status)
 {
     switch (status) {
-    case TVO_LCM_COMMAND_T_STATUS_ERR_DIMENSION:
-    case TVO_LCM_COMMAND_T_STATUS_ERR_IMPLAUSIBLE_STAMP:
-    case TVO_LCM_COMMAND_T_STATUS_ERR_OUT_OF_ORDER:
-    case TVO_LCM_COMMAND_T_STATUS_ERR_STALE:
-    case TVO_LCM_COMMAND_T_STATUS_ERR_FUTURE_STAMP:
-    case TVO_LCM_COMMAND_T_STATUS_ERR_NOT_FINITE:
-    case TVO_LCM_COMMAND_T_STATUS_ERR_MISSING_FIELD:
+    case TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NO_MEASUREMENT:
+    case TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_MEASUREMENT:
+    case TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_DIMENSION:
+    case TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_STAMP:
+    case TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_OUT_OF_ORDER:
+    case TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_STALE:
+    case TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_FUTURE_STAMP:
+    case TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NOT_FINITE:
+    case TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_MISSING_FIELD:
         return 1;
     default:
         return 0;

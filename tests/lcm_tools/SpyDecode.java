@@ -3,10 +3,10 @@
 // decodes it. Checks that every type of the project is found and that every message of the log on a
 // known type decodes and re-encodes to the same bytes (nested types included).
 //
-// Usage: java SpyDecode LOG MEASUREMENTS_CSV PACKAGE TYPE...
+// Usage: java SpyDecode LOG SAMPLES_CSV PACKAGE TYPE...
 //   prints "types found N", "decoded CHANNEL CLASS N", "start ..." (the first START's timing and
-//   robot 0's target path); writes every decoded measurement (session, sequence, robot, x, y) to
-//   MEASUREMENTS_CSV. Exit 1 on any failure (listed on stderr).
+//   robot 0's target path); writes every decoded unicycle sample (session, sequence, robot, x, y, read
+//   through its nested sample_header_t) to SAMPLES_CSV. Exit 1 on any failure (listed on stderr).
 import java.io.EOFException;
 import java.io.PrintWriter;
 import java.lang.reflect.Field;
@@ -23,7 +23,7 @@ import lcm.spy.LCMTypeDatabase;
 public class SpyDecode {
     public static void main(String[] args) throws Exception {
         if (args.length < 4) {
-            System.err.println("usage: SpyDecode LOG MEASUREMENTS_CSV PACKAGE TYPE...");
+            System.err.println("usage: SpyDecode LOG SAMPLES_CSV PACKAGE TYPE...");
             System.exit(2);
         }
         int failures = 0;
@@ -43,8 +43,8 @@ public class SpyDecode {
         Map<String, Long> unknown = new TreeMap<>();
         boolean startPrinted = false;
         Log log = new Log(args[0], "r");
-        try (PrintWriter measurements = new PrintWriter(args[1])) {
-            measurements.println("session_id,sequence,robot,x_m,y_m");
+        try (PrintWriter samples = new PrintWriter(args[1])) {
+            samples.println("session_id,sequence,robot,x_m,y_m");
             for (;;) {
                 Log.Event event;
                 try {
@@ -67,14 +67,12 @@ public class SpyDecode {
                     failures++;
                 }
                 decoded.merge(event.channel + " " + cls.getName(), 1L, Long::sum);
-                if (cls.getSimpleName().equals("measurement_t")) {
-                    int robots = cls.getField("robot_count").getInt(msg);
-                    double[][] position = (double[][]) cls.getField("position_m").get(msg);
-                    for (int r = 0; r < robots; r++) {
-                        measurements.println(cls.getField("session_id").getLong(msg) + ","
-                                             + cls.getField("sequence").getLong(msg) + "," + r + ","
-                                             + position[r][0] + "," + position[r][1]);
-                    }
+                if (cls.getSimpleName().equals("unicycle_sample_t")) {
+                    Object header = cls.getField("header").get(msg);
+                    Class<?> h = header.getClass();
+                    double[] position = (double[]) cls.getField("position_m").get(msg);
+                    samples.println(h.getField("session_id").getInt(header) + "," + h.getField("sequence").getInt(header)
+                                    + "," + h.getField("robot").getByte(header) + "," + position[0] + "," + position[1]);
                 } else if (cls.getSimpleName().equals("session_t") && !startPrinted
                            && cls.getField("action").getByte(msg) == cls.getField("ACTION_START").getByte(null)) {
                     startPrinted = true;

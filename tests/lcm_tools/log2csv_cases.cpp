@@ -1,9 +1,10 @@
 // tvo_log2csv on logs written here, message by message, with what a recording of a real robot can hold:
-// two sessions, a measurement the node did not answer, a refusal then a computed answer, a refusal
-// alone, a duplicate measurement, a message that does not decode, a channel of someone else, a START
-// and a measurement naming robots that are not there, and a log without the session's START
-// (streamed targets), and a keyed bus's recording (frames with authentication trailers, a forged and a
-// replayed one among them), with and without --key-file. Plain checks (no framework): exit 0 = pass.
+// two sessions, a sample the node did not answer, a refusal then a computed answer, a refusal alone, a
+// duplicate sample, a message that does not decode, a channel of someone else, a START and a sample
+// naming robots that are not there, two robots with per-robot commands and telemetry (one robot's
+// sample missing), a log without the session's START (streamed targets), and a keyed bus's recording
+// (frames with authentication trailers, a forged and a replayed one among them), with and without
+// --key-file. Plain checks (no framework): exit 0 = pass.
 //
 // Usage: tvo_log2csv_cases TVO_LOG2CSV WORK_DIR
 #include <sys/wait.h>
@@ -37,9 +38,9 @@ void check(bool ok, const std::string& what)
 
 constexpr std::int64_t kEpochUs = 5000000;
 constexpr std::int64_t kPeriodUs = 10000;
-constexpr std::int64_t kSession = 7;
-constexpr std::int64_t kOtherSession = 8;
-constexpr std::int32_t kRefusal = TVO_ERR_STALE;
+constexpr std::int32_t kSession = 7;
+constexpr std::int32_t kOtherSession = 8;
+constexpr std::int8_t kRefusal = tvo_lcm::command_header_t::STATUS_ERR_STALE;
 
 class LogWriter {
 public:
@@ -88,43 +89,56 @@ private:
     std::int64_t clock_{0};
 };
 
-tvo_lcm::session_t start(std::int64_t id, double target_x, double target_y)
+tvo_lcm::session_t start(std::int32_t id, double target_x, double target_y, std::int32_t robots = 1)
 {
     tvo_lcm::session_t s{};
+    s.protocol_version = tvo_lcm::node_status_t::PROTOCOL_VERSION;
     s.session_id = id;
     s.action = tvo_lcm::session_t::ACTION_START;
     s.epoch_utime = kEpochUs;
     s.period_us = kPeriodUs;
-    s.robot_count = 1;
-    s.robot[0].tracking_weight[0] = 1.0;
-    s.robot[0].tracking_weight[1] = 1.0;
-    s.robot[0].target.kind = tvo_lcm::path_t::KIND_POLYNOMIAL;
-    s.robot[0].target.coeff[0][0] = target_x;  // a fixed point
-    s.robot[0].target.coeff[1][0] = target_y;
+    s.robot_count = robots;
+    for (std::int32_t r = 0; r < robots; ++r) {
+        s.robot[r].tracking_weight[0] = 1.0;
+        s.robot[r].tracking_weight[1] = 1.0;
+        s.robot[r].target.kind = tvo_lcm::path_t::KIND_POLYNOMIAL;
+        s.robot[r].target.coeff[0][0] = target_x + r;  // a fixed point each
+        s.robot[r].target.coeff[1][0] = target_y;
+    }
     return s;
 }
 
-tvo_lcm::measurement_t measurement(std::int64_t session, std::int64_t sequence)
+tvo_lcm::unicycle_sample_t sample(std::int32_t session, std::int32_t sequence, std::int8_t robot = 0)
 {
-    tvo_lcm::measurement_t m{};
-    m.utime = kEpochUs + (sequence + 1) * kPeriodUs;
-    m.session_id = session;
-    m.sequence = sequence;
-    m.robot_count = 1;
-    m.position_m[0][0] = static_cast<double>(sequence);
-    m.heading_valid = true;
+    tvo_lcm::unicycle_sample_t m{};
+    m.header.utime = kEpochUs + (sequence + 1) * kPeriodUs;
+    m.header.session_id = session;
+    m.header.sequence = sequence;
+    m.header.robot = robot;
+    m.has = tvo_lcm::unicycle_sample_t::HAS_HEADING;
+    m.position_m[0] = static_cast<double>(sequence) + 100.0 * robot;
     return m;
 }
 
-tvo_lcm::command_t command(std::int64_t sequence, double speed, std::int32_t status)
+tvo_lcm::unicycle_command_t command(std::int32_t sequence, float speed, std::int8_t status, std::int8_t robot = 0)
 {
-    tvo_lcm::command_t c{};
-    c.session_id = kSession;
-    c.measurement_sequence = sequence;
-    c.robot_count = 1;
-    c.speed_mps[0] = speed;
-    c.status = status;
+    tvo_lcm::unicycle_command_t c{};
+    c.header.session_id = kSession;
+    c.header.measurement_sequence = sequence;
+    c.header.robot = robot;
+    c.header.status = status;
+    c.speed_mps = speed;
     return c;
+}
+
+tvo_lcm::telemetry_t telemetry(std::int32_t sequence, float barrier_c, std::int8_t robot)
+{
+    tvo_lcm::telemetry_t t{};
+    t.header.session_id = kSession;
+    t.header.measurement_sequence = sequence;
+    t.header.robot = robot;
+    t.barrier_c = barrier_c;
+    return t;
 }
 
 struct Run {
@@ -201,31 +215,29 @@ void two_sessions(const std::string& program, const std::string& dir)
         other.offset[0].robot_b = 5;
         log.put(TVO_CHANNEL_SESSION, other);
         log.raw("SOMEONE_ELSE", {'x'});
-        log.put(TVO_CHANNEL_MEASUREMENT, measurement(kSession, 0));
-        log.put(TVO_CHANNEL_COMMAND, command(0, 1.0, TVO_OK));
-        log.put(TVO_CHANNEL_MEASUREMENT, measurement(kSession, 1));  // never answered
-        log.put(TVO_CHANNEL_MEASUREMENT, measurement(kOtherSession, 0));
-        tvo_lcm::measurement_t too_many = measurement(kOtherSession, 1);
-        too_many.robot_count = tvo_lcm::measurement_t::MAX_ROBOTS + 1;
-        log.put(TVO_CHANNEL_MEASUREMENT, too_many);
-        log.put(TVO_CHANNEL_MEASUREMENT, measurement(kSession, 2));
-        log.put(TVO_CHANNEL_COMMAND, command(2, 9.0, kRefusal));
-        log.put(TVO_CHANNEL_COMMAND, command(2, 3.0, TVO_OK));     // the computed answer wins
-        log.put(TVO_CHANNEL_MEASUREMENT, measurement(kSession, 2));  // duplicate
-        log.put(TVO_CHANNEL_MEASUREMENT, measurement(kSession, 3));
-        log.put(TVO_CHANNEL_COMMAND, command(3, 4.0, kRefusal));   // a refusal alone is kept
+        log.put(TVO_CHANNEL_SAMPLE, sample(kSession, 0));
+        log.put(TVO_CHANNEL_COMMAND, command(0, 1.0f, 0));
+        log.put(TVO_CHANNEL_SAMPLE, sample(kSession, 1));  // never answered
+        log.put(TVO_CHANNEL_SAMPLE, sample(kOtherSession, 0));
+        log.put(TVO_CHANNEL_SAMPLE, sample(kOtherSession, 1, 3));  // session 8 has one robot
+        log.put(TVO_CHANNEL_SAMPLE, sample(kSession, 2));
+        log.put(TVO_CHANNEL_COMMAND, command(2, 9.0f, kRefusal));
+        log.put(TVO_CHANNEL_COMMAND, command(2, 3.0f, 0));     // the computed answer wins
+        log.put(TVO_CHANNEL_SAMPLE, sample(kSession, 2));  // duplicate
+        log.put(TVO_CHANNEL_SAMPLE, sample(kSession, 3));
+        log.put(TVO_CHANNEL_COMMAND, command(3, 4.0f, kRefusal));   // a refusal alone is kept
         log.raw(TVO_CHANNEL_COMMAND, {'b', 'a', 'd'});              // does not decode
     }
     const Run several = log2csv(program, "'" + path + "' -o '" + dir + "/none.csv'", dir);
     check(several.exit_code == 2 && contains(several.output, "--session") &&
-              contains(several.output, "\n  7: 5 measurement messages") && contains(several.output, "\n  8: 2"),
-          "two sessions without --session: exit 2, both listed with their measurement messages");
+              contains(several.output, "\n  7: 5 samples") && contains(several.output, "\n  8: 2"),
+          "two sessions without --session: exit 2, both listed with their samples");
 
     const std::string csv = dir + "/session7.csv";
     const Run run = log2csv(program, "'" + path + "' --session 7 -o '" + csv + "'", dir);
     check(run.exit_code == 0, "--session 7 converts");
     const auto rows = read_csv(csv);
-    check(rows.size() == 4, "one row per distinct measurement of session 7 (4 of 4, the duplicate dropped)");
+    check(rows.size() == 4, "one row per distinct sample of session 7 (4 of 4, the duplicate dropped)");
     if (rows.size() != 4) {
         return;
     }
@@ -235,23 +247,63 @@ void two_sessions(const std::string& program, const std::string& dir)
               std::abs(num(rows[2], "error_m") - std::sqrt(5.0)) < 1e-8,
           "pose as measured, reference from the START's path, error between them");
     check(num(rows[0], "cmd_speed_mps") == 1.0 && num(rows[1], "cmd_speed_mps") == 1.0 &&
-              num(rows[1], "status") == static_cast<double>(TVO_OK),
-          "a measurement without an answer keeps the previous command");
-    check(num(rows[2], "cmd_speed_mps") == 3.0 && num(rows[2], "status") == static_cast<double>(TVO_OK),
+              num(rows[1], "status") == 0.0,
+          "a sample without an answer keeps the previous command");
+    check(num(rows[2], "cmd_speed_mps") == 3.0 && num(rows[2], "status") == 0.0,
           "a computed answer wins over a refusal");
     check(num(rows[3], "cmd_speed_mps") == 4.0 && num(rows[3], "status") == kRefusal,
           "a refusal alone is shown with its status");
-    check(contains(run.output, "1 measurements without an answer") && contains(run.output, "1 duplicate") &&
+    check(contains(run.output, "1 samples without an answer") && contains(run.output, "1 duplicate") &&
               contains(run.output, "did not decode (skipped): TVO_COMMAND 1") &&
               contains(run.output, "other channels (skipped): SOMEONE_ELSE 1"),
           "unanswered, duplicate, undecodable and foreign messages are counted and reported");
 
     const Run other = log2csv(program, "'" + path + "' --session 8 -o '" + dir + "/session8.csv'", dir);
     check(other.exit_code == 0 && read_csv(dir + "/session8.csv").size() == 1 &&
-              contains(other.output, "1 measurements with a robot count out of range"),
-          "--session 8 picks the other one (its bad offset left out, its bad robot count skipped)");
+              contains(other.output, "1 samples and answers naming no robot of the session"),
+          "--session 8 picks the other one (its bad offset left out, its sample of robot 3 skipped)");
     const Run missing = log2csv(program, "'" + path + "' --session 9", dir);
     check(missing.exit_code == 2 && contains(missing.output, "--session 9"), "an absent session: exit 2, named");
+}
+
+void two_robots(const std::string& program, const std::string& dir)
+{
+    const std::string path = dir + "/two_robots.lcmlog";
+    {
+        LogWriter log(path);
+        log.put(TVO_CHANNEL_SESSION, start(kSession, 1.0, 2.0, 2));
+        for (std::int32_t seq = 0; seq < 3; ++seq) {
+            for (std::int8_t r = 0; r < 2; ++r) {
+                if (!(seq == 1 && r == 0)) {  // robot 0's sample of period 1 was not recorded
+                    log.put(TVO_CHANNEL_SAMPLE, sample(kSession, seq, r));
+                }
+            }
+            for (std::int8_t r = 0; r < 2; ++r) {
+                log.put(TVO_CHANNEL_COMMAND, command(seq, static_cast<float>(seq + 10 * r), 0, r));
+            }
+            if (seq != 1) {  // telemetry of periods 0 and 2 only, as at a node's lower rate
+                for (std::int8_t r = 0; r < 2; ++r) {
+                    log.put(TVO_CHANNEL_TELEMETRY, telemetry(seq, static_cast<float>(seq + 0.5 * r), r));
+                }
+            }
+        }
+    }
+    const std::string csv = dir + "/two_robots.csv";
+    const Run run = log2csv(program, "'" + path + "' -o '" + csv + "'", dir);
+    const auto rows = read_csv(csv);
+    check(run.exit_code == 0 && rows.size() == 5 && contains(run.output, "1 robots without a sample"),
+          "two robots: a row per robot and period sampled (5 of 6), the missing sample counted");
+    if (rows.size() != 5) {
+        return;
+    }
+    check(num(rows[0], "robot") == 0 && num(rows[1], "robot") == 1 && num(rows[2], "robot") == 1 &&
+              num(rows[3], "robot") == 0 && num(rows[1], "x_m") == 100.0 && num(rows[1], "target_x_m") == 2.0,
+          "rows in period, then robot order; each robot's own pose and target");
+    check(num(rows[0], "cmd_speed_mps") == 0.0 && num(rows[1], "cmd_speed_mps") == 10.0 &&
+              num(rows[2], "cmd_speed_mps") == 11.0 && num(rows[4], "cmd_speed_mps") == 12.0,
+          "each robot's own command");
+    check(num(rows[1], "barrier_c") == 0.5 && num(rows[2], "barrier_c") == 0.5 && num(rows[4], "barrier_c") == 2.5,
+          "each robot's telemetry, its newest where its period carried none");
 }
 
 void without_start(const std::string& program, const std::string& dir)
@@ -259,18 +311,17 @@ void without_start(const std::string& program, const std::string& dir)
     const std::string path = dir + "/no_start.lcmlog";
     {
         LogWriter log(path);
-        for (std::int64_t seq = 0; seq < 2; ++seq) {
+        for (std::int32_t seq = 0; seq < 2; ++seq) {
             if (seq == 0) {  // streamed only for the first sample
                 tvo_lcm::target_t t{};
-                t.session_id = kSession;
-                t.sequence = seq;
-                t.robot_count = 1;
-                t.position_m[0][0] = 3.0;
-                t.position_m[0][1] = 4.0;
+                t.header.session_id = kSession;
+                t.header.sequence = seq;
+                t.position_m[0] = 3.0;
+                t.position_m[1] = 4.0;
                 log.put(TVO_CHANNEL_TARGET, t);
             }
-            log.put(TVO_CHANNEL_MEASUREMENT, measurement(kSession, seq));
-            log.put(TVO_CHANNEL_COMMAND, command(seq, 1.0, TVO_OK));
+            log.put(TVO_CHANNEL_SAMPLE, sample(kSession, seq));
+            log.put(TVO_CHANNEL_COMMAND, command(seq, 1.0f, 0));
         }
     }
     const std::string csv = dir + "/no_start.csv";
@@ -317,19 +368,19 @@ void keyed_bus(const std::string& program, const std::string& dir)
         plain.put(TVO_CHANNEL_SESSION, start(kSession, 1.0, 2.0));
         keyed.put_signed(TVO_CHANNEL_SESSION, start(kSession, 1.0, 2.0), &plant);
         std::vector<char> first;
-        for (std::int64_t seq = 0; seq < 4; ++seq) {
-            plain.put(TVO_CHANNEL_MEASUREMENT, measurement(kSession, seq));
-            const auto frame = keyed.put_signed(TVO_CHANNEL_MEASUREMENT, measurement(kSession, seq), &plant);
+        for (std::int32_t seq = 0; seq < 4; ++seq) {
+            plain.put(TVO_CHANNEL_SAMPLE, sample(kSession, seq));
+            const auto frame = keyed.put_signed(TVO_CHANNEL_SAMPLE, sample(kSession, seq), &plant);
             if (seq == 0) {
                 first = frame;
             }
-            plain.put(TVO_CHANNEL_COMMAND, command(seq, 1.0 + static_cast<double>(seq), TVO_OK));
-            keyed.put_signed(TVO_CHANNEL_COMMAND, command(seq, 1.0 + static_cast<double>(seq), TVO_OK), &node);
+            plain.put(TVO_CHANNEL_COMMAND, command(seq, 1.0f + static_cast<float>(seq), 0));
+            keyed.put_signed(TVO_CHANNEL_COMMAND, command(seq, 1.0f + static_cast<float>(seq), 0), &node);
             if (seq == 1) {
-                tvo_lcm::measurement_t forged = measurement(kSession, 2);
-                forged.position_m[0][0] = 50.0;
-                keyed.put(TVO_CHANNEL_MEASUREMENT, forged);
-                keyed.raw(TVO_CHANNEL_MEASUREMENT, first);
+                tvo_lcm::unicycle_sample_t forged = sample(kSession, 2);
+                forged.position_m[0] = 50.0;
+                keyed.put(TVO_CHANNEL_SAMPLE, forged);
+                keyed.raw(TVO_CHANNEL_SAMPLE, first);
             }
         }
     }
@@ -388,6 +439,7 @@ int main(int argc, char** argv)
     std::error_code error;
     std::filesystem::create_directories(argv[2], error);
     two_sessions(argv[1], argv[2]);
+    two_robots(argv[1], argv[2]);
     without_start(argv[1], argv[2]);
     keyed_bus(argv[1], argv[2]);
     bad_files(argv[1], argv[2]);

@@ -7,7 +7,7 @@ machine goes, and lcm-logger, behind UDP, may lose some of a burst; the exact ch
 
 Checks (none depends on the machine's speed):
   - log2csv's header is the simulator's (one contract); every value is finite
-  - one row per robot per measurement: as many as the Java decoder found in the log, and at least
+  - one row per robot per period: as many as the Java decoder found samples in the log, and at least
     MIN_RECORDED_FRACTION of the run's steps (lcm-logger listens on UDP; lockstep: all of them)
   - realtime: an undecodable message recorded before the run is counted and reported by log2csv
   - the rows' times are the session's sample instants (epoch + (n + 1) h - tau) and increase
@@ -169,8 +169,8 @@ def check_spy(text, decoded, types):
 
 
 def java_decode(args, log_path, out_dir, recorded):
-    measurements = os.path.join(out_dir, "java_measurements.csv")
-    cmd = [args.java, "-cp", args.classpath, "SpyDecode", log_path, measurements, args.package] + args.types
+    samples = os.path.join(out_dir, "java_samples.csv")
+    cmd = [args.java, "-cp", args.classpath, "SpyDecode", log_path, samples, args.package] + args.types
     result = run(cmd, capture_output=True, text=True)
     print(result.stdout, end="")
     if result.returncode != 0:
@@ -189,7 +189,7 @@ def java_decode(args, log_path, out_dir, recorded):
     if not start_line:
         fail("no START in the recording")
     start = dict(kv.split("=", 1) for kv in start_line.group(1).split())
-    _, rows = read_csv(measurements)
+    _, rows = read_csv(samples)
     decoded = dict(re.findall(r"^decoded (\S+) (\S+) \d+$", result.stdout, re.M))
     return start, rows, probes, decoded
 

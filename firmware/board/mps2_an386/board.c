@@ -150,10 +150,10 @@ int tvo_board_uart_read(uint8_t *byte)
     return 1;
 }
 
-/* Placed by the linker script at the key region's start (the region no image writes). */
-extern const uint8_t tvo_board_key_region_start[];
+/* Placed by the linker script at the provisioned region's start (the region no image writes). */
+extern const uint8_t tvo_board_provisioned_region_start[];
 
-const uint8_t *tvo_board_key_region(void)
+const uint8_t *tvo_board_provisioned_region(void)
 {
-    return tvo_board_key_region_start;
+    return tvo_board_provisioned_region_start;
 }

@@ -47,19 +47,25 @@ void tvo_board_uart_write(const uint8_t *data, uint32_t length);
 int tvo_board_uart_read(uint8_t *byte);
 
 /**
- * The key region: a 256-byte flash area no image writes (the linker script places it, and names its
- * address tvo_board_key_region_start for the provisioner), where a provisioned board holds its key. Layout (little-endian; tools/pil_run.py writes it):
- *   offset 0   "TVOK" (TVO_BOARD_KEY_MAGIC)
- *   offset 4   the 32-byte key
- *   offset 36  uint64 counter base: the board signs from it on and refuses senders not heard yet whose
- *              counters lie more than TVO_AUTH_NEW_SENDER_WINDOW_US below it (a board without a
- *              clock of the epoch needs it from its provisioner at every boot: QEMU's loader here,
- *              an RTC or a boot counter kept in flash on hardware)
- * Blank (no magic): the board runs unauthenticated and says so.
+ * The provisioned region: a 256-byte flash area no image writes (the linker script places it and names
+ * its address tvo_board_provisioned_region_start for the provisioner), written by whoever provisions
+ * the board at every boot (tools/pil_run.py through QEMU's loader; on hardware, a boot counter the
+ * bootloader keeps in flash and the key programmed once). Layout (little-endian):
+ *   offset 0   "TVOB" (TVO_BOARD_BOOT_MAGIC)
+ *   offset 4   int64 boot id, 1 .. 2^23 - 1: never the same twice for this board (the node announces it,
+ *              a START must name it, and a keyed node signs with boot id << 40: firmware/edge/auth.h)
+ *   offset 12  "TVOK" (TVO_BOARD_KEY_MAGIC), or anything else for no key
+ *   offset 16  the 32-byte key
+ * No boot magic: the node cannot run (it has no identity) and says so. No key magic: it runs
+ * unauthenticated and says so.
  */
+#define TVO_BOARD_BOOT_MAGIC "TVOB"
+#define TVO_BOARD_BOOT_ID_OFFSET 4u
 #define TVO_BOARD_KEY_MAGIC "TVOK"
-#define TVO_BOARD_KEY_REGION_BYTES 44u
-/** The key region's first byte. */
-const uint8_t *tvo_board_key_region(void);
+#define TVO_BOARD_KEY_MAGIC_OFFSET 12u
+#define TVO_BOARD_KEY_OFFSET 16u
+#define TVO_BOARD_PROVISIONED_BYTES 48u
+/** The provisioned region's first byte. */
+const uint8_t *tvo_board_provisioned_region(void);
 
 #endif /* TVO_BOARD_H */

@@ -2,11 +2,13 @@
 // linked into this program) and over LCM (the same float32 core inside tvo_firmware_node, session
 // PLANT_CHAIN) — and the two command sequences compared bit for bit.
 //
-// The LCM run replays the in-process run's measurements (same stamps, positions and derivatives as
-// doubles on the wire) and waits for each answer. Session CLOCK_PLANT: step n is sampled at
-// epoch + n h - tau and numbered n, so it serves the node's period n (edge_spec, CLOCK_PLANT). As long as every command matches bit for bit, the
-// plant of a closed LCM loop would see exactly these measurements, so the replay is the closed loop;
-// the first differing command would end that equivalence and is reported.
+// The LCM run replays the in-process run's measurements (same stamps; positions as doubles and
+// derivatives as floats on the wire, chain_sample_t, which the float32 core reads as the in-process run
+// does) and waits for each answer (chain_command_t). Session CLOCK_PLANT: step n is sampled at
+// epoch + n h - tau and numbered n, so it serves the node's period n (lcm_types/README.md, "Timing"). As
+// long as every command matches bit for bit, the plant of a closed LCM loop would see exactly these
+// measurements, so the replay is the closed loop; the first differing command would end that
+// equivalence and is reported. The START names the node's boot, heard on TVO_NODE (the plant's rule 1).
 //
 // Exit code 0 when every command (and status) is identical, 1 otherwise or on errors, 2 on bad usage.
 #include <unistd.h>
@@ -27,8 +29,9 @@
 #include <nlohmann/json.hpp>
 
 #include "chain_sim.hpp"
-#include "tvo_lcm/command_t.hpp"
-#include "tvo_lcm/measurement_t.hpp"
+#include "tvo_lcm/chain_command_t.hpp"
+#include "tvo_lcm/chain_sample_t.hpp"
+#include "tvo_lcm/node_status_t.hpp"
 #include "tvo_lcm/session_ack_t.hpp"
 #include "tvo_lcm/session_t.hpp"
 
@@ -47,24 +50,32 @@ constexpr auto kStartTimeout = std::chrono::seconds(5);
 constexpr int kStartRepeatMs = 100;  // START repeated until acked (the node may not be listening yet)
 
 struct Listener {
-    int64_t session_id = 0;
+    int32_t session_id = 0;
+    int64_t boot_id = 0;  // the node's, from its announcements (the newest boot of a node of every robot)
     int8_t awaited_action = tvo_lcm::session_t::ACTION_START;
     bool acked = false;
     int32_t ack_status = -1;
     int64_t answered = -1;
-    tvo_lcm::command_t last{};
+    tvo_lcm::chain_command_t last{};
+    void on_node(const lcm::ReceiveBuffer *, const std::string &, const tvo_lcm::node_status_t *node)
+    {
+        if (node->protocol_version == tvo_lcm::node_status_t::PROTOCOL_VERSION && node->own_robot == -1 &&
+            node->boot_id > boot_id) {
+            boot_id = node->boot_id;
+        }
+    }
     void on_ack(const lcm::ReceiveBuffer *, const std::string &, const tvo_lcm::session_ack_t *ack)
     {
-        if (ack->session_id == session_id && ack->action == awaited_action) {
+        if (ack->session_id == session_id && ack->action == awaited_action && ack->boot_id == boot_id) {
             acked = true;
             ack_status = ack->status;
         }
     }
-    void on_command(const lcm::ReceiveBuffer *, const std::string &, const tvo_lcm::command_t *cmd)
+    void on_command(const lcm::ReceiveBuffer *, const std::string &, const tvo_lcm::chain_command_t *cmd)
     {
         // Only our session's answers to what we sent (a sequence beyond ours is nobody's answer).
-        if (cmd->session_id == session_id && cmd->measurement_sequence > answered) {
-            answered = cmd->measurement_sequence;
+        if (cmd->header.session_id == session_id && cmd->header.measurement_sequence > answered) {
+            answered = cmd->header.measurement_sequence;
             last = *cmd;
         }
     }
@@ -102,6 +113,7 @@ int main(int argc, char **argv)
     std::string firmware;
     std::string url;
     std::string json_path;
+    std::string boot_file;
     double duration_s = 20.0;
     app.add_option("--k", cfg.k, "relative degree")->check(CLI::Range(1, 3));
     app.add_option("--h", h_s, "sampling period, s")->check(CLI::Range(1e-4, 1.0));
@@ -112,6 +124,7 @@ int main(int argc, char **argv)
     app.add_option("--firmware", firmware, "tvo_firmware_node to spawn")->required();
     app.add_option("--lcm-url", url, "LCM URL (default: LCM's)");
     app.add_option("--json", json_path, "write the outcome as JSON here");
+    app.add_option("--boot-file", boot_file, "the spawned node's boot counter file (its --boot-file)");
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError &e) {
@@ -136,6 +149,10 @@ int main(int argc, char **argv)
         child_args.push_back("--lcm-url");
         child_args.push_back(url);
     }
+    if (!boot_file.empty()) {
+        child_args.push_back("--boot-file");
+        child_args.push_back(boot_file);
+    }
     std::vector<char *> child_argv;
     for (std::string &a : child_args) {
         child_argv.push_back(a.data());
@@ -147,13 +164,16 @@ int main(int argc, char **argv)
         return 1;
     }
 
+    // Subscribed before the node can announce itself: it was spawned just now, and LCM's socket is open.
     Listener listener;
-    listener.session_id = static_cast<int64_t>(getpid()) * 1000 + 7;
+    listener.session_id = static_cast<int32_t>((getpid() * 1000 + 7) & 0x7fffffff);
+    lcm.subscribe(TVO_CHANNEL_NODE, &Listener::on_node, &listener);
     lcm.subscribe(TVO_CHANNEL_SESSION_ACK, &Listener::on_ack, &listener);
-    lcm.subscribe(TVO_CHANNEL_COMMAND, &Listener::on_command, &listener);
+    lcm.subscribe(TVO_CHANNEL_CHAIN_COMMAND, &Listener::on_command, &listener);
 
     tvo_lcm::session_t start{};
     start.utime = kEpochUs;
+    start.protocol_version = tvo_lcm::node_status_t::PROTOCOL_VERSION;
     start.session_id = listener.session_id;
     start.action = tvo_lcm::session_t::ACTION_START;
     start.clock_source = tvo_lcm::session_t::CLOCK_PLANT;
@@ -183,50 +203,53 @@ int main(int argc, char **argv)
 
     int rc = 0;
     const auto deadline = std::chrono::steady_clock::now() + kStartTimeout;
-    while (!listener.acked && std::chrono::steady_clock::now() < deadline) {
+    while (listener.boot_id == 0 && std::chrono::steady_clock::now() < deadline) {
+        lcm.handleTimeout(kStartRepeatMs);  // the node announces itself at once, then every 250 ms
+    }
+    start.node_boot_id[0] = listener.boot_id;
+    while (listener.boot_id != 0 && !listener.acked && std::chrono::steady_clock::now() < deadline) {
         lcm.publish(TVO_CHANNEL_SESSION, &start);
         lcm.handleTimeout(kStartRepeatMs);
     }
     uint64_t identical = 0;
     int64_t first_mismatch = -1;
     if (!listener.acked || listener.ack_status != 0) {
-        std::fprintf(stderr, "tvo_study_lcm_check: error: the node did not accept the chain session (status %d)\n",
-                     listener.ack_status);
+        std::fprintf(stderr, "tvo_study_lcm_check: error: the node %s the chain session (status %d)\n",
+                     listener.boot_id == 0 ? "did not announce itself for" : "did not accept", listener.ack_status);
         rc = 1;
     } else {
-        tvo_lcm::measurement_t m{};
+        tvo_lcm::chain_sample_t m{};
         for (const study::TraceRow &row : trace) {
-            m.utime = row.stamp_tick;
-            m.session_id = listener.session_id;
-            m.sequence = static_cast<int64_t>(row.step);
-            m.robot_count = 1;
-            m.derivatives_valid = true;
+            m.header.utime = row.stamp_tick;
+            m.header.session_id = listener.session_id;
+            m.header.sequence = static_cast<int32_t>(row.step);
+            m.header.robot = 0;
+            m.has = tvo_lcm::chain_sample_t::HAS_DERIVATIVES;
             for (int i = 0; i < 2; ++i) {
-                m.position_m[0][i] = row.measured[i];
-                m.output_rate_mps[0][i] = row.rate[i];
-                m.output_accel_mps2[0][i] = row.accel[i];
+                m.position_m[i] = row.measured[i];
+                m.output_rate_mps[i] = static_cast<float>(row.rate[i]);
+                m.output_accel_mps2[i] = static_cast<float>(row.accel[i]);
             }
-            lcm.publish(TVO_CHANNEL_MEASUREMENT, &m);
+            lcm.publish(TVO_CHANNEL_CHAIN_SAMPLE, &m);
             const auto wait_until = std::chrono::steady_clock::now() + kAnswerTimeout;
-            while (listener.answered < m.sequence && std::chrono::steady_clock::now() < wait_until) {
+            while (listener.answered < m.header.sequence && std::chrono::steady_clock::now() < wait_until) {
                 lcm.handleTimeout(50);
             }
-            if (listener.answered < m.sequence) {
-                std::fprintf(stderr, "tvo_study_lcm_check: error: no answer to measurement %lld\n",
-                             static_cast<long long>(m.sequence));
+            if (listener.answered < m.header.sequence) {
+                std::fprintf(stderr, "tvo_study_lcm_check: error: no answer to sample %d\n", m.header.sequence);
                 rc = 1;
                 break;
             }
-            const bool same = same_bits(static_cast<float>(listener.last.input[0]), row.u[0]) &&
-                              same_bits(static_cast<float>(listener.last.input[1]), row.u[1]) &&
-                              listener.last.status == row.status;
+            const bool same = same_bits(listener.last.input[0], row.u[0]) && same_bits(listener.last.input[1], row.u[1]) &&
+                              listener.last.header.status == row.status;
             if (same) {
                 ++identical;
             } else if (first_mismatch < 0) {
-                first_mismatch = m.sequence;
-                std::fprintf(stderr, "first difference at step %lld: LCM %.9g %.9g, in-process %.9g %.9g\n",
-                             static_cast<long long>(m.sequence), listener.last.input[0], listener.last.input[1],
-                             static_cast<double>(row.u[0]), static_cast<double>(row.u[1]));
+                first_mismatch = m.header.sequence;
+                std::fprintf(stderr, "first difference at step %d: LCM %.9g %.9g, in-process %.9g %.9g\n",
+                             m.header.sequence, static_cast<double>(listener.last.input[0]),
+                             static_cast<double>(listener.last.input[1]), static_cast<double>(row.u[0]),
+                             static_cast<double>(row.u[1]));
             }
         }
     }
