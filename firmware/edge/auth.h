@@ -149,9 +149,10 @@ tvo_auth_status_t tvo_auth_open(tvo_auth_t *auth, const char *channel, const uin
 
 /**
  * tvo_auth_sign and tvo_auth_open for a channel name whose length the caller knows: channel_length
- * bytes (1 .. TVO_AUTH_MAX_CHANNEL_BYTES, its NUL not counted; channel[channel_length] must be the NUL,
- * else TVO_AUTH_ERR_ARGUMENT). For a link that signs and opens the same few names every period and
- * looks their lengths up once (counting a name's bytes costs about 80 Cortex-M4F instructions a tag).
+ * bytes (1 .. TVO_AUTH_MAX_CHANNEL_BYTES, its NUL not counted; channel holds at least channel_length + 1
+ * bytes, and channel[channel_length] must be the NUL, else TVO_AUTH_ERR_ARGUMENT). For a link that signs
+ * and opens the same few names every period and looks their lengths up once (counting a name's bytes
+ * costs about 80 Cortex-M4F instructions a tag).
  */
 tvo_auth_status_t tvo_auth_sign_channel(tvo_auth_t *auth, const char *channel, size_t channel_length, uint8_t *message,
                                         size_t length, size_t capacity, size_t *signed_length);
