@@ -78,7 +78,7 @@ FLEET_RUNS = [("fleet4", FLEET4, []), ("fleet4-loss", FLEET4, ["--loss", "0.1"])
               ("fleet8", FLEET8, []), ("fleet8-loss", FLEET8, ["--loss", "0.1"]),
               ("fleet8-keyed", FLEET8, ["--key-file", "KEY"])]
 # Keys of tools/fleet's JSON that say where and how fast it ran, not what the fleet did.
-FLEET_UNKEPT = ("node_link_rx_packets_min", "scenario")
+FLEET_UNKEPT = ("node_link_rx_packets_min", "scenario", "digest_mismatch_per_period")
 
 
 def n(value):
