@@ -4,24 +4,6 @@
 #include <string.h>
 
 #include "channels.h"
-#include "tvo_lcm_chain_sample_t.h"
-#include "tvo_lcm_session_t.h"
-#include "tvo_lcm_target_t.h"
-#include "tvo_lcm_unicycle_sample_t.h"
-
-/* The LCM fingerprint of the type an input channel carries (its first 8 encoded bytes, big-endian),
- * 0 for another channel. TODO(E): channels.h's tvo_node_channel_fingerprint, the channel table's own
- * (requested in the notes); until then the four inputs here. */
-static uint64_t input_fingerprint(int channel)
-{
-    switch (channel) {
-    case TVO_NODE_CH_SESSION: return (uint64_t)__tvo_lcm_session_t_get_hash();
-    case TVO_NODE_CH_SAMPLE: return (uint64_t)__tvo_lcm_unicycle_sample_t_get_hash();
-    case TVO_NODE_CH_TARGET: return (uint64_t)__tvo_lcm_target_t_get_hash();
-    case TVO_NODE_CH_CHAIN_SAMPLE: return (uint64_t)__tvo_lcm_chain_sample_t_get_hash();
-    default: return 0u;
-    }
-}
 
 static uint64_t get_be64(const uint8_t *p)
 {
@@ -52,7 +34,7 @@ tvo_auth_status_t tvo_auth_link_init(tvo_auth_link_t *link, const uint8_t key[TV
     for (int channel = TVO_NODE_CH_FIRST; channel <= TVO_NODE_CH_LAST; ++channel) {
         const char *name = tvo_node_channel_name(channel);
         const size_t length = name != NULL ? strlen(name) : 0u;
-        link->fingerprint[channel] = input_fingerprint(channel);
+        link->fingerprint[channel] = tvo_node_channel_is_input(channel) ? tvo_node_channel_fingerprint(channel) : 0u;
         link->name_length[channel] = (uint8_t)(length <= TVO_AUTH_MAX_CHANNEL_BYTES ? length : 0u);
     }
     return TVO_AUTH_OK;

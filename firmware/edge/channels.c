@@ -5,11 +5,17 @@
 #include <string.h>
 
 #include "tvo/status.h"
+#include "tvo_lcm_chain_command_t.h"
+#include "tvo_lcm_chain_sample_t.h"
 #include "tvo_lcm_command_header_t.h"
 #include "tvo_lcm_node_counters_t.h"
 #include "tvo_lcm_node_status_t.h"
 #include "tvo_lcm_session_ack_t.h"
 #include "tvo_lcm_session_t.h"
+#include "tvo_lcm_target_t.h"
+#include "tvo_lcm_telemetry_t.h"
+#include "tvo_lcm_unicycle_command_t.h"
+#include "tvo_lcm_unicycle_sample_t.h"
 
 /* The wire's flags that shape a command are the core's bits (the HOLDING and SAFE_STOP bits are the
  * wire's own, derived from the outcome in step_codec.c): a build where one drifts fails here. The
@@ -39,7 +45,7 @@ _Static_assert(TVO_LCM_SESSION_T_MAX_ROBOTS <= INT8_MAX, "a robot index is an in
 #define BYTES_UNICYCLE_SAMPLE 50u
 #define BYTES_TARGET 65u
 #define BYTES_UNICYCLE_COMMAND 36u
-#define BYTES_TELEMETRY 105u
+#define BYTES_TELEMETRY 109u
 #define BYTES_NODE_STATUS 211u
 #define BYTES_CHAIN_SAMPLE 58u
 #define BYTES_CHAIN_COMMAND 36u
@@ -48,19 +54,21 @@ _Static_assert(BYTES_SESSION == TVO_NODE_LARGEST_MESSAGE_BYTES, "session_t is th
 typedef struct {
     const char *name;
     uint32_t message_bytes;
-    uint8_t input;          /* a node takes it */
+    int64_t (*fingerprint)(void); /* lcm-gen's hash of the channel's type: its first 8 encoded bytes */
+    uint8_t input;                /* a node takes it */
 } channel_t;
 
 static const channel_t channels[TVO_NODE_CH_LAST + 1] = {
-    [TVO_NODE_CH_SESSION] = {TVO_CHANNEL_SESSION, BYTES_SESSION, 1u},
-    [TVO_NODE_CH_SESSION_ACK] = {TVO_CHANNEL_SESSION_ACK, BYTES_SESSION_ACK, 0u},
-    [TVO_NODE_CH_SAMPLE] = {TVO_CHANNEL_SAMPLE, BYTES_UNICYCLE_SAMPLE, 1u},
-    [TVO_NODE_CH_TARGET] = {TVO_CHANNEL_TARGET, BYTES_TARGET, 1u},
-    [TVO_NODE_CH_COMMAND] = {TVO_CHANNEL_COMMAND, BYTES_UNICYCLE_COMMAND, 0u},
-    [TVO_NODE_CH_TELEMETRY] = {TVO_CHANNEL_TELEMETRY, BYTES_TELEMETRY, 0u},
-    [TVO_NODE_CH_NODE] = {TVO_CHANNEL_NODE, BYTES_NODE_STATUS, 0u},
-    [TVO_NODE_CH_CHAIN_SAMPLE] = {TVO_CHANNEL_CHAIN_SAMPLE, BYTES_CHAIN_SAMPLE, 1u},
-    [TVO_NODE_CH_CHAIN_COMMAND] = {TVO_CHANNEL_CHAIN_COMMAND, BYTES_CHAIN_COMMAND, 0u},
+    [TVO_NODE_CH_SESSION] = {TVO_CHANNEL_SESSION, BYTES_SESSION, __tvo_lcm_session_t_get_hash, 1u},
+    [TVO_NODE_CH_SESSION_ACK] = {TVO_CHANNEL_SESSION_ACK, BYTES_SESSION_ACK, __tvo_lcm_session_ack_t_get_hash, 0u},
+    [TVO_NODE_CH_SAMPLE] = {TVO_CHANNEL_SAMPLE, BYTES_UNICYCLE_SAMPLE, __tvo_lcm_unicycle_sample_t_get_hash, 1u},
+    [TVO_NODE_CH_TARGET] = {TVO_CHANNEL_TARGET, BYTES_TARGET, __tvo_lcm_target_t_get_hash, 1u},
+    [TVO_NODE_CH_COMMAND] = {TVO_CHANNEL_COMMAND, BYTES_UNICYCLE_COMMAND, __tvo_lcm_unicycle_command_t_get_hash, 0u},
+    [TVO_NODE_CH_TELEMETRY] = {TVO_CHANNEL_TELEMETRY, BYTES_TELEMETRY, __tvo_lcm_telemetry_t_get_hash, 0u},
+    [TVO_NODE_CH_NODE] = {TVO_CHANNEL_NODE, BYTES_NODE_STATUS, __tvo_lcm_node_status_t_get_hash, 0u},
+    [TVO_NODE_CH_CHAIN_SAMPLE] = {TVO_CHANNEL_CHAIN_SAMPLE, BYTES_CHAIN_SAMPLE, __tvo_lcm_chain_sample_t_get_hash, 1u},
+    [TVO_NODE_CH_CHAIN_COMMAND] = {TVO_CHANNEL_CHAIN_COMMAND, BYTES_CHAIN_COMMAND, __tvo_lcm_chain_command_t_get_hash,
+                                   0u},
 };
 
 static const channel_t *channel_of(int channel)
@@ -94,6 +102,12 @@ uint32_t tvo_node_channel_message_bytes(int channel)
 {
     const channel_t *c = channel_of(channel);
     return c != NULL ? c->message_bytes : 0u;
+}
+
+uint64_t tvo_node_channel_fingerprint(int channel)
+{
+    const channel_t *c = channel_of(channel);
+    return c != NULL ? (uint64_t)c->fingerprint() : 0u;
 }
 
 static uint64_t fnv_double(uint64_t hash, double value)

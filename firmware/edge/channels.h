@@ -64,6 +64,9 @@ int tvo_node_channel_is_input(int channel);
  * another length (a keyed one: plus the 28-byte trailer) is no message of that channel.
  */
 uint32_t tvo_node_channel_message_bytes(int channel);
+
+/** The LCM fingerprint of the type a channel carries (its first 8 encoded bytes, big-endian), 0 for no channel. */
+uint64_t tvo_node_channel_fingerprint(int channel);
 /** The largest of them: session_t's. */
 #define TVO_NODE_LARGEST_MESSAGE_BYTES 11427u
 

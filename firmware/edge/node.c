@@ -128,8 +128,12 @@ static int decode(tvo_node_t *node, int channel, const uint8_t *data, int size, 
 
 int tvo_node_handle(tvo_node_t *node, int channel, const uint8_t *data, uint32_t length, int64_t now_us)
 {
-    if (node == NULL || node->boot_id <= 0 || !tvo_node_channel_is_input(channel)) {
-        return 0; /* not a node, or not a channel the node takes (its own outputs, or unknown) */
+    if (node == NULL || node->boot_id <= 0) {
+        return 0;
+    }
+    if (!tvo_node_channel_is_input(channel)) {
+        tvo_node_count(&node->counters.malformed); /* a node's own output, or no channel: not for it */
+        return 0;
     }
     /* Cheapest first: every message of a channel has one size (fixed arrays only). */
     if (data == NULL || length != tvo_node_channel_message_bytes(channel)) {

@@ -237,12 +237,12 @@ void tvo_step_telemetry_to_lcm(const tvo_controller_telemetry_t *tel, uint8_t ro
     if (tel == NULL || speed_state_mps == NULL || problem == NULL || msg == NULL || robot >= TVO_MAX_ROBOTS) {
         return;
     }
-    /* t in whole microseconds from the epoch (the law's own float time, rounded; int32 spans 35 min). */
+    /* t in whole microseconds from the epoch (the law's own time, rounded; a wire time's range, 2^60 us). */
     const double t_us = (double)tel->objective_time_s * 1e6;
-    msg->objective_time_us = isnan(t_us)               ? 0
-                             : (t_us >= 2147483647.0)  ? INT32_MAX
-                             : (t_us <= -2147483648.0) ? INT32_MIN
-                                                       : (int32_t)lround(t_us);
+    msg->objective_time_us = isnan(t_us)              ? 0
+                             : (t_us >= 0x1p60)       ? ((int64_t)1 << 60)
+                             : (t_us <= -0x1p60)      ? -((int64_t)1 << 60)
+                                                      : (int64_t)llround(t_us);
     for (size_t axis = 0; axis < 2; ++axis) {
         const size_t i = 2u * (size_t)robot + axis;
         msg->output_m[axis] = (double)tel->output_m[i];

@@ -343,7 +343,7 @@ static void test_telemetry_round_trip_carries_a_robots_rows_of_the_last_step(voi
         TEST_ASSERT_EQUAL_INT(r, back.header.robot);
         EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_STALE, back.header.status);
         TEST_ASSERT_EQUAL_HEX32(TVO_LCM_COMMAND_HEADER_T_FLAG_HOLDING, (uint32_t)back.header.flags);
-        TEST_ASSERT_EQUAL_INT32((int32_t)lround((double)ctl.telemetry.objective_time_s * 1e6), back.objective_time_us);
+        TEST_ASSERT_EQUAL_INT64((int64_t)llround((double)ctl.telemetry.objective_time_s * 1e6), back.objective_time_us);
         TEST_ASSERT_TRUE(back.objective_time_us > 0);
         for (int axis = 0; axis < 2; ++axis) {
             const int i = 2 * r + axis;
