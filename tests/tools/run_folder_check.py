@@ -19,8 +19,8 @@ CASES = [
     (("demo", ["--lcm-url", "udpm://239.255.76.67:7667?ttl=0", "--firmware", "x", "--answer-timeout-s", "5"]),
      "runs/demo"),
     (("obstacles", ["--sigma", "1e-3", "--position-only"]), "runs/obstacles-sigma-1e-3-position-only"),
-    (("fleet-formation8", ["--loss", "0.1", "--local", "--json", "out.json", "--check", "collisions==0"]),
-     "runs/fleet-formation8-loss-0.1"),
+    (("fleet-formation8", ["--fleet", "--loss", "0.1", "--local", "--json", "out.json", "--check", "collisions==0"]),
+     "runs/fleet-formation8-fleet-loss-0.1"),
     (("my scenario", ["--seed", "a b"]), "runs/my_scenario-seed-a_b"),
 ]
 failures = [f"{args}: {run_folder(*args)!r}, expected {want!r}" for args, want in CASES if run_folder(*args) != want]
