@@ -81,8 +81,11 @@ def plot_disagreement(ax, summary, limits):
     ax.set_ylim(bottom=LOG_FLOOR * 10 if not (differ or series) else None)
     ax.set_ylabel("spread of a robot's row across nodes (m/s, rad/s)")
     ax.set_title(title, fontsize="medium")
-    ax.text(0.02, 0.98, note, transform=ax.transAxes, fontsize=8, va="top",
-            bbox={"facecolor": "white", "alpha": 0.8, "lw": 0})
+    if differ or series:
+        ax.text(0.02, 0.98, note, transform=ax.transAxes, fontsize=8, va="top",
+                bbox={"facecolor": "white", "alpha": 0.8, "lw": 0})
+    else:  # nothing to draw but the bounds: say so where the bars would be
+        ax.text(0.5, 0.45, note, transform=ax.transAxes, fontsize=10, ha="center", va="center")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(loc="lower right" if series else "upper right", fontsize="small")
 
