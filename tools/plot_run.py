@@ -5,7 +5,9 @@ scenario's constraint over time (inter-robot distance with its bounds dashed, cl
 residual) and the tracking error over time on a log scale.
 
 Reads the run's CSV (see host/src/run_recorder.hpp) and, when present next to it, the scenario's
-geometry in scenario.json (host/src/summary.hpp); writes a PNG.
+geometry in scenario.json and the run's summary.json (host/src/summary.hpp): each entry into contact
+it lists (collision_events) is marked with a red cross on the paths and a red line over time. Writes
+a PNG and prints its path (and how many collisions it marked).
 
 Usage: tools/plot_run.py RUN_CSV [-o PNG]   (default PNG: next to the CSV, same name .png)
 Runs under Debian's /usr/bin/python3 with python3-matplotlib (no display needed).
@@ -53,6 +55,29 @@ def read_scenario(csv_path):
         return None
     with open(path) as f:
         return json.load(f)
+
+
+def read_collisions(csv_path):
+    """summary.json's collision_events next to the CSV: [{t_s, robot, with, position_m}], or []."""
+    path = os.path.join(os.path.dirname(os.path.abspath(csv_path)), "summary.json")
+    if not os.path.exists(path):
+        return []
+    with open(path) as f:
+        return json.load(f).get("collision_events", [])
+
+
+def mark_collisions_on_paths(ax, collisions):
+    for k, c in enumerate(collisions):
+        x, y = c["position_m"]
+        ax.plot(x, y, "x", color="red", ms=12, mew=2.5, zorder=5,
+                label="collision (robot entering contact)" if k == 0 else None)
+        ax.annotate(f"robot {c['robot']} / {c['with']}, t = {c['t_s']:.2f} s", (x, y), fontsize=7, color="red",
+                    xytext=(6, -10), textcoords="offset points")
+
+
+def mark_collisions_in_time(ax, collisions):
+    for k, c in enumerate(collisions):
+        ax.axvline(c["t_s"], color="red", lw=1.2, label="collision" if k == 0 else None)
 
 
 def marks(times):
@@ -204,7 +229,7 @@ def plot_error(ax, robots, scenario):
     ax.legend(loc="best", fontsize="small")
 
 
-def plot(robots, scenario, png_path, title):
+def plot(robots, scenario, png_path, title, collisions=()):
     middle = constraint_panel(scenario)
     panels = 3 if middle else 2
     fig, axes = plt.subplots(1, panels, figsize=(6 * panels, 5))
@@ -212,6 +237,13 @@ def plot(robots, scenario, png_path, title):
     if middle:
         middle(axes[1], robots, scenario)
     plot_error(axes[-1], robots, scenario)
+    if collisions:
+        mark_collisions_on_paths(axes[0], collisions)
+        for ax in axes[1:]:
+            mark_collisions_in_time(ax, collisions)
+        for ax in axes:
+            ax.legend(loc="best", fontsize="small")
+        title += f": {len(collisions)} collision{'s' if len(collisions) > 1 else ''} (red)"
     fig.suptitle(title)
     fig.tight_layout()
     fig.savefig(png_path, dpi=110)
@@ -227,12 +259,13 @@ def main(argv):
     try:
         robots = read_run(args.csv)
         scenario = read_scenario(args.csv)
+        collisions = read_collisions(args.csv)
     except (OSError, ValueError, KeyError) as e:
         print(f"plot_run: error: cannot read {args.csv}: {e}", file=sys.stderr)
         return 1
     title = (scenario or {}).get("name") or os.path.basename(os.path.dirname(os.path.abspath(args.csv))) or "tvo_sim run"
-    plot(robots, scenario, png_path, title)
-    print(png_path)
+    plot(robots, scenario, png_path, title, collisions)
+    print(png_path + (f" ({len(collisions)} collision{'s' if len(collisions) != 1 else ''} marked)" if collisions else ""))
     return 0
 
 

@@ -13,6 +13,7 @@ constexpr double kTimeSlackS = 1e-9;
 
 ConstraintMonitor::ConstraintMonitor(const Scenario& scenario) : scenario_(scenario)
 {
+    contact_events_.reserve(kMaxContactEvents);  // no allocation while the run observes
     for (std::size_t r = 0; r < scenario.robot_count; ++r) {
         for (std::size_t i = 0; i < scenario.obstacles.size(); ++i) {
             contacts_.push_back(Contact{r, i, false});
@@ -79,6 +80,9 @@ void ConstraintMonitor::observe(double t_s, const Positions& p)
         const bool touching = clearance < 0.0;
         if (touching && !c.in_contact) {
             ++collisions_;  // an entry into contact, not every sample spent in it
+            if (contact_events_.size() < kMaxContactEvents) {
+                contact_events_.push_back(ContactEvent{t_s, c.robot, c.other, c.robot_robot, p[c.robot]});
+            }
         }
         c.in_contact = touching;
     }
@@ -110,6 +114,7 @@ void ConstraintMonitor::observe(double t_s, const Positions& p)
         const bool feasible = violation <= 0.0;
         if (feasible && !entered_feasible_) {
             entered_feasible_ = true;
+            first_feasible_s_ = t_s;
         }
         if (entered_feasible_) {
             max_violation_entered_ = std::max(max_violation_entered_, violation);
@@ -132,6 +137,11 @@ double ConstraintMonitor::max_violation_frac() const
 {
     // A run that never became feasible is judged over all of it.
     return entered_feasible_ ? max_violation_entered_ : max_violation_all_;
+}
+
+double ConstraintMonitor::violation_counted_from_s() const
+{
+    return entered_feasible_ ? first_feasible_s_ : std::numeric_limits<double>::infinity();
 }
 
 double ConstraintMonitor::time_to_feasible_s() const

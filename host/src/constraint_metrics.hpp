@@ -29,6 +29,16 @@ public:
 
     /// Entries into contact (robot disk vs obstacle disk; robot vs robot when robots have a radius).
     std::uint64_t collisions() const { return collisions_; }
+    /// Where and when a robot entered contact (the plot marks each); the first kMaxContactEvents only.
+    struct ContactEvent {
+        double t_s;
+        std::size_t robot;
+        std::size_t other;        // obstacle index, or robot index when robot_robot
+        bool robot_robot;
+        Eigen::Vector2d position_m;  // the robot's centre at the entry
+    };
+    static constexpr std::size_t kMaxContactEvents = 32;
+    const std::vector<ContactEvent>& contact_events() const { return contact_events_; }
     /// Smallest gap between the disks over the run (negative: overlap).
     double min_clearance_m() const { return min_clearance_m_; }
     /// Distance of the reported pair (Scenario::reported_pair): smallest, inside the crossing window, last.
@@ -41,6 +51,9 @@ public:
     /// The same per kind of bound: distance minimum, distance maximum (formation scenarios).
     double max_violation_min_bound_frac() const { return worst_entered_.min_bound; }
     double max_violation_max_bound_frac() const { return worst_entered_.max_bound; }
+    /// The instant from which max_violation_frac counts: the first at which every bound held (0 for a
+    /// feasible start); infinity if no bound ever held all at once (then it counts over the whole run).
+    double violation_counted_from_s() const;
     /// Largest relative violation at the start (0 for a feasible start).
     double initial_violation_frac() const { return initial_violation_frac_; }
     /// The first time after which every inequality holds to the end; infinity if one is violated at the end.
@@ -75,6 +88,7 @@ private:
     bool pair_valid_{false};
 
     std::uint64_t collisions_{0};
+    std::vector<ContactEvent> contact_events_;
     double min_clearance_m_{std::numeric_limits<double>::infinity()};
     double min_distance_m_{std::numeric_limits<double>::infinity()};
     double min_distance_window_m_{std::numeric_limits<double>::infinity()};
@@ -86,6 +100,7 @@ private:
     bool ever_infeasible_{false};
     bool entered_feasible_{false};      // all bounds have held at least once
     double feasible_since_s_{0.0};
+    double first_feasible_s_{0.0};      // when entered_feasible_ became true
     double initial_violation_frac_{0.0};
     double max_violation_all_{0.0};     // over the whole run
     double max_violation_entered_{0.0}; // from the first feasible instant on

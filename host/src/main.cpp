@@ -131,6 +131,11 @@ void add_constraint_figures(const tvo_host::Scenario& scenario, const tvo_host::
     if (monitor.has_contacts()) {
         summary->collisions = monitor.collisions();
         summary->min_clearance_m = monitor.min_clearance_m();
+        for (const tvo_host::ConstraintMonitor::ContactEvent& e : monitor.contact_events()) {
+            summary->collision_events.push_back(
+                {e.t_s, e.robot, (e.robot_robot ? "robot " : "obstacles[") + std::to_string(e.other) + (e.robot_robot ? "" : "]"),
+                 e.position_m.x(), e.position_m.y()});
+        }
     }
     if (monitor.has_pair()) {
         summary->min_distance_m = monitor.min_distance_m();
@@ -141,6 +146,7 @@ void add_constraint_figures(const tvo_host::Scenario& scenario, const tvo_host::
     }
     if (scenario.has_inequalities()) {
         summary->max_violation_frac = monitor.max_violation_frac();
+        summary->violation_counted_from_s = monitor.violation_counted_from_s();
         summary->initial_violation_frac = monitor.initial_violation_frac();
         summary->time_to_feasible_s = monitor.time_to_feasible_s();
         summary->regularized_steps = metrics.regularized();
@@ -264,11 +270,16 @@ int run(const tvo_host::SimOptions& options)
     summary.safe_stop_commands = result.safe_stop_commands;
     summary.first_safe_stop_after_loss_s = result.first_safe_stop_after_loss_s;
     add_node_counters(transport, session.named(), &summary);
+    summary.keyed = transport.keyed();
+    summary.dropped_unauthenticated = transport.unauthenticated();
+    summary.dropped_replayed = transport.replayed();
     add_constraint_figures(scenario, monitor, metrics, &summary);
     print_summary_table(std::cout, summary, options);
     write_summary_json(options.summary_json, summary);
     const std::string scenario_path = (out_dir / "scenario.json").string();
-    write_scenario_json(scenario_path, scenario, duration_s);
+    write_scenario_json(scenario_path, scenario, duration_s,
+                        CommandLimits{static_cast<double>(options.period_us) * 1e-6, options.speed_max_mps,
+                                      options.omega_max_radps, options.accel_max_mps2});
     std::cout << "  outputs: " << csv_path << ", " << log_path << " (" << transport.logged_events()
               << " LCM events), " << options.summary_json << ", " << scenario_path << '\n';
     if (transport.keyed() && transport.unauthenticated() + transport.replayed() > 0) {

@@ -382,7 +382,13 @@ int parse_options(int argc, char** argv, SimOptions* o)
         return print_scenario_list(std::cout, std::cerr);
     }
     if (!scenario_exists(o->scenario)) {
-        return fail("--scenario", "no scenario '" + o->scenario + "': no file " + scenario_path(o->scenario) +
+        const std::string path = scenario_path(o->scenario);
+        std::error_code error;
+        if (std::filesystem::is_directory(path, error)) {
+            return fail("--scenario", path + " is a folder, not a scenario file: give one of its .yaml files "
+                                      "(--list-scenarios lists the built-in ones)");
+        }
+        return fail("--scenario", "no scenario '" + o->scenario + "': no file " + path +
                                       " (--list-scenarios lists the built-in ones)");
     }
     ScenarioFile file;
@@ -433,14 +439,26 @@ int parse_options(int argc, char** argv, SimOptions* o)
 int print_scenario_list(std::ostream& out, std::ostream& err)
 {
     int status = 0;
-    for (const std::string& path : scenario_folder_files()) {
+    // The built-ins by name (--scenario NAME), then the files of the folder's subfolders by the path to
+    // give (tools/fleet FILE): relative to the working folder when inside it. At least two blanks
+    // between the columns, however long the name.
+    const auto print = [&](const std::string& path, const std::string& name) {
         try {
             const ScenarioFile file = load_scenario_file(path);
-            out << std::left << std::setw(30) << file.scenario.name << file.description << '\n';
+            out << std::left << std::setw(28) << name << "  " << file.description << '\n';
         } catch (const ScenarioFileError& e) {
             err << "tvo_sim: error: " << e.what() << '\n';
             status = 2;
         }
+    };
+    for (const std::string& path : scenario_folder_files()) {
+        print(path, std::filesystem::path(path).stem().string());
+    }
+    for (const std::string& path : scenario_subfolder_files()) {
+        std::error_code error;
+        const std::filesystem::path relative = std::filesystem::relative(path, error);
+        const bool inside = !error && !relative.empty() && *relative.begin() != "..";
+        print(path, inside ? relative.string() : path);
     }
     return status;
 }

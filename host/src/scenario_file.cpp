@@ -22,6 +22,7 @@
 #else
 #include <yaml-cpp/yaml.h>
 #endif
+#include <yaml-cpp/depthguard.h>  // YAML::DeepRecursion: not included by yaml.h
 
 #include "lcm_messages.hpp"  // the session message's capacities
 #include "sim_ranges.hpp"
@@ -783,6 +784,11 @@ YAML::Node parse_yaml(const Reader& in, const std::string& path)
     YAML::Node root;
     try {
         root = YAML::Load(text);
+    } catch (const YAML::DeepRecursion& e) {
+        // yaml-cpp's own guard; its message is only "bad file".
+        in.fail(e.mark, "", "not valid YAML for a scenario: nested deeper than the parser's limit of " +
+                                std::to_string(e.depth()) + " levels (a scenario's deepest key, "
+                                "robots[i].target.through[j].velocity_mps.speed_mps, is 7 levels down)");
     } catch (const YAML::ParserException& e) {
         in.fail(e.mark, "", "not valid YAML: " + e.msg);
     }
@@ -809,6 +815,9 @@ ScenarioFile load_scenario_file(const std::string& path)
     if (const YAML::Node* base = top.find("base")) {
         const std::string base_path =
             (std::filesystem::path(path).parent_path() / in.text(*base, "base")).string();
+        if (std::filesystem::is_directory(base_path)) {
+            in.fail(*base, "base", base_path + " is a folder, not a scenario file");
+        }
         if (!std::filesystem::is_regular_file(base_path)) {
             in.fail(*base, "base", "no file " + base_path);
         }
@@ -915,6 +924,24 @@ std::vector<std::string> scenario_folder_files()
     std::sort(files.begin(), files.end(), [](const std::string& a, const std::string& b) {
         return std::filesystem::path(a).stem() < std::filesystem::path(b).stem();
     });
+    return files;
+}
+
+std::vector<std::string> scenario_subfolder_files()
+{
+    std::vector<std::string> files;
+    std::error_code error;
+    for (const auto& folder : std::filesystem::directory_iterator(scenario_folder(), error)) {
+        if (!folder.is_directory()) {
+            continue;
+        }
+        for (const auto& entry : std::filesystem::directory_iterator(folder.path(), error)) {
+            if (entry.is_regular_file() && entry.path().extension() == ".yaml") {
+                files.push_back(entry.path().string());
+            }
+        }
+    }
+    std::sort(files.begin(), files.end());
     return files;
 }
 

@@ -88,6 +88,10 @@ std::string scenario_path(const std::string& name_or_path);
 /// The .yaml files of scenario_folder(), sorted by name.
 std::vector<std::string> scenario_folder_files();
 
+/// The .yaml files one folder down (host/scenarios/fleet/*.yaml: scenarios that are not built-ins,
+/// run by their path), sorted by path.
+std::vector<std::string> scenario_subfolder_files();
+
 /// The scenario to run: robots > 1 needs variants.robots_turned, kind Circle variants.circle_radius_m
 /// (ScenarioFileError otherwise); kind Streamed streams the targets of any scenario.
 Scenario instantiate_scenario(const ScenarioFile& file, std::size_t robots, TargetKind kind);

@@ -6,6 +6,7 @@
 #include <optional>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "lcm_messages.hpp"
 #include "options.hpp"
@@ -32,6 +33,15 @@ struct NodeCounterSums {
     void add(const tvo_lcm::node_counters_t& c);
 };
 
+/// A robot's entry into contact (summary.json "collision_events"; the plot marks each).
+struct CollisionEvent {
+    double t_s{0.0};
+    std::size_t robot{0};
+    std::string with;     // "obstacles[i]" or "robot j"
+    double x_m{0.0};
+    double y_m{0.0};
+};
+
 struct RunSummary {
     double final_error_m{0.0};
     double rms_error_last5s_m{0.0};  // over the whole run if it is kRmsWindowS or shorter
@@ -56,8 +66,14 @@ struct RunSummary {
     // the end, the one each node makes after STOP), summed over the nodes; absent if none was heard.
     std::optional<NodeCounterSums> node_counters;
 
+    // A keyed bus (--key-file): every message signed and opened; the frames dropped as forged or replayed.
+    bool keyed{false};
+    std::uint64_t dropped_unauthenticated{0};
+    std::uint64_t dropped_replayed{0};
+
     // Where the scenario has them (host/README.md defines each); absent keys do not apply.
     std::optional<std::uint64_t> collisions;
+    std::vector<CollisionEvent> collision_events;  // the first few entries into contact
     std::optional<double> min_clearance_m;
     std::optional<double> min_distance_m;
     std::optional<double> min_distance_crossing_m;
@@ -65,6 +81,7 @@ struct RunSummary {
     std::optional<double> max_violation_frac;
     std::optional<double> max_violation_min_bound_frac;
     std::optional<double> max_violation_max_bound_frac;
+    std::optional<double> violation_counted_from_s;  // where max_violation_frac starts counting
     std::optional<double> initial_violation_frac;
     std::optional<double> time_to_feasible_s;   // infinity: infeasible at the end (JSON null)
     std::optional<double> equality_residual_m;
@@ -79,8 +96,18 @@ void print_summary_table(std::ostream& out, const RunSummary& summary, const Sim
 /// std::runtime_error if the file cannot be written.
 void write_summary_json(const std::string& path, const RunSummary& summary);
 
+/// The session's limits on every command (a fleet's summary bounds the nodes' disagreement by them).
+struct CommandLimits {
+    double period_s;
+    double speed_max_mps;
+    double omega_max_radps;
+    double accel_max_mps2;
+};
+
 /// The scenario's geometry for the plot (tools/plot_run.py): name, robot radius, obstacles, distance
-/// bounds, half-spaces, offsets, crossing window. std::runtime_error if the file cannot be written.
-void write_scenario_json(const std::string& path, const Scenario& scenario, double duration_s);
+/// bounds, half-spaces, offsets, crossing window, and the command limits when given ("limits").
+/// std::runtime_error if the file cannot be written.
+void write_scenario_json(const std::string& path, const Scenario& scenario, double duration_s,
+                         const std::optional<CommandLimits>& limits = std::nullopt);
 
 }  // namespace tvo_host

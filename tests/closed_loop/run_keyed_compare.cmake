@@ -1,6 +1,8 @@
 # A keyed bus changes nothing but the bytes on the wire (cmake -P script): tvo_sim and the
 # tvo_firmware_node it spawns run once unkeyed and once with --key-file, with the same arguments, and
-# the two runs must agree (summary.json but the wall-clock rate, run.csv byte for byte). Before that,
+# the two runs must agree (summary.json but the wall-clock rate, run.csv byte for byte); the keyed
+# run's summary says it was signed (the table's bus line, summary.json's keyed), the other's that it
+# was not. Before that,
 # a key file that others may read is refused by both programs, naming the fix (chmod 600).
 #
 #   -DSIM=<tvo_sim> -DFIRMWARE=<tvo_firmware_node> -DOUT_DIR=<dir> [-DLCM_URL=<url>] -DSIM_ARGS=<|-list>
@@ -34,16 +36,27 @@ foreach(program SIM FIRMWARE)
 endforeach()
 file(CHMOD ${key} PERMISSIONS OWNER_READ OWNER_WRITE)
 
+# summary.json's keyed and the table's bus line say how the run's bus ran.
+function(expect_bus dir out keyed line)
+  file(READ ${dir}/summary.json json)
+  string(JSON value GET "${json}" keyed)
+  if(NOT value STREQUAL "${keyed}" OR NOT out MATCHES "\n  bus +${line}")
+    message(FATAL_ERROR "${dir}: expected keyed ${keyed} and a line 'bus  ${line}', got keyed '${value}' and\n${out}")
+  endif()
+endfunction()
+
 set(plain_args ${SIM_ARGS})
 tvo_run_sim(${OUT_DIR}/plain rc out err)
 if(NOT rc STREQUAL "0")
   message(FATAL_ERROR "the unkeyed run failed with exit code '${rc}'")
 endif()
+expect_bus(${OUT_DIR}/plain "${out}" OFF "unauthenticated")
 set(SIM_ARGS ${plain_args} --key-file ${key})
 tvo_run_sim(${OUT_DIR}/keyed rc out err)
 if(NOT rc STREQUAL "0")
   message(FATAL_ERROR "the keyed run failed with exit code '${rc}'")
 endif()
+expect_bus(${OUT_DIR}/keyed "${out}" ON "signed: every message signed and checked \\(--key-file [^)]*bus.key\\), 0 forged and 0 replayed")
 # The node's counts at exit (unauthenticated=N replayed=N) and tvo_sim's own drops ("dropped N frame(s)").
 if(err MATCHES "unauthenticated=[1-9]|replayed=[1-9]|dropped [1-9]")
   message(FATAL_ERROR "the keyed run dropped genuine frames:\n${err}")

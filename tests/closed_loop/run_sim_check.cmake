@@ -5,6 +5,7 @@
 #   -DEXPECT_EXIT=<code>            exact exit code (default 0)
 #   -DEXPECT_EXIT_NONZERO=ON        any non-zero exit code instead
 #   -DEXPECT_STDERR=<regex>         stderr must match
+#   -DEXPECT_STDOUT=<regex>         stdout (the summary table) must match
 #   -DCHECKS=<|-list of KEY<OP>VALUE>  OP is <, <=, >, >= or ==; KEY a number in summary.json
 #   -DEXPECT_FILES=<|-list of names in OUT_DIR that must exist and be non-empty>
 # Fails (FATAL_ERROR) on the first unmet expectation, after printing the run's output.
@@ -36,6 +37,9 @@ endif()
 
 if(DEFINED EXPECT_STDERR AND NOT err MATCHES "${EXPECT_STDERR}")
   message(FATAL_ERROR "stderr does not match '${EXPECT_STDERR}'")
+endif()
+if(DEFINED EXPECT_STDOUT AND NOT out MATCHES "${EXPECT_STDOUT}")
+  message(FATAL_ERROR "stdout does not match '${EXPECT_STDOUT}'")
 endif()
 
 foreach(name IN LISTS EXPECT_FILES)

@@ -15,7 +15,15 @@ if(NOT EXISTS ${BINARY_DIR}/CMakeCache.txt)
 endif()
 include(ProcessorCount)
 ProcessorCount(jobs)
-execute_process(COMMAND ${CMAKE_COMMAND} --build ${BINARY_DIR} -j ${jobs} RESULT_VARIABLE rc)
+# Only the harnesses and the seed writer: the project's `all` also has the host programs of
+# firmware/apps/bench (from add_subdirectory(firmware)), which nothing fuzzes (the sanitized stage
+# builds them with clang).
+include(${SOURCE_DIR}/harnesses.cmake)
+set(targets fuzz_make_seeds)
+foreach(harness IN LISTS tvo_fuzz_harnesses)
+  list(APPEND targets fuzz_${harness})
+endforeach()
+execute_process(COMMAND ${CMAKE_COMMAND} --build ${BINARY_DIR} -j ${jobs} --target ${targets} RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "building the fuzz harnesses failed")
 endif()

@@ -1,5 +1,6 @@
 # Every built-in scenario file loads: `tvo_sim --scenario NAME --dry-run` accepts each file of the
-# folder by its name, and `--list-scenarios` prints one line per file, its name then its
+# folder by its name, and `--list-scenarios` prints one line per file, its name then its whole
+# description, and one line per file of a subfolder (host/scenarios/fleet/), its path then its
 # description (cmake -P script). With SCENARIO_TOOL, `tools/scenario --list` without a build (an
 # empty TVO_BUILD_DIR) must print the same lines and build nothing.
 #
@@ -12,15 +13,33 @@ list(LENGTH files count)
 if(count LESS 7)
   message(FATAL_ERROR "expected the seven built-in runs in ${SCENARIO_DIR}, found ${count} files")
 endif()
+file(GLOB subfolder_files ${SCENARIO_DIR}/*/*.yaml)
+list(LENGTH subfolder_files subfolder_count)
+math(EXPR listed_count "${count} + ${subfolder_count}")
 execute_process(COMMAND ${SIM} --list-scenarios RESULT_VARIABLE rc OUTPUT_VARIABLE listing ERROR_VARIABLE err)
 if(NOT rc STREQUAL "0")
   message(FATAL_ERROR "--list-scenarios exited with '${rc}': ${err}")
 endif()
 string(REGEX MATCHALL "\n" newlines "${listing}")   # not a list of the lines: a description may hold ';'
 list(LENGTH newlines line_count)
-if(NOT line_count EQUAL count)
-  message(FATAL_ERROR "--list-scenarios printed ${line_count} lines for ${count} files:\n${listing}")
+if(NOT line_count EQUAL listed_count)
+  message(FATAL_ERROR "--list-scenarios printed ${line_count} lines for ${count} files and ${subfolder_count} "
+                      "in subfolders:\n${listing}")
 endif()
+foreach(file IN LISTS subfolder_files)
+  file(READ ${file} text)
+  string(REGEX MATCH "\ndescription: \"([^\"\n]*)\"" line "${text}")
+  set(description "${CMAKE_MATCH_1}")
+  file(RELATIVE_PATH shown ${CMAKE_CURRENT_BINARY_DIR} ${file})   # as the path to give from here
+  if(shown MATCHES "^\\.\\./")
+    set(shown ${file})
+  endif()
+  string(FIND "${listing}" "${shown}  ${description}\n" at)
+  if(at EQUAL -1 OR description STREQUAL "")
+    message(FATAL_ERROR "--list-scenarios lacks '${shown}  ${description}':\n${listing}")
+  endif()
+  message(STATUS "ok: ${shown}: ${description}")
+endforeach()
 foreach(file IN LISTS files)
   get_filename_component(name ${file} NAME_WE)
   file(READ ${file} text)

@@ -100,6 +100,12 @@ tvo_scenario_message(NAME scenario_file_option_range_cli EXIT 2 ARGS --scenario 
   STDERR "--sigma: got '2', expected a number in [0, 1]")
 tvo_scenario_message(NAME scenario_file_unknown_name EXIT 2 ARGS --scenario no-such-scenario
   STDERR "--scenario: no scenario 'no-such-scenario'")
+# A folder where a file belongs is named as a folder, not as a missing file.
+tvo_scenario_message(NAME scenario_file_is_folder EXIT 2 ARGS --scenario ${tvo_broken}
+  STDERR "--scenario: ${tvo_broken} is a folder, not a scenario file: give one of its .yaml files")
+# Nesting past yaml-cpp's depth guard (its own text is only "bad file") is named as such, where it stops.
+tvo_scenario_message(NAME scenario_file_deeply_nested EXIT 2 ARGS --scenario ${tvo_broken}/deeply_nested.yaml
+  STDERR "${tvo_broken}/deeply_nested.yaml:3:1209: not valid YAML for a scenario: nested deeper than the parser's limit of 500 levels")
 
 # The command line overrides the file: warehouse.yaml's h = 20 ms (800 periods of its 16 s) gives
 # way to --period-s 0.01 (1600) and its duration to --duration-s 4.
@@ -115,7 +121,8 @@ tvo_scenario_message(NAME scenario_file_demo_variants EXIT 0 ARGS --scenario dem
   STDOUT "dry run: scenario demo, 3 robot(s)")
 
 # A run that completes with a collision exits 3, after writing every output; tools/scenario passes the
-# code through. Its 3 s are the whole run of the RMS error.
+# code through after plotting it (run.png, the collision marked from summary.json's collision_events).
+# Its 3 s are the whole run of the RMS error.
 tvo_closed_loop_test(NAME scenario_file_collision_exit
   ARGS --scenario ${tvo_sf_dir}/collision.yaml EXPECT_EXIT 3
   EXPECT_STDERR "the run ended with [1-9][0-9]* collision\\(s\\) \\(exit code 3\\)"
@@ -126,7 +133,10 @@ add_test(NAME scenario_file_collision_exit_tool
   COMMAND /bin/sh -c "TVO_DEMO_NO_BUILD=1 TVO_BUILD_DIR='${PROJECT_BINARY_DIR}' '${PROJECT_SOURCE_DIR}/tools/scenario' \
 '${tvo_sf_dir}/collision.yaml' --lcm-url '${tvo_sf_url}' --out-dir '${tvo_sf_tool_out}' >'${tvo_sf_tool_out}.log' 2>&1; \
 rc=$?; cat '${tvo_sf_tool_out}.log'; echo \"exit code $rc\"; test $rc -eq 3 && \
-grep -q 'RMS tracking error, whole run' '${tvo_sf_tool_out}.log'")
+grep -q 'RMS tracking error, whole run' '${tvo_sf_tool_out}.log' && test -s '${tvo_sf_tool_out}/run.png' && \
+grep -q 'collision_events' '${tvo_sf_tool_out}/summary.json' && \
+/usr/bin/python3 '${PROJECT_SOURCE_DIR}/tools/plot_run.py' '${tvo_sf_tool_out}/run.csv' -o '${tvo_sf_tool_out}/again.png' \
+| grep '(1 collision marked)'")
 set_tests_properties(scenario_file_collision_exit_tool PROPERTIES LABELS closed_loop TIMEOUT 120)
 
 # host/README.md's complete example is a scenario file that loads as written.
