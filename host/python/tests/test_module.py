@@ -159,6 +159,7 @@ class MistakesTest(unittest.TestCase):
         self.refused(ValueError, lambda: ctl.step([[0.0, 0.0]], [0.0], speed=[1.0, 2.0]), "step: speed")
         self.refused(ValueError, lambda: ctl.run([[0.0, 0.0, 0.0], [1.0, 1.0, 0.0]], 10),
                      "run: start", "values for 2 robots", "x, y, heading per robot")
+        self.refused(ValueError, lambda: ctl.run([[0.0, 0.0, 0.0]], 2.5), "run: steps", "got 2.5")
         self.assertEqual(ctl.periods, 0)   # nothing of a refused call is kept
         self.assertEqual(ctl.step([-1.0, -2.0], 0.0).outcome, tvo.Outcome.APPLIED)   # one robot: no robot axis
         two = tvo.Problem(2).track(0, tvo.circle((0, 0), 2.0, 0.5)).track(1, tvo.circle((0, 0), 2.0, 0.5, 1.0))

@@ -168,6 +168,8 @@ class UnicycleController:
         to apply, and the controller's answer is applied. Returns a ClosedLoop."""
         ffi, lib = self.core.ffi, self.core.lib
         n = self.robot_count
+        if isinstance(steps, bool) or not isinstance(steps, (int, np.integer)) or steps < 0:
+            raise ValueError(f"run: steps is a whole number of periods >= 0, got {steps!r}")
         poses = [ffi.new("double[3]", [float(v) for v in row])
                  for row in per_robot(start, "run: start", n, ("x", "y", "heading"))]
         out = ClosedLoop(steps, n, self.core.dtype)
