@@ -7,7 +7,8 @@ instead of being half changed:
   - PY_SSIZE_T_CLEAN before Python.h: since 3.10, "#" formats (s#, y#) need it, and their lengths are
     then Py_ssize_t: the variables PyArg_ParseTuple writes become Py_ssize_t, the lengths
     Py_BuildValue reads are cast to it;
-  - Py_TYPE(&t) = &PyType_Type becomes Py_SET_TYPE (Py_TYPE is no longer an lvalue since 3.10).
+  - Py_TYPE(&t) = &PyType_Type becomes Py_SET_TYPE (Py_TYPE is no longer an lvalue since 3.10);
+  - PyEval_CallObject (deprecated in 3.9, removed in 3.13) becomes PyObject_CallObject, the same call.
 
 Usage: lcm_python_patch.py LCM_PYTHON_DIR OUT_DIR   (writes OUT_DIR/{module,pyeventlog,pylcm,pylcm_subscription}.c)
 """
@@ -29,6 +30,7 @@ CHANGES = {
                      ("    int datalen = 0;", "    Py_ssize_t datalen = 0;")],
     "pylcm.c": [CLEAN,
                 ("rbuf->data, rbuf->data_size);", "rbuf->data, (Py_ssize_t)rbuf->data_size);", 2),
+                ("PyEval_CallObject (subs_obj->handler, arglist)", "PyObject_CallObject (subs_obj->handler, arglist)"),
                 ("    int chan_len = 0;", "    Py_ssize_t chan_len = 0;"),
                 ("    int datalen = 0;", "    Py_ssize_t datalen = 0;")],
     "pylcm_subscription.c": [],   # includes Python.h through pylcm_subscription.h: the define goes first
