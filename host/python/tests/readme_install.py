@@ -11,14 +11,16 @@ TVO_PYTHON_BUILD_DIR=BUILD_DIR: pip's build reuses that configured build tree (t
 built) instead of configuring and compiling the copy from scratch (minutes on two loaded cores).
 Then, in the README's shell: tvo, lcm and tvo_lcm come from the venv, numpy from Debian's folder,
 cffi (a Debian package tvo does not load) stays invisible, obstacles.h was written, test_module.py
-and test_lcm.py pass under the venv's interpreter. Then apart: a missing Debian package's message,
-the refusal of a non-Debian interpreter (and, when the original PATH has another python3, pip's build
+and test_lcm.py pass under the venv's interpreter. Then apart: the wheel was Debian's setuptools' and
+wheel's (bdist_wheel) and the backend without them names tools/setup python; a missing Debian
+package's message, the refusal of a non-Debian interpreter (and, when the original PATH has another python3, pip's build
 refusing its venv), a --system-site-packages venv, and `pip uninstall tvo` removing every file the
 package installed.
 
 Usage: readme_install.py REPO WORK_DIR UDPM_URL [BUILD_DIR]
 """
 import glob
+import importlib.util
 import os
 import re
 import shutil
@@ -95,7 +97,7 @@ def check_missing_package(venv, empty):
     """The finder's message when Debian's python3-numpy is missing (pointed at an empty folder)."""
     code = f"""
 import sys, _tvo_debian_packages as d
-sys.meta_path = [f for f in sys.meta_path if not isinstance(f, d.DebianPackages)] + [d.DebianPackages({empty!r})]
+sys.meta_path = [f for f in sys.meta_path if not isinstance(f, d.DebianPackages)] + [d.DebianPackages(folder={empty!r})]
 try:
     import numpy
 except ModuleNotFoundError as e:
@@ -106,13 +108,36 @@ except ModuleNotFoundError as e:
                "without Debian's python3-numpy, `import numpy` says which package and tools/setup python")
 
 
+def check_backend(tree, venv, empty):
+    """The wheel pip installed is bdist_wheel's (Debian's setuptools and wheel ran setup.py), and the
+    backend, without Debian's setuptools (the finder pointed at an empty folder), names tools/setup python."""
+    wheel = glob.glob(os.path.join(site_packages(venv), "tvo-*.dist-info", "WHEEL"))
+    generator = ""
+    if len(wheel) == 1:
+        with open(wheel[0], encoding="utf-8") as f:
+            generator = " ".join(line.strip() for line in f if line.startswith("Generator:"))
+    ok = say(generator.startswith("Generator: bdist_wheel"), f"the wheel was built by Debian's setuptools ({generator or wheel})")
+    # -S: no site-packages, as in pip's isolated build (the venv's own setuptools would answer first)
+    code = f"""
+import sys; sys.path.insert(0, '.')
+import _tvo_debian_packages as debian
+debian.DEBIAN_DIR = {empty!r}
+import debian_setuptools
+"""
+    rc, out = run([sys.executable, "-S", "-c", code], cwd=os.path.join(tree, "host", "python"))
+    return say(rc != 0 and "python3-setuptools" in out and "tools/setup python" in out,
+               "without Debian's python3-setuptools, the build backend says which package and tools/setup python") and ok
+
+
 def check_other_interpreter(tree, env, original_path):
     """A venv of another interpreter is refused by pip's build, naming /usr/bin/python3."""
-    sys.path.insert(0, os.path.join(tree, "host", "python"))
-    import build_backend   # noqa: E402 (the copy's)
-    problem = build_backend.interpreter_problem("/opt/python-3.11", "cpython", "/usr/lib/python3/dist-packages") or ""
+    sys.path.insert(0, os.path.join(tree, "host", "python"))   # the copy's setup.py and its finder module
+    spec = importlib.util.spec_from_file_location("tvo_setup", os.path.join(tree, "host", "python", "setup.py"))
+    setup_py = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(setup_py)   # not __main__: defines, builds nothing
+    problem = setup_py.interpreter_problem("/opt/python-3.11", "cpython", "/usr/lib/python3/dist-packages") or ""
     ok = say("/usr/bin/python3 -m venv v" in problem and "/opt/python-3.11" in problem,
-             "build_backend.interpreter_problem names a non-Debian base and the venv line to use")
+             "setup.py's interpreter_problem names a non-Debian base and the venv line to use")
     other = shutil.which("python3", path=original_path)
     base = subprocess.run([other, "-c", "import sys; print(sys.base_prefix)"], capture_output=True, text=True,
                           check=False).stdout.strip() if other else "/usr"
@@ -208,6 +233,7 @@ python "{tests}/test_lcm.py" "{url}"
                                      f"{time.monotonic() - started:.0f} s)")
     venv = os.path.join(tree, "v")
     if ok:
+        ok = check_backend(tree, venv, os.path.join(tmp, "empty")) and ok
         ok = check_missing_package(venv, os.path.join(tmp, "empty")) and ok
         ok = check_uninstall(venv) and ok
     ok = check_other_interpreter(tree, env, original_path) and ok
