@@ -45,8 +45,8 @@ class DebianPackages:
         return spec
 
     def find_distributions(self, context=importlib.metadata.DistributionFinder.Context()):
-        if context.name is not None and context.name.lower() not in self.distributions:
-            return iter(())
+        if not self.distributions or (context.name is not None and context.name.lower() not in self.distributions):
+            return iter(())   # the run time's finder names none: Debian's folder is not scanned
         found = importlib.metadata.MetadataPathFinder.find_distributions(
             importlib.metadata.DistributionFinder.Context(name=context.name, path=[self.folder]))
         return (d for d in found if d.metadata["Name"].lower() in self.distributions)
