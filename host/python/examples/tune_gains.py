@@ -4,7 +4,7 @@ own core (float32, bit for bit what the board computes), scored by the RMS track
 transient. Run with the venv's python after `pip install ./host/python` (host/python/README.md), or
 with PYTHONPATH=<build>/host/python /usr/bin/python3; --quick: a small grid (the test's).
 
-    .venv/bin/python host/python/examples/tune_gains.py [--quick]
+    v/bin/python host/python/examples/tune_gains.py [--quick]
 """
 import sys
 
