@@ -1,9 +1,10 @@
 #!/usr/bin/python3
 """Tunes the law's gains k_p, k_d against a target: a grid of closed loops through the firmware's
 own core (float32, bit for bit what the board computes), scored by the RMS tracking error after the
-transient. Run with PYTHONPATH=<build>/host/python; --quick: a small grid (the test's).
+transient. Run with the venv's python after `pip install ./host/python` (host/python/README.md), or
+with PYTHONPATH=<build>/host/python /usr/bin/python3; --quick: a small grid (the test's).
 
-    python3 host/python/examples/tune_gains.py [--quick]
+    v/bin/python host/python/examples/tune_gains.py [--quick]
 """
 import sys
 

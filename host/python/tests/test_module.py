@@ -138,6 +138,99 @@ class StepTest(unittest.TestCase):
         self.assertLess(np.linalg.norm(y[0] - [1.0 + 0.2 * t, -0.5]), 0.05)
 
 
+class MistakesTest(unittest.TestCase):
+    """Each shape or range mistake a user can make through the API is refused with a message that
+    names the culprit (the robot count, the entry, the expected shape), as tvo_sim's scenario files."""
+
+    def refused(self, error, call, *fragments):
+        with self.assertRaises(error) as caught:
+            call()
+        for fragment in fragments:
+            self.assertIn(fragment, str(caught.exception))
+        return caught.exception
+
+    def test_robot_count_of_measurements_and_starts(self):
+        ctl = tvo.UnicycleController(demo_problem(), period_s=0.01)
+        self.refused(ValueError, lambda: ctl.step([[0.0, 0.0], [1.0, 1.0]], [0.0]),
+                     "step: position", "values for 2 robots", "drives 1 robot", "expected shape (1, 2)")
+        self.refused(ValueError, lambda: ctl.step([0.0, 0.0, 1.0, 1.0], [0.0]), "2 robots as one flat row")
+        self.refused(ValueError, lambda: ctl.step([[0.0, 0.0, 0.0]], [0.0]), "shape (1, 3)", "x, y per robot")
+        self.refused(ValueError, lambda: ctl.step([[0.0, 0.0]], [0.0, 1.0]), "step: heading", "values for 2 robots")
+        self.refused(ValueError, lambda: ctl.step([[0.0, 0.0]], [0.0], speed=[1.0, 2.0]), "step: speed")
+        self.refused(ValueError, lambda: ctl.run([[0.0, 0.0, 0.0], [1.0, 1.0, 0.0]], 10),
+                     "run: start", "values for 2 robots", "x, y, heading per robot")
+        self.refused(ValueError, lambda: ctl.run([[0.0, 0.0, 0.0]], 2.5), "run: steps", "got 2.5")
+        self.assertEqual(ctl.periods, 0)   # nothing of a refused call is kept
+        self.assertEqual(ctl.step([-1.0, -2.0], 0.0).outcome, tvo.Outcome.APPLIED)   # one robot: no robot axis
+        two = tvo.Problem(2).track(0, tvo.circle((0, 0), 2.0, 0.5)).track(1, tvo.circle((0, 0), 2.0, 0.5, 1.0))
+        self.refused(ValueError, lambda: tvo.UnicycleController(two).step([[0.0, 0.0]], [0.0]),
+                     "values for 1 robot", "drives 2 robots")
+        self.refused(ValueError, lambda: tvo.UnicycleController(demo_problem(), initial_speed_mps=[0.0] * 9),
+                     "initial_speed_mps: 9 values")
+
+    def test_chain_and_streamed_shapes(self):
+        chain = tvo.ChainController(tvo.Problem(1).track(0, tvo.polynomial([[1.0], [0.0]])), relative_degree=2)
+        self.refused(ValueError, lambda: chain.step(np.zeros((2, 4))), "values for 2 robots", "2N = 2",
+                     "drives 1 robot")
+        self.refused(ValueError, lambda: chain.step(np.zeros((3, 2))), "expected (1 .. 2, 2)")
+        ctl = tvo.UnicycleController(tvo.Problem(1).track(0, tvo.streamed()), period_s=0.01)
+        self.refused(IndexError, lambda: ctl.stream_target(1, [[0.0, 0.0]], 0), "robot 1", "has 1 robot (0 .. 0)")
+        rows = tvo.core().lib.TVO_STREAM_MAX_DERIV + 1
+        self.refused(ValueError, lambda: ctl.stream_target(0, np.zeros((rows + 1, 2)), 0), f"expected (1 .. {rows}, 2)")
+
+    def test_problem_entries_name_the_robot(self):
+        p = tvo.Problem(2)
+        self.refused(IndexError, lambda: p.track(2, tvo.circle((0, 0), 1.0, 1.0)), "track: robot 2",
+                     "has 2 robots (0 .. 1)")
+        self.refused(TypeError, lambda: p.track(0, (0.0, 0.0)), "robot 0's target", "tvo.polynomial")
+        self.refused(ValueError, lambda: p.track(0, tvo.circle((0, 0), 1.0, 1.0), weight=(1.0,)), "robot 0's weight")
+        self.refused(IndexError, lambda: p.add_distance_bound(0, 5, min_m=1.0), "add_distance_bound: robot 5")
+        self.refused(ValueError, lambda: p.add_distance_bound(1, 1, min_m=1.0), "two different robots", "1 twice")
+        self.refused(IndexError, lambda: p.add_halfspace(3, (1.0, 0.0), 1.0), "add_halfspace: robot 3")
+        self.refused(ValueError, lambda: p.add_offset(0, 0, tvo.polynomial([[1.0], [0.0]])), "add_offset")
+        self.refused(ValueError, lambda: p.add_obstacle((0.0, 0.0, 1.0), 0.5), "add_obstacle: center_m", "two numbers")
+        self.refused(TypeError, lambda: p.add_obstacle((0.0, 0.0), "big"), "add_obstacle: radius_m")
+        self.refused(ValueError, lambda: tvo.circle((0.0, 0.0, 0.0), 1.0, 1.0), "circle: center_m")
+        self.refused(ValueError, lambda: tvo.ellipse((0.0, 0.0), (1.0,), 1.0), "ellipse: semi_axis_m")
+        self.refused(ValueError, lambda: tvo.polynomial([[1.0], [0.0], [2.0]]), "two rows (x, y)", "got 3 rows")
+        self.refused(ValueError, lambda: tvo.Problem(0), "robots >= 1, got 0")
+        self.assertEqual((p.distance_bounds, p.halfspaces, p.offsets, p.obstacles), ([], [], [], []))
+        p.track(0, tvo.circle((0, 0), 1.0, 1.0))
+        self.refused(ValueError, lambda: tvo.UnicycleController(p), "robot 1 has no target (of 2 robots)")
+
+    def test_core_refusals_name_the_entry(self):
+        def core_refused(problem, culprit, *fragments):
+            error = self.refused(tvo.TvoError, lambda: tvo.UnicycleController(problem), culprit, *fragments)
+            self.assertEqual(error.culprit, culprit)
+            return error
+
+        three = demo_problem().add_obstacle((5.0, 5.0), 1.0).add_obstacle((-5.0, 5.0), 1.0).add_obstacle((5.5, 5.0), 1.0)
+        error = core_refused(three, "obstacles[0] and obstacles[2]", "they overlap", "centres 0.5 m apart",
+                             "radii's sum 2 m")
+        self.assertEqual(error.part, "obstacles")
+        core_refused(demo_problem().add_obstacle((5.0, 5.0), 1.0).add_obstacle((9.0, 9.0), -0.5),
+                     "obstacles[1]", "the radius must be > 0")
+        radius = demo_problem().add_obstacle((5.0, 5.0), 1.0)
+        radius.robot_radius_m = -0.1
+        core_refused(radius, "robot_radius_m", "-0.1 m refused")
+        core_refused(tvo.Problem(2).track(0, tvo.circle((0, 0), 2.0, 0.5)).track(1, tvo.circle((0, 0), 1.0, 0.5))
+                     .add_distance_bound(0, 1, min_m=0.5).add_distance_bound(0, 1, min_m=2.0, max_m=1.0),
+                     "distance_bounds[1] (robots 0 and 1)", "min_m (2.0) must be below max_m (1.0)")
+        core_refused(demo_problem().add_halfspace(0, (0.0, 0.0), 1.0), "halfspaces[0] (robot 0)", "no direction")
+        barrier = demo_problem().add_obstacle((5.0, 5.0), 1.0)
+        barrier.barrier = {"relaxation_degree": 2, "c0": 1.0}
+        core_refused(barrier, "barrier['relaxation_degree']", "at least k + 1 = 3")
+        weight = demo_problem()
+        weight.robots[0]["tracking_weight"] = [1.0, -2.0]
+        core_refused(weight, "robot 0's weight", "both must be finite and > 0")
+        barrier.barrier = {"c_zero": 1.0}
+        self.refused(TypeError, lambda: tvo.UnicycleController(barrier), "barrier: no field 'c_zero'", "c0")
+        crowded = demo_problem()
+        for i in range(tvo.core().lib.TVO_MAX_OBSTACLES + 1):
+            crowded.add_obstacle((10.0 * i, 50.0), 1.0)
+        self.refused(tvo.TvoError, lambda: tvo.UnicycleController(crowded), "9 obstacles (at most 8")
+
+
 class ReadmeTest(unittest.TestCase):
     def test_readme_python_runs(self):
         """host/python/README.md's Python blocks run as written (the tuning one with its problem)."""

@@ -1,4 +1,4 @@
-"""python3 -m tvo export SCENARIO [--name NAME] [-o FILE] [tvo_sim options ...]
+"""python -m tvo export SCENARIO [--name NAME] [-o FILE] [tvo_sim options ...]
 
 Writes the scenario (a built-in name or a .yaml file; `through` waypoints solved by the host's code)
 as a C header a firmware compiles: NAME_problem_desc(), NAME_controller_config(), NAME_start[][3]
@@ -13,7 +13,7 @@ from . import export_c, load_scenario
 
 
 def main(argv):
-    parser = argparse.ArgumentParser(prog="python3 -m tvo", description=__doc__.split("\n\n")[1],
+    parser = argparse.ArgumentParser(prog="python -m tvo", description=__doc__.split("\n\n")[1],
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True)
     export = sub.add_parser("export", help="a scenario as a C header")

@@ -3,6 +3,7 @@ import collections
 
 import numpy as np
 
+from ._checks import per_robot, robot_index, robots_text
 from ._lib import ChainParam, Flag, Outcome, Reason, TvoError, check, core
 from ._problem import BuiltProblem, Problem
 
@@ -35,6 +36,8 @@ def _configure(c, cfg, config, period_s, delay_s):
             raise TypeError(f"no config field {name!r} (fields: {', '.join(fields)})") from None
         if isinstance(field, ffi.CData):
             values = np.asarray(value, dtype=np.float64).reshape(-1)
+            if len(values) > len(field):
+                raise ValueError(f"{name}: {len(values)} values, at most {len(field)} (one per robot or output)")
             for i, v in enumerate(values):
                 field[i] = float(v)
         else:
@@ -98,7 +101,7 @@ class UnicycleController:
         misused call (an apply tick that does not advance) raises TvoError and changes nothing."""
         lib = self.core.lib
         n = self.robot_count
-        pos = np.asarray(position, dtype=np.float64).reshape(n, 2)
+        pos = per_robot(position, "step: position", n, ("x", "y"))
         apply_tick = self.next_apply_tick() if apply_tick is None else int(apply_tick) % UINT32
         m = self._meas
         m.stamp_tick = (apply_tick - self.delay_ticks) % UINT32 if stamp_tick is None else int(stamp_tick) % UINT32
@@ -107,11 +110,11 @@ class UnicycleController:
             m.position_m[r][1] = pos[r, 1]
         m.heading_valid = heading is not None
         if heading is not None:
-            for r, h in enumerate(np.asarray(heading, dtype=np.float64).reshape(n)):
+            for r, h in enumerate(per_robot(heading, "step: heading", n)):
                 m.heading_rad[r] = h
         m.speed_valid = speed is not None
         if speed is not None:
-            for r, v in enumerate(np.asarray(speed, dtype=np.float64).reshape(n)):
+            for r, v in enumerate(per_robot(speed, "step: speed", n)):
                 m.speed_mps[r] = v
         if not self._slack_chosen:
             # As the firmware node: the barrier's slack from the first measurement, at t = 0.
@@ -141,10 +144,13 @@ class UnicycleController:
         velocity, acceleration, jerk, valid at plant tick `tick` (converted to objective ticks by
         tvo_controller_objective_ticks). Raises TvoError if refused (not finite, not advancing...)."""
         ffi, lib = self.core.ffi, self.core.lib
-        d = np.asarray(derivs, dtype=np.float64).reshape(-1, 2)
+        robot = robot_index(robot, self.robot_count, "stream_target")
+        d = np.asarray(derivs, dtype=np.float64)
+        d = d.reshape(1, -1) if d.ndim == 1 else d
         rows = lib.TVO_STREAM_MAX_DERIV + 1
-        if d.shape[0] > rows:
-            raise ValueError(f"at most {rows} derivatives (position .. order {rows - 1})")
+        if d.ndim != 2 or d.shape[1] != 2 or not 1 <= d.shape[0] <= rows:
+            raise ValueError(f"stream_target: derivs of shape {np.shape(derivs)}, expected (1 .. {rows}, 2): position, "
+                             f"velocity, ... up to order {rows - 1}, x and y each, of robot {robot}")
         values = np.zeros((rows, 2))
         values[:d.shape[0]] = d
         stamp = ffi.new("uint64_t *")
@@ -162,8 +168,10 @@ class UnicycleController:
         to apply, and the controller's answer is applied. Returns a ClosedLoop."""
         ffi, lib = self.core.ffi, self.core.lib
         n = self.robot_count
+        if isinstance(steps, bool) or not isinstance(steps, (int, np.integer)) or steps < 0:
+            raise ValueError(f"run: steps is a whole number of periods >= 0, got {steps!r}")
         poses = [ffi.new("double[3]", [float(v) for v in row])
-                 for row in np.asarray(start, dtype=np.float64).reshape(n, 3)]
+                 for row in per_robot(start, "run: start", n, ("x", "y", "heading"))]
         out = ClosedLoop(steps, n, self.core.dtype)
         out.poses[0] = [list(p) for p in poses]
         held_v = [0.0] * n
@@ -248,7 +256,14 @@ class ChainController:
         """derivs (k, 2N): y, y', ..., y^(k-1) as measured (rows past the first are read only when
         not filtered_derivatives). Returns a ChainCommand (u as numpy)."""
         ffi, lib = self.core.ffi, self.core.lib
-        d = np.asarray(derivs, dtype=np.float64).reshape(-1, self.dim)
+        d = np.asarray(derivs, dtype=np.float64)
+        d = d.reshape(1, -1) if d.ndim == 1 else d
+        if d.ndim != 2 or d.shape[1] != self.dim or not 1 <= d.shape[0] <= self.k:
+            robots = self.dim // 2
+            given = f" (values for {robots_text(d.shape[1] // 2)})" if d.ndim == 2 and d.shape[1] % 2 == 0 else ""
+            raise ValueError(f"step: derivs of shape {np.shape(derivs)}{given}, expected (1 .. {self.k}, {self.dim}): "
+                             f"y, y', ... up to y^({self.k - 1}) in rows, each of 2N = {self.dim} values "
+                             f"(x, y per robot: this controller drives {robots_text(robots)})")
         apply_tick = ((self.epoch_tick + (self.periods + 1) * self.period_ticks) if apply_tick is None
                       else int(apply_tick)) % UINT32
         m = self._meas

@@ -113,18 +113,26 @@ PROBLEM_PARTS = ("robots/targets", "barrier", "distance bounds", "half-spaces", 
 
 class TvoError(Exception):
     """A status other than TVO_OK from the core (the call changed nothing): .status (Status), .param
-    (Param, or ChainParam, for TVO_ERR_PARAM from an init), .part (the problem's part, from tvo_problem_init); the message is the core's text."""
+    (Param, or ChainParam, for TVO_ERR_PARAM from an init), .part (the problem's part, from
+    tvo_problem_init), .culprit (the entry the core refused, e.g. "obstacles[1]", when found) and
+    .detail (what is wrong with it); the message is the core's text, then culprit and detail."""
 
-    def __init__(self, status, where="", param=None, part=None, param_enum=None):
+    def __init__(self, status, where="", param=None, part=None, param_enum=None, culprit=None, detail=None):
         self.status = Status(status)
         self.param = (param_enum or Param)(param) if param is not None and int(param) != 0 else None
         self.part = part
+        self.culprit = culprit
+        self.detail = detail
         text = f"{where}: " if where else ""
         text += f"{self.status.name} ({self.status.message})"
         if self.param is not None:
             text += f", parameter {self.param.field}"
         if part is not None:
             text += f", part of the problem: {part}"
+        if culprit is not None:
+            text += f": {culprit}"
+        if detail is not None:
+            text += f": {detail}"
         super().__init__(text)
 
 

@@ -5,6 +5,7 @@ import math
 
 import numpy as np
 
+from ._checks import pair, real, robot_index, robot_pair, robots_text
 from ._lib import PROBLEM_PARTS, TvoError, check, core
 
 
@@ -12,29 +13,40 @@ from ._lib import PROBLEM_PARTS, TvoError, check, core
 
 def polynomial(coeff):
     """p(t) = sum_j coeff[axis][j] t^j, axis x then y, degree <= 7 (missing powers are 0)."""
-    rows = [list(map(float, axis)) for axis in coeff]
+    rows = [[real(v, f"polynomial: coefficient [{axis}][{j}]") for j, v in enumerate(row)]
+            for axis, row in enumerate(coeff)]
     if len(rows) != 2 or max(len(r) for r in rows) > 8:
-        raise ValueError("polynomial: two rows (x, y) of at most 8 coefficients (degree <= 7)")
+        raise ValueError("polynomial: two rows (x, y) of at most 8 coefficients (degree <= 7), got "
+                         f"{len(rows)} rows of {[len(r) for r in rows]}")
     return {"kind": "polynomial", "coeff": [r + [0.0] * (8 - len(r)) for r in rows]}
 
 
 def circle(center_m, radius_m, omega_radps, phase_rad=0.0):
     """center + radius (cos, sin)(omega t + phase)."""
-    return {"kind": "circle", "center_m": [float(c) for c in center_m], "radius_m": float(radius_m),
-            "omega_radps": float(omega_radps), "phase_rad": float(phase_rad)}
+    return {"kind": "circle", "center_m": pair(center_m, "circle: center_m"), "radius_m": real(radius_m, "circle: radius_m"),
+            "omega_radps": real(omega_radps, "circle: omega_radps"), "phase_rad": real(phase_rad, "circle: phase_rad")}
 
 
 def ellipse(center_m, semi_axis_m, omega_radps, phase_rad=0.0, rotation_rad=0.0):
     """center + R(rotation) (a cos, b sin)(omega t + phase)."""
-    return {"kind": "ellipse", "center_m": [float(c) for c in center_m],
-            "semi_axis_m": [float(a) for a in semi_axis_m], "omega_radps": float(omega_radps),
-            "phase_rad": float(phase_rad), "rotation_rad": float(rotation_rad)}
+    return {"kind": "ellipse", "center_m": pair(center_m, "ellipse: center_m"),
+            "semi_axis_m": pair(semi_axis_m, "ellipse: semi_axis_m"), "omega_radps": real(omega_radps, "ellipse: omega_radps"),
+            "phase_rad": real(phase_rad, "ellipse: phase_rad"), "rotation_rad": real(rotation_rad, "ellipse: rotation_rad")}
 
 
 def streamed():
     """A target streamed at run time (UnicycleController.stream_target): samples of position ..
     jerk, extrapolated causally by the core. Not exportable (it has no on-board function)."""
     return {"kind": "streamed"}
+
+
+def _time_function(path, what):
+    """A copy of a time function made by tvo.polynomial / circle / ellipse / streamed, else TypeError."""
+    kinds = ("polynomial", "circle", "ellipse", "streamed")
+    if not isinstance(path, dict) or path.get("kind") not in kinds:
+        raise TypeError(f"{what}: a time function from tvo.polynomial, tvo.circle, tvo.ellipse or tvo.streamed, "
+                        f"got {path!r}")
+    return copy.deepcopy(path)
 
 
 def path_position(path, t_s):
@@ -62,8 +74,10 @@ class Problem:
     """
 
     def __init__(self, robots=1):
+        if isinstance(robots, bool) or not isinstance(robots, int) or robots < 1:
+            raise ValueError(f"Problem(robots): a whole number of robots >= 1, got {robots!r}")
         self.robots = [{"target": None, "tracking_weight": [1.0, 1.0], "initial_speed_mps": 0.0}
-                       for _ in range(int(robots))]
+                       for _ in range(robots)]
         self.barrier = {}                 # overrides of tvo_barrier_config_default's fields
         self.distance_bounds = []
         self.halfspaces = []
@@ -74,32 +88,39 @@ class Problem:
     # --- building ---
     def track(self, robot, target, weight=(1.0, 1.0)):
         """Robot `robot` tracks `target` (tvo.polynomial / circle / ellipse) with diagonal weight W."""
-        self.robots[robot]["target"] = copy.deepcopy(target)
-        self.robots[robot]["tracking_weight"] = [float(w) for w in weight]
+        r = robot_index(robot, len(self.robots), "track")
+        self.robots[r]["target"] = _time_function(target, f"track: robot {r}'s target")
+        self.robots[r]["tracking_weight"] = pair(weight, f"track: robot {r}'s weight")
         return self
 
     def add_obstacle(self, center_m, radius_m):
         """A disk every robot avoids (with robot_radius_m added)."""
-        self.obstacles.append({"center_m": [float(c) for c in center_m], "radius_m": float(radius_m)})
+        self.obstacles.append({"center_m": pair(center_m, "add_obstacle: center_m"),
+                               "radius_m": real(radius_m, "add_obstacle: radius_m")})
         return self
 
     def add_halfspace(self, robot, normal, bound_m, normal_rate=(0.0, 0.0), bound_rate_mps=0.0):
         """normal(t) . y_robot <= bound(t), normal and bound moving linearly in t."""
-        self.halfspaces.append({"robot": int(robot), "normal": [float(n) for n in normal],
-                                "normal_rate": [float(n) for n in normal_rate], "bound_m": float(bound_m),
-                                "bound_rate_mps": float(bound_rate_mps)})
+        self.halfspaces.append({"robot": robot_index(robot, len(self.robots), "add_halfspace"),
+                                "normal": pair(normal, "add_halfspace: normal"),
+                                "normal_rate": pair(normal_rate, "add_halfspace: normal_rate"),
+                                "bound_m": real(bound_m, "add_halfspace: bound_m"),
+                                "bound_rate_mps": real(bound_rate_mps, "add_halfspace: bound_rate_mps")})
         return self
 
     def add_distance_bound(self, robot_a, robot_b, min_m=0.0, max_m=0.0, min_rate_mps=0.0, max_rate_mps=0.0):
         """min(t) <= |y_a - y_b| <= max(t) (0: that side unbounded)."""
-        self.distance_bounds.append({"robot_a": int(robot_a), "robot_b": int(robot_b), "min_m": float(min_m),
-                                     "min_rate_mps": float(min_rate_mps), "max_m": float(max_m),
-                                     "max_rate_mps": float(max_rate_mps)})
+        a, b = robot_pair(robot_a, robot_b, len(self.robots), "add_distance_bound")
+        self.distance_bounds.append({"robot_a": a, "robot_b": b, "min_m": real(min_m, "add_distance_bound: min_m"),
+                                     "min_rate_mps": real(min_rate_mps, "add_distance_bound: min_rate_mps"),
+                                     "max_m": real(max_m, "add_distance_bound: max_m"),
+                                     "max_rate_mps": real(max_rate_mps, "add_distance_bound: max_rate_mps")})
         return self
 
     def add_offset(self, robot_a, robot_b, offset):
         """Formation: y_a - y_b = d(t), d a time function (tvo.polynomial / circle / ellipse)."""
-        self.offsets.append({"robot_a": int(robot_a), "robot_b": int(robot_b), "offset": copy.deepcopy(offset)})
+        a, b = robot_pair(robot_a, robot_b, len(self.robots), "add_offset")
+        self.offsets.append({"robot_a": a, "robot_b": b, "offset": _time_function(offset, "add_offset: offset")})
         return self
 
     # --- as data ---
@@ -181,11 +202,18 @@ class BuiltProblem:
                            param=lib.TVO_PARAM_ROBOT_COUNT)
         desc.robot_count = self.robot_count
         for r, robot in enumerate(problem.robots):
+            if robot["target"] is None:
+                raise ValueError(f"robot {r} has no target (of {robots_text(self.robot_count)}): "
+                                 f"problem.track({r}, tvo.circle(...)) or another time function")
             desc.tracking_weight[r][0] = robot["tracking_weight"][0]
             desc.tracking_weight[r][1] = robot["tracking_weight"][1]
             _init_path(c, robot["target"], ffi.addressof(desc.target[r]), f"robot {r}'s target")
         for field, value in problem.barrier.items():
-            setattr(desc.barrier, field, value)
+            try:
+                setattr(desc.barrier, field, value)
+            except AttributeError:
+                fields = sorted(n for n, _ in ffi.typeof("tvo_barrier_config_t").fields)
+                raise TypeError(f"barrier: no field {field!r} (fields: {', '.join(fields)})") from None
         self._fill(desc, "distance", lib.TVO_MAX_DISTANCE_BOUNDS, problem.distance_bounds, "distance bounds")
         self._fill(desc, "halfspace", lib.TVO_MAX_HALFSPACES, problem.halfspaces, "half-spaces")
         desc.robot_radius_m = problem.robot_radius_m
@@ -201,13 +229,16 @@ class BuiltProblem:
         self.problem = ffi.new("tvo_problem_t *")
         bad_part = ffi.new("uint8_t *")
         status = lib.tvo_problem_init(self.problem, desc, relative_degree, bad_part)
-        part = PROBLEM_PARTS[bad_part[0]] if bad_part[0] < len(PROBLEM_PARTS) else str(bad_part[0])
-        check(status, "tvo_problem_init", part=part)
+        if status != 0:
+            part = PROBLEM_PARTS[bad_part[0]] if bad_part[0] < len(PROBLEM_PARTS) else str(bad_part[0])
+            culprit, detail = _Diagnosis(c, desc, problem, relative_degree).explain(part)
+            raise TvoError(status, "tvo_problem_init", part=part, culprit=culprit, detail=detail)
         self.has_inequalities = problem.has_inequalities
 
     def _fill(self, desc, name, capacity, entries, part):
         if len(entries) > capacity:
-            raise TvoError(self.core.lib.TVO_ERR_CAPACITY, f"{len(entries)} {part} (at most {capacity})", part=part)
+            raise TvoError(self.core.lib.TVO_ERR_CAPACITY, f"{len(entries)} {part} (at most {capacity} in this "
+                           "build: tvo/config.h)", part=part)
         setattr(desc, f"{name}_count", len(entries))
         table = getattr(desc, name)
         for i, entry in enumerate(entries):
@@ -221,3 +252,125 @@ class BuiltProblem:
     @property
     def objective(self):
         return self.core.ffi.addressof(self.problem, "objective")
+
+
+class _Diagnosis:
+    """Which entry of a refused part the core objects to, found by asking tvo_problem_init again with
+    that entry alone changed or left out (the core checks a part's entries in order and stops at the
+    first it refuses), and what is wrong with it in words. The core stays the judge: this only names."""
+
+    def __init__(self, c, desc, problem, relative_degree):
+        self.c, self.desc, self.problem, self.k = c, desc, problem, relative_degree
+        self.limit_m = c.lib.TVO_POSITION_LIMIT_M_VALUE
+
+    def copy(self):
+        ffi = self.c.ffi
+        d = ffi.new("tvo_problem_desc_t *")
+        ffi.memmove(d, self.desc, ffi.sizeof("tvo_problem_desc_t"))
+        return d
+
+    def accepts(self, d):
+        ffi = self.c.ffi
+        return self.c.lib.tvo_problem_init(ffi.new("tvo_problem_t *"), d, self.k, ffi.NULL) == 0
+
+    def first_refused(self, count_field, count):
+        """The first i whose entries 0 .. i the core refuses, or None."""
+        for i in range(count):
+            d = self.copy()
+            setattr(d, count_field, i + 1)
+            if not self.accepts(d):
+                return i
+        return None
+
+    def explain(self, part):
+        method = {"robots/targets": self.robots, "barrier": self.barrier, "distance bounds": self.distance_bounds,
+                  "half-spaces": self.halfspaces, "obstacles": self.obstacles}.get(part)
+        return method() if method else (None, None)
+
+    def robots(self):
+        for r, robot in enumerate(self.problem.robots):
+            d = self.copy()
+            d.tracking_weight[r][0] = d.tracking_weight[r][1] = 1.0
+            if not self.accepts(self.desc) and self.accepts(d):
+                return f"robot {r}'s weight", f"{robot['tracking_weight']}: both must be finite and > 0"
+        return None, None
+
+    _BARRIER_RULES = {"c0": "finite and > 0", "alpha_c_per_s": "finite and >= 0", "c_max": "finite and >= c0",
+                      "delta0": "finite and > 0", "alpha_s_per_s": "finite and > 0", "slack_margin": "finite and > 0"}
+
+    def barrier(self):
+        default = self.c.ffi.new("tvo_barrier_config_t *")
+        self.c.lib.tvo_barrier_config_default(default)
+        for field, value in self.problem.barrier.items():
+            d = self.copy()
+            setattr(d.barrier, field, getattr(default, field))
+            if self.accepts(d):
+                rule = self._BARRIER_RULES.get(field)
+                if field == "relaxation_degree":
+                    rule = f"at least k + 1 = {self.k + 1} (the law differentiates the barrier k = {self.k} times)"
+                return f"barrier['{field}']", f"{value!r} refused: must be {rule} (default {getattr(default, field)!r})"
+        return None, None
+
+    def distance_bounds(self):
+        i = self.first_refused("distance_count", len(self.problem.distance_bounds))
+        if i is None:
+            return None, None
+        b = self.problem.distance_bounds[i]
+        lo, hi = b["min_m"], b["max_m"]
+        if not (math.isfinite(lo) and math.isfinite(hi)):
+            why = "min_m and max_m must be finite"
+        elif lo < 0 or hi < 0:
+            why = "min_m and max_m must be >= 0 (0: that side unbounded)"
+        elif lo == 0 and hi == 0:
+            why = "min_m and max_m are both 0: give at least one bound"
+        elif hi > 0 and lo >= hi:
+            why = f"min_m ({lo}) must be below max_m ({hi})"
+        else:
+            why = "refused with these values"
+        return f"distance_bounds[{i}] (robots {b['robot_a']} and {b['robot_b']})", why
+
+    def halfspaces(self):
+        i = self.first_refused("halfspace_count", len(self.problem.halfspaces))
+        if i is None:
+            return None, None
+        h = self.problem.halfspaces[i]
+        values = h["normal"] + h["normal_rate"] + [h["bound_m"], h["bound_rate_mps"]]
+        if not all(math.isfinite(v) for v in values):
+            why = "normal, normal_rate, bound_m and bound_rate_mps must be finite"
+        elif h["normal"] == [0.0, 0.0]:
+            why = "normal (0, 0) has no direction"
+        elif any(abs(v) > self.limit_m for v in values):
+            why = f"normal, normal_rate, bound_m and bound_rate_mps must lie within +-{self.limit_m} (tvo/config.h)"
+        else:
+            why = "refused with these values"
+        return f"halfspaces[{i}] (robot {h['robot']})", why
+
+    def obstacles(self):
+        obstacles, radius = self.problem.obstacles, self.problem.robot_radius_m
+        d = self.copy()
+        d.robot_radius_m = 0.0
+        if self.accepts(d):
+            return "robot_radius_m", f"{radius} m refused: must be finite and in 0 .. {self.limit_m} m"
+        i = self.first_refused("obstacle_count", len(obstacles))
+        if i is None:
+            return None, None
+        d = self.copy()
+        d.obstacle_count = 1
+        d.obstacle[0] = self.desc.obstacle[i]
+        o = obstacles[i]
+        if not self.accepts(d):
+            return f"obstacles[{i}]", (f"centre {tuple(o['center_m'])}, radius {o['radius_m']} m: the radius must be "
+                                       f"> 0 and at most {self.limit_m} m, the centre within +-{self.limit_m} m, "
+                                       "all finite")
+        for j in range(i):
+            d = self.copy()
+            d.obstacle_count = 2
+            d.obstacle[0] = self.desc.obstacle[j]
+            d.obstacle[1] = self.desc.obstacle[i]
+            if not self.accepts(d):
+                p = obstacles[j]
+                apart = math.dist(p["center_m"], o["center_m"])
+                return (f"obstacles[{j}] and obstacles[{i}]",
+                        f"they overlap: centres {apart:.4g} m apart, not more than the radii's sum "
+                        f"{p['radius_m'] + o['radius_m']:.4g} m (give one disk that covers both, or move them apart)")
+        return f"obstacles[{i}]", "refused with the obstacles before it"

@@ -1,6 +1,7 @@
 """Scenario files (host/scenarios/*.yaml) in Python, solved by the host's own code: tvo_scenario_export
 prints the session tvo_sim would START (a `through` target already solved into its polynomial)."""
 import json
+import os
 import subprocess
 
 import numpy as np
@@ -40,11 +41,15 @@ def load_scenario(name_or_path, *sim_options, exporter=None):
     """The scenario as tvo_sim would run it: a built-in name (demo, obstacles, ...) or a .yaml file;
     sim_options are tvo_sim's (e.g. "--robots", "2", "--gains", "30,11"). A bad file raises
     ValueError with tvo_sim's file:line:col message."""
+    env = None
     if exporter is None:
         from . import _build_paths
         exporter = _build_paths.SCENARIO_EXPORT
+        if _build_paths.SCENARIO_DIR and "TVO_SCENARIO_DIR" not in os.environ:
+            # an installed package: the built-in names are its own copies (a set $TVO_SCENARIO_DIR wins)
+            env = {**os.environ, "TVO_SCENARIO_DIR": _build_paths.SCENARIO_DIR}
     run = subprocess.run([exporter, "--scenario", str(name_or_path), *map(str, sim_options)],
-                         capture_output=True, text=True, check=False)
+                         capture_output=True, text=True, check=False, env=env)
     if run.returncode != 0:
         raise ValueError((run.stderr or run.stdout).strip())
     return Scenario(json.loads(run.stdout))
