@@ -78,7 +78,7 @@ FLEET_RUNS = [("fleet4", FLEET4, []), ("fleet4-loss", FLEET4, ["--loss", "0.1"])
               ("fleet8", FLEET8, []), ("fleet8-loss", FLEET8, ["--loss", "0.1"]),
               ("fleet8-keyed", FLEET8, ["--key-file", "KEY"])]
 # Keys of tools/fleet's JSON that say where and how fast it ran, not what the fleet did.
-FLEET_UNKEPT = ("node_link_rx_packets_min", "scenario")
+FLEET_UNKEPT = ("node_link_rx_packets_min", "scenario", "digest_mismatch_per_period")
 
 
 def n(value):
@@ -249,11 +249,6 @@ def fleet(runs):
         row("periods whose digests differ", lambda c: f"{n(c['digest_mismatch_periods'])} of {n(c['compared_periods'])}"),
         row("the last of them; longest run", lambda c: (f"{c['last_mismatch_period']}; {c['longest_disagreement_periods']}"
                                                           if c["digest_mismatch_periods"] else "none")),
-        row("spread of a row across nodes: median, 99th percentile",
-            lambda c: f"{g(c['median_command_disagreement'])}, {g(c['p99_command_disagreement'])}"),
-        row("largest spread: speed (m/s); turn rate (rad/s), period",
-            lambda c: (f"{g(c['max_speed_disagreement_mps'])}; {g(c['max_turn_rate_disagreement_radps'], 4)}, "
-                       f"{c['max_turn_rate_disagreement_period']}" if c["max_command_disagreement"] else "none")),
         row("samples lost, rows lost, rows held, samples predicted",
             lambda c: f"{n(c['dropped_samples'])}, {n(c['dropped_commands'])}, {n(c['held_rows'])}, "
                       f"{n(c['predicted_samples'])}"),
@@ -263,7 +258,8 @@ def fleet(runs):
             + f"\nThe central node (one `tvo_firmware_node`: `tvo_sim --scenario {FLEET4}`) ends the 4-robot "
               f"run at {g(central['final_error_m'], 4)} m. `tools/fleet FILE --local --json OUT` with the column's "
               f"options (`--loss 0.1`, `--loss-until-s 8`, `--key-file K`), {n(cols[0]['periods'])} and "
-              f"{n(cols[3]['periods'])} periods; loss decided per link and period by a seeded hash (`--seed 1`).\n")
+              f"{n(cols[3]['periods'])} periods; loss decided per link and period by a seeded hash (`--seed 1`); "
+              f"the digests are the nodes' telemetry's `joint_digest`, every period.\n")
 
 
 def formation(runs):

@@ -56,7 +56,8 @@ extern "C" {
  *  the largest, is 211 bytes). */
 #define TVO_NODE_BUFFER_BYTES 256
 
-/** tvo_node_poll's answer when no deadline is pending (never: the node always announces itself). */
+/** tvo_node_poll's answer when no deadline is pending: a NULL or unusable node's (a node always has
+ *  its next announcement). */
 #define TVO_NODE_NO_DEADLINE TVO_SCHEDULE_NO_DEADLINE
 
 /** The most robots a session of this node may have: the build's, within the wire's. */

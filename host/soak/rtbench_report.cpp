@@ -7,20 +7,21 @@
 // Writes one JSON object (--json) and prints it as a table.
 //
 // log_events_expected: what the two processes published. The simulator's own sends come from its
-// log (SESSION, MEASUREMENT, TARGET: logged as they are published). The node's come from its own
-// counters in its newest telemetry: every measurement of the session it handled (accepted or
-// refused) is answered by one command and one telemetry; on top, the safe stops its timer published
-// (command + telemetry, measurement_sequence -1) and its session acks, both as seen by whichever
-// receiver saw more of them (the node keeps no count of those).
+// log (SESSION, SAMPLE, TARGET: logged as they are published). The node's come from its own counters
+// in its newest announcement (node_status_t; the node was started for the run): every sample of the
+// session it handled (accepted or refused) is answered by one command per robot and, the run asking
+// telemetry every period (tools/rtbench passes --telemetry-every 1), one telemetry per robot; on top,
+// the safe stops its timer published (one command per robot, sequence -1, no telemetry), its session
+// acks and its announcements, as seen by whichever receiver saw more of them (the node keeps no count
+// of those; the simulator's log takes at most one announcement a second).
 //
-// Jitter of the node's step start: the telemetry's node_time_us is the node's clock when it
-// handled the measurement. Measurement n is due at the nominal sample instant
-// epoch + (n + 1) h - tau (plant clock; epoch, h and tau from the simulator's START), so
-// node_time_us - nominal = clock offset + lateness, with one constant clock offset (node clock
-// minus plant clock: both are CLOCK_MONOTONIC, the offset is the plant clock's origin). The
-// constant is removed by taking the lateness relative to the run's earliest step: jitter_n =
-// latency_n - min_m latency_m, i.e. how much later than its best case each step started (the
-// simulator waking late to sample, LCM's transit and the node waking late, together).
+// Jitter of the node's answers: lcm-logger stamps each event with the time it received it. Sample n
+// is due at the nominal sample instant epoch + (n + 1) h - tau (plant clock; epoch, h and tau from the
+// simulator's START), so stamp - nominal = clock offset + lateness, with one constant clock offset
+// (the logger's clock minus the plant's). The constant is removed by taking the lateness relative to
+// the run's earliest answer: jitter_n = latency_n - min_m latency_m, i.e. how much later than its best
+// case each answer reached an independent subscriber (the simulator waking late to sample, LCM's
+// transit both ways and the node waking late, together).
 #include <algorithm>
 #include <cstdint>
 #include <fstream>
@@ -35,10 +36,11 @@
 #include <lcm/lcm-cpp.hpp>
 #include <nlohmann/json.hpp>
 
-#include "tvo_lcm/command_t.hpp"
+#include "tvo_lcm/node_status_t.hpp"
 #include "tvo_lcm/session_ack_t.hpp"
 #include "tvo_lcm/session_t.hpp"
 #include "tvo_lcm/telemetry_t.hpp"
+#include "tvo_lcm/unicycle_command_t.hpp"
 
 extern "C" {
 #include "channels.h"
@@ -61,8 +63,9 @@ struct LogContents {
     std::optional<tvo_lcm::session_t> start;        // the first START in the log
     std::uint64_t timer_safe_stops{0};               // of the START's session
     std::uint64_t acks{0};
-    std::optional<tvo_lcm::telemetry_t> newest_telemetry;  // of the START's session, by sequence
-    std::vector<tvo_lcm::telemetry_t> telemetry;     // of the START's session
+    std::uint64_t announcements{0};                  // of the START's node
+    std::optional<tvo_lcm::node_status_t> newest_status;  // of the START's node, by its clock
+    std::vector<std::pair<std::int64_t, std::int32_t>> answers;  // (receive stamp, sequence) of the session's
 };
 
 template <class Msg>
@@ -80,7 +83,9 @@ LogContents read_log(const std::string& path, const std::optional<tvo_lcm::sessi
     }
     LogContents out;
     out.start = start;
-    std::vector<tvo_lcm::command_t> commands;
+    std::vector<tvo_lcm::unicycle_command_t> commands;
+    std::vector<std::int64_t> command_stamps;
+    std::vector<tvo_lcm::node_status_t> statuses;
     for (const lcm::LogEvent* event = log.readNextEvent(); event != nullptr; event = log.readNextEvent()) {
         ++out.total;
         ++out.events[event->channel];
@@ -96,16 +101,20 @@ LogContents read_log(const std::string& path, const std::optional<tvo_lcm::sessi
             ok = decode(*event, &ack);
             out.acks += ok ? 1u : 0u;
         } else if (event->channel == TVO_CHANNEL_COMMAND) {
-            tvo_lcm::command_t command;
+            tvo_lcm::unicycle_command_t command;
             ok = decode(*event, &command);
             if (ok) {
                 commands.push_back(command);
+                command_stamps.push_back(event->timestamp);
             }
         } else if (event->channel == TVO_CHANNEL_TELEMETRY) {
             tvo_lcm::telemetry_t telemetry;
             ok = decode(*event, &telemetry);
+        } else if (event->channel == TVO_CHANNEL_NODE) {
+            tvo_lcm::node_status_t status;
+            ok = decode(*event, &status);
             if (ok) {
-                out.telemetry.push_back(telemetry);
+                statuses.push_back(status);
             }
         }
         out.undecodable += ok ? 0u : 1u;
@@ -113,17 +122,26 @@ LogContents read_log(const std::string& path, const std::optional<tvo_lcm::sessi
     if (!out.start) {
         return out;
     }
-    const std::int64_t id = out.start->session_id;
-    out.timer_safe_stops = static_cast<std::uint64_t>(std::count_if(commands.begin(), commands.end(), [id](const auto& c) {
-        return c.session_id == id && c.measurement_sequence < 0 &&
-               (c.flags & static_cast<std::int32_t>(tvo_lcm::command_t::FLAG_SAFE_STOP)) != 0;
-    }));
-    out.telemetry.erase(std::remove_if(out.telemetry.begin(), out.telemetry.end(),
-                                       [id](const auto& t) { return t.session_id != id; }),
-                        out.telemetry.end());
-    for (const tvo_lcm::telemetry_t& t : out.telemetry) {
-        if (!out.newest_telemetry || t.counters.accepted >= out.newest_telemetry->counters.accepted) {
-            out.newest_telemetry = t;
+    const std::int32_t id = out.start->session_id;
+    for (std::size_t i = 0; i < commands.size(); ++i) {
+        const tvo_lcm::command_header_t& c = commands[i].header;
+        if (c.session_id != id) {
+            continue;
+        }
+        if (c.measurement_sequence < 0 && (c.flags & static_cast<std::int32_t>(tvo_lcm::command_header_t::FLAG_SAFE_STOP)) != 0) {
+            ++out.timer_safe_stops;
+        } else if (c.measurement_sequence >= 0) {
+            out.answers.emplace_back(command_stamps[i], c.measurement_sequence);
+        }
+    }
+    const std::int64_t boot = out.start->node_boot_id[0];
+    for (const tvo_lcm::node_status_t& s : statuses) {
+        if (s.boot_id != boot) {
+            continue;
+        }
+        ++out.announcements;
+        if (!out.newest_status || s.utime >= out.newest_status->utime) {
+            out.newest_status = s;
         }
     }
     return out;
@@ -150,36 +168,35 @@ nlohmann::ordered_json report(const LogContents& sim, const LogContents& logger)
 {
     nlohmann::ordered_json j;
     const tvo_lcm::session_t& start = *sim.start;
+    const auto robots = static_cast<std::uint64_t>(std::max<std::int32_t>(start.robot_count, 1));
     // The simulator's own publications (logged as sent).
     std::uint64_t sim_sent = 0;
-    for (const char* channel : {TVO_CHANNEL_SESSION, TVO_CHANNEL_MEASUREMENT, TVO_CHANNEL_TARGET}) {
+    for (const char* channel : {TVO_CHANNEL_SESSION, TVO_CHANNEL_SAMPLE, TVO_CHANNEL_TARGET}) {
         const auto it = sim.events.find(channel);
         sim_sent += it != sim.events.end() ? it->second : 0u;
     }
-    // The node's: answers from its counters, timer safe stops and acks as seen by either receiver.
-    const std::optional<tvo_lcm::telemetry_t>& newest =
-        (logger.newest_telemetry &&
-         (!sim.newest_telemetry || logger.newest_telemetry->counters.accepted >= sim.newest_telemetry->counters.accepted))
-            ? logger.newest_telemetry
-            : sim.newest_telemetry;
+    // The node's: answers from its counters, timer safe stops, acks and announcements as seen by either
+    // receiver.
+    const std::optional<tvo_lcm::node_status_t>& newest =
+        (logger.newest_status && (!sim.newest_status || logger.newest_status->utime >= sim.newest_status->utime))
+            ? logger.newest_status
+            : sim.newest_status;
     const std::uint64_t answers = newest ? answered_measurements(newest->counters) : 0u;
     const std::uint64_t timer_safe_stops = std::max(sim.timer_safe_stops, logger.timer_safe_stops);
     const std::uint64_t acks = std::max(sim.acks, logger.acks);
-    const std::uint64_t node_sent = 2u * answers + 2u * timer_safe_stops + acks;
+    const std::uint64_t announcements = std::max(sim.announcements, logger.announcements);
+    const std::uint64_t node_sent = 2u * answers * robots + timer_safe_stops + acks + announcements;
 
     std::vector<double> latency_us;
-    latency_us.reserve(logger.telemetry.size());
-    for (const tvo_lcm::telemetry_t& t : logger.telemetry) {
-        if (t.measurement_sequence >= 0 && t.node_time_us > 0) {
-            const std::int64_t nominal_sample =
-                start.epoch_utime + (t.measurement_sequence + 1) * start.period_us - start.delay_us;
-            latency_us.push_back(static_cast<double>(t.node_time_us - nominal_sample));
-        }
+    latency_us.reserve(logger.answers.size());
+    for (const auto& [stamp, sequence] : logger.answers) {
+        const std::int64_t nominal_sample = start.epoch_utime + (sequence + 1) * start.period_us - start.delay_us;
+        latency_us.push_back(static_cast<double>(stamp - nominal_sample));
     }
     // Only the protocol's channels: each LCM instance also publishes LCM_SELF_TEST once when it starts.
     std::uint64_t recorded = 0;
-    for (const char* channel : {TVO_CHANNEL_SESSION, TVO_CHANNEL_SESSION_ACK, TVO_CHANNEL_MEASUREMENT,
-                                TVO_CHANNEL_TARGET, TVO_CHANNEL_COMMAND, TVO_CHANNEL_TELEMETRY}) {
+    for (const char* channel : {TVO_CHANNEL_SESSION, TVO_CHANNEL_SESSION_ACK, TVO_CHANNEL_SAMPLE, TVO_CHANNEL_TARGET,
+                                TVO_CHANNEL_COMMAND, TVO_CHANNEL_TELEMETRY, TVO_CHANNEL_NODE}) {
         const auto it = logger.events.find(channel);
         recorded += it != logger.events.end() ? it->second : 0u;
     }
@@ -191,6 +208,7 @@ nlohmann::ordered_json report(const LogContents& sim, const LogContents& logger)
     j["node_answered_measurements"] = answers;
     j["node_timer_safe_stops"] = timer_safe_stops;
     j["node_acks"] = acks;
+    j["node_announcements"] = announcements;
     j["log_events_simulator_log"] = sim.total;
     nlohmann::ordered_json by_channel;
     for (const auto& [channel, count] : logger.events) {

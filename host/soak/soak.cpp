@@ -6,8 +6,9 @@
 // below 2^32 us so that the run crosses the node's uint32 tick wrap-around (every 71.6 min).
 //
 // Per period n: the plant moves along its held arc to the sample instant (n + 1) h - tau, the
-// measurement (sequence n) goes into the node, the node's command must answer it for the apply
-// instant (n + 1) h; the plant applies it there and the tracking error is taken at that instant.
+// sample (unicycle_sample_t, sequence n) goes into the node, the node's command must answer it for
+// the apply instant (n + 1) h, with its telemetry (the session asks it every period); the plant
+// applies it there and the tracking error is taken at that instant.
 // --constrained adds a half-space x <= b (default 2.9 m) that the ellipse (|x| <= 3 m) leaves on
 // every lap, so the robot rides its boundary for part of each lap (8 % at 2.9 m, 27 % at 2 m) and the
 // barrier's c(t) sits at its cap from 9.2 s on.
@@ -38,6 +39,7 @@
 #include "plant.hpp"
 #include "progress_line.hpp"
 #include "scenario.hpp"
+#include "plant_wire.hpp"
 #include "session.hpp"
 
 extern "C" {
@@ -53,7 +55,8 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kSPerUs = 1e-6;
 constexpr double kSPerHour = 3600.0;
 constexpr std::int64_t kTickSpanUs = std::int64_t{1} << 32;  // the node's uint32 microsecond tick wraps here
-constexpr std::int64_t kSessionId = 1;                        // one session per process: any id >= 0
+constexpr std::int32_t kSessionId = 1;                        // one session per process: any id >= 0
+constexpr std::int64_t kBootId = 1;                           // the in-process node's boot: any > 0
 // Option ranges (checked before any work; exit 2 naming the option).
 constexpr double kMinHours = 0.001;   // 360 periods
 constexpr double kMaxHours = 240.0;   // ten days: 86.4 M periods (2.2 min of CPU here)
@@ -152,14 +155,15 @@ struct NodeOutputs {
     int commands{0};
     int telemetries{0};
     int acks{0};
+    int announcements{0};
     int undecodable{0};
-    tvo_lcm::command_t command{};
+    tvo_lcm::unicycle_command_t command{};
     tvo_lcm::telemetry_t telemetry{};
     tvo_lcm::session_ack_t ack{};
 
     void clear()
     {
-        commands = telemetries = acks = undecodable = 0;
+        commands = telemetries = acks = announcements = undecodable = 0;
     }
 };
 
@@ -179,6 +183,9 @@ extern "C" void on_node_publish(void* context, int channel, const std::uint8_t* 
     case TVO_NODE_CH_SESSION_ACK:
         out->acks += 1;
         out->undecodable += out->ack.decode(data, 0, size) < 0 ? 1 : 0;
+        break;
+    case TVO_NODE_CH_NODE:
+        out->announcements += 1;  // at once when a START is taken: not an answer to a sample
         break;
     default:
         out->undecodable += 1;
@@ -205,30 +212,22 @@ private:
     std::int64_t wraps_{0};
 };
 
-template <std::size_t N>
-bool all_finite(const double (&values)[N], std::size_t count)
+template <class T, std::size_t N>
+bool all_finite(const T (&values)[N])
 {
-    for (std::size_t i = 0; i < count && i < N; ++i) {
-        if (!std::isfinite(values[i])) {
-            return false;
-        }
-    }
-    return true;
+    return std::all_of(std::begin(values), std::end(values), [](T v) { return std::isfinite(v); });
 }
 
-bool command_finite(const tvo_lcm::command_t& c, std::size_t robots)
+bool command_finite(const tvo_lcm::unicycle_command_t& c)
 {
-    return all_finite(c.speed_mps, robots) && all_finite(c.turn_rate_radps, robots) && all_finite(c.input, 2 * robots);
+    return std::isfinite(c.speed_mps) && std::isfinite(c.turn_rate_radps);
 }
 
 bool telemetry_finite(const tvo_lcm::telemetry_t& t)
 {
-    const auto dim = static_cast<std::size_t>(std::clamp(t.dim, 0, 8));
-    return std::isfinite(t.objective_time_s) && all_finite(t.gradient, dim) && all_finite(t.gradient_rate, dim) &&
-           all_finite(t.output_m, dim) && all_finite(t.output_rate_mps, dim) &&
-           all_finite(t.output_accel_mps2, dim) && all_finite(t.speed_state_mps, dim / 2) &&
-           all_finite(t.multiplier, 4) && std::isfinite(t.regularization) && std::isfinite(t.barrier_c) &&
-           std::isfinite(t.barrier_slack);
+    return all_finite(t.gradient) && all_finite(t.gradient_rate) && all_finite(t.output_m) &&
+           all_finite(t.output_rate_mps) && all_finite(t.output_accel_mps2) && std::isfinite(t.speed_state_mps) &&
+           std::isfinite(t.regularization) && std::isfinite(t.barrier_c) && std::isfinite(t.barrier_slack);
 }
 
 /// Figures of one run (the JSON keys, in the order written).
@@ -305,6 +304,7 @@ SoakSetup make_setup(const SoakOptions& o)
     SoakSetup s;
     // tvo_sim's defaults are the demo's: h = 10 ms, tau = 5 ms, compensation on, gains (40, 13).
     s.sim.realtime = false;
+    s.sim.telemetry_every = 1;  // every answer's telemetry: the law's time and c(t) checked every period
     s.scenario = tvo_host::make_demo_scenario(1, tvo_host::TargetKind::Ellipse);
     if (o.constrained) {
         tvo_host::HalfSpace half;
@@ -350,7 +350,9 @@ public:
           errors_(static_cast<double>(setup.steps * setup.sim.period_us) * kSPerUs,
                   2.0 * kPi / setup.scenario.targets[0].ellipse_params().omega_radps)
     {
-        tvo_node_init(node_.get(), on_node_publish, &out_);
+        if (tvo_node_init(node_.get(), -1, kBootId, on_node_publish, &out_) != 0) {
+            throw std::runtime_error("tvo_node_init failed");
+        }
         if (!trace_csv_path.empty()) {
             trace_.open(trace_csv_path);
             if (!trace_) {
@@ -367,8 +369,10 @@ public:
     /// START; false (with a message) if the node did not accept it.
     bool start()
     {
+        tvo_host::NodeBoots boots{};
+        boots[0] = kBootId;
         const tvo_lcm::session_t start = tvo_host::make_start_session(setup_.sim, setup_.scenario, kSessionId,
-                                                                      setup_.epoch_utime, setup_.epoch_utime);
+                                                                      setup_.epoch_utime, setup_.epoch_utime, boots);
         figures_.barrier_c_max = start.barrier.c_max;
         handle(TVO_NODE_CH_SESSION, start, setup_.epoch_utime);
         wraps_.see(setup_.epoch_utime);
@@ -397,10 +401,11 @@ public:
             publish_measurement(n, sample_us);
             const bool answered = check_answer(n, apply_us);
             if (answered) {
-                const std::int64_t command_us = std::clamp(out_.command.utime - setup_.epoch_utime, sample_us, apply_us);
+                const std::int64_t command_us =
+                    std::clamp(out_.command.header.utime - setup_.epoch_utime, sample_us, apply_us);
                 advance_to(command_us);
-                if (command_finite(out_.command, 1)) {
-                    plant_.hold(0, UnicycleInput{out_.command.speed_mps[0], out_.command.turn_rate_radps[0]});
+                if (command_finite(out_.command)) {
+                    plant_.hold(0, UnicycleInput{out_.command.speed_mps, out_.command.turn_rate_radps});
                 }
             }
             advance_to(apply_us);
@@ -412,8 +417,8 @@ public:
                 write_trace_row(t_s, error_m);
             }
             if (out_.telemetries == 1 && errors_.in_last_hour(t_s)) {
-                figures_.max_objective_time_error_s_last_hour = std::max(
-                    figures_.max_objective_time_error_s_last_hour, std::abs(out_.telemetry.objective_time_s - t_s));
+                figures_.max_objective_time_error_s_last_hour =
+                    std::max(figures_.max_objective_time_error_s_last_hour, std::abs(objective_time_s() - t_s));
             }
             if (!setup_.scenario.halfspaces.empty() && out_.telemetries == 1 &&
                 out_.telemetry.barrier_c >= figures_.barrier_c_max * (1.0 - kCapRelTolerance)) {
@@ -448,6 +453,8 @@ public:
     }
 
 private:
+    double objective_time_s() const { return static_cast<double>(out_.telemetry.objective_time_us) * kSPerUs; }
+
     template <class Msg>
     void handle(int channel, const Msg& msg, std::int64_t node_now_us)
     {
@@ -484,15 +491,15 @@ private:
         const bool has_telemetry = out_.telemetries == 1;
         trace_ << t_s << ',' << state.position_m.x() << ',' << state.position_m.y() << ',' << state.heading_rad << ','
                << reference.x() << ',' << reference.y() << ',' << error_m << ',' << plant_.input(0).speed_mps << ','
-               << plant_.input(0).turn_rate_radps << ',' << (out_.commands == 1 ? out_.command.status : -1) << ','
-               << (out_.commands == 1 ? out_.command.flags : 0) << ','
-               << (has_telemetry ? out_.telemetry.objective_time_s : 0.0) << ','
-               << (has_telemetry ? out_.telemetry.barrier_c : 0.0) << ','
-               << (has_telemetry ? out_.telemetry.barrier_slack : 0.0) << ','
-               << (has_telemetry ? out_.telemetry.gradient[0] : 0.0) << ','
-               << (has_telemetry ? out_.telemetry.gradient[1] : 0.0) << ','
-               << (has_telemetry ? out_.telemetry.output_accel_mps2[0] : 0.0) << ','
-               << (has_telemetry ? out_.telemetry.output_accel_mps2[1] : 0.0) << '\n';
+               << plant_.input(0).turn_rate_radps << ',' << (out_.commands == 1 ? out_.command.header.status : -1) << ','
+               << (out_.commands == 1 ? out_.command.header.flags : 0) << ','
+               << (has_telemetry ? objective_time_s() : 0.0) << ','
+               << (has_telemetry ? out_.telemetry.barrier_c : 0.0f) << ','
+               << (has_telemetry ? out_.telemetry.barrier_slack : 0.0f) << ','
+               << (has_telemetry ? out_.telemetry.gradient[0] : 0.0f) << ','
+               << (has_telemetry ? out_.telemetry.gradient[1] : 0.0f) << ','
+               << (has_telemetry ? out_.telemetry.output_accel_mps2[0] : 0.0f) << ','
+               << (has_telemetry ? out_.telemetry.output_accel_mps2[1] : 0.0f) << '\n';
     }
 
     void observe_constraint(std::int64_t t_us, const Eigen::Vector2d& y)
@@ -507,42 +514,45 @@ private:
     void publish_measurement(std::int64_t sequence, std::int64_t sample_us)
     {
         const tvo_host::RobotSample sample = sensor_.measure(plant_.state(0), plant_.input(0));
-        measurement_.utime = setup_.epoch_utime + sample_us;
-        measurement_.session_id = kSessionId;
-        measurement_.sequence = sequence;
-        measurement_.robot_count = 1;
-        measurement_.position_m[0][0] = sample.position_m.x();
-        measurement_.position_m[0][1] = sample.position_m.y();
-        measurement_.heading_rad[0] = sample.heading_rad;
-        measurement_.speed_mps[0] = sample.speed_mps;
-        measurement_.heading_valid = true;
-        measurement_.speed_valid = true;
-        wraps_.see(measurement_.utime);
+        tvo_host::JointMeasurement m;
+        m.utime = setup_.epoch_utime + sample_us;
+        m.session_id = kSessionId;
+        m.sequence = static_cast<std::int32_t>(sequence);
+        m.robot_count = 1;
+        m.position_m[0] = {sample.position_m.x(), sample.position_m.y()};
+        m.heading_rad[0] = sample.heading_rad;
+        m.speed_mps[0] = sample.speed_mps;
+        m.heading_valid = true;
+        m.speed_valid = true;
+        tvo_host::to_wire(m, 0, &sample_);  // as tvo_sim sends it (the heading wrapped)
+        wraps_.see(sample_.header.utime);
         // CLOCK_PLANT: the node's clock does not enter the schedule; it runs with the plant's here.
-        handle(TVO_NODE_CH_MEASUREMENT, measurement_, measurement_.utime);
+        handle(TVO_NODE_CH_SAMPLE, sample_, sample_.header.utime);
     }
 
     /// Counts faults, non-finite values and answers that break the protocol; true if a command of
     /// ours answering `sequence` came (the plant may apply it).
     bool check_answer(std::int64_t sequence, std::int64_t apply_us)
     {
+        const tvo_lcm::command_header_t& c = out_.command.header;
         const bool one_each = out_.commands == 1 && out_.telemetries == 1 && out_.acks == 0 && out_.undecodable == 0;
-        const bool ours = out_.commands == 1 && out_.command.session_id == kSessionId &&
-                          out_.command.measurement_sequence == sequence && out_.command.robot_count == 1;
-        const bool on_time = out_.commands == 1 && out_.command.utime == setup_.epoch_utime + apply_us;
-        const bool telemetry_matches = out_.telemetries == 1 && out_.telemetry.utime == out_.command.utime &&
-                                       out_.telemetry.measurement_sequence == sequence;
+        const bool ours = out_.commands == 1 && c.session_id == kSessionId && c.measurement_sequence == sequence &&
+                          c.robot == 0;
+        const bool on_time = out_.commands == 1 && c.utime == setup_.epoch_utime + apply_us;
+        const bool telemetry_matches = out_.telemetries == 1 && out_.telemetry.header.utime == c.utime &&
+                                       out_.telemetry.header.measurement_sequence == sequence;
         figures_.unexpected_answers += (one_each && ours && on_time && telemetry_matches) ? 0u : 1u;
         if (out_.commands >= 1) {
-            wraps_.see(out_.command.utime);
-            const auto bad_flags = static_cast<std::int32_t>(tvo_lcm::command_t::FLAG_HOLDING | tvo_lcm::command_t::FLAG_SAFE_STOP);
-            figures_.faults += (out_.command.status != TVO_OK || (out_.command.flags & bad_flags) != 0) ? 1u : 0u;
-            figures_.nonfinite += command_finite(out_.command, 1) ? 0u : 1u;
+            wraps_.see(c.utime);
+            const auto bad_flags = static_cast<std::int32_t>(tvo_lcm::command_header_t::FLAG_HOLDING |
+                                                             tvo_lcm::command_header_t::FLAG_SAFE_STOP);
+            figures_.faults += (c.status != TVO_OK || (c.flags & bad_flags) != 0) ? 1u : 0u;
+            figures_.nonfinite += command_finite(out_.command) ? 0u : 1u;
         }
         if (out_.telemetries >= 1) {
             figures_.nonfinite += telemetry_finite(out_.telemetry) ? 0u : 1u;
         }
-        return out_.commands == 1 && ours && out_.command.utime >= setup_.epoch_utime;
+        return out_.commands == 1 && ours && c.utime >= setup_.epoch_utime;
     }
 
     const SoakSetup& setup_;
@@ -551,7 +561,7 @@ private:
     std::vector<std::uint8_t> buffer_;
     tvo_host::UnicyclePlant plant_;
     tvo_host::MeasurementNoise sensor_;  // noiseless: the true pose, heading wrapped, as tvo_sim sends it
-    tvo_lcm::measurement_t measurement_{};
+    tvo_lcm::unicycle_sample_t sample_{};
     std::int64_t now_us_{0};
     TickWrapCounter wraps_;
     ErrorWindows errors_;

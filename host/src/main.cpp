@@ -263,7 +263,6 @@ int run(const tvo_host::SimOptions& options)
     summary.session_restarts = result.session_restarts;
     summary.safe_stop_commands = result.safe_stop_commands;
     summary.first_safe_stop_after_loss_s = result.first_safe_stop_after_loss_s;
-    summary.signed_bus = transport.keyed();
     add_node_counters(transport, session.named(), &summary);
     add_constraint_figures(scenario, monitor, metrics, &summary);
     print_summary_table(std::cout, summary, options);

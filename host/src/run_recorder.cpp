@@ -61,9 +61,6 @@ std::uint64_t log_event_bytes(const char* channel)
     return kLcmLogEventHeaderBytes + std::strlen(channel) + static_cast<std::uint64_t>(Msg{}.getEncodedSize());
 }
 
-// The session's own messages: the START handshake (START repeated, backing off, until acked), the STOP,
-// and START again after each node restart, with their acks. Generous: a handshake takes a few.
-constexpr std::uint64_t kSessionExchanges = 256;
 // summary.json and scenario.json: a few kB each (scenario.json grows with the scenario's obstacles).
 constexpr std::uint64_t kJsonBytes = 1 << 20;
 }  // namespace
@@ -120,12 +117,18 @@ OutputBound bound_outputs(std::int64_t steps, std::int64_t period_us, std::size_
     const std::uint64_t sample = robots * log_event_bytes<tvo_lcm::unicycle_sample_t>(TVO_CHANNEL_SAMPLE);
     const std::uint64_t target = robots * log_event_bytes<tvo_lcm::target_t>(TVO_CHANNEL_TARGET);
     const std::uint64_t telemetry = robots * log_event_bytes<tvo_lcm::telemetry_t>(TVO_CHANNEL_TELEMETRY);
-    // A node per robot at most, and the node of every robot.
-    const std::uint64_t announcements = (robots + 1) * log_event_bytes<tvo_lcm::node_status_t>(TVO_CHANNEL_NODE);
-    const std::uint64_t per_period = sample + (streamed ? target : 0) + command * (realtime ? 2 : 1) + telemetry +
-                                     announcements;
-    const std::uint64_t session = kSessionExchanges * (log_event_bytes<tvo_lcm::session_t>(TVO_CHANNEL_SESSION) +
-                                                       log_event_bytes<tvo_lcm::session_ack_t>(TVO_CHANNEL_SESSION_ACK));
+    const std::uint64_t per_period = sample + (streamed ? target : 0) + command * (realtime ? 2 : 1) + telemetry;
+    // A node per robot at most, and the node of every robot: one per interval, and one per change (a
+    // session message changes a node's state at most once).
+    const std::uint64_t run_us = static_cast<std::uint64_t>(std::max<std::int64_t>(steps, 0)) *
+                                 static_cast<std::uint64_t>(std::max<std::int64_t>(period_us, 0));
+    const std::uint64_t announcements =
+        (robots + 1) * (run_us / static_cast<std::uint64_t>(kLoggedAnnouncementIntervalUs) + 2 + kLoggedSessionMessages) *
+        log_event_bytes<tvo_lcm::node_status_t>(TVO_CHANNEL_NODE);
+    const std::uint64_t session =
+        kLoggedSessionMessages * (log_event_bytes<tvo_lcm::session_t>(TVO_CHANNEL_SESSION) +
+                                  robots * log_event_bytes<tvo_lcm::session_ack_t>(TVO_CHANNEL_SESSION_ACK)) +
+        announcements;
     const std::uint64_t periods = static_cast<std::uint64_t>(std::max<std::int64_t>(steps, 0));
     OutputBound bound;
     bound.csv_bytes = RunRecorder::max_bytes(steps, robots, static_cast<double>(steps) * static_cast<double>(period_us) * 1e-6);

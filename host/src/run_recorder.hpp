@@ -45,6 +45,14 @@ private:
     bool ok_{true};
 };
 
+/// The run's log holds at most this many session messages (START copies, STOP) and as many acks of each
+/// node (a node acks every copy): a handshake repeats START a few times, a restart (rule 5) once more; the
+/// rest go out unlogged, so bound_outputs holds.
+constexpr std::uint64_t kLoggedSessionMessages = 32;
+/// The log holds a node's announcement when its boot, state or session differs from the last one logged
+/// of that node, else at most one per this much plant time (a running node's announcement period).
+constexpr std::int64_t kLoggedAnnouncementIntervalUs = 1000000;
+
 /// Upper bounds on the files of one run (host/README.md, "Outputs").
 struct OutputBound {
     std::uint64_t csv_bytes{0};
@@ -55,9 +63,9 @@ struct OutputBound {
 
 /// What a run of steps periods of period_us writes at most: the CSV, the LCM log (per period each
 /// robot's sample, streamed target when streamed, command and telemetry, in realtime one more command per
-/// robot for the node's watchdog; at most one announcement per period of each node of the run (the log
-/// takes no more); the session handshakes besides) and the JSON files. Messages of other sessions on the
-/// same LCM URL are logged too and not counted.
+/// robot for the node's watchdog; the nodes' announcements and the session messages as the log takes
+/// them, kLoggedSessionMessages and kLoggedAnnouncementIntervalUs) and the JSON files. Messages of other
+/// sessions on the same LCM URL are logged too and not counted.
 OutputBound bound_outputs(std::int64_t steps, std::int64_t period_us, std::size_t robots, bool streamed,
                           bool realtime);
 

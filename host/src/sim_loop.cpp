@@ -84,6 +84,14 @@ void SimLoop::bind_nodes()
     }
 }
 
+std::int64_t SimLoop::silence_limit_us() const
+{
+    // A CLOCK_NODE node stops the robots itself within (watchdog_periods + 1) h of the last accepted apply
+    // instant, and says so every period: the plant gives it one more period (for the link) before it
+    // takes the silence for a dead node or link. CLOCK_PLANT (lockstep) counts unanswered samples instead.
+    return (options_.watchdog_periods + 2) * options_.period_us;
+}
+
 bool SimLoop::telemetry_due(std::int64_t sequence) const
 {
     return sequence % telemetry_every_ == 0;
@@ -113,7 +121,9 @@ void SimLoop::on_command(const JointCommand& command)
     const std::size_t robots = scenario_.robot_count;
     const std::int64_t arrival_us = options_.realtime ? std::max(now_us_, wall_plant_us()) : now_us_;
     if (silent_since_us_) {
-        silent_since_us_ = std::max(*silent_since_us_, arrival_us);  // the node speaks: rule 5's silence starts over
+        // The node speaks: rule 5's silence starts over, from the command's apply instant (the node's own
+        // watchdog counts from there) or its arrival, whichever is later.
+        silent_since_us_ = std::max({*silent_since_us_, arrival_us, command.utime - epoch_utime_});
     }
     const bool usable = well_formed(command, robots);
     metrics_.add_command(command.turn_rate_radps.data(), usable ? robots : 0,
@@ -207,14 +217,14 @@ void SimLoop::on_node_status(const tvo_lcm::node_status_t& status)
             continue;
         }
         if (node->boot_id != named[i]) {
-            begin_restart();  // the node restarted: the session it ran is gone
+            begin_restart(true);  // the node restarted: the session it ran is gone
             return;
         }
         if (node->state == tvo_lcm::node_status_t::STATE_RUNNING && node->session_id == session_.session_id()) {
             running_seen_[i] = std::max(running_seen_[i], node->utime);
         } else if (node->state == tvo_lcm::node_status_t::STATE_IDLE && running_seen_[i] >= 0 &&
                    node->utime > running_seen_[i]) {
-            begin_restart();  // it ran ours, and now runs nothing
+            begin_restart(true);  // it ran ours, and now runs nothing
             return;
         }
     }
@@ -348,7 +358,7 @@ SimLoop::Answer SimLoop::await_answer(std::int64_t sequence)
                 ++(no_command ? counts_.lost_answers : counts_.lost_telemetry);
                 unanswered_streak_ = no_command ? unanswered_streak_ + 1 : 0;
                 if (unanswered_streak_ >= options_.watchdog_periods) {
-                    begin_restart();  // rule 5: the node fell silent for watchdog_periods periods
+                    begin_restart(false);  // rule 5: the node fell silent for watchdog_periods periods
                 }
                 return Answer::Lost;
             }
@@ -362,7 +372,7 @@ SimLoop::Answer SimLoop::await_answer(std::int64_t sequence)
     return Answer::Received;
 }
 
-void SimLoop::begin_restart()
+void SimLoop::begin_restart(bool new_session)
 {
     if (restart_pending_) {
         return;
@@ -382,6 +392,7 @@ void SimLoop::begin_restart()
     // ... and start a new session: its START names the nodes' current boots, once they are heard.
     restart_pending_ = true;
     restart_begun_ = false;
+    restart_new_session_ = new_session;
     silent_since_us_.reset();
     ++counts_.session_restarts;
 }
@@ -404,9 +415,14 @@ void SimLoop::service_restart()
         if (!boots) {
             return;  // rule 1 again: not every robot has a node yet
         }
-        const auto id = static_cast<std::int32_t>(
-            (static_cast<std::uint32_t>(session_.session_id()) + 1u) & 0x7fffffffu);  // fresh: the node's replace rule
-        session_.restart(id, *boots, utime.value_or(session_.start_message().utime));
+        // A node that restarted or lost the session needs a new one, of a fresh id (the node's replace rule;
+        // the other nodes of a fleet still run the old id). Silence alone: the same START again, which a
+        // node that still runs it acks as a repeat, changing nothing.
+        const bool same = !restart_new_session_ && *boots == session_.boots();
+        const auto id = same ? session_.session_id()
+                             : static_cast<std::int32_t>((static_cast<std::uint32_t>(session_.session_id()) + 1u) &
+                                                         0x7fffffffu);
+        session_.restart(id, *boots, utime.value_or(clock_.now_utime()));
         restart_begun_ = true;
     }
     if (!session_.service(utime)) {
@@ -449,9 +465,8 @@ bool SimLoop::wait_until(std::int64_t t_us)
     for (;;) {
         service_restart();
         const std::int64_t now = wall_plant_us();
-        if (!restart_pending_ && silent_since_us_ &&
-            now - *silent_since_us_ >= options_.watchdog_periods * options_.period_us) {
-            begin_restart();  // rule 5: no command for watchdog_periods h since the last (or the first sample)
+        if (!restart_pending_ && silent_since_us_ && now - *silent_since_us_ >= silence_limit_us()) {
+            begin_restart(false);  // rule 5: the node fell silent (not even its own safe stops came)
         }
         if (now >= t_us) {
             return true;

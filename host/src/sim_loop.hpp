@@ -11,8 +11,12 @@
 //   joint command (CommandAssembler); it is applied only if it carries our session id and either answers a
 //   sample we sent that is newer than the command in force, or is a safe stop.
 // The nodes (rule 5): when a node we named announces a new boot, or says it is idle after it ran our
-//   session, or (realtime) no command came for watchdog_periods h, the plant stops its robots and starts
-//   a new session (fresh id) naming the nodes' current boots; lockstep waits for every ack.
+//   session, or the node falls silent (realtime: no command, not even the node's own safe stops, for
+//   (watchdog_periods + 2) h after the newest command's apply instant; lockstep with
+//   --on-missing-answer hold: watchdog_periods samples in a row unanswered), the plant stops its robots
+//   and sends START again naming the nodes' current boots: of a new session (fresh id) when a node
+//   restarted or lost ours, else the same START (a node that still runs it acks a repeat and changes
+//   nothing); lockstep waits for every ack.
 // Lockstep (session CLOCK_PLANT): after publishing the samples of period n the loop blocks (wall-clock
 //   timeout) until every robot's command answering n arrives, and its telemetry when n carries some
 //   (every telemetry_every-th sequence), so the run is deterministic and as fast as the transport.
@@ -101,10 +105,11 @@ private:
     bool publish_sample(std::int64_t sequence, std::int64_t sample_us);  // false if not sent
     Answer await_answer(std::int64_t sequence);
     void bind_nodes();                           // the roles of the nodes the session names
-    void begin_restart();                        // rule 5: robots stopped, a new session due
+    void begin_restart(bool new_session);        // rule 5: robots stopped, START again (a new session if needed)
     bool await_restart();                        // lockstep; false when interrupted
     void service_restart();                      // (re)sends START while a restart is pending
     bool telemetry_due(std::int64_t sequence) const;
+    std::int64_t silence_limit_us() const;       // realtime: rule 5's silence
     bool wait_until(std::int64_t t_us);          // realtime; false when interrupted
     bool sent(std::int64_t sequence) const;
     std::int64_t sample_time_us(std::int64_t sequence) const;
@@ -144,6 +149,7 @@ private:
     std::vector<std::int64_t> running_seen_;  // per named boot: node utime it last said it runs ours, -1 none
     bool restart_pending_{false};
     bool restart_begun_{false};               // the new session's START is out (its nodes were heard)
+    bool restart_new_session_{false};         // a node restarted or lost ours (not just silence)
     std::optional<tvo_lcm::session_ack_t> restart_refused_;
     std::optional<std::int64_t> silent_since_us_;  // realtime: plant time of the newest command of ours, or of
                                                    // the session's first sample before any came

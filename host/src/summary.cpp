@@ -114,8 +114,6 @@ void print_summary_table(std::ostream& out, const RunSummary& s, const SimOption
     line(out, "commands ignored", std::to_string(s.ignored_commands) + " (+ " +
                                       std::to_string(s.other_session_commands) + " for other sessions)");
     line(out, "session restarts", std::to_string(s.session_restarts));
-    line(out, "bus", s.signed_bus ? "signed (every message signed and opened: --key-file)"
-                                  : "unsigned (anyone on the network may send: --key-file signs it)");
     if (s.node_counters) {
         const NodeCounterSums& c = *s.node_counters;
         line(out, "node: accepted / refused", std::to_string(c.accepted) + " / " + std::to_string(c.refused) +
@@ -179,7 +177,6 @@ void write_summary_json(const std::string& path, const RunSummary& s)
         }
     };
     put("first_safe_stop_after_loss_s", s.first_safe_stop_after_loss_s);
-    json["signed"] = s.signed_bus;
     if (s.node_counters) {
         const NodeCounterSums& c = *s.node_counters;
         json["node_accepted"] = c.accepted;

@@ -52,7 +52,6 @@ struct RunSummary {
     std::uint64_t safe_stop_commands{0};
     std::optional<double> first_safe_stop_after_loss_s;  // realtime runs with --link-loss
 
-    bool signed_bus{false};  // every message signed and opened (--key-file)
     // The run's nodes' own counters since they started, from their newest announcements (TVO_NODE: at
     // the end, the one each node makes after STOP), summed over the nodes; absent if none was heard.
     std::optional<NodeCounterSums> node_counters;

@@ -60,7 +60,6 @@ LcmTransport::LcmTransport(const std::string& url, const std::string& log_path, 
         throw TransportError("cannot write the LCM log " + log_path);
     }
     event_.channel.reserve(32);
-    announcement_logged_utime_.fill(std::numeric_limits<std::int64_t>::min());
     // Fixed-size messages: their encoded sizes are constants, so one check covers every publish.
     const int largest = std::max({tvo_lcm::session_t{}.getEncodedSize(), tvo_lcm::unicycle_sample_t{}.getEncodedSize(),
                                   tvo_lcm::target_t{}.getEncodedSize()});
@@ -92,7 +91,7 @@ void LcmTransport::log(const std::string& channel, const void* data, std::int32_
 }
 
 template <class Msg>
-void LcmTransport::publish_encoded(const std::string& channel, const Msg& msg)
+void LcmTransport::publish_encoded(const std::string& channel, const Msg& msg, bool logged)
 {
     const int size = msg.encode(buffer_.data(), 0, static_cast<int>(buffer_.size()));
     if (size < 0) {
@@ -109,12 +108,15 @@ void LcmTransport::publish_encoded(const std::string& channel, const Msg& msg)
     if (lcm_.publish(channel, buffer_.data(), static_cast<unsigned>(frame_size)) != 0) {
         throw TransportError("LCM publish on " + channel + " failed");
     }
-    log(channel, buffer_.data(), size, utime_of(msg));
+    if (logged) {
+        log(channel, buffer_.data(), size, utime_of(msg));
+    }
 }
 
 void LcmTransport::publish(const tvo_lcm::session_t& msg)
 {
-    publish_encoded(session_channel_, msg);
+    publish_encoded(session_channel_, msg, logged_session_messages_ < kLoggedSessionMessages);
+    ++logged_session_messages_;
 }
 
 void LcmTransport::publish(const JointMeasurement& msg)
@@ -144,7 +146,12 @@ void LcmTransport::on_raw(const lcm::ReceiveBuffer* rbuf, const std::string& cha
         }
         size = static_cast<int>(message_size);
     }
-    if (channel != TVO_CHANNEL_NODE) {
+    if (channel == TVO_CHANNEL_SESSION_ACK) {
+        if (logged_acks_ < kLoggedSessionMessages * robots_) {
+            log(channel, rbuf->data, size, log_utime_);
+        }
+        ++logged_acks_;
+    } else if (channel != TVO_CHANNEL_NODE) {
         log(channel, rbuf->data, size, log_utime_);
     }
     // Decoding fixed-size messages into members allocates nothing. A frame of another length than its
@@ -180,16 +187,23 @@ void LcmTransport::on_raw(const lcm::ReceiveBuffer* rbuf, const std::string& cha
 
 void LcmTransport::log_announcement(const std::string& channel, const void* data, std::int32_t size)
 {
-    // At most one per node of the run (each robot's, the every-robot one) and plant time (bound_outputs).
+    // The run's nodes' (each robot's, the every-robot one): a change at once, else one per interval.
     const int role = status_.own_robot;
     if (role < -1 || role >= static_cast<int>(robots_)) {
         return;
     }
-    std::int64_t& last = announcement_logged_utime_[static_cast<std::size_t>(role + 1)];
-    if (last < log_utime_) {
-        last = log_utime_;
-        log(channel, data, size, log_utime_);
+    LoggedAnnouncement& last = logged_announcement_[static_cast<std::size_t>(role + 1)];
+    const bool changed = !last.any || last.boot_id != status_.boot_id || last.state != status_.state ||
+                         last.session_id != status_.session_id;
+    if (!changed && log_utime_ - last.log_utime < kLoggedAnnouncementIntervalUs) {
+        return;
     }
+    if (changed && last.any && logged_changes_ >= 2 * kLoggedSessionMessages) {
+        return;  // more changes than the session messages logged can make: not logged (bound_outputs)
+    }
+    logged_changes_ += changed && last.any ? 1u : 0u;
+    last = LoggedAnnouncement{true, log_utime_, status_.boot_id, status_.state, status_.session_id};
+    log(channel, data, size, log_utime_);
 }
 
 WaitResult LcmTransport::wait(std::chrono::microseconds timeout)

@@ -16,6 +16,7 @@
 #include "lcm_messages.hpp"
 #include "nodes.hpp"
 #include "plant_wire.hpp"
+#include "run_recorder.hpp"
 
 namespace tvo_host {
 
@@ -77,7 +78,7 @@ public:
 
 private:
     template <class Msg>
-    void publish_encoded(const std::string& channel, const Msg& msg);
+    void publish_encoded(const std::string& channel, const Msg& msg, bool logged = true);
     void on_raw(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
     void log(const std::string& channel, const void* data, std::int32_t size, std::int64_t utime);
     void log_announcement(const std::string& channel, const void* data, std::int32_t size);
@@ -102,7 +103,18 @@ private:
     tvo_lcm::session_ack_t ack_{};
     tvo_lcm::telemetry_t telemetry_{};
     tvo_lcm::node_status_t status_{};
-    std::array<std::int64_t, kMaxRobots + 1> announcement_logged_utime_{};  // per role (own_robot + 1)
+    // What the log took, so that it stays within bound_outputs (run_recorder.hpp).
+    struct LoggedAnnouncement {
+        bool any{false};
+        std::int64_t log_utime{0};
+        std::int64_t boot_id{0};
+        std::int8_t state{0};
+        std::int32_t session_id{0};
+    };
+    std::array<LoggedAnnouncement, kMaxRobots + 1> logged_announcement_{};  // per role (own_robot + 1)
+    std::uint64_t logged_session_messages_{0};
+    std::uint64_t logged_acks_{0};
+    std::uint64_t logged_changes_{0};  // announcements logged for a change of boot, state or session
     // Channel names as std::string once, so publishing builds no temporaries.
     const std::string session_channel_{TVO_CHANNEL_SESSION};
     const std::string sample_channel_{TVO_CHANNEL_SAMPLE};

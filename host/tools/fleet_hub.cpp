@@ -18,7 +18,8 @@
 // Loss per link (--loss P): each sample link (robot j -> node k) and each command link (node k ->
 // plant) drops a period's message with probability P, decided by a seeded hash of (link, period).
 // Agreement (--json): per period, the joint digests (telemetry_t.joint_digest: fleet runs ask every
-// period's telemetry) of the nodes that computed a command; the nodes' counters from their last
+// period's telemetry) of the nodes that computed a command (the periods they differed in, and how
+// many nodes stood outside the largest group of equal digests); the nodes' counters from their last
 // announcements. Keyed (--key-file, auth.h): every frame the hub takes is opened first (a forged or
 // replayed one is dropped and counted, never forwarded); what it writes itself it signs as --sender-id.
 #include <sys/select.h>
@@ -237,6 +238,9 @@ public:
             j["periods_to_reagree"] = std::max<std::int64_t>(0, last_mismatch_period_ + 1 - loss_end_period());
         }
         j["longest_disagreement_periods"] = longest_streak_;
+        // Each period whose digests differed: [period (the sample's sequence), nodes outside the
+        // largest group of equal digests]; the first kMaxSeries of them.
+        j["digest_mismatch_per_period"] = mismatch_series_;
         j["predicted_samples"] = predicted_;
         j["dropped_samples"] = dropped_samples_;
         j["dropped_commands"] = dropped_commands_;
@@ -521,13 +525,21 @@ private:
             return;
         }
         ++compared_periods_;
-        bool same = true;
+        // The nodes outside the largest group of equal digests (0: every node computed the same command).
+        std::size_t largest = 0;
         for (const auto* t : computed) {
-            same = same && t->joint_digest == computed.front()->joint_digest;
+            const auto same_as_t = std::count_if(computed.begin(), computed.end(), [t](const tvo_lcm::telemetry_t* u) {
+                return u->joint_digest == t->joint_digest;
+            });
+            largest = std::max(largest, static_cast<std::size_t>(same_as_t));
         }
-        if (!same) {
+        const std::size_t off = computed.size() - largest;
+        if (off > 0) {
             last_mismatch_period_ = period_.sequence;
             ++mismatch_periods_;
+            if (mismatch_series_.size() < kMaxSeries) {
+                mismatch_series_.push_back({period_.sequence, static_cast<std::int64_t>(off)});
+            }
             ++streak_;
             longest_streak_ = std::max(longest_streak_, streak_);
         } else {
@@ -635,6 +647,8 @@ private:
     std::uint64_t predicted_{0}, dropped_samples_{0}, dropped_commands_{0}, held_rows_{0}, refused_rows_{0};
     std::uint64_t limit_violations_{0};
     std::int64_t last_mismatch_period_{-1};
+    static constexpr std::size_t kMaxSeries = 100000;
+    std::vector<std::array<std::int64_t, 2>> mismatch_series_;
     double max_speed_{0.0}, max_turn_{0.0}, max_speed_step_{0.0};
     double min_pair_m_{std::numeric_limits<double>::infinity()};
 };

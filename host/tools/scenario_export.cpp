@@ -144,7 +144,8 @@ int main(int argc, char** argv)
         }
         tvo_host::Scenario scenario = tvo_host::make_scenario(options.scenario, options.robots, options.target);
         scenario.barrier.apply(options.barrier);
-        const tvo_lcm::session_t start = tvo_host::make_start_session(options, scenario, 1, 0, 0);
+        // No node here: the problem and the timing are what is exported, not the boots a START names.
+        const tvo_lcm::session_t start = tvo_host::make_start_session(options, scenario, 1, 0, 0, tvo_host::NodeBoots{});
         std::cout << session_json(start, scenario, options).dump(1) << '\n';
         return 0;
     } catch (const std::exception& e) {

@@ -3,9 +3,11 @@
 // or signs with a key of its own) or only recordings of genuine frames. Each attack is injected in
 // a period of its own, before that period's genuine sample, and each must be: not answered (no
 // command, no ack: the period's only command answers the genuine sample), counted (the node's
-// telemetry counters move by exactly the frames sent, as unauthenticated or replayed, and nothing
-// else moves), and without effect (every genuine answer bit for bit as in a keyed run without the
-// attacks). Without the key, each of these frames would be answered (or win a re-anchor vote).
+// counters, read from its announcements just before and after the period, move by exactly the frames
+// sent: a frame without a trailer or cut short is malformed, a tag that does not verify
+// unauthenticated, a used counter replayed; and nothing else moves), and without effect (every
+// genuine answer bit for bit as in a keyed run without the attacks). Without the key, each of these
+// frames would be answered (or win a re-anchor vote).
 #include "cases.hpp"
 
 #include <cstdio>
@@ -94,69 +96,61 @@ struct Attack {
     std::vector<Frame> frames;
     int unauthenticated{0};
     int replayed{0};
+    int malformed{0};
+    int wrong_boot{0};
+    int idle{0};
+    bool genuine_sample{true};  // the period's genuine sample follows (and is accepted)
 };
 
-std::optional<tvo_lcm::node_counters_t> counters_of(Context& ctx, std::int64_t session_id, std::int64_t sequence)
+/// The node's counters from its next announcement (every 1 s while it runs, 250 ms while idle): a
+/// snapshot of everything it handled before it.
+std::optional<tvo_lcm::node_counters_t> next_counters(Context& ctx, std::int64_t boot)
 {
-    std::optional<tvo_lcm::node_counters_t> found;
-    ctx.bus.wait_until(
-        [&] {
-            for (auto it = ctx.bus.telemetry.rbegin(); it != ctx.bus.telemetry.rend(); ++it) {
-                if (it->session_id == session_id && it->measurement_sequence == sequence) {
-                    found = it->counters;
-                    return true;
-                }
-            }
-            return false;
-        },
-        std::chrono::seconds(10));
-    return found;
-}
-
-long refused_total(const tvo_lcm::node_counters_t& c)
-{
-    long total = 0;
-    for (const std::int32_t r : c.refused) {
-        total += r;
-    }
-    return total;
+    const tvo_lcm::node_status_t* next =
+        ctx.bus.await_announcement(ctx.bus.announcements.size(), boot, [](const auto&) { return true; },
+                                   std::chrono::seconds(3));
+    return next != nullptr ? std::optional<tvo_lcm::node_counters_t>(next->counters) : std::nullopt;
 }
 
 /// Runs one period with an attack before its genuine sample and checks it: not answered, counted,
 /// nothing else moved.
 void attack_period(Context& ctx, LockstepRun& r, std::int64_t n, const Attack& attack)
 {
-    const std::int64_t id = r.session().session_id;
-    const auto before = counters_of(ctx, id, n - 1);
+    r.settle();
+    const auto before = next_counters(ctx, r.boot());
     const std::size_t commands_before = ctx.bus.commands.size();
     const std::size_t acks_before = ctx.bus.acks.size();
     for (const Frame& f : attack.frames) {
         ctx.bus.publish_raw(f.channel.c_str(), f.bytes);
     }
-    r.send_genuine(r.measure(n));
+    if (attack.genuine_sample) {
+        r.send_genuine(r.measure(n));
+    }
     r.settle();
-    const auto after = counters_of(ctx, id, n);   // the node answers in order: all attack frames handled
+    ctx.bus.pump(std::chrono::milliseconds(50));   // an answer to an attack frame, if any, shows up
+    const auto after = next_counters(ctx, r.boot());   // announced after every attack frame was handled
     const std::size_t commands = ctx.bus.commands.size() - commands_before;
     const std::size_t acks = ctx.bus.acks.size() - acks_before;
+    const std::size_t want_commands = attack.genuine_sample ? 1u : 0u;
     std::ostringstream figure;
-    figure << attack.frames.size() << " frames; " << commands << " commands in the period (the genuine sample's: 1), "
-           << acks << " acks";
-    ctx.report.check(commands == 1 && acks == 0, attack.what + ": not answered", figure.str());
+    figure << attack.frames.size() << " frames; " << commands << " commands in the period (the genuine sample's: "
+           << want_commands << "), " << acks << " acks";
+    ctx.report.check(commands == want_commands && acks == 0, attack.what + ": not answered", figure.str());
     if (!before || !after) {
-        ctx.report.check(false, attack.what + ": counted", "no telemetry for the periods around it");
+        ctx.report.check(false, attack.what + ": counted", "no announcement of the node around it");
         return;
     }
-    const long unauth = after->unauthenticated - before->unauthenticated;
-    const long replayed = after->replayed - before->replayed;
-    const long others = (after->undecodable - before->undecodable) + (after->other_session - before->other_session) +
-                        (after->targets_refused - before->targets_refused) + (after->safe_stops - before->safe_stops) +
-                        (refused_total(*after) - refused_total(*before));
-    const long accepted = after->accepted - before->accepted;
+    const NodeCounts d = counts_between(*before, *after);
+    const long others = d.other_session + d.targets_refused + d.safe_stops + d.refused;
     std::ostringstream counted;
-    counted << "unauthenticated +" << unauth << " (want +" << attack.unauthenticated << "), replayed +" << replayed
-            << " (want +" << attack.replayed << "), accepted +" << accepted << " (the genuine sample), other counters +"
-            << others;
-    ctx.report.check(unauth == attack.unauthenticated && replayed == attack.replayed && accepted == 1 && others == 0,
+    counted << "malformed +" << d.malformed << " (want +" << attack.malformed << "), unauthenticated +"
+            << d.unauthenticated << " (want +" << attack.unauthenticated << "), replayed +" << d.replayed << " (want +"
+            << attack.replayed << "), wrong_boot +" << d.wrong_boot << " (want +" << attack.wrong_boot << "), idle +"
+            << d.idle << " (want +" << attack.idle << "), accepted +" << d.accepted << " (the genuine sample: "
+            << want_commands << "), other counters +" << others;
+    ctx.report.check(d.malformed == attack.malformed && d.unauthenticated == attack.unauthenticated &&
+                         d.replayed == attack.replayed && d.wrong_boot == attack.wrong_boot && d.idle == attack.idle &&
+                         d.accepted == static_cast<long>(want_commands) && others == 0,
                      attack.what + ": counted, nothing else moved", counted.str());
 }
 
@@ -224,12 +218,13 @@ void case_auth_attacks(Context& ctx)
     std::vector<std::int64_t> steps;
     long unauthenticated = 0;
     long replayed = 0;
+    long malformed = 0;
     // Every attack as the attacker builds it in its period n (m: the genuine sample of period n).
     // Every attack as the attacker builds it in its period n (m: the genuine sample of period n).
     // Forgeries go twice: unsigned in period `at`, signed with another key in period at + 10.
     const auto build = [&](LockstepRun& r, std::int64_t n) -> std::optional<Attack> {
-        const tvo_lcm::measurement_t m = r.measure(n);
-        const char* measurement_ch = TVO_CHANNEL_MEASUREMENT;
+        const Sample m = r.measure(n);
+        const char* measurement_ch = TVO_CHANNEL_SAMPLE;
         const std::int64_t at = n - n % 20;
         std::string what;
         const char* channel = measurement_ch;
@@ -249,72 +244,75 @@ void case_auth_attacks(Context& ctx)
             channel = TVO_CHANNEL_SESSION;
             forged.push_back(encode(stop));
         } else if (at == 340) {
-            tvo_lcm::measurement_t next = m;   // the next period's sequence, 0.5 m off, a plausible stamp
-            next.sequence = n + 1;
-            next.position_m[0][0] += 0.5;
-            what = "a forged measurement (next sequence, 0.5 m off)";
+            Sample next = m;   // the next period's sequence, 0.5 m off, a plausible stamp
+            next.header.sequence = static_cast<std::int32_t>(n + 1);
+            next.position_m[0] += 0.5;
+            what = "a forged sample (next sequence, 0.5 m off)";
             forged.push_back(encode(next));
         } else if (at == 360) {
             tvo_lcm::target_t target{};
-            target.utime = r.now_us();
-            target.session_id = r.session().session_id;
-            target.robot_count = 1;
-            target.position_m[0][0] = 10.0;
+            target.header.utime = r.now_us();
+            target.header.session_id = r.session().session_id;
+            target.header.robot = 0;
+            target.position_m[0] = 10.0;
             what = "a forged target";
             channel = TVO_CHANNEL_TARGET;
             forged.push_back(encode(target));
         } else if (at == 440) {
             // Three samples that agree with each other, 20 s ahead: without a key they win the re-anchor vote.
             for (int k = 1; k <= 3; ++k) {
-                tvo_lcm::measurement_t v = m;
-                v.sequence = n + 2000 + k;
-                v.utime = m.utime + 20 * kUsPerS + k * r.session().period_us;
+                Sample v = m;
+                v.header.sequence = static_cast<std::int32_t>(n + 2000 + k);
+                v.header.utime = m.header.utime + 20 * kUsPerS + k * r.session().period_us;
                 forged.push_back(encode(v));
             }
             what = "a forged vote of three (agreeing samples 20 s ahead)";
         }
         Attack a;
         if (!forged.empty() && (n == at || n == at + 10)) {
+            // Unsigned, a frame has no trailer: not its channel's keyed length, malformed before any crypto.
             a.what = what + (n == at ? ", unsigned" : ", signed with another key");
             for (auto& bytes : forged) {
                 a.frames.push_back({channel, n == at ? bytes : forger.sign(channel, bytes)});
             }
-            a.unauthenticated = static_cast<int>(forged.size());
+            (n == at ? a.malformed : a.unauthenticated) = static_cast<int>(forged.size());
             return a;
         }
         switch (n) {
         case 380:
-            a = {"the genuine sample of the last period replayed", {last_sent(ctx, measurement_ch)}, 0, 1};
+            a.what = "the genuine sample of the last period replayed";
+            a.frames = {last_sent(ctx, measurement_ch)};
+            a.replayed = 1;
             break;
         case 390:
-            a = {"the genuine START of the running session replayed", {last_sent(ctx, TVO_CHANNEL_SESSION)}, 0, 1};
+            a.what = "the genuine START of the running session replayed";
+            a.frames = {last_sent(ctx, TVO_CHANNEL_SESSION)};
+            a.replayed = 1;
             break;
         case 400: {
             // A genuine frame of this period's sample, altered in flight (the genuine one follows).
             const auto frame = ctx.bus.sign(measurement_ch, encode(m));
-            a = {"a genuine frame with one bit of its tag flipped (first, then last tag byte)",
-                 {{measurement_ch, flipped(frame, TVO_AUTH_TAG_BYTES, 0x80)}, {measurement_ch, flipped(frame, 1, 0x01)}},
-                 2,
-                 0};
+            a.what = "a genuine frame with one bit of its tag flipped (first, then last tag byte)";
+            a.frames = {{measurement_ch, flipped(frame, TVO_AUTH_TAG_BYTES, 0x80)}, {measurement_ch, flipped(frame, 1, 0x01)}};
+            a.unauthenticated = 2;
             break;
         }
         case 410:
-            a = {"the last genuine sample replayed with its counter raised by one (the tag no longer verifies)",
-                 {{measurement_ch, counter_raised(last_sent(ctx, measurement_ch).bytes)}},
-                 1,
-                 0};
+            a.what = "the last genuine sample replayed with its counter raised by one (the tag no longer verifies)";
+            a.frames = {{measurement_ch, counter_raised(last_sent(ctx, measurement_ch).bytes)}};
+            a.unauthenticated = 1;
             break;
         case 420: {
+            // Every one is not its channel's keyed length: malformed, before any crypto.
             const auto frame = ctx.bus.sign(measurement_ch, encode(m));
-            a = {"a genuine frame truncated by 1, 8, 16, 27 and 28 bytes, and a 10-byte frame",
-                 {{measurement_ch, truncated(frame, 1)},
-                  {measurement_ch, truncated(frame, 8)},
-                  {measurement_ch, truncated(frame, 16)},
-                  {measurement_ch, truncated(frame, 27)},
-                  {measurement_ch, truncated(frame, 28)},
-                  {measurement_ch, std::vector<std::uint8_t>(frame.begin(), frame.begin() + 10)}},
-                 6,
-                 0};
+            a.what = "a genuine frame truncated by 1, 8, 16, 27 and 28 bytes, and a 10-byte frame";
+            a.frames = {{measurement_ch, truncated(frame, 1)},
+                        {measurement_ch, truncated(frame, 8)},
+                        {measurement_ch, truncated(frame, 16)},
+                        {measurement_ch, truncated(frame, 27)},
+                        {measurement_ch, truncated(frame, 28)},
+                        {measurement_ch, std::vector<std::uint8_t>(frame.begin(), frame.begin() + 10)}};
+            a.malformed = 6;
             break;
         }
         default:
@@ -327,6 +325,7 @@ void case_auth_attacks(Context& ctx)
             steps.push_back(n);
             unauthenticated += attack->unauthenticated;
             replayed += attack->replayed;
+            malformed += attack->malformed;
             attack_period(ctx, r, n, *attack);
             return;
         }
@@ -337,13 +336,15 @@ void case_auth_attacks(Context& ctx)
     check_same_as_reference(ctx.report, *reference, *run);
     check_counters(ctx.report, *run);
     check_tracking(ctx.report, *run, "after the attacks");
-    const tvo_lcm::telemetry_t* t = run->last_telemetry();
-    ctx.report.check(t != nullptr && t->counters.unauthenticated == unauthenticated && t->counters.replayed == replayed,
-                     "the session's counters: every forged or altered frame unauthenticated, every replay replayed",
-                     t == nullptr ? "no telemetry"
-                                  : "unauthenticated " + std::to_string(t->counters.unauthenticated) + " of " +
-                                        std::to_string(unauthenticated) + ", replayed " +
-                                        std::to_string(t->counters.replayed) + " of " + std::to_string(replayed));
+    const auto& c = run->counters();
+    ctx.report.check(c && c->unauthenticated == unauthenticated && c->replayed == replayed && c->malformed == malformed,
+                     "the session's counters: every frame without a trailer or cut short malformed, every forged or "
+                     "altered one unauthenticated, every replay replayed",
+                     !c ? "no announcement at START or after STOP"
+                        : "malformed " + std::to_string(c->malformed) + " of " + std::to_string(malformed) +
+                              ", unauthenticated " + std::to_string(c->unauthenticated) + " of " +
+                              std::to_string(unauthenticated) + ", replayed " + std::to_string(c->replayed) + " of " +
+                              std::to_string(replayed));
     check_plant_opened_all(ctx);
 }
 
@@ -355,9 +356,7 @@ void case_auth_node_restart(Context& ctx)
     KeyedCase keyed(ctx, "auth-node-restart");
     constexpr std::int64_t kCrashAt = 400;
     constexpr std::int64_t kReplayAt = 420;
-    // Genuine samples of the old node's time, replayed with its START: fewer than the 30 messages a
-    // subscriber of LCM queues per channel (lcm_subscription_set_queue_capacity's default), so the
-    // burst reaches the node whole with the period's genuine sample behind it.
+    // Genuine samples of the old node's time, replayed with its START.
     constexpr std::size_t kRecorded = 20;
     // The plant's frames before the crash: the recording an attacker made.
     std::vector<Frame> recording;
@@ -375,19 +374,32 @@ void case_auth_node_restart(Context& ctx)
             }
             recording.insert(recording.end(), ctx.bus.sent.begin() + static_cast<std::ptrdiff_t>(first),
                              ctx.bus.sent.end());
-            r.crash_node_and_restart();
-            r.send_until_answered(r.measure(n), Expect::Kind::NoSession,
-                                  "keyed node killed and restarted: the next sample is answered NO_SESSION");
+            r.crash_node_and_restart();   // returns once the new boot announced itself
+            if (replay) {
+                // At once, before the genuine plant speaks again: the recording's sender is new to the new
+                // boot, so its tags are checked and verify, and still nothing runs: the START names the old
+                // boot (wrong_boot), the samples find no session (idle).
+                Attack a;
+                a.what = "right after the restart, before the plant's next frame: the old boot's START and " +
+                         std::to_string(recording.size() - 1) + " samples replayed";
+                a.frames = recording;
+                a.wrong_boot = 1;
+                a.idle = static_cast<int>(recording.size() - 1);
+                a.genuine_sample = false;
+                attack_period(ctx, r, n, a);
+            }
+            r.send_expecting(r.measure(n), Expect::Kind::Ignored,
+                             "keyed node killed and restarted: the next sample is dropped unanswered (no session)");
             r.settle();
-            r.restart_session();
+            r.restart_session();   // rule 5: START naming the new boot
             return;
         }
         if (n == kReplayAt && replay) {
             Attack a;
-            a.what = "the old node's START and " + std::to_string(recording.size() - 1) +
-                     " genuine samples replayed to the restarted node";
+            a.what = "amid the new session: the old boot's START and " + std::to_string(recording.size() - 1) +
+                     " samples replayed";
             a.frames = recording;
-            a.replayed = static_cast<int>(recording.size());
+            a.replayed = static_cast<int>(recording.size());   // the plant's newer frames came first
             attack_period(ctx, r, n, a);
             return;
         }
@@ -410,9 +422,9 @@ void case_auth_node_restart(Context& ctx)
     check_outcomes(ctx.report, run);
     check_genuine(ctx.report, run, {kCrashAt}, run.genuine_sent - 1);
     check_same_as_reference(ctx.report, *reference, run);
-    check_tracking(ctx.report, run, "after the node restart and the replay");
-    // The restarted node's counters continue above its old ones (they follow the wall clock): the
-    // plant, which remembers the old node's last counter, opens every frame of the new one.
+    check_tracking(ctx.report, run, "after the node restart and the replays");
+    // The restarted node signs (boot << 40) | n, above every counter of its old boot: the plant, which
+    // remembers the old boot's last counter, opens every frame of the new one.
     check_plant_opened_all(ctx);
 }
 

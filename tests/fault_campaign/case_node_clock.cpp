@@ -34,7 +34,7 @@ std::int64_t plant_now() { return monotonic_us() + kPlantClockOffsetUs; }
 double ms(std::int64_t us) { return static_cast<double>(us) * 1e-3; }
 
 struct Arrival {
-    tvo_lcm::command_t cmd;
+    Command cmd;
     std::int64_t arrival_us;   // plant clock
 };
 }  // namespace
@@ -51,19 +51,26 @@ void case_link_loss_node_clock(Context& ctx)
     const std::int64_t wd = timing.watchdog_periods;
 
     std::unique_ptr<NodeProcess> node;
+    const std::int64_t known_boot = ctx.bus.node_boot();
     if (!ctx.node_path.empty()) {
         node = std::make_unique<NodeProcess>(ctx.node_path, ctx.lcm_url);
         node->spawn(false);
     }
+    // Rule 1: the node's boot (a node just spawned announces a new one at once).
+    const std::int64_t boot = node ? ctx.bus.await_boot(known_boot, std::chrono::seconds(20))
+                                   : (known_boot != 0 ? known_boot : ctx.bus.await_boot(0, std::chrono::seconds(20)));
+    if (boot == 0) {
+        throw std::runtime_error("no node announced itself on " TVO_CHANNEL_NODE);
+    }
     ctx.bus.clear();
-    const std::int64_t id = ctx.new_session_id();
-    tvo_lcm::session_t session = demo_session(id, plant_now(), plant_now() + kEpochLeadUs, timing);
+    const std::int32_t id = ctx.new_session_id();
+    tvo_lcm::session_t session = demo_session(id, plant_now(), plant_now() + kEpochLeadUs, timing, boot);
     const std::int64_t epoch = session.epoch_utime;
 
     // START stamped with the plant's clock, repeated every 100 ms until acknowledged.
     auto acked = [&] {
         return std::any_of(ctx.bus.acks.begin(), ctx.bus.acks.end(), [&](const tvo_lcm::session_ack_t& a) {
-            return a.session_id == id && a.action == tvo_lcm::session_t::ACTION_START;
+            return a.session_id == id && a.action == tvo_lcm::session_t::ACTION_START && a.boot_id == boot;
         });
     };
     const std::int64_t give_up = monotonic_us() + 20 * kSPerUs10;
@@ -97,21 +104,22 @@ void case_link_loss_node_clock(Context& ctx)
     auto take_commands = [&] {
         for (; taken < ctx.bus.commands.size(); ++taken) {
             const ReceivedCommand& rx = ctx.bus.commands[taken];
-            const tvo_lcm::command_t& cmd = rx.msg;
+            const Command& cmd = rx.msg;
+            const Header& ch = cmd.header;
             const std::int64_t arrival = rx.arrival_mono_us + kPlantClockOffsetUs;
             ctx.audit.add(cmd);
             arrivals.push_back({cmd, arrival});
-            const bool safe_stop = (cmd.flags & static_cast<std::int32_t>(tvo_lcm::command_t::FLAG_SAFE_STOP)) != 0;
-            const bool newer = sent.count(cmd.measurement_sequence) != 0 && cmd.measurement_sequence > in_force;
-            if (cmd.session_id != id || !(newer || safe_stop)) {
+            const bool safe_stop = (ch.flags & static_cast<std::int32_t>(Header::FLAG_SAFE_STOP)) != 0;
+            const bool newer = sent.count(ch.measurement_sequence) != 0 && ch.measurement_sequence > in_force;
+            if (ch.session_id != id || !(newer || safe_stop)) {
                 continue;
             }
-            in_force = std::max(in_force, cmd.measurement_sequence);
-            late_commands += (cmd.utime < arrival && !safe_stop) ? 1 : 0;   // a safe stop is stamped now
-            const std::int64_t at = std::max(cmd.utime, arrival);
+            in_force = std::max<std::int64_t>(in_force, ch.measurement_sequence);
+            late_commands += (ch.utime < arrival && !safe_stop) ? 1 : 0;   // a safe stop is stamped now
+            const std::int64_t at = std::max(ch.utime, arrival);
             const auto pos = std::upper_bound(pending.begin(), pending.end(), at,
                                               [](std::int64_t t, const auto& p) { return t < p.first; });
-            pending.insert(pos, {at, tvo_host::UnicycleInput{cmd.speed_mps[0], cmd.turn_rate_radps[0]}});
+            pending.insert(pos, {at, tvo_host::UnicycleInput{cmd.speed_mps, cmd.turn_rate_radps}});
         }
     };
     auto advance = [&](std::int64_t t) {
@@ -160,18 +168,17 @@ void case_link_loss_node_clock(Context& ctx)
         if (silent(j)) {
             continue;   // the link is down
         }
-        tvo_lcm::measurement_t m{};
-        m.utime = now;   // stamped when sampled, late or not
-        m.session_id = id;
-        m.sequence = j - 1;
-        m.robot_count = 1;
-        m.position_m[0][0] = plant.state(0).position_m.x();
-        m.position_m[0][1] = plant.state(0).position_m.y();
-        m.heading_rad[0] = plant.state(0).heading_rad;
-        m.speed_mps[0] = plant.input(0).speed_mps;
-        m.heading_valid = true;
-        m.speed_valid = true;
-        sent[m.sequence] = m.utime;
+        Sample m{};
+        m.header.utime = now;   // stamped when sampled, late or not
+        m.header.session_id = id;
+        m.header.sequence = static_cast<std::int32_t>(j - 1);
+        m.header.robot = 0;
+        m.has = tvo_lcm::unicycle_sample_t::HAS_HEADING | tvo_lcm::unicycle_sample_t::HAS_SPEED;
+        m.position_m[0] = plant.state(0).position_m.x();
+        m.position_m[1] = plant.state(0).position_m.y();
+        m.heading_rad = static_cast<float>(std::remainder(plant.state(0).heading_rad, 2.0 * M_PI));
+        m.speed_mps = static_cast<float>(plant.input(0).speed_mps);
+        sent[m.header.sequence] = m.header.utime;
         ctx.bus.publish(m);
     }
     sleep_until(plant_now() + 300000);   // the last answers
@@ -192,8 +199,9 @@ void case_link_loss_node_clock(Context& ctx)
     std::ofstream csv("fault_campaign_link_loss_commands.csv");
     csv << "arrival_us,utime_us,sequence,status,flags,speed_mps,turn_rate_radps\n";
     for (const Arrival& a : arrivals) {
-        csv << a.arrival_us - epoch << ',' << a.cmd.utime - epoch << ',' << a.cmd.measurement_sequence << ','
-            << a.cmd.status << ',' << a.cmd.flags << ',' << a.cmd.speed_mps[0] << ',' << a.cmd.turn_rate_radps[0]
+        const Header& ch = a.cmd.header;
+        csv << a.arrival_us - epoch << ',' << ch.utime - epoch << ',' << ch.measurement_sequence << ','
+            << static_cast<int>(ch.status) << ',' << ch.flags << ',' << a.cmd.speed_mps << ',' << a.cmd.turn_rate_radps
             << '\n';
     }
     std::ofstream samples_csv("fault_campaign_link_loss_samples.csv");
@@ -216,19 +224,21 @@ void case_link_loss_node_clock(Context& ctx)
     for (const std::int64_t from : kSilenceStarts) {
         Silence sl;
         for (const Arrival& a : arrivals) {
-            const std::int64_t seq = a.cmd.measurement_sequence;
-            if (a.cmd.session_id != id || a.cmd.status != 0 || seq < 0) {
+            const Header& ch = a.cmd.header;
+            const std::int64_t seq = ch.measurement_sequence;
+            if (ch.session_id != id || ch.status != 0 || seq < 0) {
                 continue;
             }
             if (seq <= from - 2) {   // sample j = seq + 1 before the silence
-                sl.last_accepted = std::max(sl.last_accepted, a.cmd.utime);
-            } else if (seq >= from + kSilentPeriods - 1 && (sl.first_resumed < 0 || a.cmd.utime < sl.first_resumed)) {
-                sl.first_resumed = a.cmd.utime;
+                sl.last_accepted = std::max(sl.last_accepted, ch.utime);
+            } else if (seq >= from + kSilentPeriods - 1 && (sl.first_resumed < 0 || ch.utime < sl.first_resumed)) {
+                sl.first_resumed = ch.utime;
             }
         }
         for (const Arrival& a : arrivals) {
-            if (a.cmd.session_id == id && a.cmd.measurement_sequence == -1 && a.cmd.utime > sl.last_accepted &&
-                (sl.first_resumed < 0 || a.cmd.utime <= sl.first_resumed)) {
+            const Header& ch = a.cmd.header;
+            if (ch.session_id == id && ch.measurement_sequence == -1 && ch.utime > sl.last_accepted &&
+                (sl.first_resumed < 0 || ch.utime <= sl.first_resumed)) {
                 sl.stops.push_back(&a);
             }
         }
@@ -239,16 +249,17 @@ void case_link_loss_node_clock(Context& ctx)
     long stamped_ahead = 0;
     std::int64_t max_latency = 0;
     for (const Arrival& a : arrivals) {
-        if (a.cmd.session_id != id || a.cmd.measurement_sequence != -1) {
+        const Header& ch = a.cmd.header;
+        if (ch.session_id != id || ch.measurement_sequence != -1) {
             continue;
         }
         ++stops_total;
-        stops_bad_fields += (a.cmd.status != tvo_lcm::command_t::STATUS_ERR_WATCHDOG ||
-                             (a.cmd.flags & static_cast<std::int32_t>(tvo_lcm::command_t::FLAG_SAFE_STOP)) == 0)
+        stops_bad_fields += (ch.status != Header::STATUS_ERR_WATCHDOG ||
+                             (ch.flags & static_cast<std::int32_t>(Header::FLAG_SAFE_STOP)) == 0 || ch.robot != 0)
                                 ? 1
                                 : 0;
-        stamped_ahead += a.cmd.utime > a.arrival_us ? 1 : 0;
-        max_latency = std::max(max_latency, a.arrival_us - a.cmd.utime);
+        stamped_ahead += ch.utime > a.arrival_us ? 1 : 0;
+        max_latency = std::max(max_latency, a.arrival_us - ch.utime);
     }
     bool never_early = true;
     bool one_in_time = false;
@@ -257,7 +268,7 @@ void case_link_loss_node_clock(Context& ctx)
     std::ostringstream repeats;
     for (const Silence& sl : silences) {
         const bool found = !sl.stops.empty() && sl.last_accepted >= 0;
-        const std::int64_t delta = found ? sl.stops.front()->cmd.utime - sl.last_accepted : -1;
+        const std::int64_t delta = found ? sl.stops.front()->cmd.header.utime - sl.last_accepted : -1;
         never_early = never_early && found && delta >= wd * h;
         one_in_time = one_in_time || (found && delta >= wd * h && delta <= (wd + 1) * h);
         all_repeat = all_repeat && sl.stops.size() >= 2;
@@ -265,7 +276,7 @@ void case_link_loss_node_clock(Context& ctx)
         std::int64_t min_gap = 0;
         std::int64_t max_gap = 0;
         for (std::size_t i = 1; i < sl.stops.size(); ++i) {
-            const std::int64_t gap = sl.stops[i]->cmd.utime - sl.stops[i - 1]->cmd.utime;
+            const std::int64_t gap = sl.stops[i]->cmd.header.utime - sl.stops[i - 1]->cmd.header.utime;
             min_gap = i == 1 ? gap : std::min(min_gap, gap);
             max_gap = std::max(max_gap, gap);
         }
@@ -281,7 +292,7 @@ void case_link_loss_node_clock(Context& ctx)
                  "in at least one of the three silences)",
                  deltas.str() + " ms; window " + window);
     report.check(all_repeat && stops_bad_fields == 0,
-                 "safe stops repeat during each silence, each tvo_lcm::command_t::STATUS_ERR_WATCHDOG, SAFE_STOP, sequence -1",
+                 "safe stops repeat during each silence, each STATUS_ERR_WATCHDOG, SAFE_STOP, sequence -1, robot 0",
                  repeats.str() + "; " + std::to_string(stops_bad_fields) + " of " + std::to_string(stops_total) +
                      " with other fields");
     report.check(stamped_ahead == 0, "safe stops stamped now (the node's clock mapped), never ahead of the plant's",
@@ -294,15 +305,16 @@ void case_link_loss_node_clock(Context& ctx)
     long before_sample = 0;
     std::map<std::int32_t, long> refused;
     for (const Arrival& a : arrivals) {
-        if (a.cmd.session_id != id || a.cmd.measurement_sequence < 0) {
+        const Header& ch = a.cmd.header;
+        if (ch.session_id != id || ch.measurement_sequence < 0) {
             continue;
         }
         ++answered;
-        const auto it = sent.find(a.cmd.measurement_sequence);
-        before_sample += (it == sent.end() || a.cmd.utime < it->second) ? 1 : 0;
-        if (a.cmd.status != 0) {
-            ++refused[a.cmd.status];
-        } else if (a.cmd.measurement_sequence >= kSilenceStarts[0] + kSilentPeriods - 1) {
+        const auto it = sent.find(ch.measurement_sequence);
+        before_sample += (it == sent.end() || ch.utime < it->second) ? 1 : 0;
+        if (ch.status != 0) {
+            ++refused[ch.status];
+        } else if (ch.measurement_sequence >= kSilenceStarts[0] + kSilentPeriods - 1) {
             ++accepted_after;
         }
     }

@@ -17,16 +17,18 @@ namespace campaign {
 
 namespace {
 constexpr std::int64_t kUsPerS = 1000000;
-constexpr std::int64_t kWireMax = std::int64_t{1} << 60;   // TVO_WIRE_TIME_MAX_US, the sequence limit
 constexpr std::int64_t kEpochLimitUs = TVO_SESSION_EPOCH_SPAN_US;   // |epoch - start.utime| at most
-constexpr std::int64_t kInt64Max = std::numeric_limits<std::int64_t>::max();
 constexpr std::int64_t kInt64Min = std::numeric_limits<std::int64_t>::min();
+constexpr std::int32_t kInt32Max = std::numeric_limits<std::int32_t>::max();
+constexpr std::int32_t kInt32Min = std::numeric_limits<std::int32_t>::min();
 constexpr std::int32_t kAny = Expect::kAnyStatus;
 constexpr std::uint64_t kSeed = 20240609;
-// LCM's encoding: the 8-byte fingerprint, then the fields in order, big-endian. utime and
-// session_id are the first two fields of measurement_t, target_t and session_t; session_t's
-// action follows them.
-constexpr std::size_t kSessionIdOffset = 16;
+// LCM's encoding: the 8-byte fingerprint, then the fields in order, big-endian (nested types inline).
+// unicycle_sample_t and target_t begin with sample_header_t: utime (8 bytes), session_id (4);
+// session_t with utime, protocol_version (4), session_id (4), action (1).
+constexpr std::size_t kSampleSessionIdOffset = 16;
+constexpr std::size_t kSampleRobotOffset = 24;
+constexpr std::size_t kSessionIdOffset = 20;
 constexpr std::size_t kActionOffset = 24;
 
 }  // namespace
@@ -53,23 +55,23 @@ std::unique_ptr<LockstepRun> run_reference(Context& ctx, const LockstepRun::Hook
     return ref;
 }
 
-tvo_lcm::measurement_t restamped(tvo_lcm::measurement_t m, std::int64_t delta_us)
+Sample restamped(Sample m, std::int64_t delta_us)
 {
-    m.utime += delta_us;
+    m.header.utime += delta_us;
     return m;
 }
 
-tvo_lcm::measurement_t resequenced(tvo_lcm::measurement_t m, std::int64_t sequence)
+Sample resequenced(Sample m, std::int32_t sequence)
 {
-    m.sequence = sequence;
+    m.header.sequence = sequence;
     return m;
 }
 
-void put_be64(std::vector<std::uint8_t>& bytes, std::size_t offset, std::int64_t value)
+void put_be32(std::vector<std::uint8_t>& bytes, std::size_t offset, std::int32_t value)
 {
-    const auto u = static_cast<std::uint64_t>(value);
-    for (std::size_t i = 0; i < 8; ++i) {
-        bytes[offset + i] = static_cast<std::uint8_t>(u >> (56 - 8 * i));
+    const auto u = static_cast<std::uint32_t>(value);
+    for (std::size_t i = 0; i < 4; ++i) {
+        bytes[offset + i] = static_cast<std::uint8_t>(u >> (24 - 8 * i));
     }
 }
 
@@ -119,19 +121,21 @@ std::string ack_text(const tvo_lcm::session_ack_t& a)
     out << status_text(a.status) << ", bad_param " << a.bad_param << " ("
         << tvo_protocol_param_str(a.bad_param) << "), part " << a.bad_part << " ("
         << tvo_protocol_part_str(a.bad_part) << "), index " << a.bad_index << ", running " << a.running_session_id
-        << ", echoes id " << a.session_id << " action " << static_cast<int>(a.action) << " utime " << a.utime;
+        << ", echoes id " << a.session_id << " action " << static_cast<int>(a.action) << " utime " << a.utime
+        << ", boot " << a.boot_id;
     return out.str();
 }
 
 /// A refused START: the ack names what it should, and the running session is still `running`.
 void check_refused_start(Report& report, const tvo_lcm::session_t& start, const tvo_lcm::session_ack_t& ack,
-                         std::int64_t running, std::int32_t status, std::int32_t param, std::int32_t part,
+                         std::int32_t running, std::int32_t status, std::int32_t param, std::int32_t part,
                          std::int32_t index, const std::string& what)
 {
     const bool ok = (status == kAny ? ack.status != 0 : ack.status == status) &&
                     (param < 0 || ack.bad_param == param) && (part < 0 || ack.bad_part == part) &&
                     (index < -1 || ack.bad_index == index) && ack.running_session_id == running &&
-                    ack.session_id == start.session_id && ack.action == start.action && ack.utime == start.utime;
+                    ack.session_id == start.session_id && ack.action == start.action && ack.utime == start.utime &&
+                    ack.boot_id == start.node_boot_id[0] && ack.own_robot == -1;
     report.check(ok, what, ack_text(ack));
 }
 
@@ -158,23 +162,24 @@ void case_stray_future_stamp(Context& ctx)
     run.run([](LockstepRun& r, std::int64_t n) {
         const auto m = r.measure(n);
         if (n == 300) {
-            r.send_stray(restamped(m, kUsPerS), tvo_lcm::command_t::STATUS_ERR_IMPLAUSIBLE_STAMP,
+            r.send_stray(restamped(m, kUsPerS), Header::STATUS_ERR_IMPLAUSIBLE_STAMP,
                          "a copy of sample 300 stamped +1 s, before the genuine one: refused, implausible stamp");
         } else if (n == 400) {
-            r.send_stray(restamped(m, 20 * kUsPerS), tvo_lcm::command_t::STATUS_ERR_IMPLAUSIBLE_STAMP,
+            r.send_stray(restamped(m, 20 * kUsPerS), Header::STATUS_ERR_IMPLAUSIBLE_STAMP,
                          "a copy of sample 400 stamped +20 s: refused, implausible stamp");
         } else if (n == 500) {
             auto bad = restamped(m, kUsPerS);
-            bad.position_m[0][0] = std::numeric_limits<double>::quiet_NaN();
+            bad.position_m[0] = std::numeric_limits<double>::quiet_NaN();
             r.send_stray(bad, kAny, "a sample with a NaN position stamped +1 s: refused");
         } else if (n == 550) {
             auto bad = restamped(m, kUsPerS);
-            bad.robot_count = 7;
-            r.send_stray(bad, kAny, "a sample with robot_count 7 stamped +1 s: refused");
+            bad.header.robot = 7;
+            r.send_refused_unanswered(bad, "a sample of robot 7 (the session has one) stamped +1 s: refused, "
+                                           "counted, not answered (it steps no period)");
         }
         r.send_genuine(m);
         if (n == 600) {
-            r.send_stray(restamped(m, kUsPerS), tvo_lcm::command_t::STATUS_ERR_IMPLAUSIBLE_STAMP,
+            r.send_stray(restamped(m, kUsPerS), Header::STATUS_ERR_IMPLAUSIBLE_STAMP,
                          "a copy of sample 600 stamped +1 s, after the genuine one: refused, implausible stamp");
         }
     });
@@ -192,29 +197,29 @@ void case_stray_past_stamp(Context& ctx)
     run.run([epoch, h](LockstepRun& r, std::int64_t n) {
         const auto m = r.measure(n);
         if (n == 0) {
-            r.send_stray(restamped(m, -kUsPerS), tvo_lcm::command_t::STATUS_ERR_IMPLAUSIBLE_STAMP,
+            r.send_stray(restamped(m, -kUsPerS), Header::STATUS_ERR_IMPLAUSIBLE_STAMP,
                          "before the first genuine sample, a copy stamped 1 s before the epoch: refused, implausible");
         } else if (n == 300) {
-            r.send_stray(restamped(m, -kUsPerS), tvo_lcm::command_t::STATUS_ERR_OUT_OF_ORDER,
+            r.send_stray(restamped(m, -kUsPerS), Header::STATUS_ERR_OUT_OF_ORDER,
                          "a copy of sample 300 stamped -1 s: refused, out of order");
         } else if (n == 350) {
-            r.send_stray(restamped(m, -h), tvo_lcm::command_t::STATUS_ERR_OUT_OF_ORDER,
+            r.send_stray(restamped(m, -h), Header::STATUS_ERR_OUT_OF_ORDER,
                          "a copy of sample 350 with the previous period's stamp: refused, out of order");
         } else if (n == 400) {
             auto bad = m;
-            bad.utime = epoch - kUsPerS;
-            r.send_stray(bad, tvo_lcm::command_t::STATUS_ERR_IMPLAUSIBLE_STAMP, "a copy stamped 1 s before the epoch: refused, implausible");
+            bad.header.utime = epoch - kUsPerS;
+            r.send_stray(bad, Header::STATUS_ERR_IMPLAUSIBLE_STAMP, "a copy stamped 1 s before the epoch: refused, implausible");
         } else if (n == 450) {
             auto bad = m;
-            bad.utime = 0;
-            r.send_stray(bad, tvo_lcm::command_t::STATUS_ERR_IMPLAUSIBLE_STAMP, "a copy stamped 0 (the wire's minimum): refused, implausible");
+            bad.header.utime = 0;
+            r.send_stray(bad, Header::STATUS_ERR_IMPLAUSIBLE_STAMP, "a copy stamped 0 (the wire's minimum): refused, implausible");
         } else if (n == 500) {
             auto bad = m;
-            bad.utime = -1;
+            bad.header.utime = -1;
             r.send_stray(bad, kAny, "a copy stamped -1 (out of the wire range): refused", true);
         } else if (n == 550) {
             auto bad = m;
-            bad.utime = kInt64Min;
+            bad.header.utime = kInt64Min;
             r.send_stray(bad, kAny, "a copy stamped INT64_MIN: refused", true);
         }
         r.send_genuine(m);
@@ -237,14 +242,22 @@ void case_garbage(Context& ctx)
     long undecodable_sure = 0;    // cannot decode: truncated, wrong fingerprint
     long undecodable_maybe = 0;   // over-long (a node may decode the prefix), empty, a burst UDP may thin
     long other_session_sent = 0;
-    const std::int64_t ours = run.session().session_id;
+    long targets_of_ours_sent = 0;
+    const std::int32_t ours = run.session().session_id;
     const tvo_lcm::session_t session_template = run.session();
+    // A random body but a plausible head (a START that names the node's boot and this protocol, so the
+    // node checks it): what a corrupted or hostile START would need to be answered at all.
     auto session_garbage = [&](std::int8_t action, bool our_id) {
-        auto bytes = random_body(rng, encode(session_template));
-        bytes[kActionOffset] = static_cast<std::uint8_t>(action);
-        if (our_id) {
-            put_be64(bytes, kSessionIdOffset, ours);
+        tvo_lcm::session_t head = decoded<tvo_lcm::session_t>(random_body(rng, encode(session_template)));
+        head.protocol_version = tvo_lcm::node_status_t::PROTOCOL_VERSION;
+        head.action = action;
+        head.robot_count = 1 + std::abs(head.robot_count % tvo_lcm::session_t::MAX_ROBOTS);  // names a boot
+        for (std::int32_t r = 0; r < tvo_lcm::session_t::MAX_ROBOTS; ++r) {
+            head.node_boot_id[r] = session_template.node_boot_id[0];
         }
+        head.session_id = our_id ? ours : std::abs(head.session_id % 1000000) + 1;
+        auto bytes = encode(head);
+        bytes[kActionOffset] = static_cast<std::uint8_t>(action);
         return bytes;
     };
     run.run([&](LockstepRun& r, std::int64_t n) {
@@ -254,68 +267,67 @@ void case_garbage(Context& ctx)
         ignored.kind = Expect::Kind::Ignored;
         if (n >= 300 && n < 305) {
             const auto bytes = random_body(rng, genuine_bytes);
-            const auto d = decoded<tvo_lcm::measurement_t>(bytes);
-            ignored.session_id = d.session_id;
-            ignored.sequence = d.sequence;
-            ignored.label = n == 300 ? "valid measurement_t fingerprint, random body (so another session id): no answer"
+            const auto d = decoded<Sample>(bytes);
+            ignored.session_id = d.header.session_id;
+            ignored.sequence = d.header.sequence;
+            ignored.label = n == 300 ? "valid unicycle_sample_t fingerprint, random body (so another session id): no answer"
                                      : "";
-            r.send_raw(TVO_CHANNEL_MEASUREMENT, bytes, ignored);
+            r.send_raw(TVO_CHANNEL_SAMPLE, bytes, ignored);
             ++other_session_sent;
         } else if (n >= 310 && n < 315) {
             auto bytes = random_body(rng, genuine_bytes);
-            put_be64(bytes, kSessionIdOffset, ours);
+            put_be32(bytes, kSampleSessionIdOffset, ours);
+            bytes[kSampleRobotOffset] = 0;   // robot 0: the period's last robot, whose sample is answered
             Expect refused;
             refused.kind = Expect::Kind::Refused;
             refused.match_by_order = true;
-            refused.label = "valid fingerprint, random body with this session's id (" + std::to_string(n - 309) +
-                            "/5): refused";
-            r.send_raw(TVO_CHANNEL_MEASUREMENT, bytes, refused);
+            refused.label = "valid fingerprint, random body with this session's id and robot 0 (" +
+                            std::to_string(n - 309) + "/5): refused";
+            r.send_raw(TVO_CHANNEL_SAMPLE, bytes, refused);
         } else if (n == 320) {
             // Truncated copies carry a sequence no genuine sample has: an answer to one would show.
-            const auto copy = encode(resequenced(m, n + 2000));
+            const auto copy = encode(resequenced(m, static_cast<std::int32_t>(n + 2000)));
             ignored.session_id = ours;
             ignored.sequence = n + 2000;
             for (const std::size_t length : {std::size_t{7}, std::size_t{8}, copy.size() / 2, copy.size() - 1}) {
                 ignored.label = "a sample truncated to " + std::to_string(length) + " of " +
                                 std::to_string(copy.size()) + " bytes: no answer";
-                r.send_raw(TVO_CHANNEL_MEASUREMENT,
+                r.send_raw(TVO_CHANNEL_SAMPLE,
                            std::vector<std::uint8_t>(copy.begin(), copy.begin() + static_cast<long>(length)), ignored);
                 ++undecodable_sure;
             }
-            ignored.label = "an empty message on TVO_MEASUREMENT: no answer";
-            r.send_raw(TVO_CHANNEL_MEASUREMENT, {}, ignored);
+            ignored.label = "an empty message on TVO_SAMPLE: no answer";
+            r.send_raw(TVO_CHANNEL_SAMPLE, {}, ignored);
             ++undecodable_maybe;
         } else if (n == 330) {
-            // A valid prefix whose sequence does not fit the schedule, then extra bytes: if a node
-            // decodes the prefix, it must refuse it.
+            // A valid sample followed by extra bytes: not its channel's length, so no message of it
+            // (lcm_types/README.md: a frame whose length is not its channel's size is malformed).
             for (const std::size_t extra : {std::size_t{1}, std::size_t{100}, std::size_t{3000}}) {
-                auto prefix = encode(resequenced(m, n + 1000));
+                auto prefix = encode(resequenced(m, static_cast<std::int32_t>(n + 1000)));
                 std::vector<std::uint8_t> tail(extra);
                 for (auto& b : tail) {
                     b = static_cast<std::uint8_t>(rng());
                 }
                 prefix.insert(prefix.end(), tail.begin(), tail.end());
-                Expect optional;
-                optional.kind = Expect::Kind::Optional;
-                optional.session_id = ours;
-                optional.sequence = n + 1000;
-                optional.label = "an over-long buffer (a valid sample + " + std::to_string(extra) +
-                                 " bytes, NOTE: the spec leaves it open)";
-                r.send_raw(TVO_CHANNEL_MEASUREMENT, prefix, optional);
-                ++undecodable_maybe;
+                ignored.session_id = ours;
+                ignored.sequence = n + 1000;
+                ignored.label = "an over-long buffer (a valid sample + " + std::to_string(extra) +
+                                " bytes): malformed, no answer";
+                r.send_raw(TVO_CHANNEL_SAMPLE, prefix, ignored);
+                ++undecodable_sure;
             }
         } else if (n == 340) {
-            auto bytes = encode(resequenced(m, n + 2000));
+            auto bytes = encode(resequenced(m, static_cast<std::int32_t>(n + 2000)));
             bytes[0] ^= 0xff;
             ignored.session_id = ours;
             ignored.sequence = n + 2000;
             ignored.label = "a genuine sample with a wrong fingerprint: no answer";
-            r.send_raw(TVO_CHANNEL_MEASUREMENT, bytes, ignored);
+            r.send_raw(TVO_CHANNEL_SAMPLE, bytes, ignored);
             auto session_bytes = encode(session_template);
             session_bytes[0] ^= 0xff;
             ctx.bus.publish_raw(TVO_CHANNEL_SESSION, session_bytes);
             tvo_lcm::target_t target{};
-            target.session_id = ours;
+            target.header.session_id = ours;
             auto target_bytes = encode(target);
             target_bytes[0] ^= 0xff;
             ctx.bus.publish_raw(TVO_CHANNEL_TARGET, target_bytes);
@@ -326,8 +338,8 @@ void case_garbage(Context& ctx)
         } else if (n == 350) {
             const auto bytes = session_garbage(0x55, false);
             const auto ack = raw_request(ctx, bytes);
-            check_refused_start(ctx.report, decoded<tvo_lcm::session_t>(bytes), ack, ours, tvo_lcm::command_t::STATUS_ERR_PARAM, -1, -1, -2,
-                                "session_t with a random body and action 0x55: acked tvo_lcm::command_t::STATUS_ERR_PARAM, session runs on");
+            check_refused_start(ctx.report, decoded<tvo_lcm::session_t>(bytes), ack, ours, Header::STATUS_ERR_PARAM, -1, -1, -2,
+                                "session_t with a random body and action 0x55: acked Header::STATUS_ERR_PARAM, session runs on");
         } else if (n >= 351 && n < 354) {
             const auto bytes = session_garbage(tvo_lcm::session_t::ACTION_START, false);
             const auto ack = raw_request(ctx, bytes);
@@ -337,9 +349,9 @@ void case_garbage(Context& ctx)
         } else if (n == 354) {
             const auto bytes = session_garbage(tvo_lcm::session_t::ACTION_STOP, false);
             const auto ack = raw_request(ctx, bytes);
-            check_refused_start(ctx.report, decoded<tvo_lcm::session_t>(bytes), ack, ours, tvo_lcm::command_t::STATUS_ERR_NO_SESSION, -1, -1,
+            check_refused_start(ctx.report, decoded<tvo_lcm::session_t>(bytes), ack, ours, Header::STATUS_ERR_NO_SESSION, -1, -1,
                                 -2,
-                                "a STOP with a random body (another id): acked tvo_lcm::command_t::STATUS_ERR_NO_SESSION, session runs on");
+                                "a STOP with a random body (another id): acked Header::STATUS_ERR_NO_SESSION, session runs on");
         } else if (n == 355) {
             const auto bytes = session_garbage(tvo_lcm::session_t::ACTION_START, true);
             const auto ack = raw_request(ctx, bytes);
@@ -354,7 +366,8 @@ void case_garbage(Context& ctx)
             tvo_lcm::target_t target{};
             auto bytes = random_body(rng, encode(target));
             if (n >= 362) {
-                put_be64(bytes, kSessionIdOffset, ours);
+                put_be32(bytes, kSampleSessionIdOffset, ours);
+                ++targets_of_ours_sent;   // a target to a session without streamed targets: refused, counted
             } else {
                 ++other_session_sent;
             }
@@ -371,7 +384,7 @@ void case_garbage(Context& ctx)
             const auto half = static_cast<long>(genuine_bytes.size() / 2);
             const std::vector<std::uint8_t> truncated(genuine_bytes.begin(), genuine_bytes.begin() + half);
             for (int i = 0; i < 200; ++i) {
-                ctx.bus.publish_raw(TVO_CHANNEL_MEASUREMENT, truncated);
+                ctx.bus.publish_raw(TVO_CHANNEL_SAMPLE, truncated);
                 if (i % 10 == 9) {
                     ctx.bus.pump(std::chrono::milliseconds(2));
                 }
@@ -386,16 +399,19 @@ void case_garbage(Context& ctx)
     finish(ctx, run, {300, 301, 302, 303, 304, 310, 311, 312, 313, 314, 320, 330, 340, 350, 351, 352, 353, 354, 355,
                       356, 360, 361, 362, 363, 364, 400},
            ref.get());
-    const tvo_lcm::telemetry_t* t = run.last_telemetry();
-    const long undecodable = t != nullptr ? t->counters.undecodable : -1;
-    ctx.report.check(undecodable >= undecodable_sure && undecodable <= undecodable_sure + undecodable_maybe,
-                     "undecodable messages counted",
-                     std::to_string(undecodable) + " counted; sent " + std::to_string(undecodable_sure) +
-                         " that cannot decode + " + std::to_string(undecodable_maybe) +
-                         " over-long, empty or in a burst");
-    const long other = t != nullptr ? t->counters.other_session : -1;
-    ctx.report.check(other == other_session_sent, "measurements and targets of another session id counted, ignored",
+    const auto& c = run.counters();
+    const long malformed = c ? c->malformed : -1;
+    ctx.report.check(malformed >= undecodable_sure && malformed <= undecodable_sure + undecodable_maybe,
+                     "malformed messages counted",
+                     std::to_string(malformed) + " counted; sent " + std::to_string(undecodable_sure) +
+                         " that are no message of their channel + " + std::to_string(undecodable_maybe) +
+                         " empty or in a burst");
+    const long other = c ? c->other_session : -1;
+    ctx.report.check(other == other_session_sent, "samples and targets of another session id counted, ignored",
                      std::to_string(other) + " counted of " + std::to_string(other_session_sent) + " sent");
+    const long targets = c ? c->targets_refused : -1;
+    ctx.report.check(targets == targets_of_ours_sent, "targets with this session's id and a random body refused, counted",
+                     std::to_string(targets) + " counted of " + std::to_string(targets_of_ours_sent) + " sent");
     const long lines = count_lines(config.node_stderr_path);
     // ~215 undecodable messages within a second or two: one line per reason per second leaves a few.
     ctx.report.check(lines <= 40, "the node's stderr is rate-limited",
@@ -411,30 +427,25 @@ void case_huge_sequence(Context& ctx)
     run.run([](LockstepRun& r, std::int64_t n) {
         const auto m = r.measure(n);
         if (n == 300) {
-            r.send_stray(resequenced(m, std::int64_t{1} << 59), tvo_lcm::command_t::STATUS_ERR_IMPLAUSIBLE_STAMP,
-                         "a copy of sample 300 with sequence 2^59, genuine stamp: refused, implausible");
+            r.send_stray(resequenced(m, std::int32_t{1} << 30), Header::STATUS_ERR_IMPLAUSIBLE_STAMP,
+                         "a copy of sample 300 with sequence 2^30, genuine stamp: refused, implausible");
         } else if (n == 350) {
-            r.send_stray(resequenced(m, kInt64Max), kAny, "sequence INT64_MAX: refused", true);
+            r.send_stray(resequenced(m, kInt32Max), Header::STATUS_ERR_IMPLAUSIBLE_STAMP,
+                         "sequence INT32_MAX (the wire's largest): refused, implausible");
         } else if (n == 400) {
             r.send_stray(resequenced(m, -1), kAny, "sequence -1: refused", true);
         } else if (n == 450) {
-            r.send_stray(resequenced(m, kInt64Min), kAny, "sequence INT64_MIN: refused", true);
-        } else if (n == 500) {
-            r.send_stray(resequenced(m, kWireMax), tvo_lcm::command_t::STATUS_ERR_IMPLAUSIBLE_STAMP,
-                         "sequence 2^60 (the wire's maximum): refused, implausible");
-        } else if (n == 550) {
-            r.send_stray(resequenced(m, kWireMax + 1), kAny, "sequence 2^60 + 1 (out of the wire range): refused",
-                         true);
+            r.send_stray(resequenced(m, kInt32Min), kAny, "sequence INT32_MIN: refused", true);
         }
         r.send_genuine(m);
         if (n == 600) {
             // Its stamp is the genuine one's: its period is already served (the spec checks that first).
-            r.send_stray(resequenced(m, std::int64_t{1} << 59), tvo_lcm::command_t::STATUS_ERR_OUT_OF_ORDER,
-                         "sequence 2^59 after the genuine sample 600 (same stamp): refused, out of order");
+            r.send_stray(resequenced(m, std::int32_t{1} << 30), Header::STATUS_ERR_OUT_OF_ORDER,
+                         "sequence 2^30 after the genuine sample 600 (same stamp): refused, out of order");
         }
     });
     run.stop();
-    finish(ctx, run, {300, 350, 400, 450, 500, 550, 600}, ref.get());
+    finish(ctx, run, {300, 350, 400, 450, 600}, ref.get());
 }
 
 void case_duplicates(Context& ctx)
@@ -442,24 +453,24 @@ void case_duplicates(Context& ctx)
     const auto ref = run_reference(ctx);
     LockstepRun run(ctx, base_config(ctx));
     run.start();
-    std::vector<tvo_lcm::measurement_t> sent;
+    std::vector<Sample> sent;
     run.run([&sent](LockstepRun& r, std::int64_t n) {
         const auto m = r.measure(n);
         if (n == 450) {
-            r.send_stray(sent.back(), tvo_lcm::command_t::STATUS_ERR_OUT_OF_ORDER,
+            r.send_stray(sent.back(), Header::STATUS_ERR_OUT_OF_ORDER,
                          "sample 449 again, before sample 450: refused, out of order");
         }
         r.send_genuine(m);
         sent.push_back(m);
         if (n == 300) {
-            r.send_stray(m, tvo_lcm::command_t::STATUS_ERR_OUT_OF_ORDER, "sample 300 twice: the copy refused, out of order");
+            r.send_stray(m, Header::STATUS_ERR_OUT_OF_ORDER, "sample 300 twice: the copy refused, out of order");
         } else if (n == 350) {
             for (int k = 1; k <= 3; ++k) {
-                r.send_stray(m, tvo_lcm::command_t::STATUS_ERR_OUT_OF_ORDER,
+                r.send_stray(m, Header::STATUS_ERR_OUT_OF_ORDER,
                              "sample 350 four times: copy " + std::to_string(k) + " refused, out of order");
             }
         } else if (n == 400) {
-            r.send_stray(sent[sent.size() - 6], tvo_lcm::command_t::STATUS_ERR_OUT_OF_ORDER,
+            r.send_stray(sent[sent.size() - 6], Header::STATUS_ERR_OUT_OF_ORDER,
                          "sample 395 again after 400: refused, out of order");
         }
     });
@@ -479,7 +490,7 @@ void case_reordering(Context& ctx)
     });
     LockstepRun run(ctx, base_config(ctx));
     run.start();
-    tvo_lcm::measurement_t withheld{};
+    Sample withheld{};
     run.run([&](LockstepRun& r, std::int64_t n) {
         const auto m = r.measure(n);
         if (late(n)) {
@@ -488,7 +499,7 @@ void case_reordering(Context& ctx)
         }
         r.send_genuine(m);
         if (late(n - 1)) {
-            r.send_genuine_refused(withheld, tvo_lcm::command_t::STATUS_ERR_OUT_OF_ORDER,
+            r.send_genuine_refused(withheld, Header::STATUS_ERR_OUT_OF_ORDER,
                                    "sample " + std::to_string(n - 1) + " delivered after sample " + std::to_string(n) +
                                        ": refused, out of order");
         }
@@ -539,12 +550,12 @@ void case_refusal_watchdog(Context& ctx)
     LockstepRun run(ctx, base_config(ctx));
     run.start();
     const std::int64_t wd = run.session().watchdog_periods;
-    tvo_lcm::measurement_t previous{};
+    Sample previous{};
     run.run([&](LockstepRun& r, std::int64_t n) {
         const auto m = r.measure(n);
         if (n >= 300 && n < 300 + wd + 2) {
             // Instead of its sample, the plant's link repeats the last one: refused every period.
-            r.send_stray(previous, tvo_lcm::command_t::STATUS_ERR_OUT_OF_ORDER,
+            r.send_stray(previous, Header::STATUS_ERR_OUT_OF_ORDER,
                          "refusal " + std::to_string(n - 299) + " of " + std::to_string(wd + 2) +
                              " in a row (sample 299 repeated)");
             return;
@@ -552,7 +563,7 @@ void case_refusal_watchdog(Context& ctx)
         if (n >= 300 + wd + 2 && n < 300 + wd + 4) {
             // The stream jumped wd + 3 periods past sample 299, more than the watchdog's span: served
             // once three samples agree on it, so its first two are refused, after the streak with a stop.
-            r.send_genuine_refused(m, tvo_lcm::command_t::STATUS_ERR_WATCHDOG,
+            r.send_genuine_refused(m, Header::STATUS_ERR_WATCHDOG,
                                    "after the streak, genuine sample " + std::to_string(n - 300 - wd - 1) +
                                        " of 2 before three agree on the jump: a safe stop");
             previous = m;
@@ -566,7 +577,7 @@ void case_refusal_watchdog(Context& ctx)
     long index = 0;
     for (const auto& o : run.outcomes()) {
         ++index;
-        if ((o.flags & static_cast<std::int32_t>(tvo_lcm::command_t::FLAG_SAFE_STOP)) != 0 && first_safe_stop < 0) {
+        if ((o.flags & static_cast<std::int32_t>(Header::FLAG_SAFE_STOP)) != 0 && first_safe_stop < 0) {
             first_safe_stop = index;
         }
     }
@@ -585,7 +596,7 @@ void case_rejected_start_during_run(Context& ctx)
     const auto ref = run_reference(ctx);
     LockstepRun run(ctx, base_config(ctx));
     run.start();
-    const std::int64_t ours = run.session().session_id;
+    const std::int32_t ours = run.session().session_id;
     struct BadStart {
         std::int64_t at;
         std::function<void(tvo_lcm::session_t&)> spoil;
@@ -596,25 +607,38 @@ void case_rejected_start_during_run(Context& ctx)
         std::string what;
     };
     const std::vector<BadStart> bad = {
-        {300, [](tvo_lcm::session_t& s) { s.gain_kp = -1.0; }, tvo_lcm::command_t::STATUS_ERR_PARAM, tvo_lcm::session_ack_t::PARAM_GAINS, -1, -2,
+        {300, [](tvo_lcm::session_t& s) { s.gain_kp = -1.0; }, Header::STATUS_ERR_PARAM, tvo_lcm::session_ack_t::PARAM_GAINS, -1, -2,
          "a START with a new id and gain_kp = -1: refused naming the gains"},
-        {320, [](tvo_lcm::session_t& s) { s.watchdog_periods = 0; }, tvo_lcm::command_t::STATUS_ERR_PARAM, tvo_lcm::session_ack_t::PARAM_WATCHDOG, -1, -2,
+        {320, [](tvo_lcm::session_t& s) { s.watchdog_periods = 0; }, Header::STATUS_ERR_PARAM, tvo_lcm::session_ack_t::PARAM_WATCHDOG, -1, -2,
          "a START with watchdog_periods = 0: refused naming the watchdog"},
-        {340, [](tvo_lcm::session_t& s) { s.period_us = std::int64_t{1} << 31; }, tvo_lcm::command_t::STATUS_ERR_PARAM, tvo_lcm::session_ack_t::PARAM_PERIOD,
+        {340, [](tvo_lcm::session_t& s) { s.period_us = std::int64_t{1} << 31; }, Header::STATUS_ERR_PARAM, tvo_lcm::session_ack_t::PARAM_PERIOD,
          -1, -2, "a START with period_us = 2^31 (out of the wire range): refused naming the period"},
-        {360, [](tvo_lcm::session_t& s) { s.delay_us = s.period_us + 1; }, tvo_lcm::command_t::STATUS_ERR_PARAM, tvo_lcm::session_ack_t::PARAM_DELAY, -1, -2,
+        {360, [](tvo_lcm::session_t& s) { s.delay_us = s.period_us + 1; }, Header::STATUS_ERR_PARAM, tvo_lcm::session_ack_t::PARAM_DELAY, -1, -2,
          "a START with delay_us = period_us + 1: refused naming the delay"},
-        {380, [](tvo_lcm::session_t& s) { s.robot_count = 0; }, kAny, tvo_lcm::session_ack_t::PARAM_ROBOT_COUNT, -1, -2,
-         "a START with robot_count = 0: refused naming the robot count"},
+        {380,
+         [](tvo_lcm::session_t& s) {
+             s.robot_count = tvo_lcm::session_t::MAX_ROBOTS;
+             std::fill(std::begin(s.node_boot_id), std::end(s.node_boot_id), s.node_boot_id[0]);
+         },
+         kAny,
+         tvo_lcm::session_ack_t::PARAM_ROBOT_COUNT, -1, -2,
+         "a START of 32 robots (every one naming this node's boot) to a node of fewer: refused naming the robot count"},
         {400,
          [](tvo_lcm::session_t& s) { s.robot[0].target.semi_axis_m[0] = std::numeric_limits<double>::quiet_NaN(); },
          kAny, -1, tvo_lcm::session_ack_t::PART_ROBOTS, 0,
          "a START with a NaN semi-axis in robot 0's target: refused naming part robots, index 0"},
         {420, [](tvo_lcm::session_t& s) { s.clock_source = 7; }, kAny, -1, -1, -2,
          "a START with clock_source = 7: refused"},
-        {440, [](tvo_lcm::session_t& s) { s.epoch_utime = -1; }, tvo_lcm::command_t::STATUS_ERR_PARAM, -1, -1, -2,
+        {440, [](tvo_lcm::session_t& s) { s.epoch_utime = -1; }, Header::STATUS_ERR_PARAM, -1, -1, -2,
          "a START with epoch_utime = -1 (out of the wire range): refused"},
+        {460, [](tvo_lcm::session_t& s) { s.protocol_version = 2; }, Header::STATUS_ERR_PARAM,
+         tvo_lcm::session_ack_t::PARAM_PROTOCOL_VERSION, -1, -2,
+         "a START of protocol version 2: refused naming the protocol version"},
+        {480, [](tvo_lcm::session_t& s) { s.telemetry_every = -1; }, Header::STATUS_ERR_PARAM,
+         tvo_lcm::session_ack_t::PARAM_TELEMETRY_EVERY, -1, -2,
+         "a START with telemetry_every = -1: refused naming the telemetry rate"},
     };
+    long other_boot_acks = -1;
     run.run([&](LockstepRun& r, std::int64_t n) {
         r.send_genuine(r.measure(n));
         r.settle();
@@ -628,9 +652,37 @@ void case_rejected_start_during_run(Context& ctx)
                 check_refused_start(ctx.report, start, ack, ours, b.status, b.param, b.part, b.index, b.what);
             }
         }
+        if (n == 500) {
+            // A START and a STOP that name another boot of the node (a recording from before a restart, or
+            // meant for another node), and a START of no robot (it names no boot): dropped unanswered,
+            // counted wrong_boot.
+            const std::size_t acks = ctx.bus.acks.size();
+            tvo_lcm::session_t start = r.session();
+            start.session_id = ctx.new_session_id();
+            start.utime = r.now_us();
+            start.node_boot_id[0] = r.boot() + 1000;
+            ctx.bus.publish(start);
+            tvo_lcm::session_t stop = r.session();
+            stop.action = tvo_lcm::session_t::ACTION_STOP;
+            stop.utime = r.now_us();
+            stop.node_boot_id[0] = r.boot() + 1000;
+            ctx.bus.publish(stop);
+            tvo_lcm::session_t none = r.session();
+            none.session_id = ctx.new_session_id();
+            none.utime = r.now_us();
+            none.robot_count = 0;
+            ctx.bus.publish(none);
+            ctx.bus.pump(std::chrono::milliseconds(200));
+            other_boot_acks = static_cast<long>(ctx.bus.acks.size() - acks);
+        }
     });
     run.stop();
-    finish(ctx, run, {300, 320, 340, 360, 380, 400, 420, 440}, ref.get());
+    const long wrong_boot = run.counters() ? run.counters()->wrong_boot : -1;
+    ctx.report.check(other_boot_acks == 0 && wrong_boot == 3,
+                     "a START (new id) and a STOP of the running id that name another boot, and a START of no robot: "
+                     "no ack, counted wrong_boot, the session runs on",
+                     std::to_string(other_boot_acks) + " acks in 200 ms, wrong_boot " + std::to_string(wrong_boot));
+    finish(ctx, run, {300, 320, 340, 360, 380, 400, 420, 440, 460, 480, 500}, ref.get());
 }
 
 void case_same_id_start(Context& ctx)
@@ -638,7 +690,7 @@ void case_same_id_start(Context& ctx)
     const auto ref = run_reference(ctx);
     LockstepRun run(ctx, base_config(ctx));
     run.start();
-    const std::int64_t ours = run.session().session_id;
+    const std::int32_t ours = run.session().session_id;
     run.run([&](LockstepRun& r, std::int64_t n) {
         r.send_genuine(r.measure(n));
         r.settle();
@@ -657,8 +709,8 @@ void case_same_id_start(Context& ctx)
                 what = "the running id with another target phase";
             }
             const auto ack = r.request(start);
-            check_refused_start(ctx.report, start, ack, ours, tvo_lcm::command_t::STATUS_ERR_SESSION_CONFLICT, -1, -1, -2,
-                                "a START with " + what + ": refused tvo_lcm::command_t::STATUS_ERR_SESSION_CONFLICT, runs on");
+            check_refused_start(ctx.report, start, ack, ours, Header::STATUS_ERR_SESSION_CONFLICT, -1, -1, -2,
+                                "a START with " + what + ": refused Header::STATUS_ERR_SESSION_CONFLICT, runs on");
         } else if (n == 350 || n == 500) {
             const auto ack = r.request(start);
             const auto& original = r.start_ack();
@@ -690,10 +742,10 @@ void case_implausible_epoch(Context& ctx)
     LockstepRun run(ctx, config);
     run.prepare();
     const std::int64_t start_utime = config.start_utime_us;
-    auto refused_epoch = [&](std::int64_t epoch, std::int64_t running, const std::string& what) {
-        tvo_lcm::session_t start = demo_session(ctx.new_session_id(), start_utime, epoch, config.timing);
+    auto refused_epoch = [&](std::int64_t epoch, std::int32_t running, const std::string& what) {
+        tvo_lcm::session_t start = demo_session(ctx.new_session_id(), start_utime, epoch, config.timing, run.boot());
         const auto ack = run.request(start, std::chrono::milliseconds(100));
-        check_refused_start(ctx.report, start, ack, running, tvo_lcm::command_t::STATUS_ERR_PARAM, tvo_lcm::session_ack_t::PARAM_EPOCH, -1, -2, what);
+        check_refused_start(ctx.report, start, ack, running, Header::STATUS_ERR_PARAM, tvo_lcm::session_ack_t::PARAM_EPOCH, -1, -2, what);
     };
     refused_epoch(start_utime - 20 * 60 * kUsPerS, -1,
                   "no session: a START whose epoch is 20 min before it: refused naming the epoch");
@@ -706,7 +758,7 @@ void case_implausible_epoch(Context& ctx)
                      "a START whose epoch is TVO_SESSION_EPOCH_SPAN_US before it (the limit): acked OK",
                      "epoch " + std::to_string(config.epoch_utime_us) + ", START utime " + std::to_string(start_utime) +
                          ": " + ack_text(run.start_ack()));
-    const std::int64_t ours = run.session().session_id;
+    const std::int32_t ours = run.session().session_id;
     run.run([&](LockstepRun& r, std::int64_t n) {
         r.send_genuine(r.measure(n));
         if (n == config.first_sequence + 200) {
@@ -739,26 +791,33 @@ void case_node_restart(Context& ctx)
     LockstepRun run(ctx, config);
     run.start();
     const std::int64_t crash_at = 400;
+    std::int64_t old_boot = 0;
     run.run([&](LockstepRun& r, std::int64_t n) {
         if (n != crash_at) {
             r.send_genuine(r.measure(n));
             return;
         }
         r.settle();
-        r.crash_node_and_restart();
-        // The plant does not know: it sends its sample; the new node has no session.
-        r.send_until_answered(r.measure(n), Expect::Kind::NoSession,
-                              "node killed (SIGKILL) and restarted: the next sample is answered with a safe stop, "
-                              "tvo_lcm::command_t::STATUS_ERR_NO_SESSION");
+        old_boot = r.boot();
+        r.crash_node_and_restart();   // returns once the new process announced its (new) boot
+        // The plant's sample before it acts on the announcement: the new node has no session and drops
+        // it unanswered (counted idle). No safe stop either: the plant learns the restart from TVO_NODE.
+        r.send_expecting(r.measure(n), Expect::Kind::Ignored,
+                         "node killed (SIGKILL) and restarted: the next sample is dropped unanswered");
         r.settle();
-        r.restart_session();   // the plant rule: re-send START (same id and content), then go on
-        ctx.report.check(r.start_ack().status == 0 && r.start_ack().running_session_id == r.session().session_id,
-                         "the plant's re-sent START (same id and content) is acked OK by the new node",
-                         ack_text(r.start_ack()));
+        r.restart_session();   // rule 5: START again naming the new boot, then go on
+        ctx.report.check(r.start_ack().status == 0 && r.start_ack().running_session_id == r.session().session_id &&
+                             r.boot() > old_boot && r.start_ack().boot_id == r.boot(),
+                         "the new node announces a new boot; the plant's START naming it is acked OK",
+                         "boot " + std::to_string(old_boot) + " then " + std::to_string(r.boot()) + "; " +
+                             ack_text(r.start_ack()));
     });
     run.stop();
     check_outcomes(ctx.report, run);
     check_genuine(ctx.report, run, {crash_at}, run.genuine_sent - 1);
+    const long idle = run.final_counters() ? run.final_counters()->idle : -1;
+    ctx.report.check(idle == 1, "the new boot counted the sample it dropped while idle (its counters since it started)",
+                     "idle " + std::to_string(idle));
     check_tracking(ctx.report, run, "after the node restart");
 }
 
@@ -782,14 +841,14 @@ void case_plant_restart(Context& ctx)
     plant.start();
     ctx.report.check(plant.start_ack().status == 0 && plant.start_ack().running_session_id == config_b.session_id,
                      "the restarted plant's START (new id) replaces the running session", ack_text(plant.start_ack()));
-    const std::int64_t old_id = config_a.session_id;
-    std::int64_t old_sequence = 400;
+    const std::int32_t old_id = config_a.session_id;
+    std::int32_t old_sequence = 400;
     long old_sent = 0;
     plant.run([&](LockstepRun& r, std::int64_t n) {
         if (n < 200 && n % 10 == 0) {
             // The old plant's samples still arrive (a lagging link, a zombie process): ignored.
-            tvo_lcm::measurement_t stale = old_plant.measure(old_sequence);
-            stale.utime = old_plant.sample_utime(old_sequence);
+            Sample stale = old_plant.measure(old_sequence);
+            stale.header.utime = old_plant.sample_utime(old_sequence);
             ++old_sequence;
             r.send_expecting(stale, Expect::Kind::Ignored,
                              n == 0 ? "the old session's samples: no answer (20 of them)" : "");
@@ -797,9 +856,9 @@ void case_plant_restart(Context& ctx)
         }
         if (n == 50) {
             tvo_lcm::target_t target{};
-            target.session_id = old_id;
-            target.utime = old_plant.sample_utime(old_sequence);
-            target.robot_count = 1;
+            target.header.session_id = old_id;
+            target.header.utime = old_plant.sample_utime(old_sequence);
+            target.header.robot = 0;
             ctx.bus.publish(target);
             ++old_sent;
         }
@@ -810,16 +869,15 @@ void case_plant_restart(Context& ctx)
             stop.action = tvo_lcm::session_t::ACTION_STOP;
             stop.utime = old_plant.sample_utime(old_sequence);
             const auto ack = r.request(stop);
-            check_refused_start(ctx.report, stop, ack, config_b.session_id, tvo_lcm::command_t::STATUS_ERR_NO_SESSION, -1, -1, -2,
-                                "the old session's STOP: acked tvo_lcm::command_t::STATUS_ERR_NO_SESSION, the new session runs on");
+            check_refused_start(ctx.report, stop, ack, config_b.session_id, Header::STATUS_ERR_NO_SESSION, -1, -1, -2,
+                                "the old session's STOP: acked Header::STATUS_ERR_NO_SESSION, the new session runs on");
         }
     });
     plant.stop();
     check_outcomes(ctx.report, plant);
     check_genuine(ctx.report, plant, {});
     check_counters(ctx.report, plant);
-    const tvo_lcm::telemetry_t* t = plant.last_telemetry();
-    const long other = t != nullptr ? t->counters.other_session : -1;
+    const long other = plant.counters() ? plant.counters()->other_session : -1;
     ctx.report.check(other == old_sent, "the old session's samples and target are counted as another session's",
                      std::to_string(other) + " counted of " + std::to_string(old_sent) + " sent");
     ctx.report.check(old_plant.node() == nullptr || old_plant.node()->running(),
@@ -864,7 +922,7 @@ void case_speed_mismatch(Context& ctx)
             r.set_stalled(v.stall && n >= from && n < to);
             auto m = r.measure(n);
             if (n >= from && n < to) {
-                m.speed_mps[0] = 0.0;
+                m.speed_mps = 0.0f;
             }
             r.send_genuine(m);
         });
@@ -878,7 +936,7 @@ void case_speed_mismatch(Context& ctx)
                              std::to_string(to - from) + " flagged; meanwhile the error reached " + fmt(error) + " m");
         // Acted on: stopped (status 0, SAFE_STOP with the flag) within the stop's periods, and held
         // stopped for the holdoff's periods each time.
-        const auto stop_flags = static_cast<std::int32_t>(tvo_lcm::command_t::FLAG_SAFE_STOP | TVO_FLAG_SPEED_MISMATCH);
+        const auto stop_flags = static_cast<std::int32_t>(Header::FLAG_SAFE_STOP | TVO_FLAG_SPEED_MISMATCH);
         std::int64_t first_stop = -1;
         long stopped = 0;
         long stopped_in_run = 0;
@@ -902,10 +960,9 @@ void case_speed_mismatch(Context& ctx)
                              ", " + std::to_string(stopped) + " stopped periods of " + std::to_string(to - from) +
                              ", " + std::to_string(bad_status) + " of them with a status other than 0");
         const auto [all_flagged, first_any] = flagged(run, 0, run.genuine_sent);
-        const tvo_lcm::telemetry_t* t = run.last_telemetry();
-        ctx.report.check(t != nullptr && t->counters.speed_mismatch == all_flagged,
-                         "telemetry counts the flagged steps (counters.speed_mismatch)",
-                         std::to_string(t != nullptr ? t->counters.speed_mismatch : -1) + " counted, " +
+        const long counted = run.counters() ? run.counters()->speed_mismatch : -1;
+        ctx.report.check(counted == all_flagged, "the node counts the flagged steps (counters.speed_mismatch)",
+                         std::to_string(counted) + " counted, " +
                              std::to_string(all_flagged) + " flagged in the run (first at " +
                              std::to_string(first_any) + ")");
         check_genuine(ctx.report, run, {}, -1, stopped_in_run); // the holdoff's stops outlast the fault a little
@@ -940,7 +997,7 @@ void case_clock_plant_limits(Context& ctx)
             const auto m = r.measure(n);
             if (n == v.at) {
                 auto stray = restamped(m, v.stamp_shift_us);
-                stray.sequence += v.sequence_shift;
+                stray.header.sequence += static_cast<std::int32_t>(v.sequence_shift);
                 for (int k = 0; k < v.copies; ++k) {
                     r.send_expecting(stray, Expect::Kind::Optional, "");
                 }

@@ -28,23 +28,70 @@ constexpr std::size_t kMaxProblems = 8;
 constexpr double kTrackingBoundM = 1e-3;
 constexpr std::int64_t kTrackingWindowPeriods = 100;   // the last second at h = 10 ms
 
-const std::int32_t kHolding = static_cast<std::int32_t>(tvo_lcm::command_t::FLAG_HOLDING);
-const std::int32_t kSafeStop = static_cast<std::int32_t>(tvo_lcm::command_t::FLAG_SAFE_STOP);
+// The node announces itself at its first poll and then every 250 ms while idle, 1 s while running, and
+// at once on START and STOP: 3 s is well above any of these.
+constexpr std::chrono::seconds kAnnouncementTimeout{3};
 
-std::string describe(const tvo_lcm::command_t& c)
+const std::int32_t kHolding = static_cast<std::int32_t>(Header::FLAG_HOLDING);
+const std::int32_t kSafeStop = static_cast<std::int32_t>(Header::FLAG_SAFE_STOP);
+
+std::string describe(const Command& c)
 {
     std::ostringstream out;
-    out << "session " << c.session_id << " seq " << c.measurement_sequence << " utime " << c.utime << " "
-        << status_text(c.status) << " flags 0x" << std::hex << c.flags << std::dec << " v " << c.speed_mps[0]
-        << " w " << c.turn_rate_radps[0];
+    out << "session " << c.header.session_id << " seq " << c.header.measurement_sequence << " robot "
+        << static_cast<int>(c.header.robot) << " utime " << c.header.utime << " " << status_text(c.header.status)
+        << " flags 0x" << std::hex << c.header.flags << std::dec << " v " << c.speed_mps << " w " << c.turn_rate_radps;
     return out.str();
 }
 
-bool is_zero(const tvo_lcm::command_t& c)
+bool is_zero(const Command& c)
 {
-    return c.speed_mps[0] == 0.0 && c.turn_rate_radps[0] == 0.0;
+    return c.speed_mps == 0.0f && c.turn_rate_radps == 0.0f;
 }
 }  // namespace
+
+NodeCounts counts_of(const tvo_lcm::node_counters_t& c)
+{
+    NodeCounts n;
+    n.accepted = c.accepted;
+    for (int i = 0; i < tvo_lcm::node_counters_t::STATUS_SLOTS; ++i) {
+        n.refused += c.refused[i];
+        if (c.refused[i] != 0) {
+            n.refused_by_status += " [" + std::to_string(i) + "]=" + std::to_string(c.refused[i]);
+        }
+    }
+    n.malformed = c.malformed;
+    n.unauthenticated = c.unauthenticated;
+    n.replayed = c.replayed;
+    n.wrong_boot = c.wrong_boot;
+    n.idle = c.idle;
+    n.other_session = c.other_session;
+    n.safe_stops = c.safe_stops;
+    n.targets_refused = c.targets_refused;
+    n.speed_mismatch = c.speed_mismatch;
+    return n;
+}
+
+NodeCounts counts_between(const tvo_lcm::node_counters_t& earlier, const tvo_lcm::node_counters_t& later)
+{
+    tvo_lcm::node_counters_t d = later;
+    d.accepted -= earlier.accepted;
+    for (int i = 0; i < tvo_lcm::node_counters_t::STATUS_SLOTS; ++i) {
+        d.refused[i] -= earlier.refused[i];
+    }
+    d.malformed -= earlier.malformed;
+    d.unauthenticated -= earlier.unauthenticated;
+    d.replayed -= earlier.replayed;
+    d.wrong_boot -= earlier.wrong_boot;
+    d.idle -= earlier.idle;
+    d.other_session -= earlier.other_session;
+    d.predicted -= earlier.predicted;
+    d.safe_stops -= earlier.safe_stops;
+    d.targets_refused -= earlier.targets_refused;
+    d.speed_mismatch -= earlier.speed_mismatch;
+    d.sessions -= earlier.sessions;
+    return counts_of(d);
+}
 
 bool LockstepRun::Answer::operator==(const Answer& o) const
 {
@@ -80,10 +127,19 @@ void LockstepRun::prepare()
         return;
     }
     prepared_ = true;
+    const std::int64_t known = ctx_.bus.node_boot();
     if (config_.spawn_node && !ctx_.node_path.empty()) {
         node_ = std::make_unique<NodeProcess>(ctx_.node_path, ctx_.lcm_url, ctx_.key_file);
         node_->spawn(config_.keep_running, config_.node_stderr_path);
+        boot_ = ctx_.bus.await_boot(known, kStartTimeout);   // a new process: a new boot
+    } else {
+        boot_ = known != 0 ? known : ctx_.bus.await_boot(0, kStartTimeout);
     }
+    if (boot_ == 0) {
+        throw std::runtime_error("no node announced a new boot on " TVO_CHANNEL_NODE " within " +
+                                 std::to_string(kStartTimeout.count()) + " s");
+    }
+    session_.node_boot_id[0] = boot_;
     ctx_.bus.clear();
     processed_ = 0;
 }
@@ -96,14 +152,17 @@ void LockstepRun::start()
 
 void LockstepRun::restart_session()
 {
+    // Rule 1: the node's boot, heard from its announcements (prepare(), crash_node_and_restart()).
+    session_.node_boot_id[0] = boot_;
     tvo_lcm::session_t start = session_;
     start.utime = now_us_;
     const std::size_t first_ack = ctx_.bus.acks.size();
+    const std::size_t first_announcement = ctx_.bus.announcements.size();
     const tvo_lcm::session_ack_t* ack = nullptr;
     auto acked = [&] {
         for (std::size_t i = first_ack; i < ctx_.bus.acks.size(); ++i) {
             const auto& a = ctx_.bus.acks[i];
-            if (a.session_id == start.session_id && a.action == tvo_lcm::session_t::ACTION_START) {
+            if (a.session_id == start.session_id && a.action == tvo_lcm::session_t::ACTION_START && a.boot_id == boot_) {
                 ack = &ctx_.bus.acks[i];
                 return true;
             }
@@ -124,6 +183,16 @@ void LockstepRun::restart_session()
                                  status_text(ack->status) + ", bad_param " + std::to_string(ack->bad_param));
     }
     start_ack_ = *ack;
+    // The node announces itself at once when it takes a START: its counters before the session's samples.
+    const tvo_lcm::node_status_t* running = ctx_.bus.await_announcement(
+        first_announcement, boot_,
+        [&](const tvo_lcm::node_status_t& s) {
+            return s.state == tvo_lcm::node_status_t::STATE_RUNNING && s.session_id == start.session_id;
+        },
+        kAnnouncementTimeout);
+    if (running != nullptr) {
+        start_counters_ = running->counters;
+    }
 }
 
 tvo_lcm::session_ack_t LockstepRun::request(const tvo_lcm::session_t& msg, std::chrono::milliseconds repeat)
@@ -152,34 +221,33 @@ tvo_lcm::session_ack_t LockstepRun::request(const tvo_lcm::session_t& msg, std::
     return ctx_.bus.acks[found];
 }
 
-void LockstepRun::send_until_answered(const tvo_lcm::measurement_t& m, Expect::Kind kind, const std::string& label)
+void LockstepRun::send_until_answered(const Sample& m, Expect::Kind kind, const std::string& label)
 {
     const std::size_t before = ctx_.bus.commands.size();
     send_expecting(m, kind, label);
     resend_until_answered(m, before, label);
 }
 
-void LockstepRun::send_genuine_until_answered(const tvo_lcm::measurement_t& m)
+void LockstepRun::send_genuine_until_answered(const Sample& m)
 {
     const std::size_t before = ctx_.bus.commands.size();
     send_genuine(m);
-    resend_until_answered(m, before, "genuine sample " + std::to_string(m.sequence));
+    resend_until_answered(m, before, "genuine sample " + std::to_string(m.header.sequence));
 }
 
-void LockstepRun::resend_until_answered(const tvo_lcm::measurement_t& m, std::size_t commands_before,
-                                        const std::string& label)
+void LockstepRun::resend_until_answered(const Sample& m, std::size_t commands_before, const std::string& label)
 {
     const auto deadline = std::chrono::steady_clock::now() + kStartTimeout;
     while (!ctx_.bus.wait_until([&] { return ctx_.bus.commands.size() > commands_before; }, kResendInterval)) {
         if (std::chrono::steady_clock::now() >= deadline) {
-            throw std::runtime_error("no answer to sample " + std::to_string(m.sequence) + " (" + label + ")");
+            throw std::runtime_error("no answer to sample " + std::to_string(m.header.sequence) + " (" + label + ")");
         }
         ctx_.bus.publish(m);
         Expect repeat;
         repeat.kind = Expect::Kind::Optional;
-        repeat.session_id = m.session_id;
-        repeat.sequence = m.sequence;
-        repeat.utime = m.utime;
+        repeat.session_id = m.header.session_id;
+        repeat.sequence = m.header.sequence;
+        repeat.utime = m.header.utime;
         expected_.push_back(repeat);
     }
 }
@@ -216,45 +284,45 @@ void LockstepRun::step(std::int64_t n, const Hook& hook)
     errors_.emplace_back(apply_us, (plant_.state(0).position_m - Eigen::Vector2d(x, y)).norm());
 }
 
-tvo_lcm::measurement_t LockstepRun::measure(std::int64_t n) const
+Sample LockstepRun::measure(std::int64_t n) const
 {
-    tvo_lcm::measurement_t m{};
-    m.utime = now_us_;
-    m.session_id = session_.session_id;
-    m.sequence = n;
-    m.robot_count = 1;
-    m.position_m[0][0] = plant_.state(0).position_m.x();
-    m.position_m[0][1] = plant_.state(0).position_m.y();
-    m.heading_rad[0] = plant_.state(0).heading_rad;
-    m.speed_mps[0] = plant_.input(0).speed_mps;
-    m.heading_valid = true;
-    m.speed_valid = true;
+    Sample m{};
+    m.header.utime = now_us_;
+    m.header.session_id = session_.session_id;
+    m.header.sequence = static_cast<std::int32_t>(n);
+    m.header.robot = 0;
+    m.has = tvo_lcm::unicycle_sample_t::HAS_HEADING | tvo_lcm::unicycle_sample_t::HAS_SPEED;
+    m.position_m[0] = plant_.state(0).position_m.x();
+    m.position_m[1] = plant_.state(0).position_m.y();
+    m.heading_rad = static_cast<float>(std::remainder(plant_.state(0).heading_rad, 2.0 * M_PI));  // the wire's range
+    m.speed_mps = static_cast<float>(plant_.input(0).speed_mps);
     return m;
 }
 
-void LockstepRun::publish_expect(const tvo_lcm::measurement_t& m, Expect e)
+void LockstepRun::publish_expect(const Sample& m, Expect e)
 {
-    e.session_id = m.session_id;
-    e.sequence = m.sequence;
-    e.utime = m.utime;
+    e.session_id = m.header.session_id;
+    e.sequence = m.header.sequence;
+    e.robot = m.header.robot;
+    e.utime = m.header.utime;
     ctx_.bus.publish(m);
     expected_.push_back(e);
 }
 
-void LockstepRun::send_genuine(const tvo_lcm::measurement_t& m)
+void LockstepRun::send_genuine(const Sample& m)
 {
-    sent_sequences_.insert(m.sequence);
+    sent_sequences_.insert(m.header.sequence);
     ++genuine_sent;
     Expect e;
     e.kind = Expect::Kind::Accepted;
     e.genuine = true;
-    e.apply_utime = apply_utime(m.sequence);
+    e.apply_utime = apply_utime(m.header.sequence);
     publish_expect(m, e);
 }
 
-void LockstepRun::send_genuine_refused(const tvo_lcm::measurement_t& m, std::int32_t status, const std::string& label)
+void LockstepRun::send_genuine_refused(const Sample& m, std::int32_t status, const std::string& label)
 {
-    sent_sequences_.insert(m.sequence);
+    sent_sequences_.insert(m.header.sequence);
     ++genuine_sent;
     Expect e;
     e.kind = Expect::Kind::Refused;
@@ -264,8 +332,7 @@ void LockstepRun::send_genuine_refused(const tvo_lcm::measurement_t& m, std::int
     publish_expect(m, e);
 }
 
-void LockstepRun::send_stray(const tvo_lcm::measurement_t& m, std::int32_t status, const std::string& label,
-                             bool match_by_order)
+void LockstepRun::send_stray(const Sample& m, std::int32_t status, const std::string& label, bool match_by_order)
 {
     Expect e;
     e.kind = Expect::Kind::Refused;
@@ -275,17 +342,38 @@ void LockstepRun::send_stray(const tvo_lcm::measurement_t& m, std::int32_t statu
     publish_expect(m, e);
 }
 
-void LockstepRun::send_expecting(const tvo_lcm::measurement_t& m, Expect::Kind kind, const std::string& label)
+void LockstepRun::send_refused_unanswered(const Sample& m, const std::string& label)
+{
+    Expect e;
+    e.kind = Expect::Kind::Ignored;
+    e.counted_refusal = true;
+    e.label = label;
+    publish_expect(m, e);
+}
+
+void LockstepRun::send_expecting(const Sample& m, Expect::Kind kind, const std::string& label)
 {
     Expect e;
     e.kind = kind;
     e.label = label;
-    e.genuine = kind == Expect::Kind::NoSession && m.session_id == session_.session_id;
+    e.genuine = kind == Expect::Kind::Ignored && m.header.session_id == session_.session_id;
     if (e.genuine) {
-        sent_sequences_.insert(m.sequence);
+        sent_sequences_.insert(m.header.sequence);
         ++genuine_sent;
     }
     publish_expect(m, e);
+}
+
+void LockstepRun::unanswered(const Expect& e)
+{
+    silent_refusals += e.counted_refusal ? 1 : 0;
+    if (e.genuine) {   // the plant's own sample, dropped: a period it holds its command
+        ++genuine_held;
+        held_steps.push_back(current_step_);
+    }
+    if (!e.label.empty()) {
+        outcomes_.push_back({e.label, true, "no answer", 0, 0});
+    }
 }
 
 void LockstepRun::send_raw(const char* channel, const std::vector<std::uint8_t>& bytes, Expect expect)
@@ -313,7 +401,7 @@ void LockstepRun::settle()
                 return x.kind != Expect::Kind::Ignored && x.kind != Expect::Kind::Optional;
             });
             throw std::runtime_error("no answer within " + std::to_string(kAnswerTimeout.count()) +
-                                     " s to the measurement of session " + std::to_string(e.session_id) + " seq " +
+                                     " s to the sample of session " + std::to_string(e.session_id) + " seq " +
                                      std::to_string(e.sequence) + (e.label.empty() ? "" : " (" + e.label + ")"));
         }
     }
@@ -328,7 +416,8 @@ void LockstepRun::problem(const std::string& text)
 
 void LockstepRun::process(const ReceivedCommand& received)
 {
-    const tvo_lcm::command_t& cmd = received.msg;
+    const Command& cmd = received.msg;
+    const Header& h = cmd.header;
     ctx_.audit.add(cmd);
     const std::int64_t in_force_before = in_force_sequence_;
     const std::size_t pending_before = pending_.size();
@@ -336,18 +425,18 @@ void LockstepRun::process(const ReceivedCommand& received)
     applied_safe_stop_for_own_ = false;
     while (!expected_.empty() && !matched) {
         const Expect e = expected_.front();
-        const bool key = cmd.session_id == e.session_id && cmd.measurement_sequence == e.sequence;
+        const bool key = h.session_id == e.session_id && h.measurement_sequence == e.sequence && h.robot == e.robot;
         if (e.kind == Expect::Kind::Ignored) {
             expected_.pop_front();
             if (key) {
                 ++unexpected_answers;
                 problem("an ignored message was answered: " + describe(cmd));
                 if (!e.label.empty()) {
-                    outcomes_.push_back({e.label, false, "answered: " + describe(cmd), cmd.status, cmd.flags});
+                    outcomes_.push_back({e.label, false, "answered: " + describe(cmd), h.status, h.flags});
                 }
                 matched = true;
-            } else if (!e.label.empty()) {
-                outcomes_.push_back({e.label, true, "no answer", 0, 0});
+            } else {
+                unanswered(e);
             }
             continue;
         }
@@ -355,9 +444,9 @@ void LockstepRun::process(const ReceivedCommand& received)
             expected_.pop_front();
             if (key) {
                 if (!e.label.empty()) {
-                    outcomes_.push_back({e.label, true, "answered: " + describe(cmd), cmd.status, cmd.flags});
+                    outcomes_.push_back({e.label, true, "answered: " + describe(cmd), h.status, h.flags});
                 }
-                if (cmd.status != 0 && cmd.session_id == session_.session_id) {
+                if (h.status != 0 && h.session_id == session_.session_id) {
                     ++refusal_answers;
                 }
                 matched = true;
@@ -381,7 +470,7 @@ void LockstepRun::process(const ReceivedCommand& received)
         problem("a command answering nothing sent: " + describe(cmd));
     }
     // The plant's rule: any safe stop for its session, whatever it answers, takes effect on arrival.
-    if (cmd.session_id == session_.session_id && (cmd.flags & kSafeStop) != 0) {
+    if (h.session_id == session_.session_id && (h.flags & kSafeStop) != 0) {
         ++safe_stop_answers;
         apply(cmd, now_us_, applied_safe_stop_for_own_);
     }
@@ -389,26 +478,27 @@ void LockstepRun::process(const ReceivedCommand& received)
     shadow_literal_plant(cmd, applied);
 }
 
-void LockstepRun::verify(const Expect& e, const tvo_lcm::command_t& cmd)
+void LockstepRun::verify(const Expect& e, const Command& cmd)
 {
-    const bool safe_stop = (cmd.flags & kSafeStop) != 0;
-    const bool holding = (cmd.flags & kHolding) != 0;
-    if (!e.match_by_order && cmd.utime < e.utime) {
+    const Header& h = cmd.header;
+    const bool safe_stop = (h.flags & kSafeStop) != 0;
+    const bool holding = (h.flags & kHolding) != 0;
+    if (!e.match_by_order && h.utime < e.utime) {
         ++stamped_before_measurement;
         problem("answer stamped before its measurement (" + std::to_string(e.utime) + "): " + describe(cmd));
     }
-    const Answer answer{cmd.speed_mps[0], cmd.turn_rate_radps[0], cmd.utime, cmd.status, cmd.flags};
+    const Answer answer{cmd.speed_mps, cmd.turn_rate_radps, h.utime, h.status, h.flags};
     // The plant's rule: its own sample's computed answer (status 0; it knows which message that is),
     // newer than the command in force; a refusal only repeats the command in force; safe stops: process().
-    const bool own_session = cmd.session_id == session_.session_id;
-    const bool plant_applies = own_session && e.genuine && cmd.status == 0 &&
-                               cmd.measurement_sequence > in_force_sequence_ && !safe_stop;
-    if (own_session && cmd.status != 0 && e.kind != Expect::Kind::NoSession) {
+    const bool own_session = h.session_id == session_.session_id;
+    const bool plant_applies = own_session && e.genuine && h.status == 0 &&
+                               h.measurement_sequence > in_force_sequence_ && !safe_stop;
+    if (own_session && h.status != 0) {
         ++refusal_answers;
     }
     switch (e.kind) {
     case Expect::Kind::Accepted: {
-        const bool ok = cmd.status == 0 && !holding && !safe_stop && cmd.utime == e.apply_utime && cmd.robot_count == 1;
+        const bool ok = h.status == 0 && !holding && !safe_stop && h.utime == e.apply_utime && h.robot == 0;
         genuine_answers_[e.sequence] = answer;
         if (ok) {
             ++genuine_accepted;
@@ -419,7 +509,7 @@ void LockstepRun::verify(const Expect& e, const tvo_lcm::command_t& cmd)
             problem("genuine sample " + std::to_string(e.sequence) + " (apply at " + std::to_string(e.apply_utime) +
                     ") answered " + describe(cmd));
         }
-        if (cmd.status != 0 || holding) {
+        if (h.status != 0 || holding) {
             ++genuine_held;
             held_steps.push_back(current_step_);
         }
@@ -430,52 +520,41 @@ void LockstepRun::verify(const Expect& e, const tvo_lcm::command_t& cmd)
         // watchdog_periods-th on, required after it.
         ++consecutive_refusals_;
         const long watchdog_at = config_.timing.watchdog_periods;
-        const bool watchdog = safe_stop && cmd.status == tvo_lcm::command_t::STATUS_ERR_WATCHDOG && consecutive_refusals_ >= watchdog_at;
+        const bool watchdog = safe_stop && h.status == Header::STATUS_ERR_WATCHDOG && consecutive_refusals_ >= watchdog_at;
         const bool watchdog_due = consecutive_refusals_ > watchdog_at;
         const bool status_ok =
-            watchdog || (cmd.status != 0 && (e.status == Expect::kAnyStatus || cmd.status == e.status));
+            watchdog || (h.status != 0 && (e.status == Expect::kAnyStatus || h.status == e.status));
         const bool flags_ok = watchdog || (holding && !safe_stop);
         const bool values_ok = watchdog ? is_zero(cmd)
-                                        : (cmd.speed_mps[0] == held_.speed_mps &&
-                                           cmd.turn_rate_radps[0] == held_.turn_rate_radps);
-        const bool utime_ok = e.match_by_order || cmd.utime == e.utime;
+                                        : (static_cast<double>(cmd.speed_mps) == held_.speed_mps &&
+                                           static_cast<double>(cmd.turn_rate_radps) == held_.turn_rate_radps);
+        const bool utime_ok = e.match_by_order || h.utime == e.utime;
         const bool ok = status_ok && flags_ok && values_ok && utime_ok && (watchdog || !watchdog_due);
         if (e.genuine) {
             ++genuine_held;
             held_steps.push_back(current_step_);
         }
         if (watchdog) {
-            held_ = Answer{0.0, 0.0, cmd.utime, cmd.status, cmd.flags};
+            held_ = Answer{0.0, 0.0, h.utime, h.status, h.flags};
         }
         std::ostringstream figure;
-        figure << "refusal " << consecutive_refusals_ << " in a row: " << status_text(cmd.status)
+        figure << "refusal " << consecutive_refusals_ << " in a row: " << status_text(h.status)
                << (holding ? ", HOLDING" : "") << (safe_stop ? ", SAFE_STOP" : "")
                << (values_ok ? ", the held command" : ", NOT the held command") << ", utime ";
-        if (cmd.utime == e.utime) {
+        if (h.utime == e.utime) {
             figure << "= its stamp";
         } else {
-            figure << cmd.utime << " (its stamp " << e.utime << ")";
+            figure << h.utime << " (its stamp " << e.utime << ")";
         }
         if (e.match_by_order) {
-            figure << ", echoes sequence " << cmd.measurement_sequence;
+            figure << ", echoes sequence " << h.measurement_sequence;
         }
         if (!e.label.empty()) {
-            outcomes_.push_back({e.label, ok, figure.str(), cmd.status, cmd.flags});
+            outcomes_.push_back({e.label, ok, figure.str(), h.status, h.flags});
         } else if (!ok) {
             problem("refusal expected (" + status_text(e.status) + "): " + describe(cmd));
             ++genuine_wrong;
         }
-        break;
-    }
-    case Expect::Kind::NoSession: {
-        const bool ok = cmd.status == tvo_lcm::command_t::STATUS_ERR_NO_SESSION && safe_stop && is_zero(cmd) && cmd.utime == e.utime &&
-                        cmd.session_id == e.session_id && cmd.measurement_sequence == e.sequence;
-        if (e.genuine) {
-            ++genuine_held;
-            held_steps.push_back(current_step_);
-        }
-        outcomes_.push_back({e.label.empty() ? "answered NO_SESSION" : e.label, ok, describe(cmd), cmd.status,
-                             cmd.flags});
         break;
     }
     case Expect::Kind::Ignored:
@@ -483,34 +562,34 @@ void LockstepRun::verify(const Expect& e, const tvo_lcm::command_t& cmd)
         break;
     }
     if (plant_applies) {
-        apply(cmd, std::max(cmd.utime, now_us_), true);
+        apply(cmd, std::max(h.utime, now_us_), true);
     }
     applied_safe_stop_for_own_ = e.genuine;
 }
 
-void LockstepRun::apply(const tvo_lcm::command_t& cmd, std::int64_t at_us, bool answers_own_sample)
+void LockstepRun::apply(const Command& cmd, std::int64_t at_us, bool answers_own_sample)
 {
     // A safe stop answering a stray that reused one of its sequences must not hide its own answer.
-    if (answers_own_sample && cmd.measurement_sequence > in_force_sequence_) {
-        in_force_sequence_ = cmd.measurement_sequence;
+    if (answers_own_sample && cmd.header.measurement_sequence > in_force_sequence_) {
+        in_force_sequence_ = cmd.header.measurement_sequence;
     }
-    const Pending p{at_us, tvo_host::UnicycleInput{cmd.speed_mps[0], cmd.turn_rate_radps[0]}};
+    const Pending p{at_us, tvo_host::UnicycleInput{cmd.speed_mps, cmd.turn_rate_radps}};
     const auto at = std::upper_bound(pending_.begin(), pending_.end(), at_us,
                                      [](std::int64_t t, const Pending& q) { return t < q.apply_us; });
     pending_.insert(at, p);
 }
 
-void LockstepRun::shadow_literal_plant(const tvo_lcm::command_t& cmd, bool applied)
+void LockstepRun::shadow_literal_plant(const Command& cmd, bool applied)
 {
     // The spec's rule read literally: its id, and a sequence it sent newer than the one in force, or a
     // safe stop. It cannot tell a stray's answer from its own when the stray reuses its sequence.
-    const bool safe_stop = (cmd.flags & kSafeStop) != 0;
-    const bool literal = cmd.session_id == session_.session_id &&
-                         ((sent_sequences_.count(cmd.measurement_sequence) != 0 &&
-                           cmd.measurement_sequence > literal_in_force_) ||
+    const Header& h = cmd.header;
+    const bool safe_stop = (h.flags & kSafeStop) != 0;
+    const bool literal = h.session_id == session_.session_id &&
+                         ((sent_sequences_.count(h.measurement_sequence) != 0 && h.measurement_sequence > literal_in_force_) ||
                           safe_stop);
-    if (literal && cmd.measurement_sequence > literal_in_force_) {
-        literal_in_force_ = cmd.measurement_sequence;
+    if (literal && h.measurement_sequence > literal_in_force_) {
+        literal_in_force_ = h.measurement_sequence;
     }
     if (literal != applied) {
         ++literal_plant_diffs;
@@ -547,6 +626,13 @@ void LockstepRun::crash_node_and_restart()
     ctx_.bus.wait_until([this] { return ctx_.bus.telemetry.size() >= ctx_.bus.commands.size(); }, kAnswerTimeout);
     node_->kill_now();
     node_->spawn(config_.keep_running, config_.node_stderr_path);
+    // The new process announces a new boot at once (its counter file never gives one twice).
+    const std::int64_t boot = ctx_.bus.await_boot(boot_, kStartTimeout);
+    if (boot == 0) {
+        throw std::runtime_error("the restarted node announced no new boot (above " + std::to_string(boot_) + ")");
+    }
+    boot_ = boot;
+    start_counters_.reset();   // the new boot's counters start again
 }
 
 void LockstepRun::stop()
@@ -559,61 +645,76 @@ void LockstepRun::stop()
     while (!expected_.empty()) {   // left: ignored or optional messages that got no answer
         const Expect e = expected_.front();
         expected_.pop_front();
-        if (!e.label.empty()) {
-            outcomes_.push_back({e.label, true, "no answer", 0, 0});
-        }
+        unanswered(e);
     }
-    // The node publishes each command's telemetry right after it: the last command's is the last to come.
-    if (!ctx_.bus.commands.empty()) {
-        const tvo_lcm::command_t last = ctx_.bus.commands.back().msg;
+    // The node publishes each answer's telemetry right after it (the session asks it every period):
+    // the last command's is the last to come.
+    const auto same_period = [](const Header& a, const Header& b) {
+        return a.utime == b.utime && a.session_id == b.session_id && a.measurement_sequence == b.measurement_sequence;
+    };
+    if (!ctx_.bus.commands.empty() && ctx_.bus.commands.back().msg.header.measurement_sequence >= 0) {
+        const Header last = ctx_.bus.commands.back().msg.header;
         ctx_.bus.wait_until(
             [&] {
-                return std::any_of(ctx_.bus.telemetry.rbegin(), ctx_.bus.telemetry.rend(), [&](const auto& t) {
-                    return t.utime == last.utime && t.session_id == last.session_id &&
-                           t.measurement_sequence == last.measurement_sequence;
-                });
+                return std::any_of(ctx_.bus.telemetry.rbegin(), ctx_.bus.telemetry.rend(),
+                                   [&](const auto& t) { return same_period(t.header, last); });
             },
             kAnswerTimeout);
     }
     const std::size_t commands = ctx_.bus.commands.size();
     const std::size_t telemetry = ctx_.bus.telemetry.size();
-    // Each command's telemetry: same utime, session, sequence, status and flags.
-    std::multiset<std::tuple<std::int64_t, std::int64_t, std::int64_t, std::int32_t, std::int32_t>> tel_keys;
+    // Each answer's telemetry: same utime, session, sequence, status and flags. The node's own safe stops
+    // (sequence -1) have none.
+    std::multiset<std::tuple<std::int64_t, std::int32_t, std::int32_t, std::int32_t, std::int32_t>> tel_keys;
     for (const auto& t : ctx_.bus.telemetry) {
-        tel_keys.insert({t.utime, t.session_id, t.measurement_sequence, t.status, t.flags});
+        const Header& h = t.header;
+        tel_keys.insert({h.utime, h.session_id, h.measurement_sequence, h.status, h.flags});
     }
     long without_telemetry = 0;
-    long no_session = 0;   // README, "Sessions": a measurement while idle is answered "command only"
+    long own_stops = 0;
     std::string first_without;
     for (const auto& rx : ctx_.bus.commands) {
-        const auto& c = rx.msg;
+        const Header& c = rx.msg.header;
         const auto it = tel_keys.find({c.utime, c.session_id, c.measurement_sequence, c.status, c.flags});
         if (it != tel_keys.end()) {
             tel_keys.erase(it);
-        } else if (c.status == tvo_lcm::command_t::STATUS_ERR_NO_SESSION) {
-            ++no_session;
+        } else if (c.measurement_sequence == -1) {
+            ++own_stops;
         } else if (without_telemetry++ == 0) {
-            first_without = " (first: " + describe(c) + ")";
+            first_without = " (first: " + describe(rx.msg) + ")";
         }
     }
     tvo_lcm::session_t stop_msg = session_;
     stop_msg.utime = now_us_;
     stop_msg.action = tvo_lcm::session_t::ACTION_STOP;
+    const std::size_t first_announcement = ctx_.bus.announcements.size();
     const tvo_lcm::session_ack_t ack = request(stop_msg);
+    // The node announces itself at once when a STOP ended its session: its counters at the end.
+    const tvo_lcm::node_status_t* idle = ctx_.bus.await_announcement(
+        first_announcement, boot_,
+        [](const tvo_lcm::node_status_t& s) { return s.state == tvo_lcm::node_status_t::STATE_IDLE; },
+        kAnnouncementTimeout);
+    if (idle != nullptr && start_counters_) {
+        counters_ = counts_between(*start_counters_, idle->counters);
+    }
+    if (idle != nullptr) {
+        final_counters_ = counts_of(idle->counters);
+    }
     int exit_code = 0;
     if (node_ && !config_.keep_running) {
         exit_code = node_->wait_exit(kExitTimeout);
     }
     std::ostringstream figure;
     figure << "session " << session_.session_id << ": " << commands << " commands, " << telemetry << " telemetry, "
-           << without_telemetry << " commands without their telemetry" << first_without << " (+ " << no_session
-           << " NO_SESSION answers, command only); STOP "
-           << status_text(ack.status) << ", running " << ack.running_session_id;
+           << without_telemetry << " answers without their telemetry" << first_without << " (+ " << own_stops
+           << " of the node's own safe stops, which have none); STOP " << status_text(ack.status) << ", running "
+           << ack.running_session_id << "; announcement after it " << (idle != nullptr ? "heard" : "NOT heard");
     if (node_ && !config_.keep_running) {
         figure << "; node exit code " << exit_code;
     }
-    ctx_.report.check(without_telemetry == 0 && ack.status == 0 && ack.running_session_id == -1 && exit_code == 0,
-                      "run ends cleanly: a telemetry per command (but NO_SESSION answers), STOP acked OK" +
+    ctx_.report.check(without_telemetry == 0 && ack.status == 0 && ack.running_session_id == -1 && idle != nullptr &&
+                          exit_code == 0,
+                      "run ends cleanly: a telemetry per answer, STOP acked OK, the node announces itself idle" +
                           std::string(node_ && !config_.keep_running ? ", the node exits with 0" : ""),
                       figure.str());
 }
@@ -638,16 +739,6 @@ double LockstepRun::max_error_between(std::int64_t from_utime, std::int64_t to_u
         }
     }
     return worst;
-}
-
-const tvo_lcm::telemetry_t* LockstepRun::last_telemetry() const
-{
-    for (auto it = ctx_.bus.telemetry.rbegin(); it != ctx_.bus.telemetry.rend(); ++it) {
-        if (it->session_id == session_.session_id) {
-            return &*it;
-        }
-    }
-    return nullptr;
 }
 
 // ---- Shared checks -------------------------------------------------------------------------------
@@ -738,31 +829,20 @@ void check_same_as_reference(Report& report, const LockstepRun& reference, const
 
 void check_counters(Report& report, const LockstepRun& run)
 {
-    const tvo_lcm::telemetry_t* t = run.last_telemetry();
-    if (t == nullptr) {
-        report.check(false, "telemetry counters agree with the answers", "no telemetry for the session");
+    if (!run.counters()) {
+        report.check(false, "the node's counters agree with the answers", "no announcement at START or after STOP");
         return;
     }
-    const tvo_lcm::node_counters_t& c = t->counters;
-    long refused = 0;
-    for (int i = 0; i < tvo_lcm::node_counters_t::STATUS_SLOTS; ++i) {
-        refused += c.refused[i];
-    }
-    std::ostringstream by_status;
-    for (int i = 0; i < tvo_lcm::node_counters_t::STATUS_SLOTS; ++i) {
-        if (c.refused[i] != 0) {
-            by_status << " [" << i << "]=" << c.refused[i];
-        }
-    }
-    report.check(c.accepted == run.genuine_accepted && refused == run.refusal_answers &&
+    const NodeCounts& c = *run.counters();
+    report.check(c.accepted == run.genuine_accepted && c.refused == run.refusal_answers + run.silent_refusals &&
                      c.safe_stops == run.safe_stop_answers,
-                 "telemetry counters agree with the answers the plant saw",
+                 "the node's counters (its announcements at START and after STOP) agree with the answers the plant saw",
                  "accepted " + std::to_string(c.accepted) + " (plant " + std::to_string(run.genuine_accepted) +
-                     "), refused " + std::to_string(refused) + " (plant " + std::to_string(run.refusal_answers) +
-                     ")" + by_status.str() + ", safe stops " + std::to_string(c.safe_stops) + " (plant " +
-                     std::to_string(run.safe_stop_answers) + "), undecodable " + std::to_string(c.undecodable) +
-                     ", other session " + std::to_string(c.other_session) + ", targets refused " +
-                     std::to_string(c.targets_refused));
+                     "), refused " + std::to_string(c.refused) + " (plant " + std::to_string(run.refusal_answers) +
+                     " answered + " + std::to_string(run.silent_refusals) + " not answered)" + c.refused_by_status + ", safe stops " + std::to_string(c.safe_stops) + " (plant " +
+                     std::to_string(run.safe_stop_answers) + "), malformed " + std::to_string(c.malformed) +
+                     ", other session " + std::to_string(c.other_session) + ", idle " + std::to_string(c.idle) +
+                     ", targets refused " + std::to_string(c.targets_refused));
 }
 
 long count_lines(const std::string& path)

@@ -22,13 +22,13 @@ namespace campaign {
 const std::vector<Case>& all_cases()
 {
     static const std::vector<Case> cases = {
-        {"stray-future-stamp", "copies of genuine samples stamped +1 s and +20 s; NaN and robot_count 7 stamped +1 s",
+        {"stray-future-stamp", "copies of genuine samples stamped +1 s and +20 s; NaN and robot 7 stamped +1 s",
          case_stray_future_stamp, false},
         {"stray-past-stamp", "copies stamped -1 s, one period back, before the epoch, 0, -1, INT64_MIN",
          case_stray_past_stamp, false},
         {"garbage", "valid fingerprints with random bodies on every channel, truncated, over-long, empty, a burst",
          case_garbage, false},
-        {"huge-sequence", "sequence 2^59, 2^60, 2^60 + 1, INT64_MAX, -1, INT64_MIN with genuine stamps",
+        {"huge-sequence", "sequence 2^30, INT32_MAX, -1, INT32_MIN with genuine stamps",
          case_huge_sequence, false},
         {"duplicates", "samples delivered twice, four times, and old ones again", case_duplicates, false},
         {"reordering", "two consecutive samples swapped, twice", case_reordering, false},
@@ -39,7 +39,9 @@ const std::vector<Case>& all_cases()
          case_speed_mismatch, false},
         {"link-loss-node-clock", "CLOCK_NODE on the wall clock: 1 s without samples (h = 50 ms, watchdog 4)",
          case_link_loss_node_clock, false},
-        {"rejected-start-during-run", "STARTs with new ids and a bad parameter while a session runs",
+        {"rejected-start-during-run",
+         "STARTs with new ids and a bad parameter (protocol, telemetry rate too), and a START and STOP naming "
+         "another boot, while a session runs",
          case_rejected_start_during_run, false},
         {"same-id-start", "STARTs with the running id: other content, identical content", case_same_id_start, false},
         {"implausible-epoch", "epochs 20 min before and after START, 1 us beyond the limit, at the limit",
@@ -51,7 +53,8 @@ const std::vector<Case>& all_cases()
          "keyed bus: forged START/STOP/measurement/target (unsigned, another key), replays, a flipped tag, "
          "truncated tags, a forged vote of three",
          case_auth_attacks, false},
-        {"auth-node-restart", "keyed bus: the node restarted, then the old node's recording replayed to the new one",
+        {"auth-node-restart",
+         "keyed bus: the node restarted; the old boot's recording replayed to the new one at once and amid its session",
          case_auth_node_restart, true},
         {"clock-plant-limits", "NOTES only: strays CLOCK_PLANT cannot tell from genuine samples",
          case_clock_plant_limits, false},
@@ -132,16 +135,17 @@ int main(int argc, char** argv)
     Report report;
     try {
         Bus bus(url);
-        // A fresh session id per run (the plant rule), so a node left running by an earlier
-        // campaign never mistakes a run for a repeat of its session.
-        const std::int64_t first_id = static_cast<std::int64_t>(std::time(nullptr)) % 100000000 * 1000 +
-                                      static_cast<std::int64_t>(getpid() % 1000);
+        // A fresh session id per run (the plant rule; session_t.session_id is an int32 >= 0), so a node
+        // left running by an earlier campaign never mistakes a run for a repeat of its session: the
+        // clock's seconds and the process id, room for 1000 runs above.
+        const auto first_id = static_cast<std::int32_t>(
+            (static_cast<std::int64_t>(std::time(nullptr)) % 1000000 * 1000 + getpid() % 1000) % 2000000);
         for (const Case* c : to_run) {
             report.begin_case(c->name);
             CommandAudit audit;
             audit.omega_max_radps = demo_session(0, 0, 0, Timing{}).omega_max_radps;
             audit.speed_max_mps = demo_session(0, 0, 0, Timing{}).speed_max_mps;
-            Context ctx{bus, report, audit, node_path, url, first_id * 1000, ""};
+            Context ctx{bus, report, audit, node_path, url, first_id * 1000, ""};  // < 2^31
             try {
                 if (c->needs_spawn && node_path.empty()) {
                     report.check(false, "case needs --node PATH", "it kills and restarts the node");

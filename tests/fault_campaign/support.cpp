@@ -92,6 +92,7 @@ Bus::Bus(const std::string& url) : lcm_(url)
     lcm_.subscribe(TVO_CHANNEL_COMMAND, &Bus::on_frame, this);
     lcm_.subscribe(TVO_CHANNEL_TELEMETRY, &Bus::on_frame, this);
     lcm_.subscribe(TVO_CHANNEL_SESSION_ACK, &Bus::on_frame, this);
+    lcm_.subscribe(TVO_CHANNEL_NODE, &Bus::on_frame, this);
 }
 
 Bus::~Bus()
@@ -152,7 +153,7 @@ void Bus::publish_message(const char* channel, const M& msg)
     sent.push_back(Frame{channel, std::move(frame)});
 }
 
-void Bus::publish(const tvo_lcm::measurement_t& msg) { publish_message(TVO_CHANNEL_MEASUREMENT, msg); }
+void Bus::publish(const Sample& msg) { publish_message(TVO_CHANNEL_SAMPLE, msg); }
 void Bus::publish(const tvo_lcm::session_t& msg) { publish_message(TVO_CHANNEL_SESSION, msg); }
 void Bus::publish(const tvo_lcm::target_t& msg) { publish_message(TVO_CHANNEL_TARGET, msg); }
 
@@ -186,6 +187,43 @@ void Bus::clear()
     commands.clear();
     telemetry.clear();
     acks.clear();
+    // The announcements stay: the node's boot is known from them, whoever runs next.
+}
+
+std::int64_t Bus::node_boot() const
+{
+    std::int64_t boot = 0;
+    for (const Announcement& a : announcements) {
+        if (a.status.own_robot == -1 && a.status.protocol_version == tvo_lcm::node_status_t::PROTOCOL_VERSION) {
+            boot = std::max(boot, a.status.boot_id);
+        }
+    }
+    return boot;
+}
+
+std::int64_t Bus::await_boot(std::int64_t above, std::chrono::milliseconds timeout)
+{
+    wait_until([&] { return node_boot() > above; }, timeout);
+    return node_boot() > above ? node_boot() : 0;
+}
+
+const tvo_lcm::node_status_t* Bus::await_announcement(std::size_t after, std::int64_t boot,
+                                                      const std::function<bool(const tvo_lcm::node_status_t&)>& ok,
+                                                      std::chrono::milliseconds timeout)
+{
+    const tvo_lcm::node_status_t* found = nullptr;
+    wait_until(
+        [&] {
+            for (std::size_t i = after; i < announcements.size(); ++i) {
+                if (announcements[i].status.boot_id == boot && ok(announcements[i].status)) {
+                    found = &announcements[i].status;
+                    return true;
+                }
+            }
+            return false;
+        },
+        timeout);
+    return found;
 }
 
 void Bus::on_frame(const lcm::ReceiveBuffer* rbuf, const std::string& channel)
@@ -201,9 +239,14 @@ void Bus::on_frame(const lcm::ReceiveBuffer* rbuf, const std::string& channel)
     }
     const int length = static_cast<int>(size);
     if (channel == TVO_CHANNEL_COMMAND) {
-        tvo_lcm::command_t msg{};
+        Command msg{};
         if (msg.decode(data, 0, length) >= 0) {
             commands.push_back(ReceivedCommand{msg, monotonic_us()});
+        }
+    } else if (channel == TVO_CHANNEL_NODE) {
+        tvo_lcm::node_status_t msg{};
+        if (msg.decode(data, 0, length) >= 0) {
+            announcements.push_back(Announcement{msg, monotonic_us()});
         }
     } else if (channel == TVO_CHANNEL_TELEMETRY) {
         tvo_lcm::telemetry_t msg{};
@@ -235,7 +278,7 @@ void NodeProcess::spawn(bool keep_running, const std::string& stderr_path)
     if (access(path_.c_str(), X_OK) != 0) {
         throw std::runtime_error("cannot execute the node '" + path_ + "': " + std::strerror(errno));
     }
-    std::vector<std::string> args{path_, "--lcm-url", url_, "--exit-with-parent"};
+    std::vector<std::string> args{path_, "--lcm-url", url_, "--exit-with-parent", "--boot-file", kBootFile};
     if (keep_running) {
         args.emplace_back("--keep-running");
     }
@@ -310,13 +353,16 @@ void NodeProcess::terminate()
 
 // ---- The session ---------------------------------------------------------------------------------
 
-tvo_lcm::session_t demo_session(std::int64_t session_id, std::int64_t start_utime_us, std::int64_t epoch_utime_us,
-                                const Timing& timing)
+tvo_lcm::session_t demo_session(std::int32_t session_id, std::int64_t start_utime_us, std::int64_t epoch_utime_us,
+                                const Timing& timing, std::int64_t node_boot)
 {
     tvo_lcm::session_t s{};
     s.utime = start_utime_us;
+    s.protocol_version = tvo_lcm::node_status_t::PROTOCOL_VERSION;
     s.session_id = session_id;
     s.action = tvo_lcm::session_t::ACTION_START;
+    s.node_boot_id[0] = node_boot;
+    s.telemetry_every = 1;  // a telemetry after every answer: the campaign checks each
     s.clock_source = timing.clock_source;
     s.epoch_utime = epoch_utime_us;
     s.period_us = timing.period_us;
@@ -377,27 +423,21 @@ void demo_target(const tvo_lcm::session_t& session, std::int64_t utime_us, doubl
 
 // ---- CommandAudit --------------------------------------------------------------------------------
 
-void CommandAudit::add(const tvo_lcm::command_t& cmd)
+void CommandAudit::add(const Command& cmd)
 {
     ++commands;
-    const bool safe_stop = (cmd.flags & static_cast<std::int32_t>(tvo_lcm::command_t::FLAG_SAFE_STOP)) != 0;
+    const bool safe_stop = (cmd.header.flags & static_cast<std::int32_t>(Header::FLAG_SAFE_STOP)) != 0;
     safe_stops += safe_stop ? 1 : 0;
-    const int robots = std::clamp(cmd.robot_count, 0, static_cast<int>(tvo_lcm::measurement_t::MAX_ROBOTS));
-    bool finite = cmd.robot_count == robots;   // a count out of range is itself a bad command
-    bool within = true;
-    bool zero = true;
-    for (int r = 0; r < robots; ++r) {
-        const double v = cmd.speed_mps[r];
-        const double w = cmd.turn_rate_radps[r];
-        finite = finite && std::isfinite(v) && std::isfinite(w);
-        if (std::isfinite(v) && std::isfinite(w)) {
-            max_abs_omega = std::max(max_abs_omega, std::fabs(w));
-            max_abs_speed = std::max(max_abs_speed, std::fabs(v));
-        }
-        within = within && std::fabs(w) <= omega_max_radps * (1.0 + kLimitRelTol) &&
-                 std::fabs(v) <= speed_max_mps * (1.0 + kLimitRelTol);
-        zero = zero && v == 0.0 && w == 0.0;
+    const double v = cmd.speed_mps;
+    const double w = cmd.turn_rate_radps;
+    const bool finite = cmd.header.robot == 0 && std::isfinite(v) && std::isfinite(w);  // another robot: a bad command
+    if (std::isfinite(v) && std::isfinite(w)) {
+        max_abs_omega = std::max(max_abs_omega, std::fabs(w));
+        max_abs_speed = std::max(max_abs_speed, std::fabs(v));
     }
+    const bool within =
+        std::fabs(w) <= omega_max_radps * (1.0 + kLimitRelTol) && std::fabs(v) <= speed_max_mps * (1.0 + kLimitRelTol);
+    const bool zero = v == 0.0 && w == 0.0;
     non_finite += finite ? 0 : 1;
     beyond_limit += (finite && !within) ? 1 : 0;
     safe_stop_not_zero += (safe_stop && !zero) ? 1 : 0;

@@ -12,12 +12,13 @@
 
 #include <lcm/lcm-cpp.hpp>
 
-#include "tvo_lcm/command_t.hpp"
-#include "tvo_lcm/measurement_t.hpp"
+#include "tvo_lcm/node_status_t.hpp"
 #include "tvo_lcm/session_ack_t.hpp"
 #include "tvo_lcm/session_t.hpp"
 #include "tvo_lcm/target_t.hpp"
 #include "tvo_lcm/telemetry_t.hpp"
+#include "tvo_lcm/unicycle_command_t.hpp"
+#include "tvo_lcm/unicycle_sample_t.hpp"
 
 extern "C" {
 #include "auth.h"
@@ -26,6 +27,11 @@ extern "C" {
 }
 
 namespace campaign {
+
+/// The campaign's plant has one robot: its sample and the node's command for it (wire v3).
+using Sample = tvo_lcm::unicycle_sample_t;
+using Command = tvo_lcm::unicycle_command_t;
+using Header = tvo_lcm::command_header_t;
 
 /// One line per check, "PASS|FAIL <case>: <what> (<measured figure>)"; counts the failures.
 class Report {
@@ -51,7 +57,13 @@ std::string fmt(double value, int precision = 3);
 std::int64_t monotonic_us();
 
 struct ReceivedCommand {
-    tvo_lcm::command_t msg;
+    Command msg;
+    std::int64_t arrival_mono_us{0};
+};
+
+/// A node's announcement (TVO_NODE) as it arrived.
+struct Announcement {
+    tvo_lcm::node_status_t status;
     std::int64_t arrival_mono_us{0};
 };
 
@@ -64,8 +76,8 @@ struct Frame {
 /// message followed by its authentication trailer from signer (consumes one of its counters).
 std::vector<std::uint8_t> signed_frame(tvo_auth_t* signer, const char* channel, std::vector<std::uint8_t> message);
 
-/// The plant's LCM endpoint: publishes on the protocol's channels, keeps every command, telemetry
-/// and ack in arrival order. Keyed (set_key), it is a genuine key holder as tvo_sim is: it signs what
+/// The plant's LCM endpoint: publishes on the protocol's channels, keeps every command, telemetry,
+/// ack and node announcement in arrival order. Keyed (set_key), it is a genuine key holder as tvo_sim is: it signs what
 /// it publishes (counters following the wall clock), drops what does not open, and records the
 /// frames it sent (for the replay attacks).
 class Bus {
@@ -75,7 +87,7 @@ public:
     Bus(const Bus&) = delete;
     Bus& operator=(const Bus&) = delete;
 
-    void publish(const tvo_lcm::measurement_t& msg);
+    void publish(const Sample& msg);
     void publish(const tvo_lcm::session_t& msg);
     void publish(const tvo_lcm::target_t& msg);
     /// Bytes exactly as given: neither signed nor recorded (garbage, and an attacker's frames).
@@ -100,9 +112,19 @@ public:
     /// Forgets everything received (after draining what is in flight).
     void clear();
 
+    /// The highest boot a node of every robot announced (0: none yet); the plant's rule 1.
+    std::int64_t node_boot() const;
+    /// Waits until a node of every robot announces a boot above `above`; that boot, or 0 on timeout.
+    std::int64_t await_boot(std::int64_t above, std::chrono::milliseconds timeout);
+    /// Waits for an announcement of `boot` after the first `after` announcements that satisfies `ok`.
+    const tvo_lcm::node_status_t* await_announcement(std::size_t after, std::int64_t boot,
+                                                     const std::function<bool(const tvo_lcm::node_status_t&)>& ok,
+                                                     std::chrono::milliseconds timeout);
+
     std::vector<ReceivedCommand> commands;
     std::vector<tvo_lcm::telemetry_t> telemetry;
     std::vector<tvo_lcm::session_ack_t> acks;
+    std::vector<Announcement> announcements;
 
 private:
     void on_frame(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
@@ -113,10 +135,12 @@ private:
     tvo_auth_t auth_{};
 };
 
-/// tvo_firmware_node as a child: `path --lcm-url URL --exit-with-parent [--keep-running]
-/// [--key-file FILE]`.
+/// tvo_firmware_node as a child: `path --lcm-url URL --exit-with-parent --boot-file FILE [--keep-running]
+/// [--key-file FILE]`. Every node of the campaign counts its boots in one file (kBootFile, in the
+/// working directory; the node locks it), so a restarted node announces a new boot.
 class NodeProcess {
 public:
+    static constexpr const char* kBootFile = "fault_campaign_node.boot";
     NodeProcess(std::string path, std::string url, std::string key_file = "");
     NodeProcess(const NodeProcess&) = delete;
     NodeProcess& operator=(const NodeProcess&) = delete;
@@ -147,9 +171,10 @@ struct Timing {
 };
 
 /// The START the simulator sends for its default run: one unicycle, gains (40, 13), the ellipse
-/// (centre 0, semi-axes 3 and 1.5 m, period 10 s), its limits, stamped start_utime.
-tvo_lcm::session_t demo_session(std::int64_t session_id, std::int64_t start_utime_us, std::int64_t epoch_utime_us,
-                                const Timing& timing);
+/// (centre 0, semi-axes 3 and 1.5 m, period 10 s), its limits, stamped start_utime, naming node boot
+/// node_boot (0: none yet, the run names it when it heard the node), telemetry after every command.
+tvo_lcm::session_t demo_session(std::int32_t session_id, std::int64_t start_utime_us, std::int64_t epoch_utime_us,
+                                const Timing& timing, std::int64_t node_boot = 0);
 
 /// The target of demo_session at plant time utime (objective time (utime - epoch) s).
 void demo_target(const tvo_lcm::session_t& session, std::int64_t utime_us, double* x_m, double* y_m);
@@ -176,7 +201,7 @@ struct CommandAudit {
     double max_abs_omega{0.0};
     double max_abs_speed{0.0};
 
-    void add(const tvo_lcm::command_t& cmd);
+    void add(const Command& cmd);
     void report(Report& report) const;
 };
 

@@ -2,8 +2,9 @@
 # "On two machines": tvo_firmware_node in one network namespace, a plant in another, joined by a veth
 # pair; LCM multicast (ttl=1) crosses the link between them, as between two hosts. Two plants in turn,
 # each against a fresh node: the example plant client, then the simulator (tvo_sim without --firmware).
-# Asserts each run converges, the node exits with 0 after the plant's STOP, and the traffic went over
-# the link. Skipped (exit 77) where namespaces cannot be created (not root, no CAP_NET_ADMIN).
+# Asserts each run converges (each plant hears the node's announcement, its boot, across the link and
+# names it in its START), the node exits with 0 after the plant's STOP, and the traffic went over the
+# link. Skipped (exit 77) where namespaces cannot be created (not root, no CAP_NET_ADMIN).
 # Every address lives inside the two namespaces it creates; they are removed on exit.
 #
 # Usage: two_hosts.sh NODE PLANT_CLIENT SIM PORT OUT_DIR [DURATION_S [MAX_ERROR_M]]
@@ -63,7 +64,7 @@ run_across() {
   shift
   local rx_before
   rx_before="$(packets "$ns_node" vA rx_packets)"
-  ip netns exec "$ns_node" "$node" --lcm-url "$url" --exit-with-parent &
+  ip netns exec "$ns_node" "$node" --lcm-url "$url" --boot-file "$out_dir/node.boot" --exit-with-parent &
   node_pid=$!
   local code=0
   ip netns exec "$ns_plant" "$@" >"$out_dir/$name.log" 2>&1 || code=$?
