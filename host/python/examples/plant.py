@@ -186,6 +186,8 @@ def main():
             plant.lc.handle_timeout(10)
         unanswered = 0 if plant.answered else unanswered + 1
         if plant.restart or unanswered >= WATCHDOG_PERIODS:   # rule 5: stop the robot, START again
+            print(f"plant.py: sample {n}: " + ("the node restarted or dropped our session: a new START" if plant.restart
+                  else f"{unanswered} samples unanswered: the same START again"), file=sys.stderr)
             robot.stop()
             plant.next, unanswered, restarts = None, 0, restarts + 1
             if plant.restart:           # a new boot, or our session gone: a fresh session naming it

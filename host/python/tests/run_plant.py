@@ -9,6 +9,9 @@
             (a higher boot id); the plant must stop its robot, START a new session naming the new boot
             (restarts>=1), which the new node takes, and still converge (final error below 1e-3 m, the
             closed-loop tests' bound for the demo).
+  silent:   rule 5: the node is frozen (SIGSTOP) amid the session for longer than the plant's watchdog
+            (10 samples unanswered), then resumed; the plant must stop its robot and repeat the same
+            START, which the node acks (the same session, the same boot), and still converge (1e-3 m).
 
 Usage: run_plant.py MODE NODE PLANT_PY DEMO_JSON LCM_URL WORK_DIR   (PYTHONPATH: <build>/host/python)
 """
@@ -54,7 +57,7 @@ def main():
     except ImportError as e:
         print(f"skipped: LCM's Python module is not built ({e}): tools/setup python fetches Debian's lcm source")
         sys.exit(77)
-    if len(sys.argv) != 7 or sys.argv[1] not in ("converge", "restart"):
+    if len(sys.argv) != 7 or sys.argv[1] not in ("converge", "restart", "silent"):
         sys.exit(__doc__)
     mode, node, plant_py, demo_json, url, work = sys.argv[1:]
     os.makedirs(work, exist_ok=True)
@@ -67,15 +70,20 @@ def main():
     plant = subprocess.Popen([sys.executable, plant_py, "--key-file", key, "--lcm-url", url],
                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     nodes = [first]
-    if mode == "restart":
-        # amid the session: after the START and a few hundred samples, the node dies; a new boot starts
+    if mode in ("restart", "silent"):
+        # amid the session: once the node took the START (the plant's 2,000 samples take about a second
+        # after it), so that most of the 20 s are left to converge again
         if not wait_for(logs[0], r"START of session \d+ done", 30):
             plant.kill()
             sys.exit("the first node never took a START")
-        time.sleep(0.2)
+    if mode == "restart":       # the node dies; a new boot starts
         first.send_signal(signal.SIGKILL)
         first.wait()
         nodes.append(start_node(node, url, key, boot, logs[1]))
+    elif mode == "silent":      # frozen past the plant's watchdog (10 x plant.py's 0.5 s wait), then back
+        first.send_signal(signal.SIGSTOP)
+        time.sleep(6.5)
+        first.send_signal(signal.SIGCONT)
     out, err = plant.communicate(timeout=120)
     print(out + err, end="")
     codes = [n.wait(timeout=30) for n in nodes[-1:]]
@@ -98,6 +106,14 @@ def main():
         if f"{final_error:.2e}" != f"{demo_error:.2e}":
             sys.exit(f"final error {final_error:.6g} m is not the demo's {demo_error:.6g} m to 3 significant digits")
         print(f"the demo's final error to 3 significant digits: {final_error:.6g} m (demo.json {demo_error:.6g} m)")
+    elif mode == "silent":
+        with open(logs[0], encoding="utf-8") as f:
+            first_boot = int(re.search(r"boot (\d+)", f.read()).group(1))
+        if int(got["restarts"]) < 1 or last["sessions"] != 1 or last["boot_id"] != first_boot:
+            sys.exit(f"expected the plant to repeat the same START to the same boot: restarts={got['restarts']}, {last}")
+        if not final_error < 1e-3:
+            sys.exit(f"did not converge after the silence: final error {final_error:.6g} m, bound 1e-3 m")
+        print(f"repeated its START after the silence, converged: {final_error:.6g} m < 1e-3 m")
     else:
         if int(got["restarts"]) < 1 or last["sessions"] != 1 or last["accepted"] < 1 or last["boot_id"] < 2:
             sys.exit(f"expected the plant to START again on the new boot: restarts={got['restarts']}, node 2: {last}")
