@@ -6,7 +6,8 @@ in lockstep (CLOCK_PLANT): the plant's clock drives time; it samples, waits for 
 Every frame is signed and opened with tvo.auth (the key file of tools/keygen).
 
     plant.py --key-file robot.key [--lcm-url URL] [--duration-s 20]
-    prints "final_error_m=<metres> restarts=<n>"; exit 0 if the session ran, 1 if no node took it
+    prints "final_error_m=<metres> restarts=<n> dropped_frames=<n>"; exit 0 if the session ran to its end,
+    1 if no node took it (or, after rule 5, took it again)
 
 Needs PYTHONPATH=<build>/host/python (or `pip install ./host/python`): LCM's Python module, the generated
 tvo_lcm types, tvo.auth and tvo.wire (the channel names).
@@ -19,7 +20,8 @@ import time
 
 import lcm
 from tvo import auth, wire
-from tvo_lcm import command_header_t, node_status_t, path_t, session_ack_t, session_t, unicycle_command_t, unicycle_sample_t
+from tvo_lcm import (command_header_t, node_status_t, path_t, session_ack_t, session_t, unicycle_command_t,
+                     unicycle_sample_t)
 
 PERIOD_US = 10_000       # h: period j's command applies at EPOCH_US + j h
 DELAY_US = 5_000         # tau: the sample for period j is taken at EPOCH_US + j h - tau
@@ -71,7 +73,7 @@ class Plant:
         self.lc = lcm.LCM(url)
         self.link = auth.Link(key, auth.SENDER_PLANT)    # counters follow the wall clock
         self.session_id = (time.time_ns() // 1000 + os.getpid()) & 0x7FFFFFFF   # fresh per run
-        self.boot_id = 0            # rule 1: the node's current boot
+        self.boot_id, self.max_robots = 0, 0    # rule 1: the node's current boot, its robot limit
         self.restart = False        # rule 5: it restarted, or dropped our session
         self.running_seen, self.node_utime = False, 0
         self.ack = None
@@ -104,7 +106,8 @@ class Plant:
             self.running_seen, self.node_utime = True, s.utime
         elif s.boot_id == self.boot_id and s.state == s.STATE_IDLE and self.running_seen and s.utime > self.node_utime:
             self.restart = True     # it ran ours and now runs nothing
-        self.boot_id = max(self.boot_id, s.boot_id)
+        if s.boot_id >= self.boot_id:
+            self.boot_id, self.max_robots = s.boot_id, s.max_robots
 
     def on_ack(self, data):
         a = session_ack_t.decode(data)
@@ -125,11 +128,14 @@ class Plant:
             self.next = c
 
     def request(self, session, action, utime):
-        """Rules 1, 2 and 6: the session message names the node's boot, repeated every 100 ms until acked."""
+        """Rules 1, 2 and 6: the session message names the node's boot, repeated every 100 ms until acked.
+        The ack (None if none came): its status 0 is done, else why not."""
         for _ in range(50):
             if self.boot_id:
                 break
             self.lc.handle_timeout(100)
+        if session.robot_count > self.max_robots:
+            return None     # no node heard, or one that cannot drive this many robots
         session.action, session.utime = action, utime
         session.node_boot_id[0] = self.boot_id
         self.ack, self.restart, self.running_seen = None, False, False
@@ -140,7 +146,16 @@ class Plant:
             deadline = time.monotonic() + 0.1
             while self.ack is None and time.monotonic() < deadline:
                 self.lc.handle_timeout(10)
-        return self.ack is not None and self.ack.action == action
+        return self.ack if self.ack is not None and self.ack.action == action else None
+
+
+def why_not(plant, ack):
+    """Why a START did not run, as plant_client.c says it."""
+    if not plant.boot_id:
+        return "no node announced itself"
+    if ack is None:
+        return "not acknowledged" if plant.max_robots else "the node drives fewer robots"
+    return f"refused: status {ack.status}, parameter {ack.bad_param}, part {ack.bad_part}, index {ack.bad_index}"
 
 
 def demo_session(session_id):
@@ -155,7 +170,8 @@ def demo_session(session_id):
     s.robot_count = 1
     robot = s.robot[0]
     robot.tracking_weight = [1.0, 1.0]
-    robot.target.kind, robot.target.semi_axis_m, robot.target.omega_radps = path_t.KIND_ELLIPSE, [3.0, 1.5], 2 * math.pi / 10
+    robot.target.kind, robot.target.semi_axis_m = path_t.KIND_ELLIPSE, [3.0, 1.5]
+    robot.target.omega_radps = 2 * math.pi / 10     # one lap in 10 s
     return s
 
 
@@ -167,13 +183,13 @@ def main():
     args = parser.parse_args()
     plant, robot = Plant(args.lcm_url, auth.read_key_file(args.key_file)), Robot()
     session = demo_session(plant.session_id)
-    if not plant.request(session, session.ACTION_START, robot.now_us) or plant.ack.status != 0:
-        why = "no node announced itself" if not plant.boot_id else "not acknowledged" if plant.ack is None else \
-            f"refused: status {plant.ack.status}, parameter {plant.ack.bad_param}, part {plant.ack.bad_part}"
-        sys.exit(f"plant.py: START {why}")
-    restarts, unanswered = 0, 0
+    ack = plant.request(session, session.ACTION_START, robot.now_us)
+    if ack is None or ack.status != 0:
+        sys.exit(f"plant.py: START {why_not(plant, ack)}")
+    restarts, unanswered, ran = 0, 0, True
     for n in range(round(args.duration_s * 1e6) // PERIOD_US):
-        plant.next = robot.advance_to(EPOCH_US + (n + 1) * PERIOD_US - DELAY_US, plant.next)  # rule 3: sample n, period n + 1
+        # rule 3: sample n, taken tau before period n + 1's apply instant, serves it
+        plant.next = robot.advance_to(EPOCH_US + (n + 1) * PERIOD_US - DELAY_US, plant.next)
         sample = unicycle_sample_t()
         sample.header.utime, sample.header.session_id, sample.header.sequence = robot.now_us, plant.session_id, n
         sample.has = sample.HAS_HEADING | sample.HAS_SPEED
@@ -192,15 +208,19 @@ def main():
             plant.next, unanswered, restarts = None, 0, restarts + 1
             if plant.restart:           # a new boot, or our session gone: a fresh session naming it
                 session.session_id = plant.session_id = (plant.session_id + 1) & 0x7FFFFFFF
-            if not plant.request(session, session.ACTION_START, robot.now_us):
-                break                   # the same START (a silent node), or the new one, not acked
+            ack = plant.request(session, session.ACTION_START, robot.now_us)
+            if ack is None or ack.status != 0:   # the same START (a silent node), or the new one, not taken
+                print(f"plant.py: START again: {why_not(plant, ack)}", file=sys.stderr)
+                ran = False
+                break
         plant.next = robot.advance_to(EPOCH_US + (n + 1) * PERIOD_US, plant.next)
     target = session.robot[0].target      # the ellipse, centred at 0: where it is now
     phase = target.omega_radps * (robot.now_us - EPOCH_US) * 1e-6
-    error = math.hypot(robot.x - target.semi_axis_m[0] * math.cos(phase), robot.y - target.semi_axis_m[1] * math.sin(phase))
+    error = math.hypot(robot.x - target.semi_axis_m[0] * math.cos(phase),
+                       robot.y - target.semi_axis_m[1] * math.sin(phase))
     print(f"final_error_m={error:.6g} restarts={restarts} dropped_frames={plant.dropped}")
     plant.request(session, session.ACTION_STOP, robot.now_us)   # rule 6
-    return 0
+    return 0 if ran else 1
 
 
 if __name__ == "__main__":

@@ -23,7 +23,8 @@ import subprocess
 import sys
 import time
 
-KEY_HEX = "00112233445566778899aabbccddeeff0123456789abcdeffedcba9876543210"   # a test key (tools/keygen makes real ones)
+# A test key (tools/keygen makes real ones).
+KEY_HEX = "00112233445566778899aabbccddeeff0123456789abcdeffedcba9876543210"
 
 
 def start_node(node, url, key, boot, log):
@@ -102,7 +103,8 @@ def main():
         with open(demo_json, encoding="utf-8") as f:
             demo_error = json.load(f)["final_error_m"]
         if last["accepted"] != 2000 or last["sessions"] != 1 or got["restarts"] != "0":
-            sys.exit(f"expected one session of 2000 accepted samples and no restart: {last}, restarts={got['restarts']}")
+            sys.exit(f"expected one session of 2000 accepted samples and no restart: {last}, "
+                     f"restarts={got['restarts']}")
         if f"{final_error:.2e}" != f"{demo_error:.2e}":
             sys.exit(f"final error {final_error:.6g} m is not the demo's {demo_error:.6g} m to 3 significant digits")
         print(f"the demo's final error to 3 significant digits: {final_error:.6g} m (demo.json {demo_error:.6g} m)")
@@ -110,7 +112,8 @@ def main():
         with open(logs[0], encoding="utf-8") as f:
             first_boot = int(re.search(r"boot (\d+)", f.read()).group(1))
         if int(got["restarts"]) < 1 or last["sessions"] != 1 or last["boot_id"] != first_boot:
-            sys.exit(f"expected the plant to repeat the same START to the same boot: restarts={got['restarts']}, {last}")
+            sys.exit(f"expected the plant to repeat the same START to the same boot: "
+                     f"restarts={got['restarts']}, {last}")
         if not final_error < 1e-3:
             sys.exit(f"did not converge after the silence: final error {final_error:.6g} m, bound 1e-3 m")
         print(f"repeated its START after the silence, converged: {final_error:.6g} m < 1e-3 m")

@@ -115,7 +115,8 @@ class LcmTest(unittest.TestCase):
         (channel, frame), = bus.receive(1)
         self.assertEqual(int.from_bytes(frame[-24:-16], "big"), (17 << 40) | 1)
         self.assertEqual(tvo_lcm.unicycle_command_t.decode(plant.open(channel, frame)).header.session_id, 77)
-        self.assertEqual(tvo_lcm.unicycle_command_t.decode(frame).header.session_id, 77)   # LCM's decoder ignores the trailer
+        # LCM's decoder reads the message and ignores the trailer
+        self.assertEqual(tvo_lcm.unicycle_command_t.decode(frame).header.session_id, 77)
 
     def test_readme_block(self):
         """host/python/README.md's "LCM and signed frames" block runs as written (its assert checks it)."""
