@@ -1,15 +1,19 @@
 #!/usr/bin/python3
 """tvo.auth signs frames as firmware/edge/auth.c does and opens them by its rules.
 
-Signing: the test vectors of tests/edge/test_auth.c (key bytes(range(32)); each tag must also appear
-in that file, so the two tests check the same vectors). Opening: a genuine stream opens; a forged,
-altered, truncated, re-channelled or replayed frame is refused with auth.c's reason and changes
-nothing; a new sender must start above the floor; the sender table fills; key files as
-auth_key_file.c reads them.
+Signing: the test vectors of tests/edge/test_auth.c (key bytes(range(32))): its three independent ones
+(each tag must also appear in that file) and its table of one vector per wire message, read from the
+file itself, so the two tests check the same vectors. Opening, by the v3 rules: a genuine stream opens;
+a forged, altered, truncated, re-channelled or replayed frame is refused with auth.c's reason and
+changes nothing; a known sender's used counter is a replay before any tag is computed; a sender not
+heard yet is taken at any counter (no window); the sender table fills. Counters: a node's from its
+boot ((boot << 40) | n, spent at its boot's end), a plant's following its clock and never going back.
+Key files as auth_key_file.c reads them.
 
 Usage: test_auth.py TEST_AUTH_C   (PYTHONPATH: <build>/host/python)
 """
 import os
+import re
 import stat
 import sys
 import tempfile
@@ -34,6 +38,16 @@ VECTORS = [
 TEST_AUTH_C = None
 
 
+def message_vectors(c_text):
+    """test_auth.c's message_vectors table: (type, channel, sender, counter, tag hex, message bytes)."""
+    table = c_text[c_text.index("message_vectors[] = {"):]
+    table = table[:table.index("};")]
+    rows = re.findall(r'\{"(\w+)", "(\w+)", (\d+)u, UINT64_C\((\d+)\), "([0-9a-f]{32})",((?:\s*"[0-9a-f]*")+)\s*\}',
+                      table)
+    return [(t, ch, int(sender), int(counter), tag_hex, bytes.fromhex("".join(re.findall(r'"([0-9a-f]*)"', hexes))))
+            for t, ch, sender, counter, tag_hex, hexes in rows]
+
+
 class SignTest(unittest.TestCase):
     def test_vectors_of_test_auth_c(self):
         with open(TEST_AUTH_C, encoding="utf-8") as f:
@@ -49,10 +63,22 @@ class SignTest(unittest.TestCase):
             self.assertEqual(link.sign(channel, message), frame)
             self.assertEqual(link.next_counter, counter + 1)
 
+    def test_message_vectors_of_test_auth_c(self):
+        with open(TEST_AUTH_C, encoding="utf-8") as f:
+            vectors = message_vectors(f.read())
+        self.assertEqual(len(vectors), 8)   # every per-period, session-ack and announcement message of the wire
+        for type_name, channel, sender, counter, tag_hex, message in vectors:
+            with self.subTest(type_name):
+                frame = auth.sign(KEY, channel, message, sender, counter)
+                self.assertEqual(frame[-16:].hex(), tag_hex)
+                self.assertEqual(auth.Link(KEY, 99, start=1).open(channel, frame), message)
+
     def test_constants_are_auth_h(self):
         self.assertEqual((auth.KEY_BYTES, auth.TAG_BYTES, auth.TRAILER_BYTES), (32, 16, 28))
         self.assertEqual((auth.SENDER_NODE, auth.SENDER_PLANT), (1, 2))
-        self.assertEqual(auth.NEW_SENDER_WINDOW_US, 60_000_000)
+        self.assertEqual((auth.SENDER_FLEET_NODE, auth.SENDER_FLEET_ROBOT), (0x100, 0x200))
+        self.assertEqual((auth.BOOT_COUNTER_BITS, auth.MAX_BOOT_ID, auth.MAX_SENDERS), (40, 8388607, 40))
+        self.assertFalse(hasattr(auth, "NEW_SENDER_WINDOW_US"))   # v3: no window
 
     def test_arguments(self):
         for call in (lambda: auth.sign(KEY[:31], "C", b"", 1, 1), lambda: auth.sign(KEY, "", b"", 1, 1),
@@ -65,10 +91,49 @@ class SignTest(unittest.TestCase):
     def test_counters_follow_the_wall_clock(self):
         link = auth.Link(KEY, auth.SENDER_PLANT)
         before = auth.wall_clock_counter()
-        frame = link.sign("TVO_MEASUREMENT", b"x")
+        frame = link.sign("TVO_SAMPLE", b"x")
         counter = int.from_bytes(frame[-24:-16], "big")
         self.assertGreaterEqual(counter, before)
-        self.assertGreater(int.from_bytes(link.sign("TVO_MEASUREMENT", b"x")[-24:-16], "big"), counter)
+        self.assertGreater(int.from_bytes(link.sign("TVO_SAMPLE", b"x")[-24:-16], "big"), counter)
+
+    def test_a_plant_never_goes_back_with_its_clock(self):
+        # test_auth.c's test_a_plant_follows_its_clock, with the clock faked
+        clock = [1_700_000_000_000_000]
+        real = auth.wall_clock_counter
+        auth.wall_clock_counter = lambda: clock[0]
+        try:
+            link = auth.Link(KEY, auth.SENDER_PLANT)
+            counters = []
+            for step_us in (0, -5_000_000, 10_000_000):
+                clock[0] += step_us
+                counters.append(int.from_bytes(link.sign("TVO_SAMPLE", b"x")[-24:-16], "big"))
+        finally:
+            auth.wall_clock_counter = real
+        self.assertEqual(counters, [1_700_000_000_000_000, 1_700_000_000_000_001, 1_700_000_005_000_000])
+
+    def test_a_node_counts_from_its_boot(self):
+        node, plant = auth.Link(KEY, auth.SENDER_NODE, start=1), auth.Link(KEY, auth.SENDER_PLANT, start=1)
+        for bad in (0, -1, auth.MAX_BOOT_ID + 1, 1.5, None):
+            with self.assertRaises(auth.AuthError) as caught:
+                node.count_from_boot(bad)
+            self.assertEqual(caught.exception.reason, "argument")
+            self.assertEqual(node.next_counter, 1)
+        node.count_from_boot(5)
+        for n in (1, 2, 3):
+            frame = node.sign("TVO_NODE", b"status")
+            self.assertEqual(int.from_bytes(frame[-24:-16], "big"), (5 << 40) | n)
+            self.assertEqual(plant.open("TVO_NODE", frame), b"status")
+        restarted = auth.Link(KEY, auth.SENDER_NODE, start=1)   # the next boot: above every counter of the last
+        restarted.count_from_boot(6)
+        self.assertEqual(plant.open("TVO_NODE", restarted.sign("TVO_NODE", b"status")), b"status")
+        node.next_counter = (6 << 40) - 1                      # boot 5's last counter signs; the next is spent
+        node.sign("TVO_NODE", b"status")
+        with self.assertRaises(auth.AuthError) as caught:
+            node.sign("TVO_NODE", b"status")
+        self.assertEqual(caught.exception.reason, "counter spent")
+        self.assertEqual(node.next_counter, 6 << 40)
+        node.count_from_boot(auth.MAX_BOOT_ID)
+        self.assertEqual(node.counter_end, 1 << 63)
 
 
 class OpenTest(unittest.TestCase):
@@ -84,37 +149,45 @@ class OpenTest(unittest.TestCase):
         self.assertEqual(self.receiver.senders, senders)   # nothing of a refused frame is kept
 
     def test_a_genuine_stream_opens_and_a_replay_is_refused(self):
-        first = self.sender.sign("TVO_MEASUREMENT", b"sample one")
-        self.assertEqual(self.receiver.open("TVO_MEASUREMENT", first), b"sample one")
-        second = self.sender.sign("TVO_MEASUREMENT", b"sample two")
-        self.assertEqual(self.receiver.open("TVO_MEASUREMENT", second), b"sample two")
-        self.refused("replay", "TVO_MEASUREMENT", first)
-        self.refused("replay", "TVO_MEASUREMENT", second)
+        first = self.sender.sign("TVO_SAMPLE", b"sample one")
+        self.assertEqual(self.receiver.open("TVO_SAMPLE", first), b"sample one")
+        second = self.sender.sign("TVO_SAMPLE", b"sample two")
+        self.assertEqual(self.receiver.open("TVO_SAMPLE", second), b"sample two")
+        self.refused("replay", "TVO_SAMPLE", first)
+        self.refused("replay", "TVO_SAMPLE", second)
         self.assertEqual(self.receiver.senders, {42: 1001})
 
     def test_forged_altered_truncated_or_moved_frames_are_refused(self):
-        frame = self.sender.sign("TVO_MEASUREMENT", b"sample")
+        frame = self.sender.sign("TVO_SAMPLE", b"sample")
         altered = bytearray(frame)
         altered[0] ^= 1
-        self.refused("tag", "TVO_MEASUREMENT", bytes(altered))
+        self.refused("tag", "TVO_SAMPLE", bytes(altered))
         self.refused("tag", "TVO_COMMAND", frame)                        # moved to another channel
-        self.refused("tag", "TVO_MEASUREMENT", auth.Link(bytes(32), 42, start=2000).sign("TVO_MEASUREMENT", b"sample"))
-        self.refused("truncated", "TVO_MEASUREMENT", frame[-auth.TRAILER_BYTES + 1:])
-        self.refused("tag", "TVO_MEASUREMENT", frame[1:])
-        self.assertEqual(self.receiver.open("TVO_MEASUREMENT", frame), b"sample")   # the genuine one still opens
+        self.refused("tag", "TVO_SAMPLE", auth.Link(bytes(32), 42, start=2000).sign("TVO_SAMPLE", b"sample"))
+        self.refused("truncated", "TVO_SAMPLE", frame[-auth.TRAILER_BYTES + 1:])
+        self.refused("tag", "TVO_SAMPLE", frame[1:])
+        self.assertEqual(self.receiver.open("TVO_SAMPLE", frame), b"sample")   # the genuine one still opens
 
-    def test_new_senders_start_above_the_floor_and_the_table_fills(self):
-        receiver = auth.Link(KEY, 1, start=10_000_000, window_us=1_000_000, max_senders=2)
-        self.assertEqual(receiver.new_sender_floor, 9_000_000)
-        with self.assertRaises(auth.AuthError) as caught:
-            receiver.open("C", auth.sign(KEY, "C", b"old", 5, 9_000_000))
-        self.assertEqual(caught.exception.reason, "replay")
-        self.assertEqual(receiver.open("C", auth.sign(KEY, "C", b"new", 5, 9_000_001)), b"new")
+    def test_a_used_counter_is_refused_before_the_tag(self):
+        frame = self.sender.sign("TVO_SAMPLE", b"genuine")
+        self.receiver.open("TVO_SAMPLE", frame)
+        forged = bytearray(frame)
+        forged[-16:] = b"\xa5" * 16                                      # a garbage tag
+        self.refused("replay", "TVO_SAMPLE", bytes(forged))
+        forged[-auth.TRAILER_BYTES] ^= 1                                  # another sender, not heard yet
+        self.refused("tag", "TVO_SAMPLE", bytes(forged))
+        forged[-auth.TRAILER_BYTES] ^= 1
+        forged[-auth.TRAILER_BYTES + 4] = 1                               # the known sender, a higher counter
+        self.refused("tag", "TVO_SAMPLE", bytes(forged))
+
+    def test_a_new_sender_is_taken_at_any_counter_and_the_table_fills(self):
+        receiver = auth.Link(KEY, 1, start=10_000_000, max_senders=2)
+        self.assertEqual(receiver.open("C", auth.sign(KEY, "C", b"old", 5, 1)), b"old")   # no window
         self.assertEqual(receiver.open("C", auth.sign(KEY, "C", b"new", 6, 9_000_001)), b"new")
         with self.assertRaises(auth.AuthError) as caught:
             receiver.open("C", auth.sign(KEY, "C", b"new", 7, 9_000_001))
         self.assertEqual(caught.exception.reason, "senders full")
-        self.assertEqual(sorted(receiver.senders), [5, 6])
+        self.assertEqual(receiver.senders, {5: 1, 6: 9_000_001})
 
 
 class KeyFileTest(unittest.TestCase):

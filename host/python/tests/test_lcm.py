@@ -31,10 +31,10 @@ def generated_types():
 
 
 def sample_command():
-    m = tvo_lcm.command_t()
-    m.utime, m.session_id, m.measurement_sequence, m.robot_count = 1_000_000, 77, 12, 2
-    m.speed_mps = [0.5, -0.25, 0.0, 0.0]
-    m.turn_rate_radps = [0.125, 3.0, 0.0, 0.0]
+    """Robot 1's command of a v3 session: one robot per message, a nested header."""
+    m = tvo_lcm.unicycle_command_t()
+    m.header.utime, m.header.session_id, m.header.measurement_sequence, m.header.robot = 1_000_000, 77, 12, 1
+    m.speed_mps, m.turn_rate_radps = 0.5, -0.25
     return m
 
 
@@ -80,10 +80,9 @@ class LcmTest(unittest.TestCase):
         self.assertEqual(len(got), len(types) + 1, f"received {sorted(got)} on {url}")
         for t in types:
             self.assertEqual(t.decode(got[f"TVO_PY_{t.__name__}"]).encode(), t().encode())
-        back = tvo_lcm.command_t.decode(got["TVO_PY_COMMAND"])
-        self.assertEqual((back.session_id, back.measurement_sequence, back.robot_count), (77, 12, 2))
-        self.assertEqual(list(back.speed_mps), command.speed_mps)
-        self.assertEqual(list(back.turn_rate_radps), command.turn_rate_radps)
+        back = tvo_lcm.unicycle_command_t.decode(got["TVO_PY_COMMAND"])
+        self.assertEqual((back.header.session_id, back.header.measurement_sequence, back.header.robot), (77, 12, 1))
+        self.assertEqual((back.speed_mps, back.turn_rate_radps), (0.5, -0.25))
 
     def test_memq(self):
         self.check_bus("memq://")
@@ -103,18 +102,21 @@ class LcmTest(unittest.TestCase):
             log.close()
             events = list(lcm.EventLog(path, "r"))
         self.assertEqual([(e.timestamp, e.channel) for e in events], [(123, "TVO_COMMAND")])
-        self.assertEqual(tvo_lcm.command_t.decode(events[0].data).session_id, 77)
+        self.assertEqual(tvo_lcm.unicycle_command_t.decode(events[0].data).header.session_id, 77)
 
     def test_a_signed_frame_travels_and_opens(self):
         auth = importlib.import_module("tvo.auth")
         key = bytes(range(32))
-        plant, node = auth.Link(key, auth.SENDER_PLANT), auth.Link(key, auth.SENDER_NODE)
+        plant, node = auth.Link(key, auth.SENDER_PLANT), auth.Link(key, auth.SENDER_NODE, start=1)
+        node.count_from_boot(17)                                            # a node's counters: its boot's
         bus = Bus("memq://")
         bus.listen("TVO_COMMAND")
         bus.lc.publish("TVO_COMMAND", node.sign("TVO_COMMAND", sample_command().encode()))
         (channel, frame), = bus.receive(1)
-        self.assertEqual(tvo_lcm.command_t.decode(plant.open(channel, frame)).session_id, 77)
-        self.assertEqual(tvo_lcm.command_t.decode(frame).session_id, 77)   # LCM's decoder ignores the trailer
+        self.assertEqual(int.from_bytes(frame[-24:-16], "big"), (17 << 40) | 1)
+        self.assertEqual(tvo_lcm.unicycle_command_t.decode(plant.open(channel, frame)).header.session_id, 77)
+        # LCM's decoder reads the message and ignores the trailer
+        self.assertEqual(tvo_lcm.unicycle_command_t.decode(frame).header.session_id, 77)
 
     def test_readme_block(self):
         """host/python/README.md's "LCM and signed frames" block runs as written (its assert checks it)."""
@@ -125,7 +127,7 @@ class LcmTest(unittest.TestCase):
         self.assertIsNotNone(block)
         scope = {}
         exec(block.group(1), scope)   # pylint: disable=exec-used
-        self.assertEqual(scope["heard"][0].sequence, 1)
+        self.assertEqual(scope["heard"][0].header.sequence, 1)
 
 
 if __name__ == "__main__":

@@ -8,27 +8,31 @@ counter, associated data = the channel's name, a zero byte, then the message; no
     import tvo.auth
     key = tvo.auth.read_key_file("robot.key")            # tools/keygen's file: 64 hex digits, mode 0600
     plant = tvo.auth.Link(key, tvo.auth.SENDER_PLANT)    # counters follow the wall clock, as tvo_sim's
-    lc.publish("TVO_MEASUREMENT", plant.sign("TVO_MEASUREMENT", measurement.encode()))
+    lc.publish("TVO_SAMPLE", plant.sign("TVO_SAMPLE", sample.encode()))
     message = plant.open("TVO_COMMAND", frame)           # AuthError (.reason) if forged, replayed, ...
 
-The constants (KEY_BYTES, SENDER_PLANT, NEW_SENDER_WINDOW_US, ...) are auth.h's, read at build time.
+The counters (wire v3): a plant's follow its wall clock in microseconds; a node's are (boot_id << 40) | n
+(Link.count_from_boot). A receiver takes a sender it has not heard at any counter, then only higher ones:
+no window, no clock; a recording from before a node's restart is kept out by the boot id a START names.
+The constants (KEY_BYTES, SENDER_PLANT, BOOT_COUNTER_BITS, ...) are auth.h's, read at build time.
 """
 import os
 import stat
 import struct
 import time
 
-from ._auth_h import (KEY_BYTES, MAX_CHANNEL_BYTES, MAX_SENDERS, NEW_SENDER_WINDOW_US, SENDER_FLEET_NODE,
+from ._auth_h import (BOOT_COUNTER_BITS, KEY_BYTES, MAX_CHANNEL_BYTES, MAX_SENDERS, SENDER_FLEET_NODE,
                       SENDER_FLEET_ROBOT, SENDER_NODE, SENDER_PLANT, TAG_BYTES)
 
 HEAD_BYTES = 4 + 8                      # sender_id, counter: the nonce
 TRAILER_BYTES = HEAD_BYTES + TAG_BYTES  # auth.h's TVO_AUTH_TRAILER_BYTES
 _HEAD = struct.Struct(">IQ")
 _COUNTER_END = (1 << 64) - 1            # a counter of 2^64 - 1 is never signed: the sender is spent
+MAX_BOOT_ID = (1 << (63 - BOOT_COUNTER_BITS)) - 1   # auth.h's TVO_AUTH_MAX_BOOT_ID: counters stay below 2^63
 
 __all__ = ["AuthError", "Link", "read_key_file", "sign", "tag", "wall_clock_counter", "KEY_BYTES", "TAG_BYTES",
            "TRAILER_BYTES", "SENDER_NODE", "SENDER_PLANT", "SENDER_FLEET_NODE", "SENDER_FLEET_ROBOT",
-           "NEW_SENDER_WINDOW_US", "MAX_SENDERS", "MAX_CHANNEL_BYTES"]
+           "BOOT_COUNTER_BITS", "MAX_BOOT_ID", "MAX_SENDERS", "MAX_CHANNEL_BYTES"]
 
 
 class AuthError(ValueError):
@@ -113,13 +117,12 @@ def read_key_file(path):
 
 class Link:
     """One keyed end, as tvo_auth_t: signs as sender_id with increasing counters, and opens frames,
-    remembering each sender's last counter (at most max_senders of them).
+    remembering each sender's last counter (at most max_senders of them, for as long as it runs).
 
-    start: the first counter, and the floor a sender not heard yet must start above is start -
-    window_us (tvo_auth_start_at); by default the wall clock, and every counter signed is at least its
-    reading (tvo_auth_follow_clock, what tvo_sim and the node do on a host)."""
+    start: the first counter (>= 1); by default the wall clock, and every counter signed is then at
+    least its reading (tvo_auth_follow_clock: a plant). A node's end calls count_from_boot(boot_id)."""
 
-    def __init__(self, key, sender_id, start=None, window_us=NEW_SENDER_WINDOW_US, max_senders=MAX_SENDERS):
+    def __init__(self, key, sender_id, start=None, max_senders=MAX_SENDERS):
         self._aead = _aead(key)
         self.sender_id = _uint(sender_id, 32, "sender_id")
         self._follow_clock = start is None
@@ -127,25 +130,36 @@ class Link:
         if start < 1:
             raise AuthError("argument", "the first counter must be >= 1")
         self.next_counter = start
-        self.new_sender_floor = max(0, start - _uint(window_us, 64, "window_us"))
+        self.counter_end = _COUNTER_END      # the first counter this end may not sign
         self.max_senders = max_senders
         self.senders = {}   # sender_id -> the last counter accepted
+
+    def count_from_boot(self, boot_id):
+        """Sign from (boot_id << BOOT_COUNTER_BITS) | 1 on, never past that boot's range (tvo_auth_count_from_boot):
+        a node's counters, above every one of its earlier boots', with no clock."""
+        if not isinstance(boot_id, int) or not 1 <= boot_id <= MAX_BOOT_ID:
+            raise AuthError("argument", f"a boot id is an integer in 1 .. {MAX_BOOT_ID}, got {boot_id!r}")
+        self.next_counter = (boot_id << BOOT_COUNTER_BITS) | 1
+        self.counter_end = (boot_id + 1) << BOOT_COUNTER_BITS
+        self._follow_clock = False
 
     def sign(self, channel, message):
         """The frame to publish: message and its trailer; consumes one counter."""
         name = _channel_bytes(channel)
         if self._follow_clock:
             self.next_counter = max(self.next_counter, wall_clock_counter())
-        if self.next_counter >= _COUNTER_END:
-            raise AuthError("counter spent", f"sender {self.sender_id}: counter exhausted")
+        if self.next_counter >= self.counter_end:
+            raise AuthError("counter spent", f"sender {self.sender_id}: counter {self.next_counter} is past its range")
         head = _HEAD.pack(self.sender_id, self.next_counter)
         frame = bytes(message) + head + self._aead.encrypt(head, b"", name + bytes(message))
         self.next_counter += 1
         return frame
 
     def open(self, channel, frame):
-        """The message of a frame whose tag verifies and whose counter is above its sender's last;
-        else AuthError, and nothing is remembered."""
+        """The message of a frame whose tag verifies and whose counter is above its sender's last (a
+        sender not heard yet: any counter); else AuthError, and nothing is remembered. The order is
+        auth.c's, cheapest first: truncated, a known sender's used counter (no tag computed), the tag,
+        room for a new sender."""
         from cryptography.exceptions import InvalidTag
         name = _channel_bytes(channel)
         frame = bytes(frame)
@@ -153,20 +167,16 @@ class Link:
             raise AuthError("truncated", f"{len(frame)} bytes: shorter than an authentication trailer "
                                          f"({TRAILER_BYTES} bytes)")
         message, head, received = frame[:-TRAILER_BYTES], frame[-TRAILER_BYTES:-TAG_BYTES], frame[-TAG_BYTES:]
+        sender_id, counter = _HEAD.unpack(head)
+        last = self.senders.get(sender_id)
+        if last is not None and counter <= last:
+            raise AuthError("replay", f"sender {sender_id}: counter {counter} not above its last, {last} (a replay)")
         try:
             # decrypt() checks the tag in constant time (a forger learns nothing from the timing)
             self._aead.decrypt(head, received, name + message)
         except InvalidTag:
             raise AuthError("tag", "tag does not verify (forged, altered, another key or another channel)") from None
-        sender_id, counter = _HEAD.unpack(head)
-        last = self.senders.get(sender_id)
-        if last is not None and counter <= last:
-            raise AuthError("replay", f"sender {sender_id}: counter {counter} not above its last, {last} (a replay)")
-        if last is None:
-            if counter <= self.new_sender_floor:
-                raise AuthError("replay", f"sender {sender_id} not heard yet: counter {counter} not above "
-                                          f"{self.new_sender_floor} (older than this end's start - window: a replay)")
-            if len(self.senders) >= self.max_senders:
-                raise AuthError("senders full", f"sender {sender_id}: already {self.max_senders} senders to remember")
+        if last is None and len(self.senders) >= self.max_senders:
+            raise AuthError("senders full", f"sender {sender_id}: already {self.max_senders} senders to remember")
         self.senders[sender_id] = counter
         return message
