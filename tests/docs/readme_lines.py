@@ -156,6 +156,9 @@ def fresh_clone(repo, clone):
 def environment(work, lcm_port):
     env = {k: v for k, v in os.environ.items() if not k.startswith("TVO_")}
     env["HOME"] = str(work / "home")
+    # A Debian user's shell: Debian's python3 first on PATH (here it may be behind pyenv's shims), as the
+    # READMEs' Python lines assume and host/python's readme_install test does.
+    env["PATH"] = "/usr/bin" + os.pathsep + env.get("PATH", "")
     (work / "home").mkdir(parents=True, exist_ok=True)
     if lcm_port:
         env["LCM_DEFAULT_URL"] = f"udpm://239.255.76.67:{lcm_port}?ttl=0"
