@@ -1840,6 +1840,17 @@ static void test_chain_session_runs_through_the_node(void)
                 (void)send_sample(&m, now);
                 EXPECT_NOTHING_PUBLISHED();
                 TEST_ASSERT_EQUAL_INT32(1, node.counters.refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM]);
+                /* ... and a position beyond the workspace (float32's largest): implausible, nothing kept. */
+                tvo_lcm_chain_sample_t far = c;
+                far.has = TVO_LCM_CHAIN_SAMPLE_T_HAS_DERIVATIVES;
+                far.position_m[1] = 3.4e38;
+                take_snapshot();
+                ef_record_clear(&rec);
+                TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_CHAIN_SAMPLE, send_chain_sample(&far, now));
+                cmd = the_chain_command(1, __LINE__);
+                EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_MEASUREMENT, cmd.header.status);
+                TEST_ASSERT_EQUAL_HEX32(TVO_LCM_COMMAND_HEADER_T_FLAG_HOLDING, (uint32_t)cmd.header.flags);
+                ASSERT_SESSION_KEPT();
             }
             c.has = TVO_LCM_CHAIN_SAMPLE_T_HAS_DERIVATIVES;
             ef_record_clear(&rec);
