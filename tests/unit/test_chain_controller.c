@@ -15,6 +15,8 @@
  */
 #include "test_support.h"
 
+#include <float.h>
+
 #include "tvo/chain_controller.h"
 #include "internal/chain_controller.h"
 
@@ -943,6 +945,48 @@ static void test_chain_position_outside_the_workspace_is_implausible_and_keeps_n
     }
 }
 
+/* Issue 39: a value the step computed from finite inputs that came out NaN or infinite is a numerical
+ * failure (TVO_REASON_NUMERIC, wire status 8), not a measured one (TVO_REASON_NOT_FINITE, status 2).
+ * Measured y' and y'' at the type's largest finite value (finite: the check passes them; the chain
+ * bounds no derivative) are carried over the delay, which takes y' past it. */
+static void test_chain_computed_overflow_is_numeric_and_a_measured_nan_is_not_finite(void)
+{
+#if TVO_USE_DOUBLE
+    const tvo_real_t largest = DBL_MAX;
+#else
+    const tvo_real_t largest = FLT_MAX;
+#endif
+    ch_t ch;
+    ch_config(&ch, 3, 10000u, 5000u, 1u, 0u); /* derivatives measured, the delay compensated */
+    ASSERT_STATUS(TVO_OK, ch_init(&ch));
+    tvo_chain_command_t cmd;
+    for (int i = 0; i < 3; ++i) {
+        ASSERT_PERIOD(APPLIED, ch_step(&ch, &cmd), cmd);
+    }
+    double xs[2][3];
+    tvo_chain_measurement_t m;
+    ch_sample(&ch, xs, &m);
+    m.y.d[1][0] = largest;
+    m.y.d[2][0] = largest;
+    tvo_reason_t reason = TVO_REASON_COUNT;
+    ASSERT_STATUS(TVO_OK, tvo_chain_controller_check(&ch.ctl, &m, ch.apply, &reason));
+    TEST_ASSERT_EQUAL_INT(TVO_REASON_NONE, reason); /* every input finite */
+    memcpy(&ch_before, &ch.ctl, sizeof(ch_before));
+    ASSERT_PERIOD(HELD(NUMERIC), tvo_chain_controller_step(&ch.ctl, &m, ch.apply, &cmd), cmd);
+    assert_chain_untouched(&ch_before, &ch.ctl);
+    /* The same period measured NaN (y) or infinite (y'): the measurement's reason. */
+    ch_sample(&ch, xs, &m);
+    m.y.d[0][1] = TEST_NAN;
+    ASSERT_PERIOD(HELD(NOT_FINITE), tvo_chain_controller_step(&ch.ctl, &m, ch.apply, &cmd), cmd);
+    ch_sample(&ch, xs, &m);
+    m.y.d[1][0] = TEST_INF;
+    ASSERT_PERIOD(HELD(NOT_FINITE), tvo_chain_controller_step(&ch.ctl, &m, ch.apply, &cmd), cmd);
+    assert_chain_untouched(&ch_before, &ch.ctl);
+    /* ... and the period's good sample is served. */
+    ch_sample(&ch, xs, &m);
+    ASSERT_PERIOD(APPLIED, tvo_chain_controller_step(&ch.ctl, &m, ch.apply, &cmd), cmd);
+}
+
 static void test_chain_law_failure_after_the_filters_leaves_them_untouched(void)
 {
     /* A streamed target in place of the polynomial: the filters step (their working copies), then
@@ -996,5 +1040,6 @@ int main(void)
     RUN_TEST(test_chain_refused_measurement_leaves_filters_and_stamp_untouched);
     RUN_TEST(test_chain_law_failure_after_the_filters_leaves_them_untouched);
     RUN_TEST(test_chain_position_outside_the_workspace_is_implausible_and_keeps_nothing);
+    RUN_TEST(test_chain_computed_overflow_is_numeric_and_a_measured_nan_is_not_finite);
     return UNITY_END();
 }
