@@ -90,6 +90,7 @@ struct tvo_schedule {
     union {                       /* each clock mode's own state */
         struct {
             uint32_t refused_in_row;     /* refusals since the last accepted measurement */
+            int64_t vote_period;         /* the period of the running vote's last sample */
         } plant;
         struct {
             int64_t next_miss_period;    /* the first period not yet served or counted as missed */

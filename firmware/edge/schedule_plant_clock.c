@@ -103,6 +103,20 @@ static void plant_accepted(tvo_schedule_t *schedule, const tvo_schedule_placemen
     schedule->anchor.jump_agreed = 0u;
 }
 
+/* A sample no newer than one the node has already seen of its stream: at or before the last accepted
+ * period (or before the epoch, once tracking), or, agreeing with the running vote's numbering, at or
+ * before its last voter's period (a copy of a voter). It neither votes nor ends the vote: samples
+ * "in a row" are the stream's new ones, so a flood of copies cannot hold back its recovery. */
+static int plant_late(const tvo_schedule_t *schedule, const tvo_lcm_sample_header_t *msg, int64_t to_apply,
+                      int64_t period)
+{
+    if (schedule->has_accepted && (to_apply < 0 || period <= schedule->last_period)) {
+        return 1;
+    }
+    return schedule->votes > 0u && msg->sequence - period == schedule->vote_value &&
+           period <= schedule->clock.plant.vote_period;
+}
+
 /*
  * Samples that agree on their own numbering, TVO_SCHEDULE_ANCHOR_VOTES in a row, move the anchor: while
  * tracking, a stray taken as the anchor of the numbering (it came first, or its stamp and sequence
@@ -116,12 +130,19 @@ static int plant_vote(tvo_schedule_t *schedule, const tvo_lcm_sample_header_t *m
     (void)now_us;
     *moved = schedule->anchor;
     const int in_range = tvo_schedule_wire_time_ok(msg->utime) && tvo_schedule_wire_time_ok(msg->sequence);
-    if (!in_range || refusal->node != TVO_NODE_IMPLAUSIBLE_STAMP) {
+    if (!in_range) {
         schedule->votes = 0u;
         return 0;
     }
     const int64_t to_apply = to_apply_us(schedule, msg->utime); /* in range */
     const int64_t period = to_apply / schedule->timing.period_us;
+    if (plant_late(schedule, msg, to_apply, period)) {
+        return 0; /* a late or repeated sample (a retry queue flushing): its refusal is all it costs */
+    }
+    if (refusal->node != TVO_NODE_IMPLAUSIBLE_STAMP) {
+        schedule->votes = 0u;
+        return 0;
+    }
     const int votes = to_apply >= 0 && (schedule->has_accepted ? period > schedule->last_period
                                                                 : msg->utime > first_sample_deadline(schedule) &&
                                                                       within_tick_span(schedule, period));
@@ -129,6 +150,7 @@ static int plant_vote(tvo_schedule_t *schedule, const tvo_lcm_sample_header_t *m
         schedule->votes = 0u;
         return 0;
     }
+    schedule->clock.plant.vote_period = period;
     if (!tvo_schedule_vote(schedule, msg->sequence - period, 0)) {
         return 0;
     }

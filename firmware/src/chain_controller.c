@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "internal/law.h"
+#include "internal/real_bits.h"
 #include "sampled_loop.h"
 
 tvo_status_t tvo_chain_config_default(tvo_chain_config_t *cfg)
@@ -173,17 +174,24 @@ static tvo_status_t derivatives_at_sample(const tvo_chain_controller_t *ctl, tvo
     return st;
 }
 
-/* The loop's check piece: the values the configuration reads, and the stamp. */
+/* The loop's check piece: the values the configuration reads (finite, the positions within the
+ * workspace), and the stamp. */
 static tvo_reason_t chain_check(const void *ctl_any, const void *meas_any, uint32_t apply_tick)
 {
     const tvo_chain_controller_t *ctl = ctl_any;
     const tvo_chain_measurement_t *meas = meas_any;
     const uint8_t read = ctl->cfg.filtered_derivatives ? 1u : ctl->cfg.relative_degree;
+    const uint8_t m = ctl->internal.loop.objective->primal_dim;
     for (uint8_t j = 0; j < read; ++j) {
-        for (uint8_t i = 0; i < ctl->internal.loop.objective->primal_dim; ++i) {
+        for (uint8_t i = 0; i < m; ++i) {
             if (!isfinite(meas->y.d[j][i])) {
                 return TVO_REASON_NOT_FINITE;
             }
+        }
+    }
+    for (uint8_t i = 0; i < m; ++i) {
+        if (!real_within(meas->y.d[0][i], TVO_POSITION_LIMIT_M)) {
+            return TVO_REASON_IMPLAUSIBLE_MEASUREMENT; /* finite, but no robot's (tvo/config.h's workspace) */
         }
     }
     return loop_reason_of(sample_clock_check_stamp(&ctl->internal.loop.clock, meas->stamp_tick, apply_tick));

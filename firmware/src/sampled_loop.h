@@ -231,13 +231,14 @@ TVO_LOOP_ENTRY tvo_status_t loop_miss(const tvo_loop_plant_t *p, void *ctl, uint
 }
 
 /* What a piece reports when one of the core's checks or computations produced nothing (a cold path):
- * its reason; the misuses the unchecked pieces cannot meet, a numeric failure. */
+ * its reason; the misuses the unchecked pieces cannot meet, a numeric failure. A value not finite is a
+ * computed one here (the check piece refused every measured one, TVO_REASON_NOT_FINITE): numeric. */
 TVO_LOOP_ENTRY tvo_reason_t loop_reason_of(tvo_status_t st)
 {
     static const uint8_t reason_of[TVO_STATUS_COUNT] = {
         [TVO_OK] = TVO_REASON_NONE,
         [TVO_ERR_NULL] = TVO_REASON_NUMERIC,
-        [TVO_ERR_NOT_FINITE] = TVO_REASON_NOT_FINITE,
+        [TVO_ERR_NOT_FINITE] = TVO_REASON_NUMERIC,
         [TVO_ERR_DIMENSION] = TVO_REASON_NUMERIC,
         [TVO_ERR_PARAM] = TVO_REASON_NUMERIC,
         [TVO_ERR_CAPACITY] = TVO_REASON_NUMERIC,

@@ -207,6 +207,7 @@ static void assert_session_kept(int line)
     memcpy(&expected, &snapshot, sizeof(expected));
     if (!clock_node) {
         expected.schedule.clock.plant.refused_in_row = after->clock.plant.refused_in_row; /* the streak rule */
+        expected.schedule.clock.plant.vote_period = after->clock.plant.vote_period;       /* the vote's */
     }
     /* The one thing a refused measurement may leave (README "Timing"): a vote on the plant's clock or
      * numbering. */
@@ -1161,6 +1162,65 @@ static void test_plant_one_sample_far_ahead_costs_one_refusal(void)
     }
 }
 
+/* A refused sample's answer, whatever it is refused for (a streak of refusals answers with the safe
+ * stop): its sequence echoed, held or stopped, and what it returns is that answer. */
+static tvo_lcm_unicycle_command_t expect_refused_any(const tvo_lcm_unicycle_sample_t *m, int line)
+{
+    ef_record_clear(&rec);
+    UNITY_TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_SAMPLE, send_sample(m, 0), line, "handled");
+    const tvo_lcm_unicycle_command_t cmd = the_command(line);
+    UNITY_TEST_ASSERT(cmd.header.status != TVO_LCM_COMMAND_HEADER_T_STATUS_OK, line, "refused");
+    UNITY_TEST_ASSERT_EQUAL_INT64(m->header.sequence, cmd.header.measurement_sequence, line, "sequence echoed");
+    UNITY_TEST_ASSERT(((uint32_t)cmd.header.flags & (TVO_LCM_COMMAND_HEADER_T_FLAG_HOLDING |
+                                                     TVO_LCM_COMMAND_HEADER_T_FLAG_SAFE_STOP)) != 0u,
+                      line, "held or stopped");
+    return cmd;
+}
+
+/* Issue 39: after a jump past the watchdog's span, late or repeated samples arriving among the genuine
+ * ones (a retry queue flushing: copies of samples already served, and of the genuine ones already
+ * refused) cost their own refusal only: the genuine stream is served from its third sample whatever
+ * their number (before the fix each copy restarted the vote: with 20 copies, served from the 22nd). */
+static void test_plant_stale_copies_after_a_jump_do_not_restart_the_vote(void)
+{
+    const int copies[] = {0, 1, 5, 20};
+    for (size_t c = 0; c < sizeof(copies) / sizeof(copies[0]); ++c) {
+        setUp();
+        plant_session_after(5);
+        const int64_t j = 5 + W + 10; /* a jump past the watchdog's span */
+        int sent = 0;
+        for (int64_t k = 0; k < 2; ++k) {
+            tvo_lcm_unicycle_sample_t genuine;
+            plant_meas(&genuine, j + k);
+            const tvo_lcm_unicycle_command_t cmd = expect_refused_any(&genuine, __LINE__);
+            TEST_ASSERT_TRUE_MESSAGE(cmd.header.status == TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_STAMP ||
+                                         cmd.header.status == TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_WATCHDOG,
+                                     "a genuine sample before the vote carries: the jump (or the streak's stop)");
+            /* Half the copies after each of the two refused genuine samples. */
+            const int here = (k == 0) ? copies[c] / 2 : copies[c] - copies[c] / 2;
+            for (int i = 0; i < here; ++i, ++sent) {
+                tvo_lcm_unicycle_sample_t copy;
+                if (sent % 2 == 0) {
+                    plant_meas(&copy, 5 - (sent / 2) % 5); /* a copy of a sample served before the gap */
+                } else {
+                    plant_meas(&copy, j + (sent / 2) % (k + 1)); /* a copy of a genuine one already refused */
+                }
+                (void)expect_refused_any(&copy, __LINE__);
+            }
+        }
+        tvo_lcm_unicycle_sample_t m;
+        plant_meas(&m, j + 2);
+        (void)EXPECT_ACCEPTED(m, 0, plant_apply(j + 2)); /* the third genuine sample, for every count */
+        plant_meas(&m, j + 3);
+        (void)EXPECT_ACCEPTED(m, 0, plant_apply(j + 3));
+        /* ... and a copy after it costs its own refusal too: the stream goes on. */
+        plant_meas(&m, j + 1);
+        (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_OUT_OF_ORDER);
+        plant_meas(&m, j + 4);
+        (void)EXPECT_ACCEPTED(m, 0, plant_apply(j + 4));
+    }
+}
+
 static void test_plant_watchdog_refusals_in_a_row_give_a_safe_stop_until_one_is_accepted(void)
 {
     plant_session_after(2);
@@ -1780,6 +1840,17 @@ static void test_chain_session_runs_through_the_node(void)
                 (void)send_sample(&m, now);
                 EXPECT_NOTHING_PUBLISHED();
                 TEST_ASSERT_EQUAL_INT32(1, node.counters.refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM]);
+                /* ... and a position beyond the workspace (float32's largest): implausible, nothing kept. */
+                tvo_lcm_chain_sample_t far = c;
+                far.has = TVO_LCM_CHAIN_SAMPLE_T_HAS_DERIVATIVES;
+                far.position_m[1] = 3.4e38;
+                take_snapshot();
+                ef_record_clear(&rec);
+                TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_CHAIN_SAMPLE, send_chain_sample(&far, now));
+                cmd = the_chain_command(1, __LINE__);
+                EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_MEASUREMENT, cmd.header.status);
+                TEST_ASSERT_EQUAL_HEX32(TVO_LCM_COMMAND_HEADER_T_FLAG_HOLDING, (uint32_t)cmd.header.flags);
+                ASSERT_SESSION_KEPT();
             }
             c.has = TVO_LCM_CHAIN_SAMPLE_T_HAS_DERIVATIVES;
             ef_record_clear(&rec);
@@ -3105,6 +3176,7 @@ int main(void)
     RUN_TEST(test_plant_huge_sequences_are_refused);
     RUN_TEST(test_plant_gap_with_consistent_sequence_is_accepted);
     RUN_TEST(test_plant_one_sample_far_ahead_costs_one_refusal);
+    RUN_TEST(test_plant_stale_copies_after_a_jump_do_not_restart_the_vote);
     RUN_TEST(test_target_stamped_at_epoch_minus_tau_is_carried_to_the_epoch);
     RUN_TEST(test_plant_watchdog_refusals_in_a_row_give_a_safe_stop_until_one_is_accepted);
     RUN_TEST(test_plant_wrong_robot_plant_and_non_finite_values_are_refused);

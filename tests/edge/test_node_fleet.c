@@ -336,6 +336,7 @@ static void assert_session_kept(int line)
     before.schedule.votes = after.schedule.votes;
     before.schedule.vote_value = after.schedule.vote_value;
     before.schedule.clock.plant.refused_in_row = after.schedule.clock.plant.refused_in_row;
+    before.schedule.clock.plant.vote_period = after.schedule.clock.plant.vote_period;
     UNITY_TEST_ASSERT_EQUAL_MEMORY(&before, &after, sizeof(before), line, "the session changed");
 }
 #define ASSERT_SESSION_KEPT() assert_session_kept(__LINE__)

@@ -15,6 +15,8 @@
  */
 #include "test_support.h"
 
+#include <float.h>
+
 #include "tvo/chain_controller.h"
 #include "internal/chain_controller.h"
 
@@ -906,6 +908,85 @@ static void test_chain_refused_measurement_leaves_filters_and_stamp_untouched(vo
     assert_chain_untouched(&ch_before, &ch.ctl);
 }
 
+/* Issue 39: a position outside the workspace (tvo/config.h: |y| <= TVO_POSITION_LIMIT_M per axis for
+ * every accepted measurement) is refused as the unicycle's is, IMPLAUSIBLE_MEASUREMENT, and nothing of
+ * it is kept: the next good sample gets the command a controller that never saw it computes. */
+static void test_chain_position_outside_the_workspace_is_implausible_and_keeps_nothing(void)
+{
+    const double limit = (double)TVO_POSITION_LIMIT_M_VALUE;
+    const double bad[] = {limit + 1.0, -(limit + 1.0), 3.4e38, -3.4e38};
+    for (int filtered = 0; filtered < 2; ++filtered) {
+        for (size_t b = 0; b < sizeof(bad) / sizeof(bad[0]); ++b) {
+            ch_t ch;
+            ch_filtered_running(&ch, 8u);
+            ch.ctl.cfg.filtered_derivatives = (uint8_t)filtered;
+            memcpy(&ch_copy, &ch.ctl, sizeof(ch_copy)); /* never sees the bad sample */
+            double xs[2][3];
+            tvo_chain_measurement_t m;
+            ch_sample(&ch, xs, &m);
+            m.y.d[0][b % 2u] = test_r(bad[b]);
+            tvo_reason_t reason = TVO_REASON_NONE;
+            ASSERT_STATUS(TVO_OK, tvo_chain_controller_check(&ch.ctl, &m, ch.apply, &reason));
+            TEST_ASSERT_EQUAL_INT(TVO_REASON_IMPLAUSIBLE_MEASUREMENT, reason);
+            memcpy(&ch_before, &ch.ctl, sizeof(ch_before));
+            tvo_chain_command_t cmd;
+            ASSERT_PERIOD(HELD(IMPLAUSIBLE_MEASUREMENT), tvo_chain_controller_step(&ch.ctl, &m, ch.apply, &cmd), cmd);
+            TEST_ASSERT_EQUAL_MEMORY(ch_before.internal.held.u, cmd.u, sizeof(cmd.u)); /* the command in force */
+            assert_chain_untouched(&ch_before, &ch.ctl);
+            /* The next period's good sample: the same command, bit for bit, as without the bad one. */
+            ch.apply += ch.cfg.period_ticks;
+            ch_sample(&ch, xs, &m);
+            tvo_chain_command_t reference;
+            ASSERT_PERIOD(APPLIED, tvo_chain_controller_step(&ch_copy, &m, ch.apply, &reference), reference);
+            ASSERT_PERIOD(APPLIED, tvo_chain_controller_step(&ch.ctl, &m, ch.apply, &cmd), cmd);
+            TEST_ASSERT_EQUAL_MEMORY(reference.u, cmd.u, sizeof(cmd.u));
+            TEST_ASSERT_EQUAL_HEX32(reference.flags, cmd.flags);
+        }
+    }
+}
+
+/* Issue 39: a value the step computed from finite inputs that came out NaN or infinite is a numerical
+ * failure (TVO_REASON_NUMERIC, wire status 8), not a measured one (TVO_REASON_NOT_FINITE, status 2).
+ * Measured y' and y'' at the type's largest finite value (finite: the check passes them; the chain
+ * bounds no derivative) are carried over the delay, which takes y' past it. */
+static void test_chain_computed_overflow_is_numeric_and_a_measured_nan_is_not_finite(void)
+{
+#if TVO_USE_DOUBLE
+    const tvo_real_t largest = DBL_MAX;
+#else
+    const tvo_real_t largest = FLT_MAX;
+#endif
+    ch_t ch;
+    ch_config(&ch, 3, 10000u, 5000u, 1u, 0u); /* derivatives measured, the delay compensated */
+    ASSERT_STATUS(TVO_OK, ch_init(&ch));
+    tvo_chain_command_t cmd;
+    for (int i = 0; i < 3; ++i) {
+        ASSERT_PERIOD(APPLIED, ch_step(&ch, &cmd), cmd);
+    }
+    double xs[2][3];
+    tvo_chain_measurement_t m;
+    ch_sample(&ch, xs, &m);
+    m.y.d[1][0] = largest;
+    m.y.d[2][0] = largest;
+    tvo_reason_t reason = TVO_REASON_COUNT;
+    ASSERT_STATUS(TVO_OK, tvo_chain_controller_check(&ch.ctl, &m, ch.apply, &reason));
+    TEST_ASSERT_EQUAL_INT(TVO_REASON_NONE, reason); /* every input finite */
+    memcpy(&ch_before, &ch.ctl, sizeof(ch_before));
+    ASSERT_PERIOD(HELD(NUMERIC), tvo_chain_controller_step(&ch.ctl, &m, ch.apply, &cmd), cmd);
+    assert_chain_untouched(&ch_before, &ch.ctl);
+    /* The same period measured NaN (y) or infinite (y'): the measurement's reason. */
+    ch_sample(&ch, xs, &m);
+    m.y.d[0][1] = TEST_NAN;
+    ASSERT_PERIOD(HELD(NOT_FINITE), tvo_chain_controller_step(&ch.ctl, &m, ch.apply, &cmd), cmd);
+    ch_sample(&ch, xs, &m);
+    m.y.d[1][0] = TEST_INF;
+    ASSERT_PERIOD(HELD(NOT_FINITE), tvo_chain_controller_step(&ch.ctl, &m, ch.apply, &cmd), cmd);
+    assert_chain_untouched(&ch_before, &ch.ctl);
+    /* ... and the period's good sample is served. */
+    ch_sample(&ch, xs, &m);
+    ASSERT_PERIOD(APPLIED, tvo_chain_controller_step(&ch.ctl, &m, ch.apply, &cmd), cmd);
+}
+
 static void test_chain_law_failure_after_the_filters_leaves_them_untouched(void)
 {
     /* A streamed target in place of the polynomial: the filters step (their working copies), then
@@ -958,5 +1039,7 @@ int main(void)
     RUN_TEST(test_chain_safe_stop_drops_to_rest_without_advancing_the_clock);
     RUN_TEST(test_chain_refused_measurement_leaves_filters_and_stamp_untouched);
     RUN_TEST(test_chain_law_failure_after_the_filters_leaves_them_untouched);
+    RUN_TEST(test_chain_position_outside_the_workspace_is_implausible_and_keeps_nothing);
+    RUN_TEST(test_chain_computed_overflow_is_numeric_and_a_measured_nan_is_not_finite);
     return UNITY_END();
 }
