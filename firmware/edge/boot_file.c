@@ -19,6 +19,7 @@
 /* A boot id and its newline, with room to see that a file holds more. */
 #define BOOT_TEXT_BYTES 32u
 
+static int fail(char *why, size_t why_size, const char *format, ...) __attribute__((format(printf, 3, 4)));
 static int fail(char *why, size_t why_size, const char *format, ...)
 {
     if (why != NULL && why_size > 0u) {
