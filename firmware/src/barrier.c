@@ -178,6 +178,16 @@ tvo_status_t tvo_barrier_schedule_jet(const tvo_barrier_t *barrier, const tvo_ti
     return TVO_OK;
 }
 
+tvo_status_t tvo_barrier_schedule_shared(const tvo_barrier_t *barrier, const tvo_time_jet_t *t, uint8_t order,
+                                        tvo_barrier_schedule_jet_t *local,
+                                        const tvo_barrier_schedule_jet_t **schedule)
+{
+    if (barrier == NULL || t == NULL || local == NULL || schedule == NULL) {
+        return TVO_ERR_NULL;
+    }
+    return barrier_schedule(barrier, t, order, local, schedule);
+}
+
 tvo_status_t tvo_barrier_weight_on_schedule(const tvo_barrier_t *barrier, const tvo_barrier_schedule_jet_t *schedule,
                                             const tvo_jet_t *f_jet, uint8_t order, tvo_jet_t *w_jet,
                                             tvo_real_t *dw_df)

@@ -9,8 +9,10 @@
  * by call where they are compiled for size. */
 #if TVO_SHAPE_COPIES
 #define TERM_BARRIER_WEIGHT barrier_weight
+#define TERM_BARRIER_SCHEDULE barrier_schedule
 #else
 #define TERM_BARRIER_WEIGHT tvo_barrier_weight_on_schedule
+#define TERM_BARRIER_SCHEDULE tvo_barrier_schedule_shared
 #endif
 
 /* A robot centre closer than this to an obstacle centre has no defined separating plane. */
@@ -102,12 +104,13 @@ TVO_SHAPE_BODY tvo_status_t distance_sum_shape(const tvo_distance_term_t *self, 
         tvo_jet_mul(&diff[axis], &diff[axis], order, &square);
         tvo_jet_axpy(sign, &square, order, &f);
     }
-    tvo_barrier_schedule_jet_t schedule;
-    tvo_status_t st = tvo_barrier_schedule_jet(self->barrier, t, order, &schedule);
+    tvo_barrier_schedule_jet_t local;
+    const tvo_barrier_schedule_jet_t *schedule = &local;
+    tvo_status_t st = TERM_BARRIER_SCHEDULE(self->barrier, t, order, &local, &schedule);
     tvo_jet_t w;
     tvo_real_t dw_df = TVO_R(0.0);
     if (st == TVO_OK) {
-        st = TERM_BARRIER_WEIGHT(self->barrier, &schedule, &f, order, &w, hessian != NULL ? &dw_df : NULL);
+        st = TERM_BARRIER_WEIGHT(self->barrier, schedule, &f, order, &w, hessian != NULL ? &dw_df : NULL);
     }
     if (st != TVO_OK) {
         return st;
@@ -136,6 +139,21 @@ TVO_SHAPE_BODY tvo_status_t distance_sum_shape(const tvo_distance_term_t *self, 
         along[1] = diff[1].c[0] * inv_norm;
     }
     const tvo_real_t curvature = TVO_R(2.0) * sign * w.c[0];
+#if TVO_BLOCK_SOLVE
+    if (tvo_hessian_add_pair(hessian, self->offset_a, self->offset_b, along, TVO_R(4.0) * norm_sq * dw_df + curvature,
+                             curvature)) {
+        /* Neither part kept apart: their gradients' sum, 2 sign w(tau) D(tau), as the jets' path adds it. */
+        tvo_jet_t weight;
+        tvo_jet_scale(&w, TVO_R(2.0) * sign, order, &weight);
+        for (uint8_t axis = 0; axis < 2u; ++axis) {
+            tvo_jet_t product;
+            tvo_jet_mul(&weight, &diff[axis], order, &product);
+            tvo_jet_add(&grad[self->offset_a + axis], &product, order, &grad[self->offset_a + axis]);
+            tvo_jet_sub(&grad[self->offset_b + axis], &product, order, &grad[self->offset_b + axis]);
+        }
+        return TVO_OK;
+    }
+#endif
     tvo_rank_one_t part;
     part.count = 4u;
     part.index[0] = self->offset_a;
@@ -256,12 +274,13 @@ TVO_SHAPE_BODY tvo_status_t halfspace_sum_shape(const tvo_halfspace_term_t *self
         tvo_jet_mul(&normal[axis], &z[self->offset + axis], order, &product);
         tvo_jet_add(&f, &product, order, &f);
     }
-    tvo_barrier_schedule_jet_t schedule;
-    tvo_status_t st = tvo_barrier_schedule_jet(self->barrier, t, order, &schedule);
+    tvo_barrier_schedule_jet_t local;
+    const tvo_barrier_schedule_jet_t *schedule = &local;
+    tvo_status_t st = TERM_BARRIER_SCHEDULE(self->barrier, t, order, &local, &schedule);
     tvo_jet_t w;
     tvo_real_t dw_df = TVO_R(0.0);
     if (st == TVO_OK) {
-        st = TERM_BARRIER_WEIGHT(self->barrier, &schedule, &f, order, &w, hessian != NULL ? &dw_df : NULL);
+        st = TERM_BARRIER_WEIGHT(self->barrier, schedule, &f, order, &w, hessian != NULL ? &dw_df : NULL);
     }
     if (st != TVO_OK) {
         return st;
@@ -424,8 +443,9 @@ TVO_SHAPE_BODY tvo_status_t free_space_sum_shape(const tvo_free_space_term_t *se
     if ((unsigned)self->offset + 2u > dim) {
         return TVO_ERR_DIMENSION;
     }
-    tvo_barrier_schedule_jet_t schedule;
-    tvo_status_t st = tvo_barrier_schedule_jet(self->barrier, t, order, &schedule);
+    tvo_barrier_schedule_jet_t local;
+    const tvo_barrier_schedule_jet_t *schedule = &local;
+    tvo_status_t st = TERM_BARRIER_SCHEDULE(self->barrier, t, order, &local, &schedule);
     if (st != TVO_OK) {
         return st;
     }
@@ -445,7 +465,7 @@ TVO_SHAPE_BODY tvo_status_t free_space_sum_shape(const tvo_free_space_term_t *se
         tvo_jet_axpy(normal[1], &z[o + 1u], order, &f);
         tvo_jet_t w;
         tvo_real_t dw_df = TVO_R(0.0);
-        st = TERM_BARRIER_WEIGHT(self->barrier, &schedule, &f, order, &w, hessian != NULL ? &dw_df : NULL);
+        st = TERM_BARRIER_WEIGHT(self->barrier, schedule, &f, order, &w, hessian != NULL ? &dw_df : NULL);
         if (st != TVO_OK) {
             return st;
         }

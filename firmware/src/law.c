@@ -108,6 +108,8 @@ static tvo_status_t add_jet_hessian(const tvo_objective_t *objective, const tvo_
     tvo_time_jet_t *frozen = &work->time;
     *frozen = *t;
     frozen->rate = TVO_R(0.0);
+    frozen->shared = &work->shared; /* emptied: frozen time has schedules of its own */
+    work->shared.owner = NULL;
     for (uint8_t i = 0; i < m; ++i) {
         tvo_jet_constant(y->d[0][i], &y_jet[i]);
     }
@@ -336,6 +338,19 @@ TRACKING_PATH_BODY tvo_status_t evaluate_tracking_shape(tvo_law_workspace_t *wor
     return TVO_OK;
 }
 
+#if TVO_BLOCK_SOLVE
+/* The objective's block-solve plan, if it has one that fits it and its closed forms are used. */
+static inline const tvo_solve_plan_t *usable_plan(const tvo_objective_t *objective)
+{
+    const tvo_solve_plan_t *plan = objective->plan;
+    if (plan == NULL || objective->jets_only || 2u * plan->primal_nodes != objective->primal_dim ||
+        2u * plan->node_count != objective->dim) {
+        return NULL;
+    }
+    return plan;
+}
+#endif
+
 /* The evaluation for a validated law and objective of order k and dimension m; each output is
  * optional: grad_rows[j] receives grad^(j) (j <= k, grad_count entries), hessian_out the Hessian,
  * *shift the solve's regularisation. */
@@ -357,16 +372,31 @@ TVO_SHAPE_BODY tvo_status_t evaluate_shape(const tvo_law_t *law, const tvo_objec
     if (!trajectory_jets(y, y_jet, k, m, 1)) {
         return TVO_ERR_NOT_FINITE;
     }
-    TVO_UNROLL_SMALL
-    for (unsigned i = 0; i < m; ++i) {
+#if TVO_BLOCK_SOLVE
+    /* Three robots or more: only the blocks of the problem's coupling (a tool asking for the Hessian gets
+     * every entry). The common shapes (one or two robots) are dense. */
+    const tvo_solve_plan_t *plan = m > TVO_SHAPE_PAIR_OUTPUT_DIM ? usable_plan(objective) : NULL;
+    if (plan != NULL && hessian_out == NULL) {
+        tvo_hessian_clear_blocks(hessian, plan);
+    } else
+#endif
+    {
         TVO_UNROLL_SMALL
-        for (unsigned j = 0; j < m; ++j) {
-            h[i][j] = TVO_R(0.0);
+        for (unsigned i = 0; i < m; ++i) {
+            TVO_UNROLL_SMALL
+            for (unsigned j = 0; j < m; ++j) {
+                h[i][j] = TVO_R(0.0);
+            }
         }
+#if TVO_BLOCK_SOLVE
+        hessian->plan = plan;
+#endif
     }
     tvo_time_jet_t *along = &work->time;
     *along = *t;
     along->rate = TVO_R(1.0);
+    along->shared = &work->shared; /* the barrier's schedules, computed by the first term that needs them */
+    work->shared.owner = NULL;
     /* One pass: every term's gradient jets; the closed forms add their Hessian on the way. */
     uint8_t jet_terms = 0u;
     tvo_status_t st = objective_sum_terms(objective, y_jet, along, k, g_jet, hessian, SUM_CLOSED_FORMS, &jet_terms);
@@ -402,13 +432,24 @@ TVO_SHAPE_BODY tvo_status_t evaluate_shape(const tvo_law_t *law, const tvo_objec
     }
 
     if (jet_terms > 0u) {
+#if TVO_BLOCK_SOLVE
+        if (plan != NULL) {
+            return TVO_ERR_NOT_INITIALIZED; /* a plan's terms all have closed forms: one was changed by hand */
+        }
+#endif
         st = add_jet_hessian(objective, y, t, work);
         if (st != TVO_OK) {
             return st;
         }
     }
-    /* Symmetrise: the exact Hessian is symmetric; rounding should not make the solve see otherwise. */
-    symmetrize(&h[0][0], TVO_MAX_Z_DIM, m);
+#if TVO_BLOCK_SOLVE
+    /* The block solve reads one copy of each block (its factor makes the other copy the first's). */
+    if (plan == NULL)
+#endif
+    {
+        /* Symmetrise: the exact Hessian is symmetric; rounding should not make the solve see otherwise. */
+        symmetrize(&h[0][0], TVO_MAX_Z_DIM, m);
+    }
     if (hessian_out != NULL) {
         /* The whole Hessian, rank-one parts included, for tests and tools. */
         for (unsigned i = 0; i < m; ++i) {

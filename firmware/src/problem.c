@@ -2,6 +2,7 @@
 #include "tvo/problem.h"
 
 #include "internal/barrier.h"
+#include "internal/block_solve.h"
 #include "internal/constraints.h"
 #include "internal/equality.h"
 #include "internal/objective.h"
@@ -133,6 +134,37 @@ static void problem_start_rule(const tvo_objective_t *objective, const tvo_real_
     problem->slack_pending = 0u;
 }
 
+#if TVO_BLOCK_SOLVE
+/* The law's solve follows the problem's coupling from three robots on (two are cheaper dense): a distance
+ * bound couples its robots, a formation offset each of its robots to its multipliers (tvo/linsolve.h). A
+ * plan that cannot be made leaves the dense solve. */
+static void choose_solve_plan(tvo_problem_t *problem, const tvo_problem_desc_t *desc)
+{
+    const uint8_t robots = desc->robot_count;
+    if (robots < 3u) {
+        return;
+    }
+    uint8_t pairs[2u * (TVO_MAX_DISTANCE_BOUNDS + 2u * TVO_MAX_OFFSET_EQUALITIES)];
+    uint8_t count = 0u;
+    for (uint8_t i = 0; i < desc->distance_count && i < TVO_MAX_DISTANCE_BOUNDS; ++i) {
+        pairs[2u * count] = desc->distance[i].robot_a;
+        pairs[2u * count + 1u] = desc->distance[i].robot_b;
+        count++;
+    }
+    for (uint8_t i = 0; i < desc->offset_count && i < TVO_MAX_OFFSET_EQUALITIES; ++i) {
+        for (uint8_t end = 0; end < 2u; ++end) {
+            pairs[2u * count] = end == 0u ? desc->offset[i].robot_a : desc->offset[i].robot_b;
+            pairs[2u * count + 1u] = (uint8_t)(robots + i);
+            count++;
+        }
+    }
+    if (tvo_solve_plan_build(&problem->plan, robots, desc->offset_count, problem->objective.primal_dim, pairs, count) ==
+        TVO_OK) {
+        problem->objective.plan = &problem->plan;
+    }
+}
+#endif
+
 tvo_status_t tvo_problem_init(tvo_problem_t *problem, const tvo_problem_desc_t *desc, uint8_t relative_degree,
                               uint8_t *bad_part)
 {
@@ -193,6 +225,9 @@ tvo_status_t tvo_problem_init(tvo_problem_t *problem, const tvo_problem_desc_t *
     if (any_inequality) {
         problem->objective.start_rule = problem_start_rule;
     }
+#if TVO_BLOCK_SOLVE
+    choose_solve_plan(problem, desc);
+#endif
     problem->initialized = 1;
     return TVO_OK;
 }

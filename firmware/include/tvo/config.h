@@ -130,8 +130,11 @@ typedef float tvo_real_t;
 #endif
 
 /* The limits must make sense together. */
-#if TVO_MAX_OUTPUT_DIM < 2 || TVO_MAX_OUTPUT_DIM % 2 != 0
-#error "TVO_MAX_OUTPUT_DIM must be a positive even number (2 per robot)"
+#if TVO_MAX_OUTPUT_DIM < 2 || TVO_MAX_OUTPUT_DIM > 64 || TVO_MAX_OUTPUT_DIM % 2 != 0
+#error "TVO_MAX_OUTPUT_DIM must be an even number 2 .. 64 (2 per robot, up to 32 robots)"
+#endif
+#if TVO_MAX_TERMS < 1 || TVO_MAX_TERMS > 255
+#error "TVO_MAX_TERMS must be 1 .. 255"
 #endif
 #if TVO_MAX_RELATIVE_DEGREE < 1 || TVO_MAX_RELATIVE_DEGREE > 3
 #error "TVO_MAX_RELATIVE_DEGREE must be 1, 2 or 3"

@@ -180,7 +180,8 @@ static inline void sample_clock_end_good(tvo_sample_clock_t *clock, const tvo_pe
     clock->stopped = 0;
 }
 
-/* The objective's time at a tick time of the clock (frac_ticks < tick_hz, tick_hz > 0). */
+/* The objective's time at a tick time of the clock (frac_ticks < tick_hz, tick_hz > 0); t's shared values
+ * are left to the caller (the controllers' time jet is their law's, which sets them). */
 static inline void time_jet_at_tick_time(const tvo_tick_time_t *time, uint32_t tick_hz, tvo_real_t rate,
                                          tvo_time_jet_t *t)
 {
