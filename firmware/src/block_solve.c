@@ -109,32 +109,32 @@ tvo_status_t tvo_solve_plan_build(tvo_solve_plan_t *plan, uint8_t robots, uint8_
 
 /* ------------------------------------------------------------------------- each step */
 
-#define AT(a, i, j) ((a)[i][j])
-
-/* The blocks of position p: below[begin .. end). */
-#define BLOCKS_OF(plan, p, begin, end)                                                                           \
-    const unsigned begin = (plan)->below_start[p];                                                              \
-    const unsigned end = (plan)->below_start[(p) + 1u] <= TVO_PLAN_MAX_BLOCKS ? (plan)->below_start[(p) + 1u]   \
-                                                                               : TVO_PLAN_MAX_BLOCKS
+/* A block's two rows from its first entry: row[0][0..1] and row[1][0..1]. */
+#define ROW1(row) ((row) + TVO_MAX_Z_DIM)
 
 void block_clear(tvo_real_t (*a)[TVO_MAX_Z_DIM], const tvo_solve_plan_t *plan)
 {
     TVO_ASSERT(a != NULL && plan != NULL);
+    const uint8_t *below = plan->below;
     for (unsigned p = 0; p < plan->node_count && p < TVO_PLAN_MAX_NODES; ++p) {
         const unsigned f = plan->first[p];
-        AT(a, f, f) = TVO_R(0.0);
-        AT(a, f, f + 1u) = TVO_R(0.0);
-        AT(a, f + 1u, f) = TVO_R(0.0);
-        AT(a, f + 1u, f + 1u) = TVO_R(0.0);
-        BLOCKS_OF(plan, p, begin, end);
-        for (unsigned k = begin; k < end; ++k) {
-            const unsigned g = plan->below[k];
-            for (unsigned i = 0; i < 2u; ++i) {
-                AT(a, f + i, g) = TVO_R(0.0);
-                AT(a, f + i, g + 1u) = TVO_R(0.0);
-                AT(a, g + i, f) = TVO_R(0.0);
-                AT(a, g + i, f + 1u) = TVO_R(0.0);
-            }
+        tvo_real_t *d = &a[f][f];
+        d[0] = TVO_R(0.0);
+        d[1] = TVO_R(0.0);
+        ROW1(d)[0] = TVO_R(0.0);
+        ROW1(d)[1] = TVO_R(0.0);
+        for (unsigned k = plan->below_start[p]; k < plan->below_start[p + 1u]; ++k) {
+            const unsigned g = below[k];
+            tvo_real_t *upper = &a[f][g];
+            tvo_real_t *lower = &a[g][f];
+            upper[0] = TVO_R(0.0);
+            upper[1] = TVO_R(0.0);
+            ROW1(upper)[0] = TVO_R(0.0);
+            ROW1(upper)[1] = TVO_R(0.0);
+            lower[0] = TVO_R(0.0);
+            lower[1] = TVO_R(0.0);
+            ROW1(lower)[0] = TVO_R(0.0);
+            ROW1(lower)[1] = TVO_R(0.0);
         }
     }
 }
@@ -144,134 +144,125 @@ void block_prepare(tvo_real_t (*a)[TVO_MAX_Z_DIM], const tvo_solve_plan_t *plan,
     TVO_ASSERT(a != NULL && plan != NULL && diag != NULL);
     for (unsigned p = 0; p < plan->node_count && p < TVO_PLAN_MAX_NODES; ++p) {
         const unsigned f = plan->first[p];
-        diag[f] = AT(a, f, f);
-        diag[f + 1u] = AT(a, f + 1u, f + 1u);
-        AT(a, f + 1u, f) = AT(a, f, f + 1u);
-        BLOCKS_OF(plan, p, begin, end);
-        for (unsigned k = begin; k < end; ++k) {
-            const unsigned g = plan->below[k];
-            for (unsigned i = 0; i < 2u; ++i) {
-                AT(a, g + i, f) = AT(a, f, g + i);
-                AT(a, g + i, f + 1u) = AT(a, f + 1u, g + i);
-            }
-        }
+        tvo_real_t *d = &a[f][f];
+        diag[f] = d[0];
+        diag[f + 1u] = ROW1(d)[1];
+        ROW1(d)[0] = d[1];
     }
 }
 
 void block_restore(tvo_real_t (*a)[TVO_MAX_Z_DIM], const tvo_solve_plan_t *plan, const tvo_real_t *diag, tvo_real_t mu)
 {
     TVO_ASSERT(a != NULL && plan != NULL && diag != NULL);
+    const uint8_t *below = plan->below;
     for (unsigned p = 0; p < plan->node_count && p < TVO_PLAN_MAX_NODES; ++p) {
         const unsigned f = plan->first[p];
         const tvo_real_t shift = p < plan->primal_nodes ? mu : TVO_R(0.0);
-        AT(a, f, f) = diag[f] + shift;
-        AT(a, f + 1u, f + 1u) = diag[f + 1u] + shift;
-        AT(a, f + 1u, f) = AT(a, f, f + 1u);
-        BLOCKS_OF(plan, p, begin, end);
-        for (unsigned k = begin; k < end; ++k) {
-            const unsigned g = plan->below[k];
-            for (unsigned i = 0; i < 2u; ++i) {
-                AT(a, g + i, f) = AT(a, f, g + i);
-                AT(a, g + i, f + 1u) = AT(a, f + 1u, g + i);
-            }
+        tvo_real_t *d = &a[f][f];
+        d[0] = diag[f] + shift;
+        ROW1(d)[1] = diag[f + 1u] + shift;
+        ROW1(d)[0] = d[1];
+        for (unsigned k = plan->below_start[p]; k < plan->below_start[p + 1u]; ++k) {
+            const unsigned g = below[k];
+            const tvo_real_t *upper = &a[f][g];
+            tvo_real_t *lower = &a[g][f];
+            lower[0] = upper[0];
+            lower[1] = ROW1(upper)[0];
+            ROW1(lower)[0] = upper[1];
+            ROW1(lower)[1] = ROW1(upper)[1];
         }
     }
 }
 
-/* Factors position p's diagonal block (lower entries) against the references of its two coordinates. */
-static int factor_diagonal_block(tvo_real_t (*a)[TVO_MAX_Z_DIM], unsigned f, tvo_real_t reference0, tvo_real_t reference1)
+/* Pivots of 64 eps of their reference or less (or a reference not positive) fail, as the dense factor's. */
+static int pivot_fails(tvo_real_t pivot, tvo_real_t reference)
 {
-    const tvo_real_t d0 = AT(a, f, f);
-    if (!(reference0 > TVO_R(0.0)) || !(d0 > TVO_R(64.0) * TVO_EPSILON * reference0)) {
-        return 0;
-    }
-    const tvo_real_t l00 = TVO_SQRT(d0);
-    const tvo_real_t l10 = AT(a, f + 1u, f) / l00;
-    const tvo_real_t d1 = AT(a, f + 1u, f + 1u) - l10 * l10;
-    if (!(reference1 > TVO_R(0.0)) || !(d1 > TVO_R(64.0) * TVO_EPSILON * reference1)) {
-        return 0;
-    }
-    AT(a, f, f) = l00;
-    AT(a, f + 1u, f) = l10;
-    AT(a, f + 1u, f + 1u) = TVO_SQRT(d1);
-    return 1;
+    return !(reference > TVO_R(0.0)) || !(pivot > TVO_R(64.0) * TVO_EPSILON * reference);
 }
 
 /* At the end of the robots' elimination the multipliers' blocks hold -S (S = C P^-1 C^T, D being 0):
  * negated, the rest is an ordinary Cholesky; reference receives S's diagonal for the pivot floors. */
-static void negate_multiplier_blocks(tvo_real_t (*a)[TVO_MAX_Z_DIM], const tvo_solve_plan_t *plan, tvo_real_t *reference)
+static void negate_multiplier_blocks(tvo_real_t (*a)[TVO_MAX_Z_DIM], const tvo_solve_plan_t *plan,
+                                     tvo_real_t *reference)
 {
     for (unsigned p = plan->primal_nodes; p < plan->node_count && p < TVO_PLAN_MAX_NODES; ++p) {
         const unsigned f = plan->first[p];
         const unsigned e = 2u * (p - plan->primal_nodes);
-        AT(a, f, f) = -AT(a, f, f);
-        AT(a, f + 1u, f) = -AT(a, f + 1u, f);
-        AT(a, f + 1u, f + 1u) = -AT(a, f + 1u, f + 1u);
+        tvo_real_t *d = &a[f][f];
+        d[0] = -d[0];
+        ROW1(d)[0] = -ROW1(d)[0];
+        ROW1(d)[1] = -ROW1(d)[1];
         if (e + 1u < TVO_ARRAY_LEN(TVO_MAX_EQUALITIES)) {
-            reference[e] = AT(a, f, f);
-            reference[e + 1u] = AT(a, f + 1u, f + 1u);
+            reference[e] = d[0];
+            reference[e + 1u] = ROW1(d)[1];
         }
-        BLOCKS_OF(plan, p, begin, end);
-        for (unsigned k = begin; k < end; ++k) {
-            const unsigned g = plan->below[k]; /* a later position: a multiplier's too */
-            for (unsigned i = 0; i < 2u; ++i) {
-                AT(a, g + i, f) = -AT(a, g + i, f);
-                AT(a, g + i, f + 1u) = -AT(a, g + i, f + 1u);
-            }
+        for (unsigned k = plan->below_start[p]; k < plan->below_start[p + 1u]; ++k) {
+            tvo_real_t *lower = &a[plan->below[k]][f]; /* a later position: a multiplier's too */
+            lower[0] = -lower[0];
+            lower[1] = -lower[1];
+            ROW1(lower)[0] = -ROW1(lower)[0];
+            ROW1(lower)[1] = -ROW1(lower)[1];
         }
     }
 }
 
-block_factor_result_t block_factor(tvo_real_t (*a)[TVO_MAX_Z_DIM], const tvo_solve_plan_t *plan, const tvo_real_t *diag, tvo_real_t mu)
+block_factor_result_t block_factor(tvo_real_t (*a)[TVO_MAX_Z_DIM], const tvo_solve_plan_t *plan, const tvo_real_t *diag,
+                                   tvo_real_t mu)
 {
     TVO_ASSERT(a != NULL && plan != NULL && diag != NULL);
     tvo_real_t reference[TVO_ARRAY_LEN(TVO_MAX_EQUALITIES)] = {TVO_R(0.0)};
+    const uint8_t *below = plan->below;
     for (unsigned p = 0; p < plan->node_count && p < TVO_PLAN_MAX_NODES; ++p) {
         const unsigned f = plan->first[p];
         const int primal = p < plan->primal_nodes;
         if (p == plan->primal_nodes) {
             negate_multiplier_blocks(a, plan, reference);
         }
-        const unsigned e = primal ? 0u : 2u * (p - plan->primal_nodes);
-        const tvo_real_t reference0 = primal ? diag[f] + mu : reference[e % TVO_ARRAY_LEN(TVO_MAX_EQUALITIES)];
-        const tvo_real_t reference1 = primal ? diag[f + 1u] + mu : reference[(e + 1u) % TVO_ARRAY_LEN(TVO_MAX_EQUALITIES)];
-        if (!factor_diagonal_block(a, f, reference0, reference1)) {
+        const unsigned e = primal ? 0u : (2u * (p - plan->primal_nodes)) % TVO_ARRAY_LEN(TVO_MAX_EQUALITIES);
+        /* L_pp = chol(A_pp), in the block's lower entries. */
+        tvo_real_t *d = &a[f][f];
+        const tvo_real_t d0 = d[0];
+        if (pivot_fails(d0, primal ? diag[f] + mu : reference[e])) {
             return primal ? BLOCK_PRIMAL_PIVOT : BLOCK_DUAL_PIVOT;
         }
-        const tvo_real_t l00 = AT(a, f, f);
-        const tvo_real_t l10 = AT(a, f + 1u, f);
-        const tvo_real_t l11 = AT(a, f + 1u, f + 1u);
-        BLOCKS_OF(plan, p, begin, end);
-        /* L_qp = A_qp L_pp^-T, row by row. */
-        for (unsigned k = begin; k < end; ++k) {
-            const unsigned g = plan->below[k];
-            for (unsigned i = 0; i < 2u; ++i) {
-                const tvo_real_t x0 = AT(a, g + i, f) / l00;
-                AT(a, g + i, f) = x0;
-                AT(a, g + i, f + 1u) = (AT(a, g + i, f + 1u) - l10 * x0) / l11;
-            }
+        const tvo_real_t l00 = TVO_SQRT(d0);
+        const tvo_real_t l10 = ROW1(d)[0] / l00;
+        const tvo_real_t d1 = ROW1(d)[1] - l10 * l10;
+        if (pivot_fails(d1, primal ? diag[f + 1u] + mu : reference[(e + 1u) % TVO_ARRAY_LEN(TVO_MAX_EQUALITIES)])) {
+            return primal ? BLOCK_PRIMAL_PIVOT : BLOCK_DUAL_PIVOT;
         }
-        /* A_qr -= L_qp L_rp^T for every pair q >= r of p's blocks (the fill made room for each). */
+        const tvo_real_t l11 = TVO_SQRT(d1);
+        d[0] = l00;
+        ROW1(d)[0] = l10;
+        ROW1(d)[1] = l11;
+        const unsigned begin = plan->below_start[p];
+        const unsigned end = plan->below_start[p + 1u];
         for (unsigned k = begin; k < end; ++k) {
-            const unsigned g = plan->below[k];
-            const tvo_real_t q00 = AT(a, g, f);
-            const tvo_real_t q01 = AT(a, g, f + 1u);
-            const tvo_real_t q10 = AT(a, g + 1u, f);
-            const tvo_real_t q11 = AT(a, g + 1u, f + 1u);
+            /* L_qp = A_qp L_pp^-T, row by row; then A_qr -= L_qp L_rp^T for each earlier block r of p and
+             * A_qq -= L_qp L_qp^T (the fill made room for each). */
+            const unsigned g = below[k];
+            tvo_real_t *q = &a[g][f];
+            const tvo_real_t q00 = q[0] / l00;
+            const tvo_real_t q01 = (q[1] - l10 * q00) / l11;
+            const tvo_real_t q10 = ROW1(q)[0] / l00;
+            const tvo_real_t q11 = (ROW1(q)[1] - l10 * q10) / l11;
+            q[0] = q00;
+            q[1] = q01;
+            ROW1(q)[0] = q10;
+            ROW1(q)[1] = q11;
             for (unsigned r = begin; r < k; ++r) {
-                const unsigned h = plan->below[r];
-                const tvo_real_t r00 = AT(a, h, f);
-                const tvo_real_t r01 = AT(a, h, f + 1u);
-                const tvo_real_t r10 = AT(a, h + 1u, f);
-                const tvo_real_t r11 = AT(a, h + 1u, f + 1u);
-                AT(a, g, h) -= q00 * r00 + q01 * r01;
-                AT(a, g, h + 1u) -= q00 * r10 + q01 * r11;
-                AT(a, g + 1u, h) -= q10 * r00 + q11 * r01;
-                AT(a, g + 1u, h + 1u) -= q10 * r10 + q11 * r11;
+                const unsigned h = below[r];
+                const tvo_real_t *l = &a[h][f];
+                tvo_real_t *target = &a[g][h];
+                target[0] -= q00 * l[0] + q01 * l[1];
+                target[1] -= q00 * ROW1(l)[0] + q01 * ROW1(l)[1];
+                ROW1(target)[0] -= q10 * l[0] + q11 * l[1];
+                ROW1(target)[1] -= q10 * ROW1(l)[0] + q11 * ROW1(l)[1];
             }
-            AT(a, g, g) -= q00 * q00 + q01 * q01;
-            AT(a, g + 1u, g) -= q10 * q00 + q11 * q01;
-            AT(a, g + 1u, g + 1u) -= q10 * q10 + q11 * q11;
+            tvo_real_t *diagonal = &a[g][g];
+            diagonal[0] -= q00 * q00 + q01 * q01;
+            ROW1(diagonal)[0] -= q10 * q00 + q11 * q01;
+            ROW1(diagonal)[1] -= q10 * q10 + q11 * q11;
         }
     }
     return BLOCK_FACTORED;
@@ -281,24 +272,26 @@ void block_substitute(tvo_real_t (*a)[TVO_MAX_Z_DIM], const tvo_solve_plan_t *pl
 {
     TVO_ASSERT(a != NULL && plan != NULL && b != NULL && x != NULL);
     const unsigned nodes = plan->node_count <= TVO_PLAN_MAX_NODES ? plan->node_count : TVO_PLAN_MAX_NODES;
+    const uint8_t *below = plan->below;
     for (unsigned p = 0; p < nodes; ++p) {
         const unsigned f = plan->first[p];
         x[f] = b[f];
         x[f + 1u] = b[f + 1u];
     }
-    /* L z = b, each solved block's part taken off the later ones. */
+    /* L z = b, each solved block's part taken off the later ones; then D z (the multipliers' blocks are
+     * the negated Schur complement's). */
     for (unsigned p = 0; p < nodes; ++p) {
         const unsigned f = plan->first[p];
-        const tvo_real_t z0 = x[f] / AT(a, f, f);
-        const tvo_real_t z1 = (x[f + 1u] - AT(a, f + 1u, f) * z0) / AT(a, f + 1u, f + 1u);
-        /* D z: the multipliers' blocks are the negated Schur complement's. */
+        const tvo_real_t *d = &a[f][f];
+        const tvo_real_t z0 = x[f] / d[0];
+        const tvo_real_t z1 = (x[f + 1u] - ROW1(d)[0] * z0) / ROW1(d)[1];
         x[f] = p < plan->primal_nodes ? z0 : -z0;
         x[f + 1u] = p < plan->primal_nodes ? z1 : -z1;
-        BLOCKS_OF(plan, p, begin, end);
-        for (unsigned k = begin; k < end; ++k) {
-            const unsigned g = plan->below[k];
-            x[g] -= AT(a, g, f) * z0 + AT(a, g, f + 1u) * z1;
-            x[g + 1u] -= AT(a, g + 1u, f) * z0 + AT(a, g + 1u, f + 1u) * z1;
+        for (unsigned k = plan->below_start[p]; k < plan->below_start[p + 1u]; ++k) {
+            const unsigned g = below[k];
+            const tvo_real_t *l = &a[g][f];
+            x[g] -= l[0] * z0 + l[1] * z1;
+            x[g + 1u] -= ROW1(l)[0] * z0 + ROW1(l)[1] * z1;
         }
     }
     /* L^T x = D z, from the last position back. */
@@ -307,15 +300,16 @@ void block_substitute(tvo_real_t (*a)[TVO_MAX_Z_DIM], const tvo_solve_plan_t *pl
         const unsigned f = plan->first[p];
         tvo_real_t y0 = x[f];
         tvo_real_t y1 = x[f + 1u];
-        BLOCKS_OF(plan, p, begin, end);
-        for (unsigned k = begin; k < end; ++k) {
-            const unsigned g = plan->below[k];
-            y0 -= AT(a, g, f) * x[g] + AT(a, g + 1u, f) * x[g + 1u];
-            y1 -= AT(a, g, f + 1u) * x[g] + AT(a, g + 1u, f + 1u) * x[g + 1u];
+        for (unsigned k = plan->below_start[p]; k < plan->below_start[p + 1u]; ++k) {
+            const unsigned g = below[k];
+            const tvo_real_t *l = &a[g][f];
+            y0 -= l[0] * x[g] + ROW1(l)[0] * x[g + 1u];
+            y1 -= l[1] * x[g] + ROW1(l)[1] * x[g + 1u];
         }
-        const tvo_real_t x1 = y1 / AT(a, f + 1u, f + 1u);
+        const tvo_real_t *d = &a[f][f];
+        const tvo_real_t x1 = y1 / ROW1(d)[1];
         x[f + 1u] = x1;
-        x[f] = (y0 - AT(a, f + 1u, f) * x1) / AT(a, f, f);
+        x[f] = (y0 - ROW1(d)[0] * x1) / d[0];
     }
 }
 
@@ -326,39 +320,37 @@ int block_pattern_finite(tvo_real_t (*a)[TVO_MAX_Z_DIM], const tvo_solve_plan_t 
         const unsigned f = plan->first[p];
         probe += diag[f] * TVO_R(0.0);
         probe += diag[f + 1u] * TVO_R(0.0);
-        probe += AT(a, f, f + 1u) * TVO_R(0.0);
-        BLOCKS_OF(plan, p, begin, end);
-        for (unsigned k = begin; k < end; ++k) {
-            const unsigned g = plan->below[k];
-            for (unsigned i = 0; i < 2u; ++i) {
-                probe += AT(a, f + i, g) * TVO_R(0.0);
-                probe += AT(a, f + i, g + 1u) * TVO_R(0.0);
-            }
+        probe += a[f][f + 1u] * TVO_R(0.0);
+        for (unsigned k = plan->below_start[p]; k < plan->below_start[p + 1u]; ++k) {
+            const tvo_real_t *upper = &a[f][plan->below[k]];
+            probe += upper[0] * TVO_R(0.0);
+            probe += upper[1] * TVO_R(0.0);
+            probe += ROW1(upper)[0] * TVO_R(0.0);
+            probe += ROW1(upper)[1] * TVO_R(0.0);
         }
     }
     return isfinite(probe);
 }
 
-void block_gershgorin(tvo_real_t (*a)[TVO_MAX_Z_DIM], const tvo_solve_plan_t *plan, const tvo_real_t *diag, tvo_real_t *off,
-                      tvo_real_t *scale, tvo_real_t *gershgorin)
+void block_gershgorin(tvo_real_t (*a)[TVO_MAX_Z_DIM], const tvo_solve_plan_t *plan, const tvo_real_t *diag,
+                      tvo_real_t *off, tvo_real_t *scale, tvo_real_t *gershgorin)
 {
     const unsigned primal = plan->primal_nodes <= TVO_PLAN_MAX_NODES ? plan->primal_nodes : TVO_PLAN_MAX_NODES;
     for (unsigned p = 0; p < primal; ++p) {
         const unsigned f = plan->first[p];
-        off[f] = TVO_FABS(AT(a, f, f + 1u));
+        off[f] = TVO_FABS(a[f][f + 1u]);
         off[f + 1u] = off[f];
     }
     for (unsigned p = 0; p < primal; ++p) {
         const unsigned f = plan->first[p];
-        BLOCKS_OF(plan, p, begin, end);
-        for (unsigned k = begin; k < end; ++k) {
+        for (unsigned k = plan->below_start[p]; k < plan->below_start[p + 1u]; ++k) {
             const unsigned g = plan->below[k];
             if (g >= 2u * primal) {
                 continue; /* a multiplier's block: not in P */
             }
             for (unsigned i = 0; i < 2u; ++i) {
                 for (unsigned j = 0; j < 2u; ++j) {
-                    const tvo_real_t v = TVO_FABS(AT(a, f + i, g + j));
+                    const tvo_real_t v = TVO_FABS(a[f + i][g + j]);
                     off[f + i] += v;
                     off[g + j] += v;
                 }

@@ -491,13 +491,16 @@ void tvo_hessian_add_part(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_
 TVO_SHAPE_BODY void hessian_add_shape(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_t *grad,
                                       const unsigned count, const uint8_t order)
 {
-    tvo_real_t scale = TVO_R(1.0);
+    /* Stiff: size > TVO_STIFF_RATIO max(1, |h_ii|) over its indices (an entry that is not a number passed
+     * over), asked as size > ratio and then > ratio |h_ii| for each: the same comparison (ratio times the
+     * maximum is the maximum of ratio times each), which a part far from stiff fails at once. */
+    const tvo_real_t size = rank_one_size_shape(part, count);
+    int stiff = size > TVO_STIFF_RATIO;
     TVO_UNROLL_SMALL
     for (unsigned i = 0; i < count; ++i) {
-        const tvo_real_t d = TVO_FABS(h->matrix[part->index[i]][part->index[i]]);
-        scale = d > scale ? d : scale;
+        stiff = stiff && !(size <= TVO_STIFF_RATIO * TVO_FABS(h->matrix[part->index[i]][part->index[i]]));
     }
-    if (rank_one_size_shape(part, count) > TVO_STIFF_RATIO * scale) {
+    if (stiff) {
         tvo_hessian_add_part(h, part, grad, order);
     } else {
         add_part_shape(part, h->matrix, grad, count, order);
@@ -524,13 +527,12 @@ void tvo_hessian_add(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_t *gr
 }
 
 #if TVO_BLOCK_SOLVE
-static tvo_real_t max_abs4(tvo_real_t a, tvo_real_t b, tvo_real_t c, tvo_real_t d)
+/* size > TVO_STIFF_RATIO max(1, |d_i|) (hessian_add_shape's test, in its order of questions). */
+static int stiff_against(tvo_real_t size, tvo_real_t d0, tvo_real_t d1, tvo_real_t d2, tvo_real_t d3)
 {
-    tvo_real_t m = TVO_R(1.0); /* at least 1, as hessian_add_shape's scale */
-    m = TVO_FABS(a) > m ? TVO_FABS(a) : m;
-    m = TVO_FABS(b) > m ? TVO_FABS(b) : m;
-    m = TVO_FABS(c) > m ? TVO_FABS(c) : m;
-    return TVO_FABS(d) > m ? TVO_FABS(d) : m;
+    return size > TVO_STIFF_RATIO && !(size <= TVO_STIFF_RATIO * TVO_FABS(d0)) &&
+           !(size <= TVO_STIFF_RATIO * TVO_FABS(d1)) && !(size <= TVO_STIFF_RATIO * TVO_FABS(d2)) &&
+           !(size <= TVO_STIFF_RATIO * TVO_FABS(d3));
 }
 
 int tvo_hessian_add_pair(tvo_hessian_t *h, uint8_t a, uint8_t b, const tvo_real_t e[2], tvo_real_t along_weight,
@@ -550,14 +552,11 @@ int tvo_hessian_add_pair(tvo_hessian_t *h, uint8_t a, uint8_t b, const tvo_real_
      * the diagonal as it is, the one across against the diagonal with the first added. */
     const tvo_real_t e00 = e0 * e0;
     const tvo_real_t e11 = e1 * e1;
-    if (along_weight * (((e00 + e11) + e00) + e11) >
-        TVO_STIFF_RATIO * max_abs4(a0[a], a1[a + 1u], b0[b], b1[b + 1u])) {
-        return 0;
-    }
     const tvo_real_t w00 = along_weight * e0 * e0;
     const tvo_real_t w11 = along_weight * e1 * e1;
-    if (across_weight * (((e11 + e00) + e11) + e00) >
-        TVO_STIFF_RATIO * max_abs4(a0[a] + w00, a1[a + 1u] + w11, b0[b] + w00, b1[b + 1u] + w11)) {
+    if (stiff_against(along_weight * (((e00 + e11) + e00) + e11), a0[a], a1[a + 1u], b0[b], b1[b + 1u]) ||
+        stiff_against(across_weight * (((e11 + e00) + e11) + e00), a0[a] + w00, a1[a + 1u] + w11, b0[b] + w00,
+                      b1[b + 1u] + w11)) {
         return 0;
     }
     /* B = w_along e e^T + w_across e_perp e_perp^T: its three entries, once for the four blocks. */

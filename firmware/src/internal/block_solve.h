@@ -35,8 +35,9 @@ tvo_status_t tvo_solve_plan_build(tvo_solve_plan_t *plan, uint8_t robots, uint8_
 /** Zeroes every block of the plan (both copies of a coupled pair), nothing else. */
 void block_clear(tvo_real_t (*a)[TVO_MAX_Z_DIM], const tvo_solve_plan_t *plan);
 
-/** diag receives the matrix's diagonal, and the lower copies become the upper ones' transposes (the
- *  terms' rounding may leave the two copies a bit apart): the matrix every factor attempt starts from. */
+/** diag receives the matrix's diagonal, and each diagonal block's lower entry its upper one: the first
+ *  factor attempt then reads the blocks as the terms added them (both copies of a coupled pair alike but
+ *  for the rounding of a rank-one part added entry by entry), a retry the pristine upper copies. */
 void block_prepare(tvo_real_t (*a)[TVO_MAX_Z_DIM], const tvo_solve_plan_t *plan, tvo_real_t *diag);
 
 /** The lower copies from the upper ones (their transposes), the diagonal from diag plus mu on the
