@@ -139,21 +139,6 @@ TVO_SHAPE_BODY tvo_status_t distance_sum_shape(const tvo_distance_term_t *self, 
         along[1] = diff[1].c[0] * inv_norm;
     }
     const tvo_real_t curvature = TVO_R(2.0) * sign * w.c[0];
-#if TVO_BLOCK_SOLVE
-    if (tvo_hessian_add_pair(hessian, self->offset_a, self->offset_b, along, TVO_R(4.0) * norm_sq * dw_df + curvature,
-                             curvature)) {
-        /* Neither part kept apart: their gradients' sum, 2 sign w(tau) D(tau), as the jets' path adds it. */
-        tvo_jet_t weight;
-        tvo_jet_scale(&w, TVO_R(2.0) * sign, order, &weight);
-        for (uint8_t axis = 0; axis < 2u; ++axis) {
-            tvo_jet_t product;
-            tvo_jet_mul(&weight, &diff[axis], order, &product);
-            tvo_jet_add(&grad[self->offset_a + axis], &product, order, &grad[self->offset_a + axis]);
-            tvo_jet_sub(&grad[self->offset_b + axis], &product, order, &grad[self->offset_b + axis]);
-        }
-        return TVO_OK;
-    }
-#endif
     tvo_rank_one_t part;
     part.count = 4u;
     part.index[0] = self->offset_a;
@@ -220,6 +205,164 @@ tvo_status_t tvo_distance_constraint_max(const void *term, const tvo_real_t *y, 
     *max_value = distance_sign(self) * (dx * dx + dy * dy - bound * bound);
     return TVO_OK;
 }
+
+#if TVO_BLOCK_SOLVE
+/* ---------------------------------------------------------------- a distance bound's two sides */
+
+/* A bound's minimum and maximum (pair[0], pair[1]: one pair of robots) in one evaluation, for the block
+ * solve's matrix: their robots' difference D(tau), its size and direction computed once, their Hessians
+ * summed into one 2 x 2 block (tvo_hessian_add_pair) and their gradients into one, (sum_side 2 sign w(tau))
+ * D(tau). A part too stiff for the block goes in as the single bound's parts, the sides' weights summed
+ * (they lie along the same two directions). */
+TVO_SHAPE_BODY tvo_status_t distance_pair_shape(const tvo_distance_term_t *pair, const tvo_jet_t *z, uint8_t dim,
+                                                const tvo_time_jet_t *t, const uint8_t order, tvo_jet_t *grad,
+                                                tvo_hessian_t *hessian)
+{
+    const uint8_t a = pair[0].offset_a;
+    const uint8_t b = pair[0].offset_b;
+    if ((unsigned)a + 2u > dim || (unsigned)b + 2u > dim || pair[1].offset_a != a || pair[1].offset_b != b) {
+        return TVO_ERR_DIMENSION;
+    }
+    tvo_jet_t diff[2];
+    tvo_jet_t size; /* |D|^2 */
+    tvo_jet_sub(&z[a], &z[b], order, &diff[0]);
+    tvo_jet_sub(&z[a + 1u], &z[b + 1u], order, &diff[1]);
+    tvo_jet_mul(&diff[0], &diff[0], order, &size);
+    tvo_jet_t square;
+    tvo_jet_mul(&diff[1], &diff[1], order, &square);
+    tvo_jet_add(&size, &square, order, &size);
+    tvo_barrier_schedule_jet_t local;
+    const tvo_barrier_schedule_jet_t *schedule = &local;
+    tvo_status_t st = TERM_BARRIER_SCHEDULE(pair[0].barrier, t, order, &local, &schedule);
+    if (st != TVO_OK) {
+        return st;
+    }
+    const tvo_real_t norm_sq = size.c[0];
+    tvo_jet_t weight; /* sum over the sides of 2 sign w(tau): the gradient is weight D */
+    tvo_jet_constant(TVO_R(0.0), &weight);
+    tvo_real_t along_weight = TVO_R(0.0);
+    tvo_real_t across_weight = TVO_R(0.0);
+    for (unsigned side = 0; side < 2u; ++side) {
+        const tvo_distance_term_t *self = &pair[side];
+        tvo_jet_t bound;
+        affine_time_jet(self->bound_m, self->bound_rate_mps, t, &bound);
+        if (!(bound.c[0] > TVO_R(0.0))) {
+            return TVO_ERR_PARAM; /* the schedule d(t) ran through zero */
+        }
+        const tvo_real_t sign = distance_sign(self);
+        tvo_jet_t f; /* sign (|D|^2 - d^2) */
+        tvo_jet_mul(&bound, &bound, order, &f);
+        tvo_jet_sub(&size, &f, order, &f);
+        tvo_jet_scale(&f, sign, order, &f);
+        tvo_jet_t w;
+        tvo_real_t dw_df = TVO_R(0.0);
+        st = TERM_BARRIER_WEIGHT(self->barrier, schedule, &f, order, &w, &dw_df);
+        if (st != TVO_OK) {
+            return st;
+        }
+        const tvo_real_t curvature = TVO_R(2.0) * sign * w.c[0];
+        along_weight += TVO_R(4.0) * norm_sq * dw_df + curvature;
+        across_weight += curvature;
+        tvo_jet_axpy(TVO_R(2.0) * sign, &w, order, &weight);
+    }
+    tvo_real_t along[2] = {TVO_R(1.0), TVO_R(0.0)};
+    if (norm_sq > TVO_R(0.0)) {
+        const tvo_real_t inv_norm = TVO_R(1.0) / TVO_SQRT(norm_sq);
+        along[0] = diff[0].c[0] * inv_norm;
+        along[1] = diff[1].c[0] * inv_norm;
+    }
+    if (tvo_hessian_add_pair(hessian, a, b, along, along_weight, across_weight)) {
+        for (unsigned axis = 0; axis < 2u; ++axis) {
+            tvo_jet_t product;
+            tvo_jet_mul(&weight, &diff[axis], order, &product);
+            tvo_jet_add(&grad[a + axis], &product, order, &grad[a + axis]);
+            tvo_jet_sub(&grad[b + axis], &product, order, &grad[b + axis]);
+        }
+        return TVO_OK;
+    }
+    tvo_rank_one_t part;
+    part.count = 4u;
+    part.index[0] = a;
+    part.index[1] = (uint8_t)(a + 1u);
+    part.index[2] = b;
+    part.index[3] = (uint8_t)(b + 1u);
+    for (unsigned k = 0; k < 2u; ++k) {
+        /* k = 0: along d; k = 1: across, d_perp = (-d_y, d_x). */
+        const tvo_real_t e[2] = {k == 0u ? along[0] : -along[1], k == 0u ? along[1] : along[0]};
+        part.value[0] = e[0];
+        part.value[1] = e[1];
+        part.value[2] = -e[0];
+        part.value[3] = -e[1];
+        part.weight = k == 0u ? along_weight : across_weight;
+        tvo_jet_t coordinate;
+        tvo_jet_scale(&diff[0], e[0], order, &coordinate);
+        tvo_jet_axpy(e[1], &diff[1], order, &coordinate);
+        tvo_jet_mul(&weight, &coordinate, order, &part.gradient);
+        tvo_hessian_add(hessian, &part, grad, order);
+    }
+    return TVO_OK;
+}
+
+/* In its own frame, never under a single bound's (the dense path's) on the stack. */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+static tvo_status_t distance_pair_sum(const tvo_distance_term_t *pair, const tvo_jet_t *z, uint8_t dim,
+                                      const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian)
+{
+#if TVO_SHAPE_COPIES
+    if (order == TVO_SHAPE_ORDER) {
+        return distance_pair_shape(pair, z, dim, t, TVO_SHAPE_ORDER, grad, hessian);
+    }
+#endif
+    return distance_pair_shape(pair, z, dim, t, order, grad, hessian);
+}
+
+tvo_status_t tvo_distance_pair_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim,
+                                            const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad)
+{
+    const tvo_distance_term_t *pair = (const tvo_distance_term_t *)term;
+    if (pair == NULL) {
+        return TVO_ERR_NULL;
+    }
+    const tvo_status_t st = distance_sum(&pair[0], z, dim, t, order, grad, NULL);
+    return st != TVO_OK ? st : distance_sum(&pair[1], z, dim, t, order, grad, NULL);
+}
+
+tvo_status_t tvo_distance_pair_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim,
+                                                const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
+                                                tvo_hessian_t *hessian)
+{
+    const tvo_distance_term_t *pair = (const tvo_distance_term_t *)term;
+    if (pair == NULL || z == NULL || t == NULL || grad == NULL || hessian == NULL) {
+        return TVO_ERR_NULL;
+    }
+    if (hessian->plan != NULL) {
+        return distance_pair_sum(pair, z, dim, t, order, grad, hessian);
+    }
+    /* The dense matrix (one or two robots): each side as its own term, bit for bit. */
+    const tvo_status_t st = distance_sum(&pair[0], z, dim, t, order, grad, hessian);
+    return st != TVO_OK ? st : distance_sum(&pair[1], z, dim, t, order, grad, hessian);
+}
+
+tvo_status_t tvo_distance_pair_constraint_max(const void *term, const tvo_real_t *y, uint8_t primal_dim, tvo_real_t t_s,
+                                              tvo_real_t *max_value)
+{
+    const tvo_distance_term_t *pair = (const tvo_distance_term_t *)term;
+    if (pair == NULL || max_value == NULL) {
+        return TVO_ERR_NULL;
+    }
+    tvo_real_t high = TVO_R(0.0);
+    tvo_status_t st = tvo_distance_constraint_max(&pair[0], y, primal_dim, t_s, max_value);
+    if (st == TVO_OK) {
+        st = tvo_distance_constraint_max(&pair[1], y, primal_dim, t_s, &high);
+    }
+    if (st == TVO_OK && (high > *max_value || !isfinite(high))) {
+        *max_value = high; /* the larger; one that is not finite shows */
+    }
+    return st;
+}
+#endif
 
 /* ---------------------------------------------------------------- half-spaces */
 
