@@ -179,13 +179,12 @@ tvo_status_t tvo_barrier_schedule_jet(const tvo_barrier_t *barrier, const tvo_ti
 }
 
 tvo_status_t tvo_barrier_schedule_shared(const tvo_barrier_t *barrier, const tvo_time_jet_t *t, uint8_t order,
-                                        tvo_barrier_schedule_jet_t *local,
-                                        const tvo_barrier_schedule_jet_t **schedule)
+                                        tvo_barrier_schedule_jet_t *local)
 {
-    if (barrier == NULL || t == NULL || local == NULL || schedule == NULL) {
+    if (barrier == NULL || t == NULL || local == NULL) {
         return TVO_ERR_NULL;
     }
-    return barrier_schedule(barrier, t, order, local, schedule);
+    return barrier_schedule(barrier, t, order, local);
 }
 
 tvo_status_t tvo_barrier_weight_on_schedule(const tvo_barrier_t *barrier, const tvo_barrier_schedule_jet_t *schedule,

@@ -32,9 +32,10 @@ tvo_status_t tvo_problem_desc_default(tvo_problem_desc_t *desc)
     return tvo_barrier_config_default(&desc->barrier);
 }
 
-/* A bound's sides as terms, the minimum first: each side its own term, or, where the block solve is built,
- * both sides of a bound as one term (its two distance terms in a row: tvo_distance_pair_gradient_hessian). */
-static tvo_status_t add_distance_bound(tvo_problem_t *problem, const tvo_distance_bound_desc_t *d)
+/* A bound's sides as terms, the minimum first: each side its own term, or, for three robots or more (the
+ * block plan's problems), both sides of a bound as one term (its two distance terms in a row:
+ * tvo_distance_pair_gradient_hessian). */
+static tvo_status_t add_distance_bound(tvo_problem_t *problem, const tvo_distance_bound_desc_t *d, uint8_t robots)
 {
     const uint8_t first = problem->distance_term_count;
     uint8_t count = 0u;
@@ -52,8 +53,10 @@ static tvo_status_t add_distance_bound(tvo_problem_t *problem, const tvo_distanc
                                     side == 0u ? d->min_rate_mps : d->max_rate_mps);
         count++;
     }
-#if TVO_BLOCK_SOLVE
-    if (st == TVO_OK && count == 2u) {
+#if !TVO_BLOCK_SOLVE
+    (void)robots;
+#else
+    if (st == TVO_OK && count == 2u && robots >= 3u) {
         const tvo_term_t spec = {tvo_distance_pair_gradient_jet, tvo_distance_pair_gradient_hessian,
                                  tvo_distance_pair_constraint_max, &problem->distance[first], TVO_TERM_GENERAL};
         st = tvo_objective_add(&problem->objective, &spec);
@@ -88,7 +91,7 @@ static tvo_status_t build_constraints(tvo_problem_t *problem, const tvo_problem_
             (d->max_m > TVO_R(0.0) && d->min_m >= d->max_m)) {
             return TVO_ERR_PARAM;
         }
-        st = add_distance_bound(problem, d);
+        st = add_distance_bound(problem, d, n);
     }
     if (st != TVO_OK) {
         return st;

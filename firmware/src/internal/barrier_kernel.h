@@ -9,18 +9,15 @@
 #include "shape.h"
 #include "internal/barrier.h"
 
-/* The schedules along t to order (tvo_barrier_schedule_shared for valid arguments): t's shared values
- * when an earlier term of the evaluation computed them, else computed, into them when t has them. */
+/* The schedules along t to order (tvo_barrier_schedule_shared for valid arguments): in t's shared values
+ * when t has them (computed there by the first term of the evaluation that asks), else in local. */
 static inline tvo_status_t barrier_schedule(const tvo_barrier_t *barrier, const tvo_time_jet_t *t, uint8_t order,
-                                            tvo_barrier_schedule_jet_t *local,
-                                            const tvo_barrier_schedule_jet_t **schedule)
+                                            tvo_barrier_schedule_jet_t *local)
 {
     tvo_shared_values_t *shared = t->shared;
     if (shared == NULL) {
-        *schedule = local;
         return tvo_barrier_schedule_jet(barrier, t, order, local);
     }
-    *schedule = &shared->schedule;
     if (shared->owner == (const void *)barrier && shared->order == order) {
         return TVO_OK;
     }
@@ -28,6 +25,13 @@ static inline tvo_status_t barrier_schedule(const tvo_barrier_t *barrier, const 
     shared->owner = st == TVO_OK ? (const void *)barrier : NULL;
     shared->order = order;
     return st;
+}
+
+/* Where barrier_schedule put the schedules. */
+static inline const tvo_barrier_schedule_jet_t *barrier_schedule_of(const tvo_time_jet_t *t,
+                                                                    const tvo_barrier_schedule_jet_t *local)
+{
+    return t->shared != NULL ? &t->shared->schedule : local;
 }
 
 /* w(f) on the schedule's c and slack jets, and dw/df at tau = 0 (dw_df may be NULL), for valid

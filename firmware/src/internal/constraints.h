@@ -31,10 +31,11 @@ tvo_status_t tvo_distance_constraint_max(const void *term, const tvo_real_t *y, 
 #if TVO_BLOCK_SOLVE
 /**
  * A distance bound's two sides as one term: term points to two tvo_distance_term_t in a row, the minimum
- * then the maximum of one pair of robots (tvo_problem_init's terms where the block solve is built). The
- * sum of the two single terms: in a dense matrix, each side's closed form in turn (bit for bit the two
- * terms); in a block plan's, both in one evaluation (their difference, direction and schedule once, one
- * 2 x 2 block). The constraint value is the larger side's.
+ * then the maximum of one pair of robots (tvo_problem_init's terms where its problem has a block plan).
+ * The sum of the two single terms, evaluated together: their difference, direction and schedule once, one
+ * gradient (sum_side 2 sign w(tau)) D(tau), their Hessians as one 2 x 2 block of the plan's matrix (as two
+ * rank-one parts, each the sides' sum, where one is stiff or the matrix dense). The constraint value is
+ * the larger side's.
  */
 tvo_status_t tvo_distance_pair_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim,
                                             const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad);
