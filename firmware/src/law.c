@@ -258,21 +258,20 @@ static tvo_status_t tracking_path_refusal(const tvo_output_derivs_t *y, tvo_real
  * regularises and this path refuses (TVO_ERR_NOT_POSITIVE_DEFINITE); the law then falls back to the
  * general path where the objective links it.
  */
-TRACKING_PATH_BODY tvo_status_t evaluate_tracking_shape(tvo_law_workspace_t *work, const uint8_t k, const uint8_t m)
+TVO_SHAPE_BODY tvo_status_t tracking_shape_body(const tvo_law_t *law, const tvo_objective_t *objective,
+                                                const tvo_output_derivs_t *y, const tvo_time_jet_t *t, tvo_real_t *y_k,
+                                                tvo_real_t *const *grad_rows, tvo_real_t *gradient,
+                                                tvo_real_t *gradient_rate, const unsigned grad_count,
+                                                tvo_real_t *regularization, tvo_law_workspace_t *work, const uint8_t k,
+                                                const uint8_t m)
 {
-    /* The call's arguments from the workspace: a size build's call passes three. */
-    const tvo_law_t *law = work->call.law;
-    const tvo_objective_t *objective = work->call.objective;
-    const tvo_output_derivs_t *y = work->call.y;
-    const tvo_time_jet_t *t = work->call.t;
-    tvo_real_t *y_k = work->call.y_k;
     if (!isfinite(t->t_s) || !isfinite(t->rate)) {
         zero_output(y_k, m);
         return TVO_ERR_NOT_FINITE;
     }
     /* A derivative that is not finite reaches its output's gradient, hence the rhs checked below (an
-     * output no term covers has no weight, which the solve's check declines): checked only then. */
-    (void)trajectory_jets(y, work->y_jet, k, m, 0);
+     * output no term covers has no weight, which the solve's check declines): checked only then. The
+     * terms read the derivatives where they are (tracking_add_along: no jets of y). */
     tvo_jet_t *g_jet = work->g_jet;
     /* The diagonal of the workspace's matrix holds the weights' sums (entry i at i * stride). */
     tvo_real_t *diagonal = &work->hessian.matrix[0][0];
@@ -293,8 +292,7 @@ TRACKING_PATH_BODY tvo_status_t evaluate_tracking_shape(tvo_law_workspace_t *wor
         if (term != NULL) {
             st = (unsigned)term->offset + 2u > m ? TVO_ERR_DIMENSION
                  : term->target == NULL          ? TVO_ERR_NULL
-                                                 : tracking_add(term, work->y_jet, t, TVO_R(1.0), k, g_jet,
-                                                                diagonal, stride);
+                                                 : tracking_add_along(term, y->d, t, k, g_jet, diagonal, stride);
         }
         if (st != TVO_OK) {
             return tracking_path_refusal(y, y_k, work, st, k, m);
@@ -326,16 +324,35 @@ TRACKING_PATH_BODY tvo_status_t evaluate_tracking_shape(tvo_law_workspace_t *wor
         zero_output(y_k, m);
         return TVO_ERR_NUMERIC;
     }
-    const tvo_law_outputs_t *out = &work->outputs;
-    write_gradient_rows(g_jet, NULL, out->grad_rows, m < out->grad_count ? m : out->grad_count, k, m);
-    if (out->regularization != NULL) {
-        *out->regularization = TVO_R(0.0);
+    const unsigned count = m < grad_count ? m : grad_count;
+    if (grad_rows != NULL) {
+        write_gradient_rows(g_jet, NULL, grad_rows, count, k, m);
+    } else {
+        /* A controller's report: grad and its rate, the first two rows (k >= 1, and both are asked for). */
+        TVO_UNROLL_SMALL
+        for (unsigned i = 0; i < m; ++i) {
+            if (i < count) {
+                gradient[i] = g_jet[i].c[0] * factorial[0];
+                gradient_rate[i] = g_jet[i].c[1] * factorial[1];
+            }
+        }
+    }
+    if (regularization != NULL) {
+        *regularization = TVO_R(0.0);
     }
     TVO_UNROLL_SMALL
     for (unsigned i = 0; i < m; ++i) {
         y_k[i] = -x[i];
     }
     return TVO_OK;
+}
+
+/* The tracking path for the call recorded in the workspace (a size build's call passes three). */
+TRACKING_PATH_BODY tvo_status_t evaluate_tracking_shape(tvo_law_workspace_t *work, const uint8_t k, const uint8_t m)
+{
+    const tvo_law_outputs_t *out = &work->outputs;
+    return tracking_shape_body(work->call.law, work->call.objective, work->call.y, work->call.t, work->call.y_k,
+                               out->grad_rows, NULL, NULL, out->grad_count, out->regularization, work, k, m);
 }
 
 #if TVO_BLOCK_SOLVE
@@ -622,6 +639,22 @@ tvo_status_t tvo_law_evaluate_report(const tvo_law_t *law, const tvo_objective_t
     TVO_ASSERT(law != NULL && objective != NULL && y != NULL && t != NULL && y_k != NULL && report != NULL &&
                work != NULL);
     report->regularization = TVO_R(0.0);
+#if TVO_SHAPE_COPIES
+    /* The controllers' common case, one robot's tracking at k = 2, in this body (no call, no dispatch, no
+     * record of the call unless the path declines it). */
+    const int common = objective->tracking_only && law->relative_degree == TVO_SHAPE_ORDER &&
+                       law->dim == TVO_SHAPE_OUTPUT_DIM && objective->dim == TVO_SHAPE_OUTPUT_DIM &&
+                       objective->primal_dim == TVO_SHAPE_OUTPUT_DIM && tracking_terms_only(objective);
+    const int tried = common && report->gradient != NULL && report->gradient_rate != NULL;
+    if (tried) {
+        const tvo_status_t st = tracking_shape_body(law, objective, y, t, y_k, NULL, report->gradient,
+                                                    report->gradient_rate, report->count, &report->regularization, work,
+                                                    TVO_SHAPE_ORDER, TVO_SHAPE_OUTPUT_DIM);
+        if (st == TVO_OK || objective->general_path == NULL) {
+            return st;
+        }
+    }
+#endif
     tvo_law_outputs_t *out = &work->outputs;
     out->grad_rows[0] = report->gradient;
     out->grad_rows[1] = report->gradient_rate;
@@ -633,14 +666,7 @@ tvo_status_t tvo_law_evaluate_report(const tvo_law_t *law, const tvo_objective_t
     out->regularization = &report->regularization;
     record_call(law, objective, y, t, y_k, work);
 #if TVO_SHAPE_COPIES
-    /* The controllers' common case, one robot's tracking at k = 2, in this body (no call, no dispatch). */
-    if (objective->tracking_only && law->relative_degree == TVO_SHAPE_ORDER && law->dim == TVO_SHAPE_OUTPUT_DIM &&
-        objective->dim == TVO_SHAPE_OUTPUT_DIM && objective->primal_dim == TVO_SHAPE_OUTPUT_DIM &&
-        tracking_terms_only(objective)) {
-        const tvo_status_t st = evaluate_tracking_shape(work, TVO_SHAPE_ORDER, TVO_SHAPE_OUTPUT_DIM);
-        if (st == TVO_OK || objective->general_path == NULL) {
-            return st;
-        }
+    if (tried) {
         return objective->general_path(work); /* what the path declined */
     }
 #endif

@@ -5,7 +5,7 @@
 
 #include "shape.h"
 #include "internal/target_kernel.h"
-#include "internal/trig.h"
+#include "internal/trig_kernel.h"
 
 /* TVO_ERR_NOT_FINITE if one of the n values is not finite, else TVO_ERR_PARAM if one of the first
  * `limited` has |v_i| > limit, else TVO_OK. */
@@ -191,17 +191,28 @@ static void polynomial_derivatives(const tvo_target_polynomial_t *p, uint8_t deg
     }
 }
 
-static void ellipse_derivatives(const tvo_target_t *target, const tvo_time_jet_t *t, uint8_t order,
-                                tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2])
+TVO_SHAPE_BODY void ellipse_derivatives(const tvo_target_t *target, const tvo_time_jet_t *t, const uint8_t order,
+                                        tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2])
 {
     const tvo_target_ellipse_t *e = &target->u.ellipse;
     /* phi = phase + omega t: whole seconds advance the Q0.64 phase exactly (wrapping is whole
      * turns), the fraction of a second adds a small angle in tvo_real_t. */
     const uint64_t turns = target->phase0_q64 + target->rate_q64 * (uint64_t)t->whole_s;
-    const tvo_real_t frac_s = (tvo_real_t)t->frac_ticks / (tvo_real_t)t->tick_hz;
+    const tvo_real_t frac_s = t->frac_s; /* frac_ticks / tick_hz */
     tvo_real_t s;
     tvo_real_t c;
+#if TVO_SHAPE_COPIES && !TVO_USE_DOUBLE
+    /* tvo_sincos_turns in this body: the angle is within its limit (|omega| <= TVO_TARGET_MAX_OMEGA_RADPS,
+     * frac_s < 1; init checked), and its check would turn an angle beyond into NaN all the same. */
+    const float extra_rad = e->omega_radps * frac_s;
+    if (TVO_FABS(extra_rad) <= TVO_SINCOS_FAST_LIMIT_RAD) {
+        sincos_turns_body(turns, extra_rad, &s, &c);
+    } else {
+        tvo_sincos_turns(turns, extra_rad, &s, &c);
+    }
+#else
     tvo_sincos_turns(turns, e->omega_radps * frac_s, &s, &c);
+#endif
     /* y_d = centre + A cos phi + B sin phi with the rotated semi-axes A, B (from init); the
      * derivatives of (cos, sin) cycle with period 4 and scale by omega^j. */
     const tvo_real_t dcos[4] = {c, -s, -c, s};
@@ -288,6 +299,12 @@ tvo_status_t target_derivatives(const tvo_target_t *target, const tvo_time_jet_t
         if (t->tick_hz == 0u || t->frac_ticks >= t->tick_hz) {
             return TVO_ERR_PARAM; /* the phase needs the exact split of tvo_time_jet_at */
         }
+#if TVO_SHAPE_COPIES
+        if (order == TVO_SHAPE_ORDER) {
+            ellipse_derivatives(target, t, TVO_SHAPE_ORDER, deriv); /* the k = 2 law's: its cycle unrolled */
+            return TVO_OK;
+        }
+#endif
         ellipse_derivatives(target, t, order, deriv);
         return TVO_OK;
     case TVO_TARGET_STREAMED:

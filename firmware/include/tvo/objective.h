@@ -48,7 +48,8 @@ typedef struct {
  * Time along a jet: t(tau) = t_s + rate * tau. rate is 1 along the trajectory and 0 for Hessian
  * columns. ticks is the same instant as an exact tick count since the objective's epoch, for
  * terms that need exact time differences (a streamed target's age), and whole_s + frac_ticks the
- * same split into seconds, for terms that need exact phases after hours (periodic targets).
+ * same split into seconds, for terms that need exact phases after hours (periodic targets); frac_s is
+ * the fraction in seconds, as t_s adds it.
  */
 typedef struct {
     tvo_real_t t_s;
@@ -57,6 +58,7 @@ typedef struct {
     uint32_t tick_hz;
     uint32_t whole_s;
     uint32_t frac_ticks;
+    tvo_real_t frac_s;               /* frac_ticks / tick_hz: t_s = whole_s + frac_s */
     tvo_shared_values_t *shared;     /* this time jet's shared values (the law's); NULL: every term computes
                                         its own */
 } tvo_time_jet_t;
