@@ -51,7 +51,7 @@ static unsigned least_fill(uint32_t (*adjacent)[SET_WORDS], const uint32_t *done
 }
 
 tvo_status_t tvo_solve_plan_build(tvo_solve_plan_t *plan, uint8_t robots, uint8_t offsets, uint8_t first_multiplier,
-                                  const uint8_t *pairs, uint8_t pair_count)
+                                  const uint8_t *pairs, uint16_t pair_count)
 {
     TVO_ASSERT(plan != NULL && (pairs != NULL || pair_count == 0u));
     plan->node_count = 0u;

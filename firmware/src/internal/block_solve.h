@@ -30,7 +30,7 @@ extern "C" {
  * node twice or one that does not exist; *plan is then empty (node_count 0).
  */
 tvo_status_t tvo_solve_plan_build(tvo_solve_plan_t *plan, uint8_t robots, uint8_t offsets, uint8_t first_multiplier,
-                                  const uint8_t *pairs, uint8_t pair_count);
+                                  const uint8_t *pairs, uint16_t pair_count);
 
 /** Zeroes every block of the plan (both copies of a coupled pair), nothing else. */
 void block_clear(tvo_real_t (*a)[TVO_MAX_Z_DIM], const tvo_solve_plan_t *plan);
