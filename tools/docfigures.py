@@ -416,11 +416,17 @@ def scaling(b):
     text = ""
     for family, label in (("formation", "robots (a ring of distance bounds)"), ("obstacles", "obstacles (one robot)")):
         rows = [r for r in s["rows"] if r["family"] == family]
-        text += table([label] + [str(r["count"]) for r in rows],
-                      [["median instructions per step"] + [n(r["median"]) for r in rows]]) + "\n"
-    verdict = "meets" if s["formation8_meets_target"] else "misses"
-    return text + (f"Cortex-M4F, float32, -{s['opt']}, one build with `{s['limits']}`, 400 steps each. "
-                   f"formation8 {verdict} its target of {n(s['formation8_target_instr'])} instructions.\n")
+        lines = [["median instructions per step"] + [n(r["median"]) for r in rows]]
+        if family == "formation":
+            lines.append(["largest single step (the start)"] + [n(r["max"]) for r in rows])
+        text += table([label] + [str(r["count"]) for r in rows], lines) + "\n"
+    targets = ", ".join(f"{p} ≤ {n(t)}" for p, t in s["formation_target_instr"].items())
+    verdict = "meets" if s["meets_targets"] else "misses"
+    swarm = sorted(r["count"] for r in s["rows"] if r.get("limits") == "swarm")
+    return text + (f"Cortex-M4F, float32, -{s['opt']}, 400 steps each; one build with `{s['limits']}` (up to 8 "
+                   f"robots), one with `{s['swarm_limits']}` ({' and '.join(map(str, swarm))} robots). "
+                   f"The formations {verdict} their targets ({targets}, each run's largest step at most "
+                   f"{s['largest_over_median_target']:g}× its median).\n")
 
 
 def auth(b):

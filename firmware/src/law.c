@@ -328,7 +328,8 @@ TVO_SHAPE_BODY tvo_status_t tracking_shape_body(const tvo_law_t *law, const tvo_
     if (grad_rows != NULL) {
         write_gradient_rows(g_jet, NULL, grad_rows, count, k, m);
     } else {
-        /* A controller's report: grad and its rate, the first two rows (k >= 1, and both are asked for). */
+        /* A controller's report (grad_rows NULL): grad and its rate, the first two rows (k >= 1, both asked
+         * for). */
         TVO_UNROLL_SMALL
         for (unsigned i = 0; i < m; ++i) {
             if (i < count) {
@@ -352,7 +353,8 @@ TRACKING_PATH_BODY tvo_status_t evaluate_tracking_shape(tvo_law_workspace_t *wor
 {
     const tvo_law_outputs_t *out = &work->outputs;
     return tracking_shape_body(work->call.law, work->call.objective, work->call.y, work->call.t, work->call.y_k,
-                               out->grad_rows, NULL, NULL, out->grad_count, out->regularization, work, k, m);
+                               out->grad_rows, out->grad_rows[0], out->grad_rows[1], out->grad_count,
+                               out->regularization, work, k, m);
 }
 
 #if TVO_BLOCK_SOLVE
