@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "internal/barrier_kernel.h"
+#include "internal/exp_log.h"
 
 /* Stand-in for "never" when c does not grow (alpha_c = 0): far beyond any run, still finite. */
 #define BARRIER_NEVER_S TVO_R(1e30)

@@ -1,5 +1,6 @@
 /* Sine and cosine together; see tvo/trig.h. */
 #include "internal/trig_kernel.h"
+#include "internal/wide_mul.h"
 
 #include <string.h>
 
@@ -19,20 +20,6 @@ static uint32_t two_over_pi_word(unsigned first)
         return two_over_pi_bits[index];
     }
     return (two_over_pi_bits[index] << offset) | (two_over_pi_bits[index + 1u] >> (32u - offset));
-}
-
-/* The high 64 bits of the 128-bit product a b, from 32-bit halves (no 128-bit type needed). */
-static uint64_t mul_high_u64(uint64_t a, uint64_t b)
-{
-    const uint64_t a_lo = a & 0xFFFFFFFFu;
-    const uint64_t a_hi = a >> 32;
-    const uint64_t b_lo = b & 0xFFFFFFFFu;
-    const uint64_t b_hi = b >> 32;
-    const uint64_t lo_lo = a_lo * b_lo;
-    const uint64_t hi_lo = a_hi * b_lo;
-    const uint64_t lo_hi = a_lo * b_hi;
-    const uint64_t carry = ((lo_lo >> 32) + (hi_lo & 0xFFFFFFFFu) + (lo_hi & 0xFFFFFFFFu)) >> 32;
-    return a_hi * b_hi + (hi_lo >> 32) + (lo_hi >> 32) + carry;
 }
 
 /*
@@ -66,7 +53,7 @@ static void sincos_huge(float angle_rad, float *sin_out, float *cos_out)
     const uint32_t quarter = (uint32_t)(high >> shift) + up;
     const uint64_t rest_magnitude = up ? (~fraction + 1u) : fraction; /* |rest| 2^64, at most 2^63 */
     /* angle mod pi/2 = rest pi/2: (|rest| 2^64)(pi/2 2^62) 2^-126, its high 64 bits scaled by 2^-62. */
-    float reduced = (float)mul_high_u64(rest_magnitude, TRIG_PIO2_Q62) * 0x1p-62f;
+    float reduced = (float)wide_mul_high_u64(rest_magnitude, TRIG_PIO2_Q62) * 0x1p-62f;
     if (up) {
         reduced = -reduced;
     }
