@@ -348,6 +348,87 @@ TVO_SHAPE_BODY tvo_status_t tracking_shape_body(const tvo_law_t *law, const tvo_
     return TVO_OK;
 }
 
+/*
+ * tracking_shape_body for one tracking term over both outputs at the common order, the law's most common
+ * call (one robot tracking): the same operations in the same order, each sum begun from 0 as there, its
+ * values kept in registers rather than the workspace. NULL grad_rows (a controller's report).
+ */
+TVO_SHAPE_BODY tvo_status_t tracking_one_term_body(const tvo_law_t *law, const tvo_tracking_term_t *term,
+                                                   const tvo_output_derivs_t *y, const tvo_time_jet_t *t,
+                                                   tvo_real_t *y_k, tvo_real_t *gradient, tvo_real_t *gradient_rate,
+                                                   const unsigned grad_count, tvo_real_t *regularization,
+                                                   tvo_law_workspace_t *work)
+{
+    const uint8_t k = TVO_SHAPE_ORDER;
+    const uint8_t m = TVO_SHAPE_OUTPUT_DIM;
+    tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2];
+    tvo_status_t st = TVO_ERR_NULL;
+    if (term != NULL) {
+        st = (unsigned)term->offset + 2u > m ? TVO_ERR_DIMENSION
+             : term->target == NULL          ? TVO_ERR_NULL
+                                             : tracking_target_derivatives(term->target, t, k, deriv);
+    }
+    if (st != TVO_OK) {
+        return tracking_path_refusal(y, y_k, work, st, k, m);
+    }
+    static const tvo_real_t inv_factorial[3] = {TVO_R(1.0), TVO_R(1.0), TVO_R(0.5)};
+    const tvo_real_t *gain = law->gain_by_factorial;
+    tvo_real_t g[2][3];
+    tvo_real_t rhs[2];
+    tvo_real_t diagonal[2];
+    tvo_real_t probe = TVO_R(0.0);
+    for (unsigned i = 0; i < 2u; ++i) {
+        const tvo_real_t w = term->weight[i];
+        for (unsigned j = 0; j < 3u; ++j) {
+            const tvo_real_t y_j = j < k ? y->d[j][i] * inv_factorial[j] : TVO_R(0.0);
+            g[i][j] = TVO_R(0.0) + w * (y_j - deriv[j][i] * inv_factorial[j]);
+        }
+        diagonal[i] = TVO_R(0.0) + term->weight[i];
+    }
+    for (unsigned i = 0; i < 2u; ++i) { /* combine_rhs */
+        tvo_real_t sum = g[i][2] * factorial[2];
+        sum += gain[0] * g[i][0];
+        sum += gain[1] * g[i][1];
+        probe += sum * TVO_R(0.0);
+        rhs[i] = sum;
+    }
+    if (!isfinite(probe)) {
+        return tracking_path_refusal(y, y_k, work, TVO_ERR_NUMERIC, k, m);
+    }
+    probe = TVO_R(0.0);
+    int positive = 1;
+    for (unsigned i = 0; i < 2u; ++i) {
+        probe += diagonal[i] * TVO_R(0.0);
+        positive &= diagonal[i] > TVO_R(0.0);
+    }
+    if (!isfinite(probe) || !positive) {
+        return tracking_path_refusal(y, y_k, work, isfinite(probe) ? TVO_ERR_NOT_POSITIVE_DEFINITE : TVO_ERR_NOT_FINITE,
+                                     k, m);
+    }
+    tvo_real_t x[2];
+    for (unsigned i = 0; i < 2u; ++i) {
+        x[i] = rhs[i] / diagonal[i];
+        probe += x[i] * TVO_R(0.0);
+    }
+    if (!isfinite(probe)) {
+        zero_output(y_k, m);
+        return TVO_ERR_NUMERIC;
+    }
+    for (unsigned i = 0; i < 2u; ++i) {
+        if (i < grad_count) {
+            gradient[i] = g[i][0] * factorial[0];
+            gradient_rate[i] = g[i][1] * factorial[1];
+        }
+    }
+    if (regularization != NULL) {
+        *regularization = TVO_R(0.0);
+    }
+    for (unsigned i = 0; i < 2u; ++i) {
+        y_k[i] = -x[i];
+    }
+    return TVO_OK;
+}
+
 /* The tracking path for the call recorded in the workspace (a size build's call passes three). */
 TRACKING_PATH_BODY tvo_status_t evaluate_tracking_shape(tvo_law_workspace_t *work, const uint8_t k, const uint8_t m)
 {
@@ -648,7 +729,18 @@ tvo_status_t tvo_law_evaluate_report(const tvo_law_t *law, const tvo_objective_t
                        law->dim == TVO_SHAPE_OUTPUT_DIM && objective->dim == TVO_SHAPE_OUTPUT_DIM &&
                        objective->primal_dim == TVO_SHAPE_OUTPUT_DIM && tracking_terms_only(objective);
     const int tried = common && report->gradient != NULL && report->gradient_rate != NULL;
-    if (tried) {
+    if (tried && objective->term_count == 1u) {
+        if (!isfinite(t->t_s) || !isfinite(t->rate)) {
+            zero_output(y_k, TVO_SHAPE_OUTPUT_DIM);
+            return TVO_ERR_NOT_FINITE; /* tracking_shape_body's first check */
+        }
+        const tvo_status_t st = tracking_one_term_body(law, (const tvo_tracking_term_t *)objective->terms[0].term, y, t,
+                                                       y_k, report->gradient, report->gradient_rate, report->count,
+                                                       &report->regularization, work);
+        if (st == TVO_OK || objective->general_path == NULL) {
+            return st;
+        }
+    } else if (tried) {
         const tvo_status_t st = tracking_shape_body(law, objective, y, t, y_k, NULL, report->gradient,
                                                     report->gradient_rate, report->count, &report->regularization, work,
                                                     TVO_SHAPE_ORDER, TVO_SHAPE_OUTPUT_DIM);
