@@ -17,6 +17,8 @@ README.md or a folder's README.md; NAME says what fills it (BLOCKS below). Input
   tools/figures/bench.json        the `tools/bench --json` output the cost and footprint figures come from
   tools/figures/summaries/*.json  tvo_sim's summary.json of each demo and scenario row (RUNS below)
   tools/figures/study.json        a `tools/study --json tools/figures/study.json` run
+  tools/figures/agree.json        a `tools/agree --os --fp-contract-fast --cost --accuracy --json
+                                  tools/figures/agree.json` run (agreement across machines, accuracy)
   lcm_types/*.lcm                 the wire's constants (status codes, flags, parameter ids, parts)
   firmware/edge/channels.c        the session_t field each parameter id stands for
   firmware/edge/step_codec.c      which core reasons, edge statuses and core errors map to each status
@@ -36,6 +38,7 @@ FIGURES = REPO / "tools/figures"
 BENCH_JSON = FIGURES / "bench.json"
 RUNS_DIR = FIGURES / "summaries"
 STUDY_JSON = FIGURES / "study.json"
+AGREE_JSON = FIGURES / "agree.json"
 READMES = ["README.md", "firmware/README.md", "lcm_types/README.md", "host/README.md",
            "tests/README.md", "tools/README.md"]
 MAX_TOP_LINES = 300
@@ -412,11 +415,17 @@ def scaling(b):
     text = ""
     for family, label in (("formation", "robots (a ring of distance bounds)"), ("obstacles", "obstacles (one robot)")):
         rows = [r for r in s["rows"] if r["family"] == family]
-        text += table([label] + [str(r["count"]) for r in rows],
-                      [["median instructions per step"] + [n(r["median"]) for r in rows]]) + "\n"
-    verdict = "meets" if s["formation8_meets_target"] else "misses"
-    return text + (f"Cortex-M4F, float32, -{s['opt']}, one build with `{s['limits']}`, 400 steps each. "
-                   f"formation8 {verdict} its target of {n(s['formation8_target_instr'])} instructions.\n")
+        lines = [["median instructions per step"] + [n(r["median"]) for r in rows]]
+        if family == "formation":
+            lines.append(["largest single step (the start)"] + [n(r["max"]) for r in rows])
+        text += table([label] + [str(r["count"]) for r in rows], lines) + "\n"
+    targets = ", ".join(f"{p} ≤ {n(t)}" for p, t in s["formation_target_instr"].items())
+    verdict = "meets" if s["meets_targets"] else "misses"
+    swarm = sorted(r["count"] for r in s["rows"] if r.get("limits") == "swarm")
+    return text + (f"Cortex-M4F, float32, -{s['opt']}, 400 steps each; one build with `{s['limits']}` (up to 8 "
+                   f"robots), one with `{s['swarm_limits']}` ({' and '.join(map(str, swarm))} robots). "
+                   f"The formations {verdict} their targets ({targets}, each run's largest step at most "
+                   f"{s['largest_over_median_target']:g}× its median).\n")
 
 
 def auth(b):
@@ -475,6 +484,57 @@ def auth(b):
     return text
 
 
+# ---- agreement across machines and the core's own functions (tools/agree --json) -----------------
+
+def agree(a):
+    problems = list(next(iter(a["runs"].values()))["problems"])
+    rows = []
+    for name, r in a["runs"].items():
+        cells = []
+        for p in problems:
+            c = r["problems"][p]
+            cells.append("0" if c["periods_differ"] == 0 else
+                         f"{c['periods_differ']} (from {c['first_period_differ']}; "
+                         f"{g(c['max_abs_diff']['speed_mps'])} m/s, {g(c['max_abs_diff']['turn_rate_radps'])} rad/s)")
+        same = all(r["functions_same_bits"].values())
+        rows.append([name] + cells + ["the host's" if same else "other bits"])
+    text = table(["machine, against x86-64"] + problems + ["functions' bits"], rows)
+    boards = "; ".join(f"{name}: {r['board']}" for name, r in a["runs"].items() if "fp-contract" not in name)
+    stacks = ", ".join(f"{name} {n(r['stack']['deepest_bytes'])} of {n(r['stack']['reserve_bytes'])} B"
+                       for name, r in a["runs"].items() if r.get("stack"))
+    text += (f"\nPeriods of {n(next(iter(a['runs'].values()))['problems'][problems[0]]['periods'])} whose speed or "
+             f"turn-rate bits differ from the host's ({a['host']}), the first, the largest differences. {boards}; "
+             f"{a['toolchain']}; limits `{a['limits']}`. Functions: {', '.join(a['host_functions'])} over "
+             f"sweeps of {' / '.join(n(f['arguments']) for f in a['host_functions'].values())} arguments. "
+             f"Deepest stack: {stacks}.\n")
+    cost = a.get("cost_median_instr_per_step")
+    if cost:
+        names = list(cost)
+        rows = [[p] + [n(cost[b][p]) for b in names] for p in cost[names[0]]]
+        text += ("\n" + table(["median instructions per step (default limits)"] + names, rows))
+    return text
+
+
+def libm_accuracy(a):
+    acc = a["accuracy"]
+    rows = []
+    for name, f in acc["functions"].items():
+        rows.append([f"`{name}`", n(f["arguments"]), n(f["not_nearest"]), f"{f['max_ulp']:.3f}",
+                     n(f["glibc_not_nearest"]), f"{f['glibc_max_ulp']:.3f}", n(f["differ_from_glibc"]),
+                     n(f["undecided"])])
+    text = table(["function", "arguments", "not the nearest float", "max error (ulp)", "glibc's: not the nearest",
+                  "glibc's max error (ulp)", "results other than glibc's", "undecided"], rows)
+    integer = acc["functions"].get("tvo_expf", {}).get("integer_path_differs")
+    text += (f"\nReference: {acc['reference']}. Undecided: the exact value within 2^-60 of a midpoint, too near "
+             f"for the reference. "
+             + ("" if integer is None else
+                f"`tvo_expf_integer` (the soft-float targets' whole `tvo_expf`) differs from `tvo_expf` for "
+                f"{n(integer)} floats.") + "\n")
+    return text
+
+
+AGREE_BLOCKS = {"agree": agree, "libm-accuracy": libm_accuracy}
+
 BENCH_BLOCKS = {"cost-m4f": cost_m4f, "cost-m0plus": cost_m0plus, "host-callgrind": host_callgrind,
                 "ipopt": ipopt, "core-text": core_text, "footprint": footprint, "stack-written": stack_written,
                 "scaling": scaling, "auth": auth}
@@ -498,6 +558,10 @@ def render(name, bench, runs):
         return key_figures(bench, runs)
     if name == "study":
         return study(json.loads(STUDY_JSON.read_text()))
+    if name in AGREE_BLOCKS:
+        if not AGREE_JSON.exists():
+            raise KeyError(str(AGREE_JSON.relative_to(REPO)))
+        return AGREE_BLOCKS[name](json.loads(AGREE_JSON.read_text()))
     raise KeyError(name)
 
 

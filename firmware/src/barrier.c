@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "internal/barrier_kernel.h"
+#include "internal/exp_log.h"
 
 /* Stand-in for "never" when c does not grow (alpha_c = 0): far beyond any run, still finite. */
 #define BARRIER_NEVER_S TVO_R(1e30)
@@ -176,6 +177,15 @@ tvo_status_t tvo_barrier_schedule_jet(const tvo_barrier_t *barrier, const tvo_ti
         s_term *= s_rate / (tvo_real_t)(j + 1u);
     }
     return TVO_OK;
+}
+
+tvo_status_t tvo_barrier_schedule_shared(const tvo_barrier_t *barrier, const tvo_time_jet_t *t, uint8_t order,
+                                        tvo_barrier_schedule_jet_t *local)
+{
+    if (barrier == NULL || t == NULL || local == NULL) {
+        return TVO_ERR_NULL;
+    }
+    return barrier_schedule(barrier, t, order, local);
 }
 
 tvo_status_t tvo_barrier_weight_on_schedule(const tvo_barrier_t *barrier, const tvo_barrier_schedule_jet_t *schedule,

@@ -9,8 +9,10 @@
  * by call where they are compiled for size. */
 #if TVO_SHAPE_COPIES
 #define TERM_BARRIER_WEIGHT barrier_weight
+#define TERM_BARRIER_SCHEDULE barrier_schedule
 #else
 #define TERM_BARRIER_WEIGHT tvo_barrier_weight_on_schedule
+#define TERM_BARRIER_SCHEDULE tvo_barrier_schedule_shared
 #endif
 
 /* A robot centre closer than this to an obstacle centre has no defined separating plane. */
@@ -102,12 +104,13 @@ TVO_SHAPE_BODY tvo_status_t distance_sum_shape(const tvo_distance_term_t *self, 
         tvo_jet_mul(&diff[axis], &diff[axis], order, &square);
         tvo_jet_axpy(sign, &square, order, &f);
     }
-    tvo_barrier_schedule_jet_t schedule;
-    tvo_status_t st = tvo_barrier_schedule_jet(self->barrier, t, order, &schedule);
+    tvo_barrier_schedule_jet_t local;
+    tvo_status_t st = TERM_BARRIER_SCHEDULE(self->barrier, t, order, &local);
+    const tvo_barrier_schedule_jet_t *schedule = barrier_schedule_of(t, &local);
     tvo_jet_t w;
     tvo_real_t dw_df = TVO_R(0.0);
     if (st == TVO_OK) {
-        st = TERM_BARRIER_WEIGHT(self->barrier, &schedule, &f, order, &w, hessian != NULL ? &dw_df : NULL);
+        st = TERM_BARRIER_WEIGHT(self->barrier, schedule, &f, order, &w, hessian != NULL ? &dw_df : NULL);
     }
     if (st != TVO_OK) {
         return st;
@@ -203,6 +206,200 @@ tvo_status_t tvo_distance_constraint_max(const void *term, const tvo_real_t *y, 
     return TVO_OK;
 }
 
+#if TVO_BLOCK_SOLVE
+/* ---------------------------------------------------------------- a distance bound's two sides */
+
+/* What a bound's two sides sum to at tau = 0 and along the jet: the gradient is weight(tau) D(tau), the
+ * Hessian the two parts along and across D's direction. */
+typedef struct {
+    tvo_jet_t diff[2];         /* D = y_a - y_b */
+    tvo_jet_t weight;          /* sum over the sides of 2 sign w(tau) */
+    tvo_real_t along[2];       /* D's direction at tau = 0 */
+    tvo_real_t along_weight;   /* the sides' curvature along it, and across it */
+    tvo_real_t across_weight;
+} distance_pair_sum_t;
+
+/* A bound's minimum and maximum (pair[0], pair[1]: one pair of robots) in one evaluation: their robots'
+ * difference, its size and direction computed once, their weights summed into sum, their gradients added
+ * as one; with hessian (when neither part is stiff) their Hessians as one 2 x 2 block
+ * (tvo_hessian_add_pair). 0 in *added: one part was stiff (or the matrix is dense), nothing added; sum
+ * holds what the parts need. */
+TVO_SHAPE_BODY tvo_status_t distance_pair_shape(const tvo_distance_term_t *pair, const tvo_jet_t *z,
+                                                const tvo_time_jet_t *t, const uint8_t order, tvo_jet_t *grad,
+                                                tvo_hessian_t *hessian, distance_pair_sum_t *sum, int *added)
+{
+    const uint8_t a = pair[0].offset_a;
+    const uint8_t b = pair[0].offset_b;
+    tvo_jet_t *diff = sum->diff;
+    tvo_jet_t size; /* |D|^2 */
+    tvo_jet_sub(&z[a], &z[b], order, &diff[0]);
+    tvo_jet_sub(&z[a + 1u], &z[b + 1u], order, &diff[1]);
+    tvo_jet_mul(&diff[0], &diff[0], order, &size);
+    {
+        tvo_jet_t square;
+        tvo_jet_mul(&diff[1], &diff[1], order, &square);
+        tvo_jet_add(&size, &square, order, &size);
+    }
+    tvo_barrier_schedule_jet_t local;
+    tvo_status_t st = TERM_BARRIER_SCHEDULE(pair[0].barrier, t, order, &local);
+    const tvo_barrier_schedule_jet_t *schedule = barrier_schedule_of(t, &local);
+    if (st != TVO_OK) {
+        return st;
+    }
+    const tvo_real_t norm_sq = size.c[0];
+    tvo_jet_constant(TVO_R(0.0), &sum->weight);
+    sum->along_weight = TVO_R(0.0);
+    sum->across_weight = TVO_R(0.0);
+    for (unsigned side = 0; side < 2u; ++side) {
+        const tvo_distance_term_t *self = &pair[side];
+        tvo_jet_t f; /* sign (|D|^2 - d^2) */
+        affine_time_jet(self->bound_m, self->bound_rate_mps, t, &f);
+        if (!(f.c[0] > TVO_R(0.0))) {
+            return TVO_ERR_PARAM; /* the schedule d(t) ran through zero */
+        }
+        const tvo_real_t sign = distance_sign(self);
+        tvo_jet_mul(&f, &f, order, &f);
+        tvo_jet_sub(&size, &f, order, &f);
+        tvo_jet_scale(&f, sign, order, &f);
+        tvo_jet_t w;
+        tvo_real_t dw_df = TVO_R(0.0);
+        st = TERM_BARRIER_WEIGHT(self->barrier, schedule, &f, order, &w, hessian != NULL ? &dw_df : NULL);
+        if (st != TVO_OK) {
+            return st;
+        }
+        const tvo_real_t curvature = TVO_R(2.0) * sign * w.c[0];
+        sum->along_weight += TVO_R(4.0) * norm_sq * dw_df + curvature;
+        sum->across_weight += curvature;
+        tvo_jet_axpy(TVO_R(2.0) * sign, &w, order, &sum->weight);
+    }
+    sum->along[0] = TVO_R(1.0);
+    sum->along[1] = TVO_R(0.0);
+    if (norm_sq > TVO_R(0.0)) {
+        const tvo_real_t inv_norm = TVO_R(1.0) / TVO_SQRT(norm_sq);
+        sum->along[0] = diff[0].c[0] * inv_norm;
+        sum->along[1] = diff[1].c[0] * inv_norm;
+    }
+    *added = hessian == NULL || tvo_hessian_add_pair(hessian, a, b, sum->along, sum->along_weight, sum->across_weight);
+    if (*added) {
+        /* The gradient: weight(tau) D(tau) into robot a's outputs, minus it into b's. */
+        for (unsigned axis = 0; axis < 2u; ++axis) {
+            tvo_jet_t product;
+            tvo_jet_mul(&sum->weight, &diff[axis], order, &product);
+            tvo_jet_add(&grad[a + axis], &product, order, &grad[a + axis]);
+            tvo_jet_sub(&grad[b + axis], &product, order, &grad[b + axis]);
+        }
+    }
+    return TVO_OK;
+}
+
+/* The pair's two parts, as tvo_hessian_add takes them, when one is too stiff for the block (or the matrix is
+ * dense: an objective whose plan was dropped): the single bound's parts with the sides' weights summed
+ * (they lie along the same two directions). */
+TVO_COLD_BODY void distance_pair_parts(const tvo_distance_term_t *pair, const distance_pair_sum_t *sum,
+                                       uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian)
+{
+    tvo_rank_one_t part;
+    part.count = 4u;
+    part.index[0] = pair[0].offset_a;
+    part.index[1] = (uint8_t)(pair[0].offset_a + 1u);
+    part.index[2] = pair[0].offset_b;
+    part.index[3] = (uint8_t)(pair[0].offset_b + 1u);
+    for (unsigned k = 0; k < 2u; ++k) {
+        /* k = 0: along d; k = 1: across, d_perp = (-d_y, d_x). */
+        const tvo_real_t e0 = k == 0u ? sum->along[0] : -sum->along[1];
+        const tvo_real_t e1 = k == 0u ? sum->along[1] : sum->along[0];
+        part.value[0] = e0;
+        part.value[1] = e1;
+        part.value[2] = -e0;
+        part.value[3] = -e1;
+        part.weight = k == 0u ? sum->along_weight : sum->across_weight;
+        tvo_jet_t coordinate;
+        tvo_jet_scale(&sum->diff[0], e0, order, &coordinate);
+        tvo_jet_axpy(e1, &sum->diff[1], order, &coordinate);
+        tvo_jet_mul(&sum->weight, &coordinate, order, &part.gradient);
+        tvo_hessian_add(hessian, &part, grad, order);
+    }
+}
+
+/* In its own frame, apart from the parts'. */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+static tvo_status_t distance_pair_sum(const tvo_distance_term_t *pair, const tvo_jet_t *z, const tvo_time_jet_t *t,
+                                      uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian, distance_pair_sum_t *sum,
+                                      int *added)
+{
+#if TVO_SHAPE_COPIES
+    if (order == TVO_SHAPE_ORDER) {
+        return distance_pair_shape(pair, z, t, TVO_SHAPE_ORDER, grad, hessian, sum, added);
+    }
+#endif
+    return distance_pair_shape(pair, z, t, order, grad, hessian, sum, added);
+}
+
+/* Both entries' body (hessian NULL: the gradient jets only), in each: one frame fewer under the term. */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline tvo_status_t distance_pair_terms(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
+                                        uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian)
+{
+    const tvo_distance_term_t *pair = (const tvo_distance_term_t *)term;
+    if (pair == NULL || z == NULL || t == NULL || grad == NULL) {
+        return TVO_ERR_NULL;
+    }
+    const uint8_t a = pair[0].offset_a;
+    const uint8_t b = pair[0].offset_b;
+    if ((unsigned)a + 2u > dim || (unsigned)b + 2u > dim || pair[1].offset_a != a || pair[1].offset_b != b) {
+        return TVO_ERR_DIMENSION;
+    }
+    if (order > TVO_JET_MAX_ORDER) {
+        return TVO_ERR_PARAM;
+    }
+    distance_pair_sum_t sum;
+    int added = 0;
+    const tvo_status_t st = distance_pair_sum(pair, z, t, order, grad, hessian, &sum, &added);
+    if (st == TVO_OK && !added) {
+        distance_pair_parts(pair, &sum, order, grad, hessian); /* a stiff part, or a dense matrix */
+    }
+    return st;
+}
+
+tvo_status_t tvo_distance_pair_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim,
+                                            const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad)
+{
+    return distance_pair_terms(term, z, dim, t, order, grad, NULL);
+}
+
+tvo_status_t tvo_distance_pair_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim,
+                                                const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
+                                                tvo_hessian_t *hessian)
+{
+    if (hessian == NULL) {
+        return TVO_ERR_NULL;
+    }
+    return distance_pair_terms(term, z, dim, t, order, grad, hessian);
+}
+
+tvo_status_t tvo_distance_pair_constraint_max(const void *term, const tvo_real_t *y, uint8_t primal_dim, tvo_real_t t_s,
+                                              tvo_real_t *max_value)
+{
+    const tvo_distance_term_t *pair = (const tvo_distance_term_t *)term;
+    if (pair == NULL || max_value == NULL) {
+        return TVO_ERR_NULL;
+    }
+    tvo_real_t high = TVO_R(0.0);
+    tvo_status_t st = tvo_distance_constraint_max(&pair[0], y, primal_dim, t_s, max_value);
+    if (st == TVO_OK) {
+        st = tvo_distance_constraint_max(&pair[1], y, primal_dim, t_s, &high);
+    }
+    if (st == TVO_OK && (high > *max_value || !isfinite(high))) {
+        *max_value = high; /* the larger; one that is not finite shows */
+    }
+    return st;
+}
+#endif
+
 /* ---------------------------------------------------------------- half-spaces */
 
 tvo_status_t tvo_halfspace_term_init(tvo_halfspace_term_t *term, const tvo_barrier_t *barrier, uint8_t robot,
@@ -256,12 +453,13 @@ TVO_SHAPE_BODY tvo_status_t halfspace_sum_shape(const tvo_halfspace_term_t *self
         tvo_jet_mul(&normal[axis], &z[self->offset + axis], order, &product);
         tvo_jet_add(&f, &product, order, &f);
     }
-    tvo_barrier_schedule_jet_t schedule;
-    tvo_status_t st = tvo_barrier_schedule_jet(self->barrier, t, order, &schedule);
+    tvo_barrier_schedule_jet_t local;
+    tvo_status_t st = TERM_BARRIER_SCHEDULE(self->barrier, t, order, &local);
+    const tvo_barrier_schedule_jet_t *schedule = barrier_schedule_of(t, &local);
     tvo_jet_t w;
     tvo_real_t dw_df = TVO_R(0.0);
     if (st == TVO_OK) {
-        st = TERM_BARRIER_WEIGHT(self->barrier, &schedule, &f, order, &w, hessian != NULL ? &dw_df : NULL);
+        st = TERM_BARRIER_WEIGHT(self->barrier, schedule, &f, order, &w, hessian != NULL ? &dw_df : NULL);
     }
     if (st != TVO_OK) {
         return st;
@@ -424,8 +622,9 @@ TVO_SHAPE_BODY tvo_status_t free_space_sum_shape(const tvo_free_space_term_t *se
     if ((unsigned)self->offset + 2u > dim) {
         return TVO_ERR_DIMENSION;
     }
-    tvo_barrier_schedule_jet_t schedule;
-    tvo_status_t st = tvo_barrier_schedule_jet(self->barrier, t, order, &schedule);
+    tvo_barrier_schedule_jet_t local;
+    tvo_status_t st = TERM_BARRIER_SCHEDULE(self->barrier, t, order, &local);
+    const tvo_barrier_schedule_jet_t *schedule = barrier_schedule_of(t, &local);
     if (st != TVO_OK) {
         return st;
     }
@@ -445,7 +644,7 @@ TVO_SHAPE_BODY tvo_status_t free_space_sum_shape(const tvo_free_space_term_t *se
         tvo_jet_axpy(normal[1], &z[o + 1u], order, &f);
         tvo_jet_t w;
         tvo_real_t dw_df = TVO_R(0.0);
-        st = TERM_BARRIER_WEIGHT(self->barrier, &schedule, &f, order, &w, hessian != NULL ? &dw_df : NULL);
+        st = TERM_BARRIER_WEIGHT(self->barrier, schedule, &f, order, &w, hessian != NULL ? &dw_df : NULL);
         if (st != TVO_OK) {
             return st;
         }

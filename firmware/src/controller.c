@@ -218,8 +218,13 @@ static inline tvo_reason_t check_measurement(const void *ctl_any, const void *me
 /* What a good step after the watchdog's gap takes as the command in force: the robots were stopped. */
 static const tvo_command_t rest_command = {{TVO_R(0.0)}, {TVO_R(0.0)}, 0u, TVO_OUTCOME_STOPPED, TVO_REASON_NONE};
 
-static tvo_real_t clamp(tvo_real_t v, tvo_real_t limit, uint32_t flag, uint32_t *flags)
+/* v clipped to [-limit, limit] (flag set in *flags when it is; NaN passes as it is), asked as |v| <= limit
+ * first: one comparison for a value within the limit, the common case. */
+static inline tvo_real_t clamp(tvo_real_t v, tvo_real_t limit, uint32_t flag, uint32_t *flags)
 {
+    if (TVO_FABS(v) <= limit) {
+        return v;
+    }
     if (v > limit) {
         *flags |= flag;
         return limit;
@@ -355,10 +360,13 @@ TVO_OFF_CHAIN_BODY tvo_reason_t unicycle_prepare(void *ctl_any, const void *meas
         } else {
             tvo_sincos(pose.heading_rad, &heading_cs[r][1], &heading_cs[r][0]);
         }
-        heading[r] = pose.heading_rad;
+        if (position_only) {
+            heading[r] = pose.heading_rad; /* the position-only source's estimate moves on from it */
+        }
         /* Mid-interval speed: the state plus half a period of the last acceleration (O(h^2)). */
-        speed[r] = speed_state[r] +
-                   (zoh_aware && !from_rest ? TVO_R(0.5) * ctl->internal.loop.period_s * ctl->telemetry.accel_mps2[r] : TVO_R(0.0));
+        speed[r] = zoh_aware && !from_rest
+                       ? speed_state[r] + TVO_R(0.5) * ctl->internal.loop.period_s * ctl->telemetry.accel_mps2[r]
+                       : speed_state[r];
         y->d[0][2u * r] = pose.position_m[0];
         y->d[0][2u * r + 1u] = pose.position_m[1];
         if (position_only) {
@@ -498,11 +506,20 @@ TVO_OFF_CHAIN_BODY void unicycle_commit(void *ctl_any, const tvo_loop_frame_t *f
 
     /* Telemetry of the entries this problem uses (the rest stay zero from init). */
     tm->objective_time_s = work->time.t_s;
+    /* Array by array: a robot's pair of entries then moves as one 8-byte transfer. */
     for (uint8_t i = 0; i < 2u * n; ++i) {
         tm->output_m[i] = y->d[0][i];
+    }
+    for (uint8_t i = 0; i < 2u * n; ++i) {
         tm->output_rate_mps[i] = y->d[1][i];
+    }
+    for (uint8_t i = 0; i < 2u * n; ++i) {
         tm->output_accel_mps2[i] = y_accel[i];
+    }
+    for (uint8_t i = 0; i < 2u * n; ++i) {
         tm->gradient[i] = work->gradient[i];
+    }
+    for (uint8_t i = 0; i < 2u * n; ++i) {
         tm->gradient_rate[i] = work->gradient_rate[i];
     }
     tm->regularization = work->report.regularization;

@@ -1,6 +1,8 @@
 /* Ramp-invariant dirty-derivative filter; see tvo/dirty_derivative.h. */
 #include "internal/dirty_derivative.h"
 
+#include "internal/exp_log.h"
+
 tvo_status_t tvo_dirty_derivative_init(tvo_dirty_derivative_t *filter, uint8_t dim, tvo_real_t tf_s,
                                        tvo_real_t period_s)
 {

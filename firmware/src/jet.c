@@ -2,6 +2,8 @@
  * automatic differentiation (Griewank & Walther, ch. 13). */
 #include "internal/jet.h"
 
+#include "internal/exp_log.h"
+
 static unsigned clamp_order(uint8_t order)
 {
     return tvo_jet_order_clamp(order);

@@ -108,6 +108,8 @@ static tvo_status_t add_jet_hessian(const tvo_objective_t *objective, const tvo_
     tvo_time_jet_t *frozen = &work->time;
     *frozen = *t;
     frozen->rate = TVO_R(0.0);
+    frozen->shared = &work->shared; /* emptied: frozen time has schedules of its own */
+    work->shared.owner = NULL;
     for (uint8_t i = 0; i < m; ++i) {
         tvo_jet_constant(y->d[0][i], &y_jet[i]);
     }
@@ -256,21 +258,20 @@ static tvo_status_t tracking_path_refusal(const tvo_output_derivs_t *y, tvo_real
  * regularises and this path refuses (TVO_ERR_NOT_POSITIVE_DEFINITE); the law then falls back to the
  * general path where the objective links it.
  */
-TRACKING_PATH_BODY tvo_status_t evaluate_tracking_shape(tvo_law_workspace_t *work, const uint8_t k, const uint8_t m)
+TVO_SHAPE_BODY tvo_status_t tracking_shape_body(const tvo_law_t *law, const tvo_objective_t *objective,
+                                                const tvo_output_derivs_t *y, const tvo_time_jet_t *t, tvo_real_t *y_k,
+                                                tvo_real_t *const *grad_rows, tvo_real_t *gradient,
+                                                tvo_real_t *gradient_rate, const unsigned grad_count,
+                                                tvo_real_t *regularization, tvo_law_workspace_t *work, const uint8_t k,
+                                                const uint8_t m)
 {
-    /* The call's arguments from the workspace: a size build's call passes three. */
-    const tvo_law_t *law = work->call.law;
-    const tvo_objective_t *objective = work->call.objective;
-    const tvo_output_derivs_t *y = work->call.y;
-    const tvo_time_jet_t *t = work->call.t;
-    tvo_real_t *y_k = work->call.y_k;
     if (!isfinite(t->t_s) || !isfinite(t->rate)) {
         zero_output(y_k, m);
         return TVO_ERR_NOT_FINITE;
     }
     /* A derivative that is not finite reaches its output's gradient, hence the rhs checked below (an
-     * output no term covers has no weight, which the solve's check declines): checked only then. */
-    (void)trajectory_jets(y, work->y_jet, k, m, 0);
+     * output no term covers has no weight, which the solve's check declines): checked only then. The
+     * terms read the derivatives where they are (tracking_add_along: no jets of y). */
     tvo_jet_t *g_jet = work->g_jet;
     /* The diagonal of the workspace's matrix holds the weights' sums (entry i at i * stride). */
     tvo_real_t *diagonal = &work->hessian.matrix[0][0];
@@ -291,8 +292,7 @@ TRACKING_PATH_BODY tvo_status_t evaluate_tracking_shape(tvo_law_workspace_t *wor
         if (term != NULL) {
             st = (unsigned)term->offset + 2u > m ? TVO_ERR_DIMENSION
                  : term->target == NULL          ? TVO_ERR_NULL
-                                                 : tracking_add(term, work->y_jet, t, TVO_R(1.0), k, g_jet,
-                                                                diagonal, stride);
+                                                 : tracking_add_along(term, y->d, t, k, g_jet, diagonal, stride);
         }
         if (st != TVO_OK) {
             return tracking_path_refusal(y, y_k, work, st, k, m);
@@ -324,10 +324,22 @@ TRACKING_PATH_BODY tvo_status_t evaluate_tracking_shape(tvo_law_workspace_t *wor
         zero_output(y_k, m);
         return TVO_ERR_NUMERIC;
     }
-    const tvo_law_outputs_t *out = &work->outputs;
-    write_gradient_rows(g_jet, NULL, out->grad_rows, m < out->grad_count ? m : out->grad_count, k, m);
-    if (out->regularization != NULL) {
-        *out->regularization = TVO_R(0.0);
+    const unsigned count = m < grad_count ? m : grad_count;
+    if (grad_rows != NULL) {
+        write_gradient_rows(g_jet, NULL, grad_rows, count, k, m);
+    } else {
+        /* A controller's report (grad_rows NULL): grad and its rate, the first two rows (k >= 1, both asked
+         * for). */
+        TVO_UNROLL_SMALL
+        for (unsigned i = 0; i < m; ++i) {
+            if (i < count) {
+                gradient[i] = g_jet[i].c[0] * factorial[0];
+                gradient_rate[i] = g_jet[i].c[1] * factorial[1];
+            }
+        }
+    }
+    if (regularization != NULL) {
+        *regularization = TVO_R(0.0);
     }
     TVO_UNROLL_SMALL
     for (unsigned i = 0; i < m; ++i) {
@@ -335,6 +347,109 @@ TRACKING_PATH_BODY tvo_status_t evaluate_tracking_shape(tvo_law_workspace_t *wor
     }
     return TVO_OK;
 }
+
+/*
+ * tracking_shape_body for one tracking term over both outputs at the common order, the law's most common
+ * call (one robot tracking): the same operations in the same order, each sum begun from 0 as there, its
+ * values kept in registers rather than the workspace. NULL grad_rows (a controller's report).
+ */
+TVO_SHAPE_BODY tvo_status_t tracking_one_term_body(const tvo_law_t *law, const tvo_tracking_term_t *term,
+                                                   const tvo_output_derivs_t *y, const tvo_time_jet_t *t,
+                                                   tvo_real_t *y_k, tvo_real_t *gradient, tvo_real_t *gradient_rate,
+                                                   const unsigned grad_count, tvo_real_t *regularization,
+                                                   tvo_law_workspace_t *work)
+{
+    const uint8_t k = TVO_SHAPE_ORDER;
+    const uint8_t m = TVO_SHAPE_OUTPUT_DIM;
+    tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2];
+    tvo_status_t st = TVO_ERR_NULL;
+    if (term != NULL) {
+        st = (unsigned)term->offset + 2u > m ? TVO_ERR_DIMENSION
+             : term->target == NULL          ? TVO_ERR_NULL
+                                             : tracking_target_derivatives(term->target, t, k, deriv);
+    }
+    if (st != TVO_OK) {
+        return tracking_path_refusal(y, y_k, work, st, k, m);
+    }
+    static const tvo_real_t inv_factorial[3] = {TVO_R(1.0), TVO_R(1.0), TVO_R(0.5)};
+    const tvo_real_t *gain = law->gain_by_factorial;
+    tvo_real_t g[2][3];
+    tvo_real_t rhs[2];
+    tvo_real_t diagonal[2];
+    tvo_real_t probe = TVO_R(0.0);
+    for (unsigned i = 0; i < 2u; ++i) {
+        const tvo_real_t w = term->weight[i];
+        for (unsigned j = 0; j < 3u; ++j) {
+            const tvo_real_t y_j = j < k ? y->d[j][i] * inv_factorial[j] : TVO_R(0.0);
+            g[i][j] = TVO_R(0.0) + w * (y_j - deriv[j][i] * inv_factorial[j]);
+        }
+        diagonal[i] = TVO_R(0.0) + term->weight[i];
+    }
+    for (unsigned i = 0; i < 2u; ++i) { /* combine_rhs */
+        tvo_real_t sum = g[i][2] * factorial[2];
+        sum += gain[0] * g[i][0];
+        sum += gain[1] * g[i][1];
+        probe += sum * TVO_R(0.0);
+        rhs[i] = sum;
+    }
+    if (!isfinite(probe)) {
+        return tracking_path_refusal(y, y_k, work, TVO_ERR_NUMERIC, k, m);
+    }
+    probe = TVO_R(0.0);
+    int positive = 1;
+    for (unsigned i = 0; i < 2u; ++i) {
+        probe += diagonal[i] * TVO_R(0.0);
+        positive &= diagonal[i] > TVO_R(0.0);
+    }
+    if (!isfinite(probe) || !positive) {
+        return tracking_path_refusal(y, y_k, work, isfinite(probe) ? TVO_ERR_NOT_POSITIVE_DEFINITE : TVO_ERR_NOT_FINITE,
+                                     k, m);
+    }
+    tvo_real_t x[2];
+    for (unsigned i = 0; i < 2u; ++i) {
+        x[i] = rhs[i] / diagonal[i];
+        probe += x[i] * TVO_R(0.0);
+    }
+    if (!isfinite(probe)) {
+        zero_output(y_k, m);
+        return TVO_ERR_NUMERIC;
+    }
+    for (unsigned i = 0; i < 2u; ++i) {
+        if (i < grad_count) {
+            gradient[i] = g[i][0] * factorial[0];
+            gradient_rate[i] = g[i][1] * factorial[1];
+        }
+    }
+    if (regularization != NULL) {
+        *regularization = TVO_R(0.0);
+    }
+    for (unsigned i = 0; i < 2u; ++i) {
+        y_k[i] = -x[i];
+    }
+    return TVO_OK;
+}
+
+/* The tracking path for the call recorded in the workspace (a size build's call passes three). */
+TRACKING_PATH_BODY tvo_status_t evaluate_tracking_shape(tvo_law_workspace_t *work, const uint8_t k, const uint8_t m)
+{
+    const tvo_law_outputs_t *out = &work->outputs;
+    return tracking_shape_body(work->call.law, work->call.objective, work->call.y, work->call.t, work->call.y_k,
+                               out->grad_rows, out->grad_rows[0], out->grad_rows[1], out->grad_count,
+                               out->regularization, work, k, m);
+}
+
+#if TVO_BLOCK_SOLVE
+/* The objective's block-solve plan, if it has one that fits it and its closed forms are used. */
+static inline const tvo_solve_plan_t *usable_plan(const tvo_objective_t *objective)
+{
+    const tvo_solve_plan_t *plan = objective->plan;
+    if (plan == NULL || objective->jets_only || 2u * plan->primal_nodes != objective->primal_dim ||
+        2u * plan->node_count != objective->dim) {
+        return NULL;
+    }
+    return plan;
+}
+#endif
 
 /* The evaluation for a validated law and objective of order k and dimension m; each output is
  * optional: grad_rows[j] receives grad^(j) (j <= k, grad_count entries), hessian_out the Hessian,
@@ -357,16 +472,31 @@ TVO_SHAPE_BODY tvo_status_t evaluate_shape(const tvo_law_t *law, const tvo_objec
     if (!trajectory_jets(y, y_jet, k, m, 1)) {
         return TVO_ERR_NOT_FINITE;
     }
-    TVO_UNROLL_SMALL
-    for (unsigned i = 0; i < m; ++i) {
+#if TVO_BLOCK_SOLVE
+    /* Three robots or more: only the blocks of the problem's coupling (a tool asking for the Hessian gets
+     * every entry). The common shapes (one or two robots) are dense. */
+    const tvo_solve_plan_t *plan = m > TVO_SHAPE_PAIR_OUTPUT_DIM ? usable_plan(objective) : NULL;
+    if (plan != NULL && hessian_out == NULL) {
+        tvo_hessian_clear_blocks(hessian, plan);
+    } else
+#endif
+    {
         TVO_UNROLL_SMALL
-        for (unsigned j = 0; j < m; ++j) {
-            h[i][j] = TVO_R(0.0);
+        for (unsigned i = 0; i < m; ++i) {
+            TVO_UNROLL_SMALL
+            for (unsigned j = 0; j < m; ++j) {
+                h[i][j] = TVO_R(0.0);
+            }
         }
+#if TVO_BLOCK_SOLVE
+        hessian->plan = plan;
+#endif
     }
     tvo_time_jet_t *along = &work->time;
     *along = *t;
     along->rate = TVO_R(1.0);
+    along->shared = &work->shared; /* the barrier's schedules, computed by the first term that needs them */
+    work->shared.owner = NULL;
     /* One pass: every term's gradient jets; the closed forms add their Hessian on the way. */
     uint8_t jet_terms = 0u;
     tvo_status_t st = objective_sum_terms(objective, y_jet, along, k, g_jet, hessian, SUM_CLOSED_FORMS, &jet_terms);
@@ -402,13 +532,24 @@ TVO_SHAPE_BODY tvo_status_t evaluate_shape(const tvo_law_t *law, const tvo_objec
     }
 
     if (jet_terms > 0u) {
+#if TVO_BLOCK_SOLVE
+        if (plan != NULL) {
+            return TVO_ERR_NOT_INITIALIZED; /* a plan's terms all have closed forms: one was changed by hand */
+        }
+#endif
         st = add_jet_hessian(objective, y, t, work);
         if (st != TVO_OK) {
             return st;
         }
     }
-    /* Symmetrise: the exact Hessian is symmetric; rounding should not make the solve see otherwise. */
-    symmetrize(&h[0][0], TVO_MAX_Z_DIM, m);
+#if TVO_BLOCK_SOLVE
+    /* The block solve reads one copy of each block (its factor makes the other copy the first's). */
+    if (plan == NULL)
+#endif
+    {
+        /* Symmetrise: the exact Hessian is symmetric; rounding should not make the solve see otherwise. */
+        symmetrize(&h[0][0], TVO_MAX_Z_DIM, m);
+    }
     if (hessian_out != NULL) {
         /* The whole Hessian, rank-one parts included, for tests and tools. */
         for (unsigned i = 0; i < m; ++i) {
@@ -581,6 +722,33 @@ tvo_status_t tvo_law_evaluate_report(const tvo_law_t *law, const tvo_objective_t
     TVO_ASSERT(law != NULL && objective != NULL && y != NULL && t != NULL && y_k != NULL && report != NULL &&
                work != NULL);
     report->regularization = TVO_R(0.0);
+#if TVO_SHAPE_COPIES
+    /* The controllers' common case, one robot's tracking at k = 2, in this body (no call, no dispatch, no
+     * record of the call unless the path declines it). */
+    const int common = objective->tracking_only && law->relative_degree == TVO_SHAPE_ORDER &&
+                       law->dim == TVO_SHAPE_OUTPUT_DIM && objective->dim == TVO_SHAPE_OUTPUT_DIM &&
+                       objective->primal_dim == TVO_SHAPE_OUTPUT_DIM && tracking_terms_only(objective);
+    const int tried = common && report->gradient != NULL && report->gradient_rate != NULL;
+    if (tried && objective->term_count == 1u) {
+        if (!isfinite(t->t_s) || !isfinite(t->rate)) {
+            zero_output(y_k, TVO_SHAPE_OUTPUT_DIM);
+            return TVO_ERR_NOT_FINITE; /* tracking_shape_body's first check */
+        }
+        const tvo_status_t st = tracking_one_term_body(law, (const tvo_tracking_term_t *)objective->terms[0].term, y, t,
+                                                       y_k, report->gradient, report->gradient_rate, report->count,
+                                                       &report->regularization, work);
+        if (st == TVO_OK || objective->general_path == NULL) {
+            return st;
+        }
+    } else if (tried) {
+        const tvo_status_t st = tracking_shape_body(law, objective, y, t, y_k, NULL, report->gradient,
+                                                    report->gradient_rate, report->count, &report->regularization, work,
+                                                    TVO_SHAPE_ORDER, TVO_SHAPE_OUTPUT_DIM);
+        if (st == TVO_OK || objective->general_path == NULL) {
+            return st;
+        }
+    }
+#endif
     tvo_law_outputs_t *out = &work->outputs;
     out->grad_rows[0] = report->gradient;
     out->grad_rows[1] = report->gradient_rate;
@@ -592,14 +760,7 @@ tvo_status_t tvo_law_evaluate_report(const tvo_law_t *law, const tvo_objective_t
     out->regularization = &report->regularization;
     record_call(law, objective, y, t, y_k, work);
 #if TVO_SHAPE_COPIES
-    /* The controllers' common case, one robot's tracking at k = 2, in this body (no call, no dispatch). */
-    if (objective->tracking_only && law->relative_degree == TVO_SHAPE_ORDER && law->dim == TVO_SHAPE_OUTPUT_DIM &&
-        objective->dim == TVO_SHAPE_OUTPUT_DIM && objective->primal_dim == TVO_SHAPE_OUTPUT_DIM &&
-        tracking_terms_only(objective)) {
-        const tvo_status_t st = evaluate_tracking_shape(work, TVO_SHAPE_ORDER, TVO_SHAPE_OUTPUT_DIM);
-        if (st == TVO_OK || objective->general_path == NULL) {
-            return st;
-        }
+    if (tried) {
         return objective->general_path(work); /* what the path declined */
     }
 #endif

@@ -1,6 +1,7 @@
 /* Fixed-size Cholesky and saddle-point solves; see tvo/linsolve.h. */
 #include "internal/linsolve.h"
 
+#include "internal/block_solve.h"
 #include "shape.h"
 
 #include <string.h>
@@ -317,7 +318,83 @@ void tvo_hessian_clear(tvo_hessian_t *h, uint8_t n)
         }
     }
     h->rank_one_count = 0u;
+#if TVO_BLOCK_SOLVE
+    h->plan = NULL;
+#endif
 }
+
+#if TVO_BLOCK_SOLVE
+void tvo_hessian_clear_blocks(tvo_hessian_t *h, const tvo_solve_plan_t *plan)
+{
+    block_clear(h->matrix, plan);
+    h->rank_one_count = 0u;
+    h->plan = plan;
+}
+
+/* regularized_factor over a plan's blocks (h->plan): the same ladder, each attempt restoring and
+ * factoring only the blocks; the multipliers' blocks follow the robots' in the same factor. */
+static tvo_status_t block_regularized_factor(tvo_hessian_t *h, tvo_real_t *shift)
+{
+    const tvo_solve_plan_t *plan = h->plan;
+    tvo_real_t(*a)[TVO_MAX_Z_DIM] = h->matrix;
+    tvo_real_t *diag = h->scratch.diag;
+    block_prepare(a, plan, diag);
+    *shift = TVO_R(0.0);
+    block_factor_result_t result = block_factor(a, plan, diag, TVO_R(0.0));
+    if (result == BLOCK_FACTORED) {
+        return TVO_OK; /* the usual case */
+    }
+    /* A pivot failed: an entry that is not finite fails one, so that is checked here, not before. */
+    if (!block_pattern_finite(a, plan, diag)) {
+        return TVO_ERR_NOT_FINITE;
+    }
+    tvo_real_t scale = TVO_R(1.0);
+    tvo_real_t gershgorin = TVO_R(0.0);
+    block_gershgorin(a, plan, diag, h->scratch.first, &scale, &gershgorin);
+    const unsigned n = 2u * plan->primal_nodes;
+    tvo_real_t mu = LADDER_FIRST_SCALE * scale;
+    for (uint8_t attempt = 1u; result == BLOCK_PRIMAL_PIVOT && attempt <= LADDER_STEPS + 1u; ++attempt) {
+        if (attempt == LADDER_STEPS + 1u) {
+            mu = gershgorin + LADDER_FIRST_SCALE * scale +
+                 TVO_R(128.0) * TVO_EPSILON * (tvo_real_t)n * (scale + gershgorin);
+        }
+        block_restore(a, plan, diag, mu);
+        result = block_factor(a, plan, diag, mu);
+        if (result == BLOCK_FACTORED) {
+            *shift = mu;
+            return TVO_OK;
+        }
+        mu *= TVO_R(10.0);
+    }
+    return TVO_ERR_NOT_POSITIVE_DEFINITE; /* the ladder's end, or dependent equalities */
+}
+
+/* saddle_solve over h's plan; b must not be the scratch's diag or first. */
+static tvo_status_t block_saddle_solve(tvo_hessian_t *h, uint8_t primal_n, uint8_t dual_n, const tvo_real_t *b,
+                                       tvo_real_t *x, tvo_real_t *shift)
+{
+    const unsigned n = (unsigned)primal_n + dual_n;
+    if (2u * h->plan->primal_nodes != primal_n || 2u * h->plan->node_count != n) {
+        return TVO_ERR_DIMENSION;
+    }
+    if (shift != NULL) {
+        *shift = TVO_R(0.0);
+    }
+    if (!all_finite(b, n)) {
+        return TVO_ERR_NOT_FINITE;
+    }
+    tvo_real_t mu = TVO_R(0.0);
+    const tvo_status_t st = block_regularized_factor(h, &mu);
+    if (st != TVO_OK) {
+        return st;
+    }
+    if (shift != NULL) {
+        *shift = mu;
+    }
+    block_substitute(h->matrix, h->plan, b, x);
+    return all_finite(x, n) ? TVO_OK : TVO_ERR_NUMERIC;
+}
+#endif
 
 /* The part's curvature into the matrix and its gradient jets into grad (when not NULL), for a part
  * of count entries. */
@@ -414,13 +491,16 @@ void tvo_hessian_add_part(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_
 TVO_SHAPE_BODY void hessian_add_shape(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_t *grad,
                                       const unsigned count, const uint8_t order)
 {
-    tvo_real_t scale = TVO_R(1.0);
+    /* Stiff: size > TVO_STIFF_RATIO max(1, |h_ii|) over its indices (an entry that is not a number passed
+     * over), asked as size > ratio and then > ratio |h_ii| for each: the same comparison (ratio times the
+     * maximum is the maximum of ratio times each), which a part far from stiff fails at once. */
+    const tvo_real_t size = rank_one_size_shape(part, count);
+    int stiff = size > TVO_STIFF_RATIO;
     TVO_UNROLL_SMALL
     for (unsigned i = 0; i < count; ++i) {
-        const tvo_real_t d = TVO_FABS(h->matrix[part->index[i]][part->index[i]]);
-        scale = d > scale ? d : scale;
+        stiff = stiff && !(size <= TVO_STIFF_RATIO * TVO_FABS(h->matrix[part->index[i]][part->index[i]]));
     }
-    if (rank_one_size_shape(part, count) > TVO_STIFF_RATIO * scale) {
+    if (stiff) {
         tvo_hessian_add_part(h, part, grad, order);
     } else {
         add_part_shape(part, h->matrix, grad, count, order);
@@ -445,6 +525,63 @@ void tvo_hessian_add(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_t *gr
 #endif
     hessian_add_shape(h, part, grad, part->count, order);
 }
+
+#if TVO_BLOCK_SOLVE
+/* size > TVO_STIFF_RATIO max(1, |d_i|) (hessian_add_shape's test, in its order of questions). */
+static int stiff_against(tvo_real_t size, tvo_real_t d0, tvo_real_t d1, tvo_real_t d2, tvo_real_t d3)
+{
+    return size > TVO_STIFF_RATIO && !(size <= TVO_STIFF_RATIO * TVO_FABS(d0)) &&
+           !(size <= TVO_STIFF_RATIO * TVO_FABS(d1)) && !(size <= TVO_STIFF_RATIO * TVO_FABS(d2)) &&
+           !(size <= TVO_STIFF_RATIO * TVO_FABS(d3));
+}
+
+int tvo_hessian_add_pair(tvo_hessian_t *h, uint8_t a, uint8_t b, const tvo_real_t e[2], tvo_real_t along_weight,
+                         tvo_real_t across_weight)
+{
+    if (h == NULL || e == NULL || h->plan == NULL || (unsigned)a + 2u > TVO_MAX_Z_DIM ||
+        (unsigned)b + 2u > TVO_MAX_Z_DIM) {
+        return 0;
+    }
+    tvo_real_t *a0 = h->matrix[a];
+    tvo_real_t *a1 = h->matrix[a + 1u];
+    tvo_real_t *b0 = h->matrix[b];
+    tvo_real_t *b1 = h->matrix[b + 1u];
+    const tvo_real_t e0 = e[0];
+    const tvo_real_t e1 = e[1];
+    /* Each part judged as hessian_add_shape judges it, |v|^2 summed in its order: the one along e against
+     * the diagonal as it is, the one across against the diagonal with the first added. */
+    const tvo_real_t e00 = e0 * e0;
+    const tvo_real_t e11 = e1 * e1;
+    const tvo_real_t w00 = along_weight * e0 * e0;
+    const tvo_real_t w11 = along_weight * e1 * e1;
+    if (stiff_against(along_weight * (((e00 + e11) + e00) + e11), a0[a], a1[a + 1u], b0[b], b1[b + 1u]) ||
+        stiff_against(across_weight * (((e11 + e00) + e11) + e00), a0[a] + w00, a1[a + 1u] + w11, b0[b] + w00,
+                      b1[b + 1u] + w11)) {
+        return 0;
+    }
+    /* B = w_along e e^T + w_across e_perp e_perp^T: its three entries, once for the four blocks. */
+    const tvo_real_t b00 = w00 + across_weight * e1 * e1;
+    const tvo_real_t b01 = (along_weight - across_weight) * e0 * e1;
+    const tvo_real_t b11 = w11 + across_weight * e0 * e0;
+    a0[a] += b00;
+    a0[a + 1u] += b01;
+    a1[a] += b01;
+    a1[a + 1u] += b11;
+    b0[b] += b00;
+    b0[b + 1u] += b01;
+    b1[b] += b01;
+    b1[b + 1u] += b11;
+    a0[b] -= b00;
+    a0[b + 1u] -= b01;
+    a1[b] -= b01;
+    a1[b + 1u] -= b11;
+    b0[a] -= b00;
+    b0[a + 1u] -= b01;
+    b1[a] -= b01;
+    b1[a + 1u] -= b11;
+    return 1;
+}
+#endif
 
 void tvo_hessian_settle(tvo_hessian_t *h, uint8_t n, uint8_t dual_n, tvo_jet_t *grad, uint8_t order)
 {
@@ -472,8 +609,20 @@ void tvo_hessian_settle(tvo_hessian_t *h, uint8_t n, uint8_t dual_n, tvo_jet_t *
     h->rank_one_count = (uint8_t)kept;
 }
 
-/* y = A^-1 u for a sparse u, with A's factor in the lower triangle. */
-static void substitute_sparse(const tvo_real_t *factor, unsigned n, const tvo_rank_one_t *part, tvo_real_t *dense,
+/* x = A^-1 b with h's factor (its plan's, or the dense one's in the lower triangle); x may alias b. */
+static void substitute_factor(tvo_hessian_t *h, unsigned n, const tvo_real_t *b, tvo_real_t *x)
+{
+#if TVO_BLOCK_SOLVE
+    if (h->plan != NULL) {
+        block_substitute(h->matrix, h->plan, b, x);
+        return;
+    }
+#endif
+    cholesky_substitute(&h->matrix[0][0], TVO_MAX_Z_DIM, n, b, x);
+}
+
+/* y = A^-1 u for a sparse u, with h's factor. */
+static void substitute_sparse(tvo_hessian_t *h, unsigned n, const tvo_rank_one_t *part, tvo_real_t *dense,
                               tvo_real_t *y)
 {
     for (unsigned i = 0; i < n; ++i) {
@@ -482,7 +631,7 @@ static void substitute_sparse(const tvo_real_t *factor, unsigned n, const tvo_ra
     for (unsigned i = 0; i < part->count; ++i) {
         dense[part->index[i]] += part->value[i];
     }
-    cholesky_substitute(factor, TVO_MAX_Z_DIM, n, dense, y);
+    substitute_factor(h, n, dense, y);
 }
 
 static tvo_real_t dot_sparse(const tvo_rank_one_t *part, const tvo_real_t *v)
@@ -503,10 +652,19 @@ static tvo_status_t solve_parts_added(tvo_hessian_t *h, uint8_t primal_n, uint8_
     const tvo_real_t *diag = h->scratch.diag;
     tvo_real_t *dense_b = h->scratch.dense;
     for (unsigned i = 0; i < n && i < TVO_MAX_Z_DIM; ++i) {
-        h->matrix[i][i] = diag[i];
         dense_b[i] = b[i];
-        for (unsigned j = 0; j < i; ++j) {
-            h->matrix[i][j] = h->matrix[j][i];
+    }
+#if TVO_BLOCK_SOLVE
+    if (h->plan != NULL) {
+        block_restore(h->matrix, h->plan, diag, TVO_R(0.0));
+    } else
+#endif
+    {
+        for (unsigned i = 0; i < n && i < TVO_MAX_Z_DIM; ++i) {
+            h->matrix[i][i] = diag[i];
+            for (unsigned j = 0; j < i; ++j) {
+                h->matrix[i][j] = h->matrix[j][i];
+            }
         }
     }
     for (unsigned k = 0; k < h->rank_one_count && k < TVO_MAX_RANK_ONE_PARTS; ++k) {
@@ -517,6 +675,11 @@ static tvo_status_t solve_parts_added(tvo_hessian_t *h, uint8_t primal_n, uint8_
         }
     }
     h->rank_one_count = 0u;
+#if TVO_BLOCK_SOLVE
+    if (h->plan != NULL) {
+        return block_saddle_solve(h, primal_n, dual_n, dense_b, x, shift);
+    }
+#endif
     return saddle_solve(h->matrix, primal_n, dual_n, dense_b, x, shift, &h->scratch);
 }
 
@@ -531,12 +694,21 @@ tvo_status_t tvo_saddle_solve_split(tvo_hessian_t *h, uint8_t primal_n, uint8_t 
         (parts > 0u && (gamma == NULL || dual_n > 0u))) {
         return parts > 0u && gamma == NULL ? TVO_ERR_NULL : TVO_ERR_DIMENSION;
     }
+#if TVO_BLOCK_SOLVE
+    const int blocks = h->plan != NULL;
+    if (blocks && parts == 0u) {
+        return block_saddle_solve(h, primal_n, dual_n, b, x, shift);
+    }
+#else
+    const int blocks = 0;
+#endif
     if (parts == 0u) {
         return saddle_solve(h->matrix, primal_n, dual_n, b, x, shift, &h->scratch);
     }
     const unsigned n = primal_n;
     for (unsigned i = 0; i < n; ++i) {
-        if (!all_finite(h->matrix[i], n) || !isfinite(b[i])) {
+        /* The dense matrix is checked entry by entry; the blocks' factor fails on what is not finite. */
+        if ((!blocks && !all_finite(h->matrix[i], n)) || !isfinite(b[i])) {
             return TVO_ERR_NOT_FINITE;
         }
     }
@@ -545,11 +717,24 @@ tvo_status_t tvo_saddle_solve_split(tvo_hessian_t *h, uint8_t primal_n, uint8_t 
     }
     /* The soft part alone: if it is positive definite the stiff parts are solved apart, exactly. */
     tvo_solve_scratch_t *scratch = &h->scratch;
-    for (unsigned i = 0; i < n; ++i) {
-        scratch->diag[i] = h->matrix[i][i];
-    }
-    if (!cholesky_factor(&h->matrix[0][0], TVO_MAX_Z_DIM, n)) {
-        return solve_parts_added(h, primal_n, dual_n, b, gamma, x, shift);
+#if TVO_BLOCK_SOLVE
+    if (blocks) {
+        if (2u * h->plan->primal_nodes != n || h->plan->node_count != h->plan->primal_nodes) {
+            return TVO_ERR_DIMENSION;
+        }
+        block_prepare(h->matrix, h->plan, scratch->diag);
+        if (block_factor(h->matrix, h->plan, scratch->diag, TVO_R(0.0)) != BLOCK_FACTORED) {
+            return solve_parts_added(h, primal_n, dual_n, b, gamma, x, shift);
+        }
+    } else
+#endif
+    {
+        for (unsigned i = 0; i < n; ++i) {
+            scratch->diag[i] = h->matrix[i][i];
+        }
+        if (!cholesky_factor(&h->matrix[0][0], TVO_MAX_Z_DIM, n)) {
+            return solve_parts_added(h, primal_n, dual_n, b, gamma, x, shift);
+        }
     }
     if (shift != NULL) {
         *shift = TVO_R(0.0);
@@ -563,9 +748,9 @@ tvo_status_t tvo_saddle_solve_split(tvo_hessian_t *h, uint8_t primal_n, uint8_t 
     tvo_real_t(*capacitance)[TVO_SOLVE_SMALL_DIM] = scratch->small;
     tvo_real_t *rhs = scratch->small_rhs;
     tvo_real_t *w = scratch->small_x;
-    cholesky_substitute(&h->matrix[0][0], TVO_MAX_Z_DIM, n, b, z);
+    substitute_factor(h, n, b, z);
     for (unsigned k = 0; k < parts; ++k) {
-        substitute_sparse(&h->matrix[0][0], n, &h->rank_one[k], scratch->dense, y_cols[k]);
+        substitute_sparse(h, n, &h->rank_one[k], scratch->dense, y_cols[k]);
     }
     for (unsigned k = 0; k < parts; ++k) {
         const tvo_real_t inv_weight = TVO_R(1.0) / h->rank_one[k].weight;

@@ -19,6 +19,9 @@ tvo_status_t tvo_objective_init(tvo_objective_t *objective, uint8_t primal_dim)
     objective->tracking_only = 0;
     objective->general_path = NULL;
     objective->start_rule = NULL;
+#if TVO_BLOCK_SOLVE
+    objective->plan = NULL;
+#endif
     if (primal_dim == 0u || primal_dim > TVO_MAX_OUTPUT_DIM) {
         return TVO_ERR_DIMENSION;
     }
@@ -36,6 +39,9 @@ static tvo_status_t append_slot(tvo_objective_t *objective, const tvo_term_t *sp
         return TVO_ERR_CAPACITY;
     }
     objective->terms[objective->term_count] = *spec;
+#if TVO_BLOCK_SOLVE
+    objective->plan = NULL; /* the plan knows only the coupling of the terms it was made for */
+#endif
     /* Tracking terms alone need no Hessian matrix in the law (its diagonal path). */
     const int tracking = spec->kind == TVO_TERM_TRACKING;
     objective->tracking_only = (uint8_t)((objective->term_count == 0u || objective->tracking_only) && tracking);
@@ -110,6 +116,9 @@ tvo_status_t tvo_objective_reserve_multipliers(tvo_objective_t *objective, uint8
         return TVO_ERR_DIMENSION;
     }
     *first_index = objective->dim;
+#if TVO_BLOCK_SOLVE
+    objective->plan = NULL;
+#endif
     objective->dual_dim = (uint8_t)(objective->dual_dim + count);
     objective->dim = (uint8_t)(objective->primal_dim + objective->dual_dim);
     objective->general_path = law_general_path; /* the KKT solve */
@@ -250,6 +259,7 @@ tvo_status_t tvo_time_jet_at(const tvo_tick_time_t *time, uint32_t tick_hz, tvo_
         return TVO_ERR_PARAM;
     }
     time_jet_at_tick_time(time, tick_hz, rate, t);
+    t->shared = NULL; /* a caller's time jet: every term computes its own */
     return TVO_OK;
 }
 

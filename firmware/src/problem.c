@@ -2,6 +2,7 @@
 #include "tvo/problem.h"
 
 #include "internal/barrier.h"
+#include "internal/block_solve.h"
 #include "internal/constraints.h"
 #include "internal/equality.h"
 #include "internal/objective.h"
@@ -31,21 +32,46 @@ tvo_status_t tvo_problem_desc_default(tvo_problem_desc_t *desc)
     return tvo_barrier_config_default(&desc->barrier);
 }
 
-static tvo_status_t add_distance(tvo_problem_t *problem, tvo_distance_kind_t kind, const tvo_distance_bound_desc_t *d,
-                                 tvo_real_t bound_m, tvo_real_t rate_mps)
+/* A bound's sides as terms, the minimum first: each side its own term, or, for three robots or more (the
+ * block plan's problems), both sides of a bound as one term (its two distance terms in a row:
+ * tvo_distance_pair_gradient_hessian). */
+static tvo_status_t add_distance_bound(tvo_problem_t *problem, const tvo_distance_bound_desc_t *d, uint8_t robots)
 {
-    if (problem->distance_term_count >= 2u * TVO_MAX_DISTANCE_BOUNDS) {
-        return TVO_ERR_CAPACITY;
+    const uint8_t first = problem->distance_term_count;
+    uint8_t count = 0u;
+    tvo_status_t st = TVO_OK;
+    for (uint8_t side = 0; st == TVO_OK && side < 2u; ++side) {
+        const tvo_real_t bound_m = side == 0u ? d->min_m : d->max_m;
+        if (!(bound_m > TVO_R(0.0))) {
+            continue; /* that side is not asked for */
+        }
+        if ((unsigned)first + count >= 2u * TVO_MAX_DISTANCE_BOUNDS) {
+            return TVO_ERR_CAPACITY;
+        }
+        st = tvo_distance_term_init(&problem->distance[first + count], &problem->barrier,
+                                    side == 0u ? TVO_DISTANCE_MIN : TVO_DISTANCE_MAX, d->robot_a, d->robot_b, bound_m,
+                                    side == 0u ? d->min_rate_mps : d->max_rate_mps);
+        count++;
     }
-    tvo_distance_term_t *term = &problem->distance[problem->distance_term_count];
-    tvo_status_t st = tvo_distance_term_init(term, &problem->barrier, kind, d->robot_a, d->robot_b, bound_m, rate_mps);
-    if (st == TVO_OK) {
-        const tvo_term_t spec = {tvo_distance_gradient_jet, tvo_distance_gradient_hessian, tvo_distance_constraint_max,
-                                 term, TVO_TERM_GENERAL};
+#if !TVO_BLOCK_SOLVE
+    (void)robots;
+#else
+    if (st == TVO_OK && count == 2u && robots >= 3u) {
+        const tvo_term_t spec = {tvo_distance_pair_gradient_jet, tvo_distance_pair_gradient_hessian,
+                                 tvo_distance_pair_constraint_max, &problem->distance[first], TVO_TERM_GENERAL};
         st = tvo_objective_add(&problem->objective, &spec);
+        count = st == TVO_OK ? count : 0u;
+    } else
+#endif
+    {
+        for (uint8_t k = 0; st == TVO_OK && k < count; ++k) {
+            const tvo_term_t spec = {tvo_distance_gradient_jet, tvo_distance_gradient_hessian,
+                                     tvo_distance_constraint_max, &problem->distance[first + k], TVO_TERM_GENERAL};
+            st = tvo_objective_add(&problem->objective, &spec);
+        }
     }
     if (st == TVO_OK) {
-        problem->distance_term_count++;
+        problem->distance_term_count = (uint8_t)(first + count);
     }
     return st;
 }
@@ -65,12 +91,7 @@ static tvo_status_t build_constraints(tvo_problem_t *problem, const tvo_problem_
             (d->max_m > TVO_R(0.0) && d->min_m >= d->max_m)) {
             return TVO_ERR_PARAM;
         }
-        if (d->min_m > TVO_R(0.0)) {
-            st = add_distance(problem, TVO_DISTANCE_MIN, d, d->min_m, d->min_rate_mps);
-        }
-        if (st == TVO_OK && d->max_m > TVO_R(0.0)) {
-            st = add_distance(problem, TVO_DISTANCE_MAX, d, d->max_m, d->max_rate_mps);
-        }
+        st = add_distance_bound(problem, d, n);
     }
     if (st != TVO_OK) {
         return st;
@@ -133,6 +154,37 @@ static void problem_start_rule(const tvo_objective_t *objective, const tvo_real_
     problem->slack_pending = 0u;
 }
 
+#if TVO_BLOCK_SOLVE
+/* The law's solve follows the problem's coupling from three robots on (two are cheaper dense): a distance
+ * bound couples its robots, a formation offset each of its robots to its multipliers (tvo/linsolve.h). A
+ * plan that cannot be made leaves the dense solve. */
+static void choose_solve_plan(tvo_problem_t *problem, const tvo_problem_desc_t *desc)
+{
+    const uint8_t robots = desc->robot_count;
+    if (robots < 3u) {
+        return;
+    }
+    uint8_t pairs[2u * (TVO_MAX_DISTANCE_BOUNDS + 2u * TVO_MAX_OFFSET_EQUALITIES)];
+    uint8_t count = 0u;
+    for (uint8_t i = 0; i < desc->distance_count && i < TVO_MAX_DISTANCE_BOUNDS; ++i) {
+        pairs[2u * count] = desc->distance[i].robot_a;
+        pairs[2u * count + 1u] = desc->distance[i].robot_b;
+        count++;
+    }
+    for (uint8_t i = 0; i < desc->offset_count && i < TVO_MAX_OFFSET_EQUALITIES; ++i) {
+        for (uint8_t end = 0; end < 2u; ++end) {
+            pairs[2u * count] = end == 0u ? desc->offset[i].robot_a : desc->offset[i].robot_b;
+            pairs[2u * count + 1u] = (uint8_t)(robots + i);
+            count++;
+        }
+    }
+    if (tvo_solve_plan_build(&problem->plan, robots, desc->offset_count, problem->objective.primal_dim, pairs, count) ==
+        TVO_OK) {
+        problem->objective.plan = &problem->plan;
+    }
+}
+#endif
+
 tvo_status_t tvo_problem_init(tvo_problem_t *problem, const tvo_problem_desc_t *desc, uint8_t relative_degree,
                               uint8_t *bad_part)
 {
@@ -193,6 +245,9 @@ tvo_status_t tvo_problem_init(tvo_problem_t *problem, const tvo_problem_desc_t *
     if (any_inequality) {
         problem->objective.start_rule = problem_start_rule;
     }
+#if TVO_BLOCK_SOLVE
+    choose_solve_plan(problem, desc);
+#endif
     problem->initialized = 1;
     return TVO_OK;
 }

@@ -5,7 +5,7 @@
 
 #include "shape.h"
 #include "internal/target_kernel.h"
-#include "internal/trig.h"
+#include "internal/trig_kernel.h"
 
 /* TVO_ERR_NOT_FINITE if one of the n values is not finite, else TVO_ERR_PARAM if one of the first
  * `limited` has |v_i| > limit, else TVO_OK. */
@@ -191,40 +191,6 @@ static void polynomial_derivatives(const tvo_target_polynomial_t *p, uint8_t deg
     }
 }
 
-static void ellipse_derivatives(const tvo_target_t *target, const tvo_time_jet_t *t, uint8_t order,
-                                tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2])
-{
-    const tvo_target_ellipse_t *e = &target->u.ellipse;
-    /* phi = phase + omega t: whole seconds advance the Q0.64 phase exactly (wrapping is whole
-     * turns), the fraction of a second adds a small angle in tvo_real_t. */
-    const uint64_t turns = target->phase0_q64 + target->rate_q64 * (uint64_t)t->whole_s;
-    const tvo_real_t frac_s = (tvo_real_t)t->frac_ticks / (tvo_real_t)t->tick_hz;
-    tvo_real_t s;
-    tvo_real_t c;
-    tvo_sincos_turns(turns, e->omega_radps * frac_s, &s, &c);
-    /* y_d = centre + A cos phi + B sin phi with the rotated semi-axes A, B (from init); the
-     * derivatives of (cos, sin) cycle with period 4 and scale by omega^j. */
-    const tvo_real_t dcos[4] = {c, -s, -c, s};
-    const tvo_real_t dsin[4] = {s, c, -s, -c};
-    /* In locals: deriv's stores could alias the target, which would be read again at every order. */
-    const tvo_real_t a0 = target->axis_m[0][0];
-    const tvo_real_t a1 = target->axis_m[0][1];
-    const tvo_real_t b0 = target->axis_m[1][0];
-    const tvo_real_t b1 = target->axis_m[1][1];
-    const tvo_real_t omega = e->omega_radps;
-    deriv[0][0] = (a0 * c + b0 * s) + e->center_m[0];
-    deriv[0][1] = (a1 * c + b1 * s) + e->center_m[1];
-    tvo_real_t omega_pow = omega;
-    TVO_UNROLL_SMALL
-    for (unsigned j = 1; j <= order; ++j) {
-        const tvo_real_t u = dcos[j & 3u] * omega_pow;
-        const tvo_real_t v = dsin[j & 3u] * omega_pow;
-        deriv[j][0] = a0 * u + b0 * v;
-        deriv[j][1] = a1 * u + b1 * v;
-        omega_pow *= omega;
-    }
-}
-
 static tvo_status_t streamed_derivatives(const tvo_target_streamed_t *s, const tvo_time_jet_t *t,
                                          uint8_t order, tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2])
 {
@@ -288,6 +254,12 @@ tvo_status_t target_derivatives(const tvo_target_t *target, const tvo_time_jet_t
         if (t->tick_hz == 0u || t->frac_ticks >= t->tick_hz) {
             return TVO_ERR_PARAM; /* the phase needs the exact split of tvo_time_jet_at */
         }
+#if TVO_SHAPE_COPIES
+        if (order == TVO_SHAPE_ORDER) {
+            ellipse_derivatives(target, t, TVO_SHAPE_ORDER, deriv); /* the k = 2 law's: its cycle unrolled */
+            return TVO_OK;
+        }
+#endif
         ellipse_derivatives(target, t, order, deriv);
         return TVO_OK;
     case TVO_TARGET_STREAMED:

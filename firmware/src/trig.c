@@ -1,52 +1,10 @@
 /* Sine and cosine together; see tvo/trig.h. */
-#include "internal/trig.h"
-
-#include "shape.h"
+#include "internal/trig_kernel.h"
+#include "internal/wide_mul.h"
 
 #include <string.h>
 
-#define TRIG_PI_OVER_TWO TVO_R(1.57079632679489661923)
-/* pi/2 = P1 + P2 + P3, P1 and P2 with few enough bits that q * P1, q * P2 are exact for q < 2^13. */
-#define TRIG_PIO2_1 TVO_R(1.5703125)
-#define TRIG_PIO2_2 TVO_R(4.837512969970703125e-4)
-#define TRIG_PIO2_3 TVO_R(7.54978995489188216e-8)
-
 #if !TVO_USE_DOUBLE
-/* The largest float the reduction below maps to quarter 0 (pi/4 itself rounds to quarter 1 there):
- * below it the reduction is the identity, so skipping it changes no result. */
-#define TRIG_NO_REDUCTION_LIMIT 0x1.921fb2p-1f
-
-/* sin and cos on [-pi/4, pi/4]: the minimax polynomials of Cephes' sinf/cosf. */
-static void sincos_kernel(float x, float *s, float *c)
-{
-    const float z = x * x;
-    *s = x + x * z * (-1.6666654611e-1f + z * (8.3321608736e-3f + z * -1.9515295891e-4f));
-    *c = 1.0f - 0.5f * z + z * z * (4.166664568298827e-2f + z * (-1.388731625493765e-3f + z * 2.443315711809948e-5f));
-}
-
-/* Rotates (sin, cos) of the reduced angle by quadrant q (q pi/2 added). */
-static void by_quadrant(uint32_t q, float s, float c, float *sin_out, float *cos_out)
-{
-    switch (q & 3u) {
-    case 0u:
-        *sin_out = s;
-        *cos_out = c;
-        break;
-    case 1u:
-        *sin_out = c;
-        *cos_out = -s;
-        break;
-    case 2u:
-        *sin_out = -s;
-        *cos_out = -c;
-        break;
-    default:
-        *sin_out = -c;
-        *cos_out = s;
-        break;
-    }
-}
-
 /* 2/pi = sum_i b_i 2^-i: its bits b_1 .. b_256, b_1 the top bit of the first word. */
 static const uint32_t two_over_pi_bits[8] = {0xA2F9836Eu, 0x4E441529u, 0xFC2757D1u, 0xF534DDC0u,
                                              0xDB629599u, 0x3C439041u, 0xFE5163ABu, 0xDEBBC561u};
@@ -62,20 +20,6 @@ static uint32_t two_over_pi_word(unsigned first)
         return two_over_pi_bits[index];
     }
     return (two_over_pi_bits[index] << offset) | (two_over_pi_bits[index + 1u] >> (32u - offset));
-}
-
-/* The high 64 bits of the 128-bit product a b, from 32-bit halves (no 128-bit type needed). */
-static uint64_t mul_high_u64(uint64_t a, uint64_t b)
-{
-    const uint64_t a_lo = a & 0xFFFFFFFFu;
-    const uint64_t a_hi = a >> 32;
-    const uint64_t b_lo = b & 0xFFFFFFFFu;
-    const uint64_t b_hi = b >> 32;
-    const uint64_t lo_lo = a_lo * b_lo;
-    const uint64_t hi_lo = a_hi * b_lo;
-    const uint64_t lo_hi = a_lo * b_hi;
-    const uint64_t carry = ((lo_lo >> 32) + (hi_lo & 0xFFFFFFFFu) + (lo_hi & 0xFFFFFFFFu)) >> 32;
-    return a_hi * b_hi + (hi_lo >> 32) + (lo_hi >> 32) + carry;
 }
 
 /*
@@ -109,7 +53,7 @@ static void sincos_huge(float angle_rad, float *sin_out, float *cos_out)
     const uint32_t quarter = (uint32_t)(high >> shift) + up;
     const uint64_t rest_magnitude = up ? (~fraction + 1u) : fraction; /* |rest| 2^64, at most 2^63 */
     /* angle mod pi/2 = rest pi/2: (|rest| 2^64)(pi/2 2^62) 2^-126, its high 64 bits scaled by 2^-62. */
-    float reduced = (float)mul_high_u64(rest_magnitude, TRIG_PIO2_Q62) * 0x1p-62f;
+    float reduced = (float)wide_mul_high_u64(rest_magnitude, TRIG_PIO2_Q62) * 0x1p-62f;
     if (up) {
         reduced = -reduced;
     }
@@ -120,27 +64,6 @@ static void sincos_huge(float angle_rad, float *sin_out, float *cos_out)
     if (angle_rad < 0.0f) {
         *sin_out = -*sin_out; /* sin is odd, cos even */
     }
-}
-#endif
-
-#if !TVO_USE_DOUBLE
-/* sin and cos of |angle| <= TVO_SINCOS_FAST_LIMIT_RAD (Cody-Waite to the nearest quarter turn);
- * in both callers' bodies when the build compiles for speed. */
-TVO_SHAPE_BODY void sincos_fast_range(float angle_rad, float *sin_out, float *cos_out)
-{
-    if (TVO_FABS(angle_rad) <= TRIG_NO_REDUCTION_LIMIT) {
-        sincos_kernel(angle_rad, sin_out, cos_out); /* small angles (a turn over one period): no reduction */
-        return;
-    }
-    /* Nearest quarter turn by conversion to integer (one instruction; floorf is a library call). */
-    const float scaled = angle_rad * TVO_TWO_OVER_PI;
-    const int32_t quarter = (int32_t)(scaled + (scaled >= 0.0f ? 0.5f : -0.5f));
-    const float q = (float)quarter;
-    const float x = ((angle_rad - q * TRIG_PIO2_1) - q * TRIG_PIO2_2) - q * TRIG_PIO2_3;
-    float s;
-    float c;
-    sincos_kernel(x, &s, &c);
-    by_quadrant((uint32_t)quarter, s, c, sin_out, cos_out);
 }
 #endif
 
@@ -177,20 +100,6 @@ void tvo_sincos_turns(uint64_t turns_q64, tvo_real_t extra_rad, tvo_real_t *sin_
     *sin_out = sin(angle);
     *cos_out = cos(angle);
 #else
-    /* The nearest quarter turn from the top bits, exactly; the rest is a small signed angle. */
-    const uint32_t turns_q32 = (uint32_t)(turns_q64 >> 32);
-    const uint32_t centred = turns_q32 + 0x20000000u;
-    const uint32_t q = centred >> 30;
-    const int32_t rest_q32 = (int32_t)(turns_q32 - (q << 30));
-    const float rest = (float)rest_q32 * (TRIG_PI_OVER_TWO / 1073741824.0f) + extra_rad;
-    float s;
-    float c;
-    if (TVO_FABS(rest) > 0.7853982f) {
-        /* The extra angle left the octant: reduce it too (|rest| <= the limit + pi/4 keeps q < 2^13). */
-        sincos_fast_range(rest, &s, &c);
-    } else {
-        sincos_kernel(rest, &s, &c);
-    }
-    by_quadrant(q, s, c, sin_out, cos_out);
+    sincos_turns_body(turns_q64, extra_rad, sin_out, cos_out);
 #endif
 }

@@ -67,15 +67,29 @@ static void random_target(tvo_target_t *target, double cx, double cy)
     }
 }
 
-/* Two robots, every constraint kind present, an offset equality when offsets is set. */
-static void random_problem(int offsets)
+/* Where robot r of n starts: two robots at (-1.5, 0) and (1.5, 0), more on a circle of radius 1.5. */
+static void robot_place(unsigned r, unsigned n, double *x, double *y)
+{
+    const double angle = n == 2u ? (r == 0u ? TEST_PI : 0.0) : 2.0 * TEST_PI * (double)r / (double)n;
+    *x = 1.5 * cos(angle);
+    *y = 1.5 * sin(angle);
+}
+
+/* n robots, every constraint kind present, an offset equality when offsets is set. Two robots: one
+ * distance bound between them; three or more (the block solve's problems, each bound's two sides one
+ * term): a ring of them, and one more bound with its maximum only. */
+static void random_problem(unsigned n, int offsets)
 {
     tvo_problem_desc_t desc;
     ASSERT_STATUS(TVO_OK, tvo_problem_desc_default(&desc));
-    desc.robot_count = 2u;
-    random_target(&desc.target[0], -1.5, 0.0);
-    random_target(&desc.target[1], 1.5, 0.0);
-    for (uint8_t r = 0; r < 2u; ++r) {
+    desc.robot_count = (uint8_t)n;
+    for (unsigned r = 0; r < n; ++r) {
+        double x = 0.0;
+        double y = 0.0;
+        robot_place(r, n, &x, &y);
+        random_target(&desc.target[r], x, y);
+    }
+    for (uint8_t r = 0; r < n; ++r) {
         desc.tracking_weight[r][0] = test_r(uniform(0.5, 3.0));
         desc.tracking_weight[r][1] = test_r(uniform(0.5, 3.0));
     }
@@ -89,6 +103,25 @@ static void random_problem(int offsets)
     desc.distance[0].min_rate_mps = test_r(uniform(-0.05, 0.05));
     desc.distance[0].max_m = test_r(uniform(3.5, 5.0));
     desc.distance[0].max_rate_mps = test_r(uniform(-0.05, 0.05));
+    if (n > 2u) {
+        /* A ring: robot r to r + 1, spaced 3 sin(pi / n) apart. */
+        const double spacing = 3.0 * sin(TEST_PI / (double)n);
+        for (unsigned b = 0; b < n && b < TVO_MAX_DISTANCE_BOUNDS; ++b) {
+            desc.distance[b].robot_a = (uint8_t)b;
+            desc.distance[b].robot_b = (uint8_t)((b + 1u) % n);
+            desc.distance[b].min_m = test_r(spacing * uniform(0.3, 0.7));
+            desc.distance[b].min_rate_mps = test_r(uniform(-0.05, 0.05));
+            desc.distance[b].max_m = test_r(spacing * uniform(1.4, 2.0));
+            desc.distance[b].max_rate_mps = test_r(uniform(-0.05, 0.05));
+            desc.distance_count = (uint8_t)(b + 1u);
+        }
+        if (desc.distance_count < TVO_MAX_DISTANCE_BOUNDS) {
+            desc.distance[desc.distance_count].robot_a = 0u;
+            desc.distance[desc.distance_count].robot_b = (uint8_t)(n / 2u);
+            desc.distance[desc.distance_count].max_m = test_r(uniform(3.5, 5.0));
+            desc.distance_count++;
+        }
+    }
     desc.halfspace_count = 1u;
     desc.halfspace[0].robot = 1u;
     desc.halfspace[0].normal[0] = test_r(uniform(-1.0, 1.0));
@@ -113,6 +146,9 @@ static void random_problem(int offsets)
     }
     uint8_t part = 0u;
     ASSERT_STATUS(TVO_OK, tvo_problem_init(&problem, &desc, 2u, &part));
+#if TVO_BLOCK_SOLVE
+    TEST_ASSERT_TRUE((problem.objective.plan != NULL) == (n > 2u)); /* the block solve from three robots on */
+#endif
 }
 
 /* |a - b| within AGREEMENT_ULPS of scale, with the place named. */
@@ -207,19 +243,29 @@ static void compare_paths(const tvo_output_derivs_t *y, const tvo_time_jet_t *t,
 }
 
 /* Random states near the targets, at random times on both sides of the barrier's cap. */
-static void run_trials(int offsets)
+static void run_trials(unsigned n, int offsets)
 {
     unsigned compared = 0u;
     for (unsigned trial = 0; trial < TRIALS; ++trial) {
-        random_problem(offsets);
+        random_problem(n, offsets);
         tvo_output_derivs_t y;
         memset(&y, 0, sizeof(y));
         y.d[0][0] = test_r(uniform(-2.5, -0.5));
         y.d[0][1] = test_r(uniform(-1.5, 1.5));
         y.d[0][2] = test_r(uniform(0.5, 2.5));
         y.d[0][3] = test_r(uniform(-1.5, 1.5));
+        if (n > 2u) {
+            for (unsigned r = 0; r < n; ++r) {
+                double x = 0.0;
+                double yy = 0.0;
+                robot_place(r, n, &x, &yy);
+                y.d[0][2u * r] = test_r(x + uniform(-0.5, 0.5));
+                y.d[0][2u * r + 1u] = test_r(yy + uniform(-0.5, 0.5));
+            }
+        }
+        const unsigned primal = 2u * n;
         for (unsigned i = 0; i < problem.objective.dim; ++i) {
-            if (i >= 4u) {
+            if (i >= primal) {
                 y.d[0][i] = test_r(uniform(-1.0, 1.0)); /* multipliers */
             }
             y.d[1][i] = test_r(uniform(-1.0, 1.0));
@@ -239,18 +285,29 @@ static void run_trials(int offsets)
 
 static void test_closed_forms_match_jets_without_equalities(void)
 {
-    run_trials(0);
+    run_trials(2u, 0);
 }
 
 static void test_closed_forms_match_jets_with_an_offset_equality(void)
 {
-    run_trials(1);
+    run_trials(2u, 1);
 }
+
+/* Three robots and the build's most: the block plan's problems (a bound's two sides one term, its
+ * Hessian one 2 x 2 block, the solve by the plan) against the jets' dense path. */
+#if TVO_MAX_ROBOTS >= 3
+static void test_block_solved_problems_match_jets(void)
+{
+    run_trials(3u, 0);
+    run_trials(TVO_MAX_ROBOTS, 0);
+    run_trials(TVO_MAX_ROBOTS, 1);
+}
+#endif
 
 /* The law's pass uses the closed forms (no term left to jets) unless jets_only asks otherwise. */
 static void test_every_built_in_term_has_a_closed_form(void)
 {
-    random_problem(1);
+    random_problem(2u, 1);
     tvo_jet_t z[TVO_MAX_Z_DIM];
     tvo_jet_t grad[TVO_MAX_Z_DIM];
     static tvo_hessian_t h;
@@ -397,6 +454,9 @@ int main(void)
     UNITY_BEGIN();
     RUN_TEST(test_closed_forms_match_jets_without_equalities);
     RUN_TEST(test_closed_forms_match_jets_with_an_offset_equality);
+#if TVO_MAX_ROBOTS >= 3
+    RUN_TEST(test_block_solved_problems_match_jets);
+#endif
     RUN_TEST(test_every_built_in_term_has_a_closed_form);
     RUN_TEST(test_tracking_path_matches_the_general_path_bit_for_bit);
     return UNITY_END();

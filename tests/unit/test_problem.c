@@ -11,6 +11,7 @@
 #include "test_support.h"
 
 #include "tvo/problem.h"
+#include "internal/objective.h"
 
 void setUp(void) {}
 void tearDown(void) {}
@@ -35,7 +36,7 @@ static void assert_uninitialised(void)
     TEST_ASSERT_NULL(tvo_problem_target(&problem, 0));
 }
 
-static void test_formation_with_min_and_max_distance_gives_two_terms(void)
+static void test_formation_with_min_and_max_distance_gives_two_distance_terms(void)
 {
     tvo_problem_desc_t desc;
     two_robot_desc(&desc);
@@ -51,14 +52,21 @@ static void test_formation_with_min_and_max_distance_gives_two_terms(void)
     TEST_ASSERT_EQUAL_UINT8(1, problem.has_inequalities);
     TEST_ASSERT_EQUAL_UINT8(2, problem.distance_term_count);
     TEST_ASSERT_EQUAL_UINT8(4, problem.objective.term_count); /* 2 tracking + 2 distance */
+    TEST_ASSERT_TRUE(problem.objective.terms[2].constraint_max != NULL);
+    TEST_ASSERT_TRUE(problem.objective.terms[3].constraint_max != NULL);
+    /* The start rule sees the larger side: |D| = 2 gives 1 - 4 (minimum) and 4 - 9 (maximum). */
+    const tvo_real_t y[4] = {TVO_R(0.0), TVO_R(0.0), TVO_R(2.0), TVO_R(0.0)};
+    tvo_real_t worst = TVO_R(0.0);
+    uint8_t has = 0u;
+    ASSERT_STATUS(TVO_OK, tvo_objective_constraint_max(&problem.objective, y, TVO_R(0.0), &worst, &has));
+    TEST_ASSERT_EQUAL_UINT8(1, has);
+    ASSERT_NEAR(-3.0, worst, 0.0);
     TEST_ASSERT_EQUAL_UINT8(4, problem.objective.dim);
     TEST_ASSERT_EQUAL_INT(TVO_DISTANCE_MIN, problem.distance[0].kind);
     TEST_ASSERT_EQUAL_INT(TVO_DISTANCE_MAX, problem.distance[1].kind);
     ASSERT_NEAR(1.0, problem.distance[0].bound_m, 0.0);
     ASSERT_NEAR(3.0, problem.distance[1].bound_m, 0.0);
     ASSERT_NEAR(-0.1, problem.distance[1].bound_rate_mps, TEST_TOL(1, 0.1));
-    TEST_ASSERT_TRUE(problem.objective.terms[2].constraint_max != NULL);
-    TEST_ASSERT_TRUE(problem.objective.terms[3].constraint_max != NULL);
     TEST_ASSERT_TRUE(tvo_problem_target(&problem, 1) == &problem.target[1]);
     TEST_ASSERT_NULL(tvo_problem_target(&problem, 2));
 
@@ -67,6 +75,41 @@ static void test_formation_with_min_and_max_distance_gives_two_terms(void)
     ASSERT_STATUS(TVO_OK, tvo_problem_init(&problem, &desc, 2, &part));
     TEST_ASSERT_EQUAL_UINT8(1, problem.distance_term_count);
     TEST_ASSERT_EQUAL_INT(TVO_DISTANCE_MAX, problem.distance[0].kind);
+}
+
+/* Three robots or more (the block plan's problems): a bound's two sides are one objective term over its
+ * two distance terms, whose constraint value is the larger side's. */
+static void test_three_robots_take_a_bound_with_both_sides_as_one_term(void)
+{
+    tvo_problem_desc_t desc;
+    two_robot_desc(&desc);
+    desc.robot_count = 3;
+    fx_line_target(&desc.target[2], 4.0, 0.0, 0.5, 0.0);
+    desc.distance_count = 2;
+    desc.distance[0].robot_a = 0;
+    desc.distance[0].robot_b = 1;
+    desc.distance[0].min_m = TVO_R(1.0);
+    desc.distance[0].max_m = TVO_R(3.0);
+    desc.distance[1].robot_a = 1;
+    desc.distance[1].robot_b = 2;
+    desc.distance[1].max_m = TVO_R(3.0); /* one side: a term of its own */
+    ASSERT_STATUS(TVO_OK, tvo_problem_init(&problem, &desc, 2, NULL));
+    TEST_ASSERT_EQUAL_UINT8(3, problem.distance_term_count);
+#if TVO_BLOCK_SOLVE
+    TEST_ASSERT_EQUAL_UINT8(5, problem.objective.term_count); /* 3 tracking + the bound + the one side */
+    TEST_ASSERT_TRUE(problem.objective.terms[3].term == &problem.distance[0]);
+    TEST_ASSERT_TRUE(problem.objective.terms[4].term == &problem.distance[2]);
+    TEST_ASSERT_TRUE(problem.objective.plan == &problem.plan);
+#else
+    TEST_ASSERT_EQUAL_UINT8(6, problem.objective.term_count);
+#endif
+    /* |y0 - y1| = 2: 1 - 4 (minimum) and 4 - 9 (maximum); |y1 - y2| = 1: 1 - 9. */
+    const tvo_real_t y[6] = {TVO_R(0.0), TVO_R(0.0), TVO_R(2.0), TVO_R(0.0), TVO_R(3.0), TVO_R(0.0)};
+    tvo_real_t worst = TVO_R(0.0);
+    uint8_t has = 0u;
+    ASSERT_STATUS(TVO_OK, tvo_objective_constraint_max(&problem.objective, y, TVO_R(0.0), &worst, &has));
+    TEST_ASSERT_EQUAL_UINT8(1, has);
+    ASSERT_NEAR(-3.0, worst, 0.0);
 }
 
 static void test_obstacles_give_one_free_space_term_per_robot(void)
@@ -340,7 +383,8 @@ static void test_multipliers_evolve_when_the_offset_is_violated(void)
 int main(void)
 {
     UNITY_BEGIN();
-    RUN_TEST(test_formation_with_min_and_max_distance_gives_two_terms);
+    RUN_TEST(test_formation_with_min_and_max_distance_gives_two_distance_terms);
+    RUN_TEST(test_three_robots_take_a_bound_with_both_sides_as_one_term);
     RUN_TEST(test_obstacles_give_one_free_space_term_per_robot);
     RUN_TEST(test_offset_adds_multipliers);
     RUN_TEST(test_bad_descriptions_name_the_part_and_leave_the_problem_uninitialised);

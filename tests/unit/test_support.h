@@ -308,6 +308,8 @@ static inline tvo_time_jet_t test_time_jet(tvo_real_t t_s, tvo_real_t rate, uint
         t.rate = rate;
         t.whole_s = 0u;
         t.frac_ticks = 0u;
+        t.frac_s = TVO_R(0.0);
+        t.shared = NULL;
     }
     t.t_s = t_s;
     return t;

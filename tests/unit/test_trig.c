@@ -1,7 +1,9 @@
 /*
  * tvo_sincos and tvo_sincos_turns against libm in double: within a few float32 ulps over the fast
  * range and beyond it (the exact reduction, at every float exponent), NaN for NaN and Inf; the
- * fixed-point phase exact at every quarter.
+ * fixed-point phase exact at every quarter. TVO_ATAN2 (the float build's own tvo_atan2f, libm's atan2
+ * in double) within 2 ulps of double atan2 over every direction at radii from 1e-30 to 1e30 and
+ * over random argument bits, and C99 Annex F's values at zeros, infinities and NaN.
  */
 #include "test_support.h"
 
@@ -115,6 +117,102 @@ static void test_turns_refuse_an_extra_angle_beyond_the_fast_range(void)
     }
 }
 
+/* The spacing of the scalar type's numbers at |v| (v finite). */
+static double scalar_ulp(tvo_real_t v)
+{
+#if TVO_USE_DOUBLE
+    return nextafter(fabs(v), INFINITY) - fabs(v);
+#else
+    return (double)(nextafterf(fabsf(v), INFINITY) - fabsf(v));
+#endif
+}
+
+/* TVO_ATAN2(y, x) within 2 ulps of the exact angle (double atan2 of the same arguments); the error in
+ * ulps of the result, so the sweeps below can say how close they came. */
+static double atan2_ulps_at(tvo_real_t y, tvo_real_t x)
+{
+    const double exact = atan2(test_d(y), test_d(x));
+    const tvo_real_t got = TVO_ATAN2(y, x);
+    const double ulps = fabs(test_d(got) - exact) / scalar_ulp(test_r(exact));
+    if (!(ulps <= 2.0)) {
+        char msg[128];
+        (void)snprintf(msg, sizeof(msg), "atan2(%a, %a) = %a, exact %a", test_d(y), test_d(x), test_d(got), exact);
+        TEST_FAIL_MESSAGE(msg);
+    }
+    return ulps;
+}
+
+static void test_atan2_within_two_ulps_in_every_direction(void)
+{
+    const double radii[] = {1e-30, 1e-3, 1.0, 7.5, 1e4, 1e30};
+    double worst = 0.0;
+    for (size_t k = 0; k < sizeof(radii) / sizeof(radii[0]); ++k) {
+        for (int i = -20000; i <= 20000; ++i) {
+            const double theta = (double)i * (TEST_PI / 20000.0) + 1e-6 * (double)(i % 7);
+            const double ulps = atan2_ulps_at(test_r(radii[k] * sin(theta)), test_r(radii[k] * cos(theta)));
+            worst = ulps > worst ? ulps : worst;
+        }
+    }
+#if !TVO_USE_DOUBLE
+    TEST_ASSERT_TRUE(worst > 0.0); /* the sweep met rounded results, not only exact ones */
+#else
+    TEST_ASSERT_TRUE(worst == 0.0); /* libm's atan2 itself */
+#endif
+}
+
+static void test_atan2_within_two_ulps_over_random_bits(void)
+{
+#if !TVO_USE_DOUBLE
+    uint32_t state = 88172645u;
+    for (int k = 0; k < 200000; ++k) {
+        uint32_t words[2];
+        for (int w = 0; w < 2; ++w) {
+            state ^= state << 13;
+            state ^= state >> 17;
+            state ^= state << 5;
+            /* exponents within 2^-40 .. 2^40 of each other's, so the quotient stays a normal float */
+            words[w] = (state & 0x807FFFFFu) | ((107u + ((state >> 23) % 80u)) << 23);
+        }
+        float y;
+        float x;
+        memcpy(&y, &words[0], sizeof(y));
+        memcpy(&x, &words[1], sizeof(x));
+        (void)atan2_ulps_at(y, x);
+    }
+#else
+    (void)atan2_ulps_at(TVO_R(0.3), TVO_R(-0.7)); /* libm's own: the sweep above covers it */
+#endif
+}
+
+static void test_atan2_special_values(void)
+{
+    const tvo_real_t pi = test_r(TEST_PI);
+    const tvo_real_t half_pi = test_r(TEST_PI / 2.0);
+    const struct {
+        tvo_real_t y, x, expected;
+    } cases[] = {
+        {TVO_R(0.0), TVO_R(0.0), TVO_R(0.0)},     {-TVO_R(0.0), TVO_R(0.0), -TVO_R(0.0)},
+        {TVO_R(0.0), -TVO_R(0.0), pi},            {-TVO_R(0.0), -TVO_R(0.0), -pi},
+        {TVO_R(0.0), -TVO_R(3.0), pi},            {-TVO_R(0.0), -TVO_R(3.0), -pi},
+        {TVO_R(0.0), TVO_R(3.0), TVO_R(0.0)},     {-TVO_R(0.0), TVO_R(3.0), -TVO_R(0.0)},
+        {TVO_R(2.0), TVO_R(0.0), half_pi},        {-TVO_R(2.0), -TVO_R(0.0), -half_pi},
+        {TVO_R(2.0), -TEST_INF, pi},              {-TVO_R(2.0), -TEST_INF, -pi},
+        {TVO_R(2.0), TEST_INF, TVO_R(0.0)},       {-TVO_R(2.0), TEST_INF, -TVO_R(0.0)},
+        {TEST_INF, TVO_R(5.0), half_pi},          {-TEST_INF, -TVO_R(5.0), -half_pi},
+        {TEST_INF, -TEST_INF, test_r(0.75 * TEST_PI)}, {-TEST_INF, -TEST_INF, test_r(-0.75 * TEST_PI)},
+        {TEST_INF, TEST_INF, test_r(TEST_PI / 4.0)},   {-TEST_INF, TEST_INF, test_r(-TEST_PI / 4.0)},
+    };
+    for (size_t i = 0; i < sizeof(cases) / sizeof(cases[0]); ++i) {
+        const tvo_real_t got = TVO_ATAN2(cases[i].y, cases[i].x);
+        char msg[96];
+        (void)snprintf(msg, sizeof(msg), "atan2(%g, %g) = %a", test_d(cases[i].y), test_d(cases[i].x), test_d(got));
+        TEST_ASSERT_TRUE_MESSAGE(got == cases[i].expected && signbit(got) == signbit(cases[i].expected), msg);
+    }
+    TEST_ASSERT_TRUE(isnan(TVO_ATAN2(TEST_NAN, TVO_R(1.0))));
+    TEST_ASSERT_TRUE(isnan(TVO_ATAN2(TVO_R(1.0), TEST_NAN)));
+    TEST_ASSERT_TRUE(isnan(TVO_ATAN2(TEST_INF, TEST_NAN)));
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -123,5 +221,8 @@ int main(void)
     RUN_TEST(test_sincos_beyond_the_fast_range_at_every_exponent);
     RUN_TEST(test_turns_are_exact_at_quarters_and_match_libm_between);
     RUN_TEST(test_turns_refuse_an_extra_angle_beyond_the_fast_range);
+    RUN_TEST(test_atan2_within_two_ulps_in_every_direction);
+    RUN_TEST(test_atan2_within_two_ulps_over_random_bits);
+    RUN_TEST(test_atan2_special_values);
     return UNITY_END();
 }

@@ -1,20 +1,25 @@
 /*
- * Agreement of two float32 builds of the law (tools/agree): the same measurements in, the same
- * command bits out? One source, two programs:
+ * Agreement of float32 builds of the law across machines (tools/agree): the same measurements in, the
+ * same command bits out? One source, two programs, built with the fleet's limits (formation8 needs 8
+ * robots):
  *
  *   TVO_AGREE_RECORD (host only)  runs bench.c's closed loops (bench_problems.h) on this machine and
  *       writes, to the file named by its argument, a C table of every period's measured poses as
- *       float bits (agree_table.h): the fixed measurement sequence.
+ *       float bits (agree_table.h), and each closed loop's command digest (bench.c's BENCH_DIGEST):
+ *       the fixed measurement sequence.
  *   otherwise (host and board)  replays that table open loop (bench_loop_replay: the plant is not
  *       run, so a difference cannot feed back) through a controller with default settings and prints
- *         AGREE_SETUP <problem> <digest of the distance bounds and obstacles, which libm's sinf shapes>
+ *         AGREE_SETUP <problem> <digest of the distance bounds and obstacles>
  *         AGREE <problem> <period> <status> <outcome> <flags> <speed bits> <turn rate bits> per robot
- *         AGREE_DIGEST <problem> <digest>   bench.c's BENCH_DIGEST of the replayed commands
- *       (bits in hex). The host's replay of its own closed loop must print its BENCH_DIGEST. Then the
- *       one libm function these problems' steps call (expf, the barrier's c(t) and slack(t); sqrtf and
- *       floorf are exact, the trigonometry is the core's own) over a sweep of arguments:
- *         AGREE_EXPF <arguments> <digest of expf's bits> <how many differ from (float)exp((double)x)>
- *                    <the most ulps any differs by>
+ *         AGREE_DIGEST <problem> <digest>   the same digest of the replayed commands
+ *         AGREE_RECORDED <problem> <digest>   the recorded closed loop's (the host's)
+ *       (bits in hex): the host's replay of its own closed loop must reproduce the recorded digest.
+ *       Then the functions of the float arithmetic the core takes from outside IEEE 754's basic
+ *       operations (its own exp, log and atan2; libm's sqrtf, correctly rounded by IEEE 754 itself),
+ *       each over a sweep of arguments:
+ *         AGREE_FUNCTION <name> <arguments> <digest of the results' bits>
+ *       and, on a board, AGREE_STACK <bytes>: the deepest the stack went (it starts painted), which
+ *       must stay below the linker script's reserve (microbit's RAM holds a fleet-sized bench tightly).
  */
 #include <math.h>
 #include <string.h>
@@ -22,6 +27,8 @@
 #include "agree_table.h"
 #include "bench_problems.h"
 #include "board.h"
+#include "internal/exp_log.h"
+#include "internal/trig.h"
 
 #if TVO_USE_DOUBLE
 #error "agree compares float32 builds"
@@ -31,9 +38,10 @@
 #include <stdio.h>
 
 static bench_loop_t loop;
-static const bench_unicycle_problem_t recorded[AGREE_PROBLEM_COUNT] = {BENCH_UNICYCLE, BENCH_OBSTACLES4,
-                                                                       BENCH_FORMATION2, BENCH_FORMATION4};
+static const bench_unicycle_problem_t recorded[AGREE_PROBLEM_COUNT] = {
+    BENCH_UNICYCLE, BENCH_OBSTACLES4, BENCH_FORMATION2, BENCH_FORMATION4, BENCH_FORMATION8};
 static uint8_t robots[AGREE_PROBLEM_COUNT];
+static uint32_t digests[AGREE_PROBLEM_COUNT];
 
 static uint32_t bits_of(float value)
 {
@@ -47,9 +55,10 @@ static int record(FILE *out, uint32_t i)
 {
     const char *name = bench_problem_name(recorded[i]);
     if (bench_loop_init(&loop, recorded[i]) != TVO_OK) {
-        return 1; /* formation4 needs the default limits' four robots */
+        return 1; /* formation8 needs the fleet's limits */
     }
     robots[i] = loop.robots;
+    uint32_t digest = BENCH_DIGEST_BASIS;
     (void)fprintf(out, "static const uint32_t %s_bits[%u][%u][3] = {\n", name, (unsigned)BENCH_STEPS,
                   (unsigned)loop.robots);
     for (uint32_t n = 0; n < BENCH_STEPS; ++n) {
@@ -64,8 +73,10 @@ static int record(FILE *out, uint32_t i)
         }
         (void)fputs("},\n", out);
         (void)tvo_controller_step(&loop.controller, &loop.meas, loop.apply_tick, &loop.cmd);
+        digest = bench_digest_command(digest, &loop.cmd);
     }
     (void)fputs("};\n", out);
+    digests[i] = digest;
     return 0;
 }
 
@@ -85,8 +96,8 @@ int main(int argc, char **argv)
     }
     (void)fprintf(out, "\nconst agree_table_t agree_tables[AGREE_PROBLEM_COUNT] = {\n");
     for (uint32_t i = 0; i < AGREE_PROBLEM_COUNT; ++i) {
-        (void)fprintf(out, "    {(bench_unicycle_problem_t)%u, %uu, &%s_bits[0][0][0]},\n", (unsigned)recorded[i],
-                      (unsigned)robots[i], bench_problem_name(recorded[i]));
+        (void)fprintf(out, "    {(bench_unicycle_problem_t)%u, %uu, %luu, &%s_bits[0][0][0]},\n", (unsigned)recorded[i],
+                      (unsigned)robots[i], (unsigned long)digests[i], bench_problem_name(recorded[i]));
     }
     (void)fputs("};\n", out);
     return (fclose(out) == 0 && failures == 0) ? 0 : 1;
@@ -178,45 +189,110 @@ static int replay(const agree_table_t *table)
     tvo_board_puts(name);
     tvo_board_putc(' ');
     tvo_board_put_u32(digest);
+    tvo_board_puts("\nAGREE_RECORDED ");
+    tvo_board_puts(name);
+    tvo_board_putc(' ');
+    tvo_board_put_u32(table->closed_loop_digest);
     tvo_board_putc('\n');
     return 0;
 }
 
-/* expf over -16 .. 16 in steps of 2^-8 (exact floats), against double exp rounded once to float. */
-#define EXPF_SWEEP_COUNT 8193u
-
-static void expf_sweep(void)
+/* A digest of a function's bits over a sweep of arguments. */
+static void put_function(const char *name, uint32_t count, uint32_t digest)
 {
-    uint32_t digest = BENCH_DIGEST_BASIS;
-    uint32_t differ = 0u;
-    uint32_t max_ulps = 0u;
-    for (uint32_t k = 0; k < EXPF_SWEEP_COUNT; ++k) {
-        const float x = -16.0f + (float)k * 0.00390625f;
-        const float e = expf(x);
-        const float once = (float)exp((double)x);
-        uint32_t e_bits;
-        uint32_t once_bits;
-        memcpy(&e_bits, &e, sizeof(e_bits));
-        memcpy(&once_bits, &once, sizeof(once_bits));
-        /* both positive and finite here: their bit patterns are ordered like the values */
-        const uint32_t ulps = (e_bits > once_bits) ? e_bits - once_bits : once_bits - e_bits;
-        digest = bench_digest_bytes(digest, &e, sizeof(e));
-        differ += (ulps != 0u) ? 1u : 0u;
-        max_ulps = (ulps > max_ulps) ? ulps : max_ulps;
-    }
-    tvo_board_puts("AGREE_EXPF ");
-    tvo_board_put_u32(EXPF_SWEEP_COUNT);
+    tvo_board_puts("AGREE_FUNCTION ");
+    tvo_board_puts(name);
+    tvo_board_putc(' ');
+    tvo_board_put_u32(count);
     tvo_board_putc(' ');
     put_hex32(digest);
-    tvo_board_putc(' ');
-    tvo_board_put_u32(differ);
-    tvo_board_putc(' ');
-    tvo_board_put_u32(max_ulps);
     tvo_board_putc('\n');
 }
 
+static float float_of(uint32_t bits)
+{
+    float value;
+    memcpy(&value, &bits, sizeof(value));
+    return value;
+}
+
+/* 2^16 arguments spread over the bits of [low, high] (both positive or both negative, as bit patterns
+ * ordered like their values), the ends included. */
+#define SWEEP_COUNT 65536u
+
+static float sweep_argument(uint32_t low_bits, uint32_t high_bits, uint32_t k)
+{
+    return float_of(low_bits + (uint32_t)(((uint64_t)(high_bits - low_bits) * k) / (SWEEP_COUNT - 1u)));
+}
+
+static void functions_sweep(void)
+{
+    uint32_t digest = BENCH_DIGEST_BASIS;
+    for (uint32_t k = 0; k < SWEEP_COUNT; ++k) { /* exp over [-104, 89], where it is neither 1 nor 0 nor inf */
+        const float below = tvo_expf(sweep_argument(0xB2800000u, 0xC2D00000u, k)); /* -2^-26 .. -104 */
+        const float above = tvo_expf(sweep_argument(0x32800000u, 0x42B20000u, k)); /* 2^-26 .. 89 */
+        digest = bench_digest_bytes(digest, &below, sizeof(below));
+        digest = bench_digest_bytes(digest, &above, sizeof(above));
+    }
+    put_function("tvo_expf", 2u * SWEEP_COUNT, digest);
+    digest = BENCH_DIGEST_BASIS;
+    for (uint32_t k = 0; k < SWEEP_COUNT / 4u; ++k) { /* log over every positive float, subnormals too */
+        const float value = tvo_logf(sweep_argument(0x00000001u, 0x7F7FFFFFu, 4u * k + 3u));
+        digest = bench_digest_bytes(digest, &value, sizeof(value));
+    }
+    put_function("tvo_logf", SWEEP_COUNT / 4u, digest);
+    digest = BENCH_DIGEST_BASIS;
+    for (uint32_t k = 0; k < SWEEP_COUNT / 4u; ++k) { /* atan2 in every direction, magnitudes 2^-40 .. 2^40 */
+        const float y = sweep_argument(0x2B800000u, 0x53800000u, (k * 40503u) % SWEEP_COUNT);
+        const float x = sweep_argument(0x2B800000u, 0x53800000u, (k * 7919u) % SWEEP_COUNT);
+        const float angles[4] = {tvo_atan2f(y, x), tvo_atan2f(-y, x), tvo_atan2f(y, -x), tvo_atan2f(-y, -x)};
+        digest = bench_digest_bytes(digest, angles, sizeof(angles));
+    }
+    put_function("tvo_atan2f", SWEEP_COUNT, digest);
+    digest = BENCH_DIGEST_BASIS;
+    for (uint32_t k = 0; k < SWEEP_COUNT; ++k) { /* sqrt over every positive float */
+        const float value = sqrtf(sweep_argument(0x00000001u, 0x7F7FFFFFu, k));
+        digest = bench_digest_bytes(digest, &value, sizeof(value));
+    }
+    put_function("sqrtf", SWEEP_COUNT, digest);
+}
+
+#if defined(TVO_BENCH_HOST)
+static void stack_paint(void) {}
+static void stack_report(void) {}
+#else
+extern uint32_t __stack_limit__[]; /* the linker script's: the reserve's lowest word */
+#define STACK_PAINT 0xA5A5A5A5u
+
+/* Paints the reserve from its lowest word to 64 words below this frame's. */
+static void stack_paint(void)
+{
+    volatile uint32_t here = 0u;
+    const uintptr_t end = (uintptr_t)&here - 256u;
+    for (volatile uint32_t *word = (volatile uint32_t *)__stack_limit__; (uintptr_t)word < end; ++word) {
+        *word = STACK_PAINT;
+    }
+}
+
+/* The deepest the stack went, in bytes below its top: the reserve less the words still painted. */
+static void stack_report(void)
+{
+    extern uint32_t __stack_top__[];
+    const volatile uint32_t *word = (const volatile uint32_t *)__stack_limit__;
+    while (word < (const volatile uint32_t *)__stack_top__ && *word == STACK_PAINT) {
+        ++word;
+    }
+    tvo_board_puts("AGREE_STACK ");
+    tvo_board_put_u32((uint32_t)((uintptr_t)__stack_top__ - (uintptr_t)word));
+    tvo_board_puts(" of ");
+    tvo_board_put_u32((uint32_t)((uintptr_t)__stack_top__ - (uintptr_t)__stack_limit__));
+    tvo_board_putc('\n');
+}
+#endif
+
 int main(void)
 {
+    stack_paint();
     int failures = 0;
     for (uint32_t i = 0; i < AGREE_PROBLEM_COUNT; ++i) {
         if (replay(&agree_tables[i]) != 0) {
@@ -226,7 +302,8 @@ int main(void)
             ++failures;
         }
     }
-    expf_sweep();
+    functions_sweep();
+    stack_report();
     tvo_board_puts("AGREE_DONE\n");
     return failures;
 }

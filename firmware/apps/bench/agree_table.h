@@ -4,13 +4,14 @@
 
 #include "bench_problems.h"
 
-/** Problems in the table: unicycle, obstacles4, formation2, formation4 (agree.c's record order). */
-#define AGREE_PROBLEM_COUNT 4u
+/** Problems in the table: unicycle, obstacles4, formation2, formation4, formation8 (agree.c's record order). */
+#define AGREE_PROBLEM_COUNT 5u
 
 typedef struct {
     bench_unicycle_problem_t which;
     uint8_t robots;
-    const uint32_t *bits; /* [BENCH_STEPS][robots][3]: x, y (m), heading (rad) as float bits */
+    uint32_t closed_loop_digest; /* bench.c's BENCH_DIGEST of the recorded closed loop's commands */
+    const uint32_t *bits;        /* [BENCH_STEPS][robots][3]: x, y (m), heading (rad) as float bits */
 } agree_table_t;
 
 extern const agree_table_t agree_tables[AGREE_PROBLEM_COUNT];

@@ -236,6 +236,16 @@ static tvo_status_t bench_formation8(void)
     return bench_unicycle_problem(BENCH_FORMATION8);
 }
 
+static tvo_status_t bench_formation16(void)
+{
+    return bench_unicycle_problem(BENCH_FORMATION16);
+}
+
+static tvo_status_t bench_formation32(void)
+{
+    return bench_unicycle_problem(BENCH_FORMATION32);
+}
+
 static tvo_status_t bench_obstacles0(void)
 {
     return bench_unicycle_problem(BENCH_OBSTACLES0);
@@ -311,7 +321,9 @@ static int bench_run(const char *only)
                    {"formation8", bench_formation8},
                    {"obstacles0", bench_obstacles0},
                    {"obstacles8", bench_obstacles8},
-                   {"obstacles16", bench_obstacles16}};
+                   {"obstacles16", bench_obstacles16},
+                   {"formation16", bench_formation16},
+                   {"formation32", bench_formation32}};
     tvo_board_cycle_counter_start();
     int failures = 0;
     for (uint32_t i = 0; i < sizeof(benches) / sizeof(benches[0]); ++i) {

@@ -22,7 +22,8 @@ static void polynomial_target(tvo_target_t *target, float x0, float vx, float y0
 const char *bench_problem_name(bench_unicycle_problem_t which)
 {
     static const char *const names[BENCH_UNICYCLE_PROBLEM_COUNT] = {
-        "unicycle", "obstacles4", "formation2", "formation4", "formation8", "obstacles0", "obstacles8", "obstacles16"};
+        "unicycle",   "obstacles4", "formation2",  "formation4",  "formation8",
+        "obstacles0", "obstacles8", "obstacles16", "formation16", "formation32"};
     return ((unsigned)which < (unsigned)BENCH_UNICYCLE_PROBLEM_COUNT) ? names[which] : NULL;
 }
 
@@ -145,7 +146,9 @@ tvo_status_t bench_problem_desc(bench_unicycle_problem_t which, tvo_problem_desc
         break;
     case BENCH_FORMATION4:
     case BENCH_FORMATION8:
-        *robots = (which == BENCH_FORMATION4) ? 4u : 8u;
+    case BENCH_FORMATION16:
+    case BENCH_FORMATION32:
+        *robots = which == BENCH_FORMATION4 ? 4u : which == BENCH_FORMATION8 ? 8u : which == BENCH_FORMATION16 ? 16u : 32u;
         st = ring_formation_desc(desc, start, *robots);
         break;
     case BENCH_OBSTACLES0:

@@ -6,10 +6,11 @@
  *   obstacles4  one disk unicycle among four disk obstacles (relaxed barrier, local free space)
  *   formation2  two unicycles with 1 <= |y1 - y2| <= 3 (4x4 Hessian, nonconvex bound)
  * and the scaling families (tools/bench's scaling table):
- *   formationN  N = 4, 8 unicycles on a turning circle, a ring of distance bounds between neighbours
- *               (half to one and a half times their spacing); with unicycle (N = 1) and formation2
+ *   formationN  N = 4, 8, 16, 32 unicycles on a turning circle, a ring of distance bounds between
+ *               neighbours (half to one and a half times their spacing); with unicycle (N = 1) and formation2
  *   obstaclesN  N = 0, 8, 16 disk obstacles beside obstacles4's path; with obstacles4
- * A problem the build's limits cannot hold is TVO_ERR_DIMENSION (formation8 needs 8 robots).
+ * A problem the build's limits cannot hold is TVO_ERR_DIMENSION (formation8 needs 8 robots, formation32 a
+ * swarm's limits).
  *
  * A loop runs the unicycle controller against an exact-arc plant in lockstep: bench_loop_advance
  * moves the plant to period n's sampling instant and then to its apply instant, filling meas and
@@ -36,6 +37,8 @@ typedef enum {
     BENCH_OBSTACLES0,
     BENCH_OBSTACLES8,
     BENCH_OBSTACLES16,
+    BENCH_FORMATION16,
+    BENCH_FORMATION32,
     BENCH_UNICYCLE_PROBLEM_COUNT
 } bench_unicycle_problem_t;
 

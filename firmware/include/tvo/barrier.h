@@ -53,12 +53,6 @@ typedef struct {
 /** Defaults: c0 = 1, alpha_c = 1/s, c_max = 1e4, delta0 = 0.05, alpha_s = 1/s, eps_s = 0.1, m_r = 4. */
 tvo_status_t tvo_barrier_config_default(tvo_barrier_config_t *cfg);
 
-/** c(t) and s(t) along a time jet: computed once per evaluation, shared by a term's constraints. */
-typedef struct {
-    tvo_jet_t c;
-    tvo_jet_t slack;
-} tvo_barrier_schedule_jet_t;
-
 #ifdef __cplusplus
 }
 #endif

@@ -28,10 +28,7 @@ typedef double tvo_real_t;
 #define TVO_SQRT sqrt
 #define TVO_SIN sin
 #define TVO_COS cos
-#define TVO_ATAN2 atan2
 #define TVO_FABS fabs
-#define TVO_EXP exp
-#define TVO_LOG log
 #define TVO_FLOOR floor
 #define TVO_EPSILON 2.220446049250313e-16
 #else
@@ -40,10 +37,7 @@ typedef float tvo_real_t;
 #define TVO_SQRT sqrtf
 #define TVO_SIN sinf
 #define TVO_COS cosf
-#define TVO_ATAN2 atan2f
 #define TVO_FABS fabsf
-#define TVO_EXP expf
-#define TVO_LOG logf
 #define TVO_FLOOR floorf
 #define TVO_EPSILON 1.1920929e-07f
 #endif
@@ -130,8 +124,11 @@ typedef float tvo_real_t;
 #endif
 
 /* The limits must make sense together. */
-#if TVO_MAX_OUTPUT_DIM < 2 || TVO_MAX_OUTPUT_DIM % 2 != 0
-#error "TVO_MAX_OUTPUT_DIM must be a positive even number (2 per robot)"
+#if TVO_MAX_OUTPUT_DIM < 2 || TVO_MAX_OUTPUT_DIM > 64 || TVO_MAX_OUTPUT_DIM % 2 != 0
+#error "TVO_MAX_OUTPUT_DIM must be an even number 2 .. 64 (2 per robot, up to 32 robots)"
+#endif
+#if TVO_MAX_TERMS < 1 || TVO_MAX_TERMS > 255
+#error "TVO_MAX_TERMS must be 1 .. 255"
 #endif
 #if TVO_MAX_RELATIVE_DEGREE < 1 || TVO_MAX_RELATIVE_DEGREE > 3
 #error "TVO_MAX_RELATIVE_DEGREE must be 1, 2 or 3"

@@ -66,6 +66,7 @@ typedef struct {
     tvo_real_t rhs[TVO_MAX_Z_DIM];
     tvo_real_t gamma[TVO_MAX_RANK_ONE_PARTS];
     tvo_time_jet_t time;                       /* along the trajectory, then frozen */
+    tvo_shared_values_t shared;                /* what the terms share along time (time.shared) */
     struct {                                   /* the evaluation's arguments, for the general path */
         const tvo_law_t *law;                  /* (tvo_general_path_fn: its one argument is this */
         const tvo_objective_t *objective;      /* workspace, so no record of them on the stack) */

@@ -66,8 +66,37 @@ typedef struct {
     tvo_real_t small_x[TVO_SOLVE_SMALL_DIM];
 } tvo_solve_scratch_t;
 
+/**
+ * The block solve's plan, chosen once at tvo_problem_init from the problem's coupling (tvo/problem.h):
+ * the law's matrix seen as 2 x 2 blocks, one node per robot (its two outputs) and one per formation
+ * offset (its two multipliers), an elimination order (robots by least fill first, multipliers last)
+ * and the blocks its factor holds (the coupling's and their fill). A step then clears, factors and
+ * solves only those blocks, in the matrix's own storage: a ring, chain or star of N robots costs O(N).
+ * Built where a build holds three robots or more (TVO_BLOCK_SOLVE); one or two robots keep the dense
+ * solve, which is cheaper there.
+ */
+#define TVO_BLOCK_SOLVE (TVO_MAX_ROBOTS > 2)
+/** Nodes of a plan: every robot, and a formation offset's pair of multipliers each. */
+#define TVO_PLAN_MAX_NODES (TVO_MAX_ROBOTS + TVO_MAX_EQUALITIES / 2)
+/** Off-diagonal blocks of a plan's factor: as many as a full factor has, so any coupling fits. */
+#define TVO_PLAN_MAX_BLOCKS (TVO_PLAN_MAX_NODES * (TVO_PLAN_MAX_NODES - 1) / 2)
+
+#if TVO_BLOCK_SOLVE
+typedef struct {
+    uint8_t node_count;                                  /* 0: none (the dense solve) */
+    uint8_t primal_nodes;                                /* the robots: the first positions */
+    uint8_t first[TVO_PLAN_MAX_NODES];                   /* z index of each position's first coordinate */
+    uint16_t below_start[TVO_PLAN_MAX_NODES + 1];        /* position p's blocks: below[below_start[p] ..] */
+    uint8_t below[TVO_ARRAY_LEN(TVO_PLAN_MAX_BLOCKS)];   /* the later positions p couples to, by their first
+                                                            coordinate, in order */
+} tvo_solve_plan_t;
+#endif
+
 typedef struct {
     tvo_matrix_t matrix;
+#if TVO_BLOCK_SOLVE
+    const tvo_solve_plan_t *plan; /* the blocks the matrix holds (NULL: every entry), set per evaluation */
+#endif
     uint8_t rank_one_count;
     tvo_rank_one_t rank_one[TVO_MAX_RANK_ONE_PARTS];
     tvo_solve_scratch_t scratch; /* tvo_saddle_solve_split's; no meaning between solves */

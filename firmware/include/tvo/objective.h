@@ -27,11 +27,29 @@
 extern "C" {
 #endif
 
+/** c(t) and s(t), the relaxed barrier's schedules (tvo/barrier.h), along a time jet. */
+typedef struct {
+    tvo_jet_t c;
+    tvo_jet_t slack;
+} tvo_barrier_schedule_jet_t;
+
+/**
+ * What every term of one evaluation shares, computed once for all of them: the barrier's schedules along
+ * the evaluation's time jet, filled by the first term that needs them (tvo_barrier_schedule_shared) and
+ * read by the others. The law keeps one and empties it for each time jet it evaluates along.
+ */
+typedef struct {
+    const void *owner;                   /* the barrier the schedules are of; NULL: empty */
+    uint8_t order;                       /* the jet order they were computed to */
+    tvo_barrier_schedule_jet_t schedule;
+} tvo_shared_values_t;
+
 /**
  * Time along a jet: t(tau) = t_s + rate * tau. rate is 1 along the trajectory and 0 for Hessian
  * columns. ticks is the same instant as an exact tick count since the objective's epoch, for
  * terms that need exact time differences (a streamed target's age), and whole_s + frac_ticks the
- * same split into seconds, for terms that need exact phases after hours (periodic targets).
+ * same split into seconds, for terms that need exact phases after hours (periodic targets); frac_s is
+ * the fraction in seconds, as t_s adds it.
  */
 typedef struct {
     tvo_real_t t_s;
@@ -40,6 +58,9 @@ typedef struct {
     uint32_t tick_hz;
     uint32_t whole_s;
     uint32_t frac_ticks;
+    tvo_real_t frac_s;               /* frac_ticks / tick_hz: t_s = whole_s + frac_s */
+    tvo_shared_values_t *shared;     /* this time jet's shared values (the law's); NULL: every term computes
+                                        its own */
 } tvo_time_jet_t;
 
 /**
@@ -116,6 +137,10 @@ typedef struct tvo_objective {
                               (the law re-checks the terms before it relies on it) */
     tvo_general_path_fn general_path; /* NULL: tracking terms only, and the law has only its tracking path */
     tvo_start_rule_fn start_rule;     /* NULL: no start rule (the step chooses nothing) */
+#if TVO_BLOCK_SOLVE
+    const tvo_solve_plan_t *plan;     /* the block solve's plan of the terms' coupling (tvo_problem_init sets
+                                         it); NULL: the dense solve. Any term or multiplier added drops it */
+#endif
     tvo_term_t terms[TVO_MAX_TERMS]; /* as the add functions keep them (a tracking term: its kind, and the
                                         term; callbacks NULL); last, so the fields above have short offsets */
 } tvo_objective_t;

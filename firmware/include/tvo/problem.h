@@ -21,8 +21,8 @@ extern "C" {
 #ifndef TVO_MAX_DISTANCE_BOUNDS /* a size limit like those of tvo/config.h (TVO_LIMITS can raise it) */
 #define TVO_MAX_DISTANCE_BOUNDS 6
 #endif
-#if TVO_MAX_DISTANCE_BOUNDS < 1 || TVO_MAX_DISTANCE_BOUNDS > 32
-#error "TVO_MAX_DISTANCE_BOUNDS must be 1 .. 32"
+#if TVO_MAX_DISTANCE_BOUNDS < 1 || TVO_MAX_DISTANCE_BOUNDS > 64
+#error "TVO_MAX_DISTANCE_BOUNDS must be 1 .. 64"
 #endif
 #define TVO_MAX_HALFSPACES 4
 #define TVO_MAX_OFFSET_EQUALITIES (TVO_MAX_EQUALITIES / 2)
@@ -76,6 +76,9 @@ typedef struct {
     tvo_free_space_term_t free_space[TVO_MAX_ROBOTS];
     tvo_target_t offset_function[TVO_ARRAY_LEN(TVO_MAX_OFFSET_EQUALITIES)];
     tvo_offset_equality_term_t offset[TVO_ARRAY_LEN(TVO_MAX_OFFSET_EQUALITIES)];
+#if TVO_BLOCK_SOLVE
+    tvo_solve_plan_t plan;          /* the block solve's, for three robots or more (objective.plan) */
+#endif
     uint8_t distance_term_count;
     uint8_t has_inequalities;
     uint8_t slack_chosen;           /* s0 chosen: by the controller's step (the objective's start rule,

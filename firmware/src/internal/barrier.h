@@ -39,6 +39,14 @@ tvo_status_t tvo_barrier_schedule_jet(const tvo_barrier_t *barrier, const tvo_ti
                                       tvo_barrier_schedule_jet_t *schedule);
 
 /**
+ * The schedules along t to the given order: in t's shared values when t has them (the first term that
+ * asks computes them there; the rest of the evaluation's terms find them), else in local, computed. The
+ * same values either way; t->shared ? &t->shared->schedule : local is where they are.
+ */
+tvo_status_t tvo_barrier_schedule_shared(const tvo_barrier_t *barrier, const tvo_time_jet_t *t, uint8_t order,
+                                        tvo_barrier_schedule_jet_t *local);
+
+/**
  * w_jet = w(tau) for f_jet on the schedule, and, if dw_df is not NULL, dw/df at tau = 0 with time
  * frozen (the barrier's curvature along grad f, for closed-form Hessians).
  */

@@ -9,6 +9,31 @@
 #include "shape.h"
 #include "internal/barrier.h"
 
+/* The schedules along t to order (tvo_barrier_schedule_shared for valid arguments): in t's shared values
+ * when t has them (computed there by the first term of the evaluation that asks), else in local. */
+static inline tvo_status_t barrier_schedule(const tvo_barrier_t *barrier, const tvo_time_jet_t *t, uint8_t order,
+                                            tvo_barrier_schedule_jet_t *local)
+{
+    tvo_shared_values_t *shared = t->shared;
+    if (shared == NULL) {
+        return tvo_barrier_schedule_jet(barrier, t, order, local);
+    }
+    if (shared->owner == (const void *)barrier && shared->order == order) {
+        return TVO_OK;
+    }
+    const tvo_status_t st = tvo_barrier_schedule_jet(barrier, t, order, &shared->schedule);
+    shared->owner = st == TVO_OK ? (const void *)barrier : NULL;
+    shared->order = order;
+    return st;
+}
+
+/* Where barrier_schedule put the schedules. */
+static inline const tvo_barrier_schedule_jet_t *barrier_schedule_of(const tvo_time_jet_t *t,
+                                                                    const tvo_barrier_schedule_jet_t *local)
+{
+    return t->shared != NULL ? &t->shared->schedule : local;
+}
+
 /* w(f) on the schedule's c and slack jets, and dw/df at tau = 0 (dw_df may be NULL), for valid
  * arguments (order <= TVO_JET_MAX_ORDER). TVO_ERR_NUMERIC when a result is not finite. */
 TVO_SHAPE_BODY tvo_status_t barrier_weight(const tvo_barrier_t *barrier, const tvo_barrier_schedule_jet_t *schedule,

@@ -28,6 +28,24 @@ tvo_status_t tvo_distance_gradient_hessian(const void *term, const tvo_jet_t *z,
 tvo_status_t tvo_distance_constraint_max(const void *term, const tvo_real_t *y, uint8_t primal_dim, tvo_real_t t_s,
                                          tvo_real_t *max_value);
 
+#if TVO_BLOCK_SOLVE
+/**
+ * A distance bound's two sides as one term: term points to two tvo_distance_term_t in a row, the minimum
+ * then the maximum of one pair of robots (tvo_problem_init's terms where its problem has a block plan).
+ * The sum of the two single terms, evaluated together: their difference, direction and schedule once, one
+ * gradient (sum_side 2 sign w(tau)) D(tau), their Hessians as one 2 x 2 block of the plan's matrix (as two
+ * rank-one parts, each the sides' sum, where one is stiff or the matrix dense). The constraint value is
+ * the larger side's.
+ */
+tvo_status_t tvo_distance_pair_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim,
+                                            const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad);
+tvo_status_t tvo_distance_pair_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim,
+                                                const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
+                                                tvo_hessian_t *hessian);
+tvo_status_t tvo_distance_pair_constraint_max(const void *term, const tvo_real_t *y, uint8_t primal_dim, tvo_real_t t_s,
+                                              tvo_real_t *max_value);
+#endif
+
 /** a0 must not be zero; all values finite. */
 tvo_status_t tvo_halfspace_term_init(tvo_halfspace_term_t *term, const tvo_barrier_t *barrier, uint8_t robot,
                                      const tvo_real_t normal[2], const tvo_real_t normal_rate[2], tvo_real_t bound_m,

@@ -17,8 +17,14 @@ extern "C" {
  *  jets to order: a part added into a matrix. The part must not lie in m or grad. */
 void tvo_rank_one_add_to(const tvo_rank_one_t *part, tvo_matrix_t m, tvo_jet_t *grad, uint8_t order);
 
-/** Zeroes the leading n x n block and drops every rank-one part. */
+/** Zeroes the leading n x n block and drops every rank-one part (the matrix: every entry, no plan). */
 void tvo_hessian_clear(tvo_hessian_t *h, uint8_t n);
+
+#if TVO_BLOCK_SOLVE
+/** Zeroes only the plan's blocks and drops every rank-one part: the matrix is then the plan's (its terms
+ *  must add only into those blocks), and tvo_saddle_solve_split solves by the plan. */
+void tvo_hessian_clear_blocks(tvo_hessian_t *h, const tvo_solve_plan_t *plan);
+#endif
 
 /**
  * Solves A x = b for symmetric A (lower triangle read) of size n <= TVO_MAX_Z_DIM.
@@ -47,6 +53,20 @@ void tvo_hessian_add_part(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_
  * and grad, without being kept (tvo_hessian_settle would add it in anyway).
  */
 void tvo_hessian_add(tvo_hessian_t *h, const tvo_rank_one_t *part, tvo_jet_t *grad, uint8_t order);
+
+#if TVO_BLOCK_SOLVE
+/**
+ * A coupling of robots a and b (outputs a, a + 1 and b, b + 1) along a unit direction e and across it: the
+ * parts weight_along v(e) v(e)^T and weight_across v(e_perp) v(e_perp)^T, v(e) = (e, -e), e_perp = (-e_1,
+ * e_0) (a distance bound's closed form). In a plan's matrix (tvo_hessian_clear_blocks), when
+ * tvo_hessian_add would keep neither apart (judging them in that order), both go in as one 2 x 2 block B
+ * on (a, a) and (b, b) and -B on (a, b) and (b, a), and it returns 1; else it changes nothing and returns
+ * 0, and the caller adds the parts with tvo_hessian_add (a dense matrix always: one or two robots keep
+ * their arithmetic). The gradients are the caller's: the parts' sum is what it adds.
+ */
+int tvo_hessian_add_pair(tvo_hessian_t *h, uint8_t a, uint8_t b, const tvo_real_t e[2], tvo_real_t along_weight,
+                         tvo_real_t across_weight);
+#endif
 
 /**
  * Keeps apart only the parts that are stiff (weight |u|^2 above TVO_STIFF_RATIO times the matrix's

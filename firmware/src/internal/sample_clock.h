@@ -87,6 +87,9 @@ static inline tvo_real_t tick_time_seconds(const tvo_tick_time_t *t, uint32_t ti
 static inline tvo_real_t clock_ticks_to_seconds(uint32_t ticks, uint32_t tick_hz)
 {
     TVO_ASSERT(tick_hz > 0u);
+    if (ticks < tick_hz) {
+        return (tvo_real_t)ticks / (tvo_real_t)tick_hz; /* the same: no whole second to add (an age, a period) */
+    }
     /* Whole seconds and the rest separately, so only the final sum rounds. */
     return (tvo_real_t)(ticks / tick_hz) + (tvo_real_t)(ticks % tick_hz) / (tvo_real_t)tick_hz;
 }
@@ -180,7 +183,8 @@ static inline void sample_clock_end_good(tvo_sample_clock_t *clock, const tvo_pe
     clock->stopped = 0;
 }
 
-/* The objective's time at a tick time of the clock (frac_ticks < tick_hz, tick_hz > 0). */
+/* The objective's time at a tick time of the clock (frac_ticks < tick_hz, tick_hz > 0); t's shared values
+ * are left to the caller (the controllers' time jet is their law's, which sets them). */
 static inline void time_jet_at_tick_time(const tvo_tick_time_t *time, uint32_t tick_hz, tvo_real_t rate,
                                          tvo_time_jet_t *t)
 {
@@ -188,7 +192,8 @@ static inline void time_jet_at_tick_time(const tvo_tick_time_t *time, uint32_t t
     t->tick_hz = tick_hz;
     t->whole_s = time->whole_s;
     t->frac_ticks = time->frac_ticks;
-    t->t_s = tick_time_seconds(time, tick_hz);
+    t->frac_s = (tvo_real_t)time->frac_ticks / (tvo_real_t)tick_hz;
+    t->t_s = (tvo_real_t)time->whole_s + t->frac_s; /* tick_time_seconds */
     t->rate = rate;
 }
 

@@ -22,6 +22,20 @@ void tvo_sincos(tvo_real_t angle_rad, tvo_real_t *sin_out, tvo_real_t *cos_out);
  */
 void tvo_sincos_turns(uint64_t turns_q64, tvo_real_t extra_rad, tvo_real_t *sin_out, tvo_real_t *cos_out);
 
+/**
+ * atan2(y, x) in float32 from IEEE 754 float operations alone (one rounding each), so every target
+ * computes the same bits (libm's atan2f differ between glibc and newlib): within 2 ulps of the exact
+ * angle (tools/agree --accuracy measures it), C99 Annex F's values at zeros and infinities, a NaN argument
+ * quieted. TVO_ATAN2 is it in the float build and libm's atan2 in double.
+ */
+float tvo_atan2f(float y, float x);
+
+#if TVO_USE_DOUBLE
+#define TVO_ATAN2 atan2
+#else
+#define TVO_ATAN2 tvo_atan2f
+#endif
+
 #ifdef __cplusplus
 }
 #endif

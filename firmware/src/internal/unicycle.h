@@ -13,7 +13,11 @@
 extern "C" {
 #endif
 
-/** Wraps an angle to (-pi, pi] (non-finite angles are returned as they are). */
+/** Wraps an angle to (-pi, pi] (non-finite angles are returned as they are). A function of its argument
+ *  alone: a caller that drops the result drops the call. */
+#if defined(__GNUC__)
+__attribute__((const))
+#endif
 tvo_real_t tvo_wrap_angle(tvo_real_t angle_rad);
 
 /* Whether an angle is in tvo_wrap_angle's range (-pi, pi] already (false for NaN and infinities). */
@@ -53,6 +57,15 @@ static inline void tvo_unicycle_flat_map_cs(const tvo_real_t heading_cs[2], tvo_
     *turn_rate_radps = across / v;
 }
 
+/* The turn below which the arc's factors come from their series: up to the d^4 terms they are exact to
+ * the scalar's precision (the next, d^6 / 5040, below half an ulp) for |d| <= 1/8 in float32, 1/256 in
+ * double. A period's turn at the default limits (2 pi rad/s over 15 ms) is 0.09 rad. */
+#if TVO_USE_DOUBLE
+#define UNICYCLE_SERIES_TURN_RAD 0.00390625
+#else
+#define UNICYCLE_SERIES_TURN_RAD 0.125f
+#endif
+
 /**
  * The pose after dt_s >= 0 of constant (v, omega) (exact arc; straight line for omega = 0); out may
  * alias start. heading_cs receives the new heading's (cos, sin).
@@ -63,25 +76,30 @@ static inline void tvo_unicycle_predict_cs(const tvo_pose_t *start, tvo_real_t s
     TVO_ASSERT(!(dt_s < TVO_R(0.0)));
     const tvo_real_t th = start->heading_rad;
     const tvo_real_t dth = turn_rate_radps * dt_s;
-    /* Two (sin, cos) pairs serve the arc and the new heading: th, and half the turn
-     * (sin dth = 2 sh ch, 1 - cos dth = 2 sh^2: no cancellation for small turns in float32). */
     tvo_real_t s;
     tvo_real_t c;
-    tvo_real_t sh;
-    tvo_real_t ch;
     tvo_sincos(th, &s, &c);
-    tvo_sincos(TVO_R(0.5) * dth, &sh, &ch);
-    const tvo_real_t sin_turn = TVO_R(2.0) * sh * ch;
-    const tvo_real_t one_minus_cos_turn = TVO_R(2.0) * sh * sh;
-    /* Displacement = v dt [sinc(dth), (1 - cos dth)/dth] rotated by th; both factors by their
-     * series when dth is small, where the closed forms would cancel catastrophically. */
+    /* Displacement = v dt [sinc(dth), (1 - cos dth)/dth] rotated by th, and the turn's sin dth and
+     * 1 - cos dth for the new heading. */
     tvo_real_t sinc;
     tvo_real_t cosc;
-    if (TVO_FABS(dth) < TVO_R(1e-3)) {
+    tvo_real_t sin_turn;
+    tvo_real_t one_minus_cos_turn;
+    if (TVO_FABS(dth) <= UNICYCLE_SERIES_TURN_RAD) {
+        /* A turn over a period or two: both factors by their series, exact to this precision there (the
+         * next terms are below half an ulp), with no trigonometry, no division and no cancellation. */
         const tvo_real_t d2 = dth * dth;
-        sinc = TVO_R(1.0) - d2 / TVO_R(6.0);
-        cosc = dth * (TVO_R(0.5) - d2 / TVO_R(24.0));
+        sinc = TVO_R(1.0) - d2 * (TVO_R(0.16666666666666667) - d2 * TVO_R(0.0083333333333333333));
+        cosc = dth * (TVO_R(0.5) - d2 * (TVO_R(0.041666666666666667) - d2 * TVO_R(0.0013888888888888889)));
+        sin_turn = dth * sinc;
+        one_minus_cos_turn = dth * cosc;
     } else {
+        /* (sin, cos) of half the turn: sin dth = 2 sh ch, 1 - cos dth = 2 sh^2 (no cancellation). */
+        tvo_real_t sh;
+        tvo_real_t ch;
+        tvo_sincos(TVO_R(0.5) * dth, &sh, &ch);
+        sin_turn = TVO_R(2.0) * sh * ch;
+        one_minus_cos_turn = TVO_R(2.0) * sh * sh;
         sinc = sin_turn / dth;
         cosc = one_minus_cos_turn / dth;
     }
