@@ -22,6 +22,8 @@ NODES = (
      "firmware/include/tvo/config.h", r"#define TVO_MAX_OUTPUT_DIM (\d+)"),
     ("tvo_firmware_node_fleet", "firmware/tvo_firmware_node_fleet",
      "firmware/cmake/tvo_fleet_limits.cmake", r"TVO_MAX_OUTPUT_DIM=(\d+)"),
+    ("tvo_firmware_node_swarm", "firmware/tvo_firmware_node_swarm",
+     "firmware/cmake/tvo_swarm_limits.cmake", r"TVO_MAX_OUTPUT_DIM=(\d+)"),
 )
 SIM = ("tvo_sim", "host/tvo_sim")
 HUB = ("tvo_fleet_hub", "host/tvo_fleet_hub")
