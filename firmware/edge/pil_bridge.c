@@ -400,7 +400,13 @@ int main(int argc, char **argv)
     }
     for (int channel = TVO_NODE_CH_FIRST; channel <= TVO_NODE_CH_LAST; ++channel) {
         if (tvo_node_channel_is_input(channel)) {
-            lcm_subscribe(b.lcm, tvo_node_channel_name(channel), to_target, &b);
+            /* Unbounded: LCM drops past 30 queued messages per subscription, silently (32 robots' samples). */
+            lcm_subscription_t *subscription = lcm_subscribe(b.lcm, tvo_node_channel_name(channel), to_target, &b);
+            if (subscription == NULL || lcm_subscription_set_queue_capacity(subscription, 0) != 0) {
+                fprintf(stderr, "tvo_pil_bridge: error: cannot subscribe to %s\n", tvo_node_channel_name(channel));
+                close(b.socket_fd);
+                return 1;
+            }
         }
     }
 

@@ -127,7 +127,9 @@ int main(int argc, char **argv)
     plant_t p = {.session_id = (int32_t)((time(NULL) * 1000 + getpid() % 1000) & 0x7fffffff), .sent = -1, .in_force = -1};
     robot_t r = {.x = -1.0, .y = -2.0, .now_us = EPOCH_US, .applied_us = EPOCH_US}; /* at rest */
     tvo_lcm_node_status_t_subscribe(lcm, TVO_CHANNEL_NODE, on_node, &p);
-    tvo_lcm_unicycle_command_t_subscribe(lcm, TVO_CHANNEL_COMMAND, on_command, &p);
+    /* LCM drops past 30 queued messages per subscription, silently: a plant of many robots lifts that. */
+    tvo_lcm_unicycle_command_t_subscription_set_queue_capacity(
+        tvo_lcm_unicycle_command_t_subscribe(lcm, TVO_CHANNEL_COMMAND, on_command, &p), 0);
     tvo_lcm_session_ack_t_subscribe(lcm, TVO_CHANNEL_SESSION_ACK, on_ack, &p);
     tvo_lcm_session_t s = {.protocol_version = TVO_LCM_NODE_STATUS_T_PROTOCOL_VERSION, .session_id = p.session_id,
         .clock_source = TVO_LCM_SESSION_T_CLOCK_PLANT, .epoch_utime = EPOCH_US, .period_us = PERIOD_US,

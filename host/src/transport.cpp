@@ -67,10 +67,11 @@ LcmTransport::LcmTransport(const std::string& url, const std::string& log_path, 
         throw TransportError("the encode buffer (" + std::to_string(buffer_.size()) + " bytes) is smaller than a " +
                              std::to_string(largest) + "-byte message");
     }
-    lcm_.subscribe(TVO_CHANNEL_NODE, &LcmTransport::on_raw, this);
-    lcm_.subscribe(TVO_CHANNEL_COMMAND, &LcmTransport::on_raw, this);
-    lcm_.subscribe(TVO_CHANNEL_SESSION_ACK, &LcmTransport::on_raw, this);
-    lcm_.subscribe(TVO_CHANNEL_TELEMETRY, &LcmTransport::on_raw, this);
+    // Unbounded queues: LCM drops past 30 queued messages per subscription, silently, and one period of a
+    // 32-robot session brings 32 commands (and as many telemetry frames) at once.
+    for (const char* channel : {TVO_CHANNEL_NODE, TVO_CHANNEL_COMMAND, TVO_CHANNEL_SESSION_ACK, TVO_CHANNEL_TELEMETRY}) {
+        lcm_.subscribe(channel, &LcmTransport::on_raw, this)->setQueueCapacity(0);
+    }
 }
 
 LcmTransport::~LcmTransport()

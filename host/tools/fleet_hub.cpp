@@ -163,14 +163,16 @@ public:
                 throw std::runtime_error("cannot open LCM on " + url);
             }
         }
-        plant_.subscribe(TVO_CHANNEL_SESSION, &Hub::on_plant_session, this);
-        plant_.subscribe(TVO_CHANNEL_TARGET, &Hub::on_plant_target, this);
-        plant_.subscribe(TVO_CHANNEL_SAMPLE, &Hub::on_plant_sample, this);
+        // Unbounded queues: LCM drops past 30 queued messages per subscription, silently (a period of 32
+        // robots brings 32 samples, targets, commands at once).
+        plant_.subscribe(TVO_CHANNEL_SESSION, &Hub::on_plant_session, this)->setQueueCapacity(0);
+        plant_.subscribe(TVO_CHANNEL_TARGET, &Hub::on_plant_target, this)->setQueueCapacity(0);
+        plant_.subscribe(TVO_CHANNEL_SAMPLE, &Hub::on_plant_sample, this)->setQueueCapacity(0);
         for (int k = 0; k < nodes_; ++k) {
             node_ends_.push_back(std::make_unique<NodeEnd>(NodeEnd{this, k}));
             lcm::LCM& bus = *node_bus_[static_cast<std::size_t>(k)];
             for (const char* channel : {TVO_CHANNEL_SESSION_ACK, TVO_CHANNEL_NODE, TVO_CHANNEL_COMMAND, TVO_CHANNEL_TELEMETRY}) {
-                bus.subscribe(channel, &NodeEnd::on_frame, node_ends_.back().get());
+                bus.subscribe(channel, &NodeEnd::on_frame, node_ends_.back().get())->setQueueCapacity(0);
             }
         }
         last_status_.resize(static_cast<std::size_t>(nodes_));

@@ -138,7 +138,7 @@ static void test_a_samples_finiteness_is_judged_on_what_it_has(void)
     tvo_lcm_unicycle_sample_t m;
     distinct_sample(&m, 0);
     TEST_ASSERT_TRUE(tvo_step_unicycle_sample_finite(&m));
-    m.position_m[1] = NAN;
+    m.position_m[1] = (double)NAN;
     TEST_ASSERT_FALSE(tvo_step_unicycle_sample_finite(&m));
     distinct_sample(&m, 0);
     m.heading_rad = INFINITY;

@@ -89,8 +89,8 @@ Bus::Bus(const std::string& url) : lcm_(url)
     if (!lcm_.good()) {
         throw std::runtime_error("cannot open LCM at '" + url + "'");
     }
-    lcm_.subscribe(TVO_CHANNEL_COMMAND, &Bus::on_frame, this);
-    lcm_.subscribe(TVO_CHANNEL_TELEMETRY, &Bus::on_frame, this);
+    lcm_.subscribe(TVO_CHANNEL_COMMAND, &Bus::on_frame, this)->setQueueCapacity(0);  // LCM drops past 30, silently
+    lcm_.subscribe(TVO_CHANNEL_TELEMETRY, &Bus::on_frame, this)->setQueueCapacity(0);
     lcm_.subscribe(TVO_CHANNEL_SESSION_ACK, &Bus::on_frame, this);
     lcm_.subscribe(TVO_CHANNEL_NODE, &Bus::on_frame, this);
 }

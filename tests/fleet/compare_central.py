@@ -60,7 +60,7 @@ def main():
         if a.get(key) is None or b.get(key) is None or not same_to_3_digits(a[key], b[key]):
             failures.append(line)
     if one_bus:
-        same = (out / "central/run.csv").read_bytes() == (out / "fleet/sim/run.csv").read_bytes()
+        same = (out / "central/run.csv").read_bytes() == (out / "fleet/run.csv").read_bytes()
         print(f"run.csv: {'identical' if same else 'differs'} (central node, fleet on one bus)")
         if not same:
             failures.append("run.csv of the fleet on one bus differs from the central node's")
