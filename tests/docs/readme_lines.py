@@ -33,6 +33,7 @@ import argparse
 import os
 import re
 import shutil
+import signal
 import subprocess
 import sys
 import time
@@ -187,11 +188,19 @@ def run_block(lines, clone, env, log):
                    f"-newer {sh_quote(str(stamp))} -printf '%h ' 2>/dev/null)",
                    f"echo \"{k} $__rc $((SECONDS - __t)) $__w\" >&3"]
     with open(log, "w") as out:
+        # Its own process group: what a line started in the background (a node with '&') ends with the block.
+        shell = subprocess.Popen(["bash", "-c", "\n".join(script)], stdout=out, stderr=subprocess.STDOUT, env=env,
+                                 stdin=subprocess.DEVNULL, start_new_session=True)
         try:
-            subprocess.run(["bash", "-c", "\n".join(script)], stdout=out, stderr=subprocess.STDOUT, env=env,
-                           stdin=subprocess.DEVNULL, timeout=BLOCK_TIMEOUT_S)
+            shell.wait(timeout=BLOCK_TIMEOUT_S)
         except subprocess.TimeoutExpired:
             out.write(f"\nreadme_lines: the block ran past {BLOCK_TIMEOUT_S} s and was stopped\n")
+        finally:
+            try:
+                os.killpg(shell.pid, signal.SIGTERM)
+            except ProcessLookupError:
+                pass
+            shell.wait()
     results = {}
     if marks.exists():
         for row in marks.read_text().split("\n"):
