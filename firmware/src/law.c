@@ -348,6 +348,7 @@ TVO_SHAPE_BODY tvo_status_t tracking_shape_body(const tvo_law_t *law, const tvo_
     return TVO_OK;
 }
 
+#if TVO_SHAPE_COPIES
 /*
  * tracking_shape_body for one tracking term over both outputs at the common order, the law's most common
  * call (one robot tracking): the same operations in the same order, each sum begun from 0 as there, its
@@ -428,6 +429,7 @@ TVO_SHAPE_BODY tvo_status_t tracking_one_term_body(const tvo_law_t *law, const t
     }
     return TVO_OK;
 }
+#endif /* TVO_SHAPE_COPIES */
 
 /* The tracking path for the call recorded in the workspace (a size build's call passes three). */
 TRACKING_PATH_BODY tvo_status_t evaluate_tracking_shape(tvo_law_workspace_t *work, const uint8_t k, const uint8_t m)

@@ -56,8 +56,8 @@ static void advance_to(robot_t *r, plant_t *p, int64_t t_us) /* applies a due co
         const int64_t at = p->next.header.utime > r->now_us ? p->next.header.utime : r->now_us; /* never in the past */
         hold_for(r, (double)(at - r->now_us) * 1e-6);
         r->now_us = r->applied_us = at;
-        r->v = p->next.speed_mps;
-        r->w = p->next.turn_rate_radps;
+        r->v = (double)p->next.speed_mps;
+        r->w = (double)p->next.turn_rate_radps;
         p->has_next = 0;
     }
     hold_for(r, (double)(t_us - r->now_us) * 1e-6);

@@ -28,7 +28,6 @@ constexpr std::uint64_t kSeed = 20240609;
 // session_t with utime, protocol_version (4), session_id (4), action (1).
 constexpr std::size_t kSampleSessionIdOffset = 16;
 constexpr std::size_t kSampleRobotOffset = 24;
-constexpr std::size_t kSessionIdOffset = 20;
 constexpr std::size_t kActionOffset = 24;
 
 }  // namespace

@@ -78,6 +78,7 @@ static uint8_t g_key[TVO_AUTH_KEY_BYTES];
 
 static int g_failures;
 
+static void check(int ok, const char *format, ...) __attribute__((format(printf, 2, 3)));
 static void check(int ok, const char *format, ...)
 {
     va_list args;
@@ -234,8 +235,8 @@ static void on_node_frame(const lcm_recv_buf_t *rbuf, const char *channel, void 
             p->answered = 1;
             p->answer_status = command.header.status;
             if (command.header.status == 0 || (command.header.flags & TVO_LCM_COMMAND_HEADER_T_FLAG_SAFE_STOP) != 0) {
-                p->speed_mps = command.speed_mps;
-                p->turn_rate_radps = command.turn_rate_radps;
+                p->speed_mps = (double)command.speed_mps;
+                p->turn_rate_radps = (double)command.turn_rate_radps;
             }
         }
     }

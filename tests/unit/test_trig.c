@@ -121,7 +121,7 @@ static void test_turns_refuse_an_extra_angle_beyond_the_fast_range(void)
 static double scalar_ulp(tvo_real_t v)
 {
 #if TVO_USE_DOUBLE
-    return nextafter(fabs(v), INFINITY) - fabs(v);
+    return nextafter(fabs(v), (double)INFINITY) - fabs(v);
 #else
     return (double)(nextafterf(fabsf(v), INFINITY) - fabsf(v));
 #endif
