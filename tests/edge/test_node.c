@@ -10,6 +10,8 @@
  * and ASan). Sessions of several robots (gathering, prediction): test_node_fleet.c. The contract:
  * lcm_types/README.md "Sessions", "Timing".
  */
+#include <float.h>
+
 #include "edge_fixture.h"
 
 #include "tvo/target.h"
@@ -1985,6 +1987,108 @@ static void test_node_clock_reanchor_whose_trial_the_core_stops_commits_nothing_
     TEST_ASSERT_INT64_WITHIN(latency, offset, tvo_node_session(&node)->schedule.anchor.offset_us);
 }
 
+/* A finite wire double beyond float range is a position beyond the workspace (19), as 1e38 is, not
+ * a NaN/Inf (2): the float32 core sees it saturated, never as infinity. The float fields' largest
+ * finite value likewise. Each refusal counted under the status its answer carries. */
+static void test_plant_finite_values_beyond_float_range_are_implausible_not_non_finite(void)
+{
+    plant_session_after(2);
+    const double far[] = {1e39, 1e300, -1e300, -1e39, DBL_MAX};
+    int64_t j = 3;
+    int32_t implausible = 0;
+    for (size_t i = 0; i < 2u * (sizeof(far) / sizeof(far[0])) + 2u; ++i) {
+        tvo_lcm_unicycle_sample_t m;
+        plant_meas(&m, j);
+        if (i < 2u * (sizeof(far) / sizeof(far[0]))) {
+            m.position_m[i % 2u] = far[i / 2u];
+        } else if (i % 2u == 0u) {
+            m.heading_rad = FLT_MAX; /* a float field holds no 1e300: its largest finite value */
+        } else {
+            m.has |= TVO_LCM_UNICYCLE_SAMPLE_T_HAS_SPEED;
+            m.speed_mps = -FLT_MAX;
+        }
+        (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_MEASUREMENT);
+        ++implausible;
+        TEST_ASSERT_EQUAL_INT32(implausible, node.counters.refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_MEASUREMENT]);
+        TEST_ASSERT_EQUAL_INT32(0, node.counters.refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NOT_FINITE]);
+        plant_meas(&m, j + 1); /* the genuine stream goes on */
+        (void)EXPECT_ACCEPTED(m, 0, plant_apply(j + 1));
+        j += 2;
+    }
+    /* NaN and Inf stay not finite. */
+    const double bad[] = {NAN, INFINITY, -INFINITY};
+    for (size_t i = 0; i < sizeof(bad) / sizeof(bad[0]); ++i) {
+        tvo_lcm_unicycle_sample_t m;
+        plant_meas(&m, j);
+        m.position_m[1] = bad[i];
+        (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NOT_FINITE);
+        TEST_ASSERT_EQUAL_INT32((int32_t)i + 1, node.counters.refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NOT_FINITE]);
+        plant_meas(&m, j + 1);
+        (void)EXPECT_ACCEPTED(m, 0, plant_apply(j + 1));
+        j += 2;
+    }
+    TEST_ASSERT_EQUAL_INT32(implausible, node.counters.refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_MEASUREMENT]);
+}
+
+/* The same for a chain's position and a streamed target's: a finite 1e300 is refused as a value
+ * beyond the workspace is (as 1e6 is), not as not finite. */
+static void test_chain_and_target_positions_beyond_float_range_are_not_called_non_finite(void)
+{
+    ef_start(&start, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+    start.plant_kind = TVO_LCM_SESSION_T_PLANT_CHAIN;
+    (void)send_session(&start, 0);
+    EF_ASSERT_STATUS(TVO_OK, THE_ACK().status);
+    const double far[] = {1e39, 1e300, -1e300};
+    for (size_t i = 0; i < 2u * (sizeof(far) / sizeof(far[0])); ++i) {
+        tvo_lcm_unicycle_sample_t m;
+        plant_meas(&m, 2 * (int64_t)i + 1);
+        tvo_lcm_chain_sample_t c;
+        memset(&c, 0, sizeof(c));
+        c.header = m.header;
+        c.has = TVO_LCM_CHAIN_SAMPLE_T_HAS_DERIVATIVES;
+        c.position_m[i % 2u] = far[i / 2u];
+        take_snapshot();
+        ef_record_clear(&rec);
+        TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_CHAIN_SAMPLE, send_chain_sample(&c, 0));
+        const tvo_lcm_chain_command_t cmd = the_chain_command(1, __LINE__);
+        EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_MEASUREMENT, cmd.header.status);
+        ASSERT_SESSION_KEPT();
+        TEST_ASSERT_EQUAL_INT32((int32_t)i + 1, node.counters.refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_MEASUREMENT]);
+        TEST_ASSERT_EQUAL_INT32(0, node.counters.refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NOT_FINITE]);
+        plant_meas(&m, 2 * (int64_t)i + 2); /* the genuine stream goes on (the watchdog's count restarts) */
+        c.header = m.header;
+        c.position_m[0] = m.position_m[0];
+        c.position_m[1] = m.position_m[1];
+        ef_record_clear(&rec);
+        TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_CHAIN_SAMPLE, send_chain_sample(&c, 0));
+        EF_ASSERT_STATUS(TVO_OK, the_chain_command(1, __LINE__).header.status);
+    }
+
+    setUp();
+    streamed_session(TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
+    tvo_lcm_target_t t;
+    target_at_epoch(&t);
+    t.position_m[0] = 1e6; /* finite, beyond the workspace: the status a farther one must share */
+    (void)send_target(&t, 0);
+    const int32_t beyond = node.last_target_status;
+    TEST_ASSERT_TRUE(beyond != TVO_LCM_COMMAND_HEADER_T_STATUS_OK);
+    TEST_ASSERT_TRUE(beyond != TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NOT_FINITE);
+    for (size_t i = 0; i < 2u * (sizeof(far) / sizeof(far[0])); ++i) {
+        target_at_epoch(&t);
+        t.position_m[0] = 0.0;
+        t.position_m[i % 2u] = far[i / 2u];
+        (void)send_target(&t, 0);
+        EF_ASSERT_STATUS(beyond, node.last_target_status);
+    }
+    target_at_epoch(&t);
+    t.position_m[1] = NAN;
+    (void)send_target(&t, 0);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NOT_FINITE, node.last_target_status);
+    target_at_epoch(&t);
+    (void)send_target(&t, 0);
+    EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
+}
+
 static void test_plant_target_beyond_the_next_period_is_refused(void)
 {
     /* A stray sample 10 s ahead would hold back every genuine sample after it: refused, and the
@@ -3192,6 +3296,8 @@ int main(void)
     RUN_TEST(test_counters_count_every_kind_of_event_and_the_announcement_carries_them);
     RUN_TEST(test_counters_count_speed_mismatch_steps);
     RUN_TEST(test_plant_implausible_measurements_are_refused_and_keep_nothing);
+    RUN_TEST(test_plant_finite_values_beyond_float_range_are_implausible_not_non_finite);
+    RUN_TEST(test_chain_and_target_positions_beyond_float_range_are_not_called_non_finite);
     RUN_TEST(test_slack_rule_is_undone_when_the_first_step_fails);
     RUN_TEST(test_plant_first_measurement_beyond_the_tick_span_is_implausible);
     RUN_TEST(test_chain_session_runs_through_the_node);
