@@ -225,7 +225,6 @@ static void refuse_period(tvo_node_t *node, tvo_node_session_t *s, const tvo_lcm
                           const node_attempt_t *attempt, int64_t now_us)
 {
     tvo_node_period_work_t *work = &node->work;
-    tvo_node_count_refusal(node, tvo_step_wire_status(&attempt->why));
     tvo_step_stamp_t stamp = {s->schedule.ops->refusal_utime(&s->schedule, header, now_us), s->session_id,
                               header->sequence, attempt->why};
     if (s->schedule.ops->count_refusal(&s->schedule)) {
@@ -235,6 +234,10 @@ static void refuse_period(tvo_node_t *node, tvo_node_session_t *s, const tvo_lcm
     } else if (!attempt->stepped) {
         s->controller.ops->holding(&s->controller, &work->command);
     }
+    /* Counted under the status its answer carries (node_counters_t.refused); last_refusal keeps why,
+     * which a streak's safe stop does not say. */
+    tvo_node_count_refusal(node, tvo_step_wire_status(&stamp.why));
+    node->last_refusal = tvo_step_wire_status(&attempt->why);
     tvo_node_publish_answer(node, s, &work->command, &stamp, work->unheard ? 0 : work->predicted);
 }
 

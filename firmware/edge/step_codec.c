@@ -127,8 +127,8 @@ tvo_status_t tvo_step_unicycle_measurement(const tvo_step_period_t *period, uint
     for (uint8_t r = 0; r < robot_count; ++r) {
         const tvo_lcm_unicycle_sample_t *s = period->sample[r];
         if (s != NULL) {
-            meas->position_m[r][0] = tvo_wire_real(s->position_m[0]);
-            meas->position_m[r][1] = tvo_wire_real(s->position_m[1]);
+            meas->position_m[r][0] = tvo_wire_measured(s->position_m[0]);
+            meas->position_m[r][1] = tvo_wire_measured(s->position_m[1]);
             const int has_heading = (s->has & TVO_LCM_UNICYCLE_SAMPLE_T_HAS_HEADING) != 0;
             const int has_speed = (s->has & TVO_LCM_UNICYCLE_SAMPLE_T_HAS_SPEED) != 0;
             meas->heading_rad[r] = has_heading ? (tvo_real_t)s->heading_rad : TVO_R(0.0); /* unread when absent */
@@ -156,7 +156,7 @@ tvo_status_t tvo_step_chain_measurement(const tvo_lcm_chain_sample_t *sample, ui
     meas->stamp_tick = stamp_tick;
     const int has_derivatives = (sample->has & TVO_LCM_CHAIN_SAMPLE_T_HAS_DERIVATIVES) != 0;
     for (size_t axis = 0; axis < 2; ++axis) {
-        meas->y.d[0][axis] = tvo_wire_real(sample->position_m[axis]);
+        meas->y.d[0][axis] = tvo_wire_measured(sample->position_m[axis]);
         if (has_derivatives) {
             meas->y.d[1][axis] = (tvo_real_t)sample->output_rate_mps[axis];
 #if TVO_MAX_RELATIVE_DEGREE >= 3
@@ -291,14 +291,14 @@ tvo_status_t tvo_step_target_from_lcm_carried(const tvo_lcm_target_t *msg, uint8
     for (size_t axis = 0; axis < 2; ++axis) {
         const double p = msg->position_m[axis], v = (double)msg->velocity_mps[axis];
         const double a = (double)msg->acceleration_mps2[axis], j = (double)msg->jerk_mps3[axis];
-        if (!isfinite(p) || !isfinite(v) || !isfinite(a) || !isfinite(j) || !isfinite(tvo_wire_real(p))) {
+        if (!isfinite(p) || !isfinite(v) || !isfinite(a) || !isfinite(j)) {
             return TVO_ERR_NOT_FINITE;
         }
         const double dt = carry_s;
-        deriv[0][axis] = tvo_wire_real(p + dt * (v + dt * (a / 2.0 + dt * j / 6.0)));
-        deriv[1][axis] = tvo_wire_real(v + dt * (a + dt * j / 2.0));
-        deriv[2][axis] = tvo_wire_real(a + dt * j);
-        deriv[3][axis] = tvo_wire_real(j);
+        deriv[0][axis] = tvo_wire_measured(p + dt * (v + dt * (a / 2.0 + dt * j / 6.0)));
+        deriv[1][axis] = tvo_wire_measured(v + dt * (a + dt * j / 2.0));
+        deriv[2][axis] = tvo_wire_measured(a + dt * j);
+        deriv[3][axis] = tvo_wire_measured(j);
     }
     return tvo_target_stream_update(target, objective_ticks, (const tvo_real_t(*)[2])deriv); /* adds const only (C11) */
 }

@@ -10,6 +10,8 @@
  * and ASan). Sessions of several robots (gathering, prediction): test_node_fleet.c. The contract:
  * lcm_types/README.md "Sessions", "Timing".
  */
+#include <float.h>
+
 #include "edge_fixture.h"
 
 #include "tvo/target.h"
@@ -296,7 +298,7 @@ static tvo_lcm_unicycle_command_t expect_refused(const tvo_lcm_unicycle_sample_t
     const int clock_node = s->schedule.timing.clock_source == TVO_LCM_SESSION_T_CLOCK_NODE;
     const int64_t offset = s->schedule.anchor.offset_us;
     take_snapshot();
-    const int32_t refused_before = node.counters.refused[reason == TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_WATCHDOG ? 0 : reason];
+    const int32_t refused_before = node.counters.refused[reason];
     ef_record_clear(&rec);
     UNITY_TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_SAMPLE, send_sample(m, now_us), line, "handled");
     const tvo_lcm_unicycle_command_t cmd = the_command(line);
@@ -312,13 +314,14 @@ static tvo_lcm_unicycle_command_t expect_refused(const tvo_lcm_unicycle_sample_t
     } else {
         UNITY_TEST_ASSERT_EQUAL_INT64(stamp, cmd.header.utime, line, "refusal utime is the measurement's");
     }
+    /* Counted once, under the status the answer carries (node_counters_t.refused). */
+    UNITY_TEST_ASSERT_EQUAL_INT32(refused_before + 1, node.counters.refused[reason], line, "refusal counted");
     if (reason == TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_WATCHDOG) {
-        expect_safe_stop(&cmd, line);
+        expect_safe_stop(&cmd, line); /* last_refusal: the why behind the stop */
         return cmd;
     }
-    UNITY_TEST_ASSERT_EQUAL_HEX32(TVO_LCM_COMMAND_HEADER_T_FLAG_HOLDING, (uint32_t)cmd.header.flags, line, "HOLDING, nothing else");
-    UNITY_TEST_ASSERT_EQUAL_INT32(refused_before + 1, node.counters.refused[reason], line, "refusal counted");
     UNITY_TEST_ASSERT_EQUAL_INT(reason, node.last_refusal, line, "last_refusal");
+    UNITY_TEST_ASSERT_EQUAL_HEX32(TVO_LCM_COMMAND_HEADER_T_FLAG_HOLDING, (uint32_t)cmd.header.flags, line, "HOLDING, nothing else");
     assert_session_kept(line);
     return cmd;
 }
@@ -1177,6 +1180,56 @@ static tvo_lcm_unicycle_command_t expect_refused_any(const tvo_lcm_unicycle_samp
     return cmd;
 }
 
+/* node_counters_t: `refused` counts each refused sample once, under the command_header_t.status its
+ * answer carries. The tester's sequence: 100 good samples, 14 NaN (a streak past the watchdog, answered
+ * with safe stops, status 15), then good ones. Per answer, exactly the counter of its status rose by one
+ * (accepted for status 0); before the fix the streak's stops were counted under the attempt's status. */
+static void test_plant_each_refusal_is_counted_under_the_status_its_answer_carries(void)
+{
+    plant_session_after(0);
+    int32_t stops = 0, not_finite = 0;
+    for (int64_t j = 1; j <= 120; ++j) {
+        tvo_lcm_unicycle_sample_t m;
+        plant_meas(&m, j);
+        const int bad = j > 100 && j <= 114;
+        if (bad) {
+            m.position_m[0] = NAN;
+        }
+        const tvo_lcm_node_counters_t before = node.counters;
+        ef_record_clear(&rec);
+        TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_SAMPLE, send_sample(&m, 0));
+        const tvo_lcm_unicycle_command_t cmd = THE_COMMAND();
+        const int32_t status = cmd.header.status;
+        TEST_ASSERT_EQUAL_INT64(m.header.sequence, cmd.header.measurement_sequence);
+        TEST_ASSERT_TRUE_MESSAGE(status >= 0 && status < TVO_LCM_NODE_COUNTERS_T_STATUS_SLOTS, "status in a slot");
+        if (bad) {
+            TEST_ASSERT_TRUE_MESSAGE(status == TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NOT_FINITE ||
+                                         status == TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_WATCHDOG,
+                                     "a NaN sample: not finite, or the streak's safe stop");
+        }
+        if (status == TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_WATCHDOG) {
+            TEST_ASSERT_TRUE(((uint32_t)cmd.header.flags & TVO_LCM_COMMAND_HEADER_T_FLAG_SAFE_STOP) != 0u);
+            ++stops;
+        }
+        not_finite += status == TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NOT_FINITE;
+        TEST_ASSERT_EQUAL_INT32(before.accepted + (status == TVO_LCM_COMMAND_HEADER_T_STATUS_OK ? 1 : 0),
+                                node.counters.accepted);
+        for (int32_t slot = 0; slot < TVO_LCM_NODE_COUNTERS_T_STATUS_SLOTS; ++slot) {
+            const int32_t rose = node.counters.refused[slot] - before.refused[slot];
+            char what[64];
+            (void)snprintf(what, sizeof(what), "sample %d answered %d: refused[%d]", (int)j, (int)status, (int)slot);
+            TEST_ASSERT_EQUAL_INT32_MESSAGE((status != 0 && slot == status) ? 1 : 0, rose, what);
+        }
+        if (status != 0 && status != TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_WATCHDOG) {
+            TEST_ASSERT_EQUAL_INT(status, node.last_refusal); /* a stop's last_refusal keeps the why behind it */
+        }
+    }
+    TEST_ASSERT_EQUAL_INT32(W - 1, not_finite); /* the streak's first W - 1, then its stops */
+    TEST_ASSERT_EQUAL_INT32(14 - (W - 1), stops);
+    TEST_ASSERT_EQUAL_INT32(stops, node.counters.refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_WATCHDOG]);
+    TEST_ASSERT_EQUAL_INT32(not_finite, node.counters.refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NOT_FINITE]);
+}
+
 /* Issue 39: after a jump past the watchdog's span, late or repeated samples arriving among the genuine
  * ones (a retry queue flushing: copies of samples already served, and of the genuine ones already
  * refused) cost their own refusal only: the genuine stream is served from its third sample whatever
@@ -1235,7 +1288,8 @@ static void test_plant_watchdog_refusals_in_a_row_give_a_safe_stop_until_one_is_
     TEST_ASSERT_EQUAL_INT32(1, node.counters.safe_stops);
     cmd = EXPECT_REFUSED(dup, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_WATCHDOG); /* and on, until one is accepted */
     TEST_ASSERT_EQUAL_INT32(2, node.counters.safe_stops);
-    TEST_ASSERT_EQUAL_INT32(W + 1, node.counters.refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_OUT_OF_ORDER]);
+    TEST_ASSERT_EQUAL_INT32(W - 1, node.counters.refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_OUT_OF_ORDER]);
+    TEST_ASSERT_EQUAL_INT32(2, node.counters.refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_WATCHDOG]); /* the stops' status */
     /* The controller dropped to rest: it holds zero until a measurement is accepted. */
     const tvo_node_session_t *s = tvo_node_session(&node);
     TEST_ASSERT_TRUE(s->controller.u.unicycle.internal.held.speed_mps[0] == TVO_R(0.0));
@@ -1581,7 +1635,8 @@ static void test_counters_count_every_kind_of_event_and_the_announcement_carries
     TEST_ASSERT_EQUAL_MEMORY(tvo_node_counters(&node), &status.counters, sizeof(status.counters));
     const tvo_lcm_node_counters_t *c = &status.counters;
     TEST_ASSERT_EQUAL_INT32(4, c->accepted);
-    TEST_ASSERT_EQUAL_INT32(1 + (int32_t)W, c->refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_OUT_OF_ORDER]);
+    TEST_ASSERT_EQUAL_INT32((int32_t)W, c->refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_OUT_OF_ORDER]);
+    TEST_ASSERT_EQUAL_INT32(1, c->refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_WATCHDOG]); /* the streak's stop */
     TEST_ASSERT_EQUAL_INT32(1, c->refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NOT_FINITE]);
     TEST_ASSERT_EQUAL_INT32(9 + (int32_t)(sizeof(others) / sizeof(others[0])), c->malformed);
     TEST_ASSERT_EQUAL_INT32(1, c->unauthenticated);
@@ -1760,7 +1815,9 @@ static void test_plant_first_measurement_beyond_the_tick_span_is_implausible(voi
         ef_sample(&m, EF_SESSION_ID, EF_EPOCH + twenty_minutes + k * H - TAU, (int32_t)k, 0);
         (void)EXPECT_REFUSED(m, 0, k + 1 < W ? TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_STAMP : TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_WATCHDOG);
     }
-    TEST_ASSERT_EQUAL_INT32((int32_t)W + 1, node.counters.refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_STAMP]);
+    /* Each counted under its answer's status: W - 1 holding, then 2 safe stops. */
+    TEST_ASSERT_EQUAL_INT32((int32_t)W - 1, node.counters.refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_STAMP]);
+    TEST_ASSERT_EQUAL_INT32(2, node.counters.refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_WATCHDOG]);
     /* The first sample anchors the sequence, so it must follow the later of the START and the epoch
      * within a second (or watchdog_periods periods if longer): the last period inside that window is
      * served, the next one is not. */
@@ -1983,6 +2040,108 @@ static void test_node_clock_reanchor_whose_trial_the_core_stops_commits_nothing_
         }
     }
     TEST_ASSERT_INT64_WITHIN(latency, offset, tvo_node_session(&node)->schedule.anchor.offset_us);
+}
+
+/* A finite wire double beyond float range is a position beyond the workspace (19), as 1e38 is, not
+ * a NaN/Inf (2): the float32 core sees it saturated, never as infinity. The float fields' largest
+ * finite value likewise. Each refusal counted under the status its answer carries. */
+static void test_plant_finite_values_beyond_float_range_are_implausible_not_non_finite(void)
+{
+    plant_session_after(2);
+    const double far[] = {1e39, 1e300, -1e300, -1e39, DBL_MAX};
+    int64_t j = 3;
+    int32_t implausible = 0;
+    for (size_t i = 0; i < 2u * (sizeof(far) / sizeof(far[0])) + 2u; ++i) {
+        tvo_lcm_unicycle_sample_t m;
+        plant_meas(&m, j);
+        if (i < 2u * (sizeof(far) / sizeof(far[0]))) {
+            m.position_m[i % 2u] = far[i / 2u];
+        } else if (i % 2u == 0u) {
+            m.heading_rad = FLT_MAX; /* a float field holds no 1e300: its largest finite value */
+        } else {
+            m.has |= TVO_LCM_UNICYCLE_SAMPLE_T_HAS_SPEED;
+            m.speed_mps = -FLT_MAX;
+        }
+        (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_MEASUREMENT);
+        ++implausible;
+        TEST_ASSERT_EQUAL_INT32(implausible, node.counters.refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_MEASUREMENT]);
+        TEST_ASSERT_EQUAL_INT32(0, node.counters.refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NOT_FINITE]);
+        plant_meas(&m, j + 1); /* the genuine stream goes on */
+        (void)EXPECT_ACCEPTED(m, 0, plant_apply(j + 1));
+        j += 2;
+    }
+    /* NaN and Inf stay not finite. */
+    const double bad[] = {NAN, INFINITY, -INFINITY};
+    for (size_t i = 0; i < sizeof(bad) / sizeof(bad[0]); ++i) {
+        tvo_lcm_unicycle_sample_t m;
+        plant_meas(&m, j);
+        m.position_m[1] = bad[i];
+        (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NOT_FINITE);
+        TEST_ASSERT_EQUAL_INT32((int32_t)i + 1, node.counters.refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NOT_FINITE]);
+        plant_meas(&m, j + 1);
+        (void)EXPECT_ACCEPTED(m, 0, plant_apply(j + 1));
+        j += 2;
+    }
+    TEST_ASSERT_EQUAL_INT32(implausible, node.counters.refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_MEASUREMENT]);
+}
+
+/* The same for a chain's position and a streamed target's: a finite 1e300 is refused as a value
+ * beyond the workspace is (as 1e6 is), not as not finite. */
+static void test_chain_and_target_positions_beyond_float_range_are_not_called_non_finite(void)
+{
+    ef_start(&start, EF_SESSION_ID, TVO_LCM_SESSION_T_CLOCK_PLANT, 1);
+    start.plant_kind = TVO_LCM_SESSION_T_PLANT_CHAIN;
+    (void)send_session(&start, 0);
+    EF_ASSERT_STATUS(TVO_OK, THE_ACK().status);
+    const double far[] = {1e39, 1e300, -1e300};
+    for (size_t i = 0; i < 2u * (sizeof(far) / sizeof(far[0])); ++i) {
+        tvo_lcm_unicycle_sample_t m;
+        plant_meas(&m, 2 * (int64_t)i + 1);
+        tvo_lcm_chain_sample_t c;
+        memset(&c, 0, sizeof(c));
+        c.header = m.header;
+        c.has = TVO_LCM_CHAIN_SAMPLE_T_HAS_DERIVATIVES;
+        c.position_m[i % 2u] = far[i / 2u];
+        take_snapshot();
+        ef_record_clear(&rec);
+        TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_CHAIN_SAMPLE, send_chain_sample(&c, 0));
+        const tvo_lcm_chain_command_t cmd = the_chain_command(1, __LINE__);
+        EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_MEASUREMENT, cmd.header.status);
+        ASSERT_SESSION_KEPT();
+        TEST_ASSERT_EQUAL_INT32((int32_t)i + 1, node.counters.refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_IMPLAUSIBLE_MEASUREMENT]);
+        TEST_ASSERT_EQUAL_INT32(0, node.counters.refused[TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NOT_FINITE]);
+        plant_meas(&m, 2 * (int64_t)i + 2); /* the genuine stream goes on (the watchdog's count restarts) */
+        c.header = m.header;
+        c.position_m[0] = m.position_m[0];
+        c.position_m[1] = m.position_m[1];
+        ef_record_clear(&rec);
+        TEST_ASSERT_EQUAL_INT(TVO_NODE_CH_CHAIN_SAMPLE, send_chain_sample(&c, 0));
+        EF_ASSERT_STATUS(TVO_OK, the_chain_command(1, __LINE__).header.status);
+    }
+
+    setUp();
+    streamed_session(TVO_LCM_SESSION_T_CLOCK_PLANT, 0);
+    tvo_lcm_target_t t;
+    target_at_epoch(&t);
+    t.position_m[0] = 1e6; /* finite, beyond the workspace: the status a farther one must share */
+    (void)send_target(&t, 0);
+    const int32_t beyond = node.last_target_status;
+    TEST_ASSERT_TRUE(beyond != TVO_LCM_COMMAND_HEADER_T_STATUS_OK);
+    TEST_ASSERT_TRUE(beyond != TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NOT_FINITE);
+    for (size_t i = 0; i < 2u * (sizeof(far) / sizeof(far[0])); ++i) {
+        target_at_epoch(&t);
+        t.position_m[0] = 0.0;
+        t.position_m[i % 2u] = far[i / 2u];
+        (void)send_target(&t, 0);
+        EF_ASSERT_STATUS(beyond, node.last_target_status);
+    }
+    target_at_epoch(&t);
+    t.position_m[1] = NAN;
+    (void)send_target(&t, 0);
+    EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NOT_FINITE, node.last_target_status);
+    target_at_epoch(&t);
+    (void)send_target(&t, 0);
+    EF_ASSERT_STATUS(TVO_OK, node.last_target_status);
 }
 
 static void test_plant_target_beyond_the_next_period_is_refused(void)
@@ -3192,6 +3351,9 @@ int main(void)
     RUN_TEST(test_counters_count_every_kind_of_event_and_the_announcement_carries_them);
     RUN_TEST(test_counters_count_speed_mismatch_steps);
     RUN_TEST(test_plant_implausible_measurements_are_refused_and_keep_nothing);
+    RUN_TEST(test_plant_finite_values_beyond_float_range_are_implausible_not_non_finite);
+    RUN_TEST(test_plant_each_refusal_is_counted_under_the_status_its_answer_carries);
+    RUN_TEST(test_chain_and_target_positions_beyond_float_range_are_not_called_non_finite);
     RUN_TEST(test_slack_rule_is_undone_when_the_first_step_fails);
     RUN_TEST(test_plant_first_measurement_beyond_the_tick_span_is_implausible);
     RUN_TEST(test_chain_session_runs_through_the_node);

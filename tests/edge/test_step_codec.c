@@ -4,6 +4,8 @@
  * through an LCM encode/decode round trip (and at its channel's one size); the joint digest; robot
  * indices at the int8 extremes; a streamed target sample refused whole when one value is not finite.
  */
+#include <float.h>
+
 #include "edge_fixture.h"
 
 #include "tvo/target.h"
@@ -118,7 +120,9 @@ static void test_measurement_robot_count_outside_the_build_and_nulls_are_refused
     EF_ASSERT_STATUS(TVO_ERR_NULL, tvo_step_chain_measurement(&c, 0u, NULL));
 }
 
-static void test_measurement_values_beyond_the_scalar_become_infinite(void)
+/* A finite wire double beyond the float32 core's range saturates to its largest value (the core then
+ * refuses it as beyond the workspace, status 19); it never passes for an infinity (status 2). */
+static void test_measurement_values_beyond_the_scalar_saturate(void)
 {
     sampled_period(1u);
     samples[0].position_m[0] = 1e300;
@@ -128,9 +132,13 @@ static void test_measurement_values_beyond_the_scalar_become_infinite(void)
 #if TVO_USE_DOUBLE
     TEST_ASSERT_TRUE(meas.position_m[0][0] == 1e300 && meas.position_m[0][1] == -1e300);
 #else
-    TEST_ASSERT_TRUE(isinf(meas.position_m[0][0]) && meas.position_m[0][0] > TVO_R(0.0));
-    TEST_ASSERT_TRUE(isinf(meas.position_m[0][1]) && meas.position_m[0][1] < TVO_R(0.0));
+    TEST_ASSERT_TRUE(meas.position_m[0][0] == FLT_MAX && meas.position_m[0][1] == -FLT_MAX);
 #endif
+    samples[0].position_m[0] = (double)INFINITY;
+    samples[0].position_m[1] = (double)NAN;
+    EF_ASSERT_STATUS(TVO_OK, tvo_step_unicycle_measurement(&period, 1u, 0u, &meas));
+    TEST_ASSERT_TRUE(isinf(meas.position_m[0][0]) && meas.position_m[0][0] > TVO_R(0.0));
+    TEST_ASSERT_TRUE(isnan(meas.position_m[0][1]));
 }
 
 static void test_a_samples_finiteness_is_judged_on_what_it_has(void)
@@ -440,11 +448,6 @@ static void test_non_finite_target_value_is_refused_before_anything_changes(void
             if (field > 0 && bad_values[v] == 1e300) {
                 continue; /* a float field cannot hold it */
             }
-#if TVO_USE_DOUBLE
-            if (bad_values[v] == 1e300) {
-                continue; /* finite in double precision */
-            }
-#endif
             streamed_problem(TVO_LCM_PATH_T_KIND_STREAMED);
             tvo_lcm_target_t t;
             target_sample(&t, 0);
@@ -457,7 +460,9 @@ static void test_non_finite_target_value_is_refused_before_anything_changes(void
                 float *slot = field == 1 ? &t.velocity_mps[0] : field == 2 ? &t.acceleration_mps2[1] : &t.jerk_mps3[0];
                 *slot = (float)bad_values[v];
             }
-            EF_ASSERT_STATUS(TVO_ERR_NOT_FINITE, tvo_step_target_from_lcm_carried(&t, 2u, 6000u, 0.0, &problem));
+            /* A finite 1e300 is a position beyond the workspace (PARAM), not a non-finite one, in both builds. */
+            EF_ASSERT_STATUS(bad_values[v] == 1e300 ? TVO_ERR_PARAM : TVO_ERR_NOT_FINITE,
+                             tvo_step_target_from_lcm_carried(&t, 2u, 6000u, 0.0, &problem));
             TEST_ASSERT_EQUAL_MEMORY(&before, &problem, sizeof(problem));
         }
     }
@@ -596,7 +601,7 @@ int main(void)
     RUN_TEST(test_measurement_takes_each_robots_sample_once);
     RUN_TEST(test_a_predicted_row_is_the_robots_predicted_state_with_heading_and_speed);
     RUN_TEST(test_measurement_robot_count_outside_the_build_and_nulls_are_refused);
-    RUN_TEST(test_measurement_values_beyond_the_scalar_become_infinite);
+    RUN_TEST(test_measurement_values_beyond_the_scalar_saturate);
     RUN_TEST(test_a_samples_finiteness_is_judged_on_what_it_has);
     RUN_TEST(test_chain_measurement_reads_derivatives_only_when_the_sample_has_them);
     RUN_TEST(test_wire_status_of_each_reason_error_and_edge_status);
