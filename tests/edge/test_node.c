@@ -1193,7 +1193,7 @@ static void test_plant_each_refusal_is_counted_under_the_status_its_answer_carri
         plant_meas(&m, j);
         const int bad = j > 100 && j <= 114;
         if (bad) {
-            m.position_m[0] = NAN;
+            m.position_m[0] = (double)NAN;
         }
         const tvo_lcm_node_counters_t before = node.counters;
         ef_record_clear(&rec);
@@ -2071,7 +2071,7 @@ static void test_plant_finite_values_beyond_float_range_are_implausible_not_non_
         j += 2;
     }
     /* NaN and Inf stay not finite. */
-    const double bad[] = {NAN, INFINITY, -INFINITY};
+    const double bad[] = {(double)NAN, (double)INFINITY, -(double)INFINITY};
     for (size_t i = 0; i < sizeof(bad) / sizeof(bad[0]); ++i) {
         tvo_lcm_unicycle_sample_t m;
         plant_meas(&m, j);
@@ -2136,7 +2136,7 @@ static void test_chain_and_target_positions_beyond_float_range_are_not_called_no
         EF_ASSERT_STATUS(beyond, node.last_target_status);
     }
     target_at_epoch(&t);
-    t.position_m[1] = NAN;
+    t.position_m[1] = (double)NAN;
     (void)send_target(&t, 0);
     EF_ASSERT_STATUS(TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_NOT_FINITE, node.last_target_status);
     target_at_epoch(&t);

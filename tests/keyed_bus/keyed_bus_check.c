@@ -91,6 +91,7 @@ static void check(int ok, const char *format, ...)
     g_failures += ok ? 0 : 1;
 }
 
+static void die(const char *format, ...) __attribute__((format(printf, 1, 2), noreturn));
 static void die(const char *format, ...)
 {
     va_list args;
