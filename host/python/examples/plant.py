@@ -70,7 +70,7 @@ class Plant:
     """The bus end: signs what it sends, opens what it hears, and keeps what the rules need."""
 
     def __init__(self, url, key):
-        self.lc = lcm.LCM(url)
+        self.lc = lcm.LCM(url) if url else lcm.LCM()   # no URL: LCM's default (LCM_DEFAULT_URL)
         self.link = auth.Link(key, auth.SENDER_PLANT)    # counters follow the wall clock
         self.session_id = (time.time_ns() // 1000 + os.getpid()) & 0x7FFFFFFF   # fresh per run
         self.boot_id, self.max_robots = 0, 0    # rule 1: the node's current boot, its robot limit
