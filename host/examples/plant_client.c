@@ -126,11 +126,13 @@ int main(int argc, char **argv)
     if (lcm == NULL || steps < 1) return fprintf(stderr, "usage: plant_client [LCM_URL [DURATION_S]]\n"), 2;
     plant_t p = {.session_id = (int32_t)((time(NULL) * 1000 + getpid() % 1000) & 0x7fffffff), .sent = -1, .in_force = -1};
     robot_t r = {.x = -1.0, .y = -2.0, .now_us = EPOCH_US, .applied_us = EPOCH_US}; /* at rest */
-    tvo_lcm_node_status_t_subscribe(lcm, TVO_CHANNEL_NODE, on_node, &p);
+    tvo_lcm_node_status_t_subscription_t *nodes = tvo_lcm_node_status_t_subscribe(lcm, TVO_CHANNEL_NODE, on_node, &p);
+    tvo_lcm_unicycle_command_t_subscription_t *cmds =
+        tvo_lcm_unicycle_command_t_subscribe(lcm, TVO_CHANNEL_COMMAND, on_command, &p);
     /* LCM drops past 30 queued messages per subscription, silently: a plant of many robots lifts that. */
-    tvo_lcm_unicycle_command_t_subscription_set_queue_capacity(
-        tvo_lcm_unicycle_command_t_subscribe(lcm, TVO_CHANNEL_COMMAND, on_command, &p), 0);
-    tvo_lcm_session_ack_t_subscribe(lcm, TVO_CHANNEL_SESSION_ACK, on_ack, &p);
+    tvo_lcm_unicycle_command_t_subscription_set_queue_capacity(cmds, 0);
+    tvo_lcm_session_ack_t_subscription_t *acks =
+        tvo_lcm_session_ack_t_subscribe(lcm, TVO_CHANNEL_SESSION_ACK, on_ack, &p);
     tvo_lcm_session_t s = {.protocol_version = TVO_LCM_NODE_STATUS_T_PROTOCOL_VERSION, .session_id = p.session_id,
         .clock_source = TVO_LCM_SESSION_T_CLOCK_PLANT, .epoch_utime = EPOCH_US, .period_us = PERIOD_US,
         .delay_us = DELAY_US, .delay_compensation = 1, .watchdog_periods = WATCHDOG_PERIODS,
@@ -144,6 +146,10 @@ int main(int argc, char **argv)
                 p.acked ? "refused" : (p.boot_id != 0 ? "not acknowledged" : "no node announced itself"),
                 tvo_protocol_status_str((int32_t)p.ack.status), tvo_protocol_param_str(p.ack.bad_param),
                 tvo_protocol_part_str(p.ack.bad_part), p.ack.bad_index);
+        tvo_lcm_node_status_t_unsubscribe(lcm, nodes);
+        tvo_lcm_unicycle_command_t_unsubscribe(lcm, cmds);
+        tvo_lcm_session_ack_t_unsubscribe(lcm, acks);
+        lcm_destroy(lcm);
         return 1;
     }
     for (int32_t n = 0; n < steps; ++n) {
@@ -167,6 +173,9 @@ int main(int argc, char **argv)
     const double phase = e->omega_radps * (double)(r.now_us - EPOCH_US) * 1e-6;
     printf("final_error_m=%.6g\n", hypot(r.x - e->semi_axis_m[0] * cos(phase), r.y - e->semi_axis_m[1] * sin(phase)));
     request(lcm, &p, &s, TVO_LCM_SESSION_T_ACTION_STOP, r.now_us); /* rule 6 */
+    tvo_lcm_node_status_t_unsubscribe(lcm, nodes);
+    tvo_lcm_unicycle_command_t_unsubscribe(lcm, cmds);
+    tvo_lcm_session_ack_t_unsubscribe(lcm, acks);
     lcm_destroy(lcm);
     return 0;
 }
