@@ -1,6 +1,7 @@
 /* atan2 in float32 from IEEE float operations alone; see internal/trig.h. In a file of its own, so a
  * firmware without it (no position-only velocity) links none of its constants. */
 #include "internal/trig.h"
+#include "internal/real_bits.h"
 
 #include <math.h>
 #include <string.h>
@@ -28,17 +29,10 @@ static float atan_ratio(float small, float large, uint32_t *q, float *x_p)
     return x;
 }
 
-static uint32_t bits_of(float value)
-{
-    uint32_t bits;
-    memcpy(&bits, &value, sizeof(bits));
-    return bits;
-}
-
 float tvo_atan2f(float y, float x)
 {
-    const uint32_t y_bits = bits_of(y);
-    const uint32_t x_bits = bits_of(x);
+    const uint32_t y_bits = float_bits(y);
+    const uint32_t x_bits = float_bits(x);
     const uint32_t y_magnitude = y_bits & 0x7FFFFFFFu;
     const uint32_t x_magnitude = x_bits & 0x7FFFFFFFu;
     if (y_magnitude > 0x7F800000u || x_magnitude > 0x7F800000u) {

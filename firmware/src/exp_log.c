@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "internal/wide_mul.h"
+#include "internal/real_bits.h"
 
 /* A floating-point unit takes exp's float path first; a soft-float target (Cortex-M0+, RV32IMAC)
  * runs the integer path alone, which costs it fewer library calls. Both round correctly: the same bits. */
@@ -12,20 +13,6 @@
 #else
 #define EXP_FLOAT_PATH 1
 #endif
-
-static uint32_t bits_of(float value)
-{
-    uint32_t bits;
-    memcpy(&bits, &value, sizeof(bits));
-    return bits;
-}
-
-static float float_of(uint32_t bits)
-{
-    float value;
-    memcpy(&value, &bits, sizeof(value));
-    return value;
-}
 
 #define FLOAT_SIGN 0x80000000u
 #define FLOAT_INFINITY 0x7F800000u
@@ -44,7 +31,7 @@ static float round_q62(uint64_t w, int32_t exponent)
         ++shift;
     }
     if (biased >= 255) {
-        return float_of(FLOAT_INFINITY);
+        return float_from_bits(FLOAT_INFINITY);
     }
     if (biased <= 0) {
         const unsigned extra = (unsigned)(1 - biased); /* a subnormal keeps fewer bits */
@@ -55,7 +42,7 @@ static float round_q62(uint64_t w, int32_t exponent)
         biased = 0;
         if (shift == 64u) {
             /* the value is w 2^-213: half the smallest subnormal is 2^63 */
-            return w > (UINT64_C(1) << 63) ? float_of(1u) : 0.0f;
+            return w > (UINT64_C(1) << 63) ? float_from_bits(1u) : 0.0f;
         }
     }
     const uint64_t significand = w >> shift;
@@ -66,7 +53,7 @@ static float round_q62(uint64_t w, int32_t exponent)
     if (rest > half || (rest == half && (significand & 1u) != 0u)) {
         ++bits;
     }
-    return float_of(bits);
+    return float_from_bits(bits);
 }
 
 /* ---- exp -----------------------------------------------------------------------------------------
@@ -103,8 +90,8 @@ static const int32_t exp2_residual_q62[32] = {
 /* 2^(j/32) in Q62 from its three parts. */
 static uint64_t exp2_q62(uint32_t j)
 {
-    const uint32_t head = bits_of(exp2_table[j].head);
-    const uint32_t tail = bits_of(exp2_table[j].tail);
+    const uint32_t head = float_bits(exp2_table[j].head);
+    const uint32_t tail = float_bits(exp2_table[j].tail);
     uint64_t t = (uint64_t)((head & 0x7FFFFFu) | 0x800000u) << 39; /* the head lies in [1, 2) */
     if (tail != 0u) {
         t += (uint64_t)((tail & 0x7FFFFFu) | 0x800000u) << ((tail >> 23) - 88u); /* tail 2^62, exact */
@@ -135,7 +122,7 @@ static uint64_t exp_k_ln2_over_32_q67(int32_t k)
 
 float tvo_expf_integer(float x)
 {
-    const uint32_t bits = bits_of(x);
+    const uint32_t bits = float_bits(x);
     const uint32_t biased = (bits >> 23) & 0xFFu;
     /* x 2^67 modulo 2^64: r is small, so its bits survive the wrap (|x| in [2^-26, 104): shift 18 .. 50). */
     uint64_t x_q67 = (uint64_t)((bits & 0x7FFFFFu) | 0x800000u) << (biased - 83u);
@@ -197,7 +184,7 @@ float tvo_expf_integer(float x)
 
 float tvo_expf(float x)
 {
-    const uint32_t bits = bits_of(x);
+    const uint32_t bits = float_bits(x);
     const uint32_t magnitude = bits & ~FLOAT_SIGN;
 #if EXP_FLOAT_PATH
     /* The float path gives the integer path's result in about a quarter of its instructions, or
@@ -205,7 +192,7 @@ float tvo_expf(float x)
     if (magnitude - EXP_TINY_BITS < EXP_FLOAT_LIMIT_BITS - EXP_TINY_BITS) {
         /* k = x 32/ln2 rounded, r = x - k ln2/32 = r1 - c: r1 exact, c small. */
         const float shifted = x * EXP_32_OVER_LN2 + EXP_ROUND_SHIFTER;
-        const uint32_t shifted_bits = bits_of(shifted);
+        const uint32_t shifted_bits = float_bits(shifted);
         const float kf = shifted - EXP_ROUND_SHIFTER;
         const float r1 = (x - kf * EXP_LN2_OVER_32_1) - kf * EXP_LN2_OVER_32_2;
         const float c = kf * EXP_LN2_OVER_32_3;
@@ -220,14 +207,14 @@ float tvo_expf(float x)
         const float lo = ((product - (s - entry->head)) + entry->head * ((r1 - r1_high) + u)) +
                          (entry->tail + entry->tail * (r1 + u));
         const float y = s + lo;
-        const uint32_t y_bits = bits_of(y);
-        const uint32_t residual_bits = bits_of(lo - (y - s)); /* s + lo = y + residual exactly */
+        const uint32_t y_bits = float_bits(y);
+        const uint32_t residual_bits = float_bits(lo - (y - s)); /* s + lo = y + residual exactly */
         /* The neighbour on the residual's side lies an ulp of its binade away: y's binade, or the one
          * below when y is a power of two and the residual negative (y's bits less one give both). */
         const uint32_t binade_bits = (y_bits - (residual_bits >> 31)) & FLOAT_INFINITY;
         if ((residual_bits & ~FLOAT_SIGN) <= binade_bits - EXP_ROUNDING_TEST_BITS) {
             /* times 2^m, m = (k - j)/32: shifted's bits over 32 are m plus a multiple of 2^9 (which vanishes). */
-            return float_of(y_bits + ((shifted_bits >> 5) << 23));
+            return float_from_bits(y_bits + ((shifted_bits >> 5) << 23));
         }
         return tvo_expf_integer(x);
     }
@@ -237,9 +224,9 @@ float tvo_expf(float x)
     }
     if (magnitude >= EXP_HUGE_BITS) {
         if (magnitude > FLOAT_INFINITY) {
-            return float_of(bits | FLOAT_QUIET); /* NaN, quieted */
+            return float_from_bits(bits | FLOAT_QUIET); /* NaN, quieted */
         }
-        return (bits & FLOAT_SIGN) != 0u ? 0.0f : float_of(FLOAT_INFINITY);
+        return (bits & FLOAT_SIGN) != 0u ? 0.0f : float_from_bits(FLOAT_INFINITY);
     }
     return tvo_expf_integer(x);
 }
@@ -299,15 +286,15 @@ static float round_u64(uint64_t w, int32_t exponent)
 
 float tvo_logf(float x)
 {
-    const uint32_t bits = bits_of(x);
+    const uint32_t bits = float_bits(x);
     if (bits - 1u >= 0x7F7FFFFFu) { /* not a positive finite number */
         if ((bits & ~FLOAT_SIGN) > FLOAT_INFINITY) {
-            return float_of(bits | FLOAT_QUIET); /* NaN, quieted */
+            return float_from_bits(bits | FLOAT_QUIET); /* NaN, quieted */
         }
         if ((bits & ~FLOAT_SIGN) == 0u) {
-            return float_of(FLOAT_SIGN | FLOAT_INFINITY); /* log(+-0) = -inf */
+            return float_from_bits(FLOAT_SIGN | FLOAT_INFINITY); /* log(+-0) = -inf */
         }
-        return bits == FLOAT_INFINITY ? x : float_of(FLOAT_INFINITY | FLOAT_QUIET); /* +inf; NaN below 0 */
+        return bits == FLOAT_INFINITY ? x : float_from_bits(FLOAT_INFINITY | FLOAT_QUIET); /* +inf; NaN below 0 */
     }
     /* x = 2^e M 2^-23, M in [2^23, 2^24) (a subnormal normalised). */
     int32_t e = (int32_t)(bits >> 23) - 127;

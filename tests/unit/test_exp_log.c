@@ -9,25 +9,12 @@
 #include "test_support.h"
 
 #include "internal/exp_log.h"
+#include "internal/real_bits.h"
 
 #include <float.h>
 
 void setUp(void) {}
 void tearDown(void) {}
-
-static uint32_t bits_of(float value)
-{
-    uint32_t bits;
-    memcpy(&bits, &value, sizeof(bits));
-    return bits;
-}
-
-static float float_of(uint32_t bits)
-{
-    float value;
-    memcpy(&value, &bits, sizeof(value));
-    return value;
-}
 
 /* The double value rounded to float, and whether that is certainly the exact value's rounding: the
  * double is within an ulp (2^-52) of exact, so it decides unless it lies within 2^-50 of a midpoint. */
@@ -50,7 +37,7 @@ static int rounded_reference(double exact, float *out)
 
 static void assert_bits(float expected, float actual, const char *what, float x)
 {
-    if (bits_of(expected) != bits_of(actual)) {
+    if (float_bits(expected) != float_bits(actual)) {
         char msg[128];
         (void)snprintf(msg, sizeof(msg), "%s(%a) = %a, the nearest float is %a", what, (double)(x), (double)(actual),
                        (double)(expected));
@@ -71,7 +58,7 @@ static void test_expf_rounds_correctly_over_every_binade_it_computes(void)
     for (uint32_t biased = 101u; biased <= 133u; ++biased) { /* |x| in [2^-26, 2^7): beyond, 1, 0 or inf */
         for (uint32_t i = 0; i < 4096u; ++i) {
             for (uint32_t sign = 0u; sign <= 1u; ++sign) {
-                const float x = float_of((sign << 31) | (biased << 23) | sweep_significand(i));
+                const float x = float_from_bits((sign << 31) | (biased << 23) | sweep_significand(i));
                 float expected;
                 if (!rounded_reference(exp((double)(x)), &expected)) {
                     ++undecided;
@@ -88,12 +75,12 @@ static void test_expf_rounds_correctly_over_every_binade_it_computes(void)
 
 static void test_expf_special_values_and_thresholds(void)
 {
-    TEST_ASSERT_EQUAL_HEX32(bits_of(1.0f), bits_of(tvo_expf(0.0f)));
-    TEST_ASSERT_EQUAL_HEX32(bits_of(1.0f), bits_of(tvo_expf(-0.0f)));
-    TEST_ASSERT_EQUAL_HEX32(bits_of(INFINITY), bits_of(tvo_expf(INFINITY)));
-    TEST_ASSERT_EQUAL_HEX32(bits_of(0.0f), bits_of(tvo_expf(-INFINITY)));
+    TEST_ASSERT_EQUAL_HEX32(float_bits(1.0f), float_bits(tvo_expf(0.0f)));
+    TEST_ASSERT_EQUAL_HEX32(float_bits(1.0f), float_bits(tvo_expf(-0.0f)));
+    TEST_ASSERT_EQUAL_HEX32(float_bits(INFINITY), float_bits(tvo_expf(INFINITY)));
+    TEST_ASSERT_EQUAL_HEX32(float_bits(0.0f), float_bits(tvo_expf(-INFINITY)));
     TEST_ASSERT_TRUE(isnan(tvo_expf(NAN)));
-    TEST_ASSERT_EQUAL_HEX32(0x7FC12345u, bits_of(tvo_expf(float_of(0x7F812345u)))); /* a NaN quieted, its payload kept */
+    TEST_ASSERT_EQUAL_HEX32(0x7FC12345u, float_bits(tvo_expf(float_from_bits(0x7F812345u)))); /* a NaN quieted, its payload kept */
     /* Arguments near 0, where exp lies within 2^-48 of a midpoint and the double reference cannot
      * decide: exp(x) = 1 + x + x^2/2 + ..., so 2^-24 rounds up (2^-49 above the midpoint 1 + 2^-24),
      * -2^-25 to 1 (2^-51 above 1 - 2^-25), its neighbour down (2^-48 below it). */
@@ -119,8 +106,8 @@ static void test_expf_special_values_and_thresholds(void)
     }
     TEST_ASSERT_TRUE(isfinite(tvo_expf(0x1.62e42ep+6f)));
     TEST_ASSERT_TRUE(isinf(tvo_expf(0x1.62e43p+6f)));
-    TEST_ASSERT_EQUAL_HEX32(1u, bits_of(tvo_expf(-0x1.9fe368p+6f))); /* the smallest subnormal */
-    TEST_ASSERT_EQUAL_HEX32(0u, bits_of(tvo_expf(-0x1.9fe36ap+6f))); /* below half of it */
+    TEST_ASSERT_EQUAL_HEX32(1u, float_bits(tvo_expf(-0x1.9fe368p+6f))); /* the smallest subnormal */
+    TEST_ASSERT_EQUAL_HEX32(0u, float_bits(tvo_expf(-0x1.9fe36ap+6f))); /* below half of it */
 }
 
 /* Soft-float targets run the integer path alone: over its domain it gives the whole function's bits. */
@@ -129,7 +116,7 @@ static void test_expf_integer_path_gives_the_same_bits(void)
     for (uint32_t biased = 101u; biased <= 133u; ++biased) {
         for (uint32_t i = 0; i < 2048u; ++i) {
             for (uint32_t sign = 0u; sign <= 1u; ++sign) {
-                const float x = float_of((sign << 31) | (biased << 23) | sweep_significand(2u * i + 1u));
+                const float x = float_from_bits((sign << 31) | (biased << 23) | sweep_significand(2u * i + 1u));
                 if (fabsf(x) < 104.0f) {
                     assert_bits(tvo_expf(x), tvo_expf_integer(x), "tvo_expf_integer", x);
                 }
@@ -147,7 +134,7 @@ static void test_logf_rounds_correctly_over_every_binade(void)
             if (biased == 0u && significand == 0u) {
                 continue;
             }
-            const float x = float_of((biased << 23) | significand);
+            const float x = float_from_bits((biased << 23) | significand);
             float expected;
             if (!rounded_reference(log((double)(x)), &expected)) {
                 ++undecided;
@@ -164,7 +151,7 @@ static void test_logf_rounds_correctly_near_one(void)
 {
     unsigned undecided = 0u;
     for (uint32_t step = 1u; step <= 16384u; ++step) {
-        const float xs[2] = {float_of(0x3F800000u + step), float_of(0x3F800000u - step)};
+        const float xs[2] = {float_from_bits(0x3F800000u + step), float_from_bits(0x3F800000u - step)};
         for (unsigned k = 0; k < 2u; ++k) {
             float expected;
             if (!rounded_reference(log((double)(xs[k])), &expected)) {
@@ -179,15 +166,15 @@ static void test_logf_rounds_correctly_near_one(void)
 
 static void test_logf_special_values(void)
 {
-    TEST_ASSERT_EQUAL_HEX32(0u, bits_of(tvo_logf(1.0f))); /* +0 */
-    TEST_ASSERT_EQUAL_HEX32(bits_of(-INFINITY), bits_of(tvo_logf(0.0f)));
-    TEST_ASSERT_EQUAL_HEX32(bits_of(-INFINITY), bits_of(tvo_logf(-0.0f)));
-    TEST_ASSERT_EQUAL_HEX32(bits_of(INFINITY), bits_of(tvo_logf(INFINITY)));
+    TEST_ASSERT_EQUAL_HEX32(0u, float_bits(tvo_logf(1.0f))); /* +0 */
+    TEST_ASSERT_EQUAL_HEX32(float_bits(-INFINITY), float_bits(tvo_logf(0.0f)));
+    TEST_ASSERT_EQUAL_HEX32(float_bits(-INFINITY), float_bits(tvo_logf(-0.0f)));
+    TEST_ASSERT_EQUAL_HEX32(float_bits(INFINITY), float_bits(tvo_logf(INFINITY)));
     TEST_ASSERT_TRUE(isnan(tvo_logf(-1.0f)));
     TEST_ASSERT_TRUE(isnan(tvo_logf(-FLT_TRUE_MIN)));
     TEST_ASSERT_TRUE(isnan(tvo_logf(-INFINITY)));
     TEST_ASSERT_TRUE(isnan(tvo_logf(NAN)));
-    TEST_ASSERT_EQUAL_HEX32(0x7FC12345u, bits_of(tvo_logf(float_of(0x7F812345u))));
+    TEST_ASSERT_EQUAL_HEX32(0x7FC12345u, float_bits(tvo_logf(float_from_bits(0x7F812345u))));
     const float edges[] = {FLT_TRUE_MIN, 0x1.8p-149f, FLT_MIN, FLT_MAX, 2.0f, 0.5f, 0x1p-126f, 0x1p127f,
                            0x1.fffffep-1f, 0x1.000002p+0f, 10000.0f, 0.1f};
     for (size_t i = 0; i < sizeof(edges) / sizeof(edges[0]); ++i) {
@@ -204,8 +191,8 @@ static void test_the_cores_exp_and_log_are_these(void)
 #if TVO_USE_DOUBLE
     TEST_ASSERT_TRUE(TVO_EXP(x) == exp(x) && TVO_LOG(x) == log(x));
 #else
-    TEST_ASSERT_EQUAL_HEX32(bits_of(tvo_expf(x)), bits_of(TVO_EXP(x)));
-    TEST_ASSERT_EQUAL_HEX32(bits_of(tvo_logf(x)), bits_of(TVO_LOG(x)));
+    TEST_ASSERT_EQUAL_HEX32(float_bits(tvo_expf(x)), float_bits(TVO_EXP(x)));
+    TEST_ASSERT_EQUAL_HEX32(float_bits(tvo_logf(x)), float_bits(TVO_LOG(x)));
 #endif
 }
 

@@ -29,6 +29,7 @@
 #include "board.h"
 #include "internal/exp_log.h"
 #include "internal/trig.h"
+#include "internal/real_bits.h"
 
 #if TVO_USE_DOUBLE
 #error "agree compares float32 builds"
@@ -42,13 +43,6 @@ static const bench_unicycle_problem_t recorded[AGREE_PROBLEM_COUNT] = {
     BENCH_UNICYCLE, BENCH_OBSTACLES4, BENCH_FORMATION2, BENCH_FORMATION4, BENCH_FORMATION8};
 static uint8_t robots[AGREE_PROBLEM_COUNT];
 static uint32_t digests[AGREE_PROBLEM_COUNT];
-
-static uint32_t bits_of(float value)
-{
-    uint32_t bits;
-    memcpy(&bits, &value, sizeof(bits));
-    return bits;
-}
 
 /* One problem's closed loop on this machine, every period's measured poses written as a table. */
 static int record(FILE *out, uint32_t i)
@@ -67,9 +61,9 @@ static int record(FILE *out, uint32_t i)
         }
         (void)fputs("    {", out);
         for (uint8_t r = 0; r < loop.robots; ++r) {
-            (void)fprintf(out, "{0x%08lxu, 0x%08lxu, 0x%08lxu}%s", (unsigned long)bits_of(loop.meas.position_m[r][0]),
-                          (unsigned long)bits_of(loop.meas.position_m[r][1]),
-                          (unsigned long)bits_of(loop.meas.heading_rad[r]), (r + 1u < loop.robots) ? ", " : "");
+            (void)fprintf(out, "{0x%08lxu, 0x%08lxu, 0x%08lxu}%s", (unsigned long)float_bits(loop.meas.position_m[r][0]),
+                          (unsigned long)float_bits(loop.meas.position_m[r][1]),
+                          (unsigned long)float_bits(loop.meas.heading_rad[r]), (r + 1u < loop.robots) ? ", " : "");
         }
         (void)fputs("},\n", out);
         (void)tvo_controller_step(&loop.controller, &loop.meas, loop.apply_tick, &loop.cmd);
@@ -209,20 +203,13 @@ static void put_function(const char *name, uint32_t count, uint32_t digest)
     tvo_board_putc('\n');
 }
 
-static float float_of(uint32_t bits)
-{
-    float value;
-    memcpy(&value, &bits, sizeof(value));
-    return value;
-}
-
 /* 2^16 arguments spread over the bits of [low, high] (both positive or both negative, as bit patterns
  * ordered like their values), the ends included. */
 #define SWEEP_COUNT 65536u
 
 static float sweep_argument(uint32_t low_bits, uint32_t high_bits, uint32_t k)
 {
-    return float_of(low_bits + (uint32_t)(((uint64_t)(high_bits - low_bits) * k) / (SWEEP_COUNT - 1u)));
+    return float_from_bits(low_bits + (uint32_t)(((uint64_t)(high_bits - low_bits) * k) / (SWEEP_COUNT - 1u)));
 }
 
 static void functions_sweep(void)

@@ -19,6 +19,7 @@
 
 #include "internal/exp_log.h"
 #include "internal/trig.h"
+#include "internal/real_bits.h"
 
 #if LDBL_MANT_DIG < 64
 #error "the reference needs a long double of 64 bits of precision or more (x86-64's)"
@@ -29,20 +30,6 @@ typedef struct {
     unsigned long long arguments, not_nearest, undecided, glibc_not_nearest, differ_from_glibc, integer_path_differs;
     long double max_ulp, glibc_max_ulp;
 } tally_t;
-
-static uint32_t bits_of(float value)
-{
-    uint32_t bits;
-    memcpy(&bits, &value, sizeof(bits));
-    return bits;
-}
-
-static float float_of(uint32_t bits)
-{
-    float value;
-    memcpy(&value, &bits, sizeof(value));
-    return value;
-}
 
 /* The spacing of floats at |nearest| (the nearest float to the exact value), subnormals included. */
 static long double ulp_at(float nearest)
@@ -72,10 +59,10 @@ static void tally(tally_t *t, long double exact, float own, float glibc)
     if (undecided_at(exact, nearest)) {
         ++t->undecided;
     } else {
-        t->not_nearest += (bits_of(own) != bits_of(nearest)) ? 1u : 0u;
-        t->glibc_not_nearest += (bits_of(glibc) != bits_of(nearest)) ? 1u : 0u;
+        t->not_nearest += (float_bits(own) != float_bits(nearest)) ? 1u : 0u;
+        t->glibc_not_nearest += (float_bits(glibc) != float_bits(nearest)) ? 1u : 0u;
     }
-    t->differ_from_glibc += (bits_of(own) != bits_of(glibc)) ? 1u : 0u;
+    t->differ_from_glibc += (float_bits(own) != float_bits(glibc)) ? 1u : 0u;
     if (isfinite(nearest) && isfinite(own) && isfinite(glibc)) {
         const long double ulp = ulp_at(nearest);
         const long double own_ulps = fabsl((long double)own - exact) / ulp;
@@ -84,7 +71,7 @@ static void tally(tally_t *t, long double exact, float own, float glibc)
         t->glibc_max_ulp = glibc_ulps > t->glibc_max_ulp ? glibc_ulps : t->glibc_max_ulp;
     } else {
         /* overflow: the nearest is inf; both must say so */
-        t->not_nearest += (bits_of(own) != bits_of(nearest)) ? 1u : 0u;
+        t->not_nearest += (float_bits(own) != float_bits(nearest)) ? 1u : 0u;
     }
 }
 
@@ -100,7 +87,7 @@ static void tally_nan(tally_t *t, float own, float glibc)
 static void exp_every_float(tally_t *t)
 {
     for (uint64_t u = 0; u <= 0xFFFFFFFFu; ++u) {
-        const float x = float_of((uint32_t)u);
+        const float x = float_from_bits((uint32_t)u);
         const float own = tvo_expf(x);
         if (isnan(x)) {
             tally_nan(t, own, expf(x));
@@ -109,7 +96,7 @@ static void exp_every_float(tally_t *t)
         tally(t, expl((long double)x), own, expf(x));
         const uint32_t magnitude = (uint32_t)u & 0x7FFFFFFFu;
         if (magnitude >= 0x32800000u && magnitude < 0x42D00000u) { /* 2^-26 <= |x| < 104 */
-            t->integer_path_differs += (bits_of(tvo_expf_integer(x)) != bits_of(own)) ? 1u : 0u;
+            t->integer_path_differs += (float_bits(tvo_expf_integer(x)) != float_bits(own)) ? 1u : 0u;
         }
     }
 }
@@ -117,7 +104,7 @@ static void exp_every_float(tally_t *t)
 static void log_every_float(tally_t *t)
 {
     for (uint64_t u = 0; u <= 0xFFFFFFFFu; ++u) {
-        const float x = float_of((uint32_t)u);
+        const float x = float_from_bits((uint32_t)u);
         const float own = tvo_logf(x);
         if (isnan(x) || (x < 0.0f)) {
             tally_nan(t, own, logf(x));
@@ -144,8 +131,8 @@ static void atan2_sweep(tally_t *t)
         if ((k & 1u) != 0u) { /* exponents near each other's: angles away from the axes */
             x_bits = (x_bits & 0x807FFFFFu) | ((((y_bits >> 23) & 0xFFu) + (x_bits % 9u) - 4u) & 0xFFu) << 23;
         }
-        const float y = float_of(y_bits);
-        const float x = float_of(x_bits);
+        const float y = float_from_bits(y_bits);
+        const float x = float_from_bits(x_bits);
         const float own = tvo_atan2f(y, x);
         if (isnan(y) || isnan(x)) {
             tally_nan(t, own, atan2f(y, x));

@@ -10,6 +10,21 @@
 
 #include "tvo/config.h"
 
+/* A float's bit pattern, and the float of a pattern (memcpy: no aliasing through pointers). */
+static inline uint32_t float_bits(float value)
+{
+    uint32_t bits;
+    memcpy(&bits, &value, sizeof(bits));
+    return bits;
+}
+
+static inline float float_from_bits(uint32_t bits)
+{
+    float value;
+    memcpy(&value, &bits, sizeof(value));
+    return value;
+}
+
 #if TVO_USE_DOUBLE
 /* |a| <= limit (limit > 0), false for NaN and the infinities. */
 #define real_within(a, limit) (TVO_FABS(a) <= (limit))
@@ -22,9 +37,7 @@
 #else
 static inline uint32_t real_magnitude_bits(float value)
 {
-    uint32_t bits;
-    memcpy(&bits, &value, sizeof(bits));
-    return bits & 0x7FFFFFFFu;
+    return float_bits(value) & 0x7FFFFFFFu;
 }
 
 static inline int real_within(float value, float limit)
@@ -49,9 +62,7 @@ static inline int real_finite2(float a, float b)
 /* The positive finite floats are the patterns 1 .. 0x7F7FFFFF. */
 static inline int real_positive_finite(float v)
 {
-    uint32_t bits;
-    memcpy(&bits, &v, sizeof(bits));
-    return bits - 1u < 0x7F7FFFFFu;
+    return float_bits(v) - 1u < 0x7F7FFFFFu;
 }
 #endif
 
