@@ -185,7 +185,6 @@ const char *tvo_node_status_str(tvo_node_status_t status)
     case TVO_NODE_NOT_LATER_PERIOD: return "sample serves no later period than the last accepted one";
     case TVO_NODE_STALE: return "sample too old for the period it would serve";
     case TVO_NODE_MISSING_DERIVATIVES: return "chain session reads derivatives the sample lacks";
-    case TVO_NODE_REFUSAL_STREAK: return "refusals in a row: safe stop";
     case TVO_NODE_SESSION_CONFLICT: return "session id already running with other parameters";
     case TVO_NODE_NO_SESSION: return "no such session running";
     case TVO_NODE_UNKNOWN_ACTION: return "session action neither START nor STOP";

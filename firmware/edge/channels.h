@@ -89,13 +89,12 @@ typedef enum {
     TVO_NODE_NOT_LATER_PERIOD = 3,    /* the sample serves no later period than the last accepted one */
     TVO_NODE_STALE = 4,               /* the sample is too old for the period it would serve */
     TVO_NODE_MISSING_DERIVATIVES = 5, /* a chain session reads derivatives the sample does not carry */
-    TVO_NODE_REFUSAL_STREAK = 6,      /* CLOCK_PLANT: watchdog_periods refusals in a row stop the robots */
-    TVO_NODE_SESSION_CONFLICT = 7,    /* a START reuses the running session's id with other content */
-    TVO_NODE_NO_SESSION = 8,          /* no such session is running (a STOP of another id) */
-    TVO_NODE_UNKNOWN_ACTION = 9,      /* a session message that is neither START nor STOP */
-    TVO_NODE_ROBOT_UNHEARD = 10,      /* a robot of the period has no sample and cannot be predicted */
-    TVO_NODE_WRONG_PLANT = 11,        /* a sample of another plant than the session's (unicycle, chain) */
-    TVO_NODE_NOT_FINITE = 12,         /* a robot's sample, checked on arrival, has a NaN or infinite value */
+    TVO_NODE_SESSION_CONFLICT = 6,    /* a START reuses the running session's id with other content */
+    TVO_NODE_NO_SESSION = 7,          /* no such session is running (a STOP of another id) */
+    TVO_NODE_UNKNOWN_ACTION = 8,      /* a session message that is neither START nor STOP */
+    TVO_NODE_ROBOT_UNHEARD = 9,       /* a robot of the period has no sample and cannot be predicted */
+    TVO_NODE_WRONG_PLANT = 10,        /* a sample of another plant than the session's (unicycle, chain) */
+    TVO_NODE_NOT_FINITE = 11,         /* a robot's sample, checked on arrival, has a NaN or infinite value */
     TVO_NODE_STATUS_COUNT
 } tvo_node_status_t;
 

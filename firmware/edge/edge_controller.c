@@ -22,8 +22,8 @@ static tvo_status_t rejected_by_core(tvo_status_t st, tvo_session_param_t bad, t
  * written once and stamped out per plant (member: the unions' member and the session codec's suffix,
  * api: the core's prefix, with the plant's configuration and parameter types). init decodes a START
  * into the plant's configuration and hands it to the core's init; the step, the miss and the safe
- * stop are the core's own public calls (its loop decides hold, refusal and stop); holding answers
- * with the command in force; committed reads the core's outcome (no second judgement of the period);
+ * stop are the core's own public calls (its loop decides hold, refusal and stop), and so is refuse (a
+ * sample the node refused: the core answers with the command in force or its watchdog's stop); committed reads the core's outcome (no second judgement of the period);
  * clock is the clock the node rebases.
  */
 #define EDGE_LOOP_OPS(member, api, config_type, param_type, param_none)                                        \
@@ -54,12 +54,14 @@ static tvo_status_t rejected_by_core(tvo_status_t st, tvo_session_param_t bad, t
     {                                                                                                          \
         return api##_safe_stop(&ctl->u.member, &cmd->member);                                                \
     }                                                                                                          \
-    static void member##_holding(const tvo_edge_controller_t *ctl, tvo_edge_command_t *cmd)                   \
+    static tvo_status_t member##_check(const tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas,  \
+                                       uint32_t apply_tick, tvo_reason_t *reason)                             \
     {                                                                                                          \
-        cmd->member = ctl->u.member.internal.held;                                                             \
-        cmd->member.flags = 0u;                                                                                \
-        cmd->member.outcome = TVO_OUTCOME_HELD;                                                                \
-        cmd->member.reason = TVO_REASON_NONE;                                                                  \
+        return api##_check(&ctl->u.member, &meas->member, apply_tick, reason);                               \
+    }                                                                                                          \
+    static tvo_status_t member##_refuse(tvo_edge_controller_t *ctl, tvo_edge_command_t *cmd)                  \
+    {                                                                                                          \
+        return api##_refuse(&ctl->u.member, TVO_REASON_REFUSED, &cmd->member);                               \
     }                                                                                                          \
     static tvo_edge_mark_t member##_mark(const tvo_edge_command_t *cmd)                                       \
     {                                                                                                          \
@@ -79,7 +81,7 @@ static tvo_status_t rejected_by_core(tvo_status_t st, tvo_session_param_t bad, t
 /* The eight in a table's initialiser. */
 #define EDGE_LOOP_ENTRIES(member)                                                                              \
     .init = member##_init, .step = member##_step, .miss = member##_miss, .safe_stop = member##_safe_stop,      \
-    .holding = member##_holding, .mark = member##_mark, .committed = member##_committed, .clock = member##_clock
+    .refuse = member##_refuse, .check = member##_check, .mark = member##_mark, .committed = member##_committed, .clock = member##_clock
 
 EDGE_LOOP_OPS(unicycle, tvo_controller, tvo_controller_config_t, tvo_param_t, TVO_PARAM_NONE)
 EDGE_LOOP_OPS(chain, tvo_chain_controller, tvo_chain_config_t, tvo_chain_param_t, TVO_CHAIN_PARAM_NONE)

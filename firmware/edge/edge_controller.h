@@ -58,7 +58,7 @@ typedef struct {
     tvo_node_status_t (*measurement)(const tvo_edge_controller_t *ctl, const tvo_edge_samples_t *samples,
                                      uint8_t robot_count, uint32_t stamp_tick, tvo_edge_measurement_t *meas);
     /* The core's sampled-data loop, the same for every plant (edge_controller.c's EDGE_LOOP_OPS): init
-     * (above), step, miss, safe_stop, holding, mark, committed, clock. The others map the wire to the plant. */
+     * (above), step, miss, safe_stop, refuse, check, mark, committed, clock. The others map the wire to the plant. */
     /** The core's step: a transaction (a whole period committed, or nothing changed and the refusal's
      *  command: the one in force, or the watchdog's stop). */
     tvo_status_t (*step)(tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas, uint32_t apply_tick,
@@ -66,8 +66,13 @@ typedef struct {
     /** The core's count of a period without a good step: its watchdog decides hold or stop. */
     tvo_status_t (*miss)(tvo_edge_controller_t *ctl, uint32_t apply_tick, tvo_edge_command_t *cmd);
     tvo_status_t (*safe_stop)(tvo_edge_controller_t *ctl, tvo_edge_command_t *cmd);
-    /** The command in force, held (TVO_OUTCOME_HELD, TVO_REASON_NONE: the edge's status says why). */
-    void (*holding)(const tvo_edge_controller_t *ctl, tvo_edge_command_t *cmd);
+    /** A sample the node refused (the core never saw it): the core's answer, the command in force
+     *  (TVO_REASON_REFUSED: the node's status says why) or its watchdog's stop (a lockstep session
+     *  counts refusals). */
+    tvo_status_t (*refuse)(tvo_edge_controller_t *ctl, tvo_edge_command_t *cmd);
+    /** What the core's step would say of this measurement, changing nothing (tvo_controller_check). */
+    tvo_status_t (*check)(const tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas, uint32_t apply_tick,
+                          tvo_reason_t *reason);
     /** A command's flags, outcome and reason. */
     tvo_edge_mark_t (*mark)(const tvo_edge_command_t *cmd);
     /** 1 if the step that delivered cmd took its measurement (the core committed the period: applied,

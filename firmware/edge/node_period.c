@@ -170,6 +170,7 @@ static void gathering_commit(tvo_node_session_t *s, const tvo_node_period_work_t
 typedef struct {
     tvo_step_why_t why;                        /* the edge's refusal, the core's error, or the command's reason */
     tvo_schedule_placement_t placement;
+    uint32_t apply_tick;                       /* the core's tick of placement.apply_us (when stepped) */
     int stepped;                               /* the core stepped: work->command is its answer */
 } node_attempt_t;
 
@@ -180,12 +181,21 @@ static int attempt_taken(const tvo_node_session_t *s, const tvo_node_period_work
 }
 
 /* The period passed every check, the core's included, and only its law could not serve it (a target
- * sample not there yet). */
-static int law_refused(const node_attempt_t *attempt)
+ * sample not there yet). When the core's answer is its watchdog's stop, its check (which changes
+ * nothing) says whether the measurement itself passed. */
+static int law_refused(tvo_node_session_t *s, const tvo_node_period_work_t *work, const node_attempt_t *attempt)
 {
     const tvo_reason_t r = attempt->why.reason;
-    return attempt->stepped && attempt->why.error == TVO_OK &&
-           (r == TVO_REASON_TARGET_NOT_READY || r == TVO_REASON_NUMERIC || r == TVO_REASON_NOT_POSITIVE_DEFINITE);
+    if (!attempt->stepped || attempt->why.error != TVO_OK) {
+        return 0;
+    }
+    if (r == TVO_REASON_TARGET_NOT_READY || r == TVO_REASON_NUMERIC || r == TVO_REASON_NOT_POSITIVE_DEFINITE) {
+        return 1;
+    }
+    tvo_reason_t checked = TVO_REASON_NONE;
+    return r == TVO_REASON_WATCHDOG &&
+           s->controller.ops->check(&s->controller, &work->measurement, attempt->apply_tick, &checked) == TVO_OK &&
+           checked == TVO_REASON_NONE;
 }
 
 /* The node's checks of the period judged on `schedule` (the wire's and its schedule's, then whether every
@@ -212,30 +222,31 @@ static void attempt_period(tvo_node_t *node, tvo_node_session_t *s, const tvo_sc
         return;
     }
     /* The core's step is a transaction: the barrier's s0 included (its objective's start rule). */
-    attempt->why.error = ops->step(&s->controller, &work->measurement,
-                                   tvo_schedule_tick(schedule, attempt->placement.apply_us), &work->command);
+    attempt->apply_tick = tvo_schedule_tick(schedule, attempt->placement.apply_us);
+    attempt->why.error = ops->step(&s->controller, &work->measurement, attempt->apply_tick, &work->command);
     attempt->why.reason = ops->mark(&work->command).reason;
     attempt->stepped = 1;
 }
 
-/* The refusal's answer, stamped no earlier than the sample: the core's answer if it stepped (the
- * command in force, or its watchdog's stop), else the command in force; or the safe stop of the
- * clock mode's own rule (CLOCK_PLANT: a streak of refusals). Nothing of the period is kept. */
+/* The refusal's answer, stamped no earlier than the sample: the core's, whoever refused (the core's
+ * step, or the node's checks, which hand the core the refusal): the command in force, or the core's
+ * watchdog's stop, which the answer then says. Nothing of the period is kept. */
 static void refuse_period(tvo_node_t *node, tvo_node_session_t *s, const tvo_lcm_sample_header_t *header,
                           const node_attempt_t *attempt, int64_t now_us)
 {
     tvo_node_period_work_t *work = &node->work;
     tvo_step_stamp_t stamp = {s->schedule.ops->refusal_utime(&s->schedule, header, now_us), s->session_id,
                               header->sequence, attempt->why};
-    if (s->schedule.ops->count_refusal(&s->schedule)) {
-        (void)s->controller.ops->safe_stop(&s->controller, &work->command);
-        const tvo_step_why_t streak = {TVO_NODE_REFUSAL_STREAK, TVO_OK, TVO_REASON_NONE};
-        stamp.why = streak;
-    } else if (!attempt->stepped) {
-        s->controller.ops->holding(&s->controller, &work->command);
+    if (!attempt->stepped) {
+        (void)s->controller.ops->refuse(&s->controller, &work->command); /* an initialised session: TVO_OK */
+    }
+    const tvo_edge_mark_t mark = s->controller.ops->mark(&work->command);
+    if (mark.outcome == TVO_OUTCOME_STOPPED) {
+        const tvo_step_why_t stopped = {TVO_NODE_OK, TVO_OK, mark.reason};
+        stamp.why = stopped;
     }
     /* Counted under the status its answer carries (node_counters_t.refused); last_refusal keeps why,
-     * which a streak's safe stop does not say. */
+     * which a stop does not say. */
     tvo_node_count_refusal(node, tvo_step_wire_status(&stamp.why));
     node->last_refusal = tvo_step_wire_status(&attempt->why);
     tvo_node_publish_answer(node, s, &work->command, &stamp, work->unheard ? 0 : work->predicted);
@@ -264,7 +275,7 @@ static void serve_period(tvo_node_t *node, tvo_node_session_t *s, const tvo_node
         tvo_schedule_t moved = s->schedule;
         if (s->schedule.ops->vote(&s->schedule, header, &attempt.why, in->now_us, &moved.anchor)) {
             attempt_period(node, s, &moved, header, &samples, in->now_us, &attempt);
-            if (attempt_taken(s, work, &attempt) || law_refused(&attempt)) {
+            if (attempt_taken(s, work, &attempt) || law_refused(s, work, &attempt)) {
                 s->schedule.anchor = moved.anchor;
             }
         }

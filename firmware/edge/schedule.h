@@ -61,10 +61,6 @@ typedef struct {
                 tvo_schedule_anchor_t *moved);
     /** The plant time a refusal is stamped with: never before the measurement. */
     int64_t (*refusal_utime)(const tvo_schedule_t *schedule, const tvo_lcm_sample_header_t *msg, int64_t now_us);
-    /** Counts a refusal; 1 when the clock mode's own rule stops the robots. The one such rule is
-     *  CLOCK_PLANT's streak (schedule_plant_clock.c): with no timer there, watchdog_periods refusals in a
-     *  row stand for the periods the core's watchdog would count, and the node answers TVO_NODE_REFUSAL_STREAK. */
-    int (*count_refusal)(tvo_schedule_t *schedule);
     /** The latest stamp (schedule clock) a streamed target sample may carry. */
     int64_t (*latest_target_us)(const tvo_schedule_t *schedule, int64_t now_us);
     /** The timer at now_us: 1 and *period when periods passed unserved up to period, which the caller
@@ -89,7 +85,6 @@ struct tvo_schedule {
     uint8_t votes;                /*   and how many in a row */
     union {                       /* each clock mode's own state */
         struct {
-            uint32_t refused_in_row;     /* refusals since the last accepted measurement */
             int64_t vote_period;         /* the period of the running vote's last sample */
         } plant;
         struct {
@@ -109,7 +104,6 @@ struct tvo_schedule {
         .accepted = mode##_accepted,                                    \
         .vote = mode##_vote,                                            \
         .refusal_utime = mode##_refusal_utime,                          \
-        .count_refusal = mode##_count_refusal,                          \
         .latest_target_us = mode##_latest_target_us,                    \
         .take_missed = mode##_take_missed,                              \
         .next_deadline = mode##_next_deadline,                          \

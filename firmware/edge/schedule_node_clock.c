@@ -89,12 +89,6 @@ static int64_t node_refusal_utime(const tvo_schedule_t *schedule, const tvo_lcm_
     return stamp > plant_now ? stamp : plant_now;
 }
 
-static int node_count_refusal(tvo_schedule_t *schedule)
-{
-    (void)schedule;
-    return 0; /* the timer counts the periods; the core's watchdog decides */
-}
-
 static int64_t node_latest_target_us(const tvo_schedule_t *schedule, int64_t now_us)
 {
     return now_us + schedule->timing.period_us / NODE_FUTURE_TOLERANCE_DIVISOR;

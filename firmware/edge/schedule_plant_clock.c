@@ -2,11 +2,12 @@
  * CLOCK_PLANT (lockstep): the plant's stamps are the schedule's clock; see schedule.h and lcm_types/README.md
  * ("Timing", "The watchdog"). A sample stamped s serves the period whose apply instant is nearest
  * s + tau; the first accepted sample anchors the numbering, and later ones must advance sequence and
- * period alike. With no clock of its own the node has no timer: a streak of refusals stops the robots.
+ * period alike. With no clock of its own the node has no timer.
  * A sample more than watchdog_periods periods ahead of the last accepted one is a jump: a plant's clock
  * fault or a stray, refused until TVO_SCHEDULE_ANCHOR_VOTES samples in a row agree on it (a genuine
  * stream after a silence longer than the watchdog's span). One wild sample costs its own refusal, not
- * the periods it jumped.
+ * the periods it jumped. With no timer, the core counts refusals for its watchdog (the session's
+ * configuration says so: watchdog_counts_refusals).
  */
 #include "schedule.h"
 
@@ -99,7 +100,6 @@ static tvo_node_status_t plant_place(const tvo_schedule_t *schedule, const tvo_l
 static void plant_accepted(tvo_schedule_t *schedule, const tvo_schedule_placement_t *placement)
 {
     (void)placement;
-    schedule->clock.plant.refused_in_row = 0;
     schedule->anchor.jump_agreed = 0u;
 }
 
@@ -168,17 +168,6 @@ static int64_t plant_refusal_utime(const tvo_schedule_t *schedule, const tvo_lcm
     (void)schedule;
     (void)now_us;
     return tvo_schedule_clamp_time(msg->utime);
-}
-
-/* The plant's samples are the only clock, so a refusal has no apply instant the core could count a
- * miss at (a stray's would move its clock past the genuine stream): watchdog_periods refusals in a row
- * stand for the periods, and every refusal after them is answered with a safe stop. */
-static int plant_count_refusal(tvo_schedule_t *schedule)
-{
-    if (schedule->clock.plant.refused_in_row < UINT32_MAX) {
-        schedule->clock.plant.refused_in_row++;
-    }
-    return schedule->clock.plant.refused_in_row >= schedule->timing.watchdog_periods;
 }
 
 /* The apply instant of the period after the last accepted one; before the first, after the one a

@@ -160,6 +160,9 @@ tvo_status_t tvo_session_decode_timing(const tvo_lcm_session_t *msg, tvo_session
         (cfg)->zoh_aware = (msg)->zoh_aware ? 1u : 0u;                         \
         (cfg)->filter_tf_s = tvo_wire_real((msg)->filter_tf_s);                \
         (cfg)->watchdog_periods = (timing)->watchdog_periods;                  \
+        /* lockstep: the plant's samples are the only clock, so refusals count */ \
+        (cfg)->watchdog_counts_refusals =                                      \
+            ((timing)->clock_source == TVO_LCM_SESSION_T_CLOCK_PLANT) ? 1u : 0u; \
     } while (0)
 
 static tvo_status_t unicycle_config(const tvo_lcm_session_t *msg, const tvo_session_timing_t *timing,

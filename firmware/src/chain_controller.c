@@ -59,7 +59,7 @@ static tvo_chain_param_t first_bad_param(const tvo_chain_config_t *cfg, const tv
     if (!(isfinite(cfg->input_max) && cfg->input_max > TVO_R(0.0))) {
         return TVO_CHAIN_PARAM_INPUT_MAX;
     }
-    if (!tvo_sample_clock_watchdog_ok(cfg->period_ticks, cfg->watchdog_periods)) {
+    if (!tvo_sample_clock_watchdog_ok(cfg->period_ticks, cfg->watchdog_periods) || cfg->watchdog_counts_refusals > 1u) {
         return TVO_CHAIN_PARAM_WATCHDOG;
     }
     if (objective->dual_dim != 0u || objective->term_count == 0u) {
@@ -112,7 +112,7 @@ tvo_status_t tvo_chain_controller_init(tvo_chain_controller_t *ctl, const tvo_ch
         *bad_param = bad;
     }
     return loop_init_end(&chain_plant, ctl, (bad == TVO_CHAIN_PARAM_NONE) ? TVO_OK : TVO_ERR_PARAM, cfg->tick_hz,
-                         cfg->period_ticks, cfg->watchdog_periods, epoch_tick);
+                         cfg->period_ticks, cfg->watchdog_periods, cfg->watchdog_counts_refusals, epoch_tick);
 }
 
 tvo_status_t tvo_chain_predict(uint8_t relative_degree, uint8_t dim, const tvo_output_derivs_t *state,
@@ -288,7 +288,7 @@ TVO_OFF_CHAIN_BODY tvo_reason_t chain_command(void *ctl_any, tvo_loop_frame_t *f
 }
 
 /* The loop's commit piece (the clock committed): the filters and the held input. */
-TVO_OFF_CHAIN_BODY void chain_commit(void *ctl_any, const tvo_loop_frame_t *frame)
+TVO_OFF_CHAIN_BODY tvo_reason_t chain_commit(void *ctl_any, const tvo_loop_frame_t *frame)
 {
     tvo_chain_controller_t *ctl = ctl_any;
     (void)frame;
@@ -296,6 +296,7 @@ TVO_OFF_CHAIN_BODY void chain_commit(void *ctl_any, const tvo_loop_frame_t *fram
         ctl->internal.filter[j] = ctl->internal.work.filter[j];
     }
     ctl->internal.held = ctl->internal.work.command; /* applied: chain_command zeroed its outcome and reason */
+    return TVO_REASON_NONE; /* the chain has no stop of its own */
 }
 
 /* No refusal piece (the chain's refusals are final) and no rest piece (the held input is all its
@@ -319,6 +320,11 @@ tvo_status_t tvo_chain_controller_step(tvo_chain_controller_t *ctl, const tvo_ch
 tvo_status_t tvo_chain_controller_miss(tvo_chain_controller_t *ctl, uint32_t apply_tick, tvo_chain_command_t *cmd)
 {
     return loop_miss(&chain_plant, ctl, apply_tick, cmd);
+}
+
+tvo_status_t tvo_chain_controller_refuse(tvo_chain_controller_t *ctl, tvo_reason_t reason, tvo_chain_command_t *cmd)
+{
+    return loop_refuse_unplaced(&chain_plant, ctl, reason, cmd);
 }
 
 tvo_status_t tvo_chain_controller_check(const tvo_chain_controller_t *ctl, const tvo_chain_measurement_t *meas,

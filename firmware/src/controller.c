@@ -72,7 +72,7 @@ static tvo_param_t first_bad_param(const tvo_controller_config_t *cfg, const tvo
     if (!real_positive_finite(cfg->min_speed_mps) || !(cfg->min_speed_mps < cfg->speed_max_mps)) {
         return TVO_PARAM_MIN_SPEED;
     }
-    if (!tvo_sample_clock_watchdog_ok(cfg->period_ticks, cfg->watchdog_periods)) {
+    if (!tvo_sample_clock_watchdog_ok(cfg->period_ticks, cfg->watchdog_periods) || cfg->watchdog_counts_refusals > 1u) {
         return TVO_PARAM_WATCHDOG;
     }
     for (uint8_t r = 0; r < cfg->robot_count; ++r) {
@@ -144,7 +144,8 @@ TVO_LOOP_ENTRY tvo_status_t controller_init(tvo_controller_t *ctl, const tvo_con
     if (st != TVO_OK && bad_param != NULL) {
         *bad_param = bad;
     }
-    return loop_init_end(&unicycle_plant, ctl, st, cfg->tick_hz, cfg->period_ticks, cfg->watchdog_periods, epoch_tick);
+    return loop_init_end(&unicycle_plant, ctl, st, cfg->tick_hz, cfg->period_ticks, cfg->watchdog_periods,
+                         cfg->watchdog_counts_refusals, epoch_tick);
 }
 
 tvo_status_t tvo_controller_init(tvo_controller_t *ctl, const tvo_controller_config_t *cfg,
@@ -215,8 +216,9 @@ static inline tvo_reason_t check_measurement(const void *ctl_any, const void *me
     return TVO_REASON_NONE;
 }
 
-/* What a good step after the watchdog's gap takes as the command in force: the robots were stopped. */
-static const tvo_command_t rest_command = {{TVO_R(0.0)}, {TVO_R(0.0)}, 0u, TVO_OUTCOME_STOPPED, TVO_REASON_NONE};
+/* What a good step after the watchdog's gap takes as the inputs in force: the robots were stopped (only
+ * its inputs are read). */
+static const tvo_command_t rest_command;
 
 /* v clipped to [-limit, limit] (flag set in *flags when it is; NaN passes as it is), asked as |v| <= limit
  * first: one comparison for a value within the limit, the common case. */
@@ -267,7 +269,7 @@ TVO_COLD_BODY uint32_t limit_speed_step(const tvo_controller_t *ctl, tvo_real_t 
 /* The commit's mismatch count, after the held command's flags are written: a contradicted period
  * counts (a run of TVO_SPEED_MISMATCH_PERIODS flags the command, a longer one starts the stop), any
  * other clears the count; a period of a running stop holds the robots still. */
-TVO_COLD_BODY void commit_speed_mismatch(tvo_controller_t *ctl, uint8_t contradicted)
+TVO_COLD_BODY tvo_reason_t commit_speed_mismatch(tvo_controller_t *ctl, uint8_t contradicted)
 {
     ctl->internal.speed_mismatch_periods = contradicted ? ctl->internal.speed_mismatch_periods + 1u : 0u;
     if (ctl->internal.speed_mismatch_periods >= TVO_SPEED_MISMATCH_PERIODS) {
@@ -277,8 +279,12 @@ TVO_COLD_BODY void commit_speed_mismatch(tvo_controller_t *ctl, uint8_t contradi
             ctl->internal.speed_mismatch_holdoff = TVO_SPEED_MISMATCH_HOLDOFF_PERIODS;
         }
     }
-    if (ctl->internal.speed_mismatch_holdoff > 0u) {
-        /* A period of the stop: accepted (clock, filters, multipliers move on), but the robots stand still. */
+    if (ctl->internal.speed_mismatch_holdoff == 0u) {
+        return TVO_REASON_NONE;
+    }
+    {
+        /* A period of the stop: accepted (clock, filters, multipliers move on), but the robots stand still
+         * (the loop makes the held command the stop). */
         ctl->internal.speed_mismatch_holdoff--;
         for (uint8_t r = 0; r < TVO_MAX_ROBOTS; ++r) {
             ctl->internal.speed_state_mps[r] = TVO_R(0.0);
@@ -287,11 +293,9 @@ TVO_COLD_BODY void commit_speed_mismatch(tvo_controller_t *ctl, uint8_t contradi
         for (uint8_t q = 0; q < TVO_ARRAY_LEN(TVO_MAX_EQUALITIES); ++q) {
             ctl->internal.multiplier_rate[q] = TVO_R(0.0);
         }
-        memset(&ctl->internal.held, 0, sizeof(ctl->internal.held));
         ctl->internal.held.flags = TVO_FLAG_SPEED_MISMATCH;
-        ctl->internal.held.outcome = TVO_OUTCOME_STOPPED;
-        ctl->internal.held.reason = TVO_REASON_SPEED_MISMATCH;
     }
+    return TVO_REASON_SPEED_MISMATCH;
 }
 
 /* The loop's prepare piece, for a period the clock has begun: the measurement checked, the state and
@@ -464,7 +468,7 @@ TVO_OFF_CHAIN_BODY tvo_reason_t unicycle_command(void *ctl_any, tvo_loop_frame_t
 
 /* The loop's commit piece (the clock committed): the filter, the mismatch count, the multipliers, the
  * speed states, the held command and the telemetry. */
-TVO_OFF_CHAIN_BODY void unicycle_commit(void *ctl_any, const tvo_loop_frame_t *frame)
+TVO_OFF_CHAIN_BODY tvo_reason_t unicycle_commit(void *ctl_any, const tvo_loop_frame_t *frame)
 {
     tvo_controller_t *ctl = ctl_any;
     const uint8_t n = STEP_ROBOTS(frame->shape);
@@ -525,8 +529,9 @@ TVO_OFF_CHAIN_BODY void unicycle_commit(void *ctl_any, const tvo_loop_frame_t *f
     tm->regularization = work->report.regularization;
     /* The common period: no contradiction, none counted, no stop running (nothing to write). */
     if ((frame->note | ctl->internal.speed_mismatch_periods | ctl->internal.speed_mismatch_holdoff) != 0u) {
-        commit_speed_mismatch(ctl, frame->note);
+        return commit_speed_mismatch(ctl, frame->note);
     }
+    return TVO_REASON_NONE;
 }
 
 static const tvo_loop_plant_t unicycle_plant = {
@@ -561,6 +566,11 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
 tvo_status_t tvo_controller_miss(tvo_controller_t *ctl, uint32_t apply_tick, tvo_command_t *cmd)
 {
     return loop_miss(&unicycle_plant, ctl, apply_tick, cmd);
+}
+
+tvo_status_t tvo_controller_refuse(tvo_controller_t *ctl, tvo_reason_t reason, tvo_command_t *cmd)
+{
+    return loop_refuse_unplaced(&unicycle_plant, ctl, reason, cmd);
 }
 
 tvo_status_t tvo_controller_check(const tvo_controller_t *ctl, const tvo_measurement_t *meas, uint32_t apply_tick,

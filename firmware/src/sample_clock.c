@@ -23,7 +23,7 @@ int tvo_sample_clock_watchdog_ok(uint32_t period_ticks, uint32_t watchdog_period
 }
 
 void tvo_sample_clock_init(tvo_sample_clock_t *clock, uint32_t tick_hz, uint32_t period_ticks, uint32_t watchdog_periods,
-                           uint32_t epoch_tick)
+                           uint8_t counts_refusals, uint32_t epoch_tick)
 {
     TVO_ASSERT(clock != NULL);
     TVO_ASSERT(tvo_sample_clock_check_timing(tick_hz, period_ticks, 0u) == TVO_PARAM_NONE);
@@ -33,6 +33,7 @@ void tvo_sample_clock_init(tvo_sample_clock_t *clock, uint32_t tick_hz, uint32_t
     clock->period_ticks = period_ticks;
     clock->watchdog_periods = watchdog_periods;
     clock->epoch_tick = epoch_tick;
+    clock->counts_refusals = counts_refusals;
 }
 
 tvo_real_t tvo_ticks_to_seconds32(uint32_t ticks, uint32_t tick_hz)

@@ -1,5 +1,20 @@
 /*
- * Private to the core: the sampled-data loop, written once for every plant's controller.
+ * Private to the core: the sampled-data loop, written once for every plant's controller. Every hold
+ * and every stop a period can end in is decided here, and nowhere else.
+ *
+ * What a period does (one call, one selected answer; a later line takes precedence over an earlier):
+ *   1. applied    the measurement passed every check, the law and the limits: the period is committed.
+ *   2. held       the command in force, repeated, for the reason of a refusal: the core's own checks,
+ *                 its law's (no result), or the caller's (tvo_*_refuse: refused before the core saw it);
+ *                 or no measurement at all (tvo_*_miss). Nothing of the period is kept.
+ *   3. plant stop the measurement was taken, but the plant's own finding stops the robots (the
+ *                 unicycle's speed mismatch: its commit piece reports it, this file makes the stop).
+ *   4. watchdog   watchdog_periods periods without a good step, or, on a clock that counts refusals
+ *                 (a lockstep plant: no timer), watchdog_periods refusals in a row: the stop, until a
+ *                 good step; the one thing a refusal commits.
+ *   5. requested  tvo_*_safe_stop: the stop now, the watchdog expired.
+ *   6. misuse     a call the core cannot serve (NULL, not initialised, a tick that does not advance):
+ *                 an error, nothing changed, and a command safe to apply (the stop, or the one in force).
  *
  * The loop owns the period's clock, the command in force (held), the watchdog and the commit. A step
  * begins the period of its application instant; the plant prepares the law's state from the
@@ -73,8 +88,9 @@ typedef struct {
      *  area; nothing committed). */
     tvo_reason_t (*command)(void *ctl, tvo_loop_frame_t *frame);
     /** The period accepted (the clock already committed, the held command marked applied): the plant's
-     *  state and the held command with the frame's flags (a plant's own stop may mark it otherwise). */
-    void (*commit)(void *ctl, const tvo_loop_frame_t *frame);
+     *  state and the held command with the frame's flags. TVO_REASON_NONE, or the plant's finding that
+     *  stops the robots (its states already at rest; the loop makes the held command the stop). */
+    tvo_reason_t (*commit)(void *ctl, const tvo_loop_frame_t *frame);
     /** loop_refuse with this table, kept out of line in the plant (a cold path: the step's registers
      *  and layout do not pay for it). */
     void (*refuse)(void *ctl, const void *meas, const tvo_period_t *period, tvo_reason_t reason, void *cmd);
@@ -163,6 +179,15 @@ TVO_LOOP_ENTRY void loop_hold(const tvo_loop_plant_t *p, const void *ctl, void *
     loop_mark(p, cmd, 0u, TVO_OUTCOME_HELD, reason);
 }
 
+/* A taken period the plant's finding stops (its states already at rest): the held command the stop,
+ * its flags kept (they say what the plant found). A cold path. */
+TVO_COLD_BODY void loop_plant_stop(const tvo_loop_plant_t *p, void *held, tvo_reason_t reason)
+{
+    const uint32_t flags = *(const uint32_t *)loop_at(held, p->command_flags_at);
+    loop_stop_command(p, held, reason);
+    *(uint32_t *)loop_at(held, p->command_flags_at) = flags;
+}
+
 /* The plant stops: its states, and the held command, at rest; cmd the stop, for `reason` (a copy of
  * the held one). */
 TVO_LOOP_ENTRY void loop_drop_to_rest(const tvo_loop_plant_t *p, void *ctl, void *cmd, tvo_reason_t reason)
@@ -189,6 +214,13 @@ TVO_LOOP_ENTRY tvo_status_t loop_ready(const tvo_loop_plant_t *p, const void *ct
         loop_stop_command(p, cmd, TVO_REASON_NONE); /* one copy of the stop for both errors */
     }
     return st;
+}
+
+/* The stop now, the watchdog expired (without counting a period: the clock does not advance). */
+TVO_LOOP_ENTRY void loop_stop_now(const tvo_loop_plant_t *p, void *ctl, void *cmd, tvo_reason_t reason)
+{
+    tvo_sample_clock_expire(loop_clock(p, ctl));
+    loop_drop_to_rest(p, ctl, cmd, reason);
 }
 
 /* A period counted without a good step (committed): held, or stopped once the watchdog expires. */
@@ -263,11 +295,44 @@ TVO_LOOP_ENTRY tvo_reason_t loop_reason_of(tvo_status_t st)
 TVO_LOOP_ENTRY void loop_refuse(const tvo_loop_plant_t *p, void *ctl, const void *meas, const tvo_period_t *period,
                                 tvo_reason_t reason, void *cmd)
 {
-    if (meas == NULL || sample_clock_refusal_stops(loop_clock(p, ctl), period)) {
+    tvo_sample_clock_t *clock = loop_clock(p, ctl);
+    const int streak_stops = (meas != NULL) && sample_clock_count_refusal(clock); /* counted either way */
+    if (meas == NULL || sample_clock_refusal_stops(clock, period)) {
         loop_miss_period(p, ctl, period, cmd, reason);
+    } else if (streak_stops) {
+        loop_stop_now(p, ctl, cmd, TVO_REASON_WATCHDOG);
     } else {
         loop_hold(p, ctl, cmd, (p->refusal != NULL) ? p->refusal(ctl, meas, reason) : reason);
     }
+}
+
+/* The reasons a caller may refuse a measurement for (tvo_*_refuse): a measurement's, not a stop's. */
+TVO_LOOP_ENTRY int loop_is_refusal_reason(tvo_reason_t reason)
+{
+    return (reason >= TVO_REASON_NOT_FINITE && reason <= TVO_REASON_SOURCE_NOT_LINKED) ||
+           reason == TVO_REASON_REFUSED;
+}
+
+/* tvo_*_refuse: a measurement the caller refused before the core saw it, with no period of its own
+ * (its stamp is what was wrong): the command in force held for `reason`, nothing changed; on a clock
+ * that counts refusals, the watchdog_periods-th in a row is the watchdog's stop. TVO_ERR_PARAM for a
+ * reason that is not a refusal's (cmd the command in force). */
+TVO_LOOP_ENTRY tvo_status_t loop_refuse_unplaced(const tvo_loop_plant_t *p, void *ctl, tvo_reason_t reason, void *cmd)
+{
+    const tvo_status_t st = loop_ready(p, ctl, cmd);
+    if (st != TVO_OK) {
+        return st;
+    }
+    if (!loop_is_refusal_reason(reason)) {
+        loop_hold(p, ctl, cmd, TVO_REASON_NONE);
+        return TVO_ERR_PARAM;
+    }
+    if (sample_clock_count_refusal(loop_clock(p, ctl))) {
+        loop_stop_now(p, ctl, cmd, TVO_REASON_WATCHDOG);
+    } else {
+        loop_hold(p, ctl, cmd, reason);
+    }
+    return TVO_OK;
 }
 
 /* The objective's start rule (tvo/objective.h), if it has one: as a period begins, with the
@@ -320,9 +385,12 @@ TVO_LOOP_ENTRY tvo_status_t loop_period(const tvo_loop_plant_t *p, void *ctl, co
     sample_clock_end_good(clock, period, *(const uint32_t *)loop_at_const(meas, p->stamp_at));
     void *held = loop_at(ctl, p->held_at);
     uint8_t *held_outcome = loop_at(held, p->command_outcome_at);
-    held_outcome[0] = (uint8_t)TVO_OUTCOME_APPLIED; /* the commit sets the flags (and may stop) */
+    held_outcome[0] = (uint8_t)TVO_OUTCOME_APPLIED; /* the commit sets the flags */
     held_outcome[1] = (uint8_t)TVO_REASON_NONE;
-    p->commit(ctl, &frame);
+    const tvo_reason_t plant_stop = p->commit(ctl, &frame);
+    if (plant_stop != TVO_REASON_NONE) {
+        loop_plant_stop(p, held, plant_stop);
+    }
     memcpy(LOOP_WORDS(cmd), LOOP_WORDS(held), p->command_size);
     return TVO_OK;
 }
@@ -359,8 +427,7 @@ TVO_LOOP_ENTRY tvo_status_t loop_safe_stop(const tvo_loop_plant_t *p, void *ctl,
     if (st != TVO_OK) {
         return st;
     }
-    (void)tvo_sample_clock_expire(loop_clock(p, ctl));
-    loop_drop_to_rest(p, ctl, cmd, TVO_REASON_STOP_REQUESTED);
+    loop_stop_now(p, ctl, cmd, TVO_REASON_STOP_REQUESTED);
     return TVO_OK;
 }
 
@@ -380,13 +447,14 @@ TVO_LOOP_ENTRY tvo_status_t loop_init_begin(const tvo_loop_plant_t *p, void *ctl
  * timing validated by the plant), the command in force is marked applied and the instance is
  * initialised. */
 TVO_LOOP_ENTRY tvo_status_t loop_init_end(const tvo_loop_plant_t *p, void *ctl, tvo_status_t st, uint32_t tick_hz,
-                                         uint32_t period_ticks, uint32_t watchdog_periods, uint32_t epoch_tick)
+                                         uint32_t period_ticks, uint32_t watchdog_periods, uint8_t counts_refusals,
+                                         uint32_t epoch_tick)
 {
     if (st != TVO_OK) {
         memset(ctl, 0, p->controller_size);
         return st;
     }
-    (void)tvo_sample_clock_init(loop_clock(p, ctl), tick_hz, period_ticks, watchdog_periods, epoch_tick);
+    tvo_sample_clock_init(loop_clock(p, ctl), tick_hz, period_ticks, watchdog_periods, counts_refusals, epoch_tick);
     *(uint8_t *)loop_at(ctl, p->initialized_at) = 1u;
     return TVO_OK;
 }

@@ -52,6 +52,7 @@ const char *tvo_reason_str(tvo_reason_t reason)
     case TVO_REASON_WATCHDOG: return "watchdog expired: safe stop";
     case TVO_REASON_SPEED_MISMATCH: return "measured speed contradicted the command: stop";
     case TVO_REASON_STOP_REQUESTED: return "safe stop requested";
+    case TVO_REASON_REFUSED: return "measurement refused by the caller's checks";
     default: return "unknown reason";
     }
 }

@@ -39,6 +39,19 @@
  * Assertions that name the statuses
  * --------------------------------------------------------------------------------------------- */
 
+/* The core's count of refusals in a row (a lockstep session's watchdog counts them): the one part of a
+ * controller a refused sample changes. */
+static inline uint32_t ef_refusals_in_row(const tvo_edge_controller_t *ctl)
+{
+    const int chain = ctl->ops == tvo_edge_controller_ops(TVO_LCM_SESSION_T_PLANT_CHAIN);
+    return chain ? ctl->u.chain.internal.loop.clock.refusals_in_row : ctl->u.unicycle.internal.loop.clock.refusals_in_row;
+}
+
+static inline void ef_copy_refusals_in_row(tvo_edge_controller_t *to, const tvo_edge_controller_t *from)
+{
+    to->ops->clock(to)->refusals_in_row = ef_refusals_in_row(from);
+}
+
 static inline void ef_assert_status(int expected, int actual, int line)
 {
     if (expected != actual) {

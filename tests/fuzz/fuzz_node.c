@@ -39,7 +39,7 @@ static void comparable(const tvo_node_session_t *s, tvo_node_session_t *out)
     out->schedule.votes = 0u;
     out->schedule.vote_value = 0;
     if (out->schedule.ops->clock_source == TVO_LCM_SESSION_T_CLOCK_PLANT) {
-        out->schedule.clock.plant.refused_in_row = 0u; /* the CLOCK_PLANT streak counts refusals */
+        out->controller.ops->clock(&out->controller)->refusals_in_row = 0u; /* the core counts refusals */
         out->schedule.clock.plant.vote_period = 0; /* part of the vote */
     }
 }

@@ -1049,6 +1049,93 @@ static void assert_state_unchanged(const tvo_controller_t *before, const tvo_con
     TEST_ASSERT_EQUAL_MEMORY_MESSAGE(before, &after, sizeof(after), what);
 }
 
+/* A caller's refusal (tvo_controller_refuse) on a clock with a timer: the command in force, for the
+ * reason given, and nothing changed, however many in a row (the periods are the timer's to count). */
+static void test_a_callers_refusal_holds_and_changes_nothing(void)
+{
+    fx_running(&fx_a);
+    const tvo_command_t last_good = fx_a.cmd;
+    tvo_controller_t before;
+    state_of(&fx_a.ctl, &before);
+    tvo_command_t cmd;
+    for (uint32_t i = 0; i < 3u * fx_a.cfg.watchdog_periods; ++i) {
+        ASSERT_PERIOD(HELD(REFUSED), tvo_controller_refuse(&fx_a.ctl, TVO_REASON_REFUSED, &cmd), cmd);
+        assert_same_motion(&last_good, &cmd, 1);
+    }
+    ASSERT_PERIOD(HELD(STALE), tvo_controller_refuse(&fx_a.ctl, TVO_REASON_STALE, &cmd), cmd);
+    assert_state_unchanged(&before, &fx_a.ctl, "a refusal changed the controller");
+}
+
+/* Reasons that are not a measurement's, NULL and an uninitialised instance are call errors. */
+static void test_a_callers_refusal_checks_its_arguments(void)
+{
+    fx_running(&fx_a);
+    tvo_controller_t before;
+    state_of(&fx_a.ctl, &before);
+    tvo_command_t cmd;
+    const tvo_reason_t not_refusals[] = {TVO_REASON_NONE, TVO_REASON_NO_MEASUREMENT, TVO_REASON_WATCHDOG,
+                                         TVO_REASON_SPEED_MISMATCH, TVO_REASON_STOP_REQUESTED,
+                                         TVO_REASON_NUMERIC, (tvo_reason_t)TVO_REASON_COUNT};
+    for (size_t i = 0; i < sizeof(not_refusals) / sizeof(not_refusals[0]); ++i) {
+        ASSERT_STATUS(TVO_ERR_PARAM, tvo_controller_refuse(&fx_a.ctl, not_refusals[i], &cmd));
+        ASSERT_OUTCOME(TVO_OUTCOME_HELD, cmd);
+    }
+    assert_state_unchanged(&before, &fx_a.ctl, "a refused call changed the controller");
+    ASSERT_STATUS(TVO_ERR_NULL, tvo_controller_refuse(&fx_a.ctl, TVO_REASON_REFUSED, NULL));
+    ASSERT_STATUS(TVO_ERR_NULL, tvo_controller_refuse(NULL, TVO_REASON_REFUSED, &cmd));
+    ASSERT_OUTCOME(TVO_OUTCOME_STOPPED, cmd);
+    tvo_controller_t zeroed;
+    memset(&zeroed, 0, sizeof(zeroed));
+    ASSERT_STATUS(TVO_ERR_NOT_INITIALIZED, tvo_controller_refuse(&zeroed, TVO_REASON_REFUSED, &cmd));
+    ASSERT_OUTCOME(TVO_OUTCOME_STOPPED, cmd);
+}
+
+static void test_init_rejects_watchdog_counts_refusals_not_a_switch(void)
+{
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_a.cfg.watchdog_counts_refusals = 2u;
+    expect_rejected(&fx_a, TVO_PARAM_WATCHDOG);
+}
+
+/* A clock with no timer (watchdog_counts_refusals): refusals in a row stand for periods, the caller's and
+ * the step's alike. watchdog_periods - 1 of them hold; the next, a step's refusal one period on, is the
+ * watchdog's stop (one period alone would not expire it), and so is every refusal after it, until a good
+ * step, which resets the count. */
+static void test_refusals_in_a_row_stop_a_clock_that_counts_them(void)
+{
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_a.cfg.watchdog_counts_refusals = 1u;
+    fx_start(&fx_a, 0u);
+    run_ok(&fx_a, 3);
+    tvo_command_t cmd;
+    for (uint32_t i = 1; i < fx_a.cfg.watchdog_periods; ++i) {
+        ASSERT_PERIOD(HELD(REFUSED), tvo_controller_refuse(&fx_a.ctl, TVO_REASON_REFUSED, &cmd), cmd);
+    }
+    fx_a.meas_mode = FX_MEAS_NAN;
+    ASSERT_PERIOD(STOPPED(WATCHDOG), fx_closed_loop_step(&fx_a, &cmd), cmd);
+    ASSERT_NEAR(0.0, cmd.speed_mps[0], 0.0);
+    ASSERT_NEAR(0.0, cmd.turn_rate_radps[0], 0.0);
+    ASSERT_PERIOD(STOPPED(WATCHDOG), tvo_controller_refuse(&fx_a.ctl, TVO_REASON_REFUSED, &cmd), cmd);
+    fx_a.meas_mode = FX_MEAS_NORMAL;
+    ASSERT_PERIOD(APPLIED, fx_closed_loop_step(&fx_a, &cmd), cmd);
+    TEST_ASSERT_EQUAL_UINT32(0u, fx_a.ctl.internal.loop.clock.refusals_in_row);
+    ASSERT_PERIOD(HELD(REFUSED), tvo_controller_refuse(&fx_a.ctl, TVO_REASON_REFUSED, &cmd), cmd);
+}
+
+/* The same run without the switch: the caller's refusals hold and one refused step only holds. */
+static void test_refusals_in_a_row_only_hold_a_clock_with_a_timer(void)
+{
+    fx_static_point(&fx_a, 1.0, 1.0);
+    fx_start(&fx_a, 0u);
+    run_ok(&fx_a, 3);
+    tvo_command_t cmd;
+    for (uint32_t i = 1; i < fx_a.cfg.watchdog_periods; ++i) {
+        ASSERT_PERIOD(HELD(REFUSED), tvo_controller_refuse(&fx_a.ctl, TVO_REASON_REFUSED, &cmd), cmd);
+    }
+    fx_a.meas_mode = FX_MEAS_NAN;
+    ASSERT_PERIOD(HELD(NOT_FINITE), fx_closed_loop_step(&fx_a, &cmd), cmd);
+}
+
 static void test_a_refused_step_changes_nothing_its_clock_included(void)
 {
     fx_running(&fx_a);
@@ -1999,6 +2086,11 @@ int main(void)
     RUN_TEST(test_watchdog_recovers_from_rest_when_measurements_resume);
     RUN_TEST(test_watchdog_counts_rejected_measurements);
     RUN_TEST(test_one_good_measurement_resets_the_watchdog_count);
+    RUN_TEST(test_a_callers_refusal_holds_and_changes_nothing);
+    RUN_TEST(test_a_callers_refusal_checks_its_arguments);
+    RUN_TEST(test_init_rejects_watchdog_counts_refusals_not_a_switch);
+    RUN_TEST(test_refusals_in_a_row_stop_a_clock_that_counts_them);
+    RUN_TEST(test_refusals_in_a_row_only_hold_a_clock_with_a_timer);
     RUN_TEST(test_a_refused_step_changes_nothing_its_clock_included);
     RUN_TEST(test_miss_counts_one_period_and_is_the_step_without_a_measurement);
     RUN_TEST(test_refusals_stop_after_the_watchdogs_span_and_the_next_step_starts_from_rest);

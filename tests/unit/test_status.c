@@ -53,7 +53,7 @@ static void test_zero_is_success_applied_and_no_reason(void)
     TEST_ASSERT_EQUAL_INT(0, TVO_PARAM_NONE);
     TEST_ASSERT_EQUAL_INT(0, TVO_CHAIN_PARAM_NONE);
     TEST_ASSERT_EQUAL_INT(TVO_STATUS_COUNT - 1, TVO_ERR_TARGET_NOT_READY);
-    TEST_ASSERT_EQUAL_INT(TVO_REASON_COUNT - 1, TVO_REASON_STOP_REQUESTED);
+    TEST_ASSERT_EQUAL_INT(TVO_REASON_COUNT - 1, TVO_REASON_REFUSED);
 }
 
 static void test_flags_are_distinct_bits_apart_from_the_wires_outcome_bits(void)

@@ -59,6 +59,7 @@ typedef struct {
     tvo_real_t gain[TVO_MAX_RELATIVE_DEGREE]; /* a_0 .. a_{k-1}, Hurwitz */
     tvo_real_t input_max;         /* |u_i| limit, > 0 */
     uint32_t watchdog_periods;    /* >= 1 */
+    uint8_t watchdog_counts_refusals; /* 1: no timer (lockstep): watchdog_periods refusals in a row stop too */
 } tvo_chain_config_t;
 
 typedef struct {
@@ -120,6 +121,9 @@ tvo_status_t tvo_chain_controller_step(tvo_chain_controller_t *ctl, const tvo_ch
 
 /** A period that passed without a good step, counted as tvo_controller_miss counts it. */
 tvo_status_t tvo_chain_controller_miss(tvo_chain_controller_t *ctl, uint32_t apply_tick, tvo_chain_command_t *cmd);
+
+/** A measurement the caller refused before the core saw it, as tvo_controller_refuse. */
+tvo_status_t tvo_chain_controller_refuse(tvo_chain_controller_t *ctl, tvo_reason_t reason, tvo_chain_command_t *cmd);
 
 /** What tvo_chain_controller_step would say of this measurement (*reason), changing nothing (as
  *  tvo_controller_check). */

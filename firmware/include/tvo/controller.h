@@ -106,6 +106,7 @@ typedef struct {
     tvo_real_t speed_max_mps;    /* |v| limit, > 0 */
     tvo_real_t min_speed_mps;    /* 1/v regularisation floor, 0 < min_speed < speed_max */
     uint32_t watchdog_periods;   /* safe stop after this many periods without a valid measurement, >= 1 */
+    uint8_t watchdog_counts_refusals; /* 1: no timer (lockstep): watchdog_periods refusals in a row stop too */
     tvo_real_t initial_speed_mps[TVO_MAX_ROBOTS]; /* dynamic-extension speed at start, |v0| <= speed_max */
 } tvo_controller_config_t;
 
@@ -249,6 +250,16 @@ tvo_status_t tvo_controller_step(tvo_controller_t *ctl, const tvo_measurement_t 
  * tvo_controller_step with meas NULL is the same call.
  */
 tvo_status_t tvo_controller_miss(tvo_controller_t *ctl, uint32_t apply_tick, tvo_command_t *cmd);
+
+/**
+ * A measurement the caller refused before the core saw it (its own checks: a stamp it cannot place, a
+ * robot it has not heard), with no period of its own: TVO_OK with the command in force (TVO_OUTCOME_HELD,
+ * `reason`), nothing changed; with watchdog_counts_refusals, the watchdog_periods-th refusal in a row
+ * since the last good step is the watchdog's stop (TVO_OUTCOME_STOPPED, TVO_REASON_WATCHDOG), and so is
+ * every one after it. reason: a measurement's (TVO_REASON_NOT_FINITE .. TVO_REASON_SOURCE_NOT_LINKED, or
+ * TVO_REASON_REFUSED), else TVO_ERR_PARAM (cmd the command in force); the other errors are the step's.
+ */
+tvo_status_t tvo_controller_refuse(tvo_controller_t *ctl, tvo_reason_t reason, tvo_command_t *cmd);
 
 /**
  * What tvo_controller_step would say of this measurement before computing anything: *reason is

@@ -50,10 +50,12 @@ typedef struct {
     uint32_t last_apply_tick;
     uint32_t last_stamp_tick;
     uint32_t periods_without_measurement;
+    uint32_t refusals_in_row;        /* refused measurements since the last good step (saturating) */
     tvo_tick_time_t elapsed;         /* epoch to the last apply_tick, in ticks (never wraps) and seconds */
     uint8_t started;                 /* a period has ended */
     uint8_t has_stamp;               /* last_stamp_tick is valid */
     uint8_t stopped;                 /* the watchdog expired and no good step since */
+    uint8_t counts_refusals;         /* a loop with no timer: refusals stand for periods (watchdog_counts_refusals) */
 } tvo_sample_clock_t;
 
 #ifdef __cplusplus

@@ -78,10 +78,12 @@ typedef enum {
     /* Stops: */
     TVO_REASON_WATCHDOG = 12,              /* watchdog_periods periods without a good step */
     TVO_REASON_SPEED_MISMATCH = 13,        /* measured speeds contradicted the command (tvo/controller.h) */
-    TVO_REASON_STOP_REQUESTED = 14         /* the caller asked (tvo_controller_safe_stop) */
+    TVO_REASON_STOP_REQUESTED = 14,        /* the caller asked (tvo_controller_safe_stop) */
+    /* The caller's own checks: */
+    TVO_REASON_REFUSED = 15                /* refused before the core saw it (tvo_controller_refuse) */
 } tvo_reason_t;
 
-#define TVO_REASON_COUNT 15
+#define TVO_REASON_COUNT 16
 
 /** Names the field of tvo_controller_config_t an init rejected. */
 typedef enum {

@@ -23,9 +23,10 @@ tvo_param_t tvo_sample_clock_check_timing(uint32_t tick_hz, uint32_t period_tick
 /** 1 if watchdog_periods >= 1 and the watchdog's span stays within TVO_MAX_TICK_SPAN ticks. */
 int tvo_sample_clock_watchdog_ok(uint32_t period_ticks, uint32_t watchdog_periods);
 
-/** A clock at the epoch, before its first period; the timing and watchdog must pass the two checks above. */
+/** A clock at the epoch, before its first period; the timing and watchdog must pass the two checks above.
+ *  counts_refusals 1: watchdog_periods refusals in a row expire the watchdog as periods do (no timer). */
 void tvo_sample_clock_init(tvo_sample_clock_t *clock, uint32_t tick_hz, uint32_t period_ticks, uint32_t watchdog_periods,
-                           uint32_t epoch_tick);
+                           uint8_t counts_refusals, uint32_t epoch_tick);
 
 /** Seconds of a short tick count (a period, a measurement's age): 32-bit arithmetic. */
 tvo_real_t tvo_ticks_to_seconds32(uint32_t ticks, uint32_t tick_hz);
@@ -180,7 +181,21 @@ static inline void sample_clock_end_good(tvo_sample_clock_t *clock, const tvo_pe
     clock->last_stamp_tick = stamp_tick;
     clock->has_stamp = 1;
     clock->periods_without_measurement = 0;
+    clock->refusals_in_row = 0;
     clock->stopped = 0;
+}
+
+/* A refused measurement counted (a clock that counts refusals only): 1 when watchdog_periods refusals
+ * in a row have expired the watchdog, as that many periods would. */
+static inline int sample_clock_count_refusal(tvo_sample_clock_t *clock)
+{
+    if (!clock->counts_refusals) {
+        return 0;
+    }
+    if (clock->refusals_in_row < UINT32_MAX) {
+        clock->refusals_in_row++;
+    }
+    return clock->refusals_in_row >= clock->watchdog_periods;
 }
 
 /* The objective's time at a tick time of the clock (frac_ticks < tick_hz, tick_hz > 0); t's shared values
