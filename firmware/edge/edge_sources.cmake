@@ -13,6 +13,7 @@ set(tvo_edge_node_sources
   ${tvo_edge_dir}/session_codec.c
   ${tvo_edge_dir}/step_codec.c
   ${tvo_edge_dir}/edge_controller.c
-  ${tvo_edge_dir}/channels.c)
+  ${tvo_edge_dir}/channels.c
+  ${tvo_edge_dir}/wire_status.c)
 # The authenticated link in front of the node (auth_link.c; link tvo_auth, which brings Mbed TLS).
 set(tvo_edge_auth_link_sources ${tvo_edge_dir}/auth_link.c)
