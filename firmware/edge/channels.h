@@ -98,10 +98,9 @@ typedef enum {
     TVO_NODE_STATUS_COUNT
 } tvo_node_status_t;
 
-/** Short English description of an edge status, for logs. */
-const char *tvo_node_status_str(tvo_node_status_t status);
-
-/** Short English description of a wire status (command_header_t.STATUS_*), for a plant's or the node's logs. */
+/** Short English description of a wire status (command_header_t.STATUS_*), for a plant's or the node's logs
+ *  (wire_status.c: the core's texts where the code is the core's; link a core). A node status reads as
+ *  the wire code it goes out as (tvo_step_wire_status). */
 const char *tvo_protocol_status_str(int32_t status);
 
 /** Short name of a problem part named by a session ack (session_ack_t.PART_*), for logs. */

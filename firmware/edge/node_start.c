@@ -7,29 +7,31 @@
 
 #include <string.h>
 
-#include "internal/constraints.h"
-
-/* A refused problem's culprit entry, where tvo_problem_init names only the part: the first robot whose
- * tracking weight, or the first obstacle that (with those before it) the core's own term init refuses;
- * -1 if none alone is to blame. A refusal's cold path. */
-static int32_t problem_culprit(const tvo_problem_desc_t *desc, const tvo_barrier_t *barrier, int32_t part)
+/* A refused problem's culprit entry, where tvo_problem_init names only the part: the first robot or
+ * obstacle that the core refuses with the entries before it (the description cut to 1, 2, ... of them,
+ * built in scratch by tvo_problem_init itself); -1 if none alone is to blame. A refusal's cold path. */
+static int32_t problem_culprit(tvo_problem_t *scratch, tvo_problem_desc_t *desc, uint8_t relative_degree,
+                               int32_t part)
 {
-    if (part == TVO_LCM_SESSION_ACK_T_PART_ROBOTS) {
-        for (uint8_t r = 0; r < desc->robot_count && r < TVO_MAX_ROBOTS; ++r) {
-            tvo_tracking_term_t term;
-            if (tvo_tracking_init(&term, &desc->target[r], desc->tracking_weight[r], (uint8_t)(2u * r)) != TVO_OK) {
-                return (int32_t)r;
-            }
-        }
-    } else if (part == TVO_LCM_SESSION_ACK_T_PART_OBSTACLES) {
-        for (uint8_t count = 1u; count <= desc->obstacle_count && count <= TVO_MAX_OBSTACLES; ++count) {
-            tvo_free_space_term_t term;
-            if (tvo_free_space_term_init(&term, barrier, 0u, desc->robot_radius_m, desc->obstacle, count) != TVO_OK) {
-                return (int32_t)count - 1; /* a bad disk, or the later of an overlapping pair */
-            }
+    uint8_t *count = (part == TVO_LCM_SESSION_ACK_T_PART_ROBOTS)      ? &desc->robot_count
+                     : (part == TVO_LCM_SESSION_ACK_T_PART_OBSTACLES) ? &desc->obstacle_count
+                                                                      : NULL;
+    if (count == NULL) {
+        return -1;
+    }
+    const uint8_t all = *count;
+    int32_t culprit = -1;
+    for (uint8_t n = 1u; n <= all && culprit < 0; ++n) {
+        *count = n;
+        uint8_t bad_part = 0u;
+        if (tvo_problem_init(scratch, desc, relative_degree, &bad_part) != TVO_OK &&
+            tvo_session_part_from_problem(bad_part) == part) {
+            culprit = (int32_t)n - 1; /* a bad entry, or the later of an overlapping pair of disks */
         }
     }
-    return -1;
+    *count = all;
+    memset(scratch, 0, sizeof(*scratch));
+    return culprit;
 }
 
 /* Nothing gathered yet: no robot heard, no joint command computed (the robots at rest). */
@@ -65,12 +67,13 @@ tvo_status_t tvo_node_build_session(tvo_node_session_t *s, const tvo_lcm_session
     st = tvo_session_decode_problem(msg, &desc, why);
     if (st == TVO_OK) {
         uint8_t problem_part = 0;
-        st = tvo_problem_init(&s->problem, &desc, ops->relative_degree(msg), &problem_part);
+        const uint8_t relative_degree = ops->relative_degree(msg);
+        st = tvo_problem_init(&s->problem, &desc, relative_degree, &problem_part);
         if (st != TVO_OK) {
             why->status = st;
             why->param = TVO_SESSION_PARAM_OBJECTIVE;
             why->part = tvo_session_part_from_problem(problem_part);
-            why->index = problem_culprit(&desc, &s->problem.barrier, why->part);
+            why->index = problem_culprit(&s->problem, &desc, relative_degree, why->part);
         }
     }
     if (st != TVO_OK) {

@@ -6,9 +6,6 @@
 #include <string.h>
 
 #include "tvo/sample_clock.h"
-#include "internal/barrier.h"
-#include "internal/constraints.h"
-#include "internal/sample_clock.h"
 #include "step_codec.h"
 #include "tvo_lcm_node_status_t.h"
 #include "wire_real.h"
@@ -119,9 +116,8 @@ tvo_status_t tvo_session_decode_timing(const tvo_lcm_session_t *msg, tvo_session
     if (msg->delay_us < 0 || msg->delay_us > msg->period_us) {
         return reject_param(why, TVO_SESSION_PARAM_DELAY);
     }
-    if (msg->watchdog_periods < 1 ||
-        !tvo_sample_clock_watchdog_ok((uint32_t)msg->period_us, (uint32_t)msg->watchdog_periods)) {
-        return reject_param(why, TVO_SESSION_PARAM_WATCHDOG);
+    if (msg->watchdog_periods < 1) {
+        return reject_param(why, TVO_SESSION_PARAM_WATCHDOG); /* its span: the core's init (TVO_PARAM_WATCHDOG) */
     }
     if (msg->robot_count < 1 || msg->robot_count > TVO_MAX_ROBOTS) {
         return reject_param(why, TVO_SESSION_PARAM_ROBOT_COUNT);

@@ -71,7 +71,7 @@ tvo_session_param_t tvo_session_param_of_unicycle(tvo_param_t param);
 /** The session parameter a chain controller's init names. */
 tvo_session_param_t tvo_session_param_of_chain(tvo_chain_param_t param);
 
-/** The session's timing, checked: period 1 .. 2^30-1 us, delay 0 .. period, watchdog within the span. */
+/** The session's timing, checked: period 1 .. 2^30-1 us, delay 0 .. period, watchdog >= 1 (its span: the core's init). */
 typedef struct {
     int32_t clock_source;   /* TVO_LCM_SESSION_T_CLOCK_PLANT or _CLOCK_NODE */
     int64_t epoch_utime;

@@ -130,9 +130,29 @@ static void test_every_wire_code_has_a_name(void)
     for (int32_t part = TVO_LCM_SESSION_ACK_T_PART_NONE; part <= TVO_LCM_SESSION_ACK_T_PART_OFFSETS; ++part) {
         TEST_ASSERT_TRUE(strcmp(unknown_part, tvo_protocol_part_str(part)) != 0);
     }
-    const char *unknown_edge = tvo_node_status_str(TVO_NODE_STATUS_COUNT);
+    /* The node's statuses are read as the wire codes step_codec.c's table sends them as. */
     for (int status = TVO_NODE_OK; status < TVO_NODE_STATUS_COUNT; ++status) {
-        TEST_ASSERT_TRUE(strcmp(unknown_edge, tvo_node_status_str((tvo_node_status_t)status)) != 0);
+        const tvo_step_why_t why = {(tvo_node_status_t)status, TVO_OK, TVO_REASON_NONE};
+        TEST_ASSERT_TRUE(strcmp(unknown, tvo_protocol_status_str(tvo_step_wire_status(&why))) != 0);
+    }
+}
+
+/* A wire code that is the core's error or reason reads as the core's own text (one phrase, one place). */
+static void test_the_cores_codes_read_as_the_cores_texts(void)
+{
+    const tvo_status_t errors[] = {TVO_OK, TVO_ERR_NULL, TVO_ERR_NOT_FINITE, TVO_ERR_DIMENSION, TVO_ERR_PARAM,
+                                   TVO_ERR_CAPACITY, TVO_ERR_NOT_INITIALIZED, TVO_ERR_NOT_POSITIVE_DEFINITE,
+                                   TVO_ERR_NUMERIC};
+    for (size_t i = 0; i < sizeof(errors) / sizeof(errors[0]); ++i) {
+        const tvo_step_why_t why = {TVO_NODE_OK, errors[i], TVO_REASON_NONE};
+        TEST_ASSERT_EQUAL_STRING(tvo_status_str(errors[i]), tvo_protocol_status_str(tvo_step_wire_status(&why)));
+    }
+    const tvo_reason_t reasons[] = {TVO_REASON_STALE, TVO_REASON_FUTURE_STAMP, TVO_REASON_MISSING_FIELD,
+                                    TVO_REASON_TARGET_NOT_READY, TVO_REASON_WATCHDOG,
+                                    TVO_REASON_IMPLAUSIBLE_MEASUREMENT};
+    for (size_t i = 0; i < sizeof(reasons) / sizeof(reasons[0]); ++i) {
+        const tvo_step_why_t why = {TVO_NODE_OK, TVO_OK, reasons[i]};
+        TEST_ASSERT_EQUAL_STRING(tvo_reason_str(reasons[i]), tvo_protocol_status_str(tvo_step_wire_status(&why)));
     }
 }
 
@@ -143,5 +163,6 @@ int main(void)
     RUN_TEST(test_each_channels_message_size_is_its_types_encoded_size);
     RUN_TEST(test_the_joint_digest_is_fnv1a_of_the_rows_bits);
     RUN_TEST(test_every_wire_code_has_a_name);
+    RUN_TEST(test_the_cores_codes_read_as_the_cores_texts);
     return UNITY_END();
 }
