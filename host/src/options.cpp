@@ -25,8 +25,7 @@
 extern "C" {
 #include "session_codec.h"     // TVO_SESSION_TELEMETRY_EVERY_MAX
 #include "tvo/config.h"        // TVO_BARRIER_MAX_DEGREE
-#include "tvo/sample_clock.h"  // TVO_MAX_TICK_SPAN, tvo_sample_clock_watchdog_ok
-#include "internal/sample_clock.h"
+#include "tvo/sample_clock.h"  // TVO_MAX_TICK_SPAN
 }
 
 namespace tvo_host {
@@ -126,10 +125,13 @@ int validate(SimOptions* o, const ScenarioFile& file, bool delay_given, bool dur
                                         " has " + std::to_string(o->steps) + " periods; the wire numbers them up to " +
                                         std::to_string(kMaxSequence) + " (sample_header_t.sequence, int32)");
     }
-    if (tvo_sample_clock_watchdog_ok(static_cast<std::uint32_t>(o->period_us),
-                                     static_cast<std::uint32_t>(o->watchdog_periods)) == 0) {
+    // The node refuses a watchdog whose span (periods x h, in its microsecond ticks) passes TVO_MAX_TICK_SPAN
+    // (TVO_PARAM_WATCHDOG); checked here from that public limit so the refusal comes before anything runs.
+    // period_us >= 1 (kPeriod) and watchdog_periods >= 1 (kMinWatchdogPeriods).
+    const std::uint64_t most_watchdog_periods = TVO_MAX_TICK_SPAN / static_cast<std::uint64_t>(o->period_us);
+    if (static_cast<std::uint64_t>(o->watchdog_periods) > most_watchdog_periods) {
         return fail("--watchdog-periods", "got " + std::to_string(o->watchdog_periods) + ", at most " +
-                                              std::to_string(TVO_MAX_TICK_SPAN / static_cast<std::uint64_t>(o->period_us)) +
+                                              std::to_string(most_watchdog_periods) +
                                               " periods of --period-s " + number(o->period_s) +
                                               " fit the node's watchdog span (2^30 - 1 us)");
     }
