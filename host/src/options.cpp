@@ -7,6 +7,7 @@
 #include <iomanip>
 #include <iostream>
 #include <limits>
+#include <optional>
 #include <system_error>
 #include <utility>
 
@@ -262,18 +263,23 @@ int parse_options(int argc, char** argv, SimOptions* o)
         ->check(CLI::IsMember({"ellipse", "circle", "streamed"}))
         ->capture_default_str();
     // The barrier's finer rules (c_max >= c0, m_r >= k + 1) are the firmware's: it names the part it refuses.
-    add_ranged(app, "--barrier-c0", o->barrier.c0, "barrier: c(0) [default: the scenario's, else the firmware's]",
-               real_in(kBarrierC0), Default::NotShown);
-    add_ranged(app, "--barrier-alpha-c", o->barrier.alpha_c_per_s, "barrier: growth rate of c(t), 1/s",
-               real_in(kBarrierAlphaC), Default::NotShown);
-    add_ranged(app, "--barrier-c-max", o->barrier.c_max, "barrier: cap of c(t)",
-               real_in(kBarrierCMax), Default::NotShown);
-    add_ranged(app, "--barrier-delta0", o->barrier.delta0, "barrier: delta(t) = delta0 / c(t)",
-               real_in(kBarrierDelta0), Default::NotShown);
-    add_ranged(app, "--barrier-alpha-s", o->barrier.alpha_s_per_s, "barrier: decay rate of the slack s(t), 1/s",
-               real_in(kBarrierAlphaS), Default::NotShown);
-    add_ranged(app, "--barrier-slack-margin", o->barrier.slack_margin, "barrier: epsilon_s of the slack rule",
-               real_in(kBarrierSlackMargin), Default::NotShown);
+    // Unset, each takes the scenario's value, else the firmware's: no default of its own to show.
+    const struct {
+        const char* name;
+        std::optional<double>* value;
+        const char* help;
+        Interval range;
+    } barrier_reals[] = {
+        {"--barrier-c0", &o->barrier.c0, "barrier: c(0) [default: the scenario's, else the firmware's]", kBarrierC0},
+        {"--barrier-alpha-c", &o->barrier.alpha_c_per_s, "barrier: growth rate of c(t), 1/s", kBarrierAlphaC},
+        {"--barrier-c-max", &o->barrier.c_max, "barrier: cap of c(t)", kBarrierCMax},
+        {"--barrier-delta0", &o->barrier.delta0, "barrier: delta(t) = delta0 / c(t)", kBarrierDelta0},
+        {"--barrier-alpha-s", &o->barrier.alpha_s_per_s, "barrier: decay rate of the slack s(t), 1/s", kBarrierAlphaS},
+        {"--barrier-slack-margin", &o->barrier.slack_margin, "barrier: epsilon_s of the slack rule", kBarrierSlackMargin},
+    };
+    for (const auto& option : barrier_reals) {
+        add_ranged(app, option.name, *option.value, option.help, real_in(option.range), Default::NotShown);
+    }
     add_ranged(app, "--barrier-degree", o->barrier.relaxation_degree,
                "barrier: relaxation degree m_r (the firmware wants at least k + 1 = 3)",
                whole_in<int>(kMinBarrierDegree, kMaxBarrierDegree), Default::NotShown);
