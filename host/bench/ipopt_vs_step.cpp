@@ -28,8 +28,7 @@
 #include <vector>
 
 #include "bench_problems.h"
-#include "internal/objective.h"
-#include "internal/target.h"
+#include "tvo/tracking.h"
 
 namespace {
 
@@ -187,6 +186,40 @@ private:
     Index iterations_ = 0;
 };
 
+// The instant ticks after the objective's epoch as a time jet along the trajectory, each field as
+// tvo/objective.h defines it (whole seconds and the tick fraction apart; no shared values).
+tvo_time_jet_t time_jet_at(uint64_t ticks, uint32_t tick_hz)
+{
+    tvo_time_jet_t t{};
+    t.ticks = ticks;
+    t.tick_hz = tick_hz;
+    t.whole_s = uint32_t(ticks / tick_hz);
+    t.frac_ticks = uint32_t(ticks % tick_hz);
+    t.frac_s = tvo_real_t(t.frac_ticks) / tvo_real_t(tick_hz);
+    t.t_s = tvo_real_t(t.whole_s) + t.frac_s;
+    t.rate = TVO_R(1.0);
+    t.shared = nullptr;
+    return t;
+}
+
+// y_d(t) of the target, through the public tracking term: with W = I its gradient at y = 0 is
+// W (0 - y_d(t)) = -y_d(t), exactly (the firmware's own target evaluation, no copy of it here).
+bool target_position(const tvo_target_t* target, const tvo_time_jet_t& t, std::array<double, 2>* y_d)
+{
+    const tvo_real_t unit_weight[2] = {TVO_R(1.0), TVO_R(1.0)};
+    tvo_tracking_term_t term;
+    if (tvo_tracking_init(&term, target, unit_weight, 0u) != TVO_OK) {
+        return false;
+    }
+    const tvo_jet_t y[2] = {};
+    tvo_jet_t gradient[2] = {};
+    if (tvo_tracking_gradient_jet(&term, y, 2u, &t, 0u, gradient) != TVO_OK) {
+        return false;
+    }
+    *y_d = {-double(gradient[0].c[0]), -double(gradient[1].c[0])};
+    return true;
+}
+
 double median(std::vector<double> values)
 {
     if (values.empty()) {
@@ -307,14 +340,13 @@ int main(int argc, char** argv)
             }
 
             // The problem frozen at the apply instant, where the plant now is.
-            tvo_time_jet_t at;
-            tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2];
-            if (tvo_time_jet_at_ticks(loop->apply_tick, loop->cfg.tick_hz, TVO_R(1.0), &at) != TVO_OK ||
-                tvo_target_derivatives(tvo_problem_target(&loop->problem, 0u), &at, 0u, deriv) != TVO_OK) {
+            const tvo_time_jet_t at = time_jet_at(loop->apply_tick, loop->cfg.tick_hz);
+            std::array<double, 2> y_d{};
+            if (!target_position(tvo_problem_target(&loop->problem, 0u), at, &y_d)) {
                 std::fprintf(stderr, "ipopt_bench: the target failed at period %u\n", unsigned(n));
                 return 1;
             }
-            frozen->freeze({double(deriv[0][0]), double(deriv[0][1])});
+            frozen->freeze(y_d);
             const bool first = (n == 0u);
             const double solve_ns = timed_ns(collect_ipopt && measured, [&] {
                 if (first) {

@@ -47,7 +47,11 @@ extern "C" {
 #include "tvo/status.h"
 }
 
+#include "command_line.hpp"
+
 namespace {
+
+constexpr const char* kProgram = "tvo_rtbench_report";
 
 struct Options {
     std::string sim_log;
@@ -240,21 +244,14 @@ int main(int argc, char** argv)
     app.add_option("--sim-log", o.sim_log, "tvo_sim's run.lcmlog")->required();
     app.add_option("--logger-log", o.logger_log, "lcm-logger's file of the same run")->required();
     app.add_option("--json", o.json_path, "write the figures to this JSON file");
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp&) {
-        std::cout << app.help();
-        return 0;
-    } catch (const CLI::ParseError& e) {
-        std::string what = e.what();
-        std::replace(what.begin(), what.end(), '\n', ' ');
-        std::cerr << "tvo_rtbench_report: error: " << what << " (see --help)\n";
-        return 2;
+    const int parsed = tvo_options::parse_command_line(app, argc, argv, kProgram);
+    if (parsed != tvo_options::kRun) {
+        return parsed;
     }
-    try {
+    return tvo_options::run_reporting_errors(kProgram, [&o] {
         const LogContents sim = read_log(o.sim_log, std::nullopt);
         if (!sim.start) {
-            std::cerr << "tvo_rtbench_report: error: no session START in " << o.sim_log << '\n';
+            std::cerr << kProgram << ": error: no session START in " << o.sim_log << '\n';
             return 1;
         }
         const LogContents logger = read_log(o.logger_log, sim.start);
@@ -266,13 +263,10 @@ int main(int argc, char** argv)
             std::ofstream file(o.json_path);
             file << j.dump(2) << '\n';
             if (!file.flush()) {
-                std::cerr << "tvo_rtbench_report: error: writing " << o.json_path << " failed\n";
+                std::cerr << kProgram << ": error: writing " << o.json_path << " failed\n";
                 return 1;
             }
         }
         return 0;
-    } catch (const std::exception& e) {
-        std::cerr << "tvo_rtbench_report: error: " << e.what() << '\n';
-        return 1;
-    }
+    });
 }

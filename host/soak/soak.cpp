@@ -33,6 +33,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "command_line.hpp"
 #include "lcm_messages.hpp"
 #include "noise.hpp"
 #include "options.hpp"
@@ -89,13 +90,14 @@ std::string number_text(double value)
     return out.str();
 }
 
+constexpr const char* kProgram = "tvo_soak";
+
 int fail_option(const std::string& option, const std::string& why)
 {
-    std::cerr << "tvo_soak: error: " << option << ": " << why << " (see --help)\n";
-    return 2;
+    return tvo_options::option_error(kProgram, option, why);
 }
 
-/// Returns -1 to run, or the exit code (0 after --help, 2 for a bad command line).
+/// Returns tvo_options::kRun to run, or the exit code (0 after --help, 2 for a bad command line).
 int parse_soak_options(int argc, char** argv, SoakOptions* o)
 {
     CLI::App app{"The demo's closed loop in lockstep over hours of simulated time, in-process: the firmware "
@@ -117,16 +119,9 @@ int parse_soak_options(int argc, char** argv, SoakOptions* o)
     app.add_option("--trace-csv", o->trace_csv_path,
                    "write one row per period (pose, reference, command, barrier) to this CSV; runs of at most 1 "
                    "simulated hour");
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp&) {
-        std::cout << app.help();
-        return 0;
-    } catch (const CLI::ParseError& e) {
-        std::string what = e.what();
-        std::replace(what.begin(), what.end(), '\n', ' ');
-        std::cerr << "tvo_soak: error: " << what << " (see --help)\n";
-        return 2;
+    const int parsed = tvo_options::parse_command_line(app, argc, argv, kProgram);
+    if (parsed != tvo_options::kRun) {
+        return parsed;
     }
     if (!std::isfinite(o->hours) || o->hours < kMinHours || o->hours > kMaxHours) {
         return fail_option("--simulated-hours", "must be within 0.001 .. 240");
@@ -147,7 +142,7 @@ int parse_soak_options(int argc, char** argv, SoakOptions* o)
     if (app.count("--trace-csv") > 0 && (o->trace_csv_path.empty() || o->hours > kMaxTraceHours)) {
         return fail_option("--trace-csv", "needs a file path and --simulated-hours of at most 1");
     }
-    return -1;
+    return tvo_options::kRun;
 }
 
 /// What the node published during one tvo_node_handle call, decoded.
@@ -651,10 +646,10 @@ int main(int argc, char** argv)
 {
     SoakOptions options;
     const int parsed = parse_soak_options(argc, argv, &options);
-    if (parsed >= 0) {
+    if (parsed != tvo_options::kRun) {
         return parsed;
     }
-    try {
+    return tvo_options::run_reporting_errors(kProgram, [&options] {
         const SoakSetup setup = make_setup(options);
         SoakRun run(setup, options.trace_csv_path);
         if (!run.start()) {
@@ -666,7 +661,7 @@ int main(int argc, char** argv)
             std::ofstream file(options.json_path);
             file << to_json(figures, options, setup).dump(2) << '\n';
             if (!file.flush()) {
-                std::cerr << "tvo_soak: error: writing " << options.json_path << " failed\n";
+                std::cerr << kProgram << ": error: writing " << options.json_path << " failed\n";
                 return 1;
             }
         }
@@ -675,8 +670,5 @@ int main(int argc, char** argv)
             return 1;
         }
         return 0;
-    } catch (const std::exception& e) {
-        std::cerr << "tvo_soak: error: " << e.what() << '\n';
-        return 1;
-    }
+    });
 }

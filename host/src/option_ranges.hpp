@@ -108,4 +108,17 @@ CLI::Validator whole_in(T lo, T hi, const std::string& unit = "")
         "in " + shown);
 }
 
+/// Whether --help shows the variable's value as the option's default (NotShown: where that value is no
+/// default, e.g. "h/2" or "the scenario's", which the description says instead).
+enum class Default { Shown, NotShown };
+
+/// An option whose values range checks (real_in or whole_in): the declaration every ranged option repeats.
+template <class T>
+CLI::Option* add_ranged(CLI::App& app, const std::string& name, T& value, const std::string& help,
+                        const CLI::Validator& range, Default shown = Default::Shown)
+{
+    CLI::Option* option = app.add_option(name, value, help)->check(range);
+    return shown == Default::Shown ? option->capture_default_str() : option;
+}
+
 }  // namespace tvo_options

@@ -7,6 +7,7 @@
 #include <iomanip>
 #include <iostream>
 #include <limits>
+#include <optional>
 #include <system_error>
 #include <utility>
 
@@ -15,6 +16,7 @@
 #include <CLI/CLI.hpp>
 
 #include "auth_key_file.h"   // the key file's checks, the node's own
+#include "command_line.hpp"
 #include "lcm_messages.hpp"  // TVO_WIRE_TIME_MAX_US
 #include "option_ranges.hpp"
 #include "sim_ranges.hpp"
@@ -25,14 +27,15 @@
 extern "C" {
 #include "session_codec.h"     // TVO_SESSION_TELEMETRY_EVERY_MAX
 #include "tvo/config.h"        // TVO_BARRIER_MAX_DEGREE
-#include "tvo/sample_clock.h"  // TVO_MAX_TICK_SPAN, tvo_sample_clock_watchdog_ok
-#include "internal/sample_clock.h"
+#include "tvo/sample_clock.h"  // TVO_MAX_TICK_SPAN
 }
 
 namespace tvo_host {
 
 namespace {
 
+using tvo_options::add_ranged;
+using tvo_options::Default;
 using tvo_options::End;
 using tvo_options::Interval;
 using tvo_options::number;
@@ -55,21 +58,11 @@ constexpr std::int64_t kRealtimeWireSlackUs = 3600LL * 1000000LL;
 // Samples are numbered by period on the wire: sample_header_t.sequence is an int32 >= 0.
 constexpr std::int64_t kMaxSequence = 2147483647;
 
+constexpr const char* kProgram = "tvo_sim";
+
 int fail(const std::string& option, const std::string& why)
 {
-    std::cerr << "tvo_sim: error: " << option << ": " << why << " (see --help)\n";
-    return 2;
-}
-
-std::string one_line(std::string text)
-{
-    for (char& c : text) {
-        c = (c == '\n') ? ' ' : c;
-    }
-    while (!text.empty() && text.back() == ' ') {
-        text.pop_back();
-    }
-    return text;
+    return tvo_options::option_error(kProgram, option, why);
 }
 
 std::string mib(std::uint64_t bytes)
@@ -126,10 +119,13 @@ int validate(SimOptions* o, const ScenarioFile& file, bool delay_given, bool dur
                                         " has " + std::to_string(o->steps) + " periods; the wire numbers them up to " +
                                         std::to_string(kMaxSequence) + " (sample_header_t.sequence, int32)");
     }
-    if (tvo_sample_clock_watchdog_ok(static_cast<std::uint32_t>(o->period_us),
-                                     static_cast<std::uint32_t>(o->watchdog_periods)) == 0) {
+    // The node refuses a watchdog whose span (periods x h, in its microsecond ticks) passes TVO_MAX_TICK_SPAN
+    // (TVO_PARAM_WATCHDOG); checked here from that public limit so the refusal comes before anything runs.
+    // period_us >= 1 (kPeriod) and watchdog_periods >= 1 (kMinWatchdogPeriods).
+    const std::uint64_t most_watchdog_periods = TVO_MAX_TICK_SPAN / static_cast<std::uint64_t>(o->period_us);
+    if (static_cast<std::uint64_t>(o->watchdog_periods) > most_watchdog_periods) {
         return fail("--watchdog-periods", "got " + std::to_string(o->watchdog_periods) + ", at most " +
-                                              std::to_string(TVO_MAX_TICK_SPAN / static_cast<std::uint64_t>(o->period_us)) +
+                                              std::to_string(most_watchdog_periods) +
                                               " periods of --period-s " + number(o->period_s) +
                                               " fit the node's watchdog span (2^30 - 1 us)");
     }
@@ -197,7 +193,7 @@ int validate(SimOptions* o, const ScenarioFile& file, bool delay_given, bool dur
                   << "); nothing was run\n";
         return 0;
     }
-    return -1;
+    return tvo_options::kRun;
 }
 
 }  // namespace
@@ -218,106 +214,89 @@ int parse_options(int argc, char** argv, SimOptions* o)
     std::string target = "ellipse";
     std::string on_missing_answer = "fail";
 
-    app.add_option("--period-s", o->period_s, "sampling period h, seconds (whole microseconds)")
-        ->check(real_in(kPeriod))
-        ->capture_default_str();
-    CLI::Option* delay = app.add_option("--delay-s", o->delay_s,
-                                        "computation delay tau, 0 .. h: the pose is sampled at t_{n+1} - tau and "
-                                        "the command applied at t_{n+1} [default: h/2]")
-                             ->check(real_in(kDelay));
+    add_ranged(app, "--period-s", o->period_s, "sampling period h, seconds (whole microseconds)", real_in(kPeriod));
+    CLI::Option* delay = add_ranged(app, "--delay-s", o->delay_s,
+                                    "computation delay tau, 0 .. h: the pose is sampled at t_{n+1} - tau and "
+                                    "the command applied at t_{n+1} [default: h/2]",
+                                    real_in(kDelay), Default::NotShown);
     app.add_flag("--no-compensation", "do not predict the pose over tau in the controller");
     app.add_flag("--zoh-aware", "evaluate the law at the middle of each held interval (tracking error second "
                  "order in h instead of first)");
-    app.add_option("--sigma", o->sigma,
-                   "measurement noise sigma: position (m, per axis), heading (rad) and speed (m/s)")
-        ->check(real_in(kSigma))
-        ->capture_default_str();
-    app.add_option("--seed", o->seed, "seed of the noise, drop and disturbance streams (any 64-bit unsigned)")
-        ->check(whole_in<std::uint64_t>(0, std::numeric_limits<std::uint64_t>::max()))
-        ->capture_default_str();
-    app.add_option("--duration-s", o->duration_s, "simulated time T, seconds [default: the scenario's]")
-        ->check(real_in(kDuration));
+    add_ranged(app, "--sigma", o->sigma,
+               "measurement noise sigma: position (m, per axis), heading (rad) and speed (m/s)",
+               real_in(kSigma));
+    add_ranged(app, "--seed", o->seed, "seed of the noise, drop and disturbance streams (any 64-bit unsigned)",
+               whole_in<std::uint64_t>(0, std::numeric_limits<std::uint64_t>::max()));
+    add_ranged(app, "--duration-s", o->duration_s, "simulated time T, seconds [default: the scenario's]",
+               real_in(kDuration), Default::NotShown);
     app.add_flag("--position-only",
                  "measure positions only (the first sample also carries the initial heading); the controller "
                  "derives y' with its dirty-derivative filter");
-    app.add_option("--filter-tf-s", o->filter_tf_s, "dirty-derivative time constant T_f, seconds")
-        ->check(real_in(kFilterTf))
-        ->capture_default_str();
+    add_ranged(app, "--filter-tf-s", o->filter_tf_s, "dirty-derivative time constant T_f, seconds",
+               real_in(kFilterTf));
     app.add_option("--gains", gains, "KP,KD of s^2 + KD s + KP (the firmware refuses a pair that is not Hurwitz)")
         ->delimiter(',')
         ->check(real_in(kGainKp, "KP").application_index(0))
         ->check(real_in(kGainKd, "KD").application_index(1))
         ->capture_default_str();
-    app.add_option("--omega-max-radps", o->omega_max_radps, "turn-rate limit")
-        ->check(real_in(kOmegaMax))
-        ->capture_default_str();
-    app.add_option("--accel-max-mps2", o->accel_max_mps2, "acceleration limit")
-        ->check(real_in(kAccelMax))
-        ->capture_default_str();
-    app.add_option("--speed-max-mps", o->speed_max_mps, "speed limit")
-        ->check(real_in(kSpeedMax))
-        ->capture_default_str();
-    app.add_option("--min-speed-mps", o->min_speed_mps, "1/v regularisation floor (the firmware also wants it "
-                   "below --speed-max-mps)")
-        ->check(real_in(kMinSpeed))
-        ->capture_default_str();
-    app.add_option("--watchdog-periods", o->watchdog_periods, "safe stop after this many periods without a "
-                   "valid measurement (at most (2^30 - 1) us / h: the node's watchdog span); the plant stops its "
-                   "robots and starts a new session after as long without a command")
-        ->check(whole_in<std::int32_t>(kMinWatchdogPeriods, kMaxWatchdogPeriods))
-        ->capture_default_str();
-    app.add_option("--telemetry-every", o->telemetry_every, "the node's telemetry follows the commands of every "
-                   "this-many-th period (session_t.telemetry_every); 0: the node's default, the fewest periods "
-                   "that span 100 ms. run.csv's telemetry columns hold each robot's newest")
-        ->check(whole_in<std::int32_t>(0, TVO_SESSION_TELEMETRY_EVERY_MAX))
-        ->capture_default_str();
+    add_ranged(app, "--omega-max-radps", o->omega_max_radps, "turn-rate limit", real_in(kOmegaMax));
+    add_ranged(app, "--accel-max-mps2", o->accel_max_mps2, "acceleration limit", real_in(kAccelMax));
+    add_ranged(app, "--speed-max-mps", o->speed_max_mps, "speed limit", real_in(kSpeedMax));
+    add_ranged(app, "--min-speed-mps", o->min_speed_mps, "1/v regularisation floor (the firmware also wants it "
+               "below --speed-max-mps)", real_in(kMinSpeed));
+    add_ranged(app, "--watchdog-periods", o->watchdog_periods, "safe stop after this many periods without a "
+               "valid measurement (at most (2^30 - 1) us / h: the node's watchdog span); the plant stops its "
+               "robots and starts a new session after as long without a command",
+               whole_in<std::int32_t>(kMinWatchdogPeriods, kMaxWatchdogPeriods));
+    add_ranged(app, "--telemetry-every", o->telemetry_every, "the node's telemetry follows the commands of every "
+               "this-many-th period (session_t.telemetry_every); 0: the node's default, the fewest periods "
+               "that span 100 ms. run.csv's telemetry columns hold each robot's newest",
+               whole_in<std::int32_t>(0, TVO_SESSION_TELEMETRY_EVERY_MAX));
     app.add_option("--scenario", o->scenario, "what to run: a scenario file FILE.yaml, or a built-in scenario's name "
                    "(--list-scenarios lists them)")
         ->capture_default_str();
     app.add_flag("--list-scenarios", o->list_scenarios, "list the scenarios with one line each and exit");
-    app.add_option("--robots", o->robots, "demo (a file with variants.robots): number of unicycles, the picture "
-                   "turned per robot")
-        ->check(whole_in<std::size_t>(1, kMaxRobots))
-        ->capture_default_str();
+    add_ranged(app, "--robots", o->robots, "demo (a file with variants.robots): number of unicycles, the picture "
+               "turned per robot", whole_in<std::size_t>(1, kMaxRobots));
     app.add_option("--target", target, "demo: ellipse | circle (on-board targets); any scenario: streamed (the "
                    "targets sent on TVO_TARGET every period)")
         ->check(CLI::IsMember({"ellipse", "circle", "streamed"}))
         ->capture_default_str();
     // The barrier's finer rules (c_max >= c0, m_r >= k + 1) are the firmware's: it names the part it refuses.
-    app.add_option("--barrier-c0", o->barrier.c0, "barrier: c(0) [default: the scenario's, else the firmware's]")
-        ->check(real_in(kBarrierC0));
-    app.add_option("--barrier-alpha-c", o->barrier.alpha_c_per_s, "barrier: growth rate of c(t), 1/s")
-        ->check(real_in(kBarrierAlphaC));
-    app.add_option("--barrier-c-max", o->barrier.c_max, "barrier: cap of c(t)")
-        ->check(real_in(kBarrierCMax));
-    app.add_option("--barrier-delta0", o->barrier.delta0, "barrier: delta(t) = delta0 / c(t)")
-        ->check(real_in(kBarrierDelta0));
-    app.add_option("--barrier-alpha-s", o->barrier.alpha_s_per_s, "barrier: decay rate of the slack s(t), 1/s")
-        ->check(real_in(kBarrierAlphaS));
-    app.add_option("--barrier-slack-margin", o->barrier.slack_margin, "barrier: epsilon_s of the slack rule")
-        ->check(real_in(kBarrierSlackMargin));
-    app.add_option("--barrier-degree", o->barrier.relaxation_degree,
-                   "barrier: relaxation degree m_r (the firmware wants at least k + 1 = 3)")
-        ->check(whole_in<int>(kMinBarrierDegree, kMaxBarrierDegree));
+    // Unset, each takes the scenario's value, else the firmware's: no default of its own to show.
+    const struct {
+        const char* name;
+        std::optional<double>* value;
+        const char* help;
+        Interval range;
+    } barrier_reals[] = {
+        {"--barrier-c0", &o->barrier.c0, "barrier: c(0) [default: the scenario's, else the firmware's]", kBarrierC0},
+        {"--barrier-alpha-c", &o->barrier.alpha_c_per_s, "barrier: growth rate of c(t), 1/s", kBarrierAlphaC},
+        {"--barrier-c-max", &o->barrier.c_max, "barrier: cap of c(t)", kBarrierCMax},
+        {"--barrier-delta0", &o->barrier.delta0, "barrier: delta(t) = delta0 / c(t)", kBarrierDelta0},
+        {"--barrier-alpha-s", &o->barrier.alpha_s_per_s, "barrier: decay rate of the slack s(t), 1/s", kBarrierAlphaS},
+        {"--barrier-slack-margin", &o->barrier.slack_margin, "barrier: epsilon_s of the slack rule", kBarrierSlackMargin},
+    };
+    for (const auto& option : barrier_reals) {
+        add_ranged(app, option.name, *option.value, option.help, real_in(option.range), Default::NotShown);
+    }
+    add_ranged(app, "--barrier-degree", o->barrier.relaxation_degree,
+               "barrier: relaxation degree m_r (the firmware wants at least k + 1 = 3)",
+               whole_in<int>(kMinBarrierDegree, kMaxBarrierDegree), Default::NotShown);
     app.add_flag("--realtime", "run on the monotonic clock at 1/h with the node keeping the schedule on its own "
                  "clock (session CLOCK_NODE; commands applied at their utime, or on arrival if late) instead of "
                  "lockstep");
-    app.add_option("--answer-timeout-s", o->answer_timeout_s, "lockstep: longest wait for the firmware's answer")
-        ->check(real_in({kMinAnswerTimeoutS, kMaxAnswerTimeoutS, "s"}))
-        ->capture_default_str();
+    add_ranged(app, "--answer-timeout-s", o->answer_timeout_s, "lockstep: longest wait for the firmware's answer",
+               real_in({kMinAnswerTimeoutS, kMaxAnswerTimeoutS, "s"}));
     app.add_option("--on-missing-answer", on_missing_answer, "lockstep: when no answer comes within "
                    "--answer-timeout-s, fail (exit code 1) or hold (count it as lost, the plant holds its "
                    "command, the run goes on)")
         ->check(CLI::IsMember({"fail", "hold"}))
         ->capture_default_str();
-    app.add_option("--drop-prob", o->drop_prob, "probability that a measurement is lost (never published; the "
-                   "plant holds the last command)")
-        ->check(real_in(kDropProb))
-        ->capture_default_str();
-    app.add_option("--extra-delay-s", o->extra_delay_s, "extra latency: each command takes effect this long "
-                   "after its utime (unknown to the controller)")
-        ->check(real_in(kExtraDelay))
-        ->capture_default_str();
+    add_ranged(app, "--drop-prob", o->drop_prob, "probability that a measurement is lost (never published; the "
+               "plant holds the last command)", real_in(kDropProb));
+    add_ranged(app, "--extra-delay-s", o->extra_delay_s, "extra latency: each command takes effect this long "
+               "after its utime (unknown to the controller)", real_in(kExtraDelay));
     CLI::Option* loss = app.add_option("--link-loss", link_loss, "S,D: no measurement is sent for sample times in "
                                        "[S, S + D) seconds of plant time (a link outage; the node's answers still "
                                        "arrive); S + D at most a day")
@@ -330,11 +309,9 @@ int parse_options(int argc, char** argv, SimOptions* o)
         ->check(real_in(kDisturbanceSpeed, "SV").application_index(0))
         ->check(real_in(kDisturbanceTurn, "SW").application_index(1))
         ->capture_default_str();
-    app.add_option("--start-utime-us", o->start_utime_us, "lockstep: wire time (us) of plant time 0, the "
-                   "session's epoch; realtime: the plant clock's reading at start. The whole run's wire times "
-                   "(start + duration) stay within 2^60 us")
-        ->check(whole_in<std::int64_t>(0, TVO_WIRE_TIME_MAX_US, "us"))
-        ->capture_default_str();
+    add_ranged(app, "--start-utime-us", o->start_utime_us, "lockstep: wire time (us) of plant time 0, the "
+               "session's epoch; realtime: the plant clock's reading at start. The whole run's wire times "
+               "(start + duration) stay within 2^60 us", whole_in<std::int64_t>(0, TVO_WIRE_TIME_MAX_US, "us"));
     app.add_option("--lcm-url", o->lcm_url, "LCM URL for this run and the spawned firmware [default: "
                    "$LCM_DEFAULT_URL or LCM's udpm default]");
     app.add_option("--key-file", o->key_file, "authenticate every message both ways with this key file (32 bytes "
@@ -347,32 +324,22 @@ int parse_options(int argc, char** argv, SimOptions* o)
             std::fill(std::begin(key), std::end(key), std::uint8_t{0});
             return rc == 0 ? std::string() : std::string(why);
         });
-    app.add_option("--sender-id", o->sender_id, "this plant's sender id on a keyed bus (unique per key holder)")
-        ->check(whole_in<std::uint32_t>(0, UINT32_MAX, ""))
-        ->capture_default_str();
+    add_ranged(app, "--sender-id", o->sender_id, "this plant's sender id on a keyed bus (unique per key holder)",
+               whole_in<std::uint32_t>(0, UINT32_MAX, ""));
     app.add_option("--firmware", o->firmware, "tvo_firmware_node to spawn as a child process; without it one "
                    "must already be running on the same LCM URL");
     app.add_option("--out-dir", o->out_dir, "directory for run.csv, run.lcmlog (and the demo's run.png)")
         ->capture_default_str();
     app.add_option("--summary-json", o->summary_json, "JSON summary path [default: <out-dir>/summary.json]");
-    app.add_option("--max-output-mib", o->max_output_mib, "refuse a run whose files (run.csv, run.lcmlog, JSON) "
-                   "could exceed this many MiB, computed before it starts")
-        ->check(whole_in<std::uint64_t>(1, kMaxOutputMib, "MiB"))
-        ->capture_default_str();
+    add_ranged(app, "--max-output-mib", o->max_output_mib, "refuse a run whose files (run.csv, run.lcmlog, JSON) "
+               "could exceed this many MiB, computed before it starts",
+               whole_in<std::uint64_t>(1, kMaxOutputMib, "MiB"));
     app.add_flag("--dry-run", o->dry_run, "check the options, print what the run would do and write, and exit "
                  "without running");
 
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp&) {
-        std::cout << app.help();
-        return 0;
-    } catch (const CLI::CallForAllHelp&) {
-        std::cout << app.help("", CLI::AppFormatMode::All);
-        return 0;
-    } catch (const CLI::ParseError& e) {
-        std::cerr << "tvo_sim: error: " << one_line(e.what()) << " (see --help)\n";
-        return 2;
+    const int parsed = tvo_options::parse_command_line(app, argc, argv, kProgram);
+    if (parsed != tvo_options::kRun) {
+        return parsed;
     }
     o->on_missing_answer = on_missing_answer == "hold" ? MissingAnswer::Hold : MissingAnswer::Fail;
     if (!parse_target_kind(target, &o->target)) {
@@ -395,8 +362,8 @@ int parse_options(int argc, char** argv, SimOptions* o)
     try {
         file = load_scenario_file(scenario_path(o->scenario));
     } catch (const ScenarioFileError& e) {
-        std::cerr << "tvo_sim: error: " << e.what() << '\n';
-        return 2;
+        std::cerr << kProgram << ": error: " << e.what() << '\n';
+        return tvo_options::kBadCommandLine;
     }
     // The file's settings replace tvo_sim's defaults; an option given on the command line replaces both.
     const RunSettings& run = file.run;

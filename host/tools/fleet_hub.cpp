@@ -45,6 +45,7 @@
 
 #include "auth.h"
 #include "auth_key_file.h"
+#include "command_line.hpp"
 #include "lcm_messages.hpp"
 
 extern "C" {
@@ -52,6 +53,8 @@ extern "C" {
 }
 
 namespace {
+
+constexpr const char* kProgram = "tvo_fleet_hub";
 
 volatile std::sig_atomic_t g_stop = 0;
 extern "C" void on_signal(int) { g_stop = 1; }
@@ -673,20 +676,20 @@ int main(int argc, char** argv)
                    "hub's own");
     app.add_option("--sender-id", o.sender_id, "the hub's sender id on a keyed bus (unique per key holder)")
         ->capture_default_str();
-    CLI11_PARSE(app, argc, argv);
+    const int parsed = tvo_options::parse_command_line(app, argc, argv, kProgram);
+    if (parsed != tvo_options::kRun) {
+        return parsed;
+    }
     if (o.node_urls.size() > static_cast<std::size_t>(kMaxRobots)) {
-        std::cerr << "tvo_fleet_hub: error: --node-url: at most " << kMaxRobots << " nodes (session_t.MAX_ROBOTS)\n";
-        return 2;
+        return tvo_options::option_error(kProgram, "--node-url",
+                                         "at most " + std::to_string(kMaxRobots) + " nodes (session_t.MAX_ROBOTS)");
     }
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
-    try {
+    return tvo_options::run_reporting_errors(kProgram, [&o] {
         Hub hub(o);
         hub.run();
         hub.write_json();
         return hub.finished() ? 0 : 1;
-    } catch (const std::exception& e) {
-        std::cerr << "tvo_fleet_hub: error: " << e.what() << '\n';
-        return 1;
-    }
+    });
 }

@@ -39,6 +39,7 @@
 #include <lcm/lcm-cpp.hpp>
 
 #include "auth_key_file.h"
+#include "command_line.hpp"
 #include "lcm_messages.hpp"
 #include "run_recorder.hpp"
 #include "scenario.hpp"
@@ -54,10 +55,12 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // written: answers arrive within a period or two; the window keeps memory bounded on day-long logs.
 constexpr std::int64_t kAnswerWindow = 256;
 
+constexpr const char* kProgram = "log2csv";
+
 int usage_error(const std::string& what)
 {
-    std::cerr << "log2csv: error: " << what << '\n';
-    return 2;
+    std::cerr << kProgram << ": error: " << what << '\n';
+    return tvo_options::kBadCommandLine;
 }
 
 /// What the first pass learns about one session.
@@ -524,13 +527,9 @@ int main(int argc, char** argv)
     std::string key_file;
     app.add_option("--key-file", key_file, "a keyed bus's key (tools/keygen): read only the frames whose "
                    "authentication trailer verifies, and count the others");
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp&) {
-        std::cout << app.help();
-        return 0;
-    } catch (const CLI::ParseError& e) {
-        return usage_error(std::string(e.what()) + " (see --help)");
+    const int parsed = tvo_options::parse_command_line(app, argc, argv, kProgram);
+    if (parsed != tvo_options::kRun) {
+        return parsed;
     }
     if (csv_path.empty()) {
         csv_path = log_path + ".csv";
@@ -577,7 +576,7 @@ int main(int argc, char** argv)
         sessions = scan_sessions(log, &counts);
     }
     if (counts.events == 0 && counts.unauthenticated + counts.replayed > 0) {
-        std::cerr << "log2csv: error: no frame of " << log_path << " opens with " << key_file << " ("
+        std::cerr << kProgram << ": error: no frame of " << log_path << " opens with " << key_file << " ("
                   << counts.unauthenticated << " unauthenticated, " << counts.replayed
                   << " replayed): another key, or an unkeyed recording\n";
         return 1;
@@ -594,7 +593,7 @@ int main(int argc, char** argv)
     }
     if (session->count() == 0) {
         if (sessions.empty()) {
-            std::cerr << "log2csv: error: " << log_path << " holds no decodable sample on "
+            std::cerr << kProgram << ": error: " << log_path << " holds no decodable sample on "
                       << TVO_CHANNEL_SAMPLE << " (" << counts.events << " events)\n";
             return 1;
         }
@@ -606,7 +605,7 @@ int main(int argc, char** argv)
     }
     const SessionInfo& info = sessions.at(session_id);
 
-    try {
+    const int converted = tvo_options::run_reporting_errors(kProgram, [&] {
         tvo_host::RunRecorder out(csv_path);
         Converter converter(session_id, info, out, counts);
         EventReader log(log_path, keyed, nullptr);   // counted in the first pass
@@ -615,20 +614,21 @@ int main(int argc, char** argv)
         }
         converter.finish();
         if (!out.close()) {
-            std::cerr << "log2csv: error: writing " << csv_path << " failed\n";
+            std::cerr << kProgram << ": error: writing " << csv_path << " failed\n";
             return 1;
         }
         if (!scenario_json.empty()) {
             if (!info.start) {
-                std::cerr << "log2csv: error: --scenario-json: the log holds no START of session " << session_id
+                std::cerr << kProgram << ": error: --scenario-json: the log holds no START of session " << session_id
                           << " (start lcm-logger before the session)\n";
                 return 1;
             }
             tvo_host::write_scenario_json(scenario_json, scenario_of(*info.start), converter.last_t_s());
         }
-    } catch (const std::exception& e) {
-        std::cerr << "log2csv: error: " << e.what() << '\n';
-        return 1;
+        return 0;
+    });
+    if (converted != 0) {
+        return converted;
     }
 
     std::cout << "log2csv: session " << session_id << ": " << counts.rows << " rows (" << info.samples

@@ -20,6 +20,7 @@
 #include "chain_sim.hpp"
 // The ranges of numeric options, shared with tvo_sim (host/study builds without host/src on its include path).
 #include "../../src/option_ranges.hpp"
+#include "../../src/command_line.hpp"
 #include "studies.hpp"
 
 extern "C" {
@@ -28,9 +29,13 @@ extern "C" {
 
 namespace {
 
+using tvo_options::add_ranged;
+using tvo_options::Default;
 using tvo_options::End;
 using tvo_options::real_in;
 using tvo_options::whole_in;
+
+constexpr const char* kProgram = "tvo_study";
 
 // The trace's configuration is 20 s of the testbed (SimConfig::duration_s); h >= 0.1 ms keeps its CSV
 // within 200,000 rows (25 MB measured). Noise, filter and budget bounds: host/README.md, "Options".
@@ -196,18 +201,15 @@ int main(int argc, char **argv)
     opt.threads = std::min(kMaxThreads, std::max(1u, std::thread::hardware_concurrency()));
     app.add_option("--json", json_path, "write the full tables and headline figures as JSON to this file");
     app.add_flag("--quick", opt.quick, "fewer h / sigma / T_f values and a coarser edge sweep (seconds)");
-    app.add_option("--threads", opt.threads, "worker threads (results do not depend on it)")
-        ->check(whole_in<unsigned>(1, kMaxThreads));
-    app.add_option("--seed", opt.seed, "noise seed (std::mt19937_64)")
-        ->check(whole_in<uint64_t>(0, std::numeric_limits<uint64_t>::max()))
-        ->capture_default_str();
-    app.add_option("--subsamples", opt.subsamples, "dense error points per held interval (study 1)")
-        ->check(whole_in<int>(1, 1000))
-        ->capture_default_str();
-    app.add_option("--u-budget", opt.u_budget,
-                   "command-noise budget (RMS |u - y_d''|, m/s^2) for the constrained noise-aware T_f")
-        ->check(real_in({0.0, kMaxUBudget, "m/s^2", End::Open}))
-        ->capture_default_str();
+    add_ranged(app, "--threads", opt.threads, "worker threads (results do not depend on it)",
+               whole_in<unsigned>(1, kMaxThreads), Default::NotShown);
+    add_ranged(app, "--seed", opt.seed, "noise seed (std::mt19937_64)",
+               whole_in<uint64_t>(0, std::numeric_limits<uint64_t>::max()));
+    add_ranged(app, "--subsamples", opt.subsamples, "dense error points per held interval (study 1)",
+               whole_in<int>(1, 1000));
+    add_ranged(app, "--u-budget", opt.u_budget,
+               "command-noise budget (RMS |u - y_d''|, m/s^2) for the constrained noise-aware T_f",
+               real_in({0.0, kMaxUBudget, "m/s^2", End::Open}));
     app.add_option("--studies", studies, "which studies to run, e.g. 1,3 (2 needs 1); empty: none")
         ->check(CLI::Validator(
             [](std::string &text) {
@@ -227,16 +229,9 @@ int main(int argc, char **argv)
             },
             "KEY=VALUE,..."))
         ->capture_default_str();
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp &) {
-        std::cout << app.help();
-        return 0;
-    } catch (const CLI::ParseError &e) {
-        std::string line = e.what();
-        std::replace(line.begin(), line.end(), '\n', ' ');
-        std::fprintf(stderr, "tvo_study: error: %s (see --help)\n", line.c_str());
-        return 2;
+    const int parsed = tvo_options::parse_command_line(app, argc, argv, kProgram);
+    if (parsed != tvo_options::kRun) {
+        return parsed;
     }
     std::set<int> chosen;
     parse_studies(studies, chosen);
@@ -244,8 +239,7 @@ int main(int argc, char **argv)
     const bool s2 = chosen.count(2) > 0;
     const bool s3 = chosen.count(3) > 0;
     if (s2 && !s1) {
-        std::fprintf(stderr, "tvo_study: error: --studies: study 2 needs study 1 (--studies 1,2)\n");
-        return 2;
+        return tvo_options::option_error(kProgram, "--studies", "study 2 needs study 1 (--studies 1,2)");
     }
     const auto t0 = std::chrono::steady_clock::now();
     try {
