@@ -780,6 +780,15 @@ static void test_free_space_init_rejects_bad_obstacles(void)
  * misuse, and nothing written by a refused call.
  * --------------------------------------------------------------------------------------------- */
 
+/* z: constant jets at y; g: zero. */
+static void constant_jets(const tvo_real_t y[4], tvo_jet_t z[4], tvo_jet_t g[4])
+{
+    for (int i = 0; i < 4; ++i) {
+        tvo_jet_constant(y[i], &z[i]);
+        tvo_jet_constant(TVO_R(0.0), &g[i]);
+    }
+}
+
 typedef struct {
     const char *name;
     tvo_gradient_jet_fn gradient_jet;
@@ -795,10 +804,7 @@ static void assert_entries_validate(const term_entries_t *kind)
     const tvo_time_jet_t now = time_jet(0.0, 1.0);
     const tvo_real_t y[4] = {TVO_R(0.0), TVO_R(0.0), TVO_R(1.5), TVO_R(2.0)};
     tvo_jet_t z[4], g[4];
-    for (int i = 0; i < 4; ++i) {
-        tvo_jet_constant(y[i], &z[i]);
-        tvo_jet_constant(TVO_R(0.0), &g[i]);
-    }
+    constant_jets(y, z, g);
     TEST_MESSAGE(kind->name);
     ASSERT_STATUS(TVO_ERR_NULL, kind->gradient_jet(NULL, z, 4, &now, 1, g));
     ASSERT_STATUS(TVO_ERR_NULL, kind->gradient_jet(kind->term, NULL, 4, &now, 1, g));
@@ -864,10 +870,7 @@ static void test_distance_pair_refuses_two_pairs_and_a_long_order(void)
     const tvo_time_jet_t now = time_jet(0.0, 1.0);
     const tvo_real_t y[4] = {TVO_R(0.0), TVO_R(0.0), TVO_R(1.5), TVO_R(2.0)};
     tvo_jet_t z[4], g[4];
-    for (int i = 0; i < 4; ++i) {
-        tvo_jet_constant(y[i], &z[i]);
-        tvo_jet_constant(TVO_R(0.0), &g[i]);
-    }
+    constant_jets(y, z, g);
     tvo_real_t f = TVO_R(0.0);
     ASSERT_STATUS(TVO_ERR_DIMENSION, tvo_distance_pair_gradient_jet(pair, z, 4, &now, 1, g));
     ASSERT_STATUS(TVO_ERR_DIMENSION, tvo_distance_pair_gradient_hessian(pair, z, 4, &now, 1, g, &hessian));
