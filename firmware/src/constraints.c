@@ -43,6 +43,110 @@ static void add_weighted(tvo_jet_t *grad, uint8_t index, const tvo_jet_t *w, con
     tvo_jet_add(&grad[index], &product, order, &grad[index]);
 }
 
+/* ---------------------------------------------------------------- a term kind's entries, written once */
+
+/* return body(args..., order), with the order a constant in a second copy where the build has shape copies
+ * (shape.h): the body's loops over the order unroll there. */
+#if TVO_SHAPE_COPIES
+#define RETURN_SHAPE_COPY(order, body, ...)                                                                      \
+    if ((order) == TVO_SHAPE_ORDER) {                                                                            \
+        return body(__VA_ARGS__, TVO_SHAPE_ORDER);                                                               \
+    }                                                                                                            \
+    return body(__VA_ARGS__, order)
+#else
+#define RETURN_SHAPE_COPY(order, body, ...) return body(__VA_ARGS__, order)
+#endif
+
+/* A body compiled into each caller: one frame fewer under the term. A body both entries call, whole: its
+ * checks not split off into them. */
+#if defined(__GNUC__)
+#define TERM_INLINE_BODY static inline __attribute__((always_inline))
+#define TERM_SHARED_BODY static __attribute__((noinline))
+#else
+#define TERM_INLINE_BODY static inline
+#define TERM_SHARED_BODY static
+#endif
+
+/* kind##_sum: the shape copies of kind##_sum_shape(self, z, t, grad, hessian, order), the term's gradient jets
+ * (with hessian, the closed form), in its caller; called once its arguments are valid. */
+#define TERM_SHAPE_SUM(kind, term_type)                                                                          \
+    TERM_INLINE_BODY tvo_status_t kind##_sum(const term_type *self, const tvo_jet_t *z, const tvo_time_jet_t *t, \
+                                             tvo_jet_t *grad, tvo_hessian_t *hessian, uint8_t order)             \
+    {                                                                                                            \
+        RETURN_SHAPE_COPY(order, kind##_sum_shape, self, z, t, grad, hessian);                                   \
+    }
+
+/* A term kind's three entries (its tvo_term_t, internal/constraints.h) and their validation, from its parts:
+ * kind##_fits(self, dim), its robots' outputs within dim; sum(self, z, t, grad, hessian, order), the
+ * gradient jets and with hessian the closed form; kind##_max(self, y, t_s, max_value), the constraint's value
+ * at y. terms_body: how the two gradient entries share their body (TERM_SHARED_BODY or TERM_INLINE_BODY). */
+#define TERM_ENTRIES(kind, term_type, sum, terms_body)                                                           \
+    terms_body tvo_status_t kind##_terms(const void *term, const tvo_jet_t *z, uint8_t dim,                      \
+                                         const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,                \
+                                         tvo_hessian_t *hessian)                                                 \
+    {                                                                                                            \
+        const term_type *self = (const term_type *)term;                                                         \
+        if (self == NULL || z == NULL || t == NULL || grad == NULL) {                                            \
+            return TVO_ERR_NULL;                                                                                 \
+        }                                                                                                        \
+        if (!kind##_fits(self, dim)) {                                                                           \
+            return TVO_ERR_DIMENSION;                                                                            \
+        }                                                                                                        \
+        return sum(self, z, t, grad, hessian, order);                                                            \
+    }                                                                                                            \
+    tvo_status_t tvo_##kind##_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim,                    \
+                                           const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad)              \
+    {                                                                                                            \
+        return kind##_terms(term, z, dim, t, order, grad, NULL);                                                 \
+    }                                                                                                            \
+    tvo_status_t tvo_##kind##_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim,                \
+                                               const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,          \
+                                               tvo_hessian_t *hessian)                                           \
+    {                                                                                                            \
+        if (hessian == NULL) {                                                                                   \
+            return TVO_ERR_NULL;                                                                                 \
+        }                                                                                                        \
+        return kind##_terms(term, z, dim, t, order, grad, hessian);                                              \
+    }                                                                                                            \
+    tvo_status_t tvo_##kind##_constraint_max(const void *term, const tvo_real_t *y, uint8_t primal_dim,          \
+                                             tvo_real_t t_s, tvo_real_t *max_value)                              \
+    {                                                                                                            \
+        const term_type *self = (const term_type *)term;                                                         \
+        if (self == NULL || y == NULL || max_value == NULL) {                                                    \
+            return TVO_ERR_NULL;                                                                                 \
+        }                                                                                                        \
+        if (!kind##_fits(self, primal_dim)) {                                                                    \
+            return TVO_ERR_DIMENSION;                                                                            \
+        }                                                                                                        \
+        return kind##_max(self, y, t_s, max_value);                                                              \
+    }
+
+/* The barrier's weight w(tau) of a term's single constraint value f, its schedule computed here (or the law's
+ * shared one); dw_df where the closed form needs it (else NULL). */
+TERM_INLINE_BODY tvo_status_t term_weight(const tvo_barrier_t *barrier, const tvo_time_jet_t *t, const tvo_jet_t *f,
+                                          const uint8_t order, tvo_jet_t *w, tvo_real_t *dw_df)
+{
+    tvo_barrier_schedule_jet_t local;
+    tvo_status_t st = TERM_BARRIER_SCHEDULE(barrier, t, order, &local);
+    if (st == TVO_OK) {
+        st = TERM_BARRIER_WEIGHT(barrier, barrier_schedule_of(t, &local), f, order, w, dw_df);
+    }
+    return st;
+}
+
+/* A term's robot output (x, y) at offset within dim. */
+TERM_INLINE_BODY int output_fits(uint8_t offset, uint8_t dim)
+{
+    return (unsigned)offset + 2u <= dim;
+}
+
+/* kind##_fits of a term on one robot's output (at self->offset). */
+#define ONE_ROBOT_FITS(kind, term_type)                                                                          \
+    TERM_INLINE_BODY int kind##_fits(const term_type *self, uint8_t dim)                                         \
+    {                                                                                                            \
+        return output_fits(self->offset, dim);                                                                   \
+    }
+
 /* ---------------------------------------------------------------- distance bounds */
 
 tvo_status_t tvo_distance_term_init(tvo_distance_term_t *term, const tvo_barrier_t *barrier, tvo_distance_kind_t kind,
@@ -78,16 +182,10 @@ static tvo_real_t distance_sign(const tvo_distance_term_t *self)
 
 /* The distance bound's gradient jets, and with hessian its closed-form Hessian
  * H += (dw/df) grad f grad f^T + w hess f, grad f = 2 sign (D, -D), hess f = 2 sign [I -I; -I I]. */
-TVO_SHAPE_BODY tvo_status_t distance_sum_shape(const tvo_distance_term_t *self, const tvo_jet_t *z, uint8_t dim,
-                                               const tvo_time_jet_t *t, const uint8_t order, tvo_jet_t *grad,
-                                               tvo_hessian_t *hessian)
+TVO_SHAPE_BODY tvo_status_t distance_sum_shape(const tvo_distance_term_t *self, const tvo_jet_t *z,
+                                               const tvo_time_jet_t *t, tvo_jet_t *grad, tvo_hessian_t *hessian,
+                                               const uint8_t order)
 {
-    if (self == NULL || z == NULL || t == NULL || grad == NULL) {
-        return TVO_ERR_NULL;
-    }
-    if ((unsigned)self->offset_a + 2u > dim || (unsigned)self->offset_b + 2u > dim) {
-        return TVO_ERR_DIMENSION;
-    }
     tvo_jet_t bound;
     affine_time_jet(self->bound_m, self->bound_rate_mps, t, &bound);
     if (!(bound.c[0] > TVO_R(0.0))) {
@@ -104,14 +202,9 @@ TVO_SHAPE_BODY tvo_status_t distance_sum_shape(const tvo_distance_term_t *self, 
         tvo_jet_mul(&diff[axis], &diff[axis], order, &square);
         tvo_jet_axpy(sign, &square, order, &f);
     }
-    tvo_barrier_schedule_jet_t local;
-    tvo_status_t st = TERM_BARRIER_SCHEDULE(self->barrier, t, order, &local);
-    const tvo_barrier_schedule_jet_t *schedule = barrier_schedule_of(t, &local);
     tvo_jet_t w;
     tvo_real_t dw_df = TVO_R(0.0);
-    if (st == TVO_OK) {
-        st = TERM_BARRIER_WEIGHT(self->barrier, schedule, &f, order, &w, hessian != NULL ? &dw_df : NULL);
-    }
+    const tvo_status_t st = term_weight(self->barrier, t, &f, order, &w, hessian != NULL ? &dw_df : NULL);
     if (st != TVO_OK) {
         return st;
     }
@@ -163,48 +256,25 @@ TVO_SHAPE_BODY tvo_status_t distance_sum_shape(const tvo_distance_term_t *self, 
     return TVO_OK;
 }
 
-static tvo_status_t distance_sum(const tvo_distance_term_t *self, const tvo_jet_t *z, uint8_t dim,
-                                 const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian)
+/* The bound's robots' outputs within dim. */
+TERM_INLINE_BODY int distance_fits(const tvo_distance_term_t *self, uint8_t dim)
 {
-#if TVO_SHAPE_COPIES
-    if (order == TVO_SHAPE_ORDER) {
-        return distance_sum_shape(self, z, dim, t, TVO_SHAPE_ORDER, grad, hessian);
-    }
-#endif
-    return distance_sum_shape(self, z, dim, t, order, grad, hessian);
+    return output_fits(self->offset_a, dim) && output_fits(self->offset_b, dim);
 }
 
-tvo_status_t tvo_distance_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
-                                       uint8_t order, tvo_jet_t *grad)
+/* The bound's value at y (one copy: the pair's sides call it too). */
+TERM_SHARED_BODY tvo_status_t distance_max(const tvo_distance_term_t *self, const tvo_real_t *y, tvo_real_t t_s,
+                                           tvo_real_t *max_value)
 {
-    return distance_sum((const tvo_distance_term_t *)term, z, dim, t, order, grad, NULL);
-}
-
-tvo_status_t tvo_distance_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
-                                           uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian)
-{
-    if (hessian == NULL) {
-        return TVO_ERR_NULL;
-    }
-    return distance_sum((const tvo_distance_term_t *)term, z, dim, t, order, grad, hessian);
-}
-
-tvo_status_t tvo_distance_constraint_max(const void *term, const tvo_real_t *y, uint8_t primal_dim, tvo_real_t t_s,
-                                         tvo_real_t *max_value)
-{
-    const tvo_distance_term_t *self = (const tvo_distance_term_t *)term;
-    if (self == NULL || y == NULL || max_value == NULL) {
-        return TVO_ERR_NULL;
-    }
-    if ((unsigned)self->offset_a + 2u > primal_dim || (unsigned)self->offset_b + 2u > primal_dim) {
-        return TVO_ERR_DIMENSION;
-    }
     const tvo_real_t dx = y[self->offset_a] - y[self->offset_b];
     const tvo_real_t dy = y[self->offset_a + 1u] - y[self->offset_b + 1u];
     const tvo_real_t bound = self->bound_m + self->bound_rate_mps * t_s;
     *max_value = distance_sign(self) * (dx * dx + dy * dy - bound * bound);
     return TVO_OK;
 }
+
+TERM_SHAPE_SUM(distance, tvo_distance_term_t)
+TERM_ENTRIES(distance, tvo_distance_term_t, distance_sum, TERM_SHARED_BODY)
 
 #if TVO_BLOCK_SOLVE
 /* ---------------------------------------------------------------- a distance bound's two sides */
@@ -225,8 +295,8 @@ typedef struct {
  * (tvo_hessian_add_pair). 0 in *added: one part was stiff (or the matrix is dense), nothing added; sum
  * holds what the parts need. */
 TVO_SHAPE_BODY tvo_status_t distance_pair_shape(const tvo_distance_term_t *pair, const tvo_jet_t *z,
-                                                const tvo_time_jet_t *t, const uint8_t order, tvo_jet_t *grad,
-                                                tvo_hessian_t *hessian, distance_pair_sum_t *sum, int *added)
+                                                const tvo_time_jet_t *t, tvo_jet_t *grad, tvo_hessian_t *hessian,
+                                                distance_pair_sum_t *sum, int *added, const uint8_t order)
 {
     const uint8_t a = pair[0].offset_a;
     const uint8_t b = pair[0].offset_b;
@@ -322,37 +392,24 @@ TVO_COLD_BODY void distance_pair_parts(const tvo_distance_term_t *pair, const di
 }
 
 /* In its own frame, apart from the parts'. */
-#if defined(__GNUC__)
-__attribute__((noinline))
-#endif
-static tvo_status_t distance_pair_sum(const tvo_distance_term_t *pair, const tvo_jet_t *z, const tvo_time_jet_t *t,
-                                      uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian, distance_pair_sum_t *sum,
-                                      int *added)
+TERM_SHARED_BODY tvo_status_t distance_pair_sum(const tvo_distance_term_t *pair, const tvo_jet_t *z,
+                                                const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
+                                                tvo_hessian_t *hessian, distance_pair_sum_t *sum, int *added)
 {
-#if TVO_SHAPE_COPIES
-    if (order == TVO_SHAPE_ORDER) {
-        return distance_pair_shape(pair, z, t, TVO_SHAPE_ORDER, grad, hessian, sum, added);
-    }
-#endif
-    return distance_pair_shape(pair, z, t, order, grad, hessian, sum, added);
+    RETURN_SHAPE_COPY(order, distance_pair_shape, pair, z, t, grad, hessian, sum, added);
 }
 
-/* Both entries' body (hessian NULL: the gradient jets only), in each: one frame fewer under the term. */
-#if defined(__GNUC__)
-__attribute__((always_inline))
-#endif
-static inline tvo_status_t distance_pair_terms(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
-                                        uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian)
+/* One pair of robots, within dim. */
+TERM_INLINE_BODY int distance_pair_fits(const tvo_distance_term_t *pair, uint8_t dim)
 {
-    const tvo_distance_term_t *pair = (const tvo_distance_term_t *)term;
-    if (pair == NULL || z == NULL || t == NULL || grad == NULL) {
-        return TVO_ERR_NULL;
-    }
-    const uint8_t a = pair[0].offset_a;
-    const uint8_t b = pair[0].offset_b;
-    if ((unsigned)a + 2u > dim || (unsigned)b + 2u > dim || pair[1].offset_a != a || pair[1].offset_b != b) {
-        return TVO_ERR_DIMENSION;
-    }
+    return distance_fits(&pair[0], dim) && pair[1].offset_a == pair[0].offset_a && pair[1].offset_b == pair[0].offset_b;
+}
+
+/* The pair's gradient, and its Hessian as one block (or, a part stiff or the matrix dense, as two parts). */
+TERM_INLINE_BODY tvo_status_t distance_pair_gradient(const tvo_distance_term_t *pair, const tvo_jet_t *z,
+                                                  const tvo_time_jet_t *t, tvo_jet_t *grad, tvo_hessian_t *hessian,
+                                                  uint8_t order)
+{
     if (order > TVO_JET_MAX_ORDER) {
         return TVO_ERR_PARAM;
     }
@@ -365,39 +422,22 @@ static inline tvo_status_t distance_pair_terms(const void *term, const tvo_jet_t
     return st;
 }
 
-tvo_status_t tvo_distance_pair_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim,
-                                            const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad)
+/* The larger side's value; one that is not finite shows. */
+static tvo_status_t distance_pair_max(const tvo_distance_term_t *pair, const tvo_real_t *y, tvo_real_t t_s,
+                                      tvo_real_t *max_value)
 {
-    return distance_pair_terms(term, z, dim, t, order, grad, NULL);
-}
-
-tvo_status_t tvo_distance_pair_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim,
-                                                const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
-                                                tvo_hessian_t *hessian)
-{
-    if (hessian == NULL) {
-        return TVO_ERR_NULL;
-    }
-    return distance_pair_terms(term, z, dim, t, order, grad, hessian);
-}
-
-tvo_status_t tvo_distance_pair_constraint_max(const void *term, const tvo_real_t *y, uint8_t primal_dim, tvo_real_t t_s,
-                                              tvo_real_t *max_value)
-{
-    const tvo_distance_term_t *pair = (const tvo_distance_term_t *)term;
-    if (pair == NULL || max_value == NULL) {
-        return TVO_ERR_NULL;
-    }
     tvo_real_t high = TVO_R(0.0);
-    tvo_status_t st = tvo_distance_constraint_max(&pair[0], y, primal_dim, t_s, max_value);
+    tvo_status_t st = distance_max(&pair[0], y, t_s, max_value);
     if (st == TVO_OK) {
-        st = tvo_distance_constraint_max(&pair[1], y, primal_dim, t_s, &high);
+        st = distance_max(&pair[1], y, t_s, &high);
     }
     if (st == TVO_OK && (high > *max_value || !isfinite(high))) {
-        *max_value = high; /* the larger; one that is not finite shows */
+        *max_value = high;
     }
     return st;
 }
+
+TERM_ENTRIES(distance_pair, tvo_distance_term_t, distance_pair_gradient, TERM_INLINE_BODY)
 #endif
 
 /* ---------------------------------------------------------------- half-spaces */
@@ -434,16 +474,10 @@ tvo_status_t tvo_halfspace_term_init(tvo_halfspace_term_t *term, const tvo_barri
 }
 
 /* The half-space's gradient jets, and with hessian its closed form H += (dw/df) a a^T (f is affine). */
-TVO_SHAPE_BODY tvo_status_t halfspace_sum_shape(const tvo_halfspace_term_t *self, const tvo_jet_t *z, uint8_t dim,
-                                                const tvo_time_jet_t *t, const uint8_t order, tvo_jet_t *grad,
-                                                tvo_hessian_t *hessian)
+TVO_SHAPE_BODY tvo_status_t halfspace_sum_shape(const tvo_halfspace_term_t *self, const tvo_jet_t *z,
+                                                const tvo_time_jet_t *t, tvo_jet_t *grad, tvo_hessian_t *hessian,
+                                                const uint8_t order)
 {
-    if (self == NULL || z == NULL || t == NULL || grad == NULL) {
-        return TVO_ERR_NULL;
-    }
-    if ((unsigned)self->offset + 2u > dim) {
-        return TVO_ERR_DIMENSION;
-    }
     tvo_jet_t normal[2];
     tvo_jet_t f;
     affine_time_jet(-self->bound_m, -self->bound_rate_mps, t, &f);
@@ -453,14 +487,9 @@ TVO_SHAPE_BODY tvo_status_t halfspace_sum_shape(const tvo_halfspace_term_t *self
         tvo_jet_mul(&normal[axis], &z[self->offset + axis], order, &product);
         tvo_jet_add(&f, &product, order, &f);
     }
-    tvo_barrier_schedule_jet_t local;
-    tvo_status_t st = TERM_BARRIER_SCHEDULE(self->barrier, t, order, &local);
-    const tvo_barrier_schedule_jet_t *schedule = barrier_schedule_of(t, &local);
     tvo_jet_t w;
     tvo_real_t dw_df = TVO_R(0.0);
-    if (st == TVO_OK) {
-        st = TERM_BARRIER_WEIGHT(self->barrier, schedule, &f, order, &w, hessian != NULL ? &dw_df : NULL);
-    }
+    const tvo_status_t st = term_weight(self->barrier, t, &f, order, &w, hessian != NULL ? &dw_df : NULL);
     if (st != TVO_OK) {
         return st;
     }
@@ -489,43 +518,11 @@ TVO_SHAPE_BODY tvo_status_t halfspace_sum_shape(const tvo_halfspace_term_t *self
     return TVO_OK;
 }
 
-static tvo_status_t halfspace_sum(const tvo_halfspace_term_t *self, const tvo_jet_t *z, uint8_t dim,
-                                  const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian)
-{
-#if TVO_SHAPE_COPIES
-    if (order == TVO_SHAPE_ORDER) {
-        return halfspace_sum_shape(self, z, dim, t, TVO_SHAPE_ORDER, grad, hessian);
-    }
-#endif
-    return halfspace_sum_shape(self, z, dim, t, order, grad, hessian);
-}
+ONE_ROBOT_FITS(halfspace, tvo_halfspace_term_t)
 
-tvo_status_t tvo_halfspace_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
-                                        uint8_t order, tvo_jet_t *grad)
+static tvo_status_t halfspace_max(const tvo_halfspace_term_t *self, const tvo_real_t *y, tvo_real_t t_s,
+                                  tvo_real_t *max_value)
 {
-    return halfspace_sum((const tvo_halfspace_term_t *)term, z, dim, t, order, grad, NULL);
-}
-
-tvo_status_t tvo_halfspace_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim,
-                                            const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
-                                            tvo_hessian_t *hessian)
-{
-    if (hessian == NULL) {
-        return TVO_ERR_NULL;
-    }
-    return halfspace_sum((const tvo_halfspace_term_t *)term, z, dim, t, order, grad, hessian);
-}
-
-tvo_status_t tvo_halfspace_constraint_max(const void *term, const tvo_real_t *y, uint8_t primal_dim, tvo_real_t t_s,
-                                          tvo_real_t *max_value)
-{
-    const tvo_halfspace_term_t *self = (const tvo_halfspace_term_t *)term;
-    if (self == NULL || y == NULL || max_value == NULL) {
-        return TVO_ERR_NULL;
-    }
-    if ((unsigned)self->offset + 2u > primal_dim) {
-        return TVO_ERR_DIMENSION;
-    }
     tvo_real_t f = -(self->bound_m + self->bound_rate_mps * t_s);
     for (uint8_t axis = 0; axis < 2u; ++axis) {
         f += (self->normal[axis] + self->normal_rate[axis] * t_s) * y[self->offset + axis];
@@ -533,6 +530,9 @@ tvo_status_t tvo_halfspace_constraint_max(const void *term, const tvo_real_t *y,
     *max_value = f;
     return TVO_OK;
 }
+
+TERM_SHAPE_SUM(halfspace, tvo_halfspace_term_t)
+TERM_ENTRIES(halfspace, tvo_halfspace_term_t, halfspace_sum, TERM_SHARED_BODY)
 
 /* ---------------------------------------------------------------- local free space among disks */
 
@@ -612,16 +612,10 @@ static tvo_status_t free_space_plane(const tvo_free_space_term_t *self, uint8_t 
 
 /* The free space's gradient jets, and with hessian its closed form H += sum_i (dw_i/df) a_i a_i^T
  * (the planes are frozen at y_c: affine in y). The schedules are shared by every plane. */
-TVO_SHAPE_BODY tvo_status_t free_space_sum_shape(const tvo_free_space_term_t *self, const tvo_jet_t *z, uint8_t dim,
-                                                 const tvo_time_jet_t *t, const uint8_t order, tvo_jet_t *grad,
-                                                 tvo_hessian_t *hessian)
+TVO_SHAPE_BODY tvo_status_t free_space_sum_shape(const tvo_free_space_term_t *self, const tvo_jet_t *z,
+                                                 const tvo_time_jet_t *t, tvo_jet_t *grad, tvo_hessian_t *hessian,
+                                                 const uint8_t order)
 {
-    if (self == NULL || z == NULL || t == NULL || grad == NULL) {
-        return TVO_ERR_NULL;
-    }
-    if ((unsigned)self->offset + 2u > dim) {
-        return TVO_ERR_DIMENSION;
-    }
     tvo_barrier_schedule_jet_t local;
     tvo_status_t st = TERM_BARRIER_SCHEDULE(self->barrier, t, order, &local);
     const tvo_barrier_schedule_jet_t *schedule = barrier_schedule_of(t, &local);
@@ -667,44 +661,13 @@ TVO_SHAPE_BODY tvo_status_t free_space_sum_shape(const tvo_free_space_term_t *se
     return TVO_OK;
 }
 
-static tvo_status_t free_space_sum(const tvo_free_space_term_t *self, const tvo_jet_t *z, uint8_t dim,
-                                   const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian)
-{
-#if TVO_SHAPE_COPIES
-    if (order == TVO_SHAPE_ORDER) {
-        return free_space_sum_shape(self, z, dim, t, TVO_SHAPE_ORDER, grad, hessian);
-    }
-#endif
-    return free_space_sum_shape(self, z, dim, t, order, grad, hessian);
-}
+ONE_ROBOT_FITS(free_space, tvo_free_space_term_t)
 
-tvo_status_t tvo_free_space_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
-                                         uint8_t order, tvo_jet_t *grad)
+/* The worst plane's value at y (the planes through y itself). */
+static tvo_status_t free_space_max(const tvo_free_space_term_t *self, const tvo_real_t *y, tvo_real_t t_s,
+                                   tvo_real_t *max_value)
 {
-    return free_space_sum((const tvo_free_space_term_t *)term, z, dim, t, order, grad, NULL);
-}
-
-tvo_status_t tvo_free_space_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim,
-                                             const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
-                                             tvo_hessian_t *hessian)
-{
-    if (hessian == NULL) {
-        return TVO_ERR_NULL;
-    }
-    return free_space_sum((const tvo_free_space_term_t *)term, z, dim, t, order, grad, hessian);
-}
-
-tvo_status_t tvo_free_space_constraint_max(const void *term, const tvo_real_t *y, uint8_t primal_dim, tvo_real_t t_s,
-                                           tvo_real_t *max_value)
-{
-    const tvo_free_space_term_t *self = (const tvo_free_space_term_t *)term;
     (void)t_s;
-    if (self == NULL || y == NULL || max_value == NULL) {
-        return TVO_ERR_NULL;
-    }
-    if ((unsigned)self->offset + 2u > primal_dim) {
-        return TVO_ERR_DIMENSION;
-    }
     const tvo_real_t y_c[2] = {y[self->offset], y[self->offset + 1u]};
     tvo_real_t worst = TVO_R(0.0);
     for (uint8_t i = 0; i < self->obstacle_count && i < TVO_MAX_OBSTACLES; ++i) {
@@ -729,3 +692,6 @@ tvo_status_t tvo_free_space_constraint_max(const void *term, const tvo_real_t *y
     *max_value = worst;
     return TVO_OK;
 }
+
+TERM_SHAPE_SUM(free_space, tvo_free_space_term_t)
+TERM_ENTRIES(free_space, tvo_free_space_term_t, free_space_sum, TERM_SHARED_BODY)

@@ -775,6 +775,115 @@ static void test_free_space_init_rejects_bad_obstacles(void)
     TEST_ASSERT_TRUE(tvo_free_space_gradient_jet(&t, z, 2, &now, 1, g) != TVO_OK);
 }
 
+/* ------------------------------------------------------------------------------------------------
+ * Every kind's entries validate alike (written once in constraints.c): the same codes for the same
+ * misuse, and nothing written by a refused call.
+ * --------------------------------------------------------------------------------------------- */
+
+/* z: constant jets at y; g: zero. */
+static void constant_jets(const tvo_real_t y[4], tvo_jet_t z[4], tvo_jet_t g[4])
+{
+    for (int i = 0; i < 4; ++i) {
+        tvo_jet_constant(y[i], &z[i]);
+        tvo_jet_constant(TVO_R(0.0), &g[i]);
+    }
+}
+
+typedef struct {
+    const char *name;
+    tvo_gradient_jet_fn gradient_jet;
+    tvo_gradient_hessian_fn gradient_hessian;
+    tvo_constraint_max_fn constraint_max;
+    const void *term;
+} term_entries_t;
+
+/* Robot 1's terms: their outputs are z[2], z[3], so a dimension of 2 is short by one robot. */
+static void assert_entries_validate(const term_entries_t *kind)
+{
+    static tvo_hessian_t hessian; /* never reached: every call below is refused first */
+    const tvo_time_jet_t now = time_jet(0.0, 1.0);
+    const tvo_real_t y[4] = {TVO_R(0.0), TVO_R(0.0), TVO_R(1.5), TVO_R(2.0)};
+    tvo_jet_t z[4], g[4];
+    constant_jets(y, z, g);
+    TEST_MESSAGE(kind->name);
+    ASSERT_STATUS(TVO_ERR_NULL, kind->gradient_jet(NULL, z, 4, &now, 1, g));
+    ASSERT_STATUS(TVO_ERR_NULL, kind->gradient_jet(kind->term, NULL, 4, &now, 1, g));
+    ASSERT_STATUS(TVO_ERR_NULL, kind->gradient_jet(kind->term, z, 4, NULL, 1, g));
+    ASSERT_STATUS(TVO_ERR_NULL, kind->gradient_jet(kind->term, z, 4, &now, 1, NULL));
+    ASSERT_STATUS(TVO_ERR_NULL, kind->gradient_hessian(kind->term, z, 4, &now, 1, g, NULL));
+    ASSERT_STATUS(TVO_ERR_NULL, kind->gradient_hessian(NULL, z, 4, &now, 1, g, &hessian));
+    ASSERT_STATUS(TVO_ERR_DIMENSION, kind->gradient_jet(kind->term, z, 2, &now, 1, g));
+    ASSERT_STATUS(TVO_ERR_DIMENSION, kind->gradient_hessian(kind->term, z, 2, &now, 1, g, &hessian));
+    for (int i = 0; i < 4; ++i) {
+        for (int k = 0; k <= TVO_JET_MAX_ORDER; ++k) {
+            TEST_ASSERT_TRUE(g[i].c[k] == TVO_R(0.0));
+        }
+    }
+    const tvo_real_t untouched = TVO_R(-123.0);
+    tvo_real_t f = untouched;
+    ASSERT_STATUS(TVO_ERR_NULL, kind->constraint_max(NULL, y, 4, TVO_R(0.0), &f));
+    ASSERT_STATUS(TVO_ERR_NULL, kind->constraint_max(kind->term, NULL, 4, TVO_R(0.0), &f));
+    ASSERT_STATUS(TVO_ERR_NULL, kind->constraint_max(kind->term, y, 4, TVO_R(0.0), NULL));
+    ASSERT_STATUS(TVO_ERR_DIMENSION, kind->constraint_max(kind->term, y, 2, TVO_R(0.0), &f));
+    TEST_ASSERT_TRUE(f == untouched);
+    ASSERT_STATUS(TVO_OK, kind->constraint_max(kind->term, y, 4, TVO_R(0.0), &f));
+    TEST_ASSERT_TRUE(f != untouched);
+}
+
+static void test_every_kind_refuses_misuse_alike(void)
+{
+    make_barrier(-1.0);
+    static tvo_distance_term_t distance[2]; /* a bound's minimum then its maximum: also a pair */
+    ASSERT_STATUS(TVO_OK, tvo_distance_term_init(&distance[0], &barrier, TVO_DISTANCE_MIN, 1, 0, TVO_R(1.0), TVO_R(0.0)));
+    ASSERT_STATUS(TVO_OK, tvo_distance_term_init(&distance[1], &barrier, TVO_DISTANCE_MAX, 1, 0, TVO_R(3.0), TVO_R(0.0)));
+    tvo_halfspace_term_t halfspace;
+    const tvo_real_t normal[2] = {TVO_R(1.0), TVO_R(0.0)};
+    const tvo_real_t normal_rate[2] = {TVO_R(0.0), TVO_R(0.0)};
+    ASSERT_STATUS(TVO_OK, tvo_halfspace_term_init(&halfspace, &barrier, 1, normal, normal_rate, TVO_R(5.0), TVO_R(0.0)));
+    static tvo_free_space_term_t free_space;
+    const tvo_disk_t disks[1] = {{{TVO_R(4.0), TVO_R(4.0)}, TVO_R(1.0)}};
+    ASSERT_STATUS(TVO_OK, tvo_free_space_term_init(&free_space, &barrier, 1, TVO_R(0.2), disks, 1));
+    const term_entries_t kinds[] = {
+        {"distance", tvo_distance_gradient_jet, tvo_distance_gradient_hessian, tvo_distance_constraint_max, &distance[0]},
+#if TVO_BLOCK_SOLVE
+        {"distance pair", tvo_distance_pair_gradient_jet, tvo_distance_pair_gradient_hessian,
+         tvo_distance_pair_constraint_max, distance},
+#endif
+        {"halfspace", tvo_halfspace_gradient_jet, tvo_halfspace_gradient_hessian, tvo_halfspace_constraint_max, &halfspace},
+        {"free space", tvo_free_space_gradient_jet, tvo_free_space_gradient_hessian, tvo_free_space_constraint_max,
+         &free_space},
+    };
+    for (size_t i = 0; i < sizeof(kinds) / sizeof(kinds[0]); ++i) {
+        assert_entries_validate(&kinds[i]);
+    }
+}
+
+#if TVO_BLOCK_SOLVE
+/* A pair's two sides must be one pair of robots (all three entries), and its order within the jets. */
+static void test_distance_pair_refuses_two_pairs_and_a_long_order(void)
+{
+    make_barrier(-1.0);
+    static tvo_distance_term_t pair[2];
+    ASSERT_STATUS(TVO_OK, tvo_distance_term_init(&pair[0], &barrier, TVO_DISTANCE_MIN, 1, 0, TVO_R(1.0), TVO_R(0.0)));
+    ASSERT_STATUS(TVO_OK, tvo_distance_term_init(&pair[1], &barrier, TVO_DISTANCE_MAX, 0, 1, TVO_R(3.0), TVO_R(0.0)));
+    static tvo_hessian_t hessian;
+    const tvo_time_jet_t now = time_jet(0.0, 1.0);
+    const tvo_real_t y[4] = {TVO_R(0.0), TVO_R(0.0), TVO_R(1.5), TVO_R(2.0)};
+    tvo_jet_t z[4], g[4];
+    constant_jets(y, z, g);
+    tvo_real_t f = TVO_R(0.0);
+    ASSERT_STATUS(TVO_ERR_DIMENSION, tvo_distance_pair_gradient_jet(pair, z, 4, &now, 1, g));
+    ASSERT_STATUS(TVO_ERR_DIMENSION, tvo_distance_pair_gradient_hessian(pair, z, 4, &now, 1, g, &hessian));
+    ASSERT_STATUS(TVO_ERR_DIMENSION, tvo_distance_pair_constraint_max(pair, y, 4, TVO_R(0.0), &f));
+    ASSERT_STATUS(TVO_OK, tvo_distance_term_init(&pair[1], &barrier, TVO_DISTANCE_MAX, 1, 0, TVO_R(3.0), TVO_R(0.0)));
+    ASSERT_STATUS(TVO_ERR_PARAM, tvo_distance_pair_gradient_jet(pair, z, 4, &now, TVO_JET_MAX_ORDER + 1u, g));
+    ASSERT_STATUS(TVO_OK, tvo_distance_pair_gradient_jet(pair, z, 4, &now, 1, g));
+    /* The larger side's value: here the maximum's, 6.25 - 9 > 1 - 6.25 (|D|^2 = 6.25). */
+    ASSERT_STATUS(TVO_OK, tvo_distance_pair_constraint_max(pair, y, 4, TVO_R(0.0), &f));
+    ASSERT_NEAR(6.25 - 9.0, f, TEST_TOL(8, 9.0));
+}
+#endif
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -789,5 +898,9 @@ int main(void)
     RUN_TEST(test_free_space_constraint_at_robot_is_closed_form_and_negative_when_clear);
     RUN_TEST(test_free_space_constraint_is_nonnegative_when_the_robot_covers_a_small_obstacle);
     RUN_TEST(test_free_space_init_rejects_bad_obstacles);
+    RUN_TEST(test_every_kind_refuses_misuse_alike);
+#if TVO_BLOCK_SOLVE
+    RUN_TEST(test_distance_pair_refuses_two_pairs_and_a_long_order);
+#endif
     return UNITY_END();
 }

@@ -14,19 +14,24 @@
 extern "C" {
 #endif
 
+/*
+ * A constraint term kind's entries, its tvo_term_t (tvo/objective.h): gradient_jet; gradient_hessian, its
+ * closed form (the same gradient jets plus the Hessian); constraint_max, the largest constraint value at y.
+ */
+#define TVO_CONSTRAINT_TERM_ENTRIES(kind)                                                                      \
+    tvo_status_t tvo_##kind##_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim,                 \
+                                           const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad);          \
+    tvo_status_t tvo_##kind##_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim,             \
+                                               const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,       \
+                                               tvo_hessian_t *hessian);                                       \
+    tvo_status_t tvo_##kind##_constraint_max(const void *term, const tvo_real_t *y, uint8_t primal_dim,       \
+                                             tvo_real_t t_s, tvo_real_t *max_value)
+
 /** robot_a != robot_b, both < TVO_MAX_ROBOTS; bound_m > 0 and finite. */
 tvo_status_t tvo_distance_term_init(tvo_distance_term_t *term, const tvo_barrier_t *barrier, tvo_distance_kind_t kind,
                                     uint8_t robot_a, uint8_t robot_b, tvo_real_t bound_m, tvo_real_t bound_rate_mps);
 
-tvo_status_t tvo_distance_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
-                                       uint8_t order, tvo_jet_t *grad);
-
-/** Closed form of tvo_distance_gradient_jet: the same gradient jets plus the Hessian (see tvo_term_t). */
-tvo_status_t tvo_distance_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
-                                   uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian);
-
-tvo_status_t tvo_distance_constraint_max(const void *term, const tvo_real_t *y, uint8_t primal_dim, tvo_real_t t_s,
-                                         tvo_real_t *max_value);
+TVO_CONSTRAINT_TERM_ENTRIES(distance);
 
 #if TVO_BLOCK_SOLVE
 /**
@@ -37,13 +42,7 @@ tvo_status_t tvo_distance_constraint_max(const void *term, const tvo_real_t *y, 
  * rank-one parts, each the sides' sum, where one is stiff or the matrix dense). The constraint value is
  * the larger side's.
  */
-tvo_status_t tvo_distance_pair_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim,
-                                            const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad);
-tvo_status_t tvo_distance_pair_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim,
-                                                const tvo_time_jet_t *t, uint8_t order, tvo_jet_t *grad,
-                                                tvo_hessian_t *hessian);
-tvo_status_t tvo_distance_pair_constraint_max(const void *term, const tvo_real_t *y, uint8_t primal_dim, tvo_real_t t_s,
-                                              tvo_real_t *max_value);
+TVO_CONSTRAINT_TERM_ENTRIES(distance_pair);
 #endif
 
 /** a0 must not be zero; all values finite. */
@@ -51,15 +50,7 @@ tvo_status_t tvo_halfspace_term_init(tvo_halfspace_term_t *term, const tvo_barri
                                      const tvo_real_t normal[2], const tvo_real_t normal_rate[2], tvo_real_t bound_m,
                                      tvo_real_t bound_rate_mps);
 
-tvo_status_t tvo_halfspace_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
-                                        uint8_t order, tvo_jet_t *grad);
-
-/** Closed form of tvo_halfspace_gradient_jet: the same gradient jets plus the Hessian (see tvo_term_t). */
-tvo_status_t tvo_halfspace_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
-                                   uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian);
-
-tvo_status_t tvo_halfspace_constraint_max(const void *term, const tvo_real_t *y, uint8_t primal_dim, tvo_real_t t_s,
-                                          tvo_real_t *max_value);
+TVO_CONSTRAINT_TERM_ENTRIES(halfspace);
 
 /**
  * 1 <= count <= TVO_MAX_OBSTACLES disks with radius > 0, pairwise disjoint (TVO_ERR_PARAM
@@ -68,15 +59,7 @@ tvo_status_t tvo_halfspace_constraint_max(const void *term, const tvo_real_t *y,
 tvo_status_t tvo_free_space_term_init(tvo_free_space_term_t *term, const tvo_barrier_t *barrier, uint8_t robot,
                                       tvo_real_t robot_radius_m, const tvo_disk_t *obstacles, uint8_t count);
 
-tvo_status_t tvo_free_space_gradient_jet(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
-                                         uint8_t order, tvo_jet_t *grad);
-
-/** Closed form of tvo_free_space_gradient_jet: the same gradient jets plus the Hessian (see tvo_term_t). */
-tvo_status_t tvo_free_space_gradient_hessian(const void *term, const tvo_jet_t *z, uint8_t dim, const tvo_time_jet_t *t,
-                                   uint8_t order, tvo_jet_t *grad, tvo_hessian_t *hessian);
-
-tvo_status_t tvo_free_space_constraint_max(const void *term, const tvo_real_t *y, uint8_t primal_dim, tvo_real_t t_s,
-                                           tvo_real_t *max_value);
+TVO_CONSTRAINT_TERM_ENTRIES(free_space);
 
 /** Clearance |y_r - o_i| - r - r_i of robot position p to obstacle i (negative: collision). */
 tvo_real_t tvo_disk_clearance(const tvo_disk_t *obstacle, tvo_real_t robot_radius_m, const tvo_real_t position_m[2]);
