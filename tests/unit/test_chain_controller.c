@@ -874,6 +874,32 @@ static void test_chain_safe_stop_drops_to_rest_without_advancing_the_clock(void)
     ASSERT_NEAR(0.0, cmd.u[0], 0.0);
 }
 
+/* The chain's caller refusals, as the unicycle's (the same loop): held and nothing changed on a clock
+ * with a timer; the watchdog_periods-th in a row stops a clock that counts refusals. */
+static void test_chain_callers_refusals_hold_or_stop_as_the_clock_counts(void)
+{
+    ch_t ch;
+    ch_filtered_running(&ch, 8u);
+    tvo_chain_command_t cmd;
+    tvo_chain_controller_t before;
+    memcpy(&before, &ch.ctl, sizeof(before));
+    for (uint32_t i = 0; i < 2u * ch.cfg.watchdog_periods; ++i) {
+        ASSERT_PERIOD(HELD(REFUSED), tvo_chain_controller_refuse(&ch.ctl, TVO_REASON_REFUSED, &cmd), cmd);
+        ASSERT_NEAR(test_d(before.internal.held.u[0]), cmd.u[0], 0.0);
+    }
+    memset(&before.internal.work, 0, sizeof(before.internal.work));
+    memset(&ch.ctl.internal.work, 0, sizeof(ch.ctl.internal.work));
+    TEST_ASSERT_EQUAL_MEMORY(&before, &ch.ctl, sizeof(before));
+    ASSERT_STATUS(TVO_ERR_PARAM, tvo_chain_controller_refuse(&ch.ctl, TVO_REASON_WATCHDOG, &cmd));
+    ch.ctl.internal.loop.clock.counts_refusals = 1u; /* as init sets it from watchdog_counts_refusals */
+    for (uint32_t i = 1; i < ch.cfg.watchdog_periods; ++i) {
+        ASSERT_PERIOD(HELD(REFUSED), tvo_chain_controller_refuse(&ch.ctl, TVO_REASON_REFUSED, &cmd), cmd);
+    }
+    ASSERT_PERIOD(STOPPED(WATCHDOG), tvo_chain_controller_refuse(&ch.ctl, TVO_REASON_REFUSED, &cmd), cmd);
+    ASSERT_NEAR(0.0, cmd.u[0], 0.0);
+    ASSERT_NEAR(0.0, ch.ctl.internal.held.u[0], 0.0);
+}
+
 /* The filters, the held command and the last stamp: what a refused step must not touch. */
 static void assert_chain_untouched(const tvo_chain_controller_t *before, const tvo_chain_controller_t *after)
 {
@@ -1034,6 +1060,7 @@ int main(void)
     RUN_TEST(test_filters_start_at_rest_and_follow_the_ramp_update);
     RUN_TEST(test_init_names_the_first_bad_parameter);
     RUN_TEST(test_bad_measurements_hold_the_command_then_the_watchdog_stops);
+    RUN_TEST(test_chain_callers_refusals_hold_or_stop_as_the_clock_counts);
     RUN_TEST(test_lifted_matrix_reproduces_the_closed_loop);
     RUN_TEST(test_chain_check_changes_nothing_and_says_what_the_step_would);
     RUN_TEST(test_chain_safe_stop_drops_to_rest_without_advancing_the_clock);
