@@ -17,7 +17,4 @@ set(tvo_edge_node_sources
   ${tvo_edge_dir}/wire_status.c)
 # The authenticated link in front of the node (auth_link.c; link tvo_auth, which brings Mbed TLS).
 set(tvo_edge_auth_link_sources ${tvo_edge_dir}/auth_link.c)
-# The node's sources see the core's public API only (tvo_core does not export firmware/src). One
-# exception left: step_codec.c's telemetry reads the barrier's c(t), s(t) through internal/barrier.h
-# until the core's telemetry carries them (issue 39); a source property, so no other file gains it.
-set_source_files_properties(${tvo_edge_dir}/step_codec.c PROPERTIES INCLUDE_DIRECTORIES ${tvo_edge_dir}/../src)
+# The node's sources see the core's public API only (tvo_core does not export firmware/src).

@@ -4,7 +4,6 @@
 #include <string.h>
 
 #include "wire_real.h"
-#include "internal/barrier.h"
 
 /* The per-period messages carry one robot, two outputs each. */
 _Static_assert(sizeof(((tvo_lcm_chain_command_t *)0)->input) == 2 * sizeof(float), "chain_command_t: one robot's u");
@@ -254,14 +253,8 @@ void tvo_step_telemetry_to_lcm(const tvo_controller_telemetry_t *tel, uint8_t ro
     msg->speed_state_mps = tvo_wire_float(speed_state_mps[robot]);
     msg->regularization = tvo_wire_float(tel->regularization);
     if (problem->has_inequalities) {
-        tvo_real_t c = TVO_R(0.0);
-        tvo_real_t slack = TVO_R(0.0);
-        tvo_real_t delta = TVO_R(0.0);
-        const tvo_real_t t_s = tel->objective_time_s >= TVO_R(0.0) ? tel->objective_time_s : TVO_R(0.0);
-        if (tvo_barrier_schedule(&problem->barrier, t_s, &c, &slack, &delta) == TVO_OK) {
-            msg->barrier_c = tvo_wire_float(c);
-            msg->barrier_slack = tvo_wire_float(slack);
-        }
+        msg->barrier_c = tvo_wire_float(tel->barrier_c);
+        msg->barrier_slack = tvo_wire_float(tel->barrier_slack);
     }
 }
 

@@ -527,6 +527,11 @@ TVO_OFF_CHAIN_BODY tvo_reason_t unicycle_commit(void *ctl_any, const tvo_loop_fr
         tm->gradient_rate[i] = work->gradient_rate[i];
     }
     tm->regularization = work->report.regularization;
+    const tvo_shared_values_t *shared = &work->law.shared;
+    if (shared->owner != NULL) { /* a barrier term asked for the schedules: c(t), s(t) at the law's time */
+        tm->barrier_c = shared->schedule.c.c[0];
+        tm->barrier_slack = shared->schedule.slack.c[0];
+    }
     /* The common period: no contradiction, none counted, no stop running (nothing to write). */
     if ((frame->note | ctl->internal.speed_mismatch_periods | ctl->internal.speed_mismatch_holdoff) != 0u) {
         return commit_speed_mismatch(ctl, frame->note);

@@ -138,6 +138,8 @@ typedef struct {
     tvo_real_t accel_mps2[TVO_MAX_ROBOTS];            /* v' after limits */
     tvo_real_t multiplier[TVO_ARRAY_LEN(TVO_MAX_EQUALITIES)]; /* nu after the step (equality constraints) */
     tvo_real_t regularization;                        /* Hessian shift of the solve, 0 if none */
+    tvo_real_t barrier_c;                             /* the barrier's c(t) and s(t) at objective_time_s, */
+    tvo_real_t barrier_slack;                         /*   as the law evaluated them (0 without inequalities) */
 } tvo_controller_telemetry_t;
 
 /** The step's working storage (the law's, the derivatives it is evaluated at, the filter's trial
