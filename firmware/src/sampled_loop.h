@@ -180,12 +180,17 @@ TVO_LOOP_ENTRY void loop_hold(const tvo_loop_plant_t *p, const void *ctl, void *
 }
 
 /* A taken period the plant's finding stops (its states already at rest): the held command the stop,
- * its flags kept (they say what the plant found). A cold path. */
-TVO_COLD_BODY void loop_plant_stop(const tvo_loop_plant_t *p, void *held, tvo_reason_t reason)
+ * its flags kept (they say what the plant found). A cold path, given the layout's offsets, not the
+ * table (a table passed out of line would have to be emitted, and every piece beside its inlined copies). */
+TVO_COLD_BODY void loop_plant_stop(void *held, size_t command_size, size_t flags_at, size_t outcome_at,
+                                   tvo_reason_t reason)
 {
-    const uint32_t flags = *(const uint32_t *)loop_at(held, p->command_flags_at);
-    loop_stop_command(p, held, reason);
-    *(uint32_t *)loop_at(held, p->command_flags_at) = flags;
+    const uint32_t flags = *(const uint32_t *)loop_at(held, flags_at);
+    memset(LOOP_WORDS(held), 0, command_size);
+    uint8_t *outcome = loop_at(held, outcome_at);
+    outcome[0] = (uint8_t)TVO_OUTCOME_STOPPED;
+    outcome[1] = (uint8_t)reason;
+    *(uint32_t *)loop_at(held, flags_at) = flags;
 }
 
 /* The plant stops: its states, and the held command, at rest; cmd the stop, for `reason` (a copy of
@@ -389,7 +394,7 @@ TVO_LOOP_ENTRY tvo_status_t loop_period(const tvo_loop_plant_t *p, void *ctl, co
     held_outcome[1] = (uint8_t)TVO_REASON_NONE;
     const tvo_reason_t plant_stop = p->commit(ctl, &frame);
     if (plant_stop != TVO_REASON_NONE) {
-        loop_plant_stop(p, held, plant_stop);
+        loop_plant_stop(held, p->command_size, p->command_flags_at, p->command_outcome_at, plant_stop);
     }
     memcpy(LOOP_WORDS(cmd), LOOP_WORDS(held), p->command_size);
     return TVO_OK;
