@@ -282,19 +282,17 @@ TVO_COLD_BODY tvo_reason_t commit_speed_mismatch(tvo_controller_t *ctl, uint8_t 
     if (ctl->internal.speed_mismatch_holdoff == 0u) {
         return TVO_REASON_NONE;
     }
-    {
-        /* A period of the stop: accepted (clock, filters, multipliers move on), but the robots stand still
-         * (the loop makes the held command the stop). */
-        ctl->internal.speed_mismatch_holdoff--;
-        for (uint8_t r = 0; r < TVO_MAX_ROBOTS; ++r) {
-            ctl->internal.speed_state_mps[r] = TVO_R(0.0);
-            ctl->telemetry.accel_mps2[r] = TVO_R(0.0);
-        }
-        for (uint8_t q = 0; q < TVO_ARRAY_LEN(TVO_MAX_EQUALITIES); ++q) {
-            ctl->internal.multiplier_rate[q] = TVO_R(0.0);
-        }
-        ctl->internal.held.flags = TVO_FLAG_SPEED_MISMATCH;
+    /* A period of the stop: accepted (clock, filters, multipliers move on), but the robots stand still
+     * (the loop makes the held command the stop). */
+    ctl->internal.speed_mismatch_holdoff--;
+    for (uint8_t r = 0; r < TVO_MAX_ROBOTS; ++r) {
+        ctl->internal.speed_state_mps[r] = TVO_R(0.0);
+        ctl->telemetry.accel_mps2[r] = TVO_R(0.0);
     }
+    for (uint8_t q = 0; q < TVO_ARRAY_LEN(TVO_MAX_EQUALITIES); ++q) {
+        ctl->internal.multiplier_rate[q] = TVO_R(0.0);
+    }
+    ctl->internal.held.flags = TVO_FLAG_SPEED_MISMATCH;
     return TVO_REASON_SPEED_MISMATCH;
 }
 

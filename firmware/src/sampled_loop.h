@@ -161,15 +161,22 @@ TVO_LOOP_ENTRY void loop_mark(const tvo_loop_plant_t *p, void *cmd, uint32_t fla
     loop_mark_outcome(p, cmd, outcome, reason);
 }
 
-/* The stop: every input zero, no flags (the memset's). */
+/* The stop in a command of command_size bytes whose outcome is at outcome_at: every input zero, no
+ * flags (the memset's). */
+TVO_LOOP_ENTRY void loop_stop_at(void *cmd, size_t command_size, size_t outcome_at, tvo_reason_t reason)
+{
+    memset(LOOP_WORDS(cmd), 0, command_size);
+    uint8_t *outcome = loop_at(cmd, outcome_at);
+    outcome[0] = (uint8_t)TVO_OUTCOME_STOPPED;
+    if (reason != TVO_REASON_NONE) {
+        outcome[1] = (uint8_t)reason; /* NONE is the memset's: a constant NONE stores nothing */
+    }
+}
+
+/* The stop, in the plant's command layout. */
 TVO_LOOP_ENTRY void loop_stop_command(const tvo_loop_plant_t *p, void *cmd, tvo_reason_t reason)
 {
-    memset(LOOP_WORDS(cmd), 0, p->command_size);
-    uint8_t *outcome_at = loop_at(cmd, p->command_outcome_at);
-    outcome_at[0] = (uint8_t)TVO_OUTCOME_STOPPED;
-    if (reason != TVO_REASON_NONE) {
-        outcome_at[1] = (uint8_t)reason; /* NONE is the memset's: a constant NONE stores nothing */
-    }
+    loop_stop_at(cmd, p->command_size, p->command_outcome_at, reason);
 }
 
 /* The command in force, held (zero once the plant was stopped). */
@@ -186,10 +193,7 @@ TVO_COLD_BODY void loop_plant_stop(void *held, size_t command_size, size_t flags
                                    tvo_reason_t reason)
 {
     const uint32_t flags = *(const uint32_t *)loop_at(held, flags_at);
-    memset(LOOP_WORDS(held), 0, command_size);
-    uint8_t *outcome = loop_at(held, outcome_at);
-    outcome[0] = (uint8_t)TVO_OUTCOME_STOPPED;
-    outcome[1] = (uint8_t)reason;
+    loop_stop_at(held, command_size, outcome_at, reason);
     *(uint32_t *)loop_at(held, flags_at) = flags;
 }
 

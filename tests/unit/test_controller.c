@@ -1101,17 +1101,24 @@ static void test_init_rejects_watchdog_counts_refusals_not_a_switch(void)
  * the step's alike. watchdog_periods - 1 of them hold; the next, a step's refusal one period on, is the
  * watchdog's stop (one period alone would not expire it), and so is every refusal after it, until a good
  * step, which resets the count. */
+/* A running controller (counts_refusals its switch) that has held for watchdog_periods - 1 caller's
+ * refusals in a row; the next measurement NaN. */
+static void fx_refused_all_but_one(fx_t *fx, uint8_t counts_refusals, tvo_command_t *cmd)
+{
+    fx_static_point(fx, 1.0, 1.0);
+    fx->cfg.watchdog_counts_refusals = counts_refusals;
+    fx_start(fx, 0u);
+    run_ok(fx, 3);
+    for (uint32_t i = 1; i < fx->cfg.watchdog_periods; ++i) {
+        ASSERT_PERIOD(HELD(REFUSED), tvo_controller_refuse(&fx->ctl, TVO_REASON_REFUSED, cmd), *cmd);
+    }
+    fx->meas_mode = FX_MEAS_NAN;
+}
+
 static void test_refusals_in_a_row_stop_a_clock_that_counts_them(void)
 {
-    fx_static_point(&fx_a, 1.0, 1.0);
-    fx_a.cfg.watchdog_counts_refusals = 1u;
-    fx_start(&fx_a, 0u);
-    run_ok(&fx_a, 3);
     tvo_command_t cmd;
-    for (uint32_t i = 1; i < fx_a.cfg.watchdog_periods; ++i) {
-        ASSERT_PERIOD(HELD(REFUSED), tvo_controller_refuse(&fx_a.ctl, TVO_REASON_REFUSED, &cmd), cmd);
-    }
-    fx_a.meas_mode = FX_MEAS_NAN;
+    fx_refused_all_but_one(&fx_a, 1u, &cmd);
     ASSERT_PERIOD(STOPPED(WATCHDOG), fx_closed_loop_step(&fx_a, &cmd), cmd);
     ASSERT_NEAR(0.0, cmd.speed_mps[0], 0.0);
     ASSERT_NEAR(0.0, cmd.turn_rate_radps[0], 0.0);
@@ -1125,14 +1132,8 @@ static void test_refusals_in_a_row_stop_a_clock_that_counts_them(void)
 /* The same run without the switch: the caller's refusals hold and one refused step only holds. */
 static void test_refusals_in_a_row_only_hold_a_clock_with_a_timer(void)
 {
-    fx_static_point(&fx_a, 1.0, 1.0);
-    fx_start(&fx_a, 0u);
-    run_ok(&fx_a, 3);
     tvo_command_t cmd;
-    for (uint32_t i = 1; i < fx_a.cfg.watchdog_periods; ++i) {
-        ASSERT_PERIOD(HELD(REFUSED), tvo_controller_refuse(&fx_a.ctl, TVO_REASON_REFUSED, &cmd), cmd);
-    }
-    fx_a.meas_mode = FX_MEAS_NAN;
+    fx_refused_all_but_one(&fx_a, 0u, &cmd);
     ASSERT_PERIOD(HELD(NOT_FINITE), fx_closed_loop_step(&fx_a, &cmd), cmd);
 }
 
