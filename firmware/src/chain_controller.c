@@ -3,6 +3,8 @@
 
 #include <string.h>
 
+#include "tvo/defaults.h"
+
 #include "internal/law.h"
 #include "internal/real_bits.h"
 #include "sampled_loop.h"
@@ -10,9 +12,9 @@
 tvo_status_t tvo_chain_config_default(tvo_chain_config_t *cfg)
 {
     static const tvo_chain_config_t defaults = {
-        TVO_LOOP_CONFIG_DEFAULTS, .relative_degree = 2u, .filter_tf_s = TVO_R(0.05),
-        .gain = {TVO_R(2.56), TVO_R(3.2)}, /* (s + 1.6)^2 */
-        .input_max = TVO_R(1e3)};
+        TVO_LOOP_CONFIG_DEFAULTS, .relative_degree = 2u, .filter_tf_s = (tvo_real_t)TVO_DEFAULT_FILTER_TF_S,
+        .gain = {(tvo_real_t)TVO_DEFAULT_CHAIN_GAIN_0, (tvo_real_t)TVO_DEFAULT_CHAIN_GAIN_1},
+        .input_max = (tvo_real_t)TVO_DEFAULT_CHAIN_INPUT_MAX};
     if (cfg == NULL) {
         return TVO_ERR_NULL;
     }

@@ -6,6 +6,7 @@
  * state over the period -> hold the new command.
  */
 #include "tvo/controller.h"
+#include "tvo/defaults.h"
 
 #include <string.h>
 
@@ -22,9 +23,10 @@ tvo_status_t tvo_controller_config_default(tvo_controller_config_t *cfg)
     /* The paper's: its gains and limits, one robot, the pose velocity source. */
     static const tvo_controller_config_t defaults = {
         TVO_LOOP_CONFIG_DEFAULTS, .robot_count = 1u, .zoh_aware = 0u, .velocity_source = TVO_VELOCITY_FROM_POSE,
-        .filter_tf_s = TVO_R(0.05), .gain_kp = TVO_R(40.0), .gain_kd = TVO_R(13.0),
-        .omega_max_radps = TVO_R(2.0) * TVO_PI, .accel_max_mps2 = TVO_R(15.0), .speed_max_mps = TVO_R(5.0),
-        .min_speed_mps = TVO_R(0.05)};
+        .filter_tf_s = (tvo_real_t)TVO_DEFAULT_FILTER_TF_S, .gain_kp = (tvo_real_t)TVO_DEFAULT_GAIN_KP,
+        .gain_kd = (tvo_real_t)TVO_DEFAULT_GAIN_KD, .omega_max_radps = (tvo_real_t)TVO_DEFAULT_OMEGA_MAX_RADPS,
+        .accel_max_mps2 = (tvo_real_t)TVO_DEFAULT_ACCEL_MAX_MPS2, .speed_max_mps = (tvo_real_t)TVO_DEFAULT_SPEED_MAX_MPS,
+        .min_speed_mps = (tvo_real_t)TVO_DEFAULT_MIN_SPEED_MPS};
     if (cfg == NULL) {
         return TVO_ERR_NULL;
     }

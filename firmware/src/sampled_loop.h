@@ -40,6 +40,7 @@
 #include <string.h>
 
 #include "internal/sample_clock.h"
+#include "tvo/defaults.h"
 #include "shape.h"
 
 /* A body compiled into each of its callers, so that a constant argument folds there: a NULL option,
@@ -468,11 +469,10 @@ TVO_LOOP_ENTRY tvo_status_t loop_init_end(const tvo_loop_plant_t *p, void *ctl, 
     return TVO_OK;
 }
 
-/* The loop's parameters at their defaults, designated initialisers of a plant's configuration (its
- * fields carry these names): 1 MHz ticks, h = 10 ms, tau = h/2 with delay compensation, the stop after
- * 10 periods without a good step. */
+/* The loop's parameters at their defaults (tvo/defaults.h), designated initialisers of a plant's
+ * configuration (its fields carry these names), with delay compensation on. */
 #define TVO_LOOP_CONFIG_DEFAULTS                                                                               \
-    .tick_hz = 1000000u, .period_ticks = 10000u, .delay_ticks = 5000u, .delay_compensation = 1u,               \
-    .watchdog_periods = 10u
+    .tick_hz = TVO_DEFAULT_TICK_HZ, .period_ticks = TVO_DEFAULT_PERIOD_US, .delay_ticks = TVO_DEFAULT_DELAY_US, \
+    .delay_compensation = 1u, .watchdog_periods = TVO_DEFAULT_WATCHDOG_PERIODS
 
 #endif /* TVO_SAMPLED_LOOP_H */

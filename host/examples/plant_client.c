@@ -14,16 +14,17 @@
 #include <lcm/lcm.h>
 
 #include "channels.h"     /* TVO_CHANNEL_*: the protocol's channel names */
+#include "tvo/defaults.h" /* the paper's loop: the values a START sends */
 #include "tvo_lcm_node_status_t.h"
 #include "tvo_lcm_session_ack_t.h"
 #include "tvo_lcm_session_t.h"
 #include "tvo_lcm_unicycle_command_t.h"
 #include "tvo_lcm_unicycle_sample_t.h"
 
-#define PERIOD_US 10000     /* h: period j's command applies at EPOCH_US + j h */
-#define DELAY_US 5000       /* tau: the sample for period j is taken at EPOCH_US + j h - tau */
-#define EPOCH_US 1000000    /* plant time at which the target's t = 0 */
-#define WATCHDOG_PERIODS 10 /* no command for this long: the robot stops itself */
+#define PERIOD_US TVO_DEFAULT_PERIOD_US /* h: period j's command applies at EPOCH_US + j h */
+#define DELAY_US TVO_DEFAULT_DELAY_US   /* tau: the sample for period j is taken at EPOCH_US + j h - tau */
+#define EPOCH_US 1000000                /* plant time at which the target's t = 0 */
+#define WATCHDOG_PERIODS TVO_DEFAULT_WATCHDOG_PERIODS /* no command for this long: the robot stops itself */
 #define PI 3.14159265358979323846
 
 typedef struct {
@@ -137,8 +138,9 @@ int main(int argc, char **argv)
         .clock_source = TVO_LCM_SESSION_T_CLOCK_PLANT, .epoch_utime = EPOCH_US, .period_us = PERIOD_US,
         .delay_us = DELAY_US, .delay_compensation = 1, .watchdog_periods = WATCHDOG_PERIODS,
         .plant_kind = TVO_LCM_SESSION_T_PLANT_UNICYCLE, .velocity_source = TVO_LCM_SESSION_T_VELOCITY_FROM_POSE,
-        .filter_tf_s = 0.05, .gain_kp = 40.0, .gain_kd = 13.0, .omega_max_radps = 2.0 * PI, .accel_max_mps2 = 15.0,
-        .speed_max_mps = 5.0, .min_speed_mps = 0.05, .robot_count = 1};
+        .filter_tf_s = TVO_DEFAULT_FILTER_TF_S, .gain_kp = TVO_DEFAULT_GAIN_KP, .gain_kd = TVO_DEFAULT_GAIN_KD,
+        .omega_max_radps = TVO_DEFAULT_OMEGA_MAX_RADPS, .accel_max_mps2 = TVO_DEFAULT_ACCEL_MAX_MPS2,
+        .speed_max_mps = TVO_DEFAULT_SPEED_MAX_MPS, .min_speed_mps = TVO_DEFAULT_MIN_SPEED_MPS, .robot_count = 1};
     s.robot[0] = (tvo_lcm_robot_t){.tracking_weight = {1.0, 1.0}, .target = {.kind = TVO_LCM_PATH_T_KIND_ELLIPSE,
         .semi_axis_m = {3.0, 1.5}, .omega_radps = 2.0 * PI / 10.0}};
     if (!request(lcm, &p, &s, TVO_LCM_SESSION_T_ACTION_START, r.now_us) || p.ack.status != 0) {

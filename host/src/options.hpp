@@ -8,6 +8,7 @@
 #include <string>
 
 #include "scenario.hpp"
+#include "tvo/defaults.h"
 
 namespace tvo_host {
 
@@ -34,17 +35,17 @@ struct SimOptions {
     // Sensing.
     double sigma{0.0};              // position (m), heading (rad) and speed (m/s) noise sigma
     bool position_only{false};
-    double filter_tf_s{0.05};
+    double filter_tf_s{TVO_DEFAULT_FILTER_TF_S};
     std::uint64_t seed{1};
 
     // Controller (validated by the firmware, not here: the firmware is the authority).
-    double gain_kp{40.0};
-    double gain_kd{13.0};
-    double omega_max_radps{6.283185307179586};
-    double accel_max_mps2{15.0};
-    double speed_max_mps{5.0};
-    double min_speed_mps{0.05};
-    std::int32_t watchdog_periods{10};
+    double gain_kp{TVO_DEFAULT_GAIN_KP};
+    double gain_kd{TVO_DEFAULT_GAIN_KD};
+    double omega_max_radps{TVO_DEFAULT_OMEGA_MAX_RADPS};
+    double accel_max_mps2{TVO_DEFAULT_ACCEL_MAX_MPS2};
+    double speed_max_mps{TVO_DEFAULT_SPEED_MAX_MPS};
+    double min_speed_mps{TVO_DEFAULT_MIN_SPEED_MPS};
+    std::int32_t watchdog_periods{TVO_DEFAULT_WATCHDOG_PERIODS};
     std::int32_t telemetry_every{0};  // session_t.telemetry_every: 0, the node's default (about 10 Hz)
 
     // Scenario (scenario.hpp). robots and the ellipse/circle choice shape the demo only.
@@ -73,8 +74,8 @@ struct SimOptions {
     bool dry_run{false};            // check the options, print what the run would do, run nothing
 
     // Derived.
-    std::int64_t period_us{10000};
-    std::int64_t delay_us{5000};
+    std::int64_t period_us{TVO_DEFAULT_PERIOD_US};
+    std::int64_t delay_us{TVO_DEFAULT_DELAY_US};
     std::int64_t extra_delay_us{0};
     std::int64_t steps{2000};
     std::int64_t link_loss_start_us{0};

@@ -30,13 +30,14 @@
 #include "board.h"
 #include "channels.h"
 #include "node.h"
+#include "tvo/defaults.h"
 #include "tvo_lcm_session_t.h"
 #include "tvo_lcm_unicycle_command_t.h"
 #include "tvo_lcm_unicycle_sample_t.h"
 
 #define BENCH_PERIODS 400u
-#define PERIOD_US 10000
-#define DELAY_US 5000
+#define PERIOD_US TVO_DEFAULT_PERIOD_US
+#define DELAY_US TVO_DEFAULT_DELAY_US
 #define START_UTIME 1000000
 #define EPOCH_UTIME (START_UTIME + 200000)
 #define FLEET_ROBOTS 8
@@ -140,17 +141,17 @@ static void session_defaults(int32_t robot_count)
     start.period_us = PERIOD_US;
     start.delay_us = DELAY_US;
     start.delay_compensation = 1;
-    start.watchdog_periods = 10;
+    start.watchdog_periods = TVO_DEFAULT_WATCHDOG_PERIODS;
     start.telemetry_every = 0;
     start.plant_kind = TVO_LCM_SESSION_T_PLANT_UNICYCLE;
     start.velocity_source = TVO_LCM_SESSION_T_VELOCITY_FROM_POSE;
-    start.filter_tf_s = 0.05;
-    start.gain_kp = 40.0;
-    start.gain_kd = 13.0;
-    start.omega_max_radps = 2.0 * PI_D;
-    start.accel_max_mps2 = 15.0;
+    start.filter_tf_s = TVO_DEFAULT_FILTER_TF_S;
+    start.gain_kp = TVO_DEFAULT_GAIN_KP;
+    start.gain_kd = TVO_DEFAULT_GAIN_KD;
+    start.omega_max_radps = TVO_DEFAULT_OMEGA_MAX_RADPS;
+    start.accel_max_mps2 = TVO_DEFAULT_ACCEL_MAX_MPS2;
     start.speed_max_mps = 2.0;
-    start.min_speed_mps = 0.05;
+    start.min_speed_mps = TVO_DEFAULT_MIN_SPEED_MPS;
     start.robot_count = robot_count;
     for (int32_t r = 0; r < robot_count; ++r) {
         start.robot[r].tracking_weight[0] = 1.0;

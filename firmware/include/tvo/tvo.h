@@ -9,6 +9,7 @@
 #include "tvo/chain_controller.h"
 #include "tvo/config.h"
 #include "tvo/controller.h"
+#include "tvo/defaults.h"
 #include "tvo/problem.h"
 #include "tvo/status.h"
 #include "tvo/target.h"

@@ -19,14 +19,14 @@ import sys
 import time
 
 import lcm
-from tvo import auth, wire
+from tvo import auth, defaults, wire
 from tvo_lcm import (command_header_t, node_status_t, path_t, session_ack_t, session_t, unicycle_command_t,
                      unicycle_sample_t)
 
-PERIOD_US = 10_000       # h: period j's command applies at EPOCH_US + j h
-DELAY_US = 5_000         # tau: the sample for period j is taken at EPOCH_US + j h - tau
-EPOCH_US = 1_000_000     # plant time at which the target's t = 0
-WATCHDOG_PERIODS = 10    # no command for this long: the robot stops itself (rule 5)
+PERIOD_US = defaults.PERIOD_US  # h: period j's command applies at EPOCH_US + j h
+DELAY_US = defaults.DELAY_US    # tau: the sample for period j is taken at EPOCH_US + j h - tau
+EPOCH_US = 1_000_000            # plant time at which the target's t = 0
+WATCHDOG_PERIODS = defaults.WATCHDOG_PERIODS  # no command for this long: the robot stops itself (rule 5)
 ANSWER_WAIT_S = 0.5      # lockstep: how long to wait for a sample's answer before counting it unanswered
 
 
@@ -164,9 +164,10 @@ def demo_session(session_id):
     s.protocol_version, s.session_id = node_status_t.PROTOCOL_VERSION, session_id
     s.clock_source, s.epoch_utime, s.period_us, s.delay_us = s.CLOCK_PLANT, EPOCH_US, PERIOD_US, DELAY_US
     s.delay_compensation, s.watchdog_periods = True, WATCHDOG_PERIODS
-    s.plant_kind, s.velocity_source, s.filter_tf_s = s.PLANT_UNICYCLE, s.VELOCITY_FROM_POSE, 0.05
-    s.gain_kp, s.gain_kd = 40.0, 13.0
-    s.omega_max_radps, s.accel_max_mps2, s.speed_max_mps, s.min_speed_mps = 2 * math.pi, 15.0, 5.0, 0.05
+    s.plant_kind, s.velocity_source, s.filter_tf_s = s.PLANT_UNICYCLE, s.VELOCITY_FROM_POSE, defaults.FILTER_TF_S
+    s.gain_kp, s.gain_kd = defaults.GAIN_KP, defaults.GAIN_KD
+    s.omega_max_radps, s.accel_max_mps2 = defaults.OMEGA_MAX_RADPS, defaults.ACCEL_MAX_MPS2
+    s.speed_max_mps, s.min_speed_mps = defaults.SPEED_MAX_MPS, defaults.MIN_SPEED_MPS
     s.robot_count = 1
     robot = s.robot[0]
     robot.tracking_weight = [1.0, 1.0]
