@@ -4,6 +4,7 @@
 #include <stddef.h>
 #include <string.h>
 
+#include "tvo/defaults.h"
 #include "tvo/status.h"
 #include "tvo_lcm_chain_command_t.h"
 #include "tvo_lcm_chain_sample_t.h"
@@ -132,6 +133,43 @@ uint64_t tvo_joint_digest(const double *speed_mps, const double *turn_rate_radps
         hash = fnv_double(hash, turn_rate_radps[r]);
     }
     return hash;
+}
+
+int tvo_protocol_default_start(tvo_lcm_session_t *start, int32_t robot_count)
+{
+    if (start == NULL || robot_count < 1 || robot_count > TVO_LCM_SESSION_T_MAX_ROBOTS) {
+        return -1;
+    }
+    memset(start, 0, sizeof(*start));
+    start->protocol_version = TVO_LCM_NODE_STATUS_T_PROTOCOL_VERSION;
+    start->action = TVO_LCM_SESSION_T_ACTION_START;
+    start->clock_source = TVO_LCM_SESSION_T_CLOCK_PLANT;
+    start->period_us = TVO_DEFAULT_PERIOD_US;
+    start->delay_us = TVO_DEFAULT_DELAY_US;
+    start->delay_compensation = 1;
+    start->watchdog_periods = TVO_DEFAULT_WATCHDOG_PERIODS;
+    start->plant_kind = TVO_LCM_SESSION_T_PLANT_UNICYCLE;
+    start->velocity_source = TVO_LCM_SESSION_T_VELOCITY_FROM_POSE;
+    start->filter_tf_s = TVO_DEFAULT_FILTER_TF_S;
+    start->gain_kp = TVO_DEFAULT_GAIN_KP;
+    start->gain_kd = TVO_DEFAULT_GAIN_KD;
+    start->omega_max_radps = TVO_DEFAULT_OMEGA_MAX_RADPS;
+    start->accel_max_mps2 = TVO_DEFAULT_ACCEL_MAX_MPS2;
+    start->speed_max_mps = TVO_DEFAULT_SPEED_MAX_MPS;
+    start->min_speed_mps = TVO_DEFAULT_MIN_SPEED_MPS;
+    start->robot_count = robot_count;
+    for (int32_t r = 0; r < robot_count; ++r) {
+        start->robot[r].tracking_weight[0] = 1.0;
+        start->robot[r].tracking_weight[1] = 1.0;
+    }
+    start->barrier.c0 = TVO_DEFAULT_BARRIER_C0;
+    start->barrier.alpha_c_per_s = TVO_DEFAULT_BARRIER_ALPHA_C_PER_S;
+    start->barrier.c_max = TVO_DEFAULT_BARRIER_C_MAX;
+    start->barrier.delta0 = TVO_DEFAULT_BARRIER_DELTA0;
+    start->barrier.alpha_s_per_s = TVO_DEFAULT_BARRIER_ALPHA_S_PER_S;
+    start->barrier.slack_margin = TVO_DEFAULT_BARRIER_SLACK_MARGIN;
+    start->barrier.relaxation_degree = TVO_DEFAULT_BARRIER_RELAXATION_DEGREE;
+    return 0;
 }
 
 const char *tvo_protocol_part_str(int32_t part)

@@ -103,6 +103,17 @@ typedef enum {
  *  the wire code it goes out as (tvo_step_wire_status). */
 const char *tvo_protocol_status_str(int32_t status);
 
+struct _tvo_lcm_session_t;
+
+/**
+ * A START of the paper's loop (tvo/defaults.h) for robot_count robots, lockstep (CLOCK_PLANT): the
+ * protocol version, the action, h, tau with its compensation, the watchdog, the unicycle's gains and
+ * limits, tracking weights 1 and the barrier's defaults; every other field zero (the session id, the
+ * nodes' boots, utime, epoch and targets are the caller's). 0, or -1 (start untouched) for a NULL start
+ * or a robot_count outside 1 .. session_t.MAX_ROBOTS. One place for every C plant, bench and test.
+ */
+int tvo_protocol_default_start(struct _tvo_lcm_session_t *start, int32_t robot_count);
+
 /** Short name of a problem part named by a session ack (session_ack_t.PART_*), for logs. */
 const char *tvo_protocol_part_str(int32_t part);
 

@@ -3,6 +3,7 @@
 
 #include <string.h>
 
+#include "tvo/defaults.h"
 #include "internal/barrier_kernel.h"
 #include "internal/exp_log.h"
 
@@ -14,13 +15,13 @@ tvo_status_t tvo_barrier_config_default(tvo_barrier_config_t *cfg)
     if (cfg == NULL) {
         return TVO_ERR_NULL;
     }
-    cfg->c0 = TVO_R(1.0);
-    cfg->alpha_c_per_s = TVO_R(1.0);
-    cfg->c_max = TVO_R(1e4);
-    cfg->delta0 = TVO_R(0.05);
-    cfg->alpha_s_per_s = TVO_R(1.0);
-    cfg->slack_margin = TVO_R(0.1);
-    cfg->relaxation_degree = 4u;
+    cfg->c0 = (tvo_real_t)TVO_DEFAULT_BARRIER_C0;
+    cfg->alpha_c_per_s = (tvo_real_t)TVO_DEFAULT_BARRIER_ALPHA_C_PER_S;
+    cfg->c_max = (tvo_real_t)TVO_DEFAULT_BARRIER_C_MAX;
+    cfg->delta0 = (tvo_real_t)TVO_DEFAULT_BARRIER_DELTA0;
+    cfg->alpha_s_per_s = (tvo_real_t)TVO_DEFAULT_BARRIER_ALPHA_S_PER_S;
+    cfg->slack_margin = (tvo_real_t)TVO_DEFAULT_BARRIER_SLACK_MARGIN;
+    cfg->relaxation_degree = TVO_DEFAULT_BARRIER_RELAXATION_DEGREE;
     return TVO_OK;
 }
 

@@ -163,16 +163,12 @@ static void transport(void *context, int channel, const uint8_t *data, uint32_t 
 /* A genuine START naming the node's boot: the clock and the robot count from the variant byte. */
 static void make_session(uint8_t variant)
 {
-    memset(&session, 0, sizeof(session));
     const int32_t robots = 1 + (int32_t)((variant >> 1) % (uint8_t)TVO_NODE_MAX_ROBOTS);
+    (void)tvo_protocol_default_start(&session, robots); /* 1 .. TVO_NODE_MAX_ROBOTS: in range */
     session.utime = 5000000;
-    session.protocol_version = TVO_LCM_NODE_STATUS_T_PROTOCOL_VERSION;
     session.session_id = 77;
-    session.action = TVO_LCM_SESSION_T_ACTION_START;
     for (int32_t r = 0; r < robots; ++r) {
         session.node_boot_id[r] = BOOT_ID;
-        session.robot[r].tracking_weight[0] = 1.0;
-        session.robot[r].tracking_weight[1] = 1.0;
         session.robot[r].target.kind = TVO_LCM_PATH_T_KIND_CIRCLE;
         session.robot[r].target.center_m[0] = 3.0 * r;
         session.robot[r].target.semi_axis_m[0] = 1.0;
@@ -180,27 +176,9 @@ static void make_session(uint8_t variant)
     }
     session.clock_source = (variant & 1u) ? TVO_LCM_SESSION_T_CLOCK_NODE : TVO_LCM_SESSION_T_CLOCK_PLANT;
     session.epoch_utime = 5200000;
-    session.period_us = 10000;
-    session.delay_us = 5000;
-    session.delay_compensation = 1;
     session.watchdog_periods = 5;
-    session.plant_kind = TVO_LCM_SESSION_T_PLANT_UNICYCLE;
-    session.velocity_source = TVO_LCM_SESSION_T_VELOCITY_FROM_POSE;
-    session.filter_tf_s = 0.05;
-    session.gain_kp = 40.0;
-    session.gain_kd = 13.0;
     session.omega_max_radps = 6.0;
-    session.accel_max_mps2 = 15.0;
     session.speed_max_mps = 2.0;
-    session.min_speed_mps = 0.05;
-    session.robot_count = robots;
-    session.barrier.c0 = 1.0;
-    session.barrier.alpha_c_per_s = 1.0;
-    session.barrier.c_max = 1e4;
-    session.barrier.delta0 = 0.05;
-    session.barrier.alpha_s_per_s = 1.0;
-    session.barrier.slack_margin = 0.1;
-    session.barrier.relaxation_degree = 4;
 }
 
 static int64_t fingerprint_of(int channel)

@@ -21,8 +21,6 @@
 #define FUZZ_SESSION_ID 42
 #define FUZZ_BOOT ((int64_t)4711) /* the fuzzed node's boot, which the reference STARTs name */
 #define FUZZ_EPOCH_US 1000000
-#define FUZZ_PERIOD_US 10000
-#define FUZZ_DELAY_US 5000
 
 static inline void fuzz_fail(const char *invariant)
 {
@@ -34,51 +32,30 @@ static inline void fuzz_fail(const char *invariant)
  * robots (a chain has one), telemetry after every answer or at the default rate (bit 6). */
 static inline void fuzz_session(tvo_lcm_session_t *s, uint8_t variant)
 {
-    memset(s, 0, sizeof(*s));
+    const int32_t robots = ((variant & 8u) && !(variant & 2u)) ? 2 : 1; /* a chain has one robot */
+    (void)tvo_protocol_default_start(s, robots);                        /* 1 or 2: in range */
     s->utime = FUZZ_EPOCH_US;
-    s->protocol_version = TVO_LCM_NODE_STATUS_T_PROTOCOL_VERSION;
     s->session_id = FUZZ_SESSION_ID;
-    s->action = TVO_LCM_SESSION_T_ACTION_START;
     for (int r = 0; r < TVO_LCM_SESSION_T_MAX_ROBOTS; ++r) {
         s->node_boot_id[r] = FUZZ_BOOT;
     }
     s->telemetry_every = (variant & 64u) ? 0 : 1;
     s->clock_source = (variant & 1u) ? TVO_LCM_SESSION_T_CLOCK_NODE : TVO_LCM_SESSION_T_CLOCK_PLANT;
     s->epoch_utime = FUZZ_EPOCH_US;
-    s->period_us = FUZZ_PERIOD_US;
-    s->delay_us = FUZZ_DELAY_US;
-    s->delay_compensation = 1;
     s->watchdog_periods = 4;
     s->plant_kind = (variant & 2u) ? TVO_LCM_SESSION_T_PLANT_CHAIN : TVO_LCM_SESSION_T_PLANT_UNICYCLE;
     s->velocity_source = (variant & 4u) ? TVO_LCM_SESSION_T_VELOCITY_FROM_POSITION : TVO_LCM_SESSION_T_VELOCITY_FROM_POSE;
-    s->filter_tf_s = 0.05;
-    s->gain_kp = 40.0;
-    s->gain_kd = 13.0;
-    s->omega_max_radps = 6.283185307179586;
-    s->accel_max_mps2 = 15.0;
-    s->speed_max_mps = 5.0;
-    s->min_speed_mps = 0.05;
     s->chain_relative_degree = 2;
     s->chain_gains[0] = 2.56;
     s->chain_gains[1] = 3.2;
     s->chain_input_max = 100.0;
-    s->robot_count = ((variant & 8u) && !(variant & 2u)) ? 2 : 1; /* a chain has one robot */
     for (int r = 0; r < s->robot_count; ++r) {
-        s->robot[r].tracking_weight[0] = 1.0;
-        s->robot[r].tracking_weight[1] = 1.0;
         s->robot[r].target.kind = TVO_LCM_PATH_T_KIND_ELLIPSE;
         s->robot[r].target.center_m[0] = 2.0 * r;
         s->robot[r].target.semi_axis_m[0] = 3.0;
         s->robot[r].target.semi_axis_m[1] = 1.5;
         s->robot[r].target.omega_radps = 0.6283185307179586;
     }
-    s->barrier.c0 = 1.0;
-    s->barrier.alpha_c_per_s = 1.0;
-    s->barrier.c_max = 1e4;
-    s->barrier.delta0 = 0.05;
-    s->barrier.alpha_s_per_s = 1.0;
-    s->barrier.slack_margin = 0.1;
-    s->barrier.relaxation_degree = 4;
     if ((variant & 16u) && s->robot_count == 2) {
         s->distance_count = 1;
         s->distance[0].robot_a = 0;

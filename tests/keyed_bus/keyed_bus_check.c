@@ -318,40 +318,20 @@ static tvo_lcm_session_t g_session;
 /* One unicycle on a circle, CLOCK_PLANT lockstep, naming boot `boot`. */
 static void make_session(int32_t session_id, int8_t action, int64_t boot, int64_t utime)
 {
-    memset(&g_session, 0, sizeof(g_session));
+    (void)tvo_protocol_default_start(&g_session, 1);
     g_session.utime = utime;
-    g_session.protocol_version = TVO_LCM_NODE_STATUS_T_PROTOCOL_VERSION;
     g_session.session_id = session_id;
     g_session.action = action;
     g_session.node_boot_id[0] = boot;
-    g_session.clock_source = TVO_LCM_SESSION_T_CLOCK_PLANT;
     g_session.epoch_utime = utime + 100000;
     g_session.period_us = PERIOD_US;
     g_session.delay_us = DELAY_US;
-    g_session.delay_compensation = 1;
     g_session.watchdog_periods = WATCHDOG_PERIODS;
-    g_session.plant_kind = TVO_LCM_SESSION_T_PLANT_UNICYCLE;
-    g_session.velocity_source = TVO_LCM_SESSION_T_VELOCITY_FROM_POSE;
-    g_session.filter_tf_s = 0.05;
-    g_session.gain_kp = 40.0;
-    g_session.gain_kd = 13.0;
     g_session.omega_max_radps = 6.0;
-    g_session.accel_max_mps2 = 15.0;
     g_session.speed_max_mps = 2.0;
-    g_session.min_speed_mps = 0.05;
-    g_session.robot_count = 1;
-    g_session.robot[0].tracking_weight[0] = 1.0;
-    g_session.robot[0].tracking_weight[1] = 1.0;
     g_session.robot[0].target.kind = TVO_LCM_PATH_T_KIND_CIRCLE;
     g_session.robot[0].target.semi_axis_m[0] = 1.0;
     g_session.robot[0].target.omega_radps = 0.5;
-    g_session.barrier.c0 = 1.0;
-    g_session.barrier.alpha_c_per_s = 1.0;
-    g_session.barrier.c_max = 1e4;
-    g_session.barrier.delta0 = 0.05;
-    g_session.barrier.alpha_s_per_s = 1.0;
-    g_session.barrier.slack_margin = 0.1;
-    g_session.barrier.relaxation_degree = 4;
 }
 
 /* Rule 2 (and 6): a session message naming `boot`, repeated with back-off until its ack; the ack's status. */

@@ -36,7 +36,7 @@
 #include "tvo_lcm_unicycle_sample_t.h"
 
 #define BENCH_PERIODS 400u
-#define PERIOD_US TVO_DEFAULT_PERIOD_US
+#define PERIOD_US TVO_DEFAULT_PERIOD_US /* the session's h and tau: tvo_protocol_default_start's */
 #define DELAY_US TVO_DEFAULT_DELAY_US
 #define START_UTIME 1000000
 #define EPOCH_UTIME (START_UTIME + 200000)
@@ -126,44 +126,17 @@ static void move(robot_t *r, double dt_s)
     r->heading_rad = atan2(sin(h0 + w * dt_s), cos(h0 + w * dt_s));
 }
 
+/* The paper's loop (tvo_protocol_default_start), lockstep, at 2 m/s: the bench's session. */
 static void session_defaults(int32_t robot_count)
 {
-    memset(&start, 0, sizeof(start));
+    (void)tvo_protocol_default_start(&start, robot_count); /* 1 .. FLEET_ROBOTS: in range */
     start.utime = START_UTIME;
-    start.protocol_version = TVO_LCM_NODE_STATUS_T_PROTOCOL_VERSION;
     start.session_id = 77;
-    start.action = TVO_LCM_SESSION_T_ACTION_START;
     for (int32_t r = 0; r < robot_count; ++r) {
         start.node_boot_id[r] = BOOT_ID;
     }
-    start.clock_source = TVO_LCM_SESSION_T_CLOCK_PLANT;
     start.epoch_utime = EPOCH_UTIME;
-    start.period_us = PERIOD_US;
-    start.delay_us = DELAY_US;
-    start.delay_compensation = 1;
-    start.watchdog_periods = TVO_DEFAULT_WATCHDOG_PERIODS;
-    start.telemetry_every = 0;
-    start.plant_kind = TVO_LCM_SESSION_T_PLANT_UNICYCLE;
-    start.velocity_source = TVO_LCM_SESSION_T_VELOCITY_FROM_POSE;
-    start.filter_tf_s = TVO_DEFAULT_FILTER_TF_S;
-    start.gain_kp = TVO_DEFAULT_GAIN_KP;
-    start.gain_kd = TVO_DEFAULT_GAIN_KD;
-    start.omega_max_radps = TVO_DEFAULT_OMEGA_MAX_RADPS;
-    start.accel_max_mps2 = TVO_DEFAULT_ACCEL_MAX_MPS2;
     start.speed_max_mps = 2.0;
-    start.min_speed_mps = TVO_DEFAULT_MIN_SPEED_MPS;
-    start.robot_count = robot_count;
-    for (int32_t r = 0; r < robot_count; ++r) {
-        start.robot[r].tracking_weight[0] = 1.0;
-        start.robot[r].tracking_weight[1] = 1.0;
-    }
-    start.barrier.c0 = 1.0;
-    start.barrier.alpha_c_per_s = 1.0;
-    start.barrier.c_max = 1e4;
-    start.barrier.delta0 = 0.05;
-    start.barrier.alpha_s_per_s = 1.0;
-    start.barrier.slack_margin = 0.1;
-    start.barrier.relaxation_degree = 4;
 }
 
 /* bench_problems.h's "unicycle": an ellipse (3 m x 1.5 m, one turn in 10 s), the robot from (-1, -2). */

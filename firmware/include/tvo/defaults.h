@@ -1,6 +1,6 @@
 /*
- * The paper's loop, written once: the values tvo_controller_config_default and tvo_chain_config_default
- * give, which the host's plant (tvo_sim's options), the example plants and the Python module
+ * The paper's loop, written once: the values tvo_controller_config_default, tvo_chain_config_default and
+ * tvo_barrier_config_default give, which the host's plant (tvo_sim's options), the example plants and the Python module
  * (tvo.defaults) send in a START. Plain double literals, so a host, a plant in another language and the
  * core in either precision read the same numbers.
  */
@@ -29,5 +29,14 @@
 #define TVO_DEFAULT_CHAIN_GAIN_0 2.56
 #define TVO_DEFAULT_CHAIN_GAIN_1 3.2
 #define TVO_DEFAULT_CHAIN_INPUT_MAX 1e3
+
+/* The barrier (tvo_barrier_config_default): c0, alpha_c (1/s), c_max, delta0, alpha_s (1/s), eps_s, m_r. */
+#define TVO_DEFAULT_BARRIER_C0 1.0
+#define TVO_DEFAULT_BARRIER_ALPHA_C_PER_S 1.0
+#define TVO_DEFAULT_BARRIER_C_MAX 1e4
+#define TVO_DEFAULT_BARRIER_DELTA0 0.05
+#define TVO_DEFAULT_BARRIER_ALPHA_S_PER_S 1.0
+#define TVO_DEFAULT_BARRIER_SLACK_MARGIN 0.1
+#define TVO_DEFAULT_BARRIER_RELAXATION_DEGREE 4
 
 #endif /* TVO_DEFAULTS_H */
