@@ -10,7 +10,9 @@
  * keeps what the period gathered (the robots' states, the joint command the next prediction follows)
  * only when the core committed the period, as its outcome says: a refused period keeps nothing.
  */
-#include "node_private.h"
+#include "node_period.h"
+
+#include "node_publish.h"
 
 #include <math.h>
 #include <string.h>
