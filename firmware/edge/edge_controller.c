@@ -23,8 +23,8 @@ static tvo_status_t rejected_by_core(tvo_status_t st, tvo_session_param_t bad, t
  * api: the core's prefix, with the plant's configuration and parameter types). init decodes a START
  * into the plant's configuration and hands it to the core's init; the step, the miss and the safe
  * stop are the core's own public calls (its loop decides hold, refusal and stop), and so is refuse (a
- * sample the node refused: the core answers with the command in force or its watchdog's stop); committed reads the core's outcome (no second judgement of the period);
- * clock is the clock the node rebases.
+ * sample the node refused: the core answers with the command in force or its watchdog's stop); mark
+ * reads what the core's command says (its flags, outcome and reason); clock is the clock the node rebases.
  */
 #define EDGE_LOOP_OPS(member, api, config_type, param_type, param_none)                                        \
     static tvo_status_t member##_init(tvo_edge_controller_t *ctl, const tvo_lcm_session_t *msg,               \
@@ -69,10 +69,6 @@ static tvo_status_t rejected_by_core(tvo_status_t st, tvo_session_param_t bad, t
                                       (tvo_reason_t)cmd->member.reason};                                       \
         return mark;                                                                                           \
     }                                                                                                          \
-    static int member##_committed(const tvo_edge_command_t *cmd)                                              \
-    {                                                                                                          \
-        return cmd->member.outcome == TVO_OUTCOME_APPLIED || cmd->member.reason == TVO_REASON_SPEED_MISMATCH;  \
-    }                                                                                                          \
     static tvo_sample_clock_t *member##_clock(tvo_edge_controller_t *ctl)                                     \
     {                                                                                                          \
         return &ctl->u.member.internal.loop.clock;                                                             \
@@ -81,7 +77,7 @@ static tvo_status_t rejected_by_core(tvo_status_t st, tvo_session_param_t bad, t
 /* The eight in a table's initialiser. */
 #define EDGE_LOOP_ENTRIES(member)                                                                              \
     .init = member##_init, .step = member##_step, .miss = member##_miss, .safe_stop = member##_safe_stop,      \
-    .refuse = member##_refuse, .check = member##_check, .mark = member##_mark, .committed = member##_committed, .clock = member##_clock
+    .refuse = member##_refuse, .check = member##_check, .mark = member##_mark, .clock = member##_clock
 
 EDGE_LOOP_OPS(unicycle, tvo_controller, tvo_controller_config_t, tvo_param_t, TVO_PARAM_NONE)
 EDGE_LOOP_OPS(chain, tvo_chain_controller, tvo_chain_config_t, tvo_chain_param_t, TVO_CHAIN_PARAM_NONE)

@@ -58,7 +58,7 @@ typedef struct {
     tvo_node_status_t (*measurement)(const tvo_edge_controller_t *ctl, const tvo_edge_samples_t *samples,
                                      uint8_t robot_count, uint32_t stamp_tick, tvo_edge_measurement_t *meas);
     /* The core's sampled-data loop, the same for every plant (edge_controller.c's EDGE_LOOP_OPS): init
-     * (above), step, miss, safe_stop, refuse, check, mark, committed, clock. The others map the wire to the plant. */
+     * (above), step, miss, safe_stop, refuse, check, mark, clock. The others map the wire to the plant. */
     /** The core's step: a transaction (a whole period committed, or nothing changed and the refusal's
      *  command: the one in force, or the watchdog's stop). */
     tvo_status_t (*step)(tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas, uint32_t apply_tick,
@@ -73,11 +73,9 @@ typedef struct {
     /** What the core's step would say of this measurement, changing nothing (tvo_controller_check). */
     tvo_status_t (*check)(const tvo_edge_controller_t *ctl, const tvo_edge_measurement_t *meas, uint32_t apply_tick,
                           tvo_reason_t *reason);
-    /** A command's flags, outcome and reason. */
+    /** A command's flags, outcome and reason: what the core's answer says (whether it took the period's
+     *  sample included: node_period.c reads it in one place). */
     tvo_edge_mark_t (*mark)(const tvo_edge_command_t *cmd);
-    /** 1 if the step that delivered cmd took its measurement (the core committed the period: applied,
-     *  or the speed mismatch's stop, whose measurement was accepted), as the command's outcome says. */
-    int (*committed)(const tvo_edge_command_t *cmd);
     /** Robot `robot`'s command (the chain: robot 0's u) encoded into buffer: its length, or <= 0. */
     int (*encode_command)(const tvo_edge_command_t *cmd, const tvo_step_stamp_t *stamp, int32_t robot, uint8_t *buffer,
                           uint32_t capacity);

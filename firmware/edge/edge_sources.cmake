@@ -7,6 +7,7 @@ set(tvo_edge_node_sources
   ${tvo_edge_dir}/node_start.c
   ${tvo_edge_dir}/node_period.c
   ${tvo_edge_dir}/node_publish.c
+  ${tvo_edge_dir}/node_state.c
   ${tvo_edge_dir}/schedule.c
   ${tvo_edge_dir}/schedule_plant_clock.c
   ${tvo_edge_dir}/schedule_node_clock.c

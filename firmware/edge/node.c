@@ -3,31 +3,15 @@
  * decoded once in place, classified into an event, and the session table (node_sessions.c) says what
  * it does in the node's state. The timer announces the node and serves a CLOCK_NODE session's misses.
  */
-#include "node_private.h"
+#include "node_period.h"
+#include "node_publish.h"
+#include "node_sessions.h"
+#include "node_state.h"
 
 #include <string.h>
 
 #include "tvo_lcm_chain_command_t.h"
 #include "tvo_lcm_unicycle_command_t.h"
-
-void tvo_node_count(int32_t *counter)
-{
-    if (*counter < INT32_MAX) {
-        ++*counter;
-    }
-}
-
-void tvo_node_count_refusal(tvo_node_t *node, int32_t wire_status)
-{
-    const uint32_t slot = (uint32_t)wire_status < (uint32_t)TVO_LCM_NODE_COUNTERS_T_STATUS_SLOTS ? (uint32_t)wire_status : 0u;
-    tvo_node_count(&node->counters.refused[slot]);
-    node->last_refusal = wire_status;
-}
-
-tvo_node_session_t *tvo_node_running_slot(tvo_node_t *node)
-{
-    return &node->slot[node->running];
-}
 
 /* Each published type's encoded size, against the channel table's (the session's, 11 kB, is checked
  * by test_channels: not on a board's stack). */
@@ -74,21 +58,6 @@ int tvo_node_init(tvo_node_t *node, int8_t own_robot, int64_t boot_id, tvo_node_
     node->publish_context = publish_context;
     node->last_target_status = TVO_LCM_COMMAND_HEADER_T_STATUS_OK;
     return 0;
-}
-
-const tvo_node_session_t *tvo_node_session(const tvo_node_t *node)
-{
-    return (node != NULL && node->state == TVO_NODE_RUNNING) ? &node->slot[node->running] : NULL;
-}
-
-const tvo_lcm_node_counters_t *tvo_node_counters(const tvo_node_t *node)
-{
-    return node != NULL ? &node->counters : NULL;
-}
-
-int tvo_node_stop_requested(const tvo_node_t *node)
-{
-    return node != NULL && node->stop_requested;
 }
 
 void tvo_node_count_drop(tvo_node_t *node, tvo_node_drop_t why)

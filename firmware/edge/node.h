@@ -27,10 +27,15 @@
  *                     the core (tvo_controller_miss); once its watchdog stops the robots, a safe stop
  *                     per driven robot, stamped now, every period until samples are accepted again.
  *
- * The node's files, one job each: node.c (these entry points: decoding, classification, counters),
- * node_sessions.c (the session table), node_start.c (building a session from a START),
- * node_period.c (gathering samples, prediction, the period's step), node_publish.c (commands,
- * telemetry at its rate, acks, announcements); node_private.h joins them.
+ * The node's files, one job each, in layers: each calls only the files listed below it, through
+ * their private headers (node_<file>.h), and none calls node.c.
+ *   node.c           these entry points: a frame's size and decoding, the event it is; the timer
+ *   node_sessions.c  the session table: what each event does in each state; the boot check
+ *   node_period.c    samples gathered per robot, prediction, the period's step; streamed targets;
+ *                    the CLOCK_NODE timer's misses
+ *   node_start.c     a session built from a START (every check, the core's inits) in a spare slot
+ *   node_publish.c   commands (one per driven robot), telemetry at its rate, acks, announcements
+ *   node_state.c     the node's state as every file reads and counts it: counters, the running session
  *
  * Times: the node's clock now_us is int64 microseconds, monotonic, in [0, TVO_WIRE_TIME_MAX_US].
  * Every integer from the wire is range-checked before arithmetic (session_codec.h).

@@ -10,7 +10,9 @@
  * keeps what the period gathered (the robots' states, the joint command the next prediction follows)
  * only when the core committed the period, as its outcome says: a refused period keeps nothing.
  */
-#include "node_private.h"
+#include "node_period.h"
+
+#include "node_publish.h"
 
 #include <math.h>
 #include <string.h>
@@ -166,19 +168,31 @@ static void gathering_commit(tvo_node_session_t *s, const tvo_node_period_work_t
 
 /* ---- the period's step -------------------------------------------------------------------------- */
 
+/* The core's answer, as its returned status and command say it. */
+typedef struct {
+    tvo_edge_mark_t mark;                      /* the command's flags, outcome and reason */
+    int took_sample;                           /* the core committed the period (took its measurement) */
+} node_answer_t;
+
+/* The one reading of what the core returned: it took the period's sample if it committed the period
+ * (applied, or the speed mismatch's stop, whose measurement it accepted), as the command's outcome says. */
+static node_answer_t core_answer(const tvo_node_session_t *s, tvo_status_t error, const tvo_edge_command_t *cmd)
+{
+    node_answer_t answer;
+    answer.mark = s->controller.ops->mark(cmd);
+    answer.took_sample = error == TVO_OK && (answer.mark.outcome == TVO_OUTCOME_APPLIED ||
+                                             answer.mark.reason == TVO_REASON_SPEED_MISMATCH);
+    return answer;
+}
+
 /* What one attempt to serve the period on a schedule came to. */
 typedef struct {
     tvo_step_why_t why;                        /* the edge's refusal, the core's error, or the command's reason */
     tvo_schedule_placement_t placement;
     uint32_t apply_tick;                       /* the core's tick of placement.apply_us (when stepped) */
     int stepped;                               /* the core stepped: work->command is its answer */
+    node_answer_t answer;                      /* the core's (when stepped; else took_sample 0) */
 } node_attempt_t;
-
-/* The core took the period: its outcome says it committed. */
-static int attempt_taken(const tvo_node_session_t *s, const tvo_node_period_work_t *work, const node_attempt_t *attempt)
-{
-    return attempt->stepped && attempt->why.error == TVO_OK && s->controller.ops->committed(&work->command);
-}
 
 /* The period passed every check, the core's included, and only its law could not serve it (a target
  * sample not there yet). When the core's answer is its watchdog's stop, its check (which changes
@@ -209,6 +223,7 @@ static void attempt_period(tvo_node_t *node, tvo_node_session_t *s, const tvo_sc
     const tvo_step_why_t none = {TVO_NODE_OK, TVO_OK, TVO_REASON_NONE};
     attempt->stepped = 0;
     attempt->why = none;
+    memset(&attempt->answer, 0, sizeof(attempt->answer));
     attempt->why.node = tvo_schedule_place(schedule, header, now_us, &attempt->placement);
     if (attempt->why.node == TVO_NODE_OK && work->unheard) {
         attempt->why.node = TVO_NODE_ROBOT_UNHEARD;
@@ -224,7 +239,8 @@ static void attempt_period(tvo_node_t *node, tvo_node_session_t *s, const tvo_sc
     /* The core's step is a transaction: the barrier's s0 included (its objective's start rule). */
     attempt->apply_tick = tvo_schedule_tick(schedule, attempt->placement.apply_us);
     attempt->why.error = ops->step(&s->controller, &work->measurement, attempt->apply_tick, &work->command);
-    attempt->why.reason = ops->mark(&work->command).reason;
+    attempt->answer = core_answer(s, attempt->why.error, &work->command);
+    attempt->why.reason = attempt->answer.mark.reason;
     attempt->stepped = 1;
 }
 
@@ -237,12 +253,13 @@ static void refuse_period(tvo_node_t *node, tvo_node_session_t *s, const tvo_lcm
     tvo_node_period_work_t *work = &node->work;
     tvo_step_stamp_t stamp = {s->schedule.ops->refusal_utime(&s->schedule, header, now_us), s->session_id,
                               header->sequence, attempt->why};
+    node_answer_t answer = attempt->answer;
     if (!attempt->stepped) {
-        (void)s->controller.ops->refuse(&s->controller, &work->command); /* an initialised session: TVO_OK */
+        /* an initialised session: TVO_OK */
+        answer = core_answer(s, s->controller.ops->refuse(&s->controller, &work->command), &work->command);
     }
-    const tvo_edge_mark_t mark = s->controller.ops->mark(&work->command);
-    if (mark.outcome == TVO_OUTCOME_STOPPED) {
-        const tvo_step_why_t stopped = {TVO_NODE_OK, TVO_OK, mark.reason};
+    if (answer.mark.outcome == TVO_OUTCOME_STOPPED) {
+        const tvo_step_why_t stopped = {TVO_NODE_OK, TVO_OK, answer.mark.reason};
         stamp.why = stopped;
     }
     /* Counted under the status its answer carries (node_counters_t.refused); last_refusal keeps why,
@@ -271,16 +288,16 @@ static void serve_period(tvo_node_t *node, tvo_node_session_t *s, const tvo_node
     }
     node_attempt_t attempt;
     attempt_period(node, s, &s->schedule, header, &samples, in->now_us, &attempt);
-    if (!attempt_taken(s, work, &attempt)) {
+    if (!attempt.answer.took_sample) {
         tvo_schedule_t moved = s->schedule;
         if (s->schedule.ops->vote(&s->schedule, header, &attempt.why, in->now_us, &moved.anchor)) {
             attempt_period(node, s, &moved, header, &samples, in->now_us, &attempt);
-            if (attempt_taken(s, work, &attempt) || law_refused(s, work, &attempt)) {
+            if (attempt.answer.took_sample || law_refused(s, work, &attempt)) {
                 s->schedule.anchor = moved.anchor;
             }
         }
     }
-    if (!attempt_taken(s, work, &attempt)) {
+    if (!attempt.answer.took_sample) {
         refuse_period(node, s, header, &attempt, in->now_us);
         return;
     }
@@ -384,9 +401,9 @@ int64_t tvo_node_serve_timer(tvo_node_t *node, int64_t now_us)
         const uint32_t apply_tick = tvo_schedule_tick(schedule, tvo_schedule_apply_us(schedule, period));
         tvo_step_why_t why = {TVO_NODE_OK, TVO_OK, TVO_REASON_NONE};
         why.error = s->controller.ops->miss(&s->controller, apply_tick, cmd);
-        const tvo_edge_mark_t mark = s->controller.ops->mark(cmd);
-        why.reason = mark.reason;
-        if (mark.outcome == TVO_OUTCOME_STOPPED) {
+        const node_answer_t answer = core_answer(s, why.error, cmd);
+        why.reason = answer.mark.reason;
+        if (answer.mark.outcome == TVO_OUTCOME_STOPPED) {
             const tvo_step_stamp_t stamp = {tvo_schedule_plant_utime(schedule, now_us), s->session_id, -1, why};
             tvo_node_publish_own_stop(node, s, cmd, &stamp);
         }

@@ -4,7 +4,7 @@
  * sequence, the acks, and the node's announcement (node_status_t). Everything is encoded into the
  * node's one buffer: publishing allocates nothing.
  */
-#include "node_private.h"
+#include "node_publish.h"
 
 #include <string.h>
 

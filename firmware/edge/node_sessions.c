@@ -4,7 +4,11 @@
  * node's boot (a START or STOP recorded before the node's latest start, or meant for another node, is
  * dropped unanswered), then by its session id.
  */
-#include "node_private.h"
+#include "node_sessions.h"
+
+#include "node_period.h"
+#include "node_publish.h"
+#include "node_start.h"
 
 #include <string.h>
 

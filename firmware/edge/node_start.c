@@ -3,7 +3,7 @@
  * "Sessions"): the wire's checks (session_codec.c), the problem, the schedule of its clock mode and
  * the plant's controller; the running session is not touched, so a refused START cannot disturb it.
  */
-#include "node_private.h"
+#include "node_start.h"
 
 #include <string.h>
 
