@@ -87,8 +87,8 @@ typedef struct {
     tvo_frame_decoder_t peek;                 /* reads a frame's channel before it may be corrupted */
     uint8_t frame[TVO_FRAME_MAX_ENCODED];
     uint8_t payload[TVO_FRAME_MAX_PAYLOAD];
-    /* The frame from the target being collected, delimiter excluded; one byte more than the decoder
-     * holds, so an overlong frame still overflows the decoder and is dropped there. */
+    /* The frame from the target being collected, delimiter excluded; one byte more than any valid
+     * frame, so an overlong one reaches the decoder cut short (it fails the COBS or CRC check there). */
     uint8_t raw[TVO_FRAME_MAX_ENCODED + 1u];
     size_t raw_length;
     /* The session message on its way to the target, and a repeat of it held meanwhile. */
