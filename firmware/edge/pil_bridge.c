@@ -1,11 +1,12 @@
 /*
  * tvo_pil_bridge: joins LCM and the serial link of a processor-in-the-loop target (QEMU's -serial
  * socket). Messages on the node's input channels (tvo_node_channel_is_input in channels.h) go to the
- * target as frames (serial_frame.h: COBS + CRC-32, tagged with channels.h's numbers); frames from the
+ * target as frames (serial_frame.h: COBS, zero runs, CRC-32, tagged with channels.h's numbers); frames from the
  * target (its acks, commands, telemetry and announcements) are republished on LCM unchanged. The
  * bridge moves LCM's encoded bytes (trailers included on a keyed bus), so the target sees exactly
  * what tvo_firmware_node would, with one exception, the link's own queue policy: a session_t is
- * 11.4 kB, and QEMU's UART carries about 4 kB/s (a START takes 3 s), while a plant repeats its
+ * 11.4 kB, and QEMU's UART carries about 4 kB/s (before the framing's zero runs, a START took 3 s;
+ * now it is a few hundred bytes on the link, but a slow link still holds it), while a plant repeats its
  * START every 100 .. 800 ms until the ack comes; queued behind each other, six repeats held the first
  * sample back 18 s. So a repeat of the session message in flight (same session id and action) is held
  * while that one is on its way (until the target acks it, or for its length at 2 kB/s): dropped if the
