@@ -1,26 +1,35 @@
 /*
  * tvo_pil_bridge: joins LCM and the serial link of a processor-in-the-loop target (QEMU's -serial
  * socket). Messages on the node's input channels (tvo_node_channel_is_input in channels.h) go to the
- * target as frames (serial_frame.h: COBS + CRC-32, tagged with channels.h's numbers); frames from the
+ * target as frames (serial_frame.h: COBS, zero runs, CRC-32, tagged with channels.h's numbers); frames from the
  * target (its acks, commands, telemetry and announcements) are republished on LCM unchanged. The
  * bridge moves LCM's encoded bytes (trailers included on a keyed bus), so the target sees exactly
  * what tvo_firmware_node would, with one exception, the link's own queue policy: a session_t is
- * 11.4 kB, and QEMU's UART carries about 4 kB/s (a START takes 3 s), while a plant repeats its
+ * 11.4 kB, and QEMU's UART carries about 4 kB/s (before the framing's zero runs, a START took 3 s;
+ * now it is a few hundred bytes on the link, but a slow link still holds it), while a plant repeats its
  * START every 100 .. 800 ms until the ack comes; queued behind each other, six repeats held the first
  * sample back 18 s. So a repeat of the session message in flight (same session id and action) is held
  * while that one is on its way (until the target acks it, or for its length at 2 kB/s): dropped if the
- * ack comes (the plant hears it), written if not. Other session messages, and every other frame, go at
- * once. The bridge reads the session id and action of session messages and acks, nothing else.
+ * ack comes (the plant hears it), written if not. Other session messages go at once.
+ * Samples do not queue behind a session message either: while one is on its way, each robot's newest
+ * sample waits in the bridge (a newer one replaces it, counted samples_replaced: the target would have
+ * refused it as stale) and goes when the session message is acked or its time is up. Measured on a
+ * loaded machine, an 11 kB START took 1.5 to 3 s to clock in; samples written behind it reached the
+ * board in a burst, seconds old. Every other frame goes at once. The bridge reads the session id and
+ * action of session messages and acks, and the robot of samples, nothing else.
  *
  * Usage: tvo_pil_bridge --connect HOST:PORT [--lcm-url URL] [--corrupt-every N] [--connect-timeout-s S]
  *   --corrupt-every N   flip one bit in every N-th sample frame sent to the target and in every N-th
  *                       command frame coming from it (a test of the framing: each end must drop those
  *                       frames, which then look like lost messages). Counted per kind, so which
  *                       messages are hit does not depend on timing (how often the plant repeated its
- *                       START); session frames are never hit (a lost STOP would leave the target
- *                       running).
+ *                       START; samples are counted as the bridge takes them, so a held sample that a
+ *                       newer one replaced may be the one hit); session frames are never hit (a lost
+ *                       STOP would leave the target running).
  * Ends when the target closes the link (its program ended), on SIGINT/SIGTERM, or on an error;
- * prints the frame counts as key=value pairs. Exit code 0, or 1 on errors, 2 on bad arguments.
+ * prints the frame counts as key=value pairs (samples_to_target: every sample taken for the target, of
+ * which samples_held waited behind a session message and samples_replaced were never written, a newer
+ * one of their robot sent instead). Exit code 0, or 1 on errors, 2 on bad arguments.
  */
 #define _POSIX_C_SOURCE 200809L
 
@@ -42,8 +51,10 @@
 #include "auth.h"
 #include "channels.h"
 #include "serial_frame.h"
+#include "tvo_lcm_chain_sample_t.h"
 #include "tvo_lcm_session_ack_t.h"
 #include "tvo_lcm_session_t.h"
+#include "tvo_lcm_unicycle_sample_t.h"
 
 static volatile sig_atomic_t g_stop_signal = 0;
 
@@ -54,6 +65,9 @@ static volatile sig_atomic_t g_stop_signal = 0;
 /* The slowest link a held session repeat waits for: the one in flight gets its length at this rate. */
 #define SESSION_LINK_FLOOR_BYTES_PER_S 2000.0
 #define SESSION_IN_FLIGHT_MIN_S 0.5
+/* A sample frame held while a session message is on its way (a sample is ~60 bytes, signed ~100). */
+#define SAMPLE_FRAME_MAX_BYTES 256u
+#define BRIDGE_MAX_ROBOTS TVO_LCM_SESSION_T_MAX_ROBOTS
 
 /* Every frame the link carries fits a serial frame: the largest message, signed. */
 _Static_assert(TVO_FRAME_MAX_PAYLOAD >= TVO_NODE_LARGEST_MESSAGE_BYTES + TVO_AUTH_TRAILER_BYTES,
@@ -74,8 +88,8 @@ typedef struct {
     tvo_frame_decoder_t peek;                 /* reads a frame's channel before it may be corrupted */
     uint8_t frame[TVO_FRAME_MAX_ENCODED];
     uint8_t payload[TVO_FRAME_MAX_PAYLOAD];
-    /* The frame from the target being collected, delimiter excluded; one byte more than the decoder
-     * holds, so an overlong frame still overflows the decoder and is dropped there. */
+    /* The frame from the target being collected, delimiter excluded; one byte more than any valid
+     * frame, so an overlong one reaches the decoder cut short (it fails the COBS or CRC check there). */
     uint8_t raw[TVO_FRAME_MAX_ENCODED + 1u];
     size_t raw_length;
     /* The session message on its way to the target, and a repeat of it held meanwhile. */
@@ -88,6 +102,12 @@ typedef struct {
     size_t held_length;
     unsigned long repeats_held;               /* repeats that waited for the link */
     unsigned long repeats_dropped;            /* repeats the target's ack made unneeded */
+    /* Per robot, its newest sample while a session message is on its way (sent when that one is done). */
+    int sample_held[BRIDGE_MAX_ROBOTS];
+    uint8_t held_sample[BRIDGE_MAX_ROBOTS][SAMPLE_FRAME_MAX_BYTES];
+    size_t held_sample_length[BRIDGE_MAX_ROBOTS];
+    unsigned long samples_held;               /* samples that waited for a session message */
+    unsigned long samples_replaced;           /* held samples a newer one of the same robot replaced (not sent) */
 } bridge_t;
 
 static double monotonic_s(void)
@@ -114,6 +134,21 @@ static int session_of(int channel, const uint8_t *data, uint32_t length, int32_t
         return 0;
     }
     return -1;
+}
+
+/* The robot of a sample (unicycle or chain; a keyed frame's trailer after it is not read), or -1 if it
+ * does not decode or is out of range. */
+static int robot_of(int channel, const uint8_t *data, uint32_t length)
+{
+    static tvo_lcm_unicycle_sample_t unicycle;
+    static tvo_lcm_chain_sample_t chain;
+    int robot = -1;
+    if (channel == TVO_NODE_CH_SAMPLE && tvo_lcm_unicycle_sample_t_decode(data, 0, (int)length, &unicycle) > 0) {
+        robot = unicycle.header.robot;
+    } else if (channel == TVO_NODE_CH_CHAIN_SAMPLE && tvo_lcm_chain_sample_t_decode(data, 0, (int)length, &chain) > 0) {
+        robot = chain.header.robot;
+    }
+    return (robot >= 0 && robot < BRIDGE_MAX_ROBOTS) ? robot : -1;
 }
 
 static void on_signal(int signo)
@@ -174,7 +209,20 @@ static void session_in_flight(bridge_t *b, int32_t session_id, int8_t action, si
     b->flight_until_s = monotonic_s() + (transfer_s > SESSION_IN_FLIGHT_MIN_S ? transfer_s : SESSION_IN_FLIGHT_MIN_S);
 }
 
-/* The session message in flight was not acked in its time: the held repeat, if any, goes now. */
+/* The session message on its way is done (acked, or its time is up): the samples held behind it go,
+ * robot by robot, each the newest of its robot. */
+static void release_samples(bridge_t *b)
+{
+    for (int robot = 0; robot < BRIDGE_MAX_ROBOTS; ++robot) {
+        if (b->sample_held[robot]) {
+            b->sample_held[robot] = 0;
+            write_to_target(b, b->held_sample[robot], b->held_sample_length[robot]);
+        }
+    }
+}
+
+/* The session message in flight was not acked in its time: the held repeat, if any, goes now (and the
+ * samples then wait for it); else the held samples go. */
 static void session_timer(bridge_t *b)
 {
     if (b->session_in_flight && monotonic_s() >= b->flight_until_s) {
@@ -183,7 +231,24 @@ static void session_timer(bridge_t *b)
             b->repeat_held = 0;
             session_in_flight(b, b->flight_session_id, b->flight_action, b->held_length);
             write_to_target(b, b->held, b->held_length);
+        } else {
+            release_samples(b);
         }
+    }
+}
+
+/* A sample passes the link's corruption test (--corrupt-every) as it is sent or held, so which samples
+ * are hit does not depend on timing; then it is written, or copied to hold (its robot's slot). */
+static void sample_to_target(bridge_t *b, uint8_t *frame, size_t length, uint8_t *hold)
+{
+    if (is_nth(b, ++b->samples_to_target) && length > 2u) {
+        corrupt(frame, length - 1u); /* length - 1: the delimiter stays */
+        ++b->samples_corrupted;
+    }
+    if (hold != NULL) {
+        memcpy(hold, frame, length);
+    } else {
+        write_to_target(b, frame, length);
     }
 }
 
@@ -215,9 +280,22 @@ static void to_target(const lcm_recv_buf_t *rbuf, const char *channel, void *use
         session_in_flight(b, session_id, action, length);
     }
     const int sample = number == TVO_NODE_CH_SAMPLE || number == TVO_NODE_CH_CHAIN_SAMPLE;
-    if (sample && is_nth(b, ++b->samples_to_target) && length > 2u) {
-        corrupt(b->frame, length - 1u); /* length - 1: the delimiter stays */
-        ++b->samples_corrupted;
+    if (sample) {
+        session_timer(b);
+    }
+    const int robot = sample ? robot_of(number, (const uint8_t *)rbuf->data, rbuf->data_size) : -1;
+    if (robot >= 0 && b->session_in_flight && length <= SAMPLE_FRAME_MAX_BYTES) {
+        /* Behind the session message it would reach the target stale: the robot's newest waits. */
+        b->samples_replaced += b->sample_held[robot] ? 1u : 0u;
+        ++b->samples_held;
+        b->sample_held[robot] = 1;
+        b->held_sample_length[robot] = length;
+        sample_to_target(b, b->frame, length, b->held_sample[robot]);
+        return;
+    }
+    if (sample) {
+        sample_to_target(b, b->frame, length, NULL);
+        return;
     }
     write_to_target(b, b->frame, length);
 }
@@ -307,6 +385,7 @@ static void frame_from_target(bridge_t *b)
         b->session_in_flight = 0; /* it arrived: the plant hears the ack, a held repeat is not needed */
         b->repeats_dropped += b->repeat_held ? 1u : 0u;
         b->repeat_held = 0;
+        release_samples(b);
     }
     ++b->frames_from_target;
     lcm_publish(b->lcm, name, b->payload, (unsigned)length);
@@ -445,9 +524,10 @@ int main(int argc, char **argv)
     }
     fprintf(stderr,
             "tvo_pil_bridge: frames to_target=%lu session_repeats_held=%lu session_repeats_dropped=%lu "
-            "samples_to_target=%lu samples_corrupted=%lu "
+            "samples_to_target=%lu samples_held=%lu samples_replaced=%lu samples_corrupted=%lu "
             "from_target_ok=%lu from_target_dropped=%lu commands_from_target=%lu commands_corrupted=%lu\n",
-            b.frames_to_target, b.repeats_held, b.repeats_dropped, b.samples_to_target, b.samples_corrupted,
+            b.frames_to_target, b.repeats_held, b.repeats_dropped, b.samples_to_target, b.samples_held,
+            b.samples_replaced, b.samples_corrupted,
             b.frames_from_target,
             (unsigned long)b.decoder.frames_dropped, b.commands_from_target, b.commands_corrupted);
     lcm_destroy(b.lcm);

@@ -1,4 +1,4 @@
-/* COBS + CRC-32 framing; see serial_frame.h. */
+/* COBS + zero runs + CRC-32 framing; see serial_frame.h. */
 #include "serial_frame.h"
 
 #include <string.h>
@@ -16,10 +16,89 @@ uint32_t tvo_crc32(uint32_t crc, const uint8_t *data, size_t length)
     return ~crc;
 }
 
+/* COBS writer: each block starts with a code byte = distance to the next zero (0xFF: 254 data bytes, no zero). */
+typedef struct {
+    uint8_t *out;
+    size_t capacity;
+    size_t code_index;
+    size_t length;
+    uint8_t code;
+    uint8_t full; /* out could not take a byte: the frame does not fit */
+} cobs_writer_t;
+
+static void cobs_put(cobs_writer_t *w, uint8_t byte)
+{
+    if (w->full || w->length + 2u > w->capacity) {
+        w->full = 1u; /* + 2: this byte and the delimiter */
+        return;
+    }
+    if (byte == 0u) {
+        w->out[w->code_index] = w->code;
+        w->code_index = w->length++;
+        w->code = 1u;
+        return;
+    }
+    w->out[w->length++] = byte;
+    if (++w->code == 0xFFu) {
+        w->out[w->code_index] = w->code;
+        w->code_index = w->length++;
+        w->code = 1u;
+    }
+}
+
+/* The packet after its channel byte: payload then CRC. */
+typedef struct {
+    const uint8_t *payload;
+    size_t payload_length;
+    uint8_t crc_bytes[4];
+} frame_body_t;
+
+static uint8_t body_byte(const frame_body_t *body, size_t i)
+{
+    return i < body->payload_length ? body->payload[i] : body->crc_bytes[i - body->payload_length];
+}
+
+/* Zeros from body byte i on, at most 255 (one run length byte). */
+static size_t zero_run_at(const frame_body_t *body, size_t i, size_t body_length)
+{
+    size_t run = 0u;
+    while (run < 255u && i + run < body_length && body_byte(body, i + run) == 0u) {
+        ++run;
+    }
+    return run;
+}
+
+/* Writes the body through the zero-run stage to w if w is not NULL; returns the stage's length. */
+static size_t zero_runs_write(const frame_body_t *body, size_t body_length, cobs_writer_t *w)
+{
+    size_t written = 0u;
+    size_t i = 0u;
+    while (i < body_length) { /* bounded: i grows by at least one per turn */
+        const uint8_t byte = body_byte(body, i);
+        if (byte != 0u) {
+            if (w != NULL) {
+                cobs_put(w, byte);
+            }
+            ++written;
+            ++i;
+            continue;
+        }
+        const size_t run = zero_run_at(body, i, body_length);
+        if (w != NULL) {
+            cobs_put(w, 0u);
+            cobs_put(w, (uint8_t)run);
+        }
+        written += 2u;
+        i += run;
+    }
+    return written;
+}
+
 tvo_frame_status_t tvo_frame_encode(uint8_t channel, const uint8_t *payload, size_t payload_length, uint8_t *out,
                                     size_t out_capacity, size_t *out_length)
 {
-    if ((payload == NULL && payload_length > 0u) || out == NULL || out_length == NULL) {
+    if ((payload == NULL && payload_length > 0u) || out == NULL || out_length == NULL ||
+        channel > TVO_FRAME_MAX_CHANNEL) {
         return TVO_FRAME_BAD_ARGUMENT;
     }
     if (payload_length > TVO_FRAME_MAX_PAYLOAD) {
@@ -27,70 +106,83 @@ tvo_frame_status_t tvo_frame_encode(uint8_t channel, const uint8_t *payload, siz
     }
     uint32_t crc = tvo_crc32(0u, &channel, 1u);
     crc = tvo_crc32(crc, payload, payload_length);
-    const uint8_t crc_bytes[4] = {(uint8_t)crc, (uint8_t)(crc >> 8), (uint8_t)(crc >> 16), (uint8_t)(crc >> 24)};
-    const size_t packet_length = 1u + payload_length + 4u;
-    /* COBS: each block starts with a code byte = distance to the next zero (or 0xFF for 254 data bytes). */
-    size_t code_index = 0u;
-    size_t o = 1u;
-    uint8_t code = 1u;
-    for (size_t i = 0; i < packet_length; ++i) {
-        const uint8_t byte = (i == 0u) ? channel : (i <= payload_length) ? payload[i - 1u] : crc_bytes[i - 1u - payload_length];
-        if (o + 2u > out_capacity) {
-            return TVO_FRAME_TOO_LONG;
-        }
-        if (byte == 0u) {
-            out[code_index] = code;
-            code_index = o++;
-            code = 1u;
-            continue;
-        }
-        out[o++] = byte;
-        if (++code == 0xFFu) {
-            out[code_index] = code;
-            code_index = o++;
-            code = 1u;
+    const frame_body_t body = {payload,
+                               payload_length,
+                               {(uint8_t)crc, (uint8_t)(crc >> 8), (uint8_t)(crc >> 16), (uint8_t)(crc >> 24)}};
+    const size_t body_length = payload_length + 4u;
+    /* The zero-run stage only when it is shorter: a frame is never longer than COBS alone makes it. */
+    const int zero_runs = zero_runs_write(&body, body_length, NULL) < body_length;
+    cobs_writer_t w = {out, out_capacity, 0u, 1u, 1u, 0u};
+    cobs_put(&w, zero_runs ? (uint8_t)(channel | TVO_FRAME_ZERO_RUNS) : channel);
+    if (zero_runs) {
+        (void)zero_runs_write(&body, body_length, &w);
+    } else {
+        for (size_t i = 0; i < body_length; ++i) {
+            cobs_put(&w, body_byte(&body, i));
         }
     }
-    if (o + 1u > out_capacity) {
+    if (w.full || w.length + 1u > out_capacity) {
         return TVO_FRAME_TOO_LONG;
     }
-    out[code_index] = code;
-    out[o++] = 0u; /* delimiter */
-    *out_length = o;
+    out[w.code_index] = w.code;
+    out[w.length++] = 0u; /* delimiter */
+    *out_length = w.length;
     return TVO_FRAME_OK;
+}
+
+/* Forgets the frame being received (the counters stay). */
+static void decoder_restart(tvo_frame_decoder_t *decoder)
+{
+    decoder->length = 0u;
+    decoder->receiving = 0u;
+    decoder->block_left = 0u;
+    decoder->block_code = 0u;
+    decoder->zero_pending = 0u;
+    decoder->zero_runs = 0u;
+    decoder->run_next = 0u;
+    decoder->failure = (uint8_t)TVO_FRAME_OK;
 }
 
 void tvo_frame_decoder_init(tvo_frame_decoder_t *decoder)
 {
     if (decoder != NULL) {
         memset(decoder, 0, sizeof(*decoder));
+        decoder_restart(decoder);
     }
 }
 
-/* Decodes COBS in place from buffer[0..length) into packet; returns the packet length or 0 if malformed. */
-static size_t cobs_decode(const uint8_t *in, size_t length, uint8_t *packet, size_t capacity)
+/* Appends count copies of byte to the packet; past the buffer the frame is TOO_LONG. */
+static void packet_put(tvo_frame_decoder_t *decoder, uint8_t byte, size_t count)
 {
-    size_t i = 0u;
-    size_t o = 0u;
-    while (i < length) {
-        const uint8_t code = in[i++];
-        if (code == 0u || i + (size_t)code - 1u > length) {
-            return 0u;
-        }
-        for (uint8_t k = 1u; k < code; ++k) {
-            if (o >= capacity) {
-                return 0u;
-            }
-            packet[o++] = in[i++];
-        }
-        if (code != 0xFFu && i < length) {
-            if (o >= capacity) {
-                return 0u;
-            }
-            packet[o++] = 0u;
-        }
+    if (count > sizeof(decoder->buffer) - decoder->length) {
+        decoder->failure = (uint8_t)TVO_FRAME_TOO_LONG;
+        return;
     }
-    return o;
+    memset(decoder->buffer + decoder->length, byte, count);
+    decoder->length += count;
+}
+
+/* One byte out of COBS: the channel byte, or a byte of the (maybe zero-run coded) body. */
+static void unstuffed_put(tvo_frame_decoder_t *decoder, uint8_t byte)
+{
+    if (decoder->failure != (uint8_t)TVO_FRAME_OK) {
+        return;
+    }
+    if (decoder->length == 0u) {
+        decoder->zero_runs = (byte & TVO_FRAME_ZERO_RUNS) != 0u;
+        packet_put(decoder, (uint8_t)(byte & TVO_FRAME_MAX_CHANNEL), 1u);
+    } else if (decoder->run_next) {
+        decoder->run_next = 0u;
+        if (byte == 0u) {
+            decoder->failure = (uint8_t)TVO_FRAME_BAD_COBS; /* a run of no zeros: never written */
+        } else {
+            packet_put(decoder, 0u, byte);
+        }
+    } else if (decoder->zero_runs && byte == 0u) {
+        decoder->run_next = 1u;
+    } else {
+        packet_put(decoder, byte, 1u);
+    }
 }
 
 tvo_frame_status_t tvo_frame_decoder_push(tvo_frame_decoder_t *decoder, uint8_t byte, uint8_t *channel,
@@ -100,38 +192,37 @@ tvo_frame_status_t tvo_frame_decoder_push(tvo_frame_decoder_t *decoder, uint8_t 
         return TVO_FRAME_BAD_ARGUMENT;
     }
     if (byte != 0u) {
-        if (decoder->length >= sizeof(decoder->buffer)) {
-            decoder->overflowed = 1u;
+        decoder->receiving = 1u;
+        if (decoder->block_left == 0u) { /* a code byte: the previous block's zero, if any, was data */
+            if (decoder->zero_pending) {
+                decoder->zero_pending = 0u;
+                unstuffed_put(decoder, 0u);
+            }
+            decoder->block_code = byte;
+            decoder->block_left = (uint8_t)(byte - 1u);
         } else {
-            decoder->buffer[decoder->length++] = byte;
+            unstuffed_put(decoder, byte);
+            --decoder->block_left;
+        }
+        if (decoder->block_left == 0u && decoder->block_code != 0xFFu) {
+            decoder->zero_pending = 1u; /* dropped if the frame ends here */
         }
         return TVO_FRAME_INCOMPLETE;
     }
-    /* A delimiter: whatever was collected is one frame. */
-    const size_t collected = decoder->length;
-    const uint8_t overflowed = decoder->overflowed;
-    decoder->length = 0u;
-    decoder->overflowed = 0u;
-    if (collected == 0u) {
+    /* A delimiter: whatever was received is one frame. */
+    if (!decoder->receiving) {
         return TVO_FRAME_INCOMPLETE; /* back-to-back delimiters: nothing to report */
     }
-    tvo_frame_status_t st = TVO_FRAME_OK;
-    /* The packet reuses the front of the receive buffer: COBS never expands when decoding. */
-    uint8_t *packet = decoder->buffer;
-    size_t packet_length = 0u;
-    if (overflowed) {
-        st = TVO_FRAME_TOO_LONG;
+    tvo_frame_status_t st = (tvo_frame_status_t)decoder->failure;
+    const size_t packet_length = decoder->length;
+    const uint8_t *packet = decoder->buffer;
+    if (st != TVO_FRAME_OK) {
+        /* already failed */
+    } else if (decoder->block_left != 0u || decoder->run_next) {
+        st = TVO_FRAME_BAD_COBS; /* a block or a zero run cut short */
+    } else if (packet_length < 5u) {
+        st = TVO_FRAME_TOO_SHORT;
     } else {
-        packet_length = cobs_decode(decoder->buffer, collected, packet, sizeof(decoder->buffer));
-        if (packet_length == 0u) {
-            st = TVO_FRAME_BAD_COBS;
-        } else if (packet_length < 5u) {
-            st = TVO_FRAME_TOO_SHORT;
-        } else if (packet_length - 5u > TVO_FRAME_MAX_PAYLOAD) {
-            st = TVO_FRAME_TOO_LONG;
-        }
-    }
-    if (st == TVO_FRAME_OK) {
         const size_t body = packet_length - 4u;
         const uint32_t expected = (uint32_t)packet[body] | ((uint32_t)packet[body + 1u] << 8) |
                                   ((uint32_t)packet[body + 2u] << 16) | ((uint32_t)packet[body + 3u] << 24);
@@ -143,6 +234,7 @@ tvo_frame_status_t tvo_frame_decoder_push(tvo_frame_decoder_t *decoder, uint8_t 
             memmove(payload, packet + 1u, body - 1u);
         }
     }
+    decoder_restart(decoder);
     if (st == TVO_FRAME_OK) {
         decoder->frames_ok++;
     } else {

@@ -320,7 +320,9 @@ bool SimLoop::publish_sample(std::int64_t sequence, std::int64_t sample_us)
     }
     heading_sent_ = true;
     sent_[static_cast<std::size_t>(sequence)] = true;
-    silent_since_us_ = silent_since_us_.value_or(sample_us);
+    // Before any command, silence counts from when the first sample went out, not from its stamp: a slow
+    // link can deliver the START's ack after the epoch, and the node cannot answer a sample not yet sent.
+    silent_since_us_ = silent_since_us_.value_or(options_.realtime ? std::max(sample_us, wall_plant_us()) : sample_us);
     transport_.publish(measurement_);
     return true;
 }

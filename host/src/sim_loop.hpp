@@ -151,8 +151,8 @@ private:
     bool restart_begun_{false};               // the new session's START is out (its nodes were heard)
     bool restart_new_session_{false};         // a node restarted or lost ours (not just silence)
     std::optional<tvo_lcm::session_ack_t> restart_refused_;
-    std::optional<std::int64_t> silent_since_us_;  // realtime: plant time of the newest command of ours, or of
-                                                   // the session's first sample before any came
+    std::optional<std::int64_t> silent_since_us_;  // realtime: plant time of the newest command of ours, or
+                                                   // when the session's first sample went out before any came
     std::int64_t unanswered_streak_{0};       // lockstep: sent samples in a row that got no answer
 
     // --link-loss figures (realtime): plant-clock utimes from the commands' own stamps.

@@ -63,7 +63,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     if (size >= 1) {
         const size_t length = (size - 1) < TVO_FRAME_MAX_PAYLOAD ? size - 1 : TVO_FRAME_MAX_PAYLOAD;
-        roundtrip(data[0], data + 1, length);
+        roundtrip((uint8_t)(data[0] & TVO_FRAME_MAX_CHANNEL), data + 1, length); /* channels are 7-bit */
     }
     return 0;
 }

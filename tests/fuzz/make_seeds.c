@@ -186,6 +186,18 @@ int main(int argc, char **argv)
         put(frame, frame_length);
         failed |= save(dir, "frame", "two_frames");
     }
+    /* A frame with the zero-run stage: mostly zeros, as a session_t is (fixed arrays for 32 robots). */
+    static uint8_t sparse[600];
+    for (size_t i = 0; i < sizeof(sparse); i += 97u) {
+        sparse[i] = (uint8_t)(i | 1u);
+    }
+    if (tvo_frame_encode(TVO_NODE_CH_SESSION, sparse, sizeof(sparse), frame, sizeof(frame), &frame_length) == TVO_FRAME_OK &&
+        (frame[1] & TVO_FRAME_ZERO_RUNS) != 0u) {
+        put(frame, frame_length);
+        failed |= save(dir, "frame", "zero_runs");
+    } else {
+        failed = 1; /* the seed must exercise the zero-run stage */
+    }
 
     const uint8_t mode = 0;
     put(&mode, 1);

@@ -7,7 +7,7 @@
  * authenticated). It drives every robot of its sessions (own robot -1) and announces itself
  * (node_status_t on TVO_NODE) over the same link, idle or running.
  *
- * Frames on the serial link (edge/serial_frame.h): COBS + CRC-32, tagged with channels.h's numbers.
+ * Frames on the serial link (edge/serial_frame.h): COBS, zero runs, CRC-32, tagged with channels.h's numbers.
  * Corrupted or truncated frames fail the checks and are counted and dropped, never acted on; a lost
  * sample is then a message that never arrived. The host side is tvo_pil_bridge, which republishes
  * the frames on LCM. A session STOP ends the program; its exit code (via semihosting) is 0, and one
@@ -32,7 +32,7 @@ _Static_assert(TVO_FRAME_MAX_PAYLOAD >= TVO_NODE_LARGEST_MESSAGE_BYTES + TVO_AUT
                "a serial frame holds a signed session_t");
 
 static tvo_node_t node;
-/* Frames in: decoded in the decoder's own buffer (serial_frame.h), no second frame-sized buffer. */
+/* Frames in: decoded byte by byte into the decoder's own packet buffer (serial_frame.h), no second one. */
 static tvo_frame_decoder_t decoder;
 /* Frames out: the node's messages, signed, encoded. */
 static uint8_t frame[TVO_FRAME_ENCODED_BYTES(TVO_NODE_BUFFER_BYTES + TVO_AUTH_TRAILER_BYTES)];
