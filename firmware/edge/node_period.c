@@ -323,10 +323,13 @@ static tvo_node_status_t check_on_arrival(const tvo_node_session_t *s, const tvo
     if (header->robot < 0 || header->robot >= (int32_t)s->schedule.timing.robot_count) {
         return TVO_NODE_WRONG_ROBOT;
     }
+    if (header->sequence < 0) {
+        return TVO_NODE_IMPLAUSIBLE_STAMP; /* unanswered: an answer echoing it would read as the node's own stop (-1) */
+    }
     if (header->robot + 1 == (int32_t)s->schedule.timing.robot_count) {
         return TVO_NODE_OK; /* the period's last robot: it steps the period */
     }
-    if (!tvo_schedule_wire_time_ok(header->utime) || header->sequence < 0) {
+    if (!tvo_schedule_wire_time_ok(header->utime)) {
         return TVO_NODE_IMPLAUSIBLE_STAMP;
     }
     return tvo_step_unicycle_sample_finite(in->unicycle) ? TVO_NODE_OK : TVO_NODE_NOT_FINITE;
