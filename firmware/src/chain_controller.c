@@ -196,7 +196,7 @@ static tvo_reason_t chain_check(const void *ctl_any, const void *meas_any, uint3
             return TVO_REASON_IMPLAUSIBLE_MEASUREMENT; /* finite, but no robot's (tvo/config.h's workspace) */
         }
     }
-    return loop_reason_of(sample_clock_check_stamp(&ctl->internal.loop.clock, meas->stamp_tick, apply_tick));
+    return sample_clock_check_stamp(&ctl->internal.loop.clock, meas->stamp_tick, apply_tick);
 }
 
 /* The loop's refuse piece: its refusal, out of line (a cold path). */

@@ -204,9 +204,9 @@ static inline tvo_reason_t check_measurement(const void *ctl_any, const void *me
             return TVO_REASON_IMPLAUSIBLE_MEASUREMENT; /* or not finite: unicycle_refusal says which */
         }
     }
-    const tvo_status_t st = sample_clock_check_stamp(&ctl->internal.loop.clock, meas->stamp_tick, apply_tick);
-    if (st != TVO_OK) {
-        return loop_reason_of(st);
+    const tvo_reason_t stamp = sample_clock_check_stamp(&ctl->internal.loop.clock, meas->stamp_tick, apply_tick);
+    if (stamp != TVO_REASON_NONE) {
+        return stamp;
     }
     if (ctl->cfg.velocity_source == TVO_VELOCITY_FROM_POSE) {
         if (!meas->heading_valid) {

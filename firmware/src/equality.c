@@ -27,7 +27,9 @@ tvo_status_t tvo_offset_equality_add(tvo_offset_equality_term_t *term, tvo_objec
     const tvo_term_t spec = {tvo_offset_equality_gradient_jet, tvo_offset_equality_gradient_hessian, NULL, term,
                              TVO_TERM_GENERAL};
     st = tvo_objective_add(objective, &spec);
-    if (st != TVO_OK) {
+    if (st == TVO_OK) {
+        objective_add_target(objective, offset); /* a streamed d(t) is checked as a tracking target is */
+    } else {
         /* Give the multipliers back, so a failed add leaves the objective as it was. */
         objective->dual_dim = (uint8_t)(objective->dual_dim - 2u);
         objective->dim = (uint8_t)(objective->dim - 2u);

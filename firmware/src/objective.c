@@ -17,6 +17,7 @@ tvo_status_t tvo_objective_init(tvo_objective_t *objective, uint8_t primal_dim)
     objective->dim = 0;
     objective->jets_only = 0;
     objective->tracking_only = 0;
+    objective->target_count = 0;
     objective->general_path = NULL;
     objective->start_rule = NULL;
 #if TVO_BLOCK_SOLVE
@@ -49,10 +50,22 @@ static tvo_status_t append_slot(tvo_objective_t *objective, const tvo_term_t *sp
     return TVO_OK;
 }
 
+void objective_add_target(tvo_objective_t *objective, const struct tvo_target *target)
+{
+    TVO_ASSERT(objective->target_count < objective->term_count); /* one per term at most */
+    if (target != NULL && objective->target_count < TVO_MAX_TERMS) {
+        objective->targets[objective->target_count++] = target;
+    }
+}
+
 tvo_status_t objective_append_tracking(tvo_objective_t *objective, const void *tracking_term)
 {
     const tvo_term_t slot = {NULL, NULL, NULL, tracking_term, TVO_TERM_TRACKING};
-    return append_slot(objective, &slot);
+    const tvo_status_t st = append_slot(objective, &slot);
+    if (st == TVO_OK) {
+        objective_add_target(objective, ((const tvo_tracking_term_t *)tracking_term)->target);
+    }
+    return st;
 }
 
 /* The public add functions take any term: their objective may need the law's general path. A tracking
@@ -66,6 +79,10 @@ static tvo_status_t append_general_term(tvo_objective_t *objective, tvo_gradient
         (kind == TVO_TERM_TRACKING) ? objective_append_tracking(objective, term) : append_slot(objective, &spec);
     if (st == TVO_OK) {
         objective->general_path = law_general_path;
+        if (kind != TVO_TERM_TRACKING && gradient_jet == tvo_tracking_gradient_jet) {
+            /* A tracking term by its callbacks reads its target as the closed form does. */
+            objective_add_target(objective, ((const tvo_tracking_term_t *)term)->target);
+        }
     }
     return st;
 }

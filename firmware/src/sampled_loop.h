@@ -4,8 +4,9 @@
  *
  * What a period does (one call, one selected answer; a later line takes precedence over an earlier):
  *   1. applied    the measurement passed every check, the law and the limits: the period is committed.
- *   2. held       the command in force, repeated, for the reason of a refusal: the core's own checks,
- *                 its law's (no result), or the caller's (tvo_*_refuse: refused before the core saw it);
+ *   2. held       the command in force, repeated, for the reason of a refusal: the core's own checks
+ *                 (the measurement's, then its targets' at the law's time), its law's (no result: a
+ *                 numeric failure), or the caller's (tvo_*_refuse: refused before the core saw it);
  *                 or no measurement at all (tvo_*_miss). Nothing of the period is kept.
  *   3. plant stop the measurement was taken, but the plant's own finding stops the robots (the
  *                 unicycle's speed mismatch: its commit piece reports it, this file makes the stop).
@@ -40,6 +41,7 @@
 #include <string.h>
 
 #include "internal/sample_clock.h"
+#include "internal/target.h"
 #include "tvo/defaults.h"
 #include "shape.h"
 
@@ -272,9 +274,10 @@ TVO_LOOP_ENTRY tvo_status_t loop_miss(const tvo_loop_plant_t *p, void *ctl, uint
     return st;
 }
 
-/* What a piece reports when one of the core's checks or computations produced nothing (a cold path):
- * its reason; the misuses the unchecked pieces cannot meet, a numeric failure. A value not finite is a
- * computed one here (the check piece refused every measured one, TVO_REASON_NOT_FINITE): numeric. */
+/* What a piece reports when a computation produced nothing (a cold path): its reason; the misuses the
+ * unchecked pieces cannot meet, a numeric failure. A value not finite is a computed one here (the check
+ * piece refused every measured one, TVO_REASON_NOT_FINITE): numeric. The period's other reasons are
+ * decided before the law, as reasons (the stamp rules, loop_targets_ready). */
 TVO_LOOP_ENTRY tvo_reason_t loop_reason_of(tvo_status_t st)
 {
     static const uint8_t reason_of[TVO_STATUS_COUNT] = {
@@ -287,15 +290,25 @@ TVO_LOOP_ENTRY tvo_reason_t loop_reason_of(tvo_status_t st)
         [TVO_ERR_NOT_INITIALIZED] = TVO_REASON_NUMERIC,
         [TVO_ERR_TICK_NOT_ADVANCING] = TVO_REASON_NUMERIC,
         [TVO_ERR_BEFORE_EPOCH] = TVO_REASON_NUMERIC,
-        [TVO_ERR_CLOCK_STARTED] = TVO_REASON_NUMERIC,
         [TVO_ERR_NOT_POSITIVE_DEFINITE] = TVO_REASON_NOT_POSITIVE_DEFINITE,
         [TVO_ERR_NUMERIC] = TVO_REASON_NUMERIC,
-        [TVO_ERR_STALE] = TVO_REASON_STALE,
-        [TVO_ERR_FUTURE_STAMP] = TVO_REASON_FUTURE_STAMP,
-        [TVO_ERR_STAMP_NOT_NEWER] = TVO_REASON_STAMP_NOT_NEWER,
-        [TVO_ERR_TARGET_NOT_READY] = TVO_REASON_TARGET_NOT_READY,
     };
     return ((uint32_t)st < TVO_STATUS_COUNT) ? (tvo_reason_t)reason_of[st] : TVO_REASON_NUMERIC;
+}
+
+/* The law's precondition, decided here as the stamp rules are: every target the objective's terms read
+ * can be evaluated at the law's time (a streamed one has a sample, stamped no later), else the
+ * period's reason. The law then fails only by misuse or numerics. */
+TVO_LOOP_ENTRY tvo_reason_t loop_targets_ready(const tvo_objective_t *objective, uint64_t law_ticks)
+{
+    const uint8_t count = objective->target_count;
+    for (uint8_t i = 0; i < count && i < TVO_MAX_TERMS; ++i) {
+        const tvo_reason_t reason = target_ready_at(objective->targets[i], law_ticks);
+        if (reason != TVO_REASON_NONE) {
+            return reason;
+        }
+    }
+    return TVO_REASON_NONE;
 }
 
 /* A step that cannot use its measurement (or its law's result), committing nothing: the command in
@@ -375,6 +388,9 @@ TVO_LOOP_ENTRY tvo_status_t loop_period(const tvo_loop_plant_t *p, void *ctl, co
     }
     tvo_loop_frame_t frame = {0u, 0u, clock->stopped, shape};
     tvo_reason_t reason = p->prepare(ctl, meas, apply_tick, &frame);
+    if (reason == TVO_REASON_NONE) {
+        reason = loop_targets_ready(loop_objective(p, ctl), period->law_time.ticks); /* prepare located it */
+    }
     if (reason == TVO_REASON_NONE) {
         if (!clock->has_stamp) { /* no sample accepted yet: this checked one may be the state at t = 0 */
             loop_start_rule(loop_objective(p, ctl), loop_at_const(meas, p->positions_at));

@@ -11,15 +11,10 @@ const char *tvo_status_str(tvo_status_t status)
     case TVO_ERR_PARAM: return "parameter out of range";
     case TVO_ERR_CAPACITY: return "fixed-size table full";
     case TVO_ERR_NOT_INITIALIZED: return "not initialised";
-    case TVO_ERR_TICK_NOT_ADVANCING: return "apply tick does not advance past the last period";
+    case TVO_ERR_TICK_NOT_ADVANCING: return "tick or stamp does not advance past the last one taken";
     case TVO_ERR_BEFORE_EPOCH: return "time before the epoch";
-    case TVO_ERR_CLOCK_STARTED: return "clock already started: cannot rebase";
     case TVO_ERR_NOT_POSITIVE_DEFINITE: return "Hessian not positive definite";
     case TVO_ERR_NUMERIC: return "result not finite";
-    case TVO_ERR_STALE: return "stamp older than one period";
-    case TVO_ERR_FUTURE_STAMP: return "stamp in the future";
-    case TVO_ERR_STAMP_NOT_NEWER: return "stamp not newer than the last one taken";
-    case TVO_ERR_TARGET_NOT_READY: return "streamed target has no sample yet";
     default: return "unknown status";
     }
 }

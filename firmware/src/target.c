@@ -159,7 +159,7 @@ tvo_status_t tvo_target_stream_update(tvo_target_t *target, uint64_t stamp_ticks
     }
     tvo_target_streamed_t *s = &target->u.streamed;
     if (s->has_sample && stamp_ticks <= s->stamp_ticks) {
-        return TVO_ERR_STAMP_NOT_NEWER;
+        return TVO_ERR_TICK_NOT_ADVANCING; /* the stamp does not advance past the sample's */
     }
     s->stamp_ticks = stamp_ticks;
     memcpy(s->deriv, deriv, sizeof(s->deriv));
@@ -194,11 +194,12 @@ static void polynomial_derivatives(const tvo_target_polynomial_t *p, uint8_t deg
 static tvo_status_t streamed_derivatives(const tvo_target_streamed_t *s, const tvo_time_jet_t *t,
                                          uint8_t order, tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2])
 {
+    /* A controller's step never gets here with either: its loop holds first (target_ready_at). */
     if (!s->has_sample) {
-        return TVO_ERR_TARGET_NOT_READY;
+        return TVO_ERR_NOT_INITIALIZED;
     }
     if (t->ticks < s->stamp_ticks) {
-        return TVO_ERR_FUTURE_STAMP;
+        return TVO_ERR_PARAM; /* before the sample's stamp: extrapolation is causal only */
     }
     /* The age from integer ticks: exact however long the run. Beyond 2^32 ticks (50 days at 1 kHz,
      * 71.6 min at the edge's 1 MHz) one rounding of each operand, which costs nothing at float's

@@ -1016,7 +1016,8 @@ static void test_chain_computed_overflow_is_numeric_and_a_measured_nan_is_not_fi
 static void test_chain_law_failure_after_the_filters_leaves_them_untouched(void)
 {
     /* A streamed target in place of the polynomial: the filters step (their working copies), then
-     * the law fails because the latest target sample is stamped after the law's time. */
+     * the period is refused because the latest target sample is stamped after the law's time (the
+     * loop's check before the law). */
     ch_t ch;
     ch_config(&ch, 3, 10000u, 5000u, 1u, 0u);
     ch.cfg.filtered_derivatives = 1u;
@@ -1027,8 +1028,18 @@ static void test_chain_law_failure_after_the_filters_leaves_them_untouched(void)
     sample[0][0] = TVO_R(0.3);
     sample[1][1] = TVO_R(0.2);
     ASSERT_STATUS(TVO_OK, tvo_target_init_streamed(&ch.target));
-    ASSERT_STATUS(TVO_OK, tvo_target_stream_update(&ch.target, 0u, TEST_CONST_STREAM(sample)));
     tvo_chain_command_t cmd;
+    {
+        /* No sample yet: the loop holds the command in force (its check before the law), nothing kept. */
+        double xs0[2][3];
+        tvo_chain_measurement_t m0;
+        ch_sample(&ch, xs0, &m0);
+        memcpy(&ch_before, &ch.ctl, sizeof(ch_before));
+        ASSERT_PERIOD(HELD(TARGET_NOT_READY), tvo_chain_controller_step(&ch.ctl, &m0, ch.apply, &cmd), cmd);
+        TEST_ASSERT_EQUAL_MEMORY(ch_before.internal.held.u, cmd.u, sizeof(cmd.u));
+        assert_chain_untouched(&ch_before, &ch.ctl);
+    }
+    ASSERT_STATUS(TVO_OK, tvo_target_stream_update(&ch.target, 0u, TEST_CONST_STREAM(sample)));
     for (int i = 0; i < 8; ++i) {
         ASSERT_PERIOD(APPLIED, ch_step(&ch, &cmd), cmd);
     }

@@ -5,6 +5,7 @@
  * tvo_unicycle_predict (see fx_closed_loop_step in test_support.h for the plant's timing).
  */
 #include "test_support.h"
+#include "tvo/problem.h"
 #include "tvo/trig.h"
 #include "internal/dirty_derivative.h"
 #include "internal/sample_clock.h"
@@ -1739,6 +1740,81 @@ static void test_law_failure_after_the_estimate_leaves_the_filter_untouched(void
     assert_no_trace(&before, &fx_a.ctl);
 }
 
+/* The loop decides a streamed target's readiness itself, before its law (whose evaluation of such a
+ * target is misuse, TVO_ERR_NOT_INITIALIZED / TVO_ERR_PARAM, which would read TVO_REASON_NUMERIC):
+ * without a sample the period holds the command in force for TARGET_NOT_READY; with one stamped after
+ * the law's time, for FUTURE_STAMP; from its stamp on the law serves it. Nothing is kept meanwhile. */
+static void test_streamed_target_is_decided_by_the_loop_before_the_law(void)
+{
+    fx_reset(&fx_a, 1);
+    fx_a.cfg.initial_speed_mps[0] = TVO_R(0.4); /* a command in force that is not the stop */
+    ASSERT_STATUS(TVO_OK, tvo_target_init_streamed(&fx_a.target[0]));
+    fx_set_pose(&fx_a, 0, 0.0, 0.0, 0.0);
+    fx_start(&fx_a, 100u);
+    const tvo_command_t in_force = fx_a.ctl.internal.held;
+    TEST_ASSERT_TRUE(in_force.speed_mps[0] == TVO_R(0.4));
+    trace_t before;
+    trace_of(&fx_a.ctl, &before);
+    tvo_measurement_t m = measure_now(&fx_a, fx_a.apply - FX_DELAY);
+    tvo_command_t cmd;
+    ASSERT_PERIOD(HELD(TARGET_NOT_READY), tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), cmd);
+    assert_same_motion(&in_force, &cmd, 1u);
+    assert_no_trace(&before, &fx_a.ctl);
+
+    /* The law's time is the application instant (delay compensation): objective ticks apply - epoch. */
+    const uint64_t law_ticks = (uint64_t)(fx_a.apply - fx_a.epoch);
+    tvo_real_t sample[TVO_STREAM_MAX_DERIV + 1][2];
+    memset(sample, 0, sizeof(sample));
+    sample[0][0] = TVO_R(1.0);
+    ASSERT_STATUS(TVO_OK, tvo_target_stream_update(&fx_a.target[0], law_ticks + 1u, TEST_CONST_STREAM(sample)));
+    ASSERT_PERIOD(HELD(FUTURE_STAMP), tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), cmd);
+    assert_same_motion(&in_force, &cmd, 1u);
+    assert_no_trace(&before, &fx_a.ctl);
+
+    /* A sample stamped exactly at the law's time is ready. */
+    fx_reset(&fx_a, 1);
+    ASSERT_STATUS(TVO_OK, tvo_target_init_streamed(&fx_a.target[0]));
+    ASSERT_STATUS(TVO_OK, tvo_target_stream_update(&fx_a.target[0], law_ticks, TEST_CONST_STREAM(sample)));
+    fx_set_pose(&fx_a, 0, 0.0, 0.0, 0.0);
+    fx_start(&fx_a, 100u);
+    m = measure_now(&fx_a, fx_a.apply - FX_DELAY);
+    ASSERT_PERIOD(APPLIED, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), cmd);
+}
+
+#if TVO_MAX_OFFSET_EQUALITIES > 0
+/* An offset equality's streamed d(t) is one of the targets the loop checks (the objective records it
+ * as the equality is added): without a sample the period holds for TARGET_NOT_READY. */
+static void test_streamed_offset_is_decided_by_the_loop_before_the_law(void)
+{
+    static tvo_problem_desc_t desc;
+    static tvo_problem_t problem;
+    ASSERT_STATUS(TVO_OK, tvo_problem_desc_default(&desc));
+    desc.robot_count = 2u;
+    fx_line_target(&desc.target[0], 1.0, 0.0, 0.0, 0.0);
+    fx_line_target(&desc.target[1], -1.0, 0.0, 0.0, 0.0);
+    desc.offset_count = 1u;
+    desc.offset[0].robot_a = 0u;
+    desc.offset[0].robot_b = 1u;
+    ASSERT_STATUS(TVO_OK, tvo_target_init_streamed(&desc.offset[0].offset));
+    ASSERT_STATUS(TVO_OK, tvo_problem_init(&problem, &desc, 2u, NULL));
+    TEST_ASSERT_EQUAL_UINT8(3u, problem.objective.target_count); /* two tracking targets and d(t) */
+    fx_reset(&fx_a, 2);
+    fx_set_pose(&fx_a, 0, 1.0, 0.0, 0.0);
+    fx_set_pose(&fx_a, 1, -1.0, 0.0, 0.0);
+    fx_a.epoch = 0u;
+    fx_a.apply = fx_a.cfg.period_ticks;
+    ASSERT_STATUS(TVO_OK, tvo_controller_init(&fx_a.ctl, &fx_a.cfg, &problem.objective, 0u, NULL));
+    tvo_measurement_t m = measure_now(&fx_a, fx_a.apply - FX_DELAY);
+    tvo_command_t cmd;
+    ASSERT_PERIOD(HELD(TARGET_NOT_READY), tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), cmd);
+    tvo_real_t sample[TVO_STREAM_MAX_DERIV + 1][2];
+    memset(sample, 0, sizeof(sample));
+    sample[0][0] = TVO_R(2.0);
+    ASSERT_STATUS(TVO_OK, tvo_target_stream_update(&problem.offset_function[0], 0u, TEST_CONST_STREAM(sample)));
+    ASSERT_PERIOD(APPLIED, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), cmd);
+}
+#endif
+
 /* One closed-loop period whose measurement reports speed_valid with the given speed (the plant
  * itself moves with the command in force, as fx_closed_loop_step's does). */
 static tvo_status_t step_reporting_speed(fx_t *fx, double reported_mps, tvo_command_t *out)
@@ -2107,6 +2183,10 @@ int main(void)
     RUN_TEST(test_safe_stop_drops_to_rest_without_advancing_the_clock);
     RUN_TEST(test_refused_measurement_leaves_filter_speed_state_and_stamp_untouched);
     RUN_TEST(test_law_failure_after_the_estimate_leaves_the_filter_untouched);
+    RUN_TEST(test_streamed_target_is_decided_by_the_loop_before_the_law);
+#if TVO_MAX_OFFSET_EQUALITIES > 0
+    RUN_TEST(test_streamed_offset_is_decided_by_the_loop_before_the_law);
+#endif
     RUN_TEST(test_speed_mismatch_is_flagged_after_its_periods_in_a_row);
     RUN_TEST(test_speed_mismatch_is_not_flagged_for_a_plant_that_follows);
     RUN_TEST(test_speed_mismatch_flags_a_plant_reporting_zero_while_it_falls_behind);

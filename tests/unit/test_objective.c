@@ -4,6 +4,7 @@
 #include "test_support.h"
 #include "internal/jet.h"
 #include "internal/objective.h"
+#include "tvo/tracking.h"
 
 void setUp(void) {}
 void tearDown(void) {}
@@ -47,7 +48,7 @@ static tvo_status_t failing_gradient_jet(const void *term, const tvo_jet_t *y, u
     (void)t;
     (void)order;
     (void)grad;
-    return TVO_ERR_TARGET_NOT_READY;
+    return TVO_ERR_NOT_INITIALIZED;
 }
 
 static tvo_status_t inf_gradient_jet(const void *term, const tvo_jet_t *y, uint8_t dim, const tvo_time_jet_t *t,
@@ -100,7 +101,8 @@ static void test_add_term_rejects_null(void)
 }
 
 /* A term says what it is: a general term needs its gradient jet, a tracking term none (its slot keeps
- * the kind and the term, callbacks NULL); another kind is refused, and nothing is appended then. */
+ * the kind and the term, callbacks NULL, and the objective its target, which a step checks before its
+ * law); another kind is refused, and nothing is appended then. */
 static void test_add_dispatches_on_the_term_kind(void)
 {
     tvo_objective_t obj;
@@ -111,11 +113,18 @@ static void test_add_dispatches_on_the_term_kind(void)
     const tvo_term_t unknown = {const_gradient_jet, NULL, NULL, &c, (uint8_t)(TVO_TERM_TRACKING + 1)};
     ASSERT_STATUS(TVO_ERR_PARAM, tvo_objective_add(&obj, &unknown));
     TEST_ASSERT_EQUAL_UINT8(0, obj.term_count);
-    const tvo_term_t tracking = {const_gradient_jet, NULL, NULL, &c, TVO_TERM_TRACKING};
+    tvo_target_t target;
+    ASSERT_STATUS(TVO_OK, tvo_target_init_streamed(&target));
+    tvo_tracking_term_t tracked;
+    const tvo_real_t w[2] = {TVO_R(1.0), TVO_R(1.0)};
+    ASSERT_STATUS(TVO_OK, tvo_tracking_init(&tracked, &target, w, 0u));
+    const tvo_term_t tracking = {const_gradient_jet, NULL, NULL, &tracked, TVO_TERM_TRACKING};
     ASSERT_STATUS(TVO_OK, tvo_objective_add(&obj, &tracking));
     TEST_ASSERT_EQUAL_UINT8(TVO_TERM_TRACKING, obj.terms[0].kind);
     TEST_ASSERT_NULL(obj.terms[0].gradient_jet);
-    TEST_ASSERT_EQUAL_PTR(&c, obj.terms[0].term);
+    TEST_ASSERT_EQUAL_PTR(&tracked, obj.terms[0].term);
+    TEST_ASSERT_EQUAL_UINT8(1, obj.target_count);
+    TEST_ASSERT_EQUAL_PTR(&target, obj.targets[0]);
     TEST_ASSERT_EQUAL_UINT8(1, obj.tracking_only);
     TEST_ASSERT_NOT_NULL(obj.general_path); /* the public add links the law's general path */
     const tvo_term_t general = {const_gradient_jet, NULL, NULL, &c, TVO_TERM_GENERAL};
@@ -123,6 +132,7 @@ static void test_add_dispatches_on_the_term_kind(void)
     TEST_ASSERT_EQUAL_UINT8(TVO_TERM_GENERAL, obj.terms[1].kind);
     TEST_ASSERT_EQUAL_PTR(const_gradient_jet, obj.terms[1].gradient_jet);
     TEST_ASSERT_EQUAL_UINT8(0, obj.tracking_only);
+    TEST_ASSERT_EQUAL_UINT8(1, obj.target_count); /* a term by its callbacks declares no target */
 }
 
 static void test_gradient_is_the_sum_of_the_terms(void)
@@ -167,7 +177,7 @@ static void test_gradient_reports_the_first_failing_term(void)
     tvo_jet_constant(TVO_R(0.0), &y[0]);
     tvo_jet_constant(TVO_R(0.0), &y[1]);
     const tvo_time_jet_t t = t_now();
-    ASSERT_STATUS(TVO_ERR_TARGET_NOT_READY, tvo_objective_gradient_jet(&obj, y, &t, 2, g));
+    ASSERT_STATUS(TVO_ERR_NOT_INITIALIZED, tvo_objective_gradient_jet(&obj, y, &t, 2, g));
 }
 
 static void test_gradient_reports_non_finite_sum(void)

@@ -133,7 +133,8 @@ static void test_unicycle_refused_first_measurements_leave_s0_unchosen(void)
 
 static void test_unicycle_law_refusal_takes_the_choice_back(void)
 {
-    /* The measurement passes every check; the law refuses (its streamed target has no sample). */
+    /* The measurement passes every check; the period is refused (its streamed target has no sample:
+     * the loop's check before the law). */
     unicycle_on_problem(1);
     tvo_measurement_t m;
     tvo_command_t cmd;

@@ -105,6 +105,7 @@ typedef enum {
 } tvo_term_kind_t;
 
 struct tvo_objective;
+struct tvo_target; /* tvo/target.h */
 
 /**
  * An objective's start rule, the paper's s0 (tvo_problem_init sets it when its problem has inequality
@@ -135,6 +136,7 @@ typedef struct tvo_objective {
                             refuses with TVO_ERR_NOT_INITIALIZED) */
     uint8_t tracking_only; /* kept by the add functions: every term so far a tracking term's closed form
                               (the law re-checks the terms before it relies on it) */
+    uint8_t target_count;  /* targets[0 .. target_count - 1] */
     tvo_general_path_fn general_path; /* NULL: tracking terms only, and the law has only its tracking path */
     tvo_start_rule_fn start_rule;     /* NULL: no start rule (the step chooses nothing) */
 #if TVO_BLOCK_SOLVE
@@ -142,7 +144,12 @@ typedef struct tvo_objective {
                                          it); NULL: the dense solve. Any term or multiplier added drops it */
 #endif
     tvo_term_t terms[TVO_MAX_TERMS]; /* as the add functions keep them (a tracking term: its kind, and the
-                                        term; callbacks NULL); last, so the fields above have short offsets */
+                                        term; callbacks NULL) */
+    /* The targets the terms read, as they were added (a tracking term's, by its kind or its callback
+     * tvo_tracking_gradient_jet; an offset equality's d(t)), which a controller's step checks can be
+     * evaluated at its law's time before the law (a streamed one may have no sample yet); another term
+     * declares none. After the terms, so the fields above have short offsets. */
+    const struct tvo_target *targets[TVO_MAX_TERMS];
 } tvo_objective_t;
 
 /** Empty objective over y in R^primal_dim, 1 <= primal_dim <= TVO_MAX_OUTPUT_DIM, no multipliers. */

@@ -33,21 +33,17 @@ typedef enum {
     TVO_ERR_PARAM = 4,                 /* a parameter is out of range (an init names it: tvo_param_t) */
     TVO_ERR_CAPACITY = 5,              /* a fixed-size table is full */
     TVO_ERR_NOT_INITIALIZED = 6,       /* the instance was not (successfully) initialised */
-    TVO_ERR_TICK_NOT_ADVANCING = 7,    /* apply_tick does not advance past the last period */
+    TVO_ERR_TICK_NOT_ADVANCING = 7,    /* a tick or stamp does not advance past the last one taken (apply_tick
+                                          past the last period, a streamed target's stamp past its sample's) */
     TVO_ERR_BEFORE_EPOCH = 8,          /* a time before the epoch (objective time 0) */
-    TVO_ERR_CLOCK_STARTED = 9,         /* the clock cannot be rebased: a period has ended */
-    /* The core's checks and computations that produced no result (a controller's step never returns
-     * these: it holds or stops, and its command's tvo_reason_t says why): */
-    TVO_ERR_NOT_POSITIVE_DEFINITE = 10, /* the Hessian is not positive definite: no Newton step */
-    TVO_ERR_NUMERIC = 11,              /* a computed value came out NaN or infinite */
-    TVO_ERR_STALE = 12,                /* a stamp is more than one period before its application */
-    TVO_ERR_FUTURE_STAMP = 13,         /* a stamp lies after the time it is used for */
-    TVO_ERR_STAMP_NOT_NEWER = 14,      /* a stamp is not newer than the last one taken */
-    TVO_ERR_TARGET_NOT_READY = 15      /* a streamed target has no sample yet */
+    /* Computations that produced no result (a controller's step never returns these: it holds or stops,
+     * and its command's tvo_reason_t says why): */
+    TVO_ERR_NOT_POSITIVE_DEFINITE = 9, /* the Hessian is not positive definite: no Newton step */
+    TVO_ERR_NUMERIC = 10               /* a computed value came out NaN or infinite */
 } tvo_status_t;
 
 /** Number of tvo_status_t codes (0 .. TVO_STATUS_COUNT - 1). */
-#define TVO_STATUS_COUNT 16
+#define TVO_STATUS_COUNT 11
 
 /** What a controller's period did: the command it delivers says (tvo_command_t.outcome). */
 typedef enum {
@@ -69,8 +65,9 @@ typedef enum {
     TVO_REASON_STAMP_NOT_NEWER = 5,        /* stamped no later than the last accepted measurement */
     TVO_REASON_MISSING_FIELD = 6,          /* the velocity source needs a field the measurement lacks */
     TVO_REASON_SOURCE_NOT_LINKED = 7,      /* the velocity source set was not linked by the init */
-    /* The law could not serve it: */
-    TVO_REASON_TARGET_NOT_READY = 8,       /* a streamed target has no sample yet */
+    /* The law could not serve it (its targets, checked before it; then its result): */
+    TVO_REASON_TARGET_NOT_READY = 8,       /* a streamed target has no sample yet (one stamped after the
+                                              law's time: TVO_REASON_FUTURE_STAMP) */
     TVO_REASON_NUMERIC = 9,                /* a computed value came out NaN or infinite */
     TVO_REASON_NOT_POSITIVE_DEFINITE = 10, /* the Hessian is not positive definite: no Newton step */
     /* No measurement: */

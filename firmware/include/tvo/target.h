@@ -46,7 +46,7 @@ typedef struct {
     uint8_t has_sample;
 } tvo_target_streamed_t;
 
-typedef struct {
+typedef struct tvo_target {
     tvo_target_kind_t kind;
     union {
         tvo_target_polynomial_t polynomial;
@@ -76,12 +76,16 @@ tvo_status_t tvo_target_init_ellipse(tvo_target_t *target, const tvo_target_elli
  */
 uint64_t tvo_target_turns_q64(double omega_radps);
 
-/** Streamed target with no sample yet (evaluation reports TVO_ERR_TARGET_NOT_READY). */
+/** Streamed target with no sample yet: a controller's step holds its command in force (reason
+ *  TVO_REASON_TARGET_NOT_READY) until one arrives, and while the law's time precedes the sample's stamp
+ *  (TVO_REASON_FUTURE_STAMP); the step checks both before its law. */
 tvo_status_t tvo_target_init_streamed(tvo_target_t *target);
 
 /**
  * New streamed sample valid at stamp_ticks (since the objective's epoch); deriv[j] is the j-th time
- * derivative, j = 0..TVO_STREAM_MAX_DERIV. Rejects non-finite values and stamps that do not advance.
+ * derivative, j = 0..TVO_STREAM_MAX_DERIV. Rejects a value not finite (TVO_ERR_NOT_FINITE) or beyond the
+ * workspace (TVO_ERR_PARAM), a target not streamed (TVO_ERR_PARAM), and a stamp that does not advance past
+ * the last sample's (TVO_ERR_TICK_NOT_ADVANCING); a refused sample changes nothing.
  */
 tvo_status_t tvo_target_stream_update(tvo_target_t *target, uint64_t stamp_ticks,
                                       const tvo_real_t deriv[TVO_STREAM_MAX_DERIV + 1][2]);

@@ -21,6 +21,10 @@ tvo_status_t tvo_time_jet_at(const tvo_tick_time_t *time, uint32_t tick_hz, tvo_
 /** The time jet at a tick count since the epoch (64-bit division: for tools and tests). */
 tvo_status_t tvo_time_jet_at_ticks(uint64_t ticks, uint32_t tick_hz, tvo_real_t rate, tvo_time_jet_t *t);
 
+/** Records a target the last term added reads (NULL: none), for the controllers' check before their law
+ *  (tvo_objective_t.targets). */
+void objective_add_target(tvo_objective_t *objective, const struct tvo_target *target);
+
 /** Appends an inequality-constraint term (constraint_max must not be NULL). */
 tvo_status_t tvo_objective_add_constraint(tvo_objective_t *objective, tvo_gradient_jet_fn gradient_jet,
                                           tvo_constraint_max_fn constraint_max, const void *term);

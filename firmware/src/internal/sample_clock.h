@@ -139,23 +139,25 @@ static inline void sample_clock_locate(const tvo_sample_clock_t *clock, tvo_peri
     }
 }
 
-static inline tvo_status_t sample_clock_check_stamp(const tvo_sample_clock_t *clock, uint32_t stamp_tick,
+/* The stamp rules of a measurement applied at apply_tick: TVO_REASON_NONE when accepted, else the
+ * period's reason (the loop holds for it as it is). */
+static inline tvo_reason_t sample_clock_check_stamp(const tvo_sample_clock_t *clock, uint32_t stamp_tick,
                                                     uint32_t apply_tick)
 {
     const uint32_t age = apply_tick - stamp_tick;
     if (age > TVO_MAX_TICK_SPAN) {
-        return TVO_ERR_FUTURE_STAMP; /* negative age in wrap-around arithmetic */
+        return TVO_REASON_FUTURE_STAMP; /* negative age in wrap-around arithmetic */
     }
     if (age > clock->period_ticks) {
-        return TVO_ERR_STALE;
+        return TVO_REASON_STALE;
     }
     if (clock->has_stamp) {
         const uint32_t advance = stamp_tick - clock->last_stamp_tick;
         if (advance == 0u || advance > TVO_MAX_TICK_SPAN) {
-            return TVO_ERR_STAMP_NOT_NEWER;
+            return TVO_REASON_STAMP_NOT_NEWER;
         }
     }
-    return TVO_OK;
+    return TVO_REASON_NONE;
 }
 
 /* A refused step commits nothing unless counting its period would expire the watchdog (what

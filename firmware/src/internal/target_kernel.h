@@ -10,9 +10,9 @@
 #include "shape.h"
 #include "internal/trig_kernel.h"
 
-/* deriv[j] = y_d^(j)(t), j = 0..order: an order above TVO_JET_MAX_ORDER and the kind's errors (a
- * streamed target without a sample or with a future one, a time jet without the exact split a
- * periodic phase needs) are results, still refused. */
+/* deriv[j] = y_d^(j)(t), j = 0..order: an order above TVO_JET_MAX_ORDER and the kind's misuses (a
+ * streamed target without a sample or asked before its stamp, which a step's target_ready_at rules
+ * out first; a time jet without the exact split a periodic phase needs) are still refused. */
 tvo_status_t target_derivatives(const tvo_target_t *target, const tvo_time_jet_t *t, uint8_t order,
                                 tvo_real_t deriv[TVO_JET_MAX_ORDER + 1][2]);
 
