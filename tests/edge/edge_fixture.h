@@ -92,11 +92,9 @@ static inline void ef_line_path(tvo_lcm_path_t *path, double x0, double y0, doub
  *  telemetry after every answer, naming EF_BOOT for every robot. */
 static inline void ef_start(tvo_lcm_session_t *m, int32_t session_id, int32_t clock_source, int32_t robots)
 {
-    memset(m, 0, sizeof(*m));
+    (void)tvo_protocol_default_start(m, 1); /* the paper's loop; the robots below are the fixture's */
     m->utime = EF_UTIME;
-    m->protocol_version = TVO_LCM_NODE_STATUS_T_PROTOCOL_VERSION;
     m->session_id = session_id;
-    m->action = TVO_LCM_SESSION_T_ACTION_START;
     for (int32_t r = 0; r < TVO_LCM_SESSION_T_MAX_ROBOTS; ++r) {
         m->node_boot_id[r] = EF_BOOT;
     }
@@ -104,37 +102,20 @@ static inline void ef_start(tvo_lcm_session_t *m, int32_t session_id, int32_t cl
     m->epoch_utime = EF_EPOCH;
     m->period_us = EF_PERIOD_US;
     m->delay_us = EF_DELAY_US;
-    m->delay_compensation = 1;
-    m->zoh_aware = 0;
     m->watchdog_periods = EF_WATCHDOG;
     m->telemetry_every = 1;
-    m->plant_kind = TVO_LCM_SESSION_T_PLANT_UNICYCLE;
-    m->velocity_source = TVO_LCM_SESSION_T_VELOCITY_FROM_POSE;
-    m->filter_tf_s = 0.05;
-    m->gain_kp = 40.0;
-    m->gain_kd = 13.0;
-    m->omega_max_radps = 6.283185307179586;
-    m->accel_max_mps2 = 15.0;
     m->speed_max_mps = 2.0;
-    m->min_speed_mps = 0.05;
     m->chain_relative_degree = 2;
     m->chain_gains[0] = 2.56;
     m->chain_gains[1] = 3.2;
     m->chain_input_max = 1000.0;
-    m->robot_count = robots;
+    m->robot_count = robots; /* any count: tests send refused ones too */
     for (int32_t r = 0; r < robots && r < TVO_LCM_SESSION_T_MAX_ROBOTS; ++r) {
         m->robot[r].initial_speed_mps = 0.0;
         m->robot[r].tracking_weight[0] = 1.0;
         m->robot[r].tracking_weight[1] = 1.0;
         ef_line_path(&m->robot[r].target, 0.5, (double)r, 0.2);
     }
-    m->barrier.c0 = 1.0;
-    m->barrier.alpha_c_per_s = 1.0;
-    m->barrier.c_max = 1e4;
-    m->barrier.delta0 = 0.05;
-    m->barrier.alpha_s_per_s = 1.0;
-    m->barrier.slack_margin = 0.1;
-    m->barrier.relaxation_degree = 4;
     m->robot_radius_m = 0.1;
 }
 

@@ -66,40 +66,18 @@ static void record(void *context, int channel, const uint8_t *data, uint32_t len
 /* A START of one unicycle tracking a line, on the plant clock, naming boot `boot`. */
 static void make_start(tvo_lcm_session_t *m, int32_t session_id, int64_t boot)
 {
-    memset(m, 0, sizeof(*m));
+    (void)tvo_protocol_default_start(m, 1);
     m->utime = START_UTIME;
-    m->protocol_version = TVO_LCM_NODE_STATUS_T_PROTOCOL_VERSION;
     m->session_id = session_id;
-    m->action = TVO_LCM_SESSION_T_ACTION_START;
     m->node_boot_id[0] = boot;
-    m->clock_source = TVO_LCM_SESSION_T_CLOCK_PLANT;
     m->epoch_utime = EPOCH;
     m->period_us = H;
     m->delay_us = TAU;
-    m->delay_compensation = 1;
     m->watchdog_periods = 3;
-    m->plant_kind = TVO_LCM_SESSION_T_PLANT_UNICYCLE;
-    m->velocity_source = TVO_LCM_SESSION_T_VELOCITY_FROM_POSE;
-    m->filter_tf_s = 0.05;
-    m->gain_kp = 40.0;
-    m->gain_kd = 13.0;
-    m->omega_max_radps = 6.283185307179586;
-    m->accel_max_mps2 = 15.0;
     m->speed_max_mps = 2.0;
-    m->min_speed_mps = 0.05;
-    m->robot_count = 1;
-    m->robot[0].tracking_weight[0] = 1.0;
-    m->robot[0].tracking_weight[1] = 1.0;
     m->robot[0].target.kind = TVO_LCM_PATH_T_KIND_POLYNOMIAL;
     m->robot[0].target.coeff[0][0] = 0.5;
     m->robot[0].target.coeff[0][1] = 0.2;
-    m->barrier.c0 = 1.0;
-    m->barrier.alpha_c_per_s = 1.0;
-    m->barrier.c_max = 1e4;
-    m->barrier.delta0 = 0.05;
-    m->barrier.alpha_s_per_s = 1.0;
-    m->barrier.slack_margin = 0.1;
-    m->barrier.relaxation_degree = 4;
 }
 
 /* Robot 0's sample of period j (sequence j, stamped tau before period j's apply instant). */
