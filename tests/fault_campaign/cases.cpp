@@ -27,6 +27,7 @@ constexpr std::uint64_t kSeed = 20240609;
 // unicycle_sample_t and target_t begin with sample_header_t: utime (8 bytes), session_id (4);
 // session_t with utime, protocol_version (4), session_id (4), action (1).
 constexpr std::size_t kSampleSessionIdOffset = 16;
+constexpr std::size_t kSampleSequenceOffset = 20;
 constexpr std::size_t kSampleRobotOffset = 24;
 constexpr std::size_t kActionOffset = 24;
 
@@ -276,6 +277,7 @@ void case_garbage(Context& ctx)
         } else if (n >= 310 && n < 315) {
             auto bytes = random_body(rng, genuine_bytes);
             put_be32(bytes, kSampleSessionIdOffset, ours);
+            bytes[kSampleSequenceOffset] &= 0x7fu; // a sequence >= 0: a negative one is refused unanswered
             bytes[kSampleRobotOffset] = 0;   // robot 0: the period's last robot, whose sample is answered
             Expect refused;
             refused.kind = Expect::Kind::Refused;
@@ -432,9 +434,10 @@ void case_huge_sequence(Context& ctx)
             r.send_stray(resequenced(m, kInt32Max), Header::STATUS_ERR_IMPLAUSIBLE_STAMP,
                          "sequence INT32_MAX (the wire's largest): refused, implausible");
         } else if (n == 400) {
-            r.send_stray(resequenced(m, -1), kAny, "sequence -1: refused", true);
+            // Unanswered: an answer would echo it, and sequence -1 is the node's own stop.
+            r.send_refused_unanswered(resequenced(m, -1), "sequence -1: refused, counted, not answered");
         } else if (n == 450) {
-            r.send_stray(resequenced(m, kInt32Min), kAny, "sequence INT32_MIN: refused", true);
+            r.send_refused_unanswered(resequenced(m, kInt32Min), "sequence INT32_MIN: refused, counted, not answered");
         }
         r.send_genuine(m);
         if (n == 600) {
