@@ -134,15 +134,13 @@ int main(int argc, char **argv)
     tvo_lcm_unicycle_command_t_subscription_set_queue_capacity(cmds, 0);
     tvo_lcm_session_ack_t_subscription_t *acks =
         tvo_lcm_session_ack_t_subscribe(lcm, TVO_CHANNEL_SESSION_ACK, on_ack, &p);
-    tvo_lcm_session_t s = {.protocol_version = TVO_LCM_NODE_STATUS_T_PROTOCOL_VERSION, .session_id = p.session_id,
-        .clock_source = TVO_LCM_SESSION_T_CLOCK_PLANT, .epoch_utime = EPOCH_US, .period_us = PERIOD_US,
-        .delay_us = DELAY_US, .delay_compensation = 1, .watchdog_periods = WATCHDOG_PERIODS,
-        .plant_kind = TVO_LCM_SESSION_T_PLANT_UNICYCLE, .velocity_source = TVO_LCM_SESSION_T_VELOCITY_FROM_POSE,
-        .filter_tf_s = TVO_DEFAULT_FILTER_TF_S, .gain_kp = TVO_DEFAULT_GAIN_KP, .gain_kd = TVO_DEFAULT_GAIN_KD,
-        .omega_max_radps = TVO_DEFAULT_OMEGA_MAX_RADPS, .accel_max_mps2 = TVO_DEFAULT_ACCEL_MAX_MPS2,
-        .speed_max_mps = TVO_DEFAULT_SPEED_MAX_MPS, .min_speed_mps = TVO_DEFAULT_MIN_SPEED_MPS, .robot_count = 1};
-    s.robot[0] = (tvo_lcm_robot_t){.tracking_weight = {1.0, 1.0}, .target = {.kind = TVO_LCM_PATH_T_KIND_ELLIPSE,
-        .semi_axis_m = {3.0, 1.5}, .omega_radps = 2.0 * PI / 10.0}};
+    /* The paper's loop for one robot, lockstep (tvo/defaults.h: h, tau, the watchdog, the gains, the limits). */
+    tvo_lcm_session_t s;
+    (void)tvo_protocol_default_start(&s, 1); /* one robot: in range */
+    s.session_id = p.session_id;
+    s.epoch_utime = EPOCH_US;
+    s.robot[0].target = (tvo_lcm_path_t){.kind = TVO_LCM_PATH_T_KIND_ELLIPSE, .semi_axis_m = {3.0, 1.5},
+                                         .omega_radps = 2.0 * PI / 10.0};
     if (!request(lcm, &p, &s, TVO_LCM_SESSION_T_ACTION_START, r.now_us) || p.ack.status != 0) {
         fprintf(stderr, "plant_client: START %s: %s, parameter %s, part %s, index %d\n",
                 p.acked ? "refused" : (p.boot_id != 0 ? "not acknowledged" : "no node announced itself"),
