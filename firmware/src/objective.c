@@ -4,6 +4,7 @@
 #include "internal/law.h"
 #include "internal/objective_kernel.h"
 #include "internal/sample_clock.h"
+#include "internal/target.h"
 #include "tvo/tracking.h"
 
 tvo_status_t tvo_objective_init(tvo_objective_t *objective, uint8_t primal_dim)
@@ -50,12 +51,16 @@ static tvo_status_t append_slot(tvo_objective_t *objective, const tvo_term_t *sp
     return TVO_OK;
 }
 
-void objective_add_target(tvo_objective_t *objective, const struct tvo_target *target)
+tvo_reason_t objective_targets_ready(const tvo_objective_t *objective, uint64_t law_ticks)
 {
-    TVO_ASSERT(objective->target_count < objective->term_count); /* one per term at most */
-    if (target != NULL && objective->target_count < TVO_MAX_TERMS) {
-        objective->targets[objective->target_count++] = target;
+    const uint8_t count = objective->target_count;
+    for (uint8_t i = 0; i < count && i < TVO_MAX_TERMS; ++i) {
+        const tvo_reason_t reason = target_ready_at(objective->targets[i], law_ticks);
+        if (reason != TVO_REASON_NONE) {
+            return reason;
+        }
     }
+    return TVO_REASON_NONE;
 }
 
 tvo_status_t objective_append_tracking(tvo_objective_t *objective, const void *tracking_term)

@@ -42,29 +42,20 @@ tvo_real_t tvo_ticks_to_seconds32(uint32_t ticks, uint32_t tick_hz)
 }
 
 
-int tvo_sample_clock_end(tvo_sample_clock_t *clock, const tvo_period_t *period, int good, uint32_t stamp_tick)
+int tvo_sample_clock_refuse(tvo_sample_clock_t *clock, const tvo_period_t *period, int measured)
 {
-    TVO_ASSERT(clock != NULL && period != NULL);
-    if (good) {
-        sample_clock_end_good(clock, period, stamp_tick);
-        return 0;
+    TVO_ASSERT(clock != NULL && (period != NULL || measured));
+    const int streak_stops = measured && sample_clock_count_refusal(clock);
+    if (period != NULL && (!measured || sample_clock_refusal_stops(clock, period))) {
+        sample_clock_end_period(clock, period);
+        /* Each below 2^30 (TVO_MAX_TICK_SPAN): no overflow; the expiry caps the count however long the outage. */
+        clock->periods_without_measurement += period->periods;
     }
-    sample_clock_end_period(clock, period);
-    /* Saturating count: no overflow however long the outage. */
-    const uint32_t room = clock->watchdog_periods - clock->periods_without_measurement;
-    clock->periods_without_measurement =
-        (period->periods >= room) ? clock->watchdog_periods : clock->periods_without_measurement + period->periods;
-    if (clock->periods_without_measurement >= clock->watchdog_periods) {
-        clock->stopped = 1;
+    const int stops = streak_stops || clock->periods_without_measurement >= clock->watchdog_periods;
+    if (stops) {
+        sample_clock_expire(clock);
     }
-    return clock->stopped;
-}
-
-void tvo_sample_clock_expire(tvo_sample_clock_t *clock)
-{
-    TVO_ASSERT(clock != NULL);
-    clock->periods_without_measurement = clock->watchdog_periods;
-    clock->stopped = 1;
+    return stops;
 }
 
 tvo_status_t tvo_sample_clock_objective_ticks(const tvo_sample_clock_t *clock, uint32_t tick, uint64_t *objective_ticks)

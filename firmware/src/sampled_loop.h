@@ -41,6 +41,7 @@
 #include <string.h>
 
 #include "internal/sample_clock.h"
+#include "internal/objective.h"
 #include "internal/target.h"
 #include "tvo/defaults.h"
 #include "shape.h"
@@ -189,15 +190,12 @@ TVO_LOOP_ENTRY void loop_hold(const tvo_loop_plant_t *p, const void *ctl, void *
     loop_mark(p, cmd, 0u, TVO_OUTCOME_HELD, reason);
 }
 
-/* A taken period the plant's finding stops (its states already at rest): the held command the stop,
- * its flags kept (they say what the plant found). A cold path, given the layout's offsets, not the
- * table (a table passed out of line would have to be emitted, and every piece beside its inlined copies). */
-TVO_COLD_BODY void loop_plant_stop(void *held, size_t command_size, size_t flags_at, size_t outcome_at,
-                                   tvo_reason_t reason)
+/* A taken period the plant's finding stops (its states already at rest): the held command's inputs
+ * zero, its flags kept (they say what the plant found); inputs come first in a plant's command. */
+TVO_LOOP_ENTRY void loop_plant_stop(const tvo_loop_plant_t *p, void *held, tvo_reason_t reason)
 {
-    const uint32_t flags = *(const uint32_t *)loop_at(held, flags_at);
-    loop_stop_at(held, command_size, outcome_at, reason);
-    *(uint32_t *)loop_at(held, flags_at) = flags;
+    memset(LOOP_WORDS(held), 0, p->command_flags_at);
+    loop_mark_outcome(p, held, TVO_OUTCOME_STOPPED, reason);
 }
 
 /* The plant stops: its states, and the held command, at rest; cmd the stop, for `reason` (a copy of
@@ -231,19 +229,8 @@ TVO_LOOP_ENTRY tvo_status_t loop_ready(const tvo_loop_plant_t *p, const void *ct
 /* The stop now, the watchdog expired (without counting a period: the clock does not advance). */
 TVO_LOOP_ENTRY void loop_stop_now(const tvo_loop_plant_t *p, void *ctl, void *cmd, tvo_reason_t reason)
 {
-    tvo_sample_clock_expire(loop_clock(p, ctl));
+    sample_clock_expire(loop_clock(p, ctl));
     loop_drop_to_rest(p, ctl, cmd, reason);
-}
-
-/* A period counted without a good step (committed): held, or stopped once the watchdog expires. */
-TVO_LOOP_ENTRY void loop_miss_period(const tvo_loop_plant_t *p, void *ctl, const tvo_period_t *period, void *cmd,
-                                     tvo_reason_t reason)
-{
-    if (tvo_sample_clock_end(loop_clock(p, ctl), period, 0, 0u)) {
-        loop_drop_to_rest(p, ctl, cmd, TVO_REASON_WATCHDOG);
-    } else {
-        loop_hold(p, ctl, cmd, reason);
-    }
 }
 
 /* A period the clock cannot begin (apply_tick does not advance, or precedes the epoch): a call error,
@@ -277,7 +264,7 @@ TVO_LOOP_ENTRY tvo_status_t loop_miss(const tvo_loop_plant_t *p, void *ctl, uint
 /* What a piece reports when a computation produced nothing (a cold path): its reason; the misuses the
  * unchecked pieces cannot meet, a numeric failure. A value not finite is a computed one here (the check
  * piece refused every measured one, TVO_REASON_NOT_FINITE): numeric. The period's other reasons are
- * decided before the law, as reasons (the stamp rules, loop_targets_ready). */
+ * decided before the law, as reasons (the stamp rules, objective_targets_ready). */
 TVO_LOOP_ENTRY tvo_reason_t loop_reason_of(tvo_status_t st)
 {
     static const uint8_t reason_of[TVO_STATUS_COUNT] = {
@@ -296,21 +283,6 @@ TVO_LOOP_ENTRY tvo_reason_t loop_reason_of(tvo_status_t st)
     return ((uint32_t)st < TVO_STATUS_COUNT) ? (tvo_reason_t)reason_of[st] : TVO_REASON_NUMERIC;
 }
 
-/* The law's precondition, decided here as the stamp rules are: every target the objective's terms read
- * can be evaluated at the law's time (a streamed one has a sample, stamped no later), else the
- * period's reason. The law then fails only by misuse or numerics. */
-TVO_LOOP_ENTRY tvo_reason_t loop_targets_ready(const tvo_objective_t *objective, uint64_t law_ticks)
-{
-    const uint8_t count = objective->target_count;
-    for (uint8_t i = 0; i < count && i < TVO_MAX_TERMS; ++i) {
-        const tvo_reason_t reason = target_ready_at(objective->targets[i], law_ticks);
-        if (reason != TVO_REASON_NONE) {
-            return reason;
-        }
-    }
-    return TVO_REASON_NONE;
-}
-
 /* A step that cannot use its measurement (or its law's result), committing nothing: the command in
  * force, held for the refusal's reason; or, when counting the period would expire the watchdog, the
  * period counted and the stop (the state the plant is left in). meas NULL: a period without a
@@ -318,14 +290,10 @@ TVO_LOOP_ENTRY tvo_reason_t loop_targets_ready(const tvo_objective_t *objective,
 TVO_LOOP_ENTRY void loop_refuse(const tvo_loop_plant_t *p, void *ctl, const void *meas, const tvo_period_t *period,
                                 tvo_reason_t reason, void *cmd)
 {
-    tvo_sample_clock_t *clock = loop_clock(p, ctl);
-    const int streak_stops = (meas != NULL) && sample_clock_count_refusal(clock); /* counted either way */
-    if (meas == NULL || sample_clock_refusal_stops(clock, period)) {
-        loop_miss_period(p, ctl, period, cmd, reason);
-    } else if (streak_stops) {
-        loop_stop_now(p, ctl, cmd, TVO_REASON_WATCHDOG);
+    if (tvo_sample_clock_refuse(loop_clock(p, ctl), period, meas != NULL)) {
+        loop_drop_to_rest(p, ctl, cmd, TVO_REASON_WATCHDOG);
     } else {
-        loop_hold(p, ctl, cmd, (p->refusal != NULL) ? p->refusal(ctl, meas, reason) : reason);
+        loop_hold(p, ctl, cmd, (meas != NULL && p->refusal != NULL) ? p->refusal(ctl, meas, reason) : reason);
     }
 }
 
@@ -350,8 +318,8 @@ TVO_LOOP_ENTRY tvo_status_t loop_refuse_unplaced(const tvo_loop_plant_t *p, void
         loop_hold(p, ctl, cmd, TVO_REASON_NONE);
         return TVO_ERR_PARAM;
     }
-    if (sample_clock_count_refusal(loop_clock(p, ctl))) {
-        loop_stop_now(p, ctl, cmd, TVO_REASON_WATCHDOG);
+    if (tvo_sample_clock_refuse(loop_clock(p, ctl), NULL, 1)) {
+        loop_drop_to_rest(p, ctl, cmd, TVO_REASON_WATCHDOG);
     } else {
         loop_hold(p, ctl, cmd, reason);
     }
@@ -389,7 +357,7 @@ TVO_LOOP_ENTRY tvo_status_t loop_period(const tvo_loop_plant_t *p, void *ctl, co
     tvo_loop_frame_t frame = {0u, 0u, clock->stopped, shape};
     tvo_reason_t reason = p->prepare(ctl, meas, apply_tick, &frame);
     if (reason == TVO_REASON_NONE) {
-        reason = loop_targets_ready(loop_objective(p, ctl), period->law_time.ticks); /* prepare located it */
+        reason = objective_targets_ready(loop_objective(p, ctl), period->law_time.ticks); /* prepare located it */
     }
     if (reason == TVO_REASON_NONE) {
         if (!clock->has_stamp) { /* no sample accepted yet: this checked one may be the state at t = 0 */
@@ -415,7 +383,7 @@ TVO_LOOP_ENTRY tvo_status_t loop_period(const tvo_loop_plant_t *p, void *ctl, co
     held_outcome[1] = (uint8_t)TVO_REASON_NONE;
     const tvo_reason_t plant_stop = p->commit(ctl, &frame);
     if (plant_stop != TVO_REASON_NONE) {
-        loop_plant_stop(held, p->command_size, p->command_flags_at, p->command_outcome_at, plant_stop);
+        loop_plant_stop(p, held, plant_stop);
     }
     memcpy(LOOP_WORDS(cmd), LOOP_WORDS(held), p->command_size);
     return TVO_OK;

@@ -97,6 +97,7 @@ typedef struct {
     uint8_t robot_count;         /* N, 1 .. TVO_MAX_ROBOTS; the objective's dim must be 2N */
     uint8_t delay_compensation;  /* 1: predict over the measurement's age before the law */
     uint8_t zoh_aware;           /* 1: evaluate the law at the middle of the held interval */
+    uint8_t watchdog_counts_refusals; /* 1: no timer (lockstep): watchdog_periods refusals in a row stop too */
     tvo_velocity_source_t velocity_source;
     tvo_real_t filter_tf_s;      /* dirty-derivative time constant T_f > 0 */
     tvo_real_t gain_kp;          /* a_0; with gain_kd must make s^2 + kd s + kp Hurwitz */
@@ -106,7 +107,6 @@ typedef struct {
     tvo_real_t speed_max_mps;    /* |v| limit, > 0 */
     tvo_real_t min_speed_mps;    /* 1/v regularisation floor, 0 < min_speed < speed_max */
     uint32_t watchdog_periods;   /* safe stop after this many periods without a valid measurement, >= 1 */
-    uint8_t watchdog_counts_refusals; /* 1: no timer (lockstep): watchdog_periods refusals in a row stop too */
     tvo_real_t initial_speed_mps[TVO_MAX_ROBOTS]; /* dynamic-extension speed at start, |v0| <= speed_max */
 } tvo_controller_config_t;
 

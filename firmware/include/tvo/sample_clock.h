@@ -5,7 +5,7 @@
  * Per period a controller begins the period of its application instant (tvo_sample_clock_begin: one
  * record of the period's timing), checks the measurement's stamp, locates where its law is evaluated
  * (tvo_sample_clock_locate), and ends the period with a good or a missed step
- * (tvo_sample_clock_end, which says when the watchdog has expired). Nothing changes before the end.
+ * (tvo_sample_clock_refuse says when a missed one expires the watchdog). Nothing changes before the end.
  */
 #ifndef TVO_SAMPLE_CLOCK_H
 #define TVO_SAMPLE_CLOCK_H
@@ -30,7 +30,7 @@ typedef struct {
     uint32_t frac_ticks;
 } tvo_tick_time_t;
 
-/** One period's timing, from tvo_sample_clock_begin (and _locate) to tvo_sample_clock_end. */
+/** One period's timing, from tvo_sample_clock_begin (and _locate) to its end. */
 typedef struct {
     uint32_t apply_tick;
     uint32_t periods;          /* periods since the last application, >= 1 */

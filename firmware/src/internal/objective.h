@@ -23,7 +23,19 @@ tvo_status_t tvo_time_jet_at_ticks(uint64_t ticks, uint32_t tick_hz, tvo_real_t 
 
 /** Records a target the last term added reads (NULL: none), for the controllers' check before their law
  *  (tvo_objective_t.targets). */
-void objective_add_target(tvo_objective_t *objective, const struct tvo_target *target);
+static inline void objective_add_target(tvo_objective_t *objective, const struct tvo_target *target)
+{
+    TVO_ASSERT(objective->target_count < objective->term_count); /* one per term at most */
+    if (target != NULL && objective->target_count < TVO_MAX_TERMS) {
+        objective->targets[objective->target_count++] = target;
+    }
+}
+
+/** The law's precondition, decided by the loop as the stamp rules are: every target the objective's terms
+ *  read can be evaluated at law_ticks (a streamed one has a sample, stamped no later), else the period's
+ *  reason (TVO_REASON_TARGET_NOT_READY, TVO_REASON_FUTURE_STAMP). Out of line: the step keeps its
+ *  registers for the law. */
+tvo_reason_t objective_targets_ready(const tvo_objective_t *objective, uint64_t law_ticks);
 
 /** Appends an inequality-constraint term (constraint_max must not be NULL). */
 tvo_status_t tvo_objective_add_constraint(tvo_objective_t *objective, tvo_gradient_jet_fn gradient_jet,

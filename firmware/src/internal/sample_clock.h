@@ -32,20 +32,21 @@ void tvo_sample_clock_init(tvo_sample_clock_t *clock, uint32_t tick_hz, uint32_t
 tvo_real_t tvo_ticks_to_seconds32(uint32_t ticks, uint32_t tick_hz);
 
 /**
- * Ends a begun period: with good = 1 a step used stamp_tick (recorded; the watchdog restarts);
- * with good = 0 nothing usable arrived (stamp_tick ignored). Returns 1 when the watchdog has
- * expired (stop the plant).
- */
-int tvo_sample_clock_end(tvo_sample_clock_t *clock, const tvo_period_t *period, int good, uint32_t stamp_tick);
-
-/**
  * Ticks from the epoch to a tick near the clock's present (within TVO_MAX_TICK_SPAN either way):
  * the objective time of a stamp. TVO_ERR_BEFORE_EPOCH if it lies before the epoch.
  */
 tvo_status_t tvo_sample_clock_objective_ticks(const tvo_sample_clock_t *clock, uint32_t tick, uint64_t *objective_ticks);
 
-/** Expires the watchdog now (a safe stop ordered from outside the step, e.g. the edge's timer). */
-void tvo_sample_clock_expire(tvo_sample_clock_t *clock);
+
+/**
+ * Ends a begun period without a good step, or counts a refused measurement: 1 when the robots stop (the
+ * watchdog has expired). measured 0: a period without a measurement, counted (watchdog_periods of them
+ * in a row expire the watchdog). measured 1: a refused measurement, which commits only what stops: on a
+ * clock that counts refusals, the watchdog_periods-th in a row (and every one after it); or its period,
+ * if counting it would expire the watchdog (period NULL: it has none, tvo_*_refuse). A good step's
+ * period ends with sample_clock_end_good.
+ */
+int tvo_sample_clock_refuse(tvo_sample_clock_t *clock, const tvo_period_t *period, int measured);
 
 static inline tvo_tick_time_t tick_time_after(const tvo_tick_time_t *t, uint32_t delta_ticks, uint32_t tick_hz)
 {
@@ -160,8 +161,8 @@ static inline tvo_reason_t sample_clock_check_stamp(const tvo_sample_clock_t *cl
     return TVO_REASON_NONE;
 }
 
-/* A refused step commits nothing unless counting its period would expire the watchdog (what
- * tvo_sample_clock_end would say): then the period is counted and the robots stop. */
+/* A refused step commits nothing unless counting its period would expire the watchdog: then the period
+ * is counted and the robots stop. */
 static inline int sample_clock_refusal_stops(const tvo_sample_clock_t *clock, const tvo_period_t *period)
 {
     return clock->stopped || period->periods >= clock->watchdog_periods - clock->periods_without_measurement;
@@ -176,7 +177,7 @@ static inline void sample_clock_end_period(tvo_sample_clock_t *clock, const tvo_
 }
 
 /* A period with a good step ends: stamp_tick is recorded and the watchdog restarts. The watchdog's
- * count after a period without one is tvo_sample_clock_end's. */
+ * count after a period without one is tvo_sample_clock_refuse's. */
 static inline void sample_clock_end_good(tvo_sample_clock_t *clock, const tvo_period_t *period, uint32_t stamp_tick)
 {
     sample_clock_end_period(clock, period);
@@ -185,6 +186,14 @@ static inline void sample_clock_end_good(tvo_sample_clock_t *clock, const tvo_pe
     clock->periods_without_measurement = 0;
     clock->refusals_in_row = 0;
     clock->stopped = 0;
+}
+
+/* The watchdog expired now (a stop ordered from outside the period, or a refusal that stops): the
+ * count full, the robots stopped until a good step. */
+static inline void sample_clock_expire(tvo_sample_clock_t *clock)
+{
+    clock->periods_without_measurement = clock->watchdog_periods;
+    clock->stopped = 1;
 }
 
 /* A refused measurement counted (a clock that counts refusals only): 1 when watchdog_periods refusals
