@@ -46,12 +46,13 @@ int tvo_sample_clock_refuse(tvo_sample_clock_t *clock, const tvo_period_t *perio
 {
     TVO_ASSERT(clock != NULL && (period != NULL || measured));
     const int streak_stops = measured && sample_clock_count_refusal(clock);
-    if (period != NULL && (!measured || sample_clock_refusal_stops(clock, period))) {
+    const int counted = period != NULL && (!measured || sample_clock_refusal_stops(clock, period));
+    if (counted) {
         sample_clock_end_period(clock, period);
         /* Each below 2^30 (TVO_MAX_TICK_SPAN): no overflow; the expiry caps the count however long the outage. */
         clock->periods_without_measurement += period->periods;
     }
-    const int stops = streak_stops || clock->periods_without_measurement >= clock->watchdog_periods;
+    const int stops = streak_stops || (counted && clock->periods_without_measurement >= clock->watchdog_periods);
     if (stops) {
         sample_clock_expire(clock);
     }
