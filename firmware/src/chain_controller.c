@@ -217,7 +217,7 @@ TVO_OFF_CHAIN_BODY tvo_reason_t chain_prepare(void *ctl_any, const void *meas_an
     tvo_chain_controller_t *ctl = ctl_any;
     const tvo_chain_measurement_t *meas = meas_any;
     tvo_chain_controller_work_t *work = &ctl->internal.work;
-    tvo_period_t *period = &work->period;
+    tvo_period_t *period = &ctl->internal.loop.period;
     const tvo_reason_t refused = chain_check(ctl, meas, apply_tick);
     if (refused != TVO_REASON_NONE) {
         return refused;
@@ -303,9 +303,43 @@ TVO_OFF_CHAIN_BODY tvo_reason_t chain_commit(void *ctl_any, const tvo_loop_frame
 
 /* No refusal piece (the chain's refusals are final) and no rest piece (the held input is all its
  * state at rest; the filters restart from the gap). */
+/* Where the loop's parts live in the chain's types. */
+static tvo_loop_state_t *chain_state(void *ctl)
+{
+    return &((tvo_chain_controller_t *)ctl)->internal.loop;
+}
+
+static const tvo_loop_state_t *chain_state_of(const void *ctl)
+{
+    return &((const tvo_chain_controller_t *)ctl)->internal.loop;
+}
+
+static void *chain_held(void *ctl)
+{
+    return &((tvo_chain_controller_t *)ctl)->internal.held;
+}
+
+static tvo_loop_mark_t chain_mark(void *cmd_any)
+{
+    tvo_chain_command_t *cmd = cmd_any;
+    const tvo_loop_mark_t mark = {&cmd->flags, &cmd->outcome, &cmd->reason};
+    return mark;
+}
+
+static uint32_t chain_stamp_tick(const void *meas)
+{
+    return ((const tvo_chain_measurement_t *)meas)->stamp_tick;
+}
+
+static const tvo_real_t *chain_positions(const void *meas)
+{
+    return ((const tvo_chain_measurement_t *)meas)->y.d[0];
+}
+
 static const tvo_loop_plant_t chain_plant = {
-    TVO_LOOP_LAYOUT(tvo_chain_controller_t, tvo_chain_measurement_t, tvo_chain_command_t),
-    .positions_at = offsetof(tvo_chain_measurement_t, y),
+    .controller_size = sizeof(tvo_chain_controller_t), .command_size = sizeof(tvo_chain_command_t),
+    .state = chain_state, .state_of = chain_state_of, .held = chain_held, .mark = chain_mark,
+    .stamp_tick = chain_stamp_tick, .positions = chain_positions,
     .check = chain_check, .refusal = NULL, .prepare = chain_prepare, .law = chain_law, .command = chain_command,
     .commit = chain_commit, .refuse = chain_refuse, .rest = NULL};
 

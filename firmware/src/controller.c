@@ -309,7 +309,7 @@ TVO_OFF_CHAIN_BODY tvo_reason_t unicycle_prepare(void *ctl_any, const void *meas
     const uint8_t n = STEP_ROBOTS(frame->shape);
     const tvo_controller_config_t *cfg = &ctl->cfg;
     tvo_controller_work_t *work = &ctl->internal.work;
-    tvo_period_t *period = &work->period;
+    tvo_period_t *period = &ctl->internal.loop.period;
     work->from_rest = frame->from_rest;
     work->in_force = work->from_rest ? &rest_command : &ctl->internal.held;
     const tvo_reason_t refused = check_measurement(ctl, meas, apply_tick);
@@ -539,9 +539,43 @@ TVO_OFF_CHAIN_BODY tvo_reason_t unicycle_commit(void *ctl_any, const tvo_loop_fr
     return TVO_REASON_NONE;
 }
 
+/* Where the loop's parts live in the unicycle's types. */
+static tvo_loop_state_t *unicycle_state(void *ctl)
+{
+    return &((tvo_controller_t *)ctl)->internal.loop;
+}
+
+static const tvo_loop_state_t *unicycle_state_of(const void *ctl)
+{
+    return &((const tvo_controller_t *)ctl)->internal.loop;
+}
+
+static void *unicycle_held(void *ctl)
+{
+    return &((tvo_controller_t *)ctl)->internal.held;
+}
+
+static tvo_loop_mark_t unicycle_mark(void *cmd_any)
+{
+    tvo_command_t *cmd = cmd_any;
+    const tvo_loop_mark_t mark = {&cmd->flags, &cmd->outcome, &cmd->reason};
+    return mark;
+}
+
+static uint32_t unicycle_stamp_tick(const void *meas)
+{
+    return ((const tvo_measurement_t *)meas)->stamp_tick;
+}
+
+static const tvo_real_t *unicycle_positions(const void *meas)
+{
+    return ((const tvo_measurement_t *)meas)->position_m[0];
+}
+
 static const tvo_loop_plant_t unicycle_plant = {
-    TVO_LOOP_LAYOUT(tvo_controller_t, tvo_measurement_t, tvo_command_t),
-    .positions_at = offsetof(tvo_measurement_t, position_m),
+    .controller_size = sizeof(tvo_controller_t), .command_size = sizeof(tvo_command_t),
+    .state = unicycle_state, .state_of = unicycle_state_of, .held = unicycle_held, .mark = unicycle_mark,
+    .stamp_tick = unicycle_stamp_tick, .positions = unicycle_positions,
     .check = check_measurement, .refusal = unicycle_refusal, .prepare = unicycle_prepare, .law = unicycle_law,
     .command = unicycle_command, .commit = unicycle_commit, .refuse = unicycle_refuse, .rest = unicycle_rest};
 
@@ -594,7 +628,7 @@ tvo_status_t tvo_controller_sample_tick(const tvo_controller_t *ctl, uint32_t ap
     if (ctl == NULL || sample_tick == NULL) {
         return TVO_ERR_NULL;
     }
-    if (!ctl->internal.initialized) {
+    if (!ctl->internal.loop.initialized) {
         return TVO_ERR_NOT_INITIALIZED;
     }
     *sample_tick = apply_tick - ctl->cfg.delay_ticks;
@@ -606,7 +640,7 @@ tvo_status_t tvo_controller_objective_ticks(const tvo_controller_t *ctl, uint32_
     if (ctl == NULL || objective_ticks == NULL) {
         return TVO_ERR_NULL;
     }
-    if (!ctl->internal.initialized) {
+    if (!ctl->internal.loop.initialized) {
         return TVO_ERR_NOT_INITIALIZED;
     }
     return tvo_sample_clock_objective_ticks(&ctl->internal.loop.clock, tick, objective_ticks);

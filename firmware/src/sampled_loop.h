@@ -29,8 +29,10 @@
  * its outcome and reason (tvo/status.h); the public calls return an error only when they changed
  * nothing, and this file is the one place that writes an outcome.
  *
- * A plant (unicycle, integrator chain) supplies a tvo_loop_plant_t: where the loop's state lives in
- * its controller, the size of its command, and its pieces. Each controller calls the loop with its
+ * A plant (unicycle, integrator chain) supplies a tvo_loop_plant_t: the sizes of its controller and
+ * command, accessors written with its own types for where the loop's parts live in them (the loop's
+ * state, tvo/loop_state.h; the command in force; a command's mark; a measurement's stamp and
+ * positions), and its pieces. Each controller calls the loop with its
  * own static const table, so the compiler folds the table and calls the pieces directly (no indirect
  * call is left: tools/footprint.py refuses one it does not know of, the check that it was folded).
  */
@@ -63,21 +65,28 @@ typedef struct {
     uint8_t shape;     /* the plant's count for its loops (a constant in the shape copies) */
 } tvo_loop_frame_t;
 
+/* Where a plant's command says what its period did: its TVO_FLAG_*, outcome and reason. */
 typedef struct {
-    /* Where the loop's state lives in the plant's controller (offsetof). */
-    size_t controller_size;
-    size_t clock_at;       /* tvo_sample_clock_t */
-    size_t held_at;        /* the command in force */
-    size_t period_at;      /* the step's tvo_period_t (its work area) */
-    size_t initialized_at; /* uint8_t */
-    size_t stamp_at;       /* the measurement's uint32_t stamp_tick */
-    size_t objective_at;   /* the controller's const tvo_objective_t * */
-    size_t positions_at;   /* the measurement's positions, 2 tvo_real_t per robot in a row */
-    /* The plant's command: its size, where its uint32_t TVO_FLAG_* are, and its uint8_t outcome and
-     * reason (adjacent: outcome first). */
-    size_t command_size;
-    size_t command_flags_at;
-    size_t command_outcome_at;
+    uint32_t *flags;
+    uint8_t *outcome; /* tvo_outcome_t */
+    uint8_t *reason;  /* tvo_reason_t */
+} tvo_loop_mark_t;
+
+typedef struct {
+    size_t controller_size; /* sizeof the plant's controller (a refused init leaves it zeroed) */
+    size_t command_size;    /* sizeof the plant's command (copied whole: the held one to the caller's) */
+    /* Where the loop's parts live in the plant's types, each read through the plant's own typed member
+     * access (the table is folded: these compile to the members' addresses). */
+    /** The loop's state in the plant's controller, to change (state) or to read (state_of). */
+    tvo_loop_state_t *(*state)(void *ctl);
+    const tvo_loop_state_t *(*state_of)(const void *ctl);
+    /** The command in force, in the plant's controller (a command of the plant's type). */
+    void *(*held)(void *ctl);
+    /** The mark of a command of the plant's type. */
+    tvo_loop_mark_t (*mark)(void *cmd);
+    /** The measurement's stamp, and its positions (2 tvo_real_t per robot in a row). */
+    uint32_t (*stamp_tick)(const void *meas);
+    const tvo_real_t *(*positions)(const void *meas);
     /** The measurement's checks, clock's stamp rules included (NULL measurements never reach it):
      *  TVO_REASON_NONE or the refusal, before any refinement by refusal. */
     tvo_reason_t (*check)(const void *ctl, const void *meas, uint32_t apply_tick);
@@ -102,19 +111,6 @@ typedef struct {
     void (*rest)(void *ctl);
 } tvo_loop_plant_t;
 
-/* The layout part of a plant's table: the loop's members must carry these names (internal.loop, a
- * tvo_loop_state_t; internal.held, internal.initialized and internal.work.period in the controller;
- * stamp_tick in the measurement; flags, outcome and reason in the command). */
-#define TVO_LOOP_LAYOUT(controller_type, measurement_type, command_type)                                     \
-    .controller_size = sizeof(controller_type), .clock_at = offsetof(controller_type, internal.loop.clock),  \
-    .held_at = offsetof(controller_type, internal.held),                                                     \
-    .period_at = offsetof(controller_type, internal.work.period),                                            \
-    .initialized_at = offsetof(controller_type, internal.initialized),                                       \
-    .objective_at = offsetof(controller_type, internal.loop.objective),                                      \
-    .stamp_at = offsetof(measurement_type, stamp_tick),                                                      \
-    .command_size = sizeof(command_type), .command_flags_at = offsetof(command_type, flags),                 \
-    .command_outcome_at = offsetof(command_type, outcome)
-
 /* A command's storage holds a uint32_t, so it is word-aligned: its copies may move whole words
  * (ldm/stm on Arm) as a typed struct assignment would. */
 #if defined(__GNUC__)
@@ -123,79 +119,58 @@ typedef struct {
 #define LOOP_WORDS(ptr) (ptr)
 #endif
 
-/* The member at offset_bytes (an offsetof) in a plant's object: aligned as that member is. */
-TVO_LOOP_ENTRY void *loop_at(void *object, size_t offset_bytes)
-{
-    return (char *)object + offset_bytes;
-}
-
-TVO_LOOP_ENTRY const void *loop_at_const(const void *object, size_t offset_bytes)
-{
-    return (const char *)object + offset_bytes;
-}
-
 TVO_LOOP_ENTRY tvo_sample_clock_t *loop_clock(const tvo_loop_plant_t *p, void *ctl)
 {
-    return loop_at(ctl, p->clock_at);
-}
-
-TVO_LOOP_ENTRY const tvo_sample_clock_t *loop_clock_const(const tvo_loop_plant_t *p, const void *ctl)
-{
-    return loop_at_const(ctl, p->clock_at);
+    return &p->state(ctl)->clock;
 }
 
 TVO_LOOP_ENTRY int loop_initialized(const tvo_loop_plant_t *p, const void *ctl)
 {
-    return *(const uint8_t *)loop_at_const(ctl, p->initialized_at) != 0u;
+    return p->state_of(ctl)->initialized != 0u;
 }
 
 /* A command's outcome and reason. */
 TVO_LOOP_ENTRY void loop_mark_outcome(const tvo_loop_plant_t *p, void *cmd, tvo_outcome_t outcome, tvo_reason_t reason)
 {
-    uint8_t *outcome_at = loop_at(cmd, p->command_outcome_at);
-    outcome_at[0] = (uint8_t)outcome;
-    outcome_at[1] = (uint8_t)reason;
+    const tvo_loop_mark_t mark = p->mark(cmd);
+    *mark.outcome = (uint8_t)outcome;
+    *mark.reason = (uint8_t)reason;
 }
 
 /* A command's flags, outcome and reason. */
 TVO_LOOP_ENTRY void loop_mark(const tvo_loop_plant_t *p, void *cmd, uint32_t flags, tvo_outcome_t outcome,
                               tvo_reason_t reason)
 {
-    *(uint32_t *)loop_at(cmd, p->command_flags_at) = flags;
+    *p->mark(cmd).flags = flags;
     loop_mark_outcome(p, cmd, outcome, reason);
 }
 
-/* The stop in a command of command_size bytes whose outcome is at outcome_at: every input zero, no
- * flags (the memset's). */
-TVO_LOOP_ENTRY void loop_stop_at(void *cmd, size_t command_size, size_t outcome_at, tvo_reason_t reason)
+/* The stop: every input zero, no flags (the memset's). */
+TVO_LOOP_ENTRY void loop_stop_command(const tvo_loop_plant_t *p, void *cmd, tvo_reason_t reason)
 {
-    memset(LOOP_WORDS(cmd), 0, command_size);
-    uint8_t *outcome = loop_at(cmd, outcome_at);
-    outcome[0] = (uint8_t)TVO_OUTCOME_STOPPED;
+    memset(LOOP_WORDS(cmd), 0, p->command_size);
+    const tvo_loop_mark_t mark = p->mark(cmd);
+    *mark.outcome = (uint8_t)TVO_OUTCOME_STOPPED;
     if (reason != TVO_REASON_NONE) {
-        outcome[1] = (uint8_t)reason; /* NONE is the memset's: a constant NONE stores nothing */
+        *mark.reason = (uint8_t)reason; /* NONE is the memset's: a constant NONE stores nothing */
     }
 }
 
-/* The stop, in the plant's command layout. */
-TVO_LOOP_ENTRY void loop_stop_command(const tvo_loop_plant_t *p, void *cmd, tvo_reason_t reason)
-{
-    loop_stop_at(cmd, p->command_size, p->command_outcome_at, reason);
-}
-
 /* The command in force, held (zero once the plant was stopped). */
-TVO_LOOP_ENTRY void loop_hold(const tvo_loop_plant_t *p, const void *ctl, void *cmd, tvo_reason_t reason)
+TVO_LOOP_ENTRY void loop_hold(const tvo_loop_plant_t *p, void *ctl, void *cmd, tvo_reason_t reason)
 {
-    memcpy(LOOP_WORDS(cmd), LOOP_WORDS(loop_at_const(ctl, p->held_at)), p->command_size);
+    memcpy(LOOP_WORDS(cmd), LOOP_WORDS(p->held(ctl)), p->command_size);
     loop_mark(p, cmd, 0u, TVO_OUTCOME_HELD, reason);
 }
 
-/* A taken period the plant's finding stops (its states already at rest): the held command's inputs
- * zero, its flags kept (they say what the plant found); inputs come first in a plant's command. */
+/* A taken period the plant's finding stops (its states already at rest): the held command the stop, its
+ * flags kept (they say what the plant found): its inputs, which come before its mark, zero. */
 TVO_LOOP_ENTRY void loop_plant_stop(const tvo_loop_plant_t *p, void *held, tvo_reason_t reason)
 {
-    memset(LOOP_WORDS(held), 0, p->command_flags_at);
-    loop_mark_outcome(p, held, TVO_OUTCOME_STOPPED, reason);
+    const tvo_loop_mark_t mark = p->mark(held);
+    memset(LOOP_WORDS(held), 0, (size_t)((uint8_t *)mark.flags - (uint8_t *)held));
+    *mark.outcome = (uint8_t)TVO_OUTCOME_STOPPED;
+    *mark.reason = (uint8_t)reason;
 }
 
 /* The plant stops: its states, and the held command, at rest; cmd the stop, for `reason` (a copy of
@@ -205,7 +180,7 @@ TVO_LOOP_ENTRY void loop_drop_to_rest(const tvo_loop_plant_t *p, void *ctl, void
     if (p->rest != NULL) {
         p->rest(ctl);
     }
-    void *held = loop_at(ctl, p->held_at);
+    void *held = p->held(ctl);
     loop_stop_command(p, held, reason);
     memcpy(LOOP_WORDS(cmd), LOOP_WORDS(held), p->command_size);
 }
@@ -339,7 +314,7 @@ TVO_OFF_CHAIN_BODY void loop_start_rule(const tvo_objective_t *objective, const 
 /* The controller's objective. */
 TVO_LOOP_ENTRY const tvo_objective_t *loop_objective(const tvo_loop_plant_t *p, const void *ctl)
 {
-    return *(const tvo_objective_t *const *)loop_at_const(ctl, p->objective_at);
+    return p->state_of(ctl)->objective;
 }
 
 /* One period with a measurement, for an instance loop_ready passed: begin, prepare, command, and the
@@ -349,7 +324,7 @@ TVO_LOOP_ENTRY tvo_status_t loop_period(const tvo_loop_plant_t *p, void *ctl, co
                                         void *cmd, const uint8_t shape)
 {
     tvo_sample_clock_t *clock = loop_clock(p, ctl);
-    tvo_period_t *period = loop_at(ctl, p->period_at);
+    tvo_period_t *period = &p->state(ctl)->period;
     const tvo_status_t begun = loop_begin(p, ctl, apply_tick, period, cmd);
     if (begun != TVO_OK) {
         return begun;
@@ -361,7 +336,7 @@ TVO_LOOP_ENTRY tvo_status_t loop_period(const tvo_loop_plant_t *p, void *ctl, co
     }
     if (reason == TVO_REASON_NONE) {
         if (!clock->has_stamp) { /* no sample accepted yet: this checked one may be the state at t = 0 */
-            loop_start_rule(loop_objective(p, ctl), loop_at_const(meas, p->positions_at));
+            loop_start_rule(loop_objective(p, ctl), p->positions(meas));
         }
         reason = p->law(ctl, &frame);
     }
@@ -376,11 +351,9 @@ TVO_LOOP_ENTRY tvo_status_t loop_period(const tvo_loop_plant_t *p, void *ctl, co
         return TVO_OK;
     }
     /* The step succeeded: from here on its working copies become the controller's state. */
-    sample_clock_end_good(clock, period, *(const uint32_t *)loop_at_const(meas, p->stamp_at));
-    void *held = loop_at(ctl, p->held_at);
-    uint8_t *held_outcome = loop_at(held, p->command_outcome_at);
-    held_outcome[0] = (uint8_t)TVO_OUTCOME_APPLIED; /* the commit sets the flags */
-    held_outcome[1] = (uint8_t)TVO_REASON_NONE;
+    sample_clock_end_good(clock, period, p->stamp_tick(meas));
+    void *held = p->held(ctl);
+    loop_mark_outcome(p, held, TVO_OUTCOME_APPLIED, TVO_REASON_NONE); /* the commit sets the flags */
     const tvo_reason_t plant_stop = p->commit(ctl, &frame);
     if (plant_stop != TVO_REASON_NONE) {
         loop_plant_stop(p, held, plant_stop);
@@ -401,7 +374,7 @@ TVO_LOOP_ENTRY tvo_status_t loop_check(const tvo_loop_plant_t *p, const void *ct
         return TVO_ERR_NOT_INITIALIZED;
     }
     tvo_period_t period;
-    const tvo_status_t st = sample_clock_begin(loop_clock_const(p, ctl), apply_tick, &period);
+    const tvo_status_t st = sample_clock_begin(&p->state_of(ctl)->clock, apply_tick, &period);
     if (st != TVO_OK) {
         return st;
     }
@@ -449,7 +422,7 @@ TVO_LOOP_ENTRY tvo_status_t loop_init_end(const tvo_loop_plant_t *p, void *ctl, 
         return st;
     }
     tvo_sample_clock_init(loop_clock(p, ctl), tick_hz, period_ticks, watchdog_periods, counts_refusals, epoch_tick);
-    *(uint8_t *)loop_at(ctl, p->initialized_at) = 1u;
+    p->state(ctl)->initialized = 1u;
     return TVO_OK;
 }
 

@@ -152,7 +152,6 @@ typedef struct {
     tvo_real_t gradient_rate[TVO_MAX_OUTPUT_DIM];
     tvo_real_t rate_filtered[TVO_MAX_OUTPUT_DIM];    /* position-only: the filter's y', carried to the law */
     tvo_dirty_derivative_t velocity_filter;          /* the filter as the step would leave it */
-    tvo_period_t period;                             /* the period's timing */
     tvo_time_jet_t time;                             /* the objective's time where the law is evaluated */
     tvo_command_t command;                           /* the command the step would hold */
     tvo_law_report_t report;                         /* what the law reports to the step */
@@ -199,7 +198,6 @@ struct tvo_controller {
         tvo_real_t speed_step_max_mps;   /* accel_max h: the most a command's speed may differ from the one in force */
         tvo_real_t measured_speed_limit_mps; /* a measured speed beyond it is refused (TVO_MEASURED_SPEED_FACTOR) */
         const tvo_position_velocity_t *position_velocity; /* set by tvo_controller_init only: NULL links none */
-        uint8_t initialized;
     } internal;
     tvo_controller_telemetry_t telemetry;
 };
