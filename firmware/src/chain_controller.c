@@ -217,7 +217,7 @@ TVO_OFF_CHAIN_BODY tvo_reason_t chain_prepare(void *ctl_any, const void *meas_an
     tvo_chain_controller_t *ctl = ctl_any;
     const tvo_chain_measurement_t *meas = meas_any;
     tvo_chain_controller_work_t *work = &ctl->internal.work;
-    tvo_period_t *period = &ctl->internal.loop.period;
+    tvo_period_t *period = &work->period;
     const tvo_reason_t refused = chain_check(ctl, meas, apply_tick);
     if (refused != TVO_REASON_NONE) {
         return refused;
@@ -314,6 +314,11 @@ static const tvo_loop_state_t *chain_state_of(const void *ctl)
     return &((const tvo_chain_controller_t *)ctl)->internal.loop;
 }
 
+static tvo_period_t *chain_period(void *ctl)
+{
+    return &((tvo_chain_controller_t *)ctl)->internal.work.period;
+}
+
 static void *chain_held(void *ctl)
 {
     return &((tvo_chain_controller_t *)ctl)->internal.held;
@@ -338,7 +343,7 @@ static const tvo_real_t *chain_positions(const void *meas)
 
 static const tvo_loop_plant_t chain_plant = {
     .controller_size = sizeof(tvo_chain_controller_t), .command_size = sizeof(tvo_chain_command_t),
-    .state = chain_state, .state_of = chain_state_of, .held = chain_held, .mark = chain_mark,
+    .state = chain_state, .state_of = chain_state_of, .period = chain_period, .held = chain_held, .mark = chain_mark,
     .stamp_tick = chain_stamp_tick, .positions = chain_positions,
     .check = chain_check, .refusal = NULL, .prepare = chain_prepare, .law = chain_law, .command = chain_command,
     .commit = chain_commit, .refuse = chain_refuse, .rest = NULL};

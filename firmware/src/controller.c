@@ -309,7 +309,7 @@ TVO_OFF_CHAIN_BODY tvo_reason_t unicycle_prepare(void *ctl_any, const void *meas
     const uint8_t n = STEP_ROBOTS(frame->shape);
     const tvo_controller_config_t *cfg = &ctl->cfg;
     tvo_controller_work_t *work = &ctl->internal.work;
-    tvo_period_t *period = &ctl->internal.loop.period;
+    tvo_period_t *period = &work->period;
     work->from_rest = frame->from_rest;
     work->in_force = work->from_rest ? &rest_command : &ctl->internal.held;
     const tvo_reason_t refused = check_measurement(ctl, meas, apply_tick);
@@ -550,6 +550,11 @@ static const tvo_loop_state_t *unicycle_state_of(const void *ctl)
     return &((const tvo_controller_t *)ctl)->internal.loop;
 }
 
+static tvo_period_t *unicycle_period(void *ctl)
+{
+    return &((tvo_controller_t *)ctl)->internal.work.period;
+}
+
 static void *unicycle_held(void *ctl)
 {
     return &((tvo_controller_t *)ctl)->internal.held;
@@ -574,7 +579,7 @@ static const tvo_real_t *unicycle_positions(const void *meas)
 
 static const tvo_loop_plant_t unicycle_plant = {
     .controller_size = sizeof(tvo_controller_t), .command_size = sizeof(tvo_command_t),
-    .state = unicycle_state, .state_of = unicycle_state_of, .held = unicycle_held, .mark = unicycle_mark,
+    .state = unicycle_state, .state_of = unicycle_state_of, .period = unicycle_period, .held = unicycle_held, .mark = unicycle_mark,
     .stamp_tick = unicycle_stamp_tick, .positions = unicycle_positions,
     .check = check_measurement, .refusal = unicycle_refusal, .prepare = unicycle_prepare, .law = unicycle_law,
     .command = unicycle_command, .commit = unicycle_commit, .refuse = unicycle_refuse, .rest = unicycle_rest};

@@ -84,7 +84,7 @@ tvo_status_t controller_position_velocity(tvo_controller_t *ctl, const tvo_measu
         /* The held turn rate rotates the velocity over the carry to the law's instant, like the heading. */
         tvo_real_t s;
         tvo_real_t c;
-        tvo_sincos(work->in_force->turn_rate_radps[r] * ctl->internal.loop.period.carry_s, &s, &c);
+        tvo_sincos(work->in_force->turn_rate_radps[r] * work->period.carry_s, &s, &c);
         const tvo_real_t x = rate[2u * r];
         rate[2u * r] = c * x - s * rate[2u * r + 1u];
         rate[2u * r + 1u] = s * x + c * rate[2u * r + 1u];
@@ -95,7 +95,7 @@ tvo_status_t controller_position_velocity(tvo_controller_t *ctl, const tvo_measu
 void controller_position_velocity_commit(tvo_controller_t *ctl)
 {
     const tvo_controller_work_t *work = &ctl->internal.work;
-    const tvo_period_t *period = &ctl->internal.loop.period;
+    const tvo_period_t *period = &work->period;
     ctl->internal.velocity_filter = work->velocity_filter;
     for (uint8_t r = 0; r < ctl->cfg.robot_count; ++r) {
         ctl->internal.heading_estimate_rad[r] = unicycle_wrap_angle_near(work->heading[r] + work->in_force->turn_rate_radps[r] *

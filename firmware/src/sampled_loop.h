@@ -31,8 +31,8 @@
  *
  * A plant (unicycle, integrator chain) supplies a tvo_loop_plant_t: the sizes of its controller and
  * command, accessors written with its own types for where the loop's parts live in them (the loop's
- * state, tvo/loop_state.h; the command in force; a command's mark; a measurement's stamp and
- * positions), and its pieces. Each controller calls the loop with its
+ * state, tvo/loop_state.h; the step's period record; the command in force; a command's mark; a
+ * measurement's stamp and positions), and its pieces. Each controller calls the loop with its
  * own static const table, so the compiler folds the table and calls the pieces directly (no indirect
  * call is left: tools/footprint.py refuses one it does not know of, the check that it was folded).
  */
@@ -80,6 +80,8 @@ typedef struct {
     /** The loop's state in the plant's controller, to change (state) or to read (state_of). */
     tvo_loop_state_t *(*state)(void *ctl);
     const tvo_loop_state_t *(*state_of)(const void *ctl);
+    /** The step's record of its period, in the controller's work area (scratch: no state between steps). */
+    tvo_period_t *(*period)(void *ctl);
     /** The command in force, in the plant's controller (a command of the plant's type). */
     void *(*held)(void *ctl);
     /** The mark of a command of the plant's type. */
@@ -324,7 +326,7 @@ TVO_LOOP_ENTRY tvo_status_t loop_period(const tvo_loop_plant_t *p, void *ctl, co
                                         void *cmd, const uint8_t shape)
 {
     tvo_sample_clock_t *clock = loop_clock(p, ctl);
-    tvo_period_t *period = &p->state(ctl)->period;
+    tvo_period_t *period = p->period(ctl);
     const tvo_status_t begun = loop_begin(p, ctl, apply_tick, period, cmd);
     if (begun != TVO_OK) {
         return begun;

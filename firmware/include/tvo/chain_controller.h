@@ -80,6 +80,7 @@ typedef struct {
     tvo_output_derivs_t state;                                 /* x^(0..k-1) where the law is evaluated */
     tvo_dirty_derivative_t filter[TVO_MAX_RELATIVE_DEGREE - 1]; /* the filters as the step would leave them */
     tvo_real_t input[TVO_MAX_Z_DIM];                           /* the law's u */
+    tvo_period_t period;                                       /* the period's timing */
     tvo_time_jet_t time;                                       /* the objective's time for the law */
     tvo_chain_command_t command;                               /* the command the step would hold */
     tvo_law_report_t report;                                   /* what the law reports to the step */

@@ -152,6 +152,7 @@ typedef struct {
     tvo_real_t gradient_rate[TVO_MAX_OUTPUT_DIM];
     tvo_real_t rate_filtered[TVO_MAX_OUTPUT_DIM];    /* position-only: the filter's y', carried to the law */
     tvo_dirty_derivative_t velocity_filter;          /* the filter as the step would leave it */
+    tvo_period_t period;                             /* the period's timing */
     tvo_time_jet_t time;                             /* the objective's time where the law is evaluated */
     tvo_command_t command;                           /* the command the step would hold */
     tvo_law_report_t report;                         /* what the law reports to the step */

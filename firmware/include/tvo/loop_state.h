@@ -2,7 +2,7 @@
  * The sampled-data loop's own state, one copy inside each controller's private member (not part of
  * the API: a firmware reads a controller through its calls). The loop (src/sampled_loop.h) serves
  * every plant from it: the objective the law is evaluated on, h in seconds, the clock (ticks,
- * stamps, watchdog), the period being stepped and whether init accepted the controller.
+ * stamps, watchdog) and whether init accepted the controller.
  */
 #ifndef TVO_LOOP_STATE_H
 #define TVO_LOOP_STATE_H
@@ -18,7 +18,6 @@ typedef struct {
     const tvo_objective_t *objective; /* bound by init; outlives the controller */
     tvo_real_t period_s;              /* h */
     tvo_sample_clock_t clock;         /* ticks, elapsed time, stamps, watchdog */
-    tvo_period_t period;              /* the step's record of its period (scratch: no state between steps) */
     uint8_t initialized;              /* init accepted the configuration */
 } tvo_loop_state_t;
 
