@@ -327,7 +327,7 @@ static void *chain_held(void *ctl)
 static tvo_loop_mark_t chain_mark(void *cmd_any)
 {
     tvo_chain_command_t *cmd = cmd_any;
-    const tvo_loop_mark_t mark = {&cmd->flags, &cmd->outcome, &cmd->reason};
+    const tvo_loop_mark_t mark = {&cmd->flags, &cmd->outcome, &cmd->reason, offsetof(tvo_chain_command_t, flags)};
     return mark;
 }
 

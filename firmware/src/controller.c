@@ -563,7 +563,7 @@ static void *unicycle_held(void *ctl)
 static tvo_loop_mark_t unicycle_mark(void *cmd_any)
 {
     tvo_command_t *cmd = cmd_any;
-    const tvo_loop_mark_t mark = {&cmd->flags, &cmd->outcome, &cmd->reason};
+    const tvo_loop_mark_t mark = {&cmd->flags, &cmd->outcome, &cmd->reason, offsetof(tvo_command_t, flags)};
     return mark;
 }
 

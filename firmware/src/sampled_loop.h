@@ -65,11 +65,13 @@ typedef struct {
     uint8_t shape;     /* the plant's count for its loops (a constant in the shape copies) */
 } tvo_loop_frame_t;
 
-/* Where a plant's command says what its period did: its TVO_FLAG_*, outcome and reason. */
+/* Where a plant's command says what its period did: its TVO_FLAG_*, outcome and reason, after its
+ * inputs. */
 typedef struct {
     uint32_t *flags;
-    uint8_t *outcome; /* tvo_outcome_t */
-    uint8_t *reason;  /* tvo_reason_t */
+    uint8_t *outcome;   /* tvo_outcome_t */
+    uint8_t *reason;    /* tvo_reason_t */
+    size_t inputs_size; /* the bytes of the command's inputs, which come first */
 } tvo_loop_mark_t;
 
 typedef struct {
@@ -166,11 +168,11 @@ TVO_LOOP_ENTRY void loop_hold(const tvo_loop_plant_t *p, void *ctl, void *cmd, t
 }
 
 /* A taken period the plant's finding stops (its states already at rest): the held command the stop, its
- * flags kept (they say what the plant found): its inputs, which come before its mark, zero. */
+ * flags kept (they say what the plant found): its inputs zero. */
 TVO_LOOP_ENTRY void loop_plant_stop(const tvo_loop_plant_t *p, void *held, tvo_reason_t reason)
 {
     const tvo_loop_mark_t mark = p->mark(held);
-    memset(LOOP_WORDS(held), 0, (size_t)((uint8_t *)mark.flags - (uint8_t *)held));
+    memset(LOOP_WORDS(held), 0, mark.inputs_size);
     *mark.outcome = (uint8_t)TVO_OUTCOME_STOPPED;
     *mark.reason = (uint8_t)reason;
 }
