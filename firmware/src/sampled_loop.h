@@ -321,6 +321,21 @@ TVO_LOOP_ENTRY const tvo_objective_t *loop_objective(const tvo_loop_plant_t *p, 
     return p->state_of(ctl)->objective;
 }
 
+/* objective_targets_ready at the period's law time, asked only when a target is streamed (the only kind
+ * that can be unready): the common period pays one load and compare per target instead of a call. */
+TVO_LOOP_ENTRY tvo_reason_t loop_targets_ready(const tvo_objective_t *objective, const tvo_period_t *period)
+{
+    const struct tvo_target *const *target = objective->targets;
+    /* target_count <= TVO_MAX_TERMS (objective_add_target): the scan stays in the array */
+    const struct tvo_target *const *const end = target + objective->target_count;
+    for (; target != end; ++target) {
+        if ((*target)->kind == TVO_TARGET_STREAMED) {
+            return objective_targets_ready(objective, period->law_time.ticks);
+        }
+    }
+    return TVO_REASON_NONE;
+}
+
 /* One period with a measurement, for an instance loop_ready passed: begin, prepare, command, and the
  * commit or the refusal. shape: the plant's loop count, a constant in the shape copies. TVO_OK when
  * cmd is the period's answer (its outcome says which), else the clock could not begin the period. */
@@ -336,7 +351,7 @@ TVO_LOOP_ENTRY tvo_status_t loop_period(const tvo_loop_plant_t *p, void *ctl, co
     tvo_loop_frame_t frame = {0u, 0u, clock->stopped, shape};
     tvo_reason_t reason = p->prepare(ctl, meas, apply_tick, &frame);
     if (reason == TVO_REASON_NONE) {
-        reason = objective_targets_ready(loop_objective(p, ctl), period->law_time.ticks); /* prepare located it */
+        reason = loop_targets_ready(loop_objective(p, ctl), period); /* prepare located it */
     }
     if (reason == TVO_REASON_NONE) {
         if (!clock->has_stamp) { /* no sample accepted yet: this checked one may be the state at t = 0 */
