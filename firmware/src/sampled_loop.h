@@ -322,9 +322,13 @@ TVO_LOOP_ENTRY const tvo_objective_t *loop_objective(const tvo_loop_plant_t *p, 
 }
 
 /* objective_targets_ready at the period's law time, asked only when a target is streamed (the only kind
- * that can be unready): the common period pays one load and compare per target instead of a call. */
+ * that can be unready): the common period pays one load and compare per target instead of a call. A
+ * size build (-Os) calls it at once: the scan costs flash there. */
 TVO_LOOP_ENTRY tvo_reason_t loop_targets_ready(const tvo_objective_t *objective, const tvo_period_t *period)
 {
+#if defined(__OPTIMIZE_SIZE__)
+    return objective_targets_ready(objective, period->law_time.ticks);
+#else
     const struct tvo_target *const *target = objective->targets;
     /* target_count <= TVO_MAX_TERMS (objective_add_target): the scan stays in the array */
     const struct tvo_target *const *const end = target + objective->target_count;
@@ -334,6 +338,7 @@ TVO_LOOP_ENTRY tvo_reason_t loop_targets_ready(const tvo_objective_t *objective,
         }
     }
     return TVO_REASON_NONE;
+#endif
 }
 
 /* One period with a measurement, for an instance loop_ready passed: begin, prepare, command, and the
