@@ -301,8 +301,6 @@ TVO_OFF_CHAIN_BODY tvo_reason_t chain_commit(void *ctl_any, const tvo_loop_frame
     return TVO_REASON_NONE; /* the chain has no stop of its own */
 }
 
-/* No refusal piece (the chain's refusals are final) and no rest piece (the held input is all its
- * state at rest; the filters restart from the gap). */
 /* Where the loop's parts live in the chain's types. */
 static tvo_loop_state_t *chain_state(void *ctl)
 {
@@ -341,6 +339,8 @@ static const tvo_real_t *chain_positions(const void *meas)
     return ((const tvo_chain_measurement_t *)meas)->y.d[0];
 }
 
+/* No refusal piece (the chain's refusals are final) and no rest piece (the held input is all its
+ * state at rest; the filters restart from the gap). */
 static const tvo_loop_plant_t chain_plant = {
     .controller_size = sizeof(tvo_chain_controller_t), .command_size = sizeof(tvo_chain_command_t),
     .state = chain_state, .state_of = chain_state_of, .period = chain_period, .held = chain_held, .mark = chain_mark,

@@ -171,10 +171,8 @@ TVO_LOOP_ENTRY void loop_hold(const tvo_loop_plant_t *p, void *ctl, void *cmd, t
  * flags kept (they say what the plant found): its inputs zero. */
 TVO_LOOP_ENTRY void loop_plant_stop(const tvo_loop_plant_t *p, void *held, tvo_reason_t reason)
 {
-    const tvo_loop_mark_t mark = p->mark(held);
-    memset(LOOP_WORDS(held), 0, mark.inputs_size);
-    *mark.outcome = (uint8_t)TVO_OUTCOME_STOPPED;
-    *mark.reason = (uint8_t)reason;
+    memset(LOOP_WORDS(held), 0, p->mark(held).inputs_size);
+    loop_mark_outcome(p, held, TVO_OUTCOME_STOPPED, reason);
 }
 
 /* The plant stops: its states, and the held command, at rest; cmd the stop, for `reason` (a copy of

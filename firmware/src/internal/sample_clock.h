@@ -37,7 +37,6 @@ tvo_real_t tvo_ticks_to_seconds32(uint32_t ticks, uint32_t tick_hz);
  */
 tvo_status_t tvo_sample_clock_objective_ticks(const tvo_sample_clock_t *clock, uint32_t tick, uint64_t *objective_ticks);
 
-
 /**
  * Ends a begun period without a good step, or counts a refused measurement: 1 when the robots stop (the
  * watchdog has expired). measured 0: a period without a measurement, counted (watchdog_periods of them
