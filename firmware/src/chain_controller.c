@@ -146,6 +146,13 @@ tvo_status_t tvo_chain_predict(uint8_t relative_degree, uint8_t dim, const tvo_o
     return TVO_OK;
 }
 
+/* The filters a step reads and keeps: the cascade's k - 1 when the derivatives are filtered, else none
+ * (their trial copies would be dead weight on every step). */
+static inline uint8_t chain_filters_in_use(const tvo_chain_config_t *cfg)
+{
+    return cfg->filtered_derivatives ? (uint8_t)(cfg->relative_degree - 1u) : 0u;
+}
+
 /* y^(1..k-1) at the sample, from the filters (cascade; the step's working copies in `filter`,
  * kept only when the step succeeds) or as measured. */
 static tvo_status_t derivatives_at_sample(const tvo_chain_controller_t *ctl, tvo_dirty_derivative_t *filter,
@@ -226,7 +233,7 @@ TVO_OFF_CHAIN_BODY tvo_reason_t chain_prepare(void *ctl_any, const void *meas_an
     tvo_dirty_derivative_t *filter = work->filter; /* kept on success */
     tvo_status_t st;
     {
-        for (uint8_t j = 0; j + 1u < TVO_MAX_RELATIVE_DEGREE; ++j) {
+        for (uint8_t j = 0; j < chain_filters_in_use(&ctl->cfg) && j + 1u < TVO_MAX_RELATIVE_DEGREE; ++j) {
             filter[j] = ctl->internal.filter[j];
             if (frame->from_rest) {
                 filter[j].primed = 0; /* the gap makes old filter state meaningless */
@@ -294,7 +301,7 @@ TVO_OFF_CHAIN_BODY tvo_reason_t chain_commit(void *ctl_any, const tvo_loop_frame
 {
     tvo_chain_controller_t *ctl = ctl_any;
     (void)frame;
-    for (uint8_t j = 0; j + 1u < TVO_MAX_RELATIVE_DEGREE; ++j) {
+    for (uint8_t j = 0; j < chain_filters_in_use(&ctl->cfg) && j + 1u < TVO_MAX_RELATIVE_DEGREE; ++j) {
         ctl->internal.filter[j] = ctl->internal.work.filter[j];
     }
     ctl->internal.held = ctl->internal.work.command; /* applied: chain_command zeroed its outcome and reason */
@@ -329,11 +336,6 @@ static tvo_loop_mark_t chain_mark(void *cmd_any)
     return mark;
 }
 
-static uint32_t chain_stamp_tick(const void *meas)
-{
-    return ((const tvo_chain_measurement_t *)meas)->stamp_tick;
-}
-
 static const tvo_real_t *chain_positions(const void *meas)
 {
     return ((const tvo_chain_measurement_t *)meas)->y.d[0];
@@ -344,7 +346,7 @@ static const tvo_real_t *chain_positions(const void *meas)
 static const tvo_loop_plant_t chain_plant = {
     .controller_size = sizeof(tvo_chain_controller_t), .command_size = sizeof(tvo_chain_command_t),
     .state = chain_state, .state_of = chain_state_of, .period = chain_period, .held = chain_held, .mark = chain_mark,
-    .stamp_tick = chain_stamp_tick, .positions = chain_positions,
+    .positions = chain_positions,
     .check = chain_check, .refusal = NULL, .prepare = chain_prepare, .law = chain_law, .command = chain_command,
     .commit = chain_commit, .refuse = chain_refuse, .rest = NULL};
 

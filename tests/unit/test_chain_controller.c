@@ -1028,6 +1028,8 @@ static void test_chain_law_failure_after_the_filters_leaves_them_untouched(void)
     sample[0][0] = TVO_R(0.3);
     sample[1][1] = TVO_R(0.2);
     ASSERT_STATUS(TVO_OK, tvo_target_init_streamed(&ch.target));
+    tvo_chain_param_t bad = TVO_CHAIN_PARAM_NONE; /* the controller learns its targets' kinds at init */
+    ASSERT_STATUS(TVO_OK, tvo_chain_controller_init(&ch.ctl, &ch.cfg, &ch.objective, CH_EPOCH, &bad));
     tvo_chain_command_t cmd;
     {
         /* No sample yet: the loop holds the command in force (its check before the law), nothing kept. */

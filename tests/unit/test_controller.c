@@ -1781,6 +1781,32 @@ static void test_streamed_target_is_decided_by_the_loop_before_the_law(void)
     ASSERT_PERIOD(APPLIED, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), cmd);
 }
 
+/* A controller learns at its init which targets are streamed (tvo_target_init_streamed's contract): a
+ * target made streamed under a running controller is refused by its law (NUMERIC), the command in force
+ * held and nothing kept; the controller initialised again decides its readiness (TARGET_NOT_READY). */
+static void test_target_made_streamed_after_init_waits_for_the_init_again(void)
+{
+    fx_reset(&fx_a, 1);
+    fx_a.cfg.initial_speed_mps[0] = TVO_R(0.4); /* a command in force that is not the stop */
+    fx_set_pose(&fx_a, 0, 0.0, 0.0, 0.0);
+    fx_start(&fx_a, 100u);
+    const tvo_command_t in_force = fx_a.ctl.internal.held;
+    ASSERT_STATUS(TVO_OK, tvo_target_init_streamed(&fx_a.target[0]));
+    trace_t before;
+    trace_of(&fx_a.ctl, &before);
+    tvo_measurement_t m = measure_now(&fx_a, fx_a.apply - FX_DELAY);
+    tvo_command_t cmd;
+    ASSERT_PERIOD(HELD(NUMERIC), tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), cmd);
+    assert_same_motion(&in_force, &cmd, 1u);
+    assert_no_trace(&before, &fx_a.ctl);
+
+    fx_start(&fx_a, 100u);
+    trace_of(&fx_a.ctl, &before);
+    ASSERT_PERIOD(HELD(TARGET_NOT_READY), tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), cmd);
+    assert_same_motion(&in_force, &cmd, 1u);
+    assert_no_trace(&before, &fx_a.ctl);
+}
+
 #if TVO_MAX_OFFSET_EQUALITIES > 0
 /* An offset equality's streamed d(t) is one of the targets the loop checks (the objective records it
  * as the equality is added): without a sample the period holds for TARGET_NOT_READY. */
@@ -2184,6 +2210,7 @@ int main(void)
     RUN_TEST(test_refused_measurement_leaves_filter_speed_state_and_stamp_untouched);
     RUN_TEST(test_law_failure_after_the_estimate_leaves_the_filter_untouched);
     RUN_TEST(test_streamed_target_is_decided_by_the_loop_before_the_law);
+    RUN_TEST(test_target_made_streamed_after_init_waits_for_the_init_again);
 #if TVO_MAX_OFFSET_EQUALITIES > 0
     RUN_TEST(test_streamed_offset_is_decided_by_the_loop_before_the_law);
 #endif

@@ -152,7 +152,6 @@ typedef struct {
     tvo_real_t gradient_rate[TVO_MAX_OUTPUT_DIM];
     tvo_real_t rate_filtered[TVO_MAX_OUTPUT_DIM];    /* position-only: the filter's y', carried to the law */
     tvo_dirty_derivative_t velocity_filter;          /* the filter as the step would leave it */
-    tvo_period_t period;                             /* the period's timing */
     tvo_time_jet_t time;                             /* the objective's time where the law is evaluated */
     tvo_command_t command;                           /* the command the step would hold */
     tvo_law_report_t report;                         /* what the law reports to the step */
@@ -166,6 +165,8 @@ typedef struct {
     tvo_real_t speed_state[TVO_MAX_ROBOTS];          /* the extension's state as the step would leave it */
     tvo_real_t speed_next[TVO_MAX_ROBOTS];
     tvo_real_t accel[TVO_MAX_ROBOTS];
+    tvo_period_t period;                             /* the period's timing; last, beside the loop's clock the step
+                                                        reads with it (one base register for both) */
 } tvo_controller_work_t;
 
 typedef struct tvo_controller tvo_controller_t;

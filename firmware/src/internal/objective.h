@@ -37,6 +37,11 @@ static inline void objective_add_target(tvo_objective_t *objective, const struct
  *  registers for the law. */
 tvo_reason_t objective_targets_ready(const tvo_objective_t *objective, uint64_t law_ticks);
 
+/** 1 if a target the objective's terms read is streamed now: a controller's init asks, and its step checks
+ *  the targets before its law only then (a target re-initialised as streamed later needs the controller
+ *  initialised again). */
+uint8_t objective_reads_streamed(const tvo_objective_t *objective);
+
 /** Appends an inequality-constraint term (constraint_max must not be NULL). */
 tvo_status_t tvo_objective_add_constraint(tvo_objective_t *objective, tvo_gradient_jet_fn gradient_jet,
                                           tvo_constraint_max_fn constraint_max, const void *term);
