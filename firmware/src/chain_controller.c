@@ -336,6 +336,11 @@ static tvo_loop_mark_t chain_mark(void *cmd_any)
     return mark;
 }
 
+static uint32_t chain_stamp_tick(const void *meas)
+{
+    return ((const tvo_chain_measurement_t *)meas)->stamp_tick;
+}
+
 static const tvo_real_t *chain_positions(const void *meas)
 {
     return ((const tvo_chain_measurement_t *)meas)->y.d[0];
@@ -346,7 +351,7 @@ static const tvo_real_t *chain_positions(const void *meas)
 static const tvo_loop_plant_t chain_plant = {
     .controller_size = sizeof(tvo_chain_controller_t), .command_size = sizeof(tvo_chain_command_t),
     .state = chain_state, .state_of = chain_state_of, .period = chain_period, .held = chain_held, .mark = chain_mark,
-    .positions = chain_positions,
+    .stamp_tick = chain_stamp_tick, .positions = chain_positions,
     .check = chain_check, .refusal = NULL, .prepare = chain_prepare, .law = chain_law, .command = chain_command,
     .commit = chain_commit, .refuse = chain_refuse, .rest = NULL};
 

@@ -507,18 +507,13 @@ TVO_OFF_CHAIN_BODY tvo_reason_t unicycle_commit(void *ctl_any, const tvo_loop_fr
         tm->accel_mps2[r] = work->accel[r];
         ctl->internal.held.speed_mps[r] = next->speed_mps[r];
         ctl->internal.held.turn_rate_radps[r] = next->turn_rate_radps[r];
-        const uint8_t x = (uint8_t)(2u * r);
-        const uint8_t y_axis = (uint8_t)(x + 1u);
-        tm->output_m[x] = y->d[0][x];
-        tm->output_m[y_axis] = y->d[0][y_axis];
-        tm->output_rate_mps[x] = y->d[1][x];
-        tm->output_rate_mps[y_axis] = y->d[1][y_axis];
-        tm->output_accel_mps2[x] = y_accel[x];
-        tm->output_accel_mps2[y_axis] = y_accel[y_axis];
-        tm->gradient[x] = work->gradient[x];
-        tm->gradient[y_axis] = work->gradient[y_axis];
-        tm->gradient_rate[x] = work->gradient_rate[x];
-        tm->gradient_rate[y_axis] = work->gradient_rate[y_axis];
+        for (uint8_t i = (uint8_t)(2u * r); i < 2u * r + 2u; ++i) {
+            tm->output_m[i] = y->d[0][i];
+            tm->output_rate_mps[i] = y->d[1][i];
+            tm->output_accel_mps2[i] = y_accel[i];
+            tm->gradient[i] = work->gradient[i];
+            tm->gradient_rate[i] = work->gradient_rate[i];
+        }
     }
     tm->regularization = work->report.regularization;
     const tvo_shared_values_t *shared = &work->law.shared;
@@ -561,6 +556,11 @@ static tvo_loop_mark_t unicycle_mark(void *cmd_any)
     return mark;
 }
 
+static uint32_t unicycle_stamp_tick(const void *meas)
+{
+    return ((const tvo_measurement_t *)meas)->stamp_tick;
+}
+
 static const tvo_real_t *unicycle_positions(const void *meas)
 {
     return ((const tvo_measurement_t *)meas)->position_m[0];
@@ -569,7 +569,7 @@ static const tvo_real_t *unicycle_positions(const void *meas)
 static const tvo_loop_plant_t unicycle_plant = {
     .controller_size = sizeof(tvo_controller_t), .command_size = sizeof(tvo_command_t),
     .state = unicycle_state, .state_of = unicycle_state_of, .period = unicycle_period, .held = unicycle_held, .mark = unicycle_mark,
-    .positions = unicycle_positions,
+    .stamp_tick = unicycle_stamp_tick, .positions = unicycle_positions,
     .check = check_measurement, .refusal = unicycle_refusal, .prepare = unicycle_prepare, .law = unicycle_law,
     .command = unicycle_command, .commit = unicycle_commit, .refuse = unicycle_refuse, .rest = unicycle_rest};
 

@@ -63,16 +63,6 @@ tvo_reason_t objective_targets_ready(const tvo_objective_t *objective, uint64_t 
     return TVO_REASON_NONE;
 }
 
-uint8_t objective_reads_streamed(const tvo_objective_t *objective)
-{
-    for (uint8_t i = 0; i < objective->target_count && i < TVO_MAX_TERMS; ++i) {
-        if (objective->targets[i]->kind == TVO_TARGET_STREAMED) {
-            return 1u;
-        }
-    }
-    return 0u;
-}
-
 tvo_status_t objective_append_tracking(tvo_objective_t *objective, const void *tracking_term)
 {
     const tvo_term_t slot = {NULL, NULL, NULL, tracking_term, TVO_TERM_TRACKING};

@@ -5,8 +5,8 @@
  * What a period does (one call, one selected answer; a later line takes precedence over an earlier):
  *   1. applied    the measurement passed every check, the law and the limits: the period is committed.
  *   2. held       the command in force, repeated, for the reason of a refusal: the core's own checks
- *                 (the measurement's, then, if init found a streamed target, its targets' at the
- *                 law's time), its law's (no result: a numeric failure), or the caller's
+ *                 (the measurement's, then, if its objective reads a streamed target, its targets'
+ *                 at the law's time), its law's (no result: a numeric failure), or the caller's
  *                 (tvo_*_refuse: refused before the core saw it);
  *                 or no measurement at all (tvo_*_miss). Nothing of the period is kept.
  *   3. plant stop the measurement was taken, but the plant's own finding stops the robots (the
@@ -33,7 +33,7 @@
  * A plant (unicycle, integrator chain) supplies a tvo_loop_plant_t: the sizes of its controller and
  * command, accessors written with its own types for where the loop's parts live in them (the loop's
  * state, tvo/loop_state.h; the step's period record; the command in force; a command's mark; a
- * measurement's positions), and its pieces. Each controller calls the loop with its
+ * measurement's stamp and positions), and its pieces. Each controller calls the loop with its
  * own static const table, so the compiler folds the table and calls the pieces directly (no indirect
  * call is left: tools/footprint.py refuses one it does not know of, the check that it was folded).
  */
@@ -89,7 +89,8 @@ typedef struct {
     void *(*held)(void *ctl);
     /** The mark of a command of the plant's type. */
     tvo_loop_mark_t (*mark)(void *cmd);
-    /** The measurement's positions (2 tvo_real_t per robot in a row). */
+    /** The measurement's stamp, and its positions (2 tvo_real_t per robot in a row). */
+    uint32_t (*stamp_tick)(const void *meas);
     const tvo_real_t *(*positions)(const void *meas);
     /** The measurement's checks, clock's stamp rules included (NULL measurements never reach it):
      *  TVO_REASON_NONE or the refusal, before any refinement by refusal. */
@@ -319,12 +320,17 @@ TVO_LOOP_ENTRY const tvo_objective_t *loop_objective(const tvo_loop_plant_t *p, 
     return p->state_of(ctl)->objective;
 }
 
-/* objective_targets_ready at the period's law time, asked only of an objective init found streamed
- * targets in (the only kind that can be unready): the common period pays one load and compare. */
-TVO_LOOP_ENTRY tvo_reason_t loop_targets_ready(const tvo_loop_state_t *state, const tvo_period_t *period)
+/* objective_targets_ready at the period's law time. A speed build tests first whether the objective noted a
+ * streamed target (the only kind that can be unready), so the common period pays one load and compare and
+ * no call; a size build calls at once (its flash is the smaller). */
+TVO_LOOP_ENTRY tvo_reason_t loop_targets_ready(const tvo_objective_t *objective, const tvo_period_t *period)
 {
-    return state->streamed_targets ? objective_targets_ready(state->objective, period->law_time.ticks)
-                                   : TVO_REASON_NONE;
+#if defined(__OPTIMIZE_SIZE__)
+    return objective_targets_ready(objective, period->law_time.ticks);
+#else
+    return objective->target_count != 0u ? objective_targets_ready(objective, period->law_time.ticks)
+                                         : TVO_REASON_NONE;
+#endif
 }
 
 /* One period with a measurement, for an instance loop_ready passed: begin, prepare, command, and the
@@ -342,7 +348,7 @@ TVO_LOOP_ENTRY tvo_status_t loop_period(const tvo_loop_plant_t *p, void *ctl, co
     tvo_loop_frame_t frame = {0u, 0u, clock->stopped, shape};
     tvo_reason_t reason = p->prepare(ctl, meas, apply_tick, &frame);
     if (reason == TVO_REASON_NONE) {
-        reason = loop_targets_ready(p->state_of(ctl), period); /* prepare located it */
+        reason = loop_targets_ready(loop_objective(p, ctl), period); /* prepare located it */
     }
     if (reason == TVO_REASON_NONE) {
         if (!clock->has_stamp) { /* no sample accepted yet: this checked one may be the state at t = 0 */
@@ -361,7 +367,7 @@ TVO_LOOP_ENTRY tvo_status_t loop_period(const tvo_loop_plant_t *p, void *ctl, co
         return TVO_OK;
     }
     /* The step succeeded: from here on its working copies become the controller's state. */
-    sample_clock_end_good(clock, period); /* prepare located the period at the measurement's stamp */
+    sample_clock_end_good(clock, period, p->stamp_tick(meas));
     void *held = p->held(ctl);
     loop_mark_outcome(p, held, TVO_OUTCOME_APPLIED, TVO_REASON_NONE); /* the commit sets the flags */
     const tvo_reason_t plant_stop = p->commit(ctl, &frame);
@@ -432,9 +438,7 @@ TVO_LOOP_ENTRY tvo_status_t loop_init_end(const tvo_loop_plant_t *p, void *ctl, 
         return st;
     }
     tvo_sample_clock_init(loop_clock(p, ctl), tick_hz, period_ticks, watchdog_periods, counts_refusals, epoch_tick);
-    tvo_loop_state_t *state = p->state(ctl);
-    state->streamed_targets = objective_reads_streamed(state->objective);
-    state->initialized = 1u;
+    p->state(ctl)->initialized = 1u;
     return TVO_OK;
 }
 

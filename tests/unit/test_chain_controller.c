@@ -1028,7 +1028,10 @@ static void test_chain_law_failure_after_the_filters_leaves_them_untouched(void)
     sample[0][0] = TVO_R(0.3);
     sample[1][1] = TVO_R(0.2);
     ASSERT_STATUS(TVO_OK, tvo_target_init_streamed(&ch.target));
-    tvo_chain_param_t bad = TVO_CHAIN_PARAM_NONE; /* the controller learns its targets' kinds at init */
+    /* The objective notes a streamed target as its term is added: built again, then the controller. */
+    ASSERT_STATUS(TVO_OK, tvo_objective_init(&ch.objective, 2));
+    ASSERT_STATUS(TVO_OK, tvo_objective_add_term(&ch.objective, tvo_tracking_gradient_jet, &ch.term));
+    tvo_chain_param_t bad = TVO_CHAIN_PARAM_NONE;
     ASSERT_STATUS(TVO_OK, tvo_chain_controller_init(&ch.ctl, &ch.cfg, &ch.objective, CH_EPOCH, &bad));
     tvo_chain_command_t cmd;
     {

@@ -1781,10 +1781,10 @@ static void test_streamed_target_is_decided_by_the_loop_before_the_law(void)
     ASSERT_PERIOD(APPLIED, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), cmd);
 }
 
-/* A controller learns at its init which targets are streamed (tvo_target_init_streamed's contract): a
- * target made streamed under a running controller is refused by its law (NUMERIC), the command in force
- * held and nothing kept; the controller initialised again decides its readiness (TARGET_NOT_READY). */
-static void test_target_made_streamed_after_init_waits_for_the_init_again(void)
+/* An objective notes its streamed targets as their terms are added (tvo_target_init_streamed's contract):
+ * a target made streamed afterwards is refused by the law (NUMERIC), the command in force held and nothing
+ * kept; with the objective built again the loop decides its readiness (TARGET_NOT_READY). */
+static void test_target_made_streamed_after_its_term_waits_for_the_objective_again(void)
 {
     fx_reset(&fx_a, 1);
     fx_a.cfg.initial_speed_mps[0] = TVO_R(0.4); /* a command in force that is not the stop */
@@ -1800,7 +1800,7 @@ static void test_target_made_streamed_after_init_waits_for_the_init_again(void)
     assert_same_motion(&in_force, &cmd, 1u);
     assert_no_trace(&before, &fx_a.ctl);
 
-    fx_start(&fx_a, 100u);
+    fx_start(&fx_a, 100u); /* the objective's terms added again, the controller initialised */
     trace_of(&fx_a.ctl, &before);
     ASSERT_PERIOD(HELD(TARGET_NOT_READY), tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), cmd);
     assert_same_motion(&in_force, &cmd, 1u);
@@ -1823,7 +1823,7 @@ static void test_streamed_offset_is_decided_by_the_loop_before_the_law(void)
     desc.offset[0].robot_b = 1u;
     ASSERT_STATUS(TVO_OK, tvo_target_init_streamed(&desc.offset[0].offset));
     ASSERT_STATUS(TVO_OK, tvo_problem_init(&problem, &desc, 2u, NULL));
-    TEST_ASSERT_EQUAL_UINT8(3u, problem.objective.target_count); /* two tracking targets and d(t) */
+    TEST_ASSERT_EQUAL_UINT8(1u, problem.objective.target_count); /* d(t), the one streamed target */
     fx_reset(&fx_a, 2);
     fx_set_pose(&fx_a, 0, 1.0, 0.0, 0.0);
     fx_set_pose(&fx_a, 1, -1.0, 0.0, 0.0);
@@ -2210,7 +2210,7 @@ int main(void)
     RUN_TEST(test_refused_measurement_leaves_filter_speed_state_and_stamp_untouched);
     RUN_TEST(test_law_failure_after_the_estimate_leaves_the_filter_untouched);
     RUN_TEST(test_streamed_target_is_decided_by_the_loop_before_the_law);
-    RUN_TEST(test_target_made_streamed_after_init_waits_for_the_init_again);
+    RUN_TEST(test_target_made_streamed_after_its_term_waits_for_the_objective_again);
 #if TVO_MAX_OFFSET_EQUALITIES > 0
     RUN_TEST(test_streamed_offset_is_decided_by_the_loop_before_the_law);
 #endif

@@ -2,8 +2,7 @@
  * The sampled-data loop's own state, one copy inside each controller's private member (not part of
  * the API: a firmware reads a controller through its calls). The loop (src/sampled_loop.h) serves
  * every plant from it: the objective the law is evaluated on, h in seconds, the clock (ticks,
- * stamps, watchdog), whether init accepted the controller and whether its objective reads a
- * streamed target.
+ * stamps, watchdog) and whether init accepted the controller.
  */
 #ifndef TVO_LOOP_STATE_H
 #define TVO_LOOP_STATE_H
@@ -20,8 +19,6 @@ typedef struct {
     tvo_real_t period_s;              /* h */
     tvo_sample_clock_t clock;         /* ticks, elapsed time, stamps, watchdog */
     uint8_t initialized;              /* init accepted the configuration */
-    uint8_t streamed_targets;         /* init found a streamed target among the objective's: the step
-                                         checks the targets before its law only then */
 } tvo_loop_state_t;
 
 #ifdef __cplusplus

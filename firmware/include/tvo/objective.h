@@ -145,10 +145,9 @@ typedef struct tvo_objective {
 #endif
     tvo_term_t terms[TVO_MAX_TERMS]; /* as the add functions keep them (a tracking term: its kind, and the
                                         term; callbacks NULL) */
-    /* The targets the terms read, as they were added (a tracking term's, by its kind or its callback
-     * tvo_tracking_gradient_jet; an offset equality's d(t)): a controller's init notes whether one is
-     * streamed, and then its step checks they can be evaluated at its law's time before the law (a
-     * streamed one may have no sample yet); another term
+    /* The streamed targets the terms read, as their terms were added (a tracking term's, by its kind or its
+     * callback tvo_tracking_gradient_jet; an offset equality's d(t)), which a controller's step checks can
+     * be evaluated at its law's time before the law (one may have no sample yet); another term
      * declares none. After the terms, so the fields above have short offsets. */
     const struct tvo_target *targets[TVO_MAX_TERMS];
 } tvo_objective_t;

@@ -78,9 +78,10 @@ uint64_t tvo_target_turns_q64(double omega_radps);
 
 /** Streamed target with no sample yet: a controller's step holds its command in force (reason
  *  TVO_REASON_TARGET_NOT_READY) until one arrives, and while the law's time precedes the sample's stamp
- *  (TVO_REASON_FUTURE_STAMP); the step checks both before its law. A controller learns which of its
- *  objective's targets are streamed at its init: re-initialising a target it reads as streamed afterwards
- *  needs the controller initialised again (until then its law refuses the target: TVO_REASON_NUMERIC). */
+ *  (TVO_REASON_FUTURE_STAMP); the step checks both before its law. An objective notes that a target is
+ *  streamed when the term reading it is added: re-initialising a target as streamed afterwards needs the
+ *  objective built again (its init and adds; tvo_problem_init does both), else the law refuses the target
+ *  (TVO_REASON_NUMERIC). */
 tvo_status_t tvo_target_init_streamed(tvo_target_t *target);
 
 /**

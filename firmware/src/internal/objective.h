@@ -6,6 +6,7 @@
 #define TVO_INTERNAL_OBJECTIVE_H
 
 #include "tvo/objective.h"
+#include "tvo/target.h"
 #include "internal/assert.h"
 #include "internal/jet.h"
 #include "internal/linsolve.h"
@@ -21,26 +22,21 @@ tvo_status_t tvo_time_jet_at(const tvo_tick_time_t *time, uint32_t tick_hz, tvo_
 /** The time jet at a tick count since the epoch (64-bit division: for tools and tests). */
 tvo_status_t tvo_time_jet_at_ticks(uint64_t ticks, uint32_t tick_hz, tvo_real_t rate, tvo_time_jet_t *t);
 
-/** Records a target the last term added reads (NULL: none), for the controllers' check before their law
- *  (tvo_objective_t.targets). */
+/** Records the target the last term added reads (NULL: none) if it is streamed, for the controllers' check
+ *  before their law (tvo_objective_t.targets: the other kinds are always ready). */
 static inline void objective_add_target(tvo_objective_t *objective, const struct tvo_target *target)
 {
     TVO_ASSERT(objective->target_count < objective->term_count); /* one per term at most */
-    if (target != NULL && objective->target_count < TVO_MAX_TERMS) {
+    if (target != NULL && target->kind == TVO_TARGET_STREAMED && objective->target_count < TVO_MAX_TERMS) {
         objective->targets[objective->target_count++] = target;
     }
 }
 
 /** The law's precondition, decided by the loop as the stamp rules are: every target the objective's terms
  *  read can be evaluated at law_ticks (a streamed one has a sample, stamped no later), else the period's
- *  reason (TVO_REASON_TARGET_NOT_READY, TVO_REASON_FUTURE_STAMP). Out of line: the step keeps its
+ *  reason (TVO_REASON_TARGET_NOT_READY, TVO_REASON_FUTURE_STAMP): the streamed targets it noted. Out of line: the step keeps its
  *  registers for the law. */
 tvo_reason_t objective_targets_ready(const tvo_objective_t *objective, uint64_t law_ticks);
-
-/** 1 if a target the objective's terms read is streamed now: a controller's init asks, and its step checks
- *  the targets before its law only then (a target re-initialised as streamed later needs the controller
- *  initialised again). */
-uint8_t objective_reads_streamed(const tvo_objective_t *objective);
 
 /** Appends an inequality-constraint term (constraint_max must not be NULL). */
 tvo_status_t tvo_objective_add_constraint(tvo_objective_t *objective, tvo_gradient_jet_fn gradient_jet,

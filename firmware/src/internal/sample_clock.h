@@ -175,12 +175,12 @@ static inline void sample_clock_end_period(tvo_sample_clock_t *clock, const tvo_
     clock->elapsed = period->elapsed;
 }
 
-/* A period with a good step ends (sample_clock_locate placed it): its measurement's stamp is recorded
- * and the watchdog restarts. The watchdog's count after a period without one is tvo_sample_clock_refuse's. */
-static inline void sample_clock_end_good(tvo_sample_clock_t *clock, const tvo_period_t *period)
+/* A period with a good step ends: stamp_tick is recorded and the watchdog restarts. The watchdog's
+ * count after a period without one is tvo_sample_clock_refuse's. */
+static inline void sample_clock_end_good(tvo_sample_clock_t *clock, const tvo_period_t *period, uint32_t stamp_tick)
 {
     sample_clock_end_period(clock, period);
-    clock->last_stamp_tick = period->apply_tick - period->age_ticks; /* the stamp locate was given */
+    clock->last_stamp_tick = stamp_tick;
     clock->has_stamp = 1;
     clock->periods_without_measurement = 0;
     clock->refusals_in_row = 0;
