@@ -7,33 +7,6 @@
 
 #include <string.h>
 
-/* A refused problem's culprit entry, where tvo_problem_init names only the part: the first robot or
- * obstacle that the core refuses with the entries before it (the description cut to 1, 2, ... of them,
- * built in scratch by tvo_problem_init itself); -1 if none alone is to blame. A refusal's cold path. */
-static int32_t problem_culprit(tvo_problem_t *scratch, tvo_problem_desc_t *desc, uint8_t relative_degree,
-                               int32_t part)
-{
-    uint8_t *count = (part == TVO_LCM_SESSION_ACK_T_PART_ROBOTS)      ? &desc->robot_count
-                     : (part == TVO_LCM_SESSION_ACK_T_PART_OBSTACLES) ? &desc->obstacle_count
-                                                                      : NULL;
-    if (count == NULL) {
-        return -1;
-    }
-    const uint8_t all = *count;
-    int32_t culprit = -1;
-    for (uint8_t n = 1u; n <= all && culprit < 0; ++n) {
-        *count = n;
-        uint8_t bad_part = 0u;
-        if (tvo_problem_init(scratch, desc, relative_degree, &bad_part) != TVO_OK &&
-            tvo_session_part_from_problem(bad_part) == part) {
-            culprit = (int32_t)n - 1; /* a bad entry, or the later of an overlapping pair of disks */
-        }
-    }
-    *count = all;
-    memset(scratch, 0, sizeof(*scratch));
-    return culprit;
-}
-
 /* Nothing gathered yet: no robot heard, no joint command computed (the robots at rest). */
 static void gathering_start(tvo_node_gathering_t *g)
 {
@@ -66,14 +39,13 @@ tvo_status_t tvo_node_build_session(tvo_node_session_t *s, const tvo_lcm_session
     tvo_problem_desc_t desc;
     st = tvo_session_decode_problem(msg, &desc, why);
     if (st == TVO_OK) {
-        uint8_t problem_part = 0;
-        const uint8_t relative_degree = ops->relative_degree(msg);
-        st = tvo_problem_init(&s->problem, &desc, relative_degree, &problem_part);
-        if (st != TVO_OK) {
+        tvo_problem_culprit_t culprit;
+        st = tvo_problem_init(&s->problem, &desc, ops->relative_degree(msg), &culprit);
+        if (st != TVO_OK) { /* the core names the entry it refused */
             why->status = st;
             why->param = TVO_SESSION_PARAM_OBJECTIVE;
-            why->part = tvo_session_part_from_problem(problem_part);
-            why->index = problem_culprit(&s->problem, &desc, relative_degree, why->part);
+            why->part = tvo_session_part_from_problem(culprit.part);
+            why->index = culprit.index;
         }
     }
     if (st != TVO_OK) {

@@ -547,8 +547,12 @@ tvo_real_t tvo_disk_clearance(const tvo_disk_t *obstacle, tvo_real_t robot_radiu
 }
 
 tvo_status_t tvo_free_space_term_init(tvo_free_space_term_t *term, const tvo_barrier_t *barrier, uint8_t robot,
-                                      tvo_real_t robot_radius_m, const tvo_disk_t *obstacles, uint8_t count)
+                                      tvo_real_t robot_radius_m, const tvo_disk_t *obstacles, uint8_t count,
+                                      int16_t *bad_obstacle)
 {
+    int16_t unused;
+    int16_t *const culprit = (bad_obstacle != NULL) ? bad_obstacle : &unused;
+    *culprit = -1;
     if (term == NULL || barrier == NULL || obstacles == NULL) {
         return TVO_ERR_NULL;
     }
@@ -562,6 +566,7 @@ tvo_status_t tvo_free_space_term_init(tvo_free_space_term_t *term, const tvo_bar
         return TVO_ERR_PARAM;
     }
     for (uint8_t i = 0; i < count; ++i) {
+        *culprit = (int16_t)i;
         if (!finite2(obstacles[i].center_m) || !isfinite(obstacles[i].radius_m)) {
             return TVO_ERR_NOT_FINITE;
         }
@@ -576,6 +581,7 @@ tvo_status_t tvo_free_space_term_init(tvo_free_space_term_t *term, const tvo_bar
             }
         }
     }
+    *culprit = -1;
     memset(term, 0, sizeof(*term));
     term->barrier = barrier;
     term->offset = (uint8_t)(2u * robot);

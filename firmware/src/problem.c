@@ -76,15 +76,17 @@ static tvo_status_t add_distance_bound(tvo_problem_t *problem, const tvo_distanc
     return st;
 }
 
-static tvo_status_t build_constraints(tvo_problem_t *problem, const tvo_problem_desc_t *desc, uint8_t *part)
+static tvo_status_t build_constraints(tvo_problem_t *problem, const tvo_problem_desc_t *desc,
+                                      tvo_problem_culprit_t *culprit)
 {
     const uint8_t n = desc->robot_count;
     tvo_status_t st = TVO_OK;
-    *part = PART_DISTANCE;
+    culprit->part = PART_DISTANCE;
     if (desc->distance_count > TVO_MAX_DISTANCE_BOUNDS) {
         return TVO_ERR_CAPACITY;
     }
     for (uint8_t i = 0; st == TVO_OK && i < desc->distance_count; ++i) {
+        culprit->index = (int16_t)i;
         const tvo_distance_bound_desc_t *d = &desc->distance[i];
         if (d->robot_a >= n || d->robot_b >= n || !isfinite(d->min_m) || !isfinite(d->max_m) || d->min_m < TVO_R(0.0) ||
             d->max_m < TVO_R(0.0) || (d->min_m == TVO_R(0.0) && d->max_m == TVO_R(0.0)) ||
@@ -96,11 +98,13 @@ static tvo_status_t build_constraints(tvo_problem_t *problem, const tvo_problem_
     if (st != TVO_OK) {
         return st;
     }
-    *part = PART_HALFSPACE;
+    culprit->part = PART_HALFSPACE;
+    culprit->index = -1;
     if (desc->halfspace_count > TVO_MAX_HALFSPACES) {
         return TVO_ERR_CAPACITY;
     }
     for (uint8_t i = 0; st == TVO_OK && i < desc->halfspace_count; ++i) {
+        culprit->index = (int16_t)i;
         const tvo_halfspace_desc_t *h = &desc->halfspace[i];
         if (h->robot >= n) {
             return TVO_ERR_PARAM;
@@ -116,13 +120,14 @@ static tvo_status_t build_constraints(tvo_problem_t *problem, const tvo_problem_
     if (st != TVO_OK) {
         return st;
     }
-    *part = PART_OBSTACLES;
+    culprit->part = PART_OBSTACLES;
+    culprit->index = -1;
     if (desc->obstacle_count > TVO_MAX_OBSTACLES) {
         return TVO_ERR_CAPACITY;
     }
     for (uint8_t r = 0; st == TVO_OK && desc->obstacle_count > 0u && r < n; ++r) {
         st = tvo_free_space_term_init(&problem->free_space[r], &problem->barrier, r, desc->robot_radius_m,
-                                      desc->obstacle, desc->obstacle_count);
+                                      desc->obstacle, desc->obstacle_count, &culprit->index);
         if (st == TVO_OK) {
             const tvo_term_t spec = {tvo_free_space_gradient_jet, tvo_free_space_gradient_hessian,
                                      tvo_free_space_constraint_max, &problem->free_space[r], TVO_TERM_GENERAL};
@@ -186,11 +191,11 @@ static void choose_solve_plan(tvo_problem_t *problem, const tvo_problem_desc_t *
 #endif
 
 tvo_status_t tvo_problem_init(tvo_problem_t *problem, const tvo_problem_desc_t *desc, uint8_t relative_degree,
-                              uint8_t *bad_part)
+                              tvo_problem_culprit_t *bad)
 {
-    uint8_t part = PART_ROBOTS;
-    if (bad_part != NULL) {
-        *bad_part = PART_ROBOTS;
+    tvo_problem_culprit_t culprit = {PART_ROBOTS, -1};
+    if (bad != NULL) {
+        *bad = culprit;
     }
     if (problem == NULL || desc == NULL) {
         return TVO_ERR_NULL;
@@ -202,6 +207,7 @@ tvo_status_t tvo_problem_init(tvo_problem_t *problem, const tvo_problem_desc_t *
         st = tvo_objective_init(&problem->objective, (uint8_t)(2u * n));
     }
     for (uint8_t r = 0; st == TVO_OK && r < n; ++r) {
+        culprit.index = (int16_t)r;
         problem->target[r] = desc->target[r];
         st = tvo_tracking_init(&problem->tracking[r], &problem->target[r], desc->tracking_weight[r], (uint8_t)(2u * r));
         if (st == TVO_OK) {
@@ -212,19 +218,22 @@ tvo_status_t tvo_problem_init(tvo_problem_t *problem, const tvo_problem_desc_t *
     const uint8_t any_inequality = (uint8_t)(desc->distance_count > 0u || desc->halfspace_count > 0u ||
                                              desc->obstacle_count > 0u);
     if (st == TVO_OK && any_inequality) {
-        part = PART_BARRIER;
+        culprit.part = PART_BARRIER;
+        culprit.index = -1;
         st = tvo_barrier_init(&problem->barrier, &desc->barrier, relative_degree);
         if (st == TVO_OK) {
-            st = build_constraints(problem, desc, &part);
+            st = build_constraints(problem, desc, &culprit);
         }
     }
     if (st == TVO_OK) {
-        part = PART_OFFSETS;
+        culprit.part = PART_OFFSETS;
+        culprit.index = -1;
         if (desc->offset_count > TVO_MAX_OFFSET_EQUALITIES) {
             st = TVO_ERR_CAPACITY;
         }
     }
     for (uint8_t i = 0; st == TVO_OK && i < desc->offset_count; ++i) {
+        culprit.index = (int16_t)i;
         const tvo_offset_desc_t *o = &desc->offset[i];
         if (o->robot_a >= n || o->robot_b >= n) {
             st = TVO_ERR_PARAM;
@@ -235,8 +244,8 @@ tvo_status_t tvo_problem_init(tvo_problem_t *problem, const tvo_problem_desc_t *
                                      o->robot_a, o->robot_b);
     }
     if (st != TVO_OK) {
-        if (bad_part != NULL) {
-            *bad_part = part;
+        if (bad != NULL) {
+            *bad = culprit;
         }
         memset(problem, 0, sizeof(*problem));
         return st;

@@ -134,8 +134,9 @@ tvo_status_t tvo_target_init_streamed(tvo_target_t *target);
 tvo_status_t tvo_target_stream_update(tvo_target_t *target, uint64_t stamp_ticks, const void *deriv); /* [D+1][2] */
 tvo_target_t *tvo_problem_target(tvo_problem_t *problem, uint8_t robot);
 tvo_status_t tvo_problem_desc_default(tvo_problem_desc_t *desc);
+typedef struct {{ uint8_t part; int16_t index; }} tvo_problem_culprit_t;
 tvo_status_t tvo_problem_init(tvo_problem_t *problem, const tvo_problem_desc_t *desc, uint8_t relative_degree,
-                              uint8_t *bad_part);
+                              tvo_problem_culprit_t *bad);
 tvo_status_t tvo_problem_choose_slack(tvo_problem_t *problem, const tvo_real_t *y, tvo_real_t t_s);
 
 /* --- the unicycle controller (tvo/controller.h) --- */

@@ -477,7 +477,7 @@ static const refusal_t invalid_starts[] = {
     {"target coefficient 1e30", TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 0},
     {"target 2e4 m out", TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 0},
     {"obstacle 1e5 m out", TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_OBSTACLES, 0},
-    {"wall moving at 1e6 m/s", TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_HALFSPACE, -1},
+    {"wall moving at 1e6 m/s", TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_HALFSPACE, 0},
     {"robot 1's weight -1", TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 1},
     {"obstacles 0 and 2 overlap", TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_OBSTACLES, 2},
     {"target kind 9", TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_PARAM, TVO_LCM_SESSION_ACK_T_PARAM_OBJECTIVE, TVO_LCM_SESSION_ACK_T_PART_ROBOTS, 0},
@@ -3287,7 +3287,7 @@ static void test_one_robot_periods_are_the_cores_own_steps(void)
     tvo_controller_config_t cfg;
     tvo_session_reject_t why;
     TEST_ASSERT_EQUAL_INT(TVO_OK, tvo_session_decode_problem(&start, &desc, &why));
-    uint8_t part = 0;
+    tvo_problem_culprit_t part;
     TEST_ASSERT_EQUAL_INT(TVO_OK, tvo_problem_init(&problem, &desc, 2u, &part));
     TEST_ASSERT_EQUAL_INT(TVO_OK, tvo_session_decode_unicycle(&start, &cfg, &why));
     tvo_param_t bad = TVO_PARAM_NONE;

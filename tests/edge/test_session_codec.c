@@ -647,7 +647,7 @@ static void test_problem_decodes_every_part(void)
     TEST_ASSERT_EQUAL_UINT8(5u, desc.barrier.relaxation_degree);
     /* And the core builds it. */
     tvo_problem_t problem;
-    uint8_t part = 99;
+    tvo_problem_culprit_t part;
     EF_ASSERT_STATUS(TVO_OK, tvo_problem_init(&problem, &desc, 2u, &part));
 }
 

@@ -307,7 +307,7 @@ static void stepped_controller(int with_halfspace)
     tvo_problem_desc_t desc;
     tvo_session_reject_t why;
     EF_ASSERT_STATUS(TVO_OK, tvo_session_decode_problem(&start, &desc, &why));
-    uint8_t part = 0;
+    tvo_problem_culprit_t part;
     EF_ASSERT_STATUS(TVO_OK, tvo_problem_init(&problem, &desc, 2u, &part));
     tvo_controller_config_t cfg;
     EF_ASSERT_STATUS(TVO_OK, tvo_session_decode_unicycle(&start, &cfg, &why));
@@ -395,7 +395,7 @@ static void streamed_problem(int32_t robot1_kind)
     tvo_problem_desc_t desc;
     tvo_session_reject_t why;
     EF_ASSERT_STATUS(TVO_OK, tvo_session_decode_problem(&start, &desc, &why));
-    uint8_t part = 0;
+    tvo_problem_culprit_t part;
     EF_ASSERT_STATUS(TVO_OK, tvo_problem_init(&problem, &desc, 2u, &part));
 }
 

@@ -103,7 +103,7 @@ int main(void)
 #if TVO_MAX_ROBOTS >= 2
     /* Every constraint kind and an equality, through the problem assembly. */
     static tvo_problem_desc_t desc;
-    uint8_t bad_part = 0u;
+    tvo_problem_culprit_t bad_part;
     check(tvo_problem_desc_default(&desc));
     desc.robot_count = 2u;
     desc.target[0] = targets[0];
@@ -129,7 +129,7 @@ int main(void)
     check(tvo_problem_choose_slack(&problem, y0, TVO_R(0.0)));
     meas.stamp_tick = input_tick + cfg.period_ticks - cfg.delay_ticks;
     status = tvo_controller_step(&constrained_controller, &meas, input_tick + cfg.period_ticks, &cmd);
-    flags |= cmd.flags + bad_part;
+    flags |= cmd.flags + bad_part.part;
 #endif
 
     output_sink = flags + failures + tvo_sizeof_controller[input_tick & 0u] + tvo_sizeof_problem[input_tick & 0u] + (uint32_t)tvo_status_str(status)[0] + (uint32_t)tvo_param_str(bad_param)[0];

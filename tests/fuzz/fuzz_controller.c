@@ -40,7 +40,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     static tvo_controller_t ctl;
     tvo_problem_desc_t desc;
     tvo_controller_config_t cfg;
-    uint8_t part = 0;
+    tvo_problem_culprit_t part;
     if (tvo_problem_desc_default(&desc) != TVO_OK || tvo_controller_config_default(&cfg) != TVO_OK) {
         fail("defaults");
     }

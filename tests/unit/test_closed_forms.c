@@ -144,7 +144,7 @@ static void random_problem(unsigned n, int offsets)
         desc.offset[0].robot_b = 1u;
         random_target(&desc.offset[0].offset, -3.0, 0.0);
     }
-    uint8_t part = 0u;
+    tvo_problem_culprit_t part;
     ASSERT_STATUS(TVO_OK, tvo_problem_init(&problem, &desc, 2u, &part));
 #if TVO_BLOCK_SOLVE
     TEST_ASSERT_TRUE((problem.objective.plan != NULL) == (n > 2u)); /* the block solve from three robots on */

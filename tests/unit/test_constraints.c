@@ -508,9 +508,9 @@ static void free_space_setup(const tvo_disk_t *obstacles, uint8_t count)
     for (uint8_t i = 0; i < count; ++i) {
         fs_obstacle[i] = obstacles[i];
         ASSERT_STATUS(TVO_OK,
-                      tvo_free_space_term_init(&fs_single[i], &barrier, 0, test_r(FS_ROBOT_RADIUS), &obstacles[i], 1));
+                      tvo_free_space_term_init(&fs_single[i], &barrier, 0, test_r(FS_ROBOT_RADIUS), &obstacles[i], 1, NULL));
     }
-    ASSERT_STATUS(TVO_OK, tvo_free_space_term_init(&fs_all, &barrier, 0, test_r(FS_ROBOT_RADIUS), obstacles, count));
+    ASSERT_STATUS(TVO_OK, tvo_free_space_term_init(&fs_all, &barrier, 0, test_r(FS_ROBOT_RADIUS), obstacles, count, NULL));
 }
 
 /* f_i(y; y_c) = a_i(y_c)^T (y - y_c) + f_i(y_c; y_c): the half-plane of obstacle i for a robot at y_c
@@ -727,7 +727,7 @@ static void test_free_space_constraint_is_nonnegative_when_the_robot_covers_a_sm
     make_barrier(-1.0);
     const tvo_disk_t post[1] = {{{TVO_R(0.0), TVO_R(0.0)}, TVO_R(0.05)}};
     tvo_free_space_term_t big;
-    ASSERT_STATUS(TVO_OK, tvo_free_space_term_init(&big, &barrier, 0, TVO_R(0.3), post, 1));
+    ASSERT_STATUS(TVO_OK, tvo_free_space_term_init(&big, &barrier, 0, TVO_R(0.3), post, 1, NULL));
     const tvo_real_t y[2] = {TVO_R(0.1), TVO_R(0.0)}; /* the 5 cm post is 10 cm from the 30 cm robot's centre */
     const double clearance = test_d(tvo_disk_clearance(&post[0], TVO_R(0.3), y));
     ASSERT_LE(clearance, -0.2, "the robot covers the post");
@@ -741,31 +741,34 @@ static void test_free_space_init_rejects_bad_obstacles(void)
     make_barrier(-1.0);
     tvo_free_space_term_t t;
     const tvo_disk_t ok[2] = {{{TVO_R(0.0), TVO_R(0.0)}, TVO_R(1.0)}, {{TVO_R(2.5), TVO_R(0.0)}, TVO_R(1.0)}};
-    ASSERT_STATUS(TVO_OK, tvo_free_space_term_init(&t, &barrier, 1, TVO_R(0.2), ok, 2));
+    ASSERT_STATUS(TVO_OK, tvo_free_space_term_init(&t, &barrier, 1, TVO_R(0.2), ok, 2, NULL));
     TEST_ASSERT_EQUAL_UINT8(2, t.offset);
     const tvo_disk_t overlapping[2] = {{{TVO_R(0.0), TVO_R(0.0)}, TVO_R(1.0)}, {{TVO_R(1.5), TVO_R(0.0)}, TVO_R(1.0)}};
-    ASSERT_STATUS(TVO_ERR_PARAM, tvo_free_space_term_init(&t, &barrier, 0, TVO_R(0.2), overlapping, 2));
+    int16_t bad_obstacle = 99;
+    ASSERT_STATUS(TVO_ERR_PARAM, tvo_free_space_term_init(&t, &barrier, 0, TVO_R(0.2), overlapping, 2, &bad_obstacle));
+    TEST_ASSERT_EQUAL_INT16(1, bad_obstacle); /* the later of the pair */
     const tvo_disk_t touching[2] = {{{TVO_R(0.0), TVO_R(0.0)}, TVO_R(1.0)}, {{TVO_R(2.0), TVO_R(0.0)}, TVO_R(1.0)}};
-    ASSERT_STATUS(TVO_ERR_PARAM, tvo_free_space_term_init(&t, &barrier, 0, TVO_R(0.2), touching, 2));
+    ASSERT_STATUS(TVO_ERR_PARAM, tvo_free_space_term_init(&t, &barrier, 0, TVO_R(0.2), touching, 2, NULL));
     const tvo_disk_t nested[2] = {{{TVO_R(0.0), TVO_R(0.0)}, TVO_R(2.0)}, {{TVO_R(0.5), TVO_R(0.0)}, TVO_R(0.5)}};
-    ASSERT_STATUS(TVO_ERR_PARAM, tvo_free_space_term_init(&t, &barrier, 0, TVO_R(0.2), nested, 2));
+    ASSERT_STATUS(TVO_ERR_PARAM, tvo_free_space_term_init(&t, &barrier, 0, TVO_R(0.2), nested, 2, NULL));
     const tvo_disk_t zero_radius[1] = {{{TVO_R(0.0), TVO_R(0.0)}, TVO_R(0.0)}};
-    ASSERT_STATUS(TVO_ERR_PARAM, tvo_free_space_term_init(&t, &barrier, 0, TVO_R(0.2), zero_radius, 1));
+    ASSERT_STATUS(TVO_ERR_PARAM, tvo_free_space_term_init(&t, &barrier, 0, TVO_R(0.2), zero_radius, 1, NULL));
     const tvo_disk_t negative_radius[1] = {{{TVO_R(0.0), TVO_R(0.0)}, TVO_R(-1.0)}};
-    ASSERT_STATUS(TVO_ERR_PARAM, tvo_free_space_term_init(&t, &barrier, 0, TVO_R(0.2), negative_radius, 1));
+    ASSERT_STATUS(TVO_ERR_PARAM, tvo_free_space_term_init(&t, &barrier, 0, TVO_R(0.2), negative_radius, 1, NULL));
     const tvo_disk_t nan_centre[1] = {{{TEST_NAN, TVO_R(0.0)}, TVO_R(1.0)}};
-    ASSERT_STATUS(TVO_ERR_NOT_FINITE, tvo_free_space_term_init(&t, &barrier, 0, TVO_R(0.2), nan_centre, 1));
+    ASSERT_STATUS(TVO_ERR_NOT_FINITE, tvo_free_space_term_init(&t, &barrier, 0, TVO_R(0.2), nan_centre, 1, NULL));
     const tvo_disk_t nan_radius[1] = {{{TVO_R(0.0), TVO_R(0.0)}, TEST_NAN}};
-    ASSERT_STATUS(TVO_ERR_NOT_FINITE, tvo_free_space_term_init(&t, &barrier, 0, TVO_R(0.2), nan_radius, 1));
-    ASSERT_STATUS(TVO_ERR_NOT_FINITE, tvo_free_space_term_init(&t, &barrier, 0, TEST_NAN, ok, 2));
-    ASSERT_STATUS(TVO_ERR_PARAM, tvo_free_space_term_init(&t, &barrier, 0, TVO_R(-0.1), ok, 2));
-    ASSERT_STATUS(TVO_OK, tvo_free_space_term_init(&t, &barrier, 0, TVO_R(0.0), ok, 2)); /* a point robot */
-    ASSERT_STATUS(TVO_ERR_DIMENSION, tvo_free_space_term_init(&t, &barrier, 0, TVO_R(0.2), ok, 0));
-    ASSERT_STATUS(TVO_ERR_DIMENSION, tvo_free_space_term_init(&t, &barrier, 0, TVO_R(0.2), ok, TVO_MAX_OBSTACLES + 1));
-    ASSERT_STATUS(TVO_ERR_DIMENSION, tvo_free_space_term_init(&t, &barrier, TVO_MAX_ROBOTS, TVO_R(0.2), ok, 2));
-    ASSERT_STATUS(TVO_ERR_NULL, tvo_free_space_term_init(&t, &barrier, 0, TVO_R(0.2), NULL, 1));
+    ASSERT_STATUS(TVO_ERR_NOT_FINITE, tvo_free_space_term_init(&t, &barrier, 0, TVO_R(0.2), nan_radius, 1, NULL));
+    ASSERT_STATUS(TVO_ERR_NOT_FINITE, tvo_free_space_term_init(&t, &barrier, 0, TEST_NAN, ok, 2, &bad_obstacle));
+    TEST_ASSERT_EQUAL_INT16(-1, bad_obstacle); /* the robot's radius: no disk to blame */
+    ASSERT_STATUS(TVO_ERR_PARAM, tvo_free_space_term_init(&t, &barrier, 0, TVO_R(-0.1), ok, 2, NULL));
+    ASSERT_STATUS(TVO_OK, tvo_free_space_term_init(&t, &barrier, 0, TVO_R(0.0), ok, 2, NULL)); /* a point robot */
+    ASSERT_STATUS(TVO_ERR_DIMENSION, tvo_free_space_term_init(&t, &barrier, 0, TVO_R(0.2), ok, 0, NULL));
+    ASSERT_STATUS(TVO_ERR_DIMENSION, tvo_free_space_term_init(&t, &barrier, 0, TVO_R(0.2), ok, TVO_MAX_OBSTACLES + 1, NULL));
+    ASSERT_STATUS(TVO_ERR_DIMENSION, tvo_free_space_term_init(&t, &barrier, TVO_MAX_ROBOTS, TVO_R(0.2), ok, 2, NULL));
+    ASSERT_STATUS(TVO_ERR_NULL, tvo_free_space_term_init(&t, &barrier, 0, TVO_R(0.2), NULL, 1, NULL));
     /* The robot's centre on an obstacle's centre has no separating plane: an error, not a NaN. */
-    ASSERT_STATUS(TVO_OK, tvo_free_space_term_init(&t, &barrier, 0, TVO_R(0.2), ok, 2));
+    ASSERT_STATUS(TVO_OK, tvo_free_space_term_init(&t, &barrier, 0, TVO_R(0.2), ok, 2, NULL));
     tvo_jet_t z[2], g[2];
     tvo_jet_constant(TVO_R(0.0), &z[0]);
     tvo_jet_constant(TVO_R(0.0), &z[1]);
@@ -842,7 +845,7 @@ static void test_every_kind_refuses_misuse_alike(void)
     ASSERT_STATUS(TVO_OK, tvo_halfspace_term_init(&halfspace, &barrier, 1, normal, normal_rate, TVO_R(5.0), TVO_R(0.0)));
     static tvo_free_space_term_t free_space;
     const tvo_disk_t disks[1] = {{{TVO_R(4.0), TVO_R(4.0)}, TVO_R(1.0)}};
-    ASSERT_STATUS(TVO_OK, tvo_free_space_term_init(&free_space, &barrier, 1, TVO_R(0.2), disks, 1));
+    ASSERT_STATUS(TVO_OK, tvo_free_space_term_init(&free_space, &barrier, 1, TVO_R(0.2), disks, 1, NULL));
     const term_entries_t kinds[] = {
         {"distance", tvo_distance_gradient_jet, tvo_distance_gradient_hessian, tvo_distance_constraint_max, &distance[0]},
 #if TVO_BLOCK_SOLVE

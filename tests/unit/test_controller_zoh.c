@@ -23,7 +23,7 @@ static tvo_controller_t controller;
 static void setup(double period_s, uint8_t zoh_aware)
 {
     tvo_problem_desc_t desc;
-    uint8_t part = 0;
+    tvo_problem_culprit_t part;
     ASSERT_STATUS(TVO_OK, tvo_problem_desc_default(&desc));
     desc.robot_count = 1u;
     const tvo_target_ellipse_t ellipse = {{TVO_R(0.0), TVO_R(0.0)}, {TVO_R(3.0), TVO_R(1.5)},

@@ -46,8 +46,10 @@ static void test_formation_with_min_and_max_distance_gives_two_distance_terms(vo
     desc.distance[0].min_m = TVO_R(1.0);
     desc.distance[0].max_m = TVO_R(3.0);
     desc.distance[0].max_rate_mps = TVO_R(-0.1);
-    uint8_t part = 99;
+    tvo_problem_culprit_t part = {99u, 99};
     ASSERT_STATUS(TVO_OK, tvo_problem_init(&problem, &desc, 2, &part));
+    TEST_ASSERT_EQUAL_UINT8(0u, part.part); /* no culprit */
+    TEST_ASSERT_EQUAL_INT16(-1, part.index);
     TEST_ASSERT_EQUAL_UINT8(1, problem.initialized);
     TEST_ASSERT_EQUAL_UINT8(1, problem.has_inequalities);
     TEST_ASSERT_EQUAL_UINT8(2, problem.distance_term_count);
@@ -154,14 +156,15 @@ static void test_offset_adds_multipliers(void)
 
 /* Initialises a valid problem first, so a rejection must also clear it. */
 static void expect_rejected(const tvo_problem_desc_t *bad, uint8_t relative_degree, tvo_status_t status,
-                            uint8_t expected_part, const char *what)
+                            uint8_t expected_part, int16_t expected_index, const char *what)
 {
     tvo_problem_desc_t good;
     two_robot_desc(&good);
     ASSERT_STATUS(TVO_OK, tvo_problem_init(&problem, &good, 2, NULL));
-    uint8_t part = 99;
-    ASSERT_STATUS(status, tvo_problem_init(&problem, bad, relative_degree, &part));
-    TEST_ASSERT_EQUAL_UINT8_MESSAGE(expected_part, part, what);
+    tvo_problem_culprit_t culprit = {99u, 99};
+    ASSERT_STATUS(status, tvo_problem_init(&problem, bad, relative_degree, &culprit));
+    TEST_ASSERT_EQUAL_UINT8_MESSAGE(expected_part, culprit.part, what);
+    TEST_ASSERT_EQUAL_INT16_MESSAGE(expected_index, culprit.index, what);
     assert_uninitialised();
 }
 
@@ -171,45 +174,50 @@ static void test_bad_descriptions_name_the_part_and_leave_the_problem_uninitiali
 
     two_robot_desc(&desc);
     desc.robot_count = 0;
-    expect_rejected(&desc, 2, TVO_ERR_DIMENSION, PART_ROBOTS, "no robots");
+    expect_rejected(&desc, 2, TVO_ERR_DIMENSION, PART_ROBOTS, -1, "no robots");
     desc.robot_count = TVO_MAX_ROBOTS + 1;
-    expect_rejected(&desc, 2, TVO_ERR_DIMENSION, PART_ROBOTS, "too many robots");
+    expect_rejected(&desc, 2, TVO_ERR_DIMENSION, PART_ROBOTS, -1, "too many robots");
     two_robot_desc(&desc);
     desc.tracking_weight[1][0] = TVO_R(0.0);
-    expect_rejected(&desc, 2, TVO_ERR_PARAM, PART_ROBOTS, "zero tracking weight");
+    expect_rejected(&desc, 2, TVO_ERR_PARAM, PART_ROBOTS, 1, "zero tracking weight");
 
     two_robot_desc(&desc);
     desc.distance_count = 1;
     desc.distance[0].robot_b = 1;
     desc.distance[0].max_m = TVO_R(3.0);
     desc.barrier.relaxation_degree = 2; /* m_r < k + 1 = 3 */
-    expect_rejected(&desc, 2, TVO_ERR_PARAM, PART_BARRIER, "m_r < k + 1");
+    expect_rejected(&desc, 2, TVO_ERR_PARAM, PART_BARRIER, -1, "m_r < k + 1");
     desc.barrier.relaxation_degree = 3;
-    expect_rejected(&desc, 3, TVO_ERR_PARAM, PART_BARRIER, "m_r = 3 < k + 1 = 4");
+    expect_rejected(&desc, 3, TVO_ERR_PARAM, PART_BARRIER, -1, "m_r = 3 < k + 1 = 4");
 
     two_robot_desc(&desc);
     desc.distance_count = 1;
     desc.distance[0].robot_b = 1;
     desc.distance[0].min_m = TVO_R(3.0);
     desc.distance[0].max_m = TVO_R(3.0);
-    expect_rejected(&desc, 2, TVO_ERR_PARAM, PART_DISTANCE, "min >= max");
+    expect_rejected(&desc, 2, TVO_ERR_PARAM, PART_DISTANCE, 0, "min >= max");
     desc.distance[0].min_m = TVO_R(0.0);
     desc.distance[0].max_m = TVO_R(0.0);
-    expect_rejected(&desc, 2, TVO_ERR_PARAM, PART_DISTANCE, "no bound at all");
+    expect_rejected(&desc, 2, TVO_ERR_PARAM, PART_DISTANCE, 0, "no bound at all");
     desc.distance[0].max_m = TVO_R(3.0);
     desc.distance[0].robot_b = 2;
-    expect_rejected(&desc, 2, TVO_ERR_PARAM, PART_DISTANCE, "distance robot out of range");
+    expect_rejected(&desc, 2, TVO_ERR_PARAM, PART_DISTANCE, 0, "distance robot out of range");
     desc.distance[0].robot_b = 0;
-    expect_rejected(&desc, 2, TVO_ERR_PARAM, PART_DISTANCE, "distance to itself");
+    expect_rejected(&desc, 2, TVO_ERR_PARAM, PART_DISTANCE, 0, "distance to itself");
 
     two_robot_desc(&desc);
     desc.halfspace_count = 1;
     desc.halfspace[0].robot = 1;
     desc.halfspace[0].bound_m = TVO_R(1.0);
-    expect_rejected(&desc, 2, TVO_ERR_PARAM, PART_HALFSPACE, "zero normal");
+    expect_rejected(&desc, 2, TVO_ERR_PARAM, PART_HALFSPACE, 0, "zero normal");
     desc.halfspace[0].normal[0] = TVO_R(1.0);
     desc.halfspace[0].robot = 2;
-    expect_rejected(&desc, 2, TVO_ERR_PARAM, PART_HALFSPACE, "half-space robot out of range");
+    expect_rejected(&desc, 2, TVO_ERR_PARAM, PART_HALFSPACE, 0, "half-space robot out of range");
+    desc.halfspace[0].robot = 1;
+    desc.halfspace_count = 2;
+    desc.halfspace[1] = desc.halfspace[0];
+    desc.halfspace[1].normal[1] = TEST_NAN;
+    expect_rejected(&desc, 2, TVO_ERR_NOT_FINITE, PART_HALFSPACE, 1, "a NaN normal in the second half-space");
 
     two_robot_desc(&desc);
     desc.obstacle_count = 2;
@@ -217,18 +225,18 @@ static void test_bad_descriptions_name_the_part_and_leave_the_problem_uninitiali
     desc.obstacle[0].radius_m = TVO_R(1.0);
     desc.obstacle[1].center_m[0] = TVO_R(1.5);
     desc.obstacle[1].radius_m = TVO_R(1.0);
-    expect_rejected(&desc, 2, TVO_ERR_PARAM, PART_OBSTACLES, "intersecting obstacles");
+    expect_rejected(&desc, 2, TVO_ERR_PARAM, PART_OBSTACLES, 1, "intersecting obstacles");
     desc.obstacle_count = TVO_MAX_OBSTACLES + 1;
-    expect_rejected(&desc, 2, TVO_ERR_CAPACITY, PART_OBSTACLES, "too many obstacles");
+    expect_rejected(&desc, 2, TVO_ERR_CAPACITY, PART_OBSTACLES, -1, "too many obstacles");
 
     two_robot_desc(&desc);
     desc.offset_count = 1;
     desc.offset[0].robot_a = 0;
     desc.offset[0].robot_b = 2;
     fx_line_target(&desc.offset[0].offset, 1.0, 0.0, 0.0, 0.0);
-    expect_rejected(&desc, 2, TVO_ERR_PARAM, PART_OFFSETS, "offset robot out of range");
+    expect_rejected(&desc, 2, TVO_ERR_PARAM, PART_OFFSETS, 0, "offset robot out of range");
     desc.offset[0].robot_b = 0;
-    expect_rejected(&desc, 2, TVO_ERR_PARAM, PART_OFFSETS, "offset to itself");
+    expect_rejected(&desc, 2, TVO_ERR_PARAM, PART_OFFSETS, 0, "offset to itself");
 
     ASSERT_STATUS(TVO_ERR_NULL, tvo_problem_init(&problem, NULL, 2, NULL));
 }

@@ -264,7 +264,7 @@ static tvo_status_t bench_obstacles16(void)
 static tvo_status_t bench_chain_k3(void)
 {
     tvo_problem_desc_t desc;
-    uint8_t part = 0u;
+    tvo_problem_culprit_t part;
     (void)tvo_problem_desc_default(&desc);
     desc.robot_count = 1u;
     const tvo_real_t center[2] = {TVO_R(0.0), TVO_R(0.0)};

@@ -176,7 +176,7 @@ tvo_status_t bench_loop_init(bench_loop_t *loop, bench_unicycle_problem_t which)
     }
     memset(loop, 0, sizeof(*loop));
     tvo_problem_desc_t desc;
-    uint8_t part = 0u;
+    tvo_problem_culprit_t part;
     tvo_param_t bad = TVO_PARAM_NONE;
     tvo_status_t st = bench_problem_desc(which, &desc, loop->pose, &loop->robots);
     if (st == TVO_OK) {

@@ -87,6 +87,14 @@ typedef struct {
     uint8_t initialized;
 } tvo_problem_t;
 
+/** What tvo_problem_init refused: the part of the description and the entry in it. */
+typedef struct {
+    uint8_t part;  /* 0 robots/targets, 1 barrier, 2 distance, 3 half-space, 4 obstacles, 5 offsets */
+    int16_t index; /* the refused entry of the part (a robot, a distance bound, a half-space, an obstacle
+                      (the later of two that intersect), an offset); -1: the part as a whole (its count,
+                      the barrier, the robot radius) */
+} tvo_problem_culprit_t;
+
 /** Empty description: no robots, no constraints, default barrier, unit tracking weights. */
 tvo_status_t tvo_problem_desc_default(tvo_problem_desc_t *desc);
 
@@ -98,11 +106,10 @@ tvo_status_t tvo_problem_desc_default(tvo_problem_desc_t *desc);
  * commits (a refused period keeps nothing of its choice).
  * relative_degree (k) is the controller's: 2 for tvo_controller_t, cfg.relative_degree for the
  * chain; it bounds the barrier's m_r from below (m_r >= k + 1). On TVO_ERR_PARAM (or another error)
- * *bad_part, if not NULL, says which part: 0 robots/targets, 1 barrier, 2 distance, 3 half-space,
- * 4 obstacles, 5 offsets.
+ * *bad, if not NULL, names the culprit (tvo_problem_culprit_t); {0, -1} on success.
  */
 tvo_status_t tvo_problem_init(tvo_problem_t *problem, const tvo_problem_desc_t *desc, uint8_t relative_degree,
-                              uint8_t *bad_part);
+                              tvo_problem_culprit_t *bad);
 
 /**
  * Chooses the barrier slack s0 from the robots' positions at objective time t_s (the paper's rule,

@@ -54,10 +54,12 @@ TVO_CONSTRAINT_TERM_ENTRIES(halfspace);
 
 /**
  * 1 <= count <= TVO_MAX_OBSTACLES disks with radius > 0, pairwise disjoint (TVO_ERR_PARAM
- * otherwise: the construction needs non-intersecting obstacles); robot_radius_m >= 0.
+ * otherwise: the construction needs non-intersecting obstacles); robot_radius_m >= 0. On a refused
+ * disk *bad_obstacle (if not NULL) is its index (the later of two that intersect), else -1.
  */
 tvo_status_t tvo_free_space_term_init(tvo_free_space_term_t *term, const tvo_barrier_t *barrier, uint8_t robot,
-                                      tvo_real_t robot_radius_m, const tvo_disk_t *obstacles, uint8_t count);
+                                      tvo_real_t robot_radius_m, const tvo_disk_t *obstacles, uint8_t count,
+                                      int16_t *bad_obstacle);
 
 TVO_CONSTRAINT_TERM_ENTRIES(free_space);
 

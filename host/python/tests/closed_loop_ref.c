@@ -114,7 +114,7 @@ static tvo_status_t make_problem(int which, tvo_problem_t *problem, double start
     if (st != TVO_OK) {
         return st;
     }
-    uint8_t part = 0u;
+    tvo_problem_culprit_t part;
     return tvo_problem_init(problem, &desc, 2u, &part);
 }
 

@@ -32,10 +32,11 @@ int main(void)
         fprintf(stderr, "export_roundtrip: scenario_problem_desc: %s\n", tvo_status_str(st));
         return 1;
     }
-    uint8_t part = 0u;
+    tvo_problem_culprit_t part;
     st = tvo_problem_init(&problem, &desc, 2u, &part);
     if (st != TVO_OK) {
-        fprintf(stderr, "export_roundtrip: tvo_problem_init: %s (part %u)\n", tvo_status_str(st), (unsigned)part);
+        fprintf(stderr, "export_roundtrip: tvo_problem_init: %s (part %u, entry %d)\n", tvo_status_str(st),
+                (unsigned)part.part, (int)part.index);
         return 1;
     }
     st = scenario_controller_config(&cfg);

@@ -107,7 +107,7 @@ ChainParam = _param_enum("ChainParam", "tvo_chain_param_t: which field of tvo_ch
 # TVO_FLAG_*: what shaped an applied command (tvo_command_t.flags), e.g. Flag.PREDICTED in Flag(cmd.flags).
 Flag = enum.IntFlag("Flag", _constants("TVO_FLAG_", strip="TVO_FLAG_"))
 
-# The parts of a problem tvo_problem_init names on failure (bad_part, tvo/problem.h).
+# The parts of a problem tvo_problem_init names on failure (tvo_problem_culprit_t.part, tvo/problem.h).
 PROBLEM_PARTS = ("robots/targets", "barrier", "distance bounds", "half-spaces", "obstacles", "offsets")
 
 

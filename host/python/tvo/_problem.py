@@ -227,11 +227,11 @@ class BuiltProblem:
             _init_path(c, o["offset"], ffi.addressof(desc.offset[i].offset), f"offset {i}")
         self.desc = desc
         self.problem = ffi.new("tvo_problem_t *")
-        bad_part = ffi.new("uint8_t *")
-        status = lib.tvo_problem_init(self.problem, desc, relative_degree, bad_part)
+        bad = ffi.new("tvo_problem_culprit_t *")
+        status = lib.tvo_problem_init(self.problem, desc, relative_degree, bad)
         if status != 0:
-            part = PROBLEM_PARTS[bad_part[0]] if bad_part[0] < len(PROBLEM_PARTS) else str(bad_part[0])
-            culprit, detail = _Diagnosis(c, desc, problem, relative_degree).explain(part)
+            part = PROBLEM_PARTS[bad.part] if bad.part < len(PROBLEM_PARTS) else str(bad.part)
+            culprit, detail = _Diagnosis(c, desc, problem, relative_degree, bad.index).explain(part)
             raise TvoError(status, "tvo_problem_init", part=part, culprit=culprit, detail=detail)
         self.has_inequalities = problem.has_inequalities
 
@@ -255,12 +255,13 @@ class BuiltProblem:
 
 
 class _Diagnosis:
-    """Which entry of a refused part the core objects to, found by asking tvo_problem_init again with
-    that entry alone changed or left out (the core checks a part's entries in order and stops at the
-    first it refuses), and what is wrong with it in words. The core stays the judge: this only names."""
+    """What is wrong, in words, with the entry of a refused part the core named (its culprit index),
+    or, for a robot's weights and the barrier's fields, with the field whose default the core accepts
+    when tvo_problem_init is asked again. The core stays the judge: this only names."""
 
-    def __init__(self, c, desc, problem, relative_degree):
+    def __init__(self, c, desc, problem, relative_degree, index):
         self.c, self.desc, self.problem, self.k = c, desc, problem, relative_degree
+        self.index = index
         self.limit_m = c.lib.TVO_POSITION_LIMIT_M_VALUE
 
     def copy(self):
@@ -273,14 +274,9 @@ class _Diagnosis:
         ffi = self.c.ffi
         return self.c.lib.tvo_problem_init(ffi.new("tvo_problem_t *"), d, self.k, ffi.NULL) == 0
 
-    def first_refused(self, count_field, count):
-        """The first i whose entries 0 .. i the core refuses, or None."""
-        for i in range(count):
-            d = self.copy()
-            setattr(d, count_field, i + 1)
-            if not self.accepts(d):
-                return i
-        return None
+    def first_refused(self, count):
+        """The entry the core refused (tvo_problem_culprit_t.index), or None for the part as a whole."""
+        return self.index if 0 <= self.index < count else None
 
     def explain(self, part):
         method = {"robots/targets": self.robots, "barrier": self.barrier, "distance bounds": self.distance_bounds,
@@ -312,7 +308,7 @@ class _Diagnosis:
         return None, None
 
     def distance_bounds(self):
-        i = self.first_refused("distance_count", len(self.problem.distance_bounds))
+        i = self.first_refused(len(self.problem.distance_bounds))
         if i is None:
             return None, None
         b = self.problem.distance_bounds[i]
@@ -330,7 +326,7 @@ class _Diagnosis:
         return f"distance_bounds[{i}] (robots {b['robot_a']} and {b['robot_b']})", why
 
     def halfspaces(self):
-        i = self.first_refused("halfspace_count", len(self.problem.halfspaces))
+        i = self.first_refused(len(self.problem.halfspaces))
         if i is None:
             return None, None
         h = self.problem.halfspaces[i]
@@ -351,7 +347,7 @@ class _Diagnosis:
         d.robot_radius_m = 0.0
         if self.accepts(d):
             return "robot_radius_m", f"{radius} m refused: must be finite and in 0 .. {self.limit_m} m"
-        i = self.first_refused("obstacle_count", len(obstacles))
+        i = self.first_refused(len(obstacles))
         if i is None:
             return None, None
         d = self.copy()
