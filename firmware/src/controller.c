@@ -507,13 +507,17 @@ TVO_OFF_CHAIN_BODY tvo_reason_t unicycle_commit(void *ctl_any, const tvo_loop_fr
         tm->accel_mps2[r] = work->accel[r];
         ctl->internal.held.speed_mps[r] = next->speed_mps[r];
         ctl->internal.held.turn_rate_radps[r] = next->turn_rate_radps[r];
-        for (uint8_t i = (uint8_t)(2u * r); i < 2u * r + 2u; ++i) {
-            tm->output_m[i] = y->d[0][i];
-            tm->output_rate_mps[i] = y->d[1][i];
-            tm->output_accel_mps2[i] = y_accel[i];
-            tm->gradient[i] = work->gradient[i];
-            tm->gradient_rate[i] = work->gradient_rate[i];
-        }
+        const uint8_t x = (uint8_t)(2u * r); /* the robot's x entry; y follows it */
+        tm->output_m[x] = y->d[0][x];
+        tm->output_m[x + 1u] = y->d[0][x + 1u];
+        tm->output_rate_mps[x] = y->d[1][x];
+        tm->output_rate_mps[x + 1u] = y->d[1][x + 1u];
+        tm->output_accel_mps2[x] = y_accel[x];
+        tm->output_accel_mps2[x + 1u] = y_accel[x + 1u];
+        tm->gradient[x] = work->gradient[x];
+        tm->gradient[x + 1u] = work->gradient[x + 1u];
+        tm->gradient_rate[x] = work->gradient_rate[x];
+        tm->gradient_rate[x + 1u] = work->gradient_rate[x + 1u];
     }
     tm->regularization = work->report.regularization;
     const tvo_shared_values_t *shared = &work->law.shared;
