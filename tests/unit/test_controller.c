@@ -1740,6 +1740,20 @@ static void test_law_failure_after_the_estimate_leaves_the_filter_untouched(void
     assert_no_trace(&before, &fx_a.ctl);
 }
 
+/* One step of fx_a with m that must hold the command in force (in_force) for `expected` and keep
+ * nothing; line: the caller's, for the failure message. */
+static void step_holds_keeping_nothing(const tvo_measurement_t *m, test_period_t expected,
+                                       const tvo_command_t *in_force, int line)
+{
+    trace_t before;
+    trace_of(&fx_a.ctl, &before);
+    tvo_command_t cmd;
+    const tvo_status_t st = tvo_controller_step(&fx_a.ctl, m, fx_a.apply, &cmd);
+    test_assert_period(expected, st, cmd.outcome, cmd.reason, line);
+    assert_same_motion(in_force, &cmd, 1u);
+    assert_no_trace(&before, &fx_a.ctl);
+}
+
 /* The loop decides a streamed target's readiness itself, before its law (whose evaluation of such a
  * target is misuse, TVO_ERR_NOT_INITIALIZED / TVO_ERR_PARAM, which would read TVO_REASON_NUMERIC):
  * without a sample the period holds the command in force for TARGET_NOT_READY; with one stamped after
@@ -1753,13 +1767,8 @@ static void test_streamed_target_is_decided_by_the_loop_before_the_law(void)
     fx_start(&fx_a, 100u);
     const tvo_command_t in_force = fx_a.ctl.internal.held;
     TEST_ASSERT_TRUE(in_force.speed_mps[0] == TVO_R(0.4));
-    trace_t before;
-    trace_of(&fx_a.ctl, &before);
     tvo_measurement_t m = measure_now(&fx_a, fx_a.apply - FX_DELAY);
-    tvo_command_t cmd;
-    ASSERT_PERIOD(HELD(TARGET_NOT_READY), tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), cmd);
-    assert_same_motion(&in_force, &cmd, 1u);
-    assert_no_trace(&before, &fx_a.ctl);
+    step_holds_keeping_nothing(&m, HELD(TARGET_NOT_READY), &in_force, __LINE__);
 
     /* The law's time is the application instant (delay compensation): objective ticks apply - epoch. */
     const uint64_t law_ticks = (uint64_t)(fx_a.apply - fx_a.epoch);
@@ -1767,9 +1776,7 @@ static void test_streamed_target_is_decided_by_the_loop_before_the_law(void)
     memset(sample, 0, sizeof(sample));
     sample[0][0] = TVO_R(1.0);
     ASSERT_STATUS(TVO_OK, tvo_target_stream_update(&fx_a.target[0], law_ticks + 1u, TEST_CONST_STREAM(sample)));
-    ASSERT_PERIOD(HELD(FUTURE_STAMP), tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), cmd);
-    assert_same_motion(&in_force, &cmd, 1u);
-    assert_no_trace(&before, &fx_a.ctl);
+    step_holds_keeping_nothing(&m, HELD(FUTURE_STAMP), &in_force, __LINE__);
 
     /* A sample stamped exactly at the law's time is ready. */
     fx_reset(&fx_a, 1);
@@ -1778,6 +1785,7 @@ static void test_streamed_target_is_decided_by_the_loop_before_the_law(void)
     fx_set_pose(&fx_a, 0, 0.0, 0.0, 0.0);
     fx_start(&fx_a, 100u);
     m = measure_now(&fx_a, fx_a.apply - FX_DELAY);
+    tvo_command_t cmd;
     ASSERT_PERIOD(APPLIED, tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), cmd);
 }
 
@@ -1792,19 +1800,11 @@ static void test_target_made_streamed_after_its_term_waits_for_the_objective_aga
     fx_start(&fx_a, 100u);
     const tvo_command_t in_force = fx_a.ctl.internal.held;
     ASSERT_STATUS(TVO_OK, tvo_target_init_streamed(&fx_a.target[0]));
-    trace_t before;
-    trace_of(&fx_a.ctl, &before);
-    tvo_measurement_t m = measure_now(&fx_a, fx_a.apply - FX_DELAY);
-    tvo_command_t cmd;
-    ASSERT_PERIOD(HELD(NUMERIC), tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), cmd);
-    assert_same_motion(&in_force, &cmd, 1u);
-    assert_no_trace(&before, &fx_a.ctl);
+    const tvo_measurement_t m = measure_now(&fx_a, fx_a.apply - FX_DELAY);
+    step_holds_keeping_nothing(&m, HELD(NUMERIC), &in_force, __LINE__);
 
     fx_start(&fx_a, 100u); /* the objective's terms added again, the controller initialised */
-    trace_of(&fx_a.ctl, &before);
-    ASSERT_PERIOD(HELD(TARGET_NOT_READY), tvo_controller_step(&fx_a.ctl, &m, fx_a.apply, &cmd), cmd);
-    assert_same_motion(&in_force, &cmd, 1u);
-    assert_no_trace(&before, &fx_a.ctl);
+    step_holds_keeping_nothing(&m, HELD(TARGET_NOT_READY), &in_force, __LINE__);
 }
 
 #if TVO_MAX_OFFSET_EQUALITIES > 0

@@ -32,10 +32,10 @@ static inline void objective_add_target(tvo_objective_t *objective, const struct
     }
 }
 
-/** The law's precondition, decided by the loop as the stamp rules are: every target the objective's terms
- *  read can be evaluated at law_ticks (a streamed one has a sample, stamped no later), else the period's
- *  reason (TVO_REASON_TARGET_NOT_READY, TVO_REASON_FUTURE_STAMP): the streamed targets it noted. Out of line: the step keeps its
- *  registers for the law. */
+/** The law's precondition, decided by the loop as the stamp rules are: every streamed target the objective
+ *  noted can be evaluated at law_ticks (it has a sample, stamped no later), else the period's reason
+ *  (TVO_REASON_TARGET_NOT_READY, TVO_REASON_FUTURE_STAMP). Out of line: the step keeps its registers for
+ *  the law. */
 tvo_reason_t objective_targets_ready(const tvo_objective_t *objective, uint64_t law_ticks);
 
 /** Appends an inequality-constraint term (constraint_max must not be NULL). */
