@@ -6,7 +6,8 @@ Usage: keyed_fleet.py BUILD_DIR SCENARIO PORT OUT_DIR
 Runs the scenario unkeyed, then keyed while an attacker on every node's link (no key) answers every 5th
 genuine frame it hears on TVO_SAMPLE (towards the node) and TVO_COMMAND (towards the hub) with (a) the
 same frame again (a replay) and (b) a forgery: the message altered (a sample's x moved 1 m, a command's
-bytes changed) under a trailer of the same sender with the next counter, tagged with another key.
+bytes changed) under a trailer of the same sender with a counter far above its last, tagged with another
+key (the next counter would race the sender's own next frame, which makes the forgery a replay).
 Passes only if the keyed run's final error and joint-command digest over the run equal the unkeyed
 run's, the nodes agree every period, every node dropped forged and replayed samples (its counters
 unauthenticated, replayed >= 1 each, from its last announcement) and the hub forged and replayed
@@ -31,6 +32,7 @@ REPO = Path(__file__).resolve().parents[2]
 GROUP = "239.255.76.69"  # tools/fleet's node links: node k on port PORT + 1 + k
 MAGIC = 0x4C433032       # LCM's short-message header
 TRAILER = 28             # auth.h: sender id, counter, tag
+FORGED_COUNTER_LEAD = 1 << 32  # counters count frames from a boot, or microseconds (the hub): 71 min ahead
 
 
 def lcm_packet(seq, channel, data):
@@ -66,7 +68,8 @@ class Attacker(threading.Thread):
             altered[26:34] = struct.pack(">d", x + 1.0)
         else:
             altered[-9] ^= 0x40
-        nonce = struct.pack(">IQ", sender, counter + 1)
+        # Far enough ahead that no genuine frame passes it during the run, so only the tag can refuse it.
+        nonce = struct.pack(">IQ", sender, counter + FORGED_COUNTER_LEAD)
         tag = self.key.encrypt(nonce, b"", channel.encode() + b"\0" + bytes(altered))
         return bytes(altered) + nonce + tag
 
