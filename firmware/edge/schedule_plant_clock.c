@@ -137,7 +137,7 @@ static int plant_vote(tvo_schedule_t *schedule, const tvo_lcm_sample_header_t *m
     const int64_t to_apply = to_apply_us(schedule, msg->utime); /* in range */
     const int64_t period = to_apply / schedule->timing.period_us;
     if (plant_late(schedule, msg, to_apply, period)) {
-        return 0; /* a late or repeated sample (a retry queue flushing): its refusal is all it costs */
+        return 0; /* late or repeated (a queue flushing): no vote; its refusal counts in the streak */
     }
     if (refusal->node != TVO_NODE_IMPLAUSIBLE_STAMP) {
         schedule->votes = 0u;

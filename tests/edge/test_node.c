@@ -1305,6 +1305,37 @@ static void test_plant_watchdog_refusals_in_a_row_give_a_safe_stop_until_one_is_
     (void)EXPECT_REFUSED(dup, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_OUT_OF_ORDER); /* the count restarted */
 }
 
+/* Copies of served samples (a retry queue flushing), fewer than watchdog_periods in a row, cost their
+ * refusals only: the next genuine samples are answered bit for bit as without them. (watchdog_periods
+ * of them are the watchdog's stop: the test above; a link stuck on its last sample must stop.) */
+static void test_plant_fewer_copies_than_the_watchdog_cost_their_refusals_only(void)
+{
+    tvo_lcm_unicycle_command_t without[2];
+    for (int with_copies = 0; with_copies < 2; ++with_copies) {
+        setUp();
+        plant_session_after(6);
+        tvo_lcm_unicycle_sample_t m;
+        for (int64_t i = 0; with_copies && i < W - 1; ++i) {
+            plant_meas(&m, 6 - i % 6); /* 6, 5, .., 1, 6, ..: the newest served and older ones */
+            (void)EXPECT_REFUSED(m, 0, TVO_LCM_COMMAND_HEADER_T_STATUS_ERR_OUT_OF_ORDER);
+        }
+        TEST_ASSERT_EQUAL_INT32(0, node.counters.safe_stops);
+        for (int64_t j = 7; j < 9; ++j) {
+            plant_meas(&m, j);
+            const tvo_lcm_unicycle_command_t cmd = EXPECT_ACCEPTED(m, 0, plant_apply(j));
+            if (!with_copies) {
+                without[j - 7] = cmd;
+                continue;
+            }
+            TEST_ASSERT_EQUAL_INT64(without[j - 7].header.utime, cmd.header.utime);
+            TEST_ASSERT_EQUAL_INT(without[j - 7].header.status, cmd.header.status);
+            TEST_ASSERT_EQUAL_INT(without[j - 7].header.flags, cmd.header.flags);
+            TEST_ASSERT_EQUAL_MEMORY(&without[j - 7].speed_mps, &cmd.speed_mps, sizeof(cmd.speed_mps));
+            TEST_ASSERT_EQUAL_MEMORY(&without[j - 7].turn_rate_radps, &cmd.turn_rate_radps, sizeof(cmd.turn_rate_radps));
+        }
+    }
+}
+
 static void test_plant_wrong_robot_plant_and_non_finite_values_are_refused(void)
 {
     plant_session_after(1);
@@ -3354,6 +3385,7 @@ int main(void)
     RUN_TEST(test_plant_stale_copies_after_a_jump_do_not_restart_the_vote);
     RUN_TEST(test_target_stamped_at_epoch_minus_tau_is_carried_to_the_epoch);
     RUN_TEST(test_plant_watchdog_refusals_in_a_row_give_a_safe_stop_until_one_is_accepted);
+    RUN_TEST(test_plant_fewer_copies_than_the_watchdog_cost_their_refusals_only);
     RUN_TEST(test_plant_wrong_robot_plant_and_non_finite_values_are_refused);
     RUN_TEST(test_node_clock_offset_comes_from_the_start_and_commands_are_in_plant_time);
     RUN_TEST(test_node_clock_sequence_is_only_echoed);
