@@ -92,7 +92,8 @@ static void on_command(const lcm_recv_buf_t *rb, const char *ch, const tvo_lcm_u
     p->answered |= h->measurement_sequence == p->sent;
     /* Apply a computed answer (status 0) to a newer sequence we sent, or a safe stop at once. */
     if ((h->status == 0 && h->measurement_sequence <= p->sent && h->measurement_sequence > p->in_force) || safe_stop) {
-        p->in_force = h->measurement_sequence > p->in_force ? h->measurement_sequence : p->in_force;
+        if (h->measurement_sequence <= p->sent && h->measurement_sequence > p->in_force)
+            p->in_force = h->measurement_sequence; /* a safe stop of a stray's sequence must not hide ours */
         p->next = *c, p->has_next = 1;
         p->next.header.utime = safe_stop ? 0 : h->utime; /* never put off stopping */
     }

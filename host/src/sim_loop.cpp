@@ -153,7 +153,11 @@ void SimLoop::on_command(const JointCommand& command)
             first_safe_stop_after_loss_utime_ = command.utime;
         }
     }
-    last_queued_sequence_ = std::max<std::int64_t>(last_queued_sequence_, command.measurement_sequence);
+    if (answers_ours) {
+        // A safe stop may answer a stray (a sequence we never sent) or be the node's own (-1): it must
+        // not make our newer samples' answers look old.
+        last_queued_sequence_ = std::max<std::int64_t>(last_queued_sequence_, command.measurement_sequence);
+    }
     PendingCommand pending;
     pending.apply_us = command.utime - epoch_utime_ + faults_.extra_delay_us();
     pending.sequence = command.measurement_sequence;

@@ -2,11 +2,12 @@
 """LCM from Python: LCM's own module (built from Debian's lcm source package) and the message types
 lcm-gen -p generated from lcm_types/*.lcm publish and receive over memq:// and over UDP multicast on
 loopback; every generated type round-trips; an LCM log written from Python reads back; a frame
-signed with tvo.auth travels and opens.
+signed with tvo.auth travels and opens; examples/plant.py applies commands by rule 4.
 
 Usage: test_lcm.py UDPM_URL   (PYTHONPATH: <build>/host/python)
 """
 import importlib
+import importlib.util
 import os
 import re
 import sys
@@ -128,6 +129,39 @@ class LcmTest(unittest.TestCase):
         scope = {}
         exec(block.group(1), scope)   # pylint: disable=exec-used
         self.assertEqual(scope["heard"][0].header.sequence, 1)
+
+
+class ExamplePlantRule4Test(unittest.TestCase):
+    """examples/plant.py's on_command (lcm_types/README.md, rule 4), fed encoded commands directly."""
+
+    def plant(self):
+        path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "examples", "plant.py")
+        spec = importlib.util.spec_from_file_location("example_plant", path)
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
+        plant = module.Plant.__new__(module.Plant)  # no bus: only what on_command reads and writes
+        plant.session_id, plant.sent, plant.in_force, plant.answered, plant.next = 77, 12, 11, False, None
+        return plant
+
+    @staticmethod
+    def command(sequence, status=0, flags=0):
+        m = sample_command()
+        m.header.robot, m.header.measurement_sequence, m.header.status, m.header.flags = 0, sequence, status, flags
+        return m
+
+    def test_a_safe_stop_of_a_strays_sequence_does_not_hide_the_next_answer(self):
+        plant = self.plant()
+        stop = tvo_lcm.command_header_t.FLAG_SAFE_STOP
+        plant.on_command(self.command(10**9, tvo_lcm.command_header_t.STATUS_ERR_WATCHDOG, stop).encode())
+        self.assertEqual(plant.next.speed_mps, 0.5)   # applied on arrival (this test's stop keeps its inputs)
+        self.assertEqual(plant.next.header.utime, 0)
+        self.assertEqual(plant.in_force, 11)          # a sequence it never sent moves nothing
+        plant.on_command(self.command(12).encode())  # the answer to its newest sample
+        self.assertEqual(plant.next.header.measurement_sequence, 12)
+        self.assertEqual(plant.in_force, 12)
+        plant.next = None
+        plant.on_command(self.command(12).encode())  # a repeat: not newer than the one in force
+        self.assertIsNone(plant.next)
 
 
 if __name__ == "__main__":
