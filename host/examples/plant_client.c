@@ -90,10 +90,10 @@ static void on_command(const lcm_recv_buf_t *rb, const char *ch, const tvo_lcm_u
     if (h->session_id != p->session_id || h->robot != 0) return; /* another plant's */
     const int safe_stop = ((uint32_t)h->flags & TVO_LCM_COMMAND_HEADER_T_FLAG_SAFE_STOP) != 0u;
     p->answered |= h->measurement_sequence == p->sent;
+    const int newer_ours = h->measurement_sequence <= p->sent && h->measurement_sequence > p->in_force;
     /* Apply a computed answer (status 0) to a newer sequence we sent, or a safe stop at once. */
-    if ((h->status == 0 && h->measurement_sequence <= p->sent && h->measurement_sequence > p->in_force) || safe_stop) {
-        if (h->measurement_sequence <= p->sent && h->measurement_sequence > p->in_force)
-            p->in_force = h->measurement_sequence; /* a safe stop of a stray's sequence must not hide ours */
+    if ((h->status == 0 && newer_ours) || safe_stop) {
+        if (newer_ours) p->in_force = h->measurement_sequence; /* a safe stop of a stray's must not hide ours */
         p->next = *c, p->has_next = 1;
         p->next.header.utime = safe_stop ? 0 : h->utime; /* never put off stopping */
     }

@@ -121,9 +121,10 @@ class Plant:
             return      # another plant's
         self.answered |= h.measurement_sequence == self.sent
         safe_stop = bool(h.flags & command_header_t.FLAG_SAFE_STOP)
-        if (h.status == 0 and self.in_force < h.measurement_sequence <= self.sent) or safe_stop:
-            if h.measurement_sequence <= self.sent:   # a safe stop of a stray's sequence must not hide ours
-                self.in_force = max(self.in_force, h.measurement_sequence)
+        newer_ours = self.in_force < h.measurement_sequence <= self.sent
+        if (h.status == 0 and newer_ours) or safe_stop:
+            if newer_ours:      # a safe stop of a stray's sequence must not hide ours
+                self.in_force = h.measurement_sequence
             if safe_stop:
                 h.utime = 0     # never put off stopping
             self.next = c
